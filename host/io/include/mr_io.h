@@ -1,0 +1,213 @@
+/* Byte sources and sinks for glove streams, and the stream recording format.
+ *
+ * Everything is a plain POSIX file descriptor underneath: stdin/stdout,
+ * regular files, FIFOs, pseudo-terminals, TCP sockets and serial devices.
+ * libserialport lists, opens and configures real serial devices; ptys go
+ * through termios on a plain fd, because libserialport cannot open them
+ * (DESIGN.md, "Serial ports").
+ *
+ * Nothing here prints or aborts: every failure comes back as a status plus an
+ * mr_err naming what and where.
+ */
+#ifndef MR_IO_H
+#define MR_IO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* --- errors ---------------------------------------------------------------- */
+
+typedef enum mr_err_code {
+  MR_E_NONE = 0,
+  MR_E_SYSTEM,     /* a system call failed; sys_errno says which errno */
+  MR_E_SPEC,       /* an unparsable open spec ("tcp:nohost", "serial:@9") */
+  MR_E_SERIAL,     /* libserialport refused (no such port, bad setting) */
+  MR_E_FORMAT,     /* a malformed recording; the message names the byte offset */
+  MR_E_TRUNCATED,  /* a recording's last chunk is cut short */
+  MR_E_ARG,        /* a caller's argument is out of range */
+} mr_err_code;
+
+typedef struct mr_err {
+  mr_err_code code;
+  int sys_errno;   /* for MR_E_SYSTEM, else 0 */
+  char msg[320];
+} mr_err;
+
+/* --- sources and sinks ------------------------------------------------------ */
+
+/* What a read or write ended on. */
+typedef enum mr_io_status {
+  MR_IO_OK = 0,      /* bytes moved */
+  MR_IO_TIMEOUT,     /* nothing moved within the timeout; the link is still up */
+  MR_IO_EOF,         /* end of a file, a pipe or FIFO whose writer left */
+  MR_IO_HANGUP,      /* the link is gone: device unplugged, pty's other end
+                        closed, TCP peer closed or reset */
+  MR_IO_ERROR,       /* anything else; see the mr_err */
+} mr_io_status;
+
+typedef enum mr_io_kind {
+  MR_IO_STDIO,       /* "-": stdin to read, stdout to write */
+  MR_IO_FILE,        /* a regular file */
+  MR_IO_FIFO,        /* a named pipe */
+  MR_IO_PTY,         /* the master side of a pty this process created */
+  MR_IO_TTY,         /* a tty opened through termios (a pty's slave side) */
+  MR_IO_SERIAL,      /* a serial device opened through libserialport */
+  MR_IO_TCP,         /* a connected TCP socket */
+  MR_IO_TCP_LISTEN,  /* a listening socket; the first read/write accepts */
+} mr_io_kind;
+
+enum { MR_IO_READ = 1, MR_IO_WRITE = 2 };
+
+#define MR_IO_DEFAULT_BAUD 115200
+
+typedef struct mr_io {
+  mr_io_kind kind;
+  int fd;            /* the descriptor bytes move through (-1 before accept) */
+  int listen_fd;     /* MR_IO_TCP_LISTEN: the listening socket */
+  int mode;          /* MR_IO_READ and/or MR_IO_WRITE */
+  int baud;          /* ttys and serial devices */
+  int port;          /* TCP: the port actually bound or connected */
+  int peer_seen;     /* MR_IO_PTY: a peer has opened the slave side */
+  char path[256];    /* file or device path, pty slave path, or host:port */
+  void *sp;          /* libserialport's port, for MR_IO_SERIAL */
+} mr_io;
+
+/* Opens a source or sink named by spec:
+ *   "-"                      stdin (MR_IO_READ) or stdout (MR_IO_WRITE)
+ *   "file:PATH"              a regular file or FIFO (created for writing)
+ *   PATH                     the same, except that a character device opens
+ *                            as "serial:PATH" at the default baud
+ *   "pty"                    a new pseudo-terminal, raw mode; mr_io_path()
+ *                            names its slave side for the peer to open
+ *   "tcp:HOST:PORT"          connect
+ *   "tcp-listen:[HOST:]PORT" listen (HOST defaults to 127.0.0.1; PORT 0 picks
+ *                            a free port, read it back from io->port)
+ *   "serial:DEV[@BAUD]"      8N1 at BAUD (default 115200); a pty slave path is
+ *                            recognised and opened through termios
+ * Returns 0, or -1 with *err filled. */
+int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err);
+
+/* Adopts an existing descriptor (not closed by mr_io_close). */
+void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name);
+
+/* Reads up to cap bytes, waiting at most timeout_ms (negative: forever).
+ * MR_IO_OK sets *got > 0. Bytes that arrived before a hang-up are returned
+ * first; the hang-up is reported by the next call. */
+mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms,
+                        size_t *got, mr_err *err);
+
+/* Writes all len bytes, waiting at most timeout_ms for the link to take each
+ * piece (negative: forever). On anything but MR_IO_OK, *sent (if not NULL)
+ * says how many went out. */
+mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
+                         size_t *sent, mr_err *err);
+
+/* MR_IO_TCP_LISTEN: waits for one peer and adopts it (later reads and writes
+ * go to it). Other kinds: MR_IO_OK at once. */
+mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_err *err);
+
+/* MR_IO_PTY: waits until a peer has opened the slave side. Other kinds:
+ * MR_IO_OK at once. */
+mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_err *err);
+
+/* MR_IO_PTY: waits until the peer has read everything written, because
+ * closing the master discards what the slave has not read yet. Other kinds:
+ * MR_IO_OK at once. MR_IO_HANGUP if the peer left first. */
+mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_err *err);
+
+/* The path or address the source is known by (for a created pty: the slave
+ * path to hand to the peer). */
+const char *mr_io_path(const mr_io *io);
+
+const char *mr_io_status_name(mr_io_status st);
+const char *mr_io_kind_name(mr_io_kind kind);
+
+void mr_io_close(mr_io *io);
+
+/* True if path names a pseudo-terminal's slave side (e.g. /dev/pts/3). */
+int mr_io_is_pty_slave(const char *path);
+
+/* --- serial devices (libserialport) ------------------------------------------ */
+
+typedef struct mr_serial_info {
+  char name[128];          /* /dev/ttyUSB0 */
+  char description[128];
+  int is_usb;
+  int usb_vid, usb_pid;    /* -1 when not USB */
+  char serial[64];         /* USB serial number, "" if none */
+  char manufacturer[64];
+  char product[64];
+} mr_serial_info;
+
+/* Fills up to cap entries, sets *n to how many ports exist. 0 or -1. */
+int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_err *err);
+
+/* --- stream recordings (*.mrec; PROTOCOL.md "Stream recording format") ------ */
+
+#define MR_REC_MAGIC "MRSTREAM"
+#define MR_REC_VERSION 1u
+#define MR_REC_HEADER_LEN 32u
+#define MR_REC_CHUNK_HEADER_LEN 12u
+#define MR_REC_MAX_CHUNK 1048576u
+
+typedef struct mr_rec_header {
+  uint16_t version;
+  uint16_t header_len;
+  uint32_t spec_hash;       /* the recorder's; informational */
+  uint64_t start_unix_ns;   /* 0 if unknown */
+} mr_rec_header;
+
+typedef struct mr_rec_writer {
+  int fd;
+  uint64_t offset;          /* bytes written so far */
+  uint64_t last_t_ns;
+  uint64_t chunks;
+  char path[256];
+} mr_rec_writer;
+
+/* Creates (truncates) path and writes the header. 0 or -1. */
+int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
+                       uint64_t start_unix_ns, mr_err *err);
+/* Appends one chunk: 1..MR_REC_MAX_CHUNK bytes at t_ns since the start,
+ * never earlier than the chunk before. 0 or -1. */
+int mr_rec_writer_add(mr_rec_writer *w, uint64_t t_ns, const void *data, size_t len,
+                      mr_err *err);
+/* Flushes and closes; 0 or -1 (the file may be incomplete). */
+int mr_rec_writer_close(mr_rec_writer *w, mr_err *err);
+
+typedef struct mr_rec_reader {
+  int fd;
+  int owns_fd;
+  mr_rec_header header;
+  uint64_t offset;          /* bytes consumed from the file so far */
+  uint64_t last_t_ns;
+  uint64_t chunks;
+  uint8_t *data;            /* the current chunk */
+  size_t data_cap;
+  const uint8_t *prefix;    /* bytes already read from fd by the caller */
+  size_t prefix_len;
+  char name[256];
+} mr_rec_reader;
+
+/* Opens path and reads the header. 0, or -1 with the offending byte offset
+ * in the message. */
+int mr_rec_reader_open(mr_rec_reader *r, const char *path, mr_err *err);
+/* The same over an open descriptor whose first prefix_len bytes the caller has
+ * already read (e.g. to sniff the magic); prefix must outlive the header
+ * read. name appears in messages. */
+int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name,
+                          const void *prefix, size_t prefix_len, mr_err *err);
+
+/* The next chunk: 1 with *t_ns, *data (valid until the next call) and *len
+ * set; 0 at a clean end of file; -1 on a malformed chunk (MR_E_FORMAT) or a
+ * final chunk cut short (MR_E_TRUNCATED: offset and bytes missing in the
+ * message). Every chunk returned before an error is complete. */
+int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data,
+                       size_t *len, mr_err *err);
+
+void mr_rec_reader_close(mr_rec_reader *r);
+
+/* True if buf starts with the recording magic (needs 8 bytes). */
+int mr_rec_is_recording(const void *buf, size_t len);
+
+#endif

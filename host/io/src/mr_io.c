@@ -1,0 +1,310 @@
+/* Opening by spec, and reads and writes with a timeout over any descriptor.
+ * Every kind ends up as one fd; only open and close differ per kind. */
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "mr_io_internal.h"
+
+long long mr_io_now_ms(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+int mr_io_ms_left(long long start_ms, int timeout_ms) {
+  long long left;
+  if (timeout_ms < 0) return -1;
+  left = start_ms + timeout_ms - mr_io_now_ms();
+  return left > 0 ? (int)left : 0;
+}
+
+static void io_reset(mr_io *io) {
+  memset(io, 0, sizeof *io);
+  io->fd = -1;
+  io->listen_fd = -1;
+}
+
+void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name) {
+  io_reset(io);
+  io->kind = kind;
+  io->fd = fd;
+  io->mode = MR_IO_READ | MR_IO_WRITE;
+  io->peer_seen = 1;
+  /* Adopted descriptors stay open on close: mark them like stdio. */
+  io->listen_fd = -2;
+  snprintf(io->path, sizeof io->path, "%s", name ? name : "fd");
+}
+
+int mr_io_is_pty_slave(const char *path) {
+  struct stat st;
+  char real[4096];
+  if (stat(path, &st) != 0 || !S_ISCHR(st.st_mode)) return 0;
+  /* Unix98 pty slaves live on majors 136..143 and under /dev/pts. */
+  if (major(st.st_rdev) >= 136 && major(st.st_rdev) <= 143) return 1;
+  if (realpath(path, real) && strncmp(real, "/dev/pts/", 9) == 0) return 1;
+  return 0;
+}
+
+static int parse_baud(const char *s, int *baud, const char *spec, mr_err *err) {
+  char *end;
+  long v;
+  errno = 0;
+  v = strtol(s, &end, 10);
+  if (errno || end == s || *end || v <= 0 || v > 100000000)
+    return mr_err_set(err, MR_E_SPEC, "%s: baud rate '%s' is not a positive integer",
+                      spec, s);
+  *baud = (int)v;
+  return 0;
+}
+
+/* "serial:DEV[@BAUD]" and character devices given by path. */
+static int open_serial(mr_io *io, const char *dev_at_baud, const char *spec, mr_err *err) {
+  char dev[256];
+  const char *at = strrchr(dev_at_baud, '@');
+  size_t n = at ? (size_t)(at - dev_at_baud) : strlen(dev_at_baud);
+  int baud = MR_IO_DEFAULT_BAUD;
+  if (n == 0 || n >= sizeof dev)
+    return mr_err_set(err, MR_E_SPEC, "%s: expected serial:DEVICE[@BAUD]", spec);
+  memcpy(dev, dev_at_baud, n);
+  dev[n] = 0;
+  if (at && parse_baud(at + 1, &baud, spec, err) != 0) return -1;
+  if (mr_io_is_pty_slave(dev)) return mr_io_tty_open(io, dev, baud, err);
+  return mr_io_serial_open(io, dev, baud, err);
+}
+
+static int open_file(mr_io *io, const char *path, mr_err *err) {
+  struct stat st;
+  int flags = (io->mode & MR_IO_WRITE) ? ((io->mode & MR_IO_READ) ? O_RDWR : O_WRONLY)
+                                        : O_RDONLY;
+  if (io->mode & MR_IO_WRITE) {
+    /* A FIFO must not be truncated or replaced: open it as it is. */
+    if (!(stat(path, &st) == 0 && S_ISFIFO(st.st_mode))) flags |= O_CREAT | O_TRUNC;
+  }
+  io->fd = open(path, flags | O_CLOEXEC, 0644);
+  if (io->fd < 0) return mr_err_sys(err, "%s: cannot open", path);
+  if (fstat(io->fd, &st) != 0) {
+    mr_err_sys(err, "%s: cannot stat", path);
+    close(io->fd);
+    io->fd = -1;
+    return -1;
+  }
+  io->kind = S_ISFIFO(st.st_mode) ? MR_IO_FIFO : MR_IO_FILE;
+  snprintf(io->path, sizeof io->path, "%s", path);
+  return 0;
+}
+
+int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
+  struct stat st;
+  io_reset(io);
+  io->mode = mode;
+  io->baud = MR_IO_DEFAULT_BAUD;
+  io->peer_seen = 1;
+  if (!spec || !*spec) return mr_err_set(err, MR_E_SPEC, "empty source/sink spec");
+  if (!(mode & (MR_IO_READ | MR_IO_WRITE)))
+    return mr_err_set(err, MR_E_ARG, "%s: open mode must read or write", spec);
+
+  if (strcmp(spec, "-") == 0) {
+    if ((mode & MR_IO_READ) && (mode & MR_IO_WRITE))
+      return mr_err_set(err, MR_E_SPEC, "-: stdin/stdout is one direction only");
+    io->kind = MR_IO_STDIO;
+    io->fd = (mode & MR_IO_READ) ? STDIN_FILENO : STDOUT_FILENO;
+    snprintf(io->path, sizeof io->path, "%s", (mode & MR_IO_READ) ? "stdin" : "stdout");
+    return 0;
+  }
+  if (strncmp(spec, "file:", 5) == 0) {
+    if (!spec[5]) return mr_err_set(err, MR_E_SPEC, "%s: expected file:PATH", spec);
+    return open_file(io, spec + 5, err);
+  }
+  if (strcmp(spec, "pty") == 0) return mr_io_pty_create(io, err);
+  if (strncmp(spec, "tcp:", 4) == 0 || strncmp(spec, "tcp-listen:", 11) == 0) {
+    int listen = spec[3] == '-';
+    const char *rest = spec + (listen ? 11 : 4);
+    char host[256] = "127.0.0.1";
+    const char *colon = strrchr(rest, ':');
+    const char *port = colon ? colon + 1 : rest;
+    if (colon) {
+      size_t hn = (size_t)(colon - rest);
+      if (hn >= sizeof host) return mr_err_set(err, MR_E_SPEC, "%s: host name too long", spec);
+      memcpy(host, rest, hn);
+      host[hn] = 0;
+      /* [::1]:5000 */
+      if (hn >= 2 && host[0] == '[' && host[hn - 1] == ']') {
+        memmove(host, host + 1, hn - 2);
+        host[hn - 2] = 0;
+      }
+    } else if (!listen) {
+      return mr_err_set(err, MR_E_SPEC, "%s: expected tcp:HOST:PORT", spec);
+    }
+    if (!*host || !*port)
+      return mr_err_set(err, MR_E_SPEC, "%s: expected %s", spec,
+                        listen ? "tcp-listen:[HOST:]PORT" : "tcp:HOST:PORT");
+    return listen ? mr_io_tcp_listen(io, host, port, err)
+                  : mr_io_tcp_connect(io, host, port, err);
+  }
+  if (strncmp(spec, "serial:", 7) == 0) return open_serial(io, spec + 7, spec, err);
+  if (stat(spec, &st) == 0 && S_ISCHR(st.st_mode) && strcmp(spec, "/dev/null") != 0)
+    return open_serial(io, spec, spec, err);
+  return open_file(io, spec, err);
+}
+
+static int is_link_kind(mr_io_kind k) {
+  return k == MR_IO_PTY || k == MR_IO_TTY || k == MR_IO_SERIAL || k == MR_IO_TCP;
+}
+
+static int is_gone_errno(int e) {
+  return e == EIO || e == ECONNRESET || e == ENXIO || e == ENODEV || e == EPIPE ||
+         e == ETIMEDOUT || e == ENOTCONN || e == ESHUTDOWN;
+}
+
+mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t *got,
+                        mr_err *err) {
+  long long start = mr_io_now_ms();
+  *got = 0;
+  if (!(io->mode & MR_IO_READ)) {
+    mr_err_set(err, MR_E_ARG, "%s: not opened for reading", io->path);
+    return MR_IO_ERROR;
+  }
+  if (cap == 0) return MR_IO_OK;
+  if (io->kind == MR_IO_TCP_LISTEN || (io->kind == MR_IO_PTY && !io->peer_seen)) {
+    mr_io_status st = io->kind == MR_IO_PTY ? mr_io_wait_peer(io, timeout_ms, err)
+                                            : mr_io_accept(io, timeout_ms, err);
+    if (st != MR_IO_OK) return st;
+  }
+  for (;;) {
+    struct pollfd p = {io->fd, POLLIN, 0};
+    ssize_t n;
+    int r = poll(&p, 1, mr_io_ms_left(start, timeout_ms));
+    if (r < 0) {
+      /* A signal ends the wait early, so that the caller can look at it. */
+      if (errno == EINTR) return MR_IO_TIMEOUT;
+      mr_err_sys(err, "%s: poll", io->path);
+      return MR_IO_ERROR;
+    }
+    if (r == 0) return MR_IO_TIMEOUT;
+    if (p.revents & POLLNVAL) {
+      mr_err_set(err, MR_E_ARG, "%s: descriptor %d is not open", io->path, io->fd);
+      return MR_IO_ERROR;
+    }
+    /* Read even on POLLHUP: bytes that arrived before the hang-up come first. */
+    n = read(io->fd, buf, cap);
+    if (n > 0) {
+      *got = (size_t)n;
+      return MR_IO_OK;
+    }
+    if (n == 0) return is_link_kind(io->kind) ? MR_IO_HANGUP : MR_IO_EOF;
+    if (errno == EAGAIN || errno == EWOULDBLOCK) continue;
+    if (errno == EINTR) return MR_IO_TIMEOUT;
+    if (is_gone_errno(errno)) return MR_IO_HANGUP;
+    mr_err_sys(err, "%s: read", io->path);
+    return MR_IO_ERROR;
+  }
+}
+
+mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
+                         size_t *sent, mr_err *err) {
+  long long start = mr_io_now_ms();
+  const uint8_t *p = buf;
+  size_t done = 0;
+  mr_io_status st = MR_IO_OK;
+  if (!(io->mode & MR_IO_WRITE)) {
+    mr_err_set(err, MR_E_ARG, "%s: not opened for writing", io->path);
+    st = MR_IO_ERROR;
+    goto out;
+  }
+  if (io->kind == MR_IO_TCP_LISTEN || (io->kind == MR_IO_PTY && !io->peer_seen)) {
+    st = io->kind == MR_IO_PTY ? mr_io_wait_peer(io, timeout_ms, err)
+                               : mr_io_accept(io, timeout_ms, err);
+    if (st != MR_IO_OK) goto out;
+  }
+  while (done < len) {
+    struct pollfd pf = {io->fd, POLLOUT, 0};
+    ssize_t n;
+    int r = poll(&pf, 1, mr_io_ms_left(start, timeout_ms));
+    if (r < 0) {
+      if (errno == EINTR) {
+        st = MR_IO_TIMEOUT;
+        goto out;
+      }
+      mr_err_sys(err, "%s: poll", io->path);
+      st = MR_IO_ERROR;
+      goto out;
+    }
+    if (r == 0) {
+      st = MR_IO_TIMEOUT;
+      goto out;
+    }
+    /* A pty master shows POLLHUP while no one has the slave side open: the
+     * bytes would only pile up unread. */
+    if (is_link_kind(io->kind) && (pf.revents & (POLLHUP | POLLERR))) {
+      st = MR_IO_HANGUP;
+      goto out;
+    }
+    if (io->kind == MR_IO_TCP)
+      n = send(io->fd, p + done, len - done, MSG_NOSIGNAL);
+    else
+      n = write(io->fd, p + done, len - done);
+    if (n > 0) {
+      done += (size_t)n;
+      continue;
+    }
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) continue;
+    if (n < 0 && is_gone_errno(errno)) {
+      st = MR_IO_HANGUP;
+      goto out;
+    }
+    mr_err_sys(err, "%s: write", io->path);
+    st = MR_IO_ERROR;
+    goto out;
+  }
+out:
+  if (sent) *sent = done;
+  return st;
+}
+
+const char *mr_io_path(const mr_io *io) { return io->path; }
+
+const char *mr_io_status_name(mr_io_status st) {
+  switch (st) {
+  case MR_IO_OK: return "ok";
+  case MR_IO_TIMEOUT: return "timeout";
+  case MR_IO_EOF: return "end of stream";
+  case MR_IO_HANGUP: return "hang-up";
+  case MR_IO_ERROR: return "error";
+  }
+  return "?";
+}
+
+const char *mr_io_kind_name(mr_io_kind kind) {
+  switch (kind) {
+  case MR_IO_STDIO: return "stdio";
+  case MR_IO_FILE: return "file";
+  case MR_IO_FIFO: return "fifo";
+  case MR_IO_PTY: return "pty";
+  case MR_IO_TTY: return "tty";
+  case MR_IO_SERIAL: return "serial";
+  case MR_IO_TCP: return "tcp";
+  case MR_IO_TCP_LISTEN: return "tcp-listen";
+  }
+  return "?";
+}
+
+void mr_io_close(mr_io *io) {
+  int adopted = io->listen_fd == -2;
+  if (io->kind == MR_IO_SERIAL) {
+    mr_io_serial_close(io);
+  } else if (io->kind != MR_IO_STDIO && !adopted && io->fd >= 0) {
+    close(io->fd);
+  }
+  if (io->listen_fd >= 0) close(io->listen_fd);
+  io->fd = -1;
+  io->listen_fd = -1;
+}

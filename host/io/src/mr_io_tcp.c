@@ -1,0 +1,128 @@
+/* TCP: connect to HOST:PORT, or listen on one and accept a single peer. */
+#include <errno.h>
+#include <fcntl.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "mr_io_internal.h"
+
+static int bound_port(int fd) {
+  struct sockaddr_storage ss;
+  socklen_t len = sizeof ss;
+  if (getsockname(fd, (struct sockaddr *)&ss, &len) != 0) return -1;
+  if (ss.ss_family == AF_INET) return ntohs(((struct sockaddr_in *)&ss)->sin_port);
+  if (ss.ss_family == AF_INET6) return ntohs(((struct sockaddr_in6 *)&ss)->sin6_port);
+  return -1;
+}
+
+static void set_stream_opts(int fd) {
+  int one = 1;
+  /* Frames are small and latency matters more than packet count. */
+  setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
+}
+
+int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_err *err) {
+  struct addrinfo hints, *res = NULL, *ai;
+  int rc, fd = -1, last_errno = 0;
+  memset(&hints, 0, sizeof hints);
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  rc = getaddrinfo(host, port, &hints, &res);
+  if (rc != 0)
+    return mr_err_set(err, MR_E_SPEC, "tcp:%s:%s: %s", host, port, gai_strerror(rc));
+  for (ai = res; ai; ai = ai->ai_next) {
+    fd = socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
+    if (fd < 0) {
+      last_errno = errno;
+      continue;
+    }
+    if (connect(fd, ai->ai_addr, ai->ai_addrlen) == 0) break;
+    last_errno = errno;
+    close(fd);
+    fd = -1;
+  }
+  freeaddrinfo(res);
+  if (fd < 0) {
+    errno = last_errno;
+    return mr_err_sys(err, "tcp:%s:%s: cannot connect", host, port);
+  }
+  set_stream_opts(fd);
+  io->fd = fd;
+  io->kind = MR_IO_TCP;
+  io->port = atoi(port);
+  snprintf(io->path, sizeof io->path, "%s:%s", host, port);
+  return 0;
+}
+
+int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_err *err) {
+  struct addrinfo hints, *res = NULL, *ai;
+  int rc, fd = -1, one = 1, last_errno = 0;
+  memset(&hints, 0, sizeof hints);
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_PASSIVE;
+  rc = getaddrinfo(host, port, &hints, &res);
+  if (rc != 0)
+    return mr_err_set(err, MR_E_SPEC, "tcp-listen:%s:%s: %s", host, port, gai_strerror(rc));
+  for (ai = res; ai; ai = ai->ai_next) {
+    fd = socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
+    if (fd < 0) {
+      last_errno = errno;
+      continue;
+    }
+    setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, 1) == 0) break;
+    last_errno = errno;
+    close(fd);
+    fd = -1;
+  }
+  freeaddrinfo(res);
+  if (fd < 0) {
+    errno = last_errno;
+    return mr_err_sys(err, "tcp-listen:%s:%s: cannot listen", host, port);
+  }
+  io->listen_fd = fd;
+  io->fd = -1;
+  io->kind = MR_IO_TCP_LISTEN;
+  io->port = bound_port(fd);
+  snprintf(io->path, sizeof io->path, "%s:%d", host, io->port);
+  return 0;
+}
+
+mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_err *err) {
+  struct pollfd p;
+  int r, fd;
+  if (io->kind != MR_IO_TCP_LISTEN) return MR_IO_OK;
+  p.fd = io->listen_fd;
+  p.events = POLLIN;
+  p.revents = 0;
+  r = poll(&p, 1, timeout_ms);
+  if (r < 0 && errno == EINTR) return MR_IO_TIMEOUT;
+  if (r < 0) {
+    mr_err_sys(err, "%s: poll", io->path);
+    return MR_IO_ERROR;
+  }
+  if (r == 0) return MR_IO_TIMEOUT;
+  fd = accept(io->listen_fd, NULL, NULL);
+  if (fd < 0) {
+    if (errno == EINTR || errno == EAGAIN || errno == ECONNABORTED) return MR_IO_TIMEOUT;
+    mr_err_sys(err, "%s: accept", io->path);
+    return MR_IO_ERROR;
+  }
+  fcntl(fd, F_SETFD, FD_CLOEXEC);
+  set_stream_opts(fd);
+  /* One peer per stream: stop listening so a second client is refused. */
+  close(io->listen_fd);
+  io->listen_fd = -1;
+  io->fd = fd;
+  io->kind = MR_IO_TCP;
+  return MR_IO_OK;
+}
