@@ -126,7 +126,7 @@ mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_err *err) {
 }
 
 mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_err *err) {
-  long long start = mr_io_now_ms();
+  long long start = mr_io_now_ms(), empty_since = -1;
   if (io->kind != MR_IO_PTY) return MR_IO_OK;
   for (;;) {
     int queued = 0, fd, left;
@@ -143,9 +143,17 @@ mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_err *err) {
       return MR_IO_ERROR;
     }
     close(fd);
-    if (queued == 0) return MR_IO_OK;
+    /* FIONREAD counts only the line discipline's buffer; bytes still in the
+     * tty's flip buffer (up to 16 KiB measured) move in when the reader makes
+     * room. So the queue must stay empty for a while, not just once. */
+    if (queued == 0) {
+      if (empty_since < 0) empty_since = mr_io_now_ms();
+      if (mr_io_now_ms() - empty_since >= 100) return MR_IO_OK;
+    } else {
+      empty_since = -1;
+    }
     left = mr_io_ms_left(start, timeout_ms);
     if (left == 0) return MR_IO_TIMEOUT;
-    sleep_ms(left < 0 || left > 5 ? 5 : left);
+    sleep_ms(left < 0 || left > 2 ? 2 : left);
   }
 }

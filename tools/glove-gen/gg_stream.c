@@ -1,0 +1,302 @@
+/* Frame generation and fault injection for one glove. Each fault is applied
+ * exactly as PROTOCOL.md maps it to decoder counters, and the expected
+ * counters are kept as the frames go out, so the truth file is what the
+ * decoder must report, not an estimate. */
+#include <math.h>
+#include <string.h>
+
+#include "gg_stream.h"
+
+const char *const gg_fault_names[GG_F_COUNT] = {
+    "drop", "dup", "reorder", "flip", "truncate", "garbage", "wrong-hash", "stall", "unknown"};
+
+void gg_stream_init(gg_stream *s, const gg_stream_config *cfg, gg_motion *motion, FILE *truth) {
+  memset(s, 0, sizeof *s);
+  s->cfg = *cfg;
+  s->motion = motion;
+  s->truth = truth;
+  gg_rng_seed(&s->rng, cfg->seed ^ 0x6661756C74730000ull);
+  do {
+    s->foreign_hash = (uint32_t)gg_rng_u64(&s->rng);
+  } while (s->foreign_hash == GP_SPEC_HASH || s->foreign_hash == cfg->spec_hash);
+}
+
+static size_t put_msg(const gp_msg *m, uint32_t hash, uint8_t *out) {
+  return gp_encode(m, hash, out, GP_MAX_WIRE);
+}
+
+static size_t put_info(const gg_stream *s, uint32_t announced, uint8_t *out) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_INFO;
+  m.u.info.proto_major = GP_PROTO_MAJOR;
+  m.u.info.spec_hash = announced;
+  m.u.info.fw_major = 0;
+  m.u.info.fw_minor = 1;
+  m.u.info.fw_patch = 0;
+  memcpy(m.u.info.uid, s->cfg.uid, sizeof m.u.info.uid);
+  m.u.info.hand = s->cfg.hand;
+  m.u.info.n_channels = GG_CHANNELS;
+  m.u.info.adc_bits = 12;
+  m.u.info.frame_rate_hz = s->cfg.rate_hz >= 65535 ? 65535 : (uint16_t)lround(s->cfg.rate_hz);
+  m.u.info.sample_rate_hz = m.u.info.frame_rate_hz;
+  m.u.info.baud = s->cfg.baud;
+  m.u.info.cal_state = GP_CAL_DEFAULTS;
+  for (int i = 0; i < GG_CHANNELS; i++) {
+    m.u.info.cal_min[i] = 0;
+    m.u.info.cal_max[i] = GG_ADC_MAX;
+  }
+  return put_msg(&m, announced, out);
+}
+
+static void truth_line(gg_stream *s, const gp_sample *x) {
+  s->samples_intact++;
+  if (s->truth)
+    fprintf(s->truth, "sample %u %u %u %u %u %u %u\n", x->seq, x->t_us, x->ch[0], x->ch[1],
+            x->ch[2], x->ch[3], x->ch[4]);
+}
+
+/* An intact, in-order SAMPLE: the decoder now counts every loss before it. */
+static size_t put_intact(gg_stream *s, const gp_msg *m, uint8_t *out) {
+  size_t n = put_msg(m, s->cfg.spec_hash, out);
+  if (s->cfg.spec_hash != GP_SPEC_HASH) {
+    s->expect.spec_mismatch++;
+    return n;
+  }
+  s->expect.frames++;
+  s->expect.lost += s->lost_pending;
+  s->lost_pending = 0;
+  truth_line(s, &m->u.sample);
+  return n;
+}
+
+/* 1..3 distinct bits of payload+CRC, never the type byte, and never a
+ * pattern that the CRC would pass under our hash or the announced one. */
+static size_t put_flipped(gg_stream *s, const gp_msg *m, uint8_t *out) {
+  uint8_t raw[GP_MAX_FRAME], orig[GP_MAX_FRAME];
+  size_t len = gp_frame_pack(m, GP_SPEC_HASH, orig, sizeof orig), n;
+  for (;;) {
+    uint32_t bits = gg_rng_range(&s->rng, 1, 3), pos[3], crc;
+    memcpy(raw, orig, len);
+    for (uint32_t i = 0; i < bits; i++) {
+      uint32_t p;
+      int again;
+      do {
+        p = gg_rng_range(&s->rng, 8, (uint32_t)(len * 8 - 1));
+        again = 0;
+        for (uint32_t j = 0; j < i; j++) again |= pos[j] == p;
+      } while (again);
+      pos[i] = p;
+      raw[p / 8] ^= (uint8_t)(1u << (p % 8));
+    }
+    crc = (uint32_t)raw[len - 4] | (uint32_t)raw[len - 3] << 8 | (uint32_t)raw[len - 2] << 16 |
+          (uint32_t)raw[len - 1] << 24;
+    if (crc == gp_frame_crc(GP_SPEC_HASH, raw, len - 4)) continue;
+    if (s->foreign_announced && crc == gp_frame_crc(s->foreign_hash, raw, len - 4)) continue;
+    break;
+  }
+  n = gp_cobs_encode(raw, len, out, GP_MAX_WIRE - 1);
+  out[n++] = 0;
+  return n;
+}
+
+static size_t put_truncated(gg_stream *s, const gp_msg *m, uint8_t *out) {
+  size_t wl = put_msg(m, GP_SPEC_HASH, out);
+  size_t keep = gg_rng_range(&s->rng, 1, (uint32_t)(wl - 2));
+  out[keep] = 0;
+  return keep + 1;
+}
+
+static size_t put_garbage(gg_stream *s, uint8_t *out) {
+  size_t n = gg_rng_range(&s->rng, GP_MAX_WIRE + 1, 4 * GP_MAX_WIRE);
+  for (size_t i = 0; i < n; i++) out[i] = (uint8_t)gg_rng_range(&s->rng, 1, 255);
+  out[n] = 0;
+  return n + 1;
+}
+
+static size_t put_unknown(gg_stream *s, uint8_t *out) {
+  uint8_t raw[GP_MAX_FRAME];
+  uint32_t type, crc;
+  size_t plen, n;
+  do {
+    type = gg_rng_range(&s->rng, 0, 255);
+  } while (gp_msg_find((uint8_t)type) != NULL);
+  plen = gg_rng_range(&s->rng, 0, GP_MAX_PAYLOAD);
+  raw[0] = (uint8_t)type;
+  for (size_t i = 0; i < plen; i++) raw[1 + i] = (uint8_t)gg_rng_u64(&s->rng);
+  crc = gp_frame_crc(GP_SPEC_HASH, raw, 1 + plen);
+  for (int i = 0; i < 4; i++) raw[1 + plen + (size_t)i] = (uint8_t)(crc >> (8 * i));
+  n = gp_cobs_encode(raw, 1 + plen + 4, out, GP_MAX_WIRE - 1);
+  out[n++] = 0;
+  return n;
+}
+
+static int info_due(const gg_stream *s) {
+  if (s->slot == 0) return 1;
+  return floor((double)s->slot / s->cfg.rate_hz) != floor((double)(s->slot - 1) / s->cfg.rate_hz);
+}
+
+/* Faults stay off the first slot (the decoder has no sequence yet) and the
+ * last two (a loss is only counted when a later frame arrives; a reorder
+ * needs the next one). */
+static int pick_fault(gg_stream *s) {
+  double u, acc = 0;
+  if (s->force_intact || s->slot == 0) return -1;
+  if (s->cfg.count != UINT64_MAX && s->slot + 2 >= s->cfg.count) return -1;
+  u = gg_rng_unit(&s->rng);
+  for (int f = 0; f < GG_F_COUNT; f++) {
+    acc += s->cfg.rates[f];
+    if (u < acc) return f;
+  }
+  return -1;
+}
+
+size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
+  gp_msg m;
+  size_t n = 0;
+  int fault;
+  double t_s = (double)s->slot / s->cfg.rate_hz;
+  *done = 0;
+  if (s->cfg.count != UINT64_MAX && s->slot >= s->cfg.count) {
+    *done = 1;
+    return 0;
+  }
+  memset(&m, 0, sizeof m);
+  m.type = GP_SAMPLE;
+  m.u.sample.seq = (uint16_t)s->slot;
+  m.u.sample.t_us = (uint32_t)llround(t_s * 1e6);
+  gg_motion_eval(s->motion, t_s, m.u.sample.ch);
+  for (int i = 0; i < GG_CHANNELS; i++)
+    if (m.u.sample.ch[i] == 0 || m.u.sample.ch[i] == GG_ADC_MAX)
+      m.u.sample.flags |= GP_SAMPLE_F_CLIPPED;
+
+  if (s->stall_left) {
+    s->stall_left--;
+    s->slot++;
+    return 0;
+  }
+  fault = pick_fault(s);
+  if (fault == GG_F_STALL) {
+    uint64_t k = gg_rng_range(&s->rng, s->cfg.stall_min, s->cfg.stall_max);
+    if (s->cfg.count != UINT64_MAX && k > s->cfg.count - 2 - s->slot)
+      k = s->cfg.count - 2 - s->slot;
+    /* The device keeps counting through the gap; nothing at all is sent. */
+    s->injected[GG_F_STALL]++;
+    s->stall_frames += k;
+    s->lost_pending += k;
+    s->stall_left = k - 1;
+    s->slot++;
+    return 0;
+  }
+  if (info_due(s)) {
+    n += put_info(s, s->cfg.spec_hash, out + n);
+    s->infos++;
+    if (s->cfg.spec_hash == GP_SPEC_HASH) s->expect.frames++;
+    else s->expect.spec_mismatch++;
+  }
+  if (fault >= 0) s->injected[fault]++;
+  switch (fault) {
+  case GG_F_DROP:
+    s->lost_pending++;
+    break;
+  case GG_F_DUP:
+    n += put_intact(s, &m, out + n);
+    n += put_msg(&m, s->cfg.spec_hash, out + n);
+    s->expect.duplicates++;
+    break;
+  case GG_F_REORDER:
+    s->held_len = put_msg(&m, s->cfg.spec_hash, s->held_wire);
+    s->held_sample = m.u.sample;
+    s->held = 1;
+    s->force_intact = 1;
+    s->expect.reordered++;
+    break;
+  case GG_F_FLIP:
+    n += put_flipped(s, &m, out + n);
+    s->expect.crc_errors++;
+    s->lost_pending++;
+    break;
+  case GG_F_TRUNCATE:
+    n += put_truncated(s, &m, out + n);
+    s->expect.framing_errors++;
+    s->lost_pending++;
+    break;
+  case GG_F_GARBAGE:
+    n += put_garbage(s, out + n);
+    s->expect.oversize++;
+    n += put_intact(s, &m, out + n);
+    break;
+  case GG_F_WRONG_HASH:
+    if (!s->foreign_announced) {
+      n += put_info(s, s->foreign_hash, out + n);
+      s->foreign_announced = 1;
+      s->expect.spec_mismatch++;
+    }
+    n += put_msg(&m, s->foreign_hash, out + n);
+    s->expect.spec_mismatch++;
+    s->lost_pending++;
+    break;
+  case GG_F_UNKNOWN:
+    n += put_unknown(s, out + n);
+    s->expect.unknown_type++;
+    n += put_intact(s, &m, out + n);
+    break;
+  default:
+    n += put_intact(s, &m, out + n);
+    if (s->held && s->force_intact) {
+      /* The newer frame went first; now the held one arrives late. */
+      memcpy(out + n, s->held_wire, s->held_len);
+      n += s->held_len;
+      s->expect.frames++;
+      truth_line(s, &s->held_sample);
+      s->held = 0;
+      s->force_intact = 0;
+    }
+    break;
+  }
+  s->expect.bytes += n;
+  s->slot++;
+  return n;
+}
+
+size_t gg_stream_finish(gg_stream *s, uint8_t *out) {
+  size_t n = 0;
+  if (s->held) {
+    /* Stopped before the frame it was to swap with: it goes out in order,
+     * so the reorder never happened. */
+    gp_msg m;
+    memset(&m, 0, sizeof m);
+    m.type = GP_SAMPLE;
+    m.u.sample = s->held_sample;
+    n = put_intact(s, &m, out);
+    s->expect.reordered--;
+    s->injected[GG_F_REORDER]--;
+    s->held = 0;
+    s->force_intact = 0;
+    s->expect.bytes += n;
+  }
+  /* Losses with no later frame to reveal them are never counted. */
+  s->lost_pending = 0;
+  return n;
+}
+
+void gg_stream_write_expect(const gg_stream *s, FILE *f) {
+  const gg_expect *e = &s->expect;
+  fprintf(f,
+          "# expected decoder counters\n"
+          "frames=%llu\ncrc_errors=%llu\nframing_errors=%llu\noversize=%llu\n"
+          "unknown_type=%llu\nspec_mismatch=%llu\nlost=%llu\nduplicates=%llu\n"
+          "reordered=%llu\nseq_restarts=%llu\nbytes=%llu\n",
+          (unsigned long long)e->frames, (unsigned long long)e->crc_errors,
+          (unsigned long long)e->framing_errors, (unsigned long long)e->oversize,
+          (unsigned long long)e->unknown_type, (unsigned long long)e->spec_mismatch,
+          (unsigned long long)e->lost, (unsigned long long)e->duplicates,
+          (unsigned long long)e->reordered, (unsigned long long)e->seq_restarts,
+          (unsigned long long)e->bytes);
+  fprintf(f, "# what was injected\n");
+  for (int i = 0; i < GG_F_COUNT; i++)
+    fprintf(f, "injected.%s=%llu\n", gg_fault_names[i], (unsigned long long)s->injected[i]);
+  fprintf(f, "injected.stall_frames=%llu\nslots=%llu\nsamples_intact=%llu\ninfos=%llu\n",
+          (unsigned long long)s->stall_frames, (unsigned long long)s->slot,
+          (unsigned long long)s->samples_intact, (unsigned long long)s->infos);
+}
