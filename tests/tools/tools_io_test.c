@@ -1,0 +1,271 @@
+/* The io layer on real descriptors: a link that goes away is a hang-up, not
+ * a timeout, and whatever arrived before it is delivered first. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "mr_io.h"
+#include "tools_proc.h"
+
+#define BURST 3000
+
+static void fill(uint8_t *b, size_t n, unsigned salt) {
+  for (size_t i = 0; i < n; i++) b[i] = (uint8_t)((i * 13 + salt) | 1u);
+}
+
+/* Reads until something other than data; returns that status. */
+static mr_io_status read_until_not_ok(mr_io *io, uint8_t *buf, size_t cap, size_t *total,
+                                      int timeout_ms) {
+  for (;;) {
+    size_t got = 0;
+    mr_err err;
+    mr_io_status st = mr_io_read(io, buf + *total, cap - *total, timeout_ms, &got, &err);
+    if (st != MR_IO_OK) return st;
+    *total += got;
+    if (*total == cap) return MR_IO_OK;
+  }
+}
+
+/* The reader holds the slave side (as glove-dump does); the glove's side is
+ * another process holding the master, which exits mid-stream. */
+static void tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read(void **state) {
+  mr_io master, slave;
+  mr_err err;
+  int go[2];
+  pid_t child;
+  uint8_t sent[2 * BURST], got[4 * BURST];
+  size_t total = 0;
+  char spec[300];
+  (void)state;
+  fill(sent, BURST, 1);
+  fill(sent + BURST, BURST, 2);
+  assert_int_equal(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), 0);
+  assert_true(mr_io_is_pty_slave(mr_io_path(&master)));
+  snprintf(spec, sizeof spec, "serial:%s@115200", mr_io_path(&master));
+  assert_int_equal(mr_io_open(&slave, spec, MR_IO_READ, &err), 0);
+  assert_int_equal(slave.kind, MR_IO_TTY);
+  assert_int_equal(pipe(go), 0);
+  child = fork();
+  assert_true(child >= 0);
+  if (child == 0) {
+    char c;
+    mr_io_close(&slave);
+    close(go[1]);
+    if (mr_io_write(&master, sent, BURST, 5000, NULL, &err) != MR_IO_OK) _exit(1);
+    if (read(go[0], &c, 1) != 1) _exit(2);
+    if (mr_io_write(&master, sent + BURST, BURST, 5000, NULL, &err) != MR_IO_OK) _exit(3);
+    /* Closing the master drops what the slave has not read: wait for it. */
+    if (mr_io_drain(&master, 10000, &err) != MR_IO_OK) _exit(4);
+    _exit(0);
+  }
+  mr_io_close(&master);
+  close(go[0]);
+  /* The first burst, then a quiet link: a timeout, not a hang-up. */
+  while (total < BURST) {
+    size_t n = 0;
+    assert_int_equal(mr_io_read(&slave, got + total, BURST - total, 10000, &n, &err), MR_IO_OK);
+    total += n;
+  }
+  assert_int_equal(read_until_not_ok(&slave, got, sizeof got, &total, 50), MR_IO_TIMEOUT);
+  assert_int_equal(total, BURST);
+  assert_int_equal(write(go[1], "g", 1), 1);
+  assert_int_equal(read_until_not_ok(&slave, got, sizeof got, &total, 10000), MR_IO_HANGUP);
+  assert_int_equal(total, 2 * BURST);
+  assert_memory_equal(got, sent, 2 * BURST);
+  /* And it stays a hang-up. */
+  assert_int_equal(read_until_not_ok(&slave, got, sizeof got, &total, 100), MR_IO_HANGUP);
+  assert_int_equal(tt_wait(child, 30), 0);
+  mr_io_close(&slave);
+  close(go[1]);
+}
+
+/* The other way round: this process made the pty (as glove-gen does) and
+ * a peer process opens the slave, writes, and exits. */
+static void tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read(void **state) {
+  mr_io master;
+  mr_err err;
+  pid_t child;
+  uint8_t sent[BURST], got[2 * BURST];
+  size_t total = 0;
+  int go[2];
+  (void)state;
+  fill(sent, BURST, 3);
+  assert_int_equal(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), 0);
+  /* No peer yet: waiting for one times out. */
+  assert_int_equal(mr_io_wait_peer(&master, 30, &err), MR_IO_TIMEOUT);
+  assert_int_equal(pipe(go), 0);
+  child = fork();
+  assert_true(child >= 0);
+  if (child == 0) {
+    mr_io slave;
+    char c;
+    close(go[1]);
+    if (mr_io_open(&slave, mr_io_path(&master), MR_IO_READ | MR_IO_WRITE, &err) != 0) _exit(1);
+    if (mr_io_write(&slave, sent, BURST / 2, 5000, NULL, &err) != MR_IO_OK) _exit(2);
+    if (read(go[0], &c, 1) != 1) _exit(3);
+    if (mr_io_write(&slave, sent + BURST / 2, BURST - BURST / 2, 5000, NULL, &err) != MR_IO_OK)
+      _exit(4);
+    _exit(0);
+  }
+  close(go[0]);
+  assert_int_equal(mr_io_wait_peer(&master, 10000, &err), MR_IO_OK);
+  while (total < BURST / 2) {
+    size_t n = 0;
+    assert_int_equal(mr_io_read(&master, got + total, BURST / 2 - total, 10000, &n, &err),
+                     MR_IO_OK);
+    total += n;
+  }
+  assert_int_equal(write(go[1], "g", 1), 1);
+  /* The slave's last bytes stay readable on the master after it closed. */
+  assert_int_equal(read_until_not_ok(&master, got, sizeof got, &total, 10000), MR_IO_HANGUP);
+  assert_int_equal(total, BURST);
+  assert_memory_equal(got, sent, BURST);
+  assert_int_equal(tt_wait(child, 30), 0);
+  /* Writing to a pty nobody holds is a hang-up too. */
+  assert_int_equal(mr_io_write(&master, sent, 10, 100, NULL, &err), MR_IO_HANGUP);
+  mr_io_close(&master);
+  close(go[1]);
+}
+
+static void tools_io_tcp_peer_close_is_hangup(void **state) {
+  mr_io srv;
+  mr_err err;
+  pid_t child;
+  uint8_t sent[BURST], got[2 * BURST];
+  size_t total = 0;
+  char spec[64];
+  (void)state;
+  fill(sent, BURST, 4);
+  assert_int_equal(mr_io_open(&srv, "tcp-listen:127.0.0.1:0", MR_IO_READ, &err), 0);
+  assert_true(srv.port > 0);
+  /* Nobody connects: a bounded wait, then a timeout. */
+  assert_int_equal(mr_io_accept(&srv, 20, &err), MR_IO_TIMEOUT);
+  snprintf(spec, sizeof spec, "tcp:127.0.0.1:%d", srv.port);
+  child = fork();
+  assert_true(child >= 0);
+  if (child == 0) {
+    mr_io cli;
+    if (mr_io_open(&cli, spec, MR_IO_WRITE, &err) != 0) _exit(1);
+    if (mr_io_write(&cli, sent, BURST, 5000, NULL, &err) != MR_IO_OK) _exit(2);
+    mr_io_close(&cli);
+    _exit(0);
+  }
+  assert_int_equal(read_until_not_ok(&srv, got, sizeof got, &total, 10000), MR_IO_HANGUP);
+  assert_int_equal(total, BURST);
+  assert_memory_equal(got, sent, BURST);
+  assert_int_equal(tt_wait(child, 30), 0);
+  mr_io_close(&srv);
+}
+
+/* Files and FIFOs end; they do not hang up. */
+static void tools_io_file_and_fifo_end_with_eof(void **state) {
+  char *dir = tt_tmpdir(), path[1100];
+  uint8_t sent[BURST], got[2 * BURST];
+  size_t total = 0;
+  mr_io io;
+  mr_err err;
+  pid_t child;
+  (void)state;
+  assert_non_null(dir);
+  fill(sent, BURST, 5);
+  snprintf(path, sizeof path, "%s", tt_path(dir, "plain.bin"));
+  assert_int_equal(mr_io_open(&io, path, MR_IO_WRITE, &err), 0);
+  assert_int_equal(io.kind, MR_IO_FILE);
+  assert_int_equal(mr_io_write(&io, sent, BURST, 1000, NULL, &err), MR_IO_OK);
+  mr_io_close(&io);
+  assert_int_equal(mr_io_open(&io, path, MR_IO_READ, &err), 0);
+  assert_int_equal(read_until_not_ok(&io, got, sizeof got, &total, 1000), MR_IO_EOF);
+  assert_int_equal(total, BURST);
+  assert_memory_equal(got, sent, BURST);
+  mr_io_close(&io);
+
+  snprintf(path, sizeof path, "%s", tt_path(dir, "fifo"));
+  assert_int_equal(mkfifo(path, 0600), 0);
+  child = fork();
+  assert_true(child >= 0);
+  if (child == 0) {
+    mr_io w;
+    if (mr_io_open(&w, path, MR_IO_WRITE, &err) != 0 || w.kind != MR_IO_FIFO) _exit(1);
+    if (mr_io_write(&w, sent, BURST, 5000, NULL, &err) != MR_IO_OK) _exit(2);
+    _exit(0);
+  }
+  assert_int_equal(mr_io_open(&io, path, MR_IO_READ, &err), 0);
+  assert_int_equal(io.kind, MR_IO_FIFO);
+  total = 0;
+  assert_int_equal(read_until_not_ok(&io, got, sizeof got, &total, 10000), MR_IO_EOF);
+  assert_int_equal(total, BURST);
+  assert_memory_equal(got, sent, BURST);
+  mr_io_close(&io);
+  assert_int_equal(tt_wait(child, 30), 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+static void expect_open_fails(const char *spec, mr_err_code code, const char *names) {
+  mr_io io;
+  mr_err err;
+  assert_int_equal(mr_io_open(&io, spec, MR_IO_READ, &err), -1);
+  if (err.code != code) fail_msg("%s: code %d, expected %d (%s)", spec, err.code, code, err.msg);
+  if (!strstr(err.msg, names)) fail_msg("%s: '%s' does not name '%s'", spec, err.msg, names);
+}
+
+static void tools_io_bad_specs_are_errors_that_name_them(void **state) {
+  (void)state;
+  expect_open_fails("", MR_E_SPEC, "empty");
+  expect_open_fails("tcp:localhost", MR_E_SPEC, "tcp:localhost");
+  expect_open_fails("tcp-listen:", MR_E_SPEC, "tcp-listen:");
+  expect_open_fails("serial:/dev/ttyS0@fast", MR_E_SPEC, "fast");
+  expect_open_fails("serial:@9600", MR_E_SPEC, "serial:@9600");
+  expect_open_fails("/nonexistent/glove.bin", MR_E_SYSTEM, "/nonexistent/glove.bin");
+  expect_open_fails("serial:/dev/ttyNOSUCH0", MR_E_SERIAL, "/dev/ttyNOSUCH0");
+}
+
+static void tools_io_pty_slave_detection(void **state) {
+  mr_io master;
+  mr_err err;
+  (void)state;
+  assert_int_equal(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), 0);
+  assert_true(mr_io_is_pty_slave(mr_io_path(&master)));
+  assert_false(mr_io_is_pty_slave("/dev/null"));
+  assert_false(mr_io_is_pty_slave("/dev/ptmx"));
+  assert_false(mr_io_is_pty_slave("/nonexistent"));
+  mr_io_close(&master);
+}
+
+static void tools_io_serial_list_does_not_fail(void **state) {
+  mr_serial_info ports[32];
+  size_t n = 999;
+  mr_err err;
+  (void)state;
+  assert_int_equal(mr_serial_list(ports, 32, &n, &err), 0);
+  assert_true(n < 999);
+  for (size_t i = 0; i < n && i < 32; i++) {
+    assert_true(ports[i].name[0] != 0);
+    if (!ports[i].is_usb) assert_int_equal(ports[i].usb_vid, -1);
+  }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
+      cmocka_unit_test(tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read),
+      cmocka_unit_test(tools_io_tcp_peer_close_is_hangup),
+      cmocka_unit_test(tools_io_file_and_fifo_end_with_eof),
+      cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),
+      cmocka_unit_test(tools_io_pty_slave_detection),
+      cmocka_unit_test(tools_io_serial_list_does_not_fail),
+  };
+  signal(SIGPIPE, SIG_IGN);
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,194 @@
+/* glove-gen's motion scripts: each shape gives the values its formula says,
+ * and a bad script is refused naming file, line and column. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gg_motion.h"
+#include "tools_proc.h"
+
+static char *g_dir;
+
+static int setup(void **state) {
+  (void)state;
+  g_dir = tt_tmpdir();
+  return g_dir ? 0 : -1;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  tt_rmdir(g_dir);
+  free(g_dir);
+  return 0;
+}
+
+static const char *write_file(const char *name, const char *text) {
+  const char *path = tt_path(g_dir, name);
+  FILE *f = fopen(path, "w");
+  assert_non_null(f);
+  fputs(text, f);
+  fclose(f);
+  return path;
+}
+
+static int counts(double v) { return (int)lround(v * GG_ADC_MAX); }
+
+static void load(gg_motion *m, const char *text) {
+  char err[600];
+  const char *path = write_file("m.txt", text);
+  if (gg_motion_load(m, path, 1, err, sizeof err) != 0) fail_msg("%s", err);
+}
+
+static void tools_motion_shapes_follow_their_formulas(void **state) {
+  gg_motion m;
+  uint16_t ch[GG_CHANNELS];
+  (void)state;
+  load(&m,
+       "# one shape per finger\n"
+       "duration 12.5\n"
+       "thumb  keys 0:0 1:1 2:0.5:inout\n"
+       "index  step from=0.2 to=0.8 at=1\n"
+       "middle sine mid=0.5 amp=0.4 freq=1 to=3 over=2\n"
+       "ring   const value=0.25\n"
+       "little step from=0 to=1 at=0 period=1 duty=0.5\n");
+  assert_true(fabs(m.duration_s - 12.5) < 1e-12);
+
+  gg_motion_eval(&m, 0.5, ch);
+  assert_int_equal(ch[0], counts(0.5));
+  assert_int_equal(ch[1], counts(0.2));
+  /* The chirp's phase is the integral of its frequency: at 0.5 s,
+   * 1*0.5 + (3-1)*0.25/(2*2) = 0.625 cycles. */
+  assert_int_equal(ch[2], counts(0.5 + 0.4 * sin(2 * M_PI * 0.625)));
+  assert_int_equal(ch[3], counts(0.25));
+  assert_int_equal(ch[4], counts(0));
+
+  gg_motion_eval(&m, 1.25, ch);
+  /* smoothstep(0.25) = 0.15625 of the way from 1 down to 0.5. */
+  assert_int_equal(ch[0], counts(1 - 0.5 * 0.15625));
+  assert_int_equal(ch[1], counts(0.8));
+  assert_int_equal(ch[4], counts(1));
+
+  gg_motion_eval(&m, 3, ch);
+  assert_int_equal(ch[0], counts(0.5)); /* held after the last key */
+  /* After the sweep: (1+3)*2/2 = 4 cycles at 2 s, then 3 Hz. */
+  assert_int_equal(ch[2], counts(0.5 + 0.4 * sin(2 * M_PI * (4 + 3 * 1.0))));
+  gg_motion_free(&m);
+}
+
+static void tools_motion_keys_loop_and_clamp(void **state) {
+  gg_motion m;
+  uint16_t ch[GG_CHANNELS];
+  (void)state;
+  load(&m, "all keys loop=1 0:-0.5 1:1.5\n");
+  gg_motion_eval(&m, 0, ch);
+  assert_int_equal(ch[0], 0);      /* clamped to the ADC range */
+  gg_motion_eval(&m, 1.5, ch);     /* looped: same as 0.5 */
+  assert_int_equal(ch[4], counts(0.5));
+  gg_motion_eval(&m, 0.99, ch);
+  assert_int_equal(ch[2], GG_ADC_MAX);
+  gg_motion_free(&m);
+}
+
+static void tools_motion_walk_is_bounded_and_seeded(void **state) {
+  gg_motion a, b, c;
+  char err[600];
+  const char *path = write_file("walk.txt", "0-4 walk start=0.5 sigma=2 min=0.2 max=0.6\n");
+  uint16_t va[GG_CHANNELS], vb[GG_CHANNELS], vc[GG_CHANNELS];
+  int differs = 0, moved = 0;
+  (void)state;
+  assert_int_equal(gg_motion_load(&a, path, 7, err, sizeof err), 0);
+  assert_int_equal(gg_motion_load(&b, path, 7, err, sizeof err), 0);
+  assert_int_equal(gg_motion_load(&c, path, 8, err, sizeof err), 0);
+  for (int i = 0; i < 5000; i++) {
+    double t = i / 250.0;
+    gg_motion_eval(&a, t, va);
+    gg_motion_eval(&b, t, vb);
+    gg_motion_eval(&c, t, vc);
+    assert_memory_equal(va, vb, sizeof va);
+    differs |= memcmp(va, vc, sizeof va) != 0;
+    moved |= va[0] != counts(0.5);
+    for (int k = 0; k < GG_CHANNELS; k++) assert_in_range(va[k], counts(0.2), counts(0.6));
+  }
+  assert_true(differs);
+  assert_true(moved);
+  gg_motion_free(&a);
+  gg_motion_free(&b);
+  gg_motion_free(&c);
+}
+
+static void tools_motion_csv_track_interpolates(void **state) {
+  gg_motion m;
+  uint16_t ch[GG_CHANNELS];
+  (void)state;
+  write_file("take.csv",
+             "seq,t_us,ch0,ch1,ch2,ch3,ch4,flags,late\n"
+             "0,1000000,0,100,200,300,400,0,0\n"
+             "1,2000000,1000,100,200,300,4095,0,0\n");
+  /* Relative to the script's folder. */
+  load(&m, "all csv file=take.csv loop=0\nring csv file=take.csv column=0\n");
+  gg_motion_eval(&m, 0.5, ch);
+  assert_int_equal(ch[0], 500);
+  assert_int_equal(ch[1], 100);
+  assert_int_equal(ch[3], 500);
+  assert_int_equal(ch[4], (400 + 4095) / 2 + 1); /* 2247.5 rounds up */
+  gg_motion_eval(&m, 5, ch);
+  assert_int_equal(ch[0], 1000);
+  gg_motion_free(&m);
+}
+
+static void expect_error(const char *text, const char *where) {
+  gg_motion m;
+  char err[600], want[1200];
+  const char *path = write_file("bad.txt", text);
+  assert_int_equal(gg_motion_load(&m, path, 1, err, sizeof err), -1);
+  snprintf(want, sizeof want, "%s:%s", path, where);
+  if (strncmp(err, want, strlen(want)) != 0) fail_msg("'%s' is not at '%s'", err, want);
+}
+
+static void tools_motion_errors_name_file_line_and_column(void **state) {
+  (void)state;
+  expect_error("all sine\npinky sine\n", "2:1:");
+  expect_error("all sine amp=x\n", "1:10:");
+  expect_error("\n\nthumb keys 1:0 0.5:1\n", "3:16:");
+  expect_error("all wobble\n", "1:5:");
+  expect_error("thumb sine freq=nan\n", "1:12:");
+  expect_error("thumb,ring,7 const\n", "1:12:");
+  expect_error("duration -3\n", "1:10:");
+  expect_error("all csv file=missing.csv\n", "1:9:");
+  expect_error("all step size=2\n", "1:10:");
+}
+
+static void tools_motion_default_stays_in_range_and_moves(void **state) {
+  gg_motion m;
+  uint16_t ch[GG_CHANNELS], first[GG_CHANNELS];
+  int moved = 0;
+  (void)state;
+  gg_motion_default(&m, 1);
+  gg_motion_eval(&m, 0, first);
+  for (int i = 1; i < 1000; i++) {
+    gg_motion_eval(&m, i / 100.0, ch);
+    for (int k = 0; k < GG_CHANNELS; k++) assert_true(ch[k] <= GG_ADC_MAX);
+    moved |= memcmp(ch, first, sizeof ch) != 0;
+  }
+  assert_true(moved);
+  gg_motion_free(&m);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(tools_motion_shapes_follow_their_formulas),
+      cmocka_unit_test(tools_motion_keys_loop_and_clamp),
+      cmocka_unit_test(tools_motion_walk_is_bounded_and_seeded),
+      cmocka_unit_test(tools_motion_csv_track_interpolates),
+      cmocka_unit_test(tools_motion_errors_name_file_line_and_column),
+      cmocka_unit_test(tools_motion_default_stays_in_range_and_moves),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}
