@@ -99,7 +99,7 @@ static void tools_recording_write_then_read_back_identical(void **state) {
   mr_rec_writer w;
   mr_rec_reader r;
   mr_err err;
-  uint8_t *data = malloc(MR_REC_MAX_CHUNK);
+  uint8_t *data = malloc(MR_REC_MAX_CHUNK + 8); /* chunk i starts at data + i */
   size_t lens[] = {1, 21, 21, 300, 4096, MR_REC_MAX_CHUNK, 2};
   uint64_t times[] = {0, 0, 4000000, 4000000, 8000001, 9000000000ull, 9000000001ull};
   uint64_t t;
@@ -107,7 +107,7 @@ static void tools_recording_write_then_read_back_identical(void **state) {
   size_t len;
   (void)state;
   assert_non_null(data);
-  for (size_t i = 0; i < MR_REC_MAX_CHUNK; i++) data[i] = (uint8_t)(i * 31 + (i >> 8));
+  for (size_t i = 0; i < MR_REC_MAX_CHUNK + 8; i++) data[i] = (uint8_t)(i * 31 + (i >> 8));
   assert_int_equal(mr_rec_writer_open(&w, path, 0xA0A8FACAu, 1234567890123ull, &err), 0);
   for (size_t i = 0; i < 7; i++)
     assert_int_equal(mr_rec_writer_add(&w, times[i], data + i, lens[i], &err), 0);
