@@ -324,7 +324,7 @@ int main(int argc, char **argv) {
   {
     uint8_t buf[4096];
     size_t have = 0;
-    uint64_t last_data = now_ns();
+    uint64_t last_data = now_ns(), back_by = 0;
     int sniffing = io.kind == MR_IO_FILE || io.kind == MR_IO_FIFO || io.kind == MR_IO_STDIO;
     int stop = 0;
     while (!stop && !g_stop) {
@@ -332,6 +332,7 @@ int main(int argc, char **argv) {
       mr_io_status st = mr_io_read(&io, buf + have, sizeof buf - have, 200, &got, &err);
       if (st == MR_IO_OK) {
         last_data = now_ns();
+        back_by = 0;
         have += got;
         if (sniffing) {
           /* A recording starts with its magic; look before decoding. */
@@ -349,6 +350,12 @@ int main(int argc, char **argv) {
         continue;
       }
       if (st == MR_IO_TIMEOUT) {
+        /* A listening socket reopens at once; the device is back only when
+         * bytes arrive. */
+        if (back_by && now_ns() >= back_by) {
+          fprintf(stderr, "glove-dump: %s: nothing came back within %g s\n", spec, reconnect);
+          break;
+        }
         if (idle >= 0 && (double)(now_ns() - last_data) / 1e9 >= idle) {
           fprintf(stderr, "glove-dump: %s: nothing for %g s, stopping\n", mr_io_path(&io), idle);
           break;
@@ -375,11 +382,16 @@ int main(int argc, char **argv) {
       mr_io_close(&io);
       if (reconnect < 0 || stop) break;
       /* A frame cut by the unplug ends here, as one error, instead of
-       * fusing with the first bytes after the replug. */
-      stop = feed(&D, (const uint8_t *)"\0", 1);
+       * fusing with the first bytes after the replug. The delimiter is ours,
+       * not the device's, so it is not counted as received. */
+      if (D.dec.len || D.dec.overflow) {
+        stop = feed(&D, (const uint8_t *)"\0", 1);
+        D.dec.c.bytes--;
+      }
       if (reopen(&io, spec, reconnect) != 0) break;
       hung_up = 0;
       last_data = now_ns();
+      if (reconnect > 0) back_by = last_data + (uint64_t)(reconnect * 1e9);
     }
     if (!hung_up) mr_io_close(&io);
   }
