@@ -279,7 +279,7 @@ int main(int argc, char **argv) {
     case O_KEEP_GOING: D.keep_going = 1; break;
     case O_LIST: return list_ports();
     case 'h': usage(stdout); return 0;
-    default: usage(stderr); return EXIT_USAGE;
+    default: fprintf(stderr, "glove-dump: see --help\n"); return EXIT_USAGE;
     }
   }
   if (optind < argc) spec = argv[optind++];

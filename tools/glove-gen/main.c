@@ -295,7 +295,7 @@ int main(int argc, char **argv) {
         rates[c - O_FAULT0] = d;
         break;
       }
-      usage(stderr);
+      fprintf(stderr, "glove-gen: see --help\n");
       return 2;
     }
     (void)u;
