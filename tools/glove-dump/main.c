@@ -48,11 +48,14 @@ static void usage(FILE *f) {
 "      --baud N           baud for a serial device given without @BAUD (115200)\n"
 "      --realtime         replay a .mrec at its recorded pace (default: at once)\n"
 "      --reconnect SECS   after a hang-up (device unplugged, peer gone), keep\n"
-"                         trying to reopen SOURCE for SECS (0: forever); the\n"
-"                         counters carry on across the gap\n"
+"                         trying to reopen SOURCE for SECS (0: forever); a\n"
+"                         tcp-listen SOURCE waits for the next peer on the\n"
+"                         same port; the counters carry on across the gap\n"
 "      --idle SECS        stop when nothing arrives for SECS\n"
 "  -n, --count N          stop after N valid frames\n"
 "      --keep-going       go on decoding after a spec mismatch (still exit 3)\n"
+"      --path-file FILE   once SOURCE is open, write where it is (for\n"
+"                         tcp-listen:[HOST:]0, the port the kernel picked)\n"
 "      --list             list serial ports with their USB ids and exit\n"
 "  -h, --help             this text\n"
 "\n"
@@ -198,6 +201,25 @@ static int dump_recording(dump *D, mr_io *io, const uint8_t *prefix, size_t pref
   return 0;
 }
 
+/* Written whole and renamed into place, so a script polling for it never
+ * reads half a line. */
+static int write_path_file(const char *path, const char *what) {
+  char tmp[4200];
+  FILE *f;
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  f = fopen(tmp, "w");
+  if (f) {
+    int bad = fprintf(f, "%s\n", what) < 0;
+    bad |= fclose(f) != 0;
+    if (bad) f = NULL;
+  }
+  if (!f || rename(tmp, path) != 0) {
+    fprintf(stderr, "glove-dump: %s: cannot write: %s\n", path, strerror(errno));
+    return -1;
+  }
+  return 0;
+}
+
 static int reopen(mr_io *io, const char *spec, double secs) {
   uint64_t start = now_ns();
   mr_err err;
@@ -219,7 +241,7 @@ static int reopen(mr_io *io, const char *spec, double secs) {
 
 int main(int argc, char **argv) {
   enum { O_CSV = 256, O_NO_EVENTS, O_COUNTERS, O_RECORD, O_BAUD, O_REALTIME, O_RECONNECT,
-         O_IDLE, O_KEEP_GOING, O_LIST };
+         O_IDLE, O_KEEP_GOING, O_LIST, O_PATH_FILE };
   static const struct option opts[] = {
       {"csv", no_argument, 0, O_CSV},          {"quiet", no_argument, 0, 'q'},
       {"no-events", no_argument, 0, O_NO_EVENTS}, {"counters", required_argument, 0, O_COUNTERS},
@@ -227,9 +249,10 @@ int main(int argc, char **argv) {
       {"realtime", no_argument, 0, O_REALTIME}, {"reconnect", required_argument, 0, O_RECONNECT},
       {"idle", required_argument, 0, O_IDLE},   {"count", required_argument, 0, 'n'},
       {"keep-going", no_argument, 0, O_KEEP_GOING}, {"list", no_argument, 0, O_LIST},
+      {"path-file", required_argument, 0, O_PATH_FILE},
       {"help", no_argument, 0, 'h'},            {0, 0, 0, 0}};
   static dump D;
-  const char *spec = "-", *counters_path = NULL, *record_path = NULL;
+  const char *spec = "-", *counters_path = NULL, *record_path = NULL, *path_file = NULL;
   char spec_buf[512];
   double reconnect = -1, idle = -1;
   long baud = 0;
@@ -277,6 +300,7 @@ int main(int argc, char **argv) {
       break;
     }
     case O_KEEP_GOING: D.keep_going = 1; break;
+    case O_PATH_FILE: path_file = optarg; break;
     case O_LIST: return list_ports();
     case 'h': usage(stdout); return 0;
     default: fprintf(stderr, "glove-dump: see --help\n"); return EXIT_USAGE;
@@ -309,6 +333,10 @@ int main(int argc, char **argv) {
   D.t0_ns = now_ns();
   if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
+    return 1;
+  }
+  if (path_file && write_path_file(path_file, mr_io_path(&io)) != 0) {
+    mr_io_close(&io);
     return 1;
   }
   if (record_path) {
@@ -378,9 +406,11 @@ int main(int argc, char **argv) {
               "glove-dump: %s: hang-up after %llu bytes (device unplugged or the other "
               "end closed)\n",
               mr_io_path(&io), (unsigned long long)D.dec.c.bytes);
-      hung_up = 1;
-      mr_io_close(&io);
-      if (reconnect < 0 || stop) break;
+      if (reconnect < 0 || stop) {
+        hung_up = 1;
+        mr_io_close(&io);
+        break;
+      }
       /* A frame cut by the unplug ends here, as one error, instead of
        * fusing with the first bytes after the replug. The delimiter is ours,
        * not the device's, so it is not counted as received. */
@@ -388,8 +418,15 @@ int main(int argc, char **argv) {
         stop = feed(&D, (const uint8_t *)"\0", 1);
         D.dec.c.bytes--;
       }
-      if (reopen(&io, spec, reconnect) != 0) break;
-      hung_up = 0;
+      if (mr_io_rearm(&io) == 0) {
+        fprintf(stderr, "glove-dump: %s: waiting for the next peer\n", mr_io_path(&io));
+      } else {
+        mr_io_close(&io);
+        if (reopen(&io, spec, reconnect) != 0) {
+          hung_up = 1;
+          break;
+        }
+      }
       last_data = now_ns();
       if (reconnect > 0) back_by = last_data + (uint64_t)(reconnect * 1e9);
     }

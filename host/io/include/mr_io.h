@@ -63,7 +63,7 @@ enum { MR_IO_READ = 1, MR_IO_WRITE = 2 };
 typedef struct mr_io {
   mr_io_kind kind;
   int fd;            /* the descriptor bytes move through (-1 before accept) */
-  int listen_fd;     /* MR_IO_TCP_LISTEN: the listening socket */
+  int listen_fd;     /* from "tcp-listen:": the listening socket */
   int mode;          /* MR_IO_READ and/or MR_IO_WRITE */
   int baud;          /* ttys and serial devices */
   int port;          /* TCP: the port actually bound or connected */
@@ -105,6 +105,11 @@ mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
 /* MR_IO_TCP_LISTEN: waits for one peer and adopts it (later reads and writes
  * go to it). Other kinds: MR_IO_OK at once. */
 mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_err *err);
+
+/* A connection accepted from "tcp-listen:": drops the peer and goes back to
+ * listening on the same port, so the next read or write accepts the next
+ * peer (a glove that reconnects). 0, or -1 for any other kind. */
+int mr_io_rearm(mr_io *io);
 
 /* MR_IO_PTY: waits until a peer has opened the slave side. Other kinds:
  * MR_IO_OK at once. */

@@ -119,10 +119,18 @@ mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_err *err) {
   }
   fcntl(fd, F_SETFD, FD_CLOEXEC);
   set_stream_opts(fd);
-  /* One peer per stream: stop listening so a second client is refused. */
-  close(io->listen_fd);
-  io->listen_fd = -1;
+  /* One peer at a time. The listening socket stays open (a second client
+   * waits in the backlog) so that mr_io_rearm can take the next peer on the
+   * same port after this one leaves. */
   io->fd = fd;
   io->kind = MR_IO_TCP;
   return MR_IO_OK;
+}
+
+int mr_io_rearm(mr_io *io) {
+  if (io->kind != MR_IO_TCP || io->listen_fd < 0) return -1;
+  close(io->fd);
+  io->fd = -1;
+  io->kind = MR_IO_TCP_LISTEN;
+  return 0;
 }
