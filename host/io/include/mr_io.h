@@ -68,6 +68,7 @@ typedef struct mr_io {
   int baud;          /* ttys and serial devices */
   int port;          /* TCP: the port actually bound or connected */
   int peer_seen;     /* MR_IO_PTY: a peer has opened the slave side */
+  int borrowed;      /* from mr_io_from_fd: the caller closes fd */
   char path[256];    /* file or device path, pty slave path, or host:port */
   void *sp;          /* libserialport's port, for MR_IO_SERIAL */
 } mr_io;
@@ -75,7 +76,8 @@ typedef struct mr_io {
 /* Opens a source or sink named by spec:
  *   "-"                      stdin (MR_IO_READ) or stdout (MR_IO_WRITE)
  *   "file:PATH"              a regular file or FIFO (created for writing)
- *   PATH                     the same, except that a character device opens
+ *   PATH                     the same, except that a character device other
+ *                            than /dev/null, /dev/zero and their kin opens
  *                            as "serial:PATH" at the default baud
  *   "pty"                    a new pseudo-terminal, raw mode; mr_io_path()
  *                            names its slave side for the peer to open

@@ -39,8 +39,7 @@ void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name) {
   io->fd = fd;
   io->mode = MR_IO_READ | MR_IO_WRITE;
   io->peer_seen = 1;
-  /* Adopted descriptors stay open on close: mark them like stdio. */
-  io->listen_fd = -2;
+  io->borrowed = 1;
   snprintf(io->path, sizeof io->path, "%s", name ? name : "fd");
 }
 
@@ -102,6 +101,12 @@ static int open_file(mr_io *io, const char *path, mr_err *err) {
   return 0;
 }
 
+/* Character devices of Linux's "mem" major (/dev/null, /dev/zero,
+ * /dev/urandom, ...) read and write as plain files; any other is taken for a
+ * serial line. Deciding without opening it matters: opening a USB serial
+ * port raises DTR, which resets some boards. */
+static int is_mem_device(const struct stat *st) { return major(st->st_rdev) == 1; }
+
 int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
   struct stat st;
   io_reset(io);
@@ -151,7 +156,7 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
                   : mr_io_tcp_connect(io, host, port, err);
   }
   if (strncmp(spec, "serial:", 7) == 0) return open_serial(io, spec + 7, spec, err);
-  if (stat(spec, &st) == 0 && S_ISCHR(st.st_mode) && strcmp(spec, "/dev/null") != 0)
+  if (stat(spec, &st) == 0 && S_ISCHR(st.st_mode) && !is_mem_device(&st))
     return open_serial(io, spec, spec, err);
   return open_file(io, spec, err);
 }
@@ -298,10 +303,9 @@ const char *mr_io_kind_name(mr_io_kind kind) {
 }
 
 void mr_io_close(mr_io *io) {
-  int adopted = io->listen_fd == -2;
   if (io->kind == MR_IO_SERIAL) {
     mr_io_serial_close(io);
-  } else if (io->kind != MR_IO_STDIO && !adopted && io->fd >= 0) {
+  } else if (io->kind != MR_IO_STDIO && !io->borrowed && io->fd >= 0) {
     close(io->fd);
   }
   if (io->listen_fd >= 0) close(io->listen_fd);
