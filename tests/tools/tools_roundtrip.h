@@ -17,16 +17,12 @@ static inline void tt_check_csv(const char *csv, const char *truth) {
   assert_true(n_truth > 100);
   assert_int_equal(strncmp(csv, "seq,t_us,ch0,ch1,ch2,ch3,ch4,flags,late", 39), 0);
   for (p = p + 1; *p; p = strchr(p, '\n') + 1) {
-    tt_sample s;
-    unsigned flags;
-    int late;
-    assert_int_equal(sscanf(p, "%u,%u,%u,%u,%u,%u,%u,%u,%d", &s.seq, &s.t_us, &s.ch[0],
-                            &s.ch[1], &s.ch[2], &s.ch[3], &s.ch[4], &flags, &late),
-                     9);
+    unsigned u[9];
+    assert_int_equal(tt_parse_uints(p, ',', u, 9), 9);
     assert_true(row < n_truth);
-    assert_int_equal(s.seq, want[row].seq);
-    assert_int_equal(s.t_us, want[row].t_us);
-    assert_memory_equal(s.ch, want[row].ch, sizeof s.ch);
+    assert_int_equal(u[0], want[row].seq);
+    assert_int_equal(u[1], want[row].t_us);
+    assert_memory_equal(u + 2, want[row].ch, sizeof want[row].ch);
     row++;
   }
   assert_int_equal(row, n_truth);
