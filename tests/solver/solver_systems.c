@@ -90,6 +90,17 @@ void test_system_pin(test_system *s, int p, const double e[3])
     mr_jac_add(&s->J, p, e);
 }
 
+void test_system_copy_row(test_system *s, int i)
+{
+    int width = 3 * s->J.n_particles;
+    double *row = new_row(s);
+    memcpy(row, s->dense_j + (size_t)i * (size_t)width, (size_t)width * sizeof *row);
+    for (int e = s->J.row_ptr[i]; e < s->J.row_ptr[i + 1]; e++) {
+        double d[3] = { s->J.d[e][0], s->J.d[e][1], s->J.d[e][2] };
+        mr_jac_add(&s->J, s->J.particle[e], d);
+    }
+}
+
 static void unit_to(const test_system *s, int a, int b, double u[3])
 {
     double len = 0.0;

@@ -30,6 +30,9 @@ void test_system_distance(test_system *s, int a, int b);
 /* C = e·x_p − c: the pin of particle p along the unit vector e. */
 void test_system_pin(test_system *s, int p, const double e[3]);
 
+/* Appends a copy of row i (a constraint written twice). */
+void test_system_copy_row(test_system *s, int i);
+
 /* k independent constraints on random particles with random masses: each
  * new particle is tied by up to three distance constraints to earlier
  * particles in non-planar directions, or pinned along up to three axes

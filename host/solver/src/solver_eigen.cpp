@@ -13,6 +13,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <cfloat>
 #include <new>
 #include <vector>
@@ -23,7 +24,7 @@ using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 struct EigenWorkspace {
     Eigen::SimplicialLDLT<SpMat> ldlt;
-    SpMat reduced;
+    SpMat reduced, scaled;
     std::vector<int> keep;      // reduced index → row of A
     std::vector<Eigen::Triplet<double, int>> triplets;
     Eigen::VectorXd rhs, sol;
@@ -86,16 +87,22 @@ int solve(EigenWorkspace &w, const mr_solve_opts *o, const mr_csr *A, const doub
         if (w.ldlt.info() == Eigen::Success) {
             bad = first_small_pivot(w.ldlt, mdiag, o->pivot_tol);
         } else {
-            // An exactly zero pivot stops Eigen before D is complete. A
-            // shift far below the threshold makes every pivot nonzero
-            // without lifting a dependent one over the test, and only
-            // raises the others, so the same test then names the row.
-            double tol = o->pivot_tol > DBL_EPSILON ? o->pivot_tol : DBL_EPSILON;
-            w.ldlt.setShift(1e-3 * tol * mdiag.minCoeff(), 1.0);
-            w.ldlt.compute(w.reduced);
+            // An exactly zero pivot stops Eigen before D is complete. Find
+            // the row on the unit-diagonal matrix S = D^-½ M D^-½ (whose
+            // pivots are the ratios d_k / M_kk the test uses) shifted by
+            // δ I: δ sits well below the threshold, so a dependent pivot
+            // (≈ δ) still fails the test, and a shift only raises the
+            // others. δ is kept above rounding so that it makes every pivot
+            // nonzero.
+            double shift = std::max(1e-3 * o->pivot_tol, 8.0 * DBL_EPSILON);
+            double threshold = std::max(o->pivot_tol, 16.0 * shift);
+            Eigen::VectorXd scale = mdiag.cwiseSqrt().cwiseInverse();
+            w.scaled = scale.asDiagonal() * w.reduced * scale.asDiagonal();
+            w.ldlt.setShift(shift, 1.0);
+            w.ldlt.compute(w.scaled);
             if (w.ldlt.info() != Eigen::Success)
                 return MR_SOLVE_NOT_CONVERGED;
-            bad = first_small_pivot(w.ldlt, mdiag, tol);
+            bad = first_small_pivot(w.ldlt, Eigen::VectorXd::Ones(m), threshold);
             if (bad < 0)
                 return MR_SOLVE_NOT_CONVERGED;
         }
