@@ -244,7 +244,15 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
       if (mr_impulses_apply(w, t, &collided) != 0)
         return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (impulses)");
       rep.collisions += collided;
-      w->stats.resting_contacts = w->contacts.n;
+      /* §5.4, eq. 13b: only contacts with χ̇ = 0 rest; separating ones (a
+       * bounce just given) are left free, or the contact force would hold
+       * them back. */
+      int kept = 0;
+      for (int c = 0; c < w->contacts.n; c++)
+        if (mr_contact_rate(w, &w->contacts.c[c], w->x, w->v) <= 1e-3 * w->def.rest_speed + 1e-9)
+          w->contacts.c[kept++] = w->contacts.c[c];
+      w->contacts.n = kept;
+      w->stats.resting_contacts = kept;
     }
     memcpy(w->x0, w->x, bytes);
     memcpy(w->v0, w->v, bytes);
