@@ -300,7 +300,8 @@ mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id);
  * increasing, copied) or a callback. Before the first / after the last key
  * the curve holds its end point. */
 typedef enum mr_curve_interp {
-  MR_CURVE_CATMULL_ROM = 0,  /* C¹ cubic through the keys (default) */
+  MR_CURVE_CATMULL_ROM = 0,  /* C¹ cubic through the keys, at rest at the
+                                first and last key (default) */
   MR_CURVE_LINEAR            /* polyline: ċ piecewise constant, c̈ = 0 */
 } mr_curve_interp;
 typedef void (*mr_curve_fn)(void *user, double t, double pos[3], double vel[3], double acc[3]);
