@@ -191,7 +191,7 @@ static void firmware_commands_bad_input_keeps_streaming(void **state) {
   (void)state;
   uint8_t w[600];
   size_t n;
-  uint8_t p[8] = {0x42, 0, 0, 0, 0, 0, 0, 0};
+  uint8_t p[GP_MAX_PAYLOAD] = {0x42};
 
   /* Answered with NACK: a valid frame of an unknown type, of a device-only
    * type, and a known command of the wrong length. */

@@ -187,21 +187,30 @@ static void firmware_qemu_streams_and_answers(void **state) {
   assert_true(pump(10.0, ack_and_60_samples));
   size_t ack = find_ack(mark, 0x32);
   assert_int_equal(msgs[ack].u.ack.cmd, GP_SET_RATE);
-  size_t on_grid = 0, steps = 0;
+  /* The device clock says 2 ms between frames after the ACK, 4 ms before.
+   * A busy host can make QEMU miss a tick now and then (the firmware
+   * counts it as an overrun), so the rate is judged by the majority. */
+  size_t before_4ms = 0, before = 0, after_2ms = 0, after = 0;
   uint32_t prev = 0;
   int have = 0;
-  for (size_t i = ack + 1; i < n_msgs; i++) {
+  for (size_t i = 0; i < n_msgs; i++) {
     if (msgs[i].type != GP_SAMPLE) continue;
     if (have) {
-      steps++;
-      on_grid += msgs[i].u.sample.t_us - prev == 2000u;
+      uint32_t d = msgs[i].u.sample.t_us - prev;
+      if (i < ack) {
+        before++;
+        before_4ms += d == 4000u;
+      } else {
+        after++;
+        after_2ms += d == 2000u;
+      }
     }
     prev = msgs[i].u.sample.t_us;
     have = 1;
   }
-  /* The device clock says 2 ms between frames now (4 ms before). */
-  assert_true(steps >= 50);
-  assert_true(on_grid * 10 >= steps * 9);
+  assert_true(before >= 500 && after >= 50);
+  assert_true(before_4ms * 2 > before);
+  assert_true(after_2ms * 2 > after);
 
   memset(&m, 0, sizeof m);
   m.type = GP_GET_STATUS;

@@ -47,10 +47,8 @@ static void firmware_rates_sample_wire_size(void **state) {
   (void)state;
   uint8_t w[GP_MAX_WIRE];
   uint16_t ch[FW_N_CH] = {1, 2, 3, 4, 5};
-  gp_msg m;
   assert_int_equal(FW_SAMPLE_WIRE_BYTES, 21);
   assert_int_equal(fw_frame_sample(1, 4000, ch, 0, w, sizeof w), 21);
-  (void)m;
   assert_int_equal(fw_link_load_permille(250, 115200), 455);
   assert_int_equal(fw_link_load_permille(1000, 921600), 227);
   assert_true(fw_link_rate_ok(250, 115200));
