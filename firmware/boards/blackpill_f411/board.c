@@ -26,6 +26,10 @@ static void bounded_wait(volatile uint32_t *reg, uint32_t mask, uint32_t want, u
 /* 96 MHz from the PLL: HSE 25 MHz / 25 * 192 / 2 (and / 4 = 48 MHz for USB).
  * If the crystal does not start, the same PLL runs from HSI 16 MHz / 16. */
 static void clock_init(void) {
+  /* The regulator resets to scale 2 (HCLK up to 84 MHz); 96 MHz needs
+   * scale 1 (RM0383, PWR_CR.VOS), set before the PLL starts. */
+  RCC_APB1ENR |= RCC_APB1ENR_PWREN;
+  PWR_CR = (PWR_CR & ~PWR_CR_VOS_MASK) | PWR_CR_VOS_SCALE1;
   RCC_CR |= RCC_CR_HSEON;
   bounded_wait(&RCC_CR, RCC_CR_HSERDY, RCC_CR_HSERDY, 200000u);
   int hse = (RCC_CR & RCC_CR_HSERDY) != 0;

@@ -50,9 +50,15 @@
 #define RCC_AHB1ENR_GPIOCEN (1u << 2)
 #define RCC_AHB1ENR_DMA2EN (1u << 22)
 #define RCC_APB1ENR_TIM3EN (1u << 1)
+#define RCC_APB1ENR_PWREN (1u << 28)
 #define RCC_APB2ENR_USART1EN (1u << 4)
 #define RCC_APB2ENR_ADC1EN (1u << 8)
 #define RCC_CSR_LSION (1u << 0)
+
+/* --- PWR ------------------------------------------------------------------ */
+#define PWR_CR REG32(0x40007000u)
+#define PWR_CR_VOS_MASK (3u << 14)
+#define PWR_CR_VOS_SCALE1 (3u << 14) /* F411: HCLK up to 100 MHz */
 
 /* --- FLASH interface ------------------------------------------------------ */
 #define FLASH_BASE_R 0x40023C00u
