@@ -59,7 +59,7 @@ def disassembly(objdump, elf):
     funcs, calls, prologue = {}, {}, {}
     cur = None
     head = re.compile(r"^([0-9a-f]+) <([^>]+)>:$")
-    branch = re.compile(r"^\s*[0-9a-f]+:\s+(bl|blx|b|b\.w|b\.n)(?:\w\w)?(?:\.w)?\s+([0-9a-f]+|r\d+|lr|ip)(?:\s+<([^>]+)>)?")
+    branch = re.compile(r"^\s*[0-9a-f]+:\s+(bl|blx|b)(?:eq|ne|cs|cc|hs|lo|mi|pl|vs|vc|hi|ls|ge|lt|gt|le)?(?:\.[wn])?\s+([0-9a-f]+|r\d+|lr|ip)(?:\s+<([^>]+)>)?")
     for line in out.splitlines():
         m = head.match(line)
         if m:
