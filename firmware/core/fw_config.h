@@ -79,9 +79,6 @@
 #if FW_FILTER_FRAC_BITS < 1 || FW_FILTER_FRAC_BITS > 16
 #error "FW_FILTER_FRAC_BITS must be 1..16"
 #endif
-#if FW_TICK_HZ % FW_INFO_PERIOD_TICKS != 0 && FW_INFO_PERIOD_TICKS % FW_TICK_HZ != 0
-#error "FW_INFO_PERIOD_TICKS must be a whole number of seconds or divide one"
-#endif
 #if FW_BLOCKQ_DEPTH < 2 || (FW_BLOCKQ_DEPTH & (FW_BLOCKQ_DEPTH - 1)) != 0
 #error "FW_BLOCKQ_DEPTH must be a power of two, at least 2"
 #endif
