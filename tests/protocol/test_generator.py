@@ -57,5 +57,23 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode != 0 and "bad.def:" in r.stderr and "expected" in r.stderr,
           "a malformed field is refused with file:line and what was expected")
 
-print(f"{7 - len(failures)} passed, {len(failures)} failed")
+# SPEC.md's message tables and stated hash agree with the definition.
+sys.path.insert(0, os.path.dirname(gen))
+import gp_gen  # noqa: E402
+import re  # noqa: E402
+
+proto, messages, enums = gp_gen.parse(definition)
+spec = open(os.path.join(src, "protocol", "SPEC.md"), encoding="utf-8").read()
+tables = {}
+for block in re.split(r"^### ", spec, flags=re.M)[1:]:
+    m = re.match(r"(\w+) \(0x([0-9A-F]{2})", block)
+    if m:
+        rows = re.findall(r"^\| (\w+) \| (u\d+(?:\[\d+\])?) \|", block, flags=re.M)
+        tables[m.group(1)] = (int(m.group(2), 16), rows)
+expected = {m["name"]: (m["id"], [(f["name"], f"u{f['bits']}" + (f"[{f['count']}]" if f["array"] else ""))
+                                 for f in m["fields"]]) for m in messages}
+check(tables == expected, "SPEC.md's message tables match messages.def")
+check(f"Current spec hash: **{base}**" in spec, "SPEC.md states the current spec hash")
+
+print(f"{9 - len(failures)} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)
