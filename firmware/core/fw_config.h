@@ -43,9 +43,9 @@
 #define FW_FRAME_RATE_HZ 250u
 /* Serial link at boot: 8N1 at this baud rate. */
 #define FW_BAUD 115200u
-/* Baud rates SET_RATE accepts (the Black Pill's USART1 reaches all of them
- * within 0.2 % at 96 MHz). */
-#define FW_BAUDS {115200u, 230400u, 460800u, 921600u}
+/* Baud rates SET_RATE accepts (SPEC.md lists them; the Black Pill's USART1
+ * reaches all of them within 0.2 % at 96 MHz). */
+#define FW_BAUDS {9600u, 19200u, 38400u, 57600u, 115200u, 230400u, 460800u, 921600u}
 /* SET_RATE refuses a SAMPLE stream that would fill more than this share of
  * the link, leaving room for INFO, replies and clock error. */
 #define FW_LINK_MAX_PERCENT 50u

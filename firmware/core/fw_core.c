@@ -144,6 +144,7 @@ static void command(fw_core *c, const gp_msg *m) {
   case GP_STREAM_ON:
     c->streaming = 1;
     send_ack(c, tag, GP_STREAM_ON);
+    send_info(c); /* SPEC.md: an INFO goes first */
     break;
   case GP_STREAM_OFF:
     c->streaming = 0;
@@ -179,8 +180,9 @@ static void command(fw_core *c, const gp_msg *m) {
   }
 }
 
-/* The button: a press starts a calibration capture, the next press saves it.
- * The result shows in the next INFO, sent at once. */
+/* The button (SPEC.md, CAL_SAVE): pressing it starts a calibration capture,
+ * releasing it saves the capture. Each change is announced by an INFO sent at
+ * once (a refused save keeps capturing, and the INFO says RUNNING). */
 static void button_tick(fw_core *c) {
   uint8_t raw = fw_hal_button() ? 1 : 0;
   if (raw != c->button_raw) {
@@ -190,11 +192,12 @@ static void button_tick(fw_core *c) {
   }
   if (raw == c->button || ++c->button_count < FW_BUTTON_DEBOUNCE_TICKS) return;
   c->button = raw;
-  if (!raw) return;
-  if (c->cal.state == GP_CAL_RUNNING)
-    (void)fw_cal_save(&c->cal); /* a refused save keeps capturing; INFO says so */
-  else
+  if (raw)
     fw_cal_start(&c->cal);
+  else if (c->cal.state == GP_CAL_RUNNING)
+    (void)fw_cal_save(&c->cal);
+  else
+    return;
   send_info(c);
 }
 

@@ -183,10 +183,11 @@ static void firmware_calibration_board_without_storage(void **state) {
 
 static void firmware_calibration_by_button(void **state) {
   (void)state;
+  /* Press: the capture starts (after the debounce time). */
   fake.button = 1;
-  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS + 5);
-  fake.button = 0;
-  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS + 5);
+  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS - 2);
+  assert_int_equal(core.cal.state, GP_CAL_DEFAULTS);
+  fake_run(&core, 5);
   assert_int_equal(core.cal.state, GP_CAL_RUNNING);
   /* Fast blink while capturing: the LED changes every 100 ticks. */
   int led0 = fake.led;
@@ -194,23 +195,27 @@ static void firmware_calibration_by_button(void **state) {
   assert_int_not_equal(fake.led, led0);
   sweep(800, 3200);
   /* A bounce shorter than the debounce time does nothing. */
-  fake.button = 1;
-  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS / 2);
   fake.button = 0;
+  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS / 2);
+  fake.button = 1;
   fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS + 5);
   assert_int_equal(core.cal.state, GP_CAL_RUNNING);
-  fake.button = 1;
-  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS + 5);
+  assert_int_equal(fake.flash_writes, 0);
+  /* Release: the capture is saved. */
   fake.button = 0;
-  fake_run(&core, 5);
+  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS + 5);
   assert_int_equal(core.cal.state, GP_CAL_VALID);
   assert_int_equal(fake.flash_writes, 1);
-  /* The press sent an INFO announcing it. */
+  assert_int_equal(core.cal.min[0], 800);
+  assert_int_equal(core.cal.max[4], 3240);
+  /* The release sent an INFO announcing it. */
+  fake_run(&core, 20);
   fake_decode();
   size_t i = frames.n;
   while (i-- > 0 && frames.msg[i].type != GP_INFO) {
   }
   assert_int_equal(frames.msg[i].u.info.cal_state, GP_CAL_VALID);
+  assert_int_equal(frames.msg[i].u.info.cal_min[0], 800);
 }
 
 int main(void) {

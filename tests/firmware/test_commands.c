@@ -126,7 +126,7 @@ static void firmware_commands_set_rate(void **state) {
   memset(&m, 0, sizeof m);
   m.type = GP_SET_RATE;
   const struct { uint16_t rate; uint32_t baud; } bad[] = {
-      {3, 0}, {0, 0}, {2000, 921600}, {1000, 0}, {500, 115200}, {250, 12345},
+      {3, 0}, {0, 0}, {2000, 921600}, {1000, 0}, {500, 115200}, {250, 12345}, {250, 57600},
   };
   for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
     m.u.set_rate.tag = (uint8_t)(30 + k);
@@ -154,14 +154,17 @@ static void firmware_commands_stream_off_and_on(void **state) {
   assert_int_equal(samples, 0);
   assert_int_equal(infos, 2); /* INFO keeps its 1 Hz */
   assert_int_equal(fake.led, 1); /* steady on while not streaming */
-  expect_ack(GP_STREAM_ON, 4, NULL);
-  from = fake.wire_len;
+  size_t ack;
+  expect_ack(GP_STREAM_ON, 4, &ack);
   fake_run(&core, 100);
   fake_decode();
+  /* An INFO goes first, then the SAMPLEs resume. */
+  size_t first_info = fake_find(ack + 1, GP_INFO), first_sample = fake_find(ack + 1, GP_SAMPLE);
+  assert_true(first_info < first_sample);
+  assert_true(first_sample < frames.n);
   samples = 0;
-  for (size_t i = 0; i < frames.n; i++)
-    if (frames.end[i] > from) samples += frames.msg[i].type == GP_SAMPLE;
-  assert_in_range(samples, 24, 26);
+  for (size_t i = ack; i < frames.n; i++) samples += frames.msg[i].type == GP_SAMPLE;
+  assert_in_range(samples, 28, 31);
 }
 
 static void firmware_commands_get_status_counts(void **state) {
