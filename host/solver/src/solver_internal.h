@@ -42,8 +42,9 @@ double mr_norm2(int n, const double *v);
 
 /* Flags rows that are dependent on their own (A_ii = 0) or parallel to an
  * earlier unflagged row (cos² ≥ 1 − pivot_tol in the M⁻¹ metric); this is
- * the LDLᵀ pivot test applied to pairs. Returns the count. */
-int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep);
+ * the LDLᵀ pivot test applied to pairs. Leaves A's diagonal in diag.
+ * Returns the count. */
+int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag);
 
 int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
 int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
