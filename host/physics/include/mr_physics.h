@@ -51,7 +51,9 @@ typedef enum mr_status {
                                coplanar rigid group, ... */
   MR_ERR_NOT_DECLARED = -6, /* the world did not declare that effect */
   MR_ERR_TIME = -7,         /* t_target earlier than the world time */
-  MR_ERR_LIMIT = -8         /* max_steps_per_call reached before t_target */
+  MR_ERR_LIMIT = -8,        /* max_steps_per_call reached before t_target */
+  MR_ERR_SOLVER = -9        /* the linear solver could not run (out of
+                               memory, or the method is not built in) */
 } mr_status;
 
 const char *mr_status_name(mr_status s);   /* "ok", "diverged", ... */

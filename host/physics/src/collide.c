@@ -183,19 +183,20 @@ double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, 
   return (d[0] * (vb[0] - va[0]) + d[1] * (vb[1] - va[1]) + d[2] * (vb[2] - va[2])) / len;
 }
 
-double mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v,
-                      double *chidot, double *jdqd)
+int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v, double *chi,
+                   double *chidot, double *jdqd)
 {
   if (mr_jac_begin_row(&w->J) < 0)
-    return NAN;
+    return -1;
   if (c->kind == MR_CONTACT_PLANE) {
     const mr_plane *pl = &w->planes[c->b];
     if (mr_jac_add(&w->J, c->a, pl->n) != 0)
-      return NAN;
+      return -1;
     const double *q = &v[3 * c->a];
     *chidot = pl->n[0] * q[0] + pl->n[1] * q[1] + pl->n[2] * q[2];
     *jdqd = 0.0;
-    return plane_gap(w, c->a, pl, x);
+    *chi = plane_gap(w, c->a, pl, x);
+    return 0;
   }
   const mr_leaf *la = &w->leaves[c->a], *lb = &w->leaves[c->b];
   double d[3], len;
@@ -205,7 +206,7 @@ double mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const d
     for (int k = 0; k < 3; k++)
       n[k] = d[k] / len;
   if (leaf_jac(w, la, n, -1.0) != 0 || leaf_jac(w, lb, n, 1.0) != 0)
-    return NAN;
+    return -1;
   double va[3], vb[3], dv[3];
   leaf_velocity(la, v, va);
   leaf_velocity(lb, v, vb);
@@ -214,5 +215,6 @@ double mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const d
   double rate = n[0] * dv[0] + n[1] * dv[1] + n[2] * dv[2];
   *chidot = rate;
   *jdqd = len > 1e-12 ? (dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) / len : 0.0;
-  return len - la->r - lb->r;
+  *chi = len - la->r - lb->r;
+  return 0;
 }

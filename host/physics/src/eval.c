@@ -73,6 +73,8 @@ int mr_solve_rows(mr_world *w, int assemble)
   }
   if (st == MR_SOLVE_ENOMEM || st == MR_SOLVE_UNAVAILABLE) {
     w->stats.solver_failures++;
+    w->fail = mr_fail(w, MR_ERR_SOLVER, "solver %s: %s (%d rows)", mr_solve_method_name(w->opts.method),
+                      st == MR_SOLVE_ENOMEM ? "out of memory" : "not built into this library", k);
     return -1;
   }
   if (st == MR_SOLVE_NOT_CONVERGED)
@@ -109,9 +111,8 @@ static int build_rows(mr_world *w, double t, const double *x, const double *v)
   for (int c = 0; c < w->contacts.n; c++) {
     if (!w->contact_active[c])
       continue;
-    double chidot, jdqd;
-    double chi = mr_contact_row(w, &w->contacts.c[c], x, v, &chidot, &jdqd);
-    if (chi != chi)
+    double chi, chidot, jdqd;
+    if (mr_contact_row(w, &w->contacts.c[c], x, v, &chi, &chidot, &jdqd) != 0)
       return -1;
     w->row_c[r] = chi;
     w->row_cdot[r] = chidot;

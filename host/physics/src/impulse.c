@@ -1,17 +1,17 @@
 /* Collision impulses through the velocity-level system (§5.3, eq. 9):
  *
- *   J M⁻¹ Jᵀ λ = −J M⁻¹ L_a − Ċ⁻ + target,   q̇⁺ = q̇⁻ + M⁻¹ (L_a + Jᵀ λ)
+ *   J M⁻¹ Jᵀ λ = −J M⁻¹ L_a + Δ,   q̇⁺ = q̇⁻ + M⁻¹ (L_a + Jᵀ λ)
  *
- * with L_a the applied momenta (the friction impulses below) and Ċ⁻ = J q̇⁻
- * + ∂C/∂t before the impulse. Every constraint row has target 0, so the
- * velocities after the impulse keep Ċ = 0 and the puppet's joints hold
- * (§5.1: velocities of single particles must not simply be changed). Each
- * colliding contact row (eq. 13a, χ̇ < 0) has target −e χ̇⁻ (restitution e),
- * or 0 for impacts slower than rest_speed, which then rest. Contacts push
- * and never pull: a negative multiplier releases its contact, a contact that
- * the impulse drives inwards is added, and the system is solved again. The
- * position terms K_s C, K_d Ċ of eq. 9 are left to eq. 8's correction during
- * the step: an impulse is instantaneous and moves nothing. */
+ * with L_a the applied momenta (the friction impulses below) and Δ the
+ * change of J q̇ each row asks for. A constraint row asks for none: the
+ * impulse moves the puppet as a whole, its joints hold (§5.1: velocities of
+ * single particles must not simply be changed), and the rate Ċ that eq. 8's
+ * correction (−K_s C − K_d Ċ) is building up is left alone; zeroing it at
+ * every contact stalled that correction. Each colliding contact row (eq.
+ * 13a, χ̇ < 0) asks for χ̇⁺ = −e χ̇⁻ (restitution e), or 0 for impacts
+ * slower than rest_speed, which then rest. Contacts push and never pull: a
+ * negative multiplier releases its contact, a contact the impulse drives
+ * inwards is added, and the system is solved again. */
 #include "internal.h"
 
 #include <math.h>
@@ -35,7 +35,8 @@ static int build(mr_world *w, double t, const double *x, const double *v, const 
     if (!active[c])
       continue;
     double chidot, jdqd;
-    w->row_c[r] = mr_contact_row(w, &w->contacts.c[c], x, v, &chidot, &jdqd);
+    if (mr_contact_row(w, &w->contacts.c[c], x, v, &w->row_c[r], &chidot, &jdqd) != 0)
+      return -1;
     w->row_cdot[r] = chidot;
     w->row_contact[r] = c;
     r++;
@@ -57,12 +58,9 @@ int mr_impulses_apply(mr_world *w, double t, int *collided)
   unsigned char *active = w->contact_active;
   /* Normal velocities before the impulse, from every contact's row. */
   double *pre = w->contact_pre;
-  if (mr_jac_reset(&w->J, w->n) != 0)
-    return -1;
   int any = 0;
   for (int c = 0; c < nct; c++) {
-    double jdqd;
-    mr_contact_row(w, &w->contacts.c[c], x, v, &pre[c], &jdqd);
+    pre[c] = mr_contact_rate(w, &w->contacts.c[c], x, v);
     active[c] = pre[c] < 0;
     any |= active[c];
     if (pre[c] < -w->def.rest_speed)
@@ -107,7 +105,7 @@ int mr_impulses_apply(mr_world *w, double t, int *collided)
       double target = 0.0;
       if (c >= 0 && pre[c] < -w->def.rest_speed)
         target = -w->contacts.c[c].restitution * pre[c];
-      w->rhs[r] = target - w->row_cdot[r] - w->row_jv[r];
+      w->rhs[r] = (c >= 0 ? target - w->row_cdot[r] : 0.0) - w->row_jv[r];
     }
     if (mr_solve_rows(w, 1) != 0)
       return -1;
@@ -125,14 +123,10 @@ int mr_impulses_apply(mr_world *w, double t, int *collided)
     }
     if (!changed) {
       /* A contact the impulse pushes inwards joins the system. */
-      if (mr_jac_reset(&w->J, w->n) != 0)
-        return -1;
       for (int c = 0; c < nct; c++) {
         if (active[c])
           continue;
-        double after, jdqd;
-        mr_contact_row(w, &w->contacts.c[c], x, w->f, &after, &jdqd);
-        if (after < -1e-9) {
+        if (mr_contact_rate(w, &w->contacts.c[c], x, w->f) < -1e-9) {
           active[c] = 1;
           changed = 1;
         }

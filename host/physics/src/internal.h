@@ -131,6 +131,7 @@ struct mr_world {
 
   mr_world_stats stats;
   int last_dependent;
+  mr_status fail;                /* why an inner stage returned −1 (0: memory) */
 };
 
 /* world.c */
@@ -166,9 +167,10 @@ int mr_colliders(const mr_world *w);
 int mr_contacts_detect(mr_world *w, const double *x, double gap, mr_contact_list *out);
 double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x);
 double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v);
-/* Writes the contact's J row into w->J; returns χ and sets χ̇ and J̇q̇. */
-double mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v,
-                      double *chidot, double *jdqd);
+/* Writes the contact's J row into w->J and sets χ, χ̇ and J̇q̇; 0 or −1
+ * (out of memory). A NaN state gives NaN values, not a failure. */
+int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v, double *chi,
+                   double *chidot, double *jdqd);
 int mr_contact_push(mr_contact_list *l, mr_contact_kind kind, int a, int b, double e, double mu);
 void mr_contact_list_free(mr_contact_list *l);
 

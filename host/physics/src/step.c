@@ -201,6 +201,16 @@ static void record_step(mr_world *w, double h, double e)
     s->max_error = e;
 }
 
+/* An inner stage failed: keep the solver's own message, or name memory. */
+static mr_status inner_failure(mr_world *w, const char *what)
+{
+  mr_status s = w->fail;
+  w->fail = MR_OK;
+  if (s != MR_OK)
+    return s;
+  return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (%s)", what);
+}
+
 /* Takes steps until t_target (INFINITY: exactly one planned step). */
 static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
 {
@@ -245,7 +255,7 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
         return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
       int collided = 0;
       if (mr_impulses_apply(w, t, &collided) != 0)
-        return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (impulses)");
+        return inner_failure(w, "impulses");
       rep.collisions += collided;
       w->stats.resting_contacts = w->contacts.n;
     }
@@ -258,7 +268,7 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
     for (;;) {
       /* 2. Integrate. */
       if (mr_integrate(w, t, h, w->x0, w->v0, w->x1, w->v1) != 0)
-        return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (solve)");
+        return inner_failure(w, "solve");
       e = mr_constraints_deviation(w, t + h, w->x1);
       /* 3. Divergence. */
       if (!all_finite(w->x1, n3) || !all_finite(w->v1, n3) || !(e <= w->def.divergence_bound)) {
@@ -306,7 +316,7 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
         int err = 0;
         double hc = locate_contact(w, t, h, &err);
         if (err)
-          return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contact time)");
+          return inner_failure(w, "contact time");
         if (hc < h) {
           located = 1;
           h = hc;

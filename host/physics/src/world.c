@@ -21,6 +21,7 @@ const char *mr_status_name(mr_status s)
   case MR_ERR_NOT_DECLARED: return "effect not declared";
   case MR_ERR_TIME: return "time goes backwards";
   case MR_ERR_LIMIT: return "step limit";
+  case MR_ERR_SOLVER: return "solver failed";
   }
   return "unknown status";
 }
