@@ -165,6 +165,39 @@ static void tetra(mr_world *w, const double c[3], const double v[3], double r, i
   assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
 }
 
+/* Planes other than the floor: a wall x ≤ 1 (normal (−1, 0, 0), offset −1)
+ * with restitution 1 sends a particle sliding at 2 m/s back at 2 m/s, its
+ * surface stopping at the wall. The normal is normalised on entry. */
+static void wall_plane_reflects_particle(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0;
+  mr_world *w = make_world(MR_EFFECT_PLANES, &def);
+  int p = add(w, (double[3]){0, 0, 0}, (double[3]){2, 0, 0}, 0.1, 0);
+  mr_plane_def wall = mr_default_plane_def();
+  wall.normal[0] = -3.0; /* not unit on purpose */
+  wall.normal[1] = 0.0;
+  wall.offset = -1.0;
+  wall.restitution = 1.0;
+  wall.friction = 0.0;
+  assert_int_equal(mr_world_add_plane(w, &wall, NULL), MR_OK);
+  double far = -INFINITY;
+  for (int f = 1; f <= 60; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    double x[3];
+    mr_world_particle_state(w, p, x, NULL);
+    far = fmax(far, x[0] + 0.1);
+  }
+  double x[3], v[3];
+  mr_world_particle_state(w, p, x, v);
+  printf("wall: farthest surface point %.6f m (wall at 1), v = %.6f m/s after\n", far, v[0]);
+  assert_true(far < 1.0 + 2e-4);
+  assert_true(fabs(v[0] + 2.0) < 1e-5); /* the contact's 1e-6 compliance costs 2e-6 of the rebound */
+  assert_true(fabs(x[0] - (0.9 - 2.0 * (1.0 - 0.45))) < 1e-3);
+  mr_world_destroy(w);
+}
+
 /* Two rigid tetrahedra (one part each, sphere radius 0.12 m per particle)
  * thrown at each other at 2 m/s each: sampled every 2 ms, no leaf sphere of
  * one ever overlaps one of the other by more than twice the contact slop,
@@ -314,6 +347,7 @@ int main(void)
     cmocka_unit_test(resting_contact_holds_without_sinking_or_jitter),
     cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
     cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),
+    cmocka_unit_test(wall_plane_reflects_particle),
     cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),
     cmocka_unit_test(non_adjacent_parts_of_one_puppet_collide),
   };

@@ -298,6 +298,50 @@ static void frame_particles_follow_target_pose(void **state)
   mr_world_destroy(w);
 }
 
+/* §6.1: a puppet particle tied to a frame particle by a fixed distance
+ * (a rigid string) follows the frame as it is carried 0.5 m sideways over
+ * 1 s: the link keeps its length to the ATS band, and after 9 s of drag
+ * (time constant m/c = 1 s) the particle hangs under the frame's new
+ * position to within 1 cm. */
+static void frame_particle_drags_puppet_through_distance_constraint(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_FRAMES | MR_EFFECT_DRAG, 1.0);
+  mr_frame_def fd = mr_default_frame_def();
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
+  int top = add(w, 0, 2, 0, 1.0, frame), bob = add(w, 0, 1.5, 0, 1.0, -1);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = top;
+  d.b = bob;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_pose pose = mr_pose_identity();
+  pose.position[0] = 0.5;
+  assert_int_equal(mr_world_set_frame_target(w, frame, &pose, 1.0), MR_OK);
+  double worst = 0;
+  for (int f = 1; f <= 600; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    worst = fmax(worst, mr_world_deviation(w));
+  }
+  double x[3];
+  mr_world_particle_state(w, bob, x, NULL);
+  printf("frame drag: worst deviation %.3g, bob ends at (%.4f, %.4f)\n", worst, x[0], x[1]);
+  assert_true(worst < 1e-2);
+  assert_true(fabs(x[0] - 0.5) < 1e-2 && fabs(x[1] - 1.5) < 1e-3);
+  mr_world_destroy(w);
+}
+
+/* An empty world steps (time passes, nothing else happens). */
+static void empty_world_steps(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES, 0.1);
+  assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
+  assert_true(mr_world_time(w) == 1.0);
+  assert_int_equal(mr_world_particle_count(w), 0);
+  mr_world_destroy(w);
+}
+
 /* §6.1 method 3: a particle held on a keyframed curve, with a second one
  * hanging from it, stays on it and moves with it: within 0.1 % on the
  * smooth cubic, within the correction's response to each corner on a
@@ -404,6 +448,8 @@ int main(void)
     cmocka_unit_test(string_hangs_at_static_stretch_and_correction_limits_it),
     cmocka_unit_test(string_correction_keeps_rigid_groups_whole),
     cmocka_unit_test(frame_particles_follow_target_pose),
+    cmocka_unit_test(frame_particle_drags_puppet_through_distance_constraint),
+    cmocka_unit_test(empty_world_steps),
     cmocka_unit_test(particle_follows_time_dependent_curve),
     cmocka_unit_test(rigid_group_of_seven_stays_rigid),
   };
