@@ -6,6 +6,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 mr_pose mr_pose_identity(void)
@@ -113,12 +114,15 @@ void mr_frames_place(mr_world *w, double t, double *x, double *v)
   if (!w->has_frames)
     return;
   w->pass_calls[MR_PASS_FRAMES]++;
-  for (int i = 0; i < w->n; i++) {
-    int f = w->frame[i];
-    if (f < 0)
-      continue;
-    double p[3], qq[4], fv[3], fo[3];
-    mr_frame_eval(&w->frames[f], t, p, qq, fv, fo);
+  /* Each frame's pose once, then its particles. */
+  for (int f = 0; f < w->nf; f++) {
+    double *st = &w->frame_state[13 * f];
+    mr_frame_eval(&w->frames[f], t, st, st + 3, st + 7, st + 10);
+  }
+  for (int j = 0; j < w->nkin; j++) {
+    int i = w->kin[j];
+    const double *st = &w->frame_state[13 * w->frame[i]];
+    const double *p = st, *qq = st + 3, *fv = st + 7, *fo = st + 10;
     double r[3];
     mr_quat_rotate(qq, &w->local[3 * i], r);
     for (int k = 0; k < 3; k++)
@@ -141,6 +145,13 @@ mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id)
     return s;
   if (MR_GROW(w, w->frames, w->nf, w->cap_f) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_add_frame: out of memory");
+  if (w->cap_fs < w->cap_f) {
+    double *fs = realloc(w->frame_state, (size_t)w->cap_f * 13 * sizeof *fs);
+    if (!fs)
+      return mr_fail(w, MR_ERR_NOMEM, "mr_world_add_frame: out of memory");
+    w->frame_state = fs;
+    w->cap_fs = w->cap_f;
+  }
   mr_frame *fr = &w->frames[w->nf];
   fr->from = fr->to = p;
   fr->t0 = fr->t1 = w->t;

@@ -77,6 +77,8 @@ struct mr_world {
   int *puppet, *frame;
 
   int nf, cap_f;       mr_frame *frames;
+  int cap_fs;          double *frame_state;   /* per frame: p, q, ṗ, ω (13) */
+  int nkin, cap_kin;   int *kin;              /* particles carried by frames */
   int ns, cap_s;       mr_spring *springs;
   int nstr, cap_str;   mr_string *strings;
   int nag, cap_ag;     mr_antigravity *antigravity;

@@ -227,7 +227,7 @@ void mr_world_destroy(mr_world *w)
   if (!w)
     return;
   void *arrays[] = {w->x, w->v, w->mass, w->inv_mass, w->radius, w->x_start, w->v_start,
-                    w->local, w->puppet, w->frame, w->frames, w->springs, w->strings,
+                    w->local, w->puppet, w->frame, w->frames, w->frame_state, w->kin, w->springs, w->strings,
                     w->antigravity, w->triggered, w->sine_springs, w->distances, w->pins,
                     w->groups, w->planes, w->parts, w->leaves, w->puppet_mass,
                     w->part_adjacent, w->trees, w->nodes, w->leaf_c, w->contact_active, w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot, w->row_bias, w->row_jv, w->row_contact,
@@ -303,7 +303,7 @@ mr_status mr_world_add_particle(mr_world *w, const mr_particle_def *def, int *ou
   } else if (!(def->mass > 0)) {
     return mr_fail(w, MR_ERR_ARG, "particle %d: mass %g must be > 0", id, def->mass);
   }
-  if (grow_particles(w) != 0)
+  if (grow_particles(w) != 0 || (def->frame >= 0 && MR_GROW(w, w->kin, w->nkin, w->cap_kin) != 0))
     return mr_fail(w, MR_ERR_NOMEM, "particle %d: out of memory", id);
   int kin = def->frame >= 0;
   for (int k = 0; k < 3; k++) {
@@ -327,6 +327,7 @@ mr_status mr_world_add_particle(mr_world *w, const mr_particle_def *def, int *ou
     qc[2] = -q[2];
     qc[3] = -q[3];
     mr_quat_rotate(qc, d, &w->local[3 * id]);
+    w->kin[w->nkin++] = id;
     w->n = id + 1;
     mr_frames_place(w, w->t, w->x, w->v);
   }
