@@ -259,8 +259,10 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
       rep.collisions += collided;
       w->stats.resting_contacts = w->contacts.n;
     }
-    memcpy(w->x0, w->x, bytes);
-    memcpy(w->v0, w->v, bytes);
+    if (bytes > 0) { /* an empty world has no arrays yet */
+      memcpy(w->x0, w->x, bytes);
+      memcpy(w->v0, w->v, bytes);
+    }
 
     double e = 0.0;
     mr_ats_decision dec = {1, planned};
