@@ -208,6 +208,7 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
   w->opts.tol = def->solver_tolerance;
   w->opts.max_iter = def->solver_max_iterations;
   w->dt_next = fmin(fmax(def->dt_initial, def->dt_min), def->dt_max);
+  w->dirty = 1; /* derived data and scratch are built at the first step */
   w->stats.min_dt = INFINITY;
   w->has_frames = (def->effects & MR_EFFECT_FRAMES) != 0;
   w->has_solve = (def->effects & (MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES |
