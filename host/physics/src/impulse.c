@@ -56,7 +56,7 @@ int mr_impulses_apply(mr_world *w, double t, int *collided)
   double *pa = w->pa;
   int n3 = 3 * w->n;
   unsigned char *active = w->contact_active;
-  /* Normal velocities before the impulse, from every contact's row. */
+  /* Normal velocities χ̇⁻ before the impulse. */
   double *pre = w->contact_pre;
   int any = 0;
   for (int c = 0; c < nct; c++) {
