@@ -247,7 +247,12 @@ static int on_event(builder *b, struct fy_event *e) {
     n->text = token_dup(&b->doc->arena, e->scalar.value);
     if (n->text == NULL)
       return fail(b->err, line, column, "out of memory");
-    n->quoted = fy_token_scalar_style(e->scalar.value) != FYSS_PLAIN;
+    enum fy_scalar_style style = fy_token_scalar_style(e->scalar.value);
+    n->quoted = style != FYSS_PLAIN;
+    /* libfyaml marks a quoted scalar at its first character inside the
+     * quotes; point at the opening quote, where the value starts. */
+    if ((style == FYSS_SINGLE_QUOTED || style == FYSS_DOUBLE_QUOTED) && n->column > 1)
+      n->column--;
     if (e->scalar.anchor != NULL) {
       char *name = token_strdup(e->scalar.anchor);
       if (name == NULL || add_anchor(b, name, n) != 0)
