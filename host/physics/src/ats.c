@@ -1,0 +1,38 @@
+/* §4.5: the adaptive time step rule, a pure function of the last step's
+ * size and its largest relative constraint deviation.
+ *
+ *   Δt_new = Δt_old · (threshold / error)^¼       (RK4 is O(h⁴))
+ *
+ * Two thresholds (§7: 0.01 % and 1 %) make a dead band: below `low` the step
+ * grows towards low's error, above `high` the step is rejected and retried
+ * shorter towards high's error (a milder cut than aiming at `low`, which is
+ * what §7 says the upper threshold is for), between them Δt is kept. */
+#include "mr_physics.h"
+
+#include <math.h>
+
+static double clamp(double v, double lo, double hi)
+{
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error)
+{
+  mr_ats_decision d = {1, dt_old};
+  if (!p)
+    return d;
+  if (!(error == error) || error > p->high) {
+    /* NaN counts as too large. At the lower bound there is nothing shorter
+     * to retry with: the step stands (divergence is judged elsewhere). */
+    if (dt_old <= p->dt_min) {
+      d.dt_next = p->dt_min;
+      return d;
+    }
+    d.accept = 0;
+    d.dt_next = (error == error) ? dt_old * pow(p->high / error, 0.25) : p->dt_min;
+  } else if (error < p->low) {
+    d.dt_next = error > 0 ? dt_old * pow(p->low / error, 0.25) : p->dt_max;
+  }
+  d.dt_next = clamp(d.dt_next, p->dt_min, p->dt_max);
+  return d;
+}
