@@ -66,13 +66,15 @@ static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, d
   printf("wall: %.3f s\n", wall);
   printf("steps: %" PRIu64 "\n", r->steps);
   printf("rejected: %" PRIu64 "\n", r->rejected);
-  printf("dt mean: %.6f s\n", r->dt_mean);
-  printf("dt min: %.6f s\n", r->dt_min);
-  printf("dt max: %.6f s\n", r->dt_max);
+  printf("dt mean: %.4g s\n", r->dt_mean);
+  printf("dt min: %.4g s\n", r->dt_min);
+  printf("dt max: %.4g s\n", r->dt_max);
   printf("at upper bound: %.1f %%\n", 100.0 * r->at_upper_fraction);
   printf("deviation max: %.3e\n", r->max_deviation);
   printf("deviation rms: %.3e\n", r->rms_deviation);
   printf("resets: %" PRIu64 "\n", r->resets);
+  if (r->resets > 0)
+    printf("first reset: %s\n", r->first_reset);
   printf("collisions: %" PRIu64 "\n", r->collisions);
   printf("dependent rows: %d\n", r->dependent_rows);
   printf("finite: %s\n", r->finite ? "yes" : "no");

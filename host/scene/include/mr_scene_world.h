@@ -67,6 +67,7 @@ typedef struct mr_scene_run_result {
    * from its position at `settle`, and its largest speed after `settle`. */
   double creep, jitter;
   mr_status last_status;    /* of the last step call */
+  char first_reset[256];    /* the physics' account of the first reset */
 } mr_scene_run_result;
 
 /* Builds the scene's world and runs it. Returns MR_SCENE_OK, or an error

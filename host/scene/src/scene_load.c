@@ -30,7 +30,7 @@ static void defaults(mr_scene *s) {
   st->threshold_min = st->threshold_max = st->divergence = st->deviation_length = NAN;
   st->contact_slop = st->rest_speed = st->string_max_stretch = NAN;
   s->duration = 10.0;
-  s->fps = 50.0;
+  s->fps = 0.0;
   s->expect.finite = true;
   s->expect.max_deviation = NAN;
   s->expect.resets_min = -1;

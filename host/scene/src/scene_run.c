@@ -90,20 +90,39 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
   uint64_t at_upper = 0;
   double t = mr_world_time(sw.world);
   watch(&w, t, r);
-  /* Frame times are k/fps, not a running sum, so long runs land exactly. */
-  long frames = (long)ceil(duration * fps - 1e-9);
-  for (long k = 1; k <= frames && rc == MR_SCENE_OK; k++) {
-    double t_frame = k == frames ? duration : (double)k / fps;
-    if (sw.frame >= 0) {
-      mr_scene_pose pose;
-      mr_scene_control_pose_at(s, t_frame, &pose);
-      mr_pose target = mr_scene_pose_to_physics(&pose);
-      mr_world_set_frame_target(sw.world, sw.frame, &target, t_frame);
-    }
-    while (t < t_frame) {
-      double target = t + mr_world_next_dt(sw.world);
+  /* Without a frame rate the track is sampled at the end of every step, so
+   * the ATS alone chooses Δt (§4.5). With one, steps land on the frame
+   * times k/fps (§4.6) and the frame moves linearly between samples, as in
+   * the theater. Frame times are k/fps, not a running sum, so long runs land
+   * exactly. */
+  long frame_k = 0;
+  double t_frame = -1.0;
+  while (t < duration - LAND_S && rc == MR_SCENE_OK) {
+    double target = t + mr_world_next_dt(sw.world);
+    if (fps > 0) {
+      if (!(t_frame > t + LAND_S)) {
+        frame_k++;
+        t_frame = fmin((double)frame_k / fps, duration);
+        if (sw.frame >= 0) {
+          mr_scene_pose pose;
+          mr_scene_control_pose_at(s, t_frame, &pose);
+          mr_pose goal = mr_scene_pose_to_physics(&pose);
+          mr_world_set_frame_target(sw.world, sw.frame, &goal, t_frame);
+        }
+      }
       if (target > t_frame - LAND_S)
         target = t_frame;
+    } else {
+      if (target > duration - LAND_S)
+        target = duration;
+      if (sw.frame >= 0) {
+        mr_scene_pose pose;
+        mr_scene_control_pose_at(s, target, &pose);
+        mr_pose goal = mr_scene_pose_to_physics(&pose);
+        mr_world_set_frame_target(sw.world, sw.frame, &goal, target);
+      }
+    }
+    {
       mr_step_report rep;
       memset(&rep, 0, sizeof rep);
       mr_status st = mr_world_step_to(sw.world, target, &rep);
@@ -128,6 +147,8 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
         r->finite = false;
       r->steps += (uint64_t)rep.steps;
       r->rejected += (uint64_t)rep.rejected;
+      if (rep.divergences > 0 && r->resets == 0)
+        snprintf(r->first_reset, sizeof r->first_reset, "%s", mr_world_last_error(sw.world));
       r->resets += (uint64_t)rep.divergences;
       r->collisions += (uint64_t)rep.collisions;
       if (rep.dependent > r->dependent_rows)
