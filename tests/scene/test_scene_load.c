@@ -287,6 +287,31 @@ static void expected_load_error_is_readable_from_a_broken_scene(void **state) {
   assert_string_equal(out, "coincides with");
 }
 
+/* The commented example in FORMAT.md is a scene that loads. */
+static void format_md_example_loads(void **state) {
+  (void)state;
+  FILE *f = fopen(MR_SOURCE_DIR "/host/scenes/FORMAT.md", "r");
+  assert_non_null(f);
+  static char doc[65536];
+  size_t n = fread(doc, 1, sizeof doc - 1, f);
+  fclose(f);
+  doc[n] = '\0';
+  char *start = strstr(doc, "```yaml\n");
+  assert_non_null(start);
+  start += strlen("```yaml\n");
+  char *end = strstr(start, "```");
+  assert_non_null(end);
+  mr_scene s;
+  mr_scene_error e;
+  mr_scene_status st = mr_scene_load_text("FORMAT.md", start, (size_t)(end - start), &s, &e);
+  if (st != MR_SCENE_OK)
+    fail_msg("%s", e.text);
+  assert_int_equal(s.n_particles, 3);
+  assert_int_equal(s.n_strings, 1);
+  assert_true(s.expect.present);
+  mr_scene_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(good_scene_loads_with_paper_defaults),
@@ -309,6 +334,7 @@ int main(void) {
       cmocka_unit_test(missing_file_is_an_io_error),
       cmocka_unit_test(file_errors_carry_the_path),
       cmocka_unit_test(expected_load_error_is_readable_from_a_broken_scene),
+      cmocka_unit_test(format_md_example_loads),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -122,52 +122,50 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
         mr_world_set_frame_target(sw.world, sw.frame, &goal, target);
       }
     }
-    {
-      mr_step_report rep;
-      memset(&rep, 0, sizeof rep);
-      mr_status st = mr_world_step_to(sw.world, target, &rep);
-      r->last_status = st;
-      if (st < 0) {
-        char msg[400];
-        snprintf(msg, sizeof msg, "the physics stopped (%s): %s", mr_status_name(st),
-                 mr_world_last_error(sw.world));
-        rc = run_fail(s, err, MR_SCENE_ERR_BUILD, msg, t);
-        break;
-      }
-      t = mr_world_time(sw.world);
-      mr_world_stats stats;
-      mr_world_get_stats(sw.world, &stats);
-      mr_scene_step row = {t, stats.last_dt, stats.last_error, rep.steps, rep.rejected,
-                           rep.divergences > 0, 0};
-      mr_world_positions(sw.world, xyz, n);
-      if (!state_finite(xyz, n) || !isfinite(row.error))
-        r->finite = false;
-      row.max_speed = max_speed(&sw);
-      if (!isfinite(row.max_speed))
-        r->finite = false;
-      r->steps += (uint64_t)rep.steps;
-      r->rejected += (uint64_t)rep.rejected;
-      if (rep.divergences > 0 && r->resets == 0)
-        snprintf(r->first_reset, sizeof r->first_reset, "%s", mr_world_last_error(sw.world));
-      r->resets += (uint64_t)rep.divergences;
-      r->collisions += (uint64_t)rep.collisions;
-      if (rep.dependent > r->dependent_rows)
-        r->dependent_rows = rep.dependent;
-      if (rep.steps > 0 && isfinite(row.dt)) {
-        sum_dt += row.dt * rep.steps;
-        r->dt_min = fmin(r->dt_min, row.dt);
-        r->dt_max = fmax(r->dt_max, row.dt);
-        if (row.dt >= dt_max * (1 - 1e-9))
-          at_upper += (uint64_t)rep.steps;
-      }
-      if (isfinite(row.error)) {
-        r->max_deviation = fmax(r->max_deviation, row.error);
-        sum_err2 += row.error * row.error * rep.steps;
-      }
-      watch(&w, t, r);
-      if (opts && opts->on_step)
-        opts->on_step(opts->user, &row);
+    mr_step_report rep;
+    memset(&rep, 0, sizeof rep);
+    mr_status st = mr_world_step_to(sw.world, target, &rep);
+    r->last_status = st;
+    if (st < 0) {
+      char msg[400];
+      snprintf(msg, sizeof msg, "the physics stopped (%s): %s", mr_status_name(st),
+               mr_world_last_error(sw.world));
+      rc = run_fail(s, err, MR_SCENE_ERR_BUILD, msg, t);
+      break;
     }
+    t = mr_world_time(sw.world);
+    mr_world_stats stats;
+    mr_world_get_stats(sw.world, &stats);
+    mr_scene_step row = {t, stats.last_dt, stats.last_error, rep.steps, rep.rejected,
+                         rep.divergences > 0, 0};
+    mr_world_positions(sw.world, xyz, n);
+    if (!state_finite(xyz, n) || !isfinite(row.error))
+      r->finite = false;
+    row.max_speed = max_speed(&sw);
+    if (!isfinite(row.max_speed))
+      r->finite = false;
+    r->steps += (uint64_t)rep.steps;
+    r->rejected += (uint64_t)rep.rejected;
+    if (rep.divergences > 0 && r->resets == 0)
+      snprintf(r->first_reset, sizeof r->first_reset, "%s", mr_world_last_error(sw.world));
+    r->resets += (uint64_t)rep.divergences;
+    r->collisions += (uint64_t)rep.collisions;
+    if (rep.dependent > r->dependent_rows)
+      r->dependent_rows = rep.dependent;
+    if (rep.steps > 0 && isfinite(row.dt)) {
+      sum_dt += row.dt * rep.steps;
+      r->dt_min = fmin(r->dt_min, row.dt);
+      r->dt_max = fmax(r->dt_max, row.dt);
+      if (row.dt >= dt_max * (1 - 1e-9))
+        at_upper += (uint64_t)rep.steps;
+    }
+    if (isfinite(row.error)) {
+      r->max_deviation = fmax(r->max_deviation, row.error);
+      sum_err2 += row.error * row.error * rep.steps;
+    }
+    watch(&w, t, r);
+    if (opts && opts->on_step)
+      opts->on_step(opts->user, &row);
   }
   r->sim_time = t;
   if (r->steps > 0) {
