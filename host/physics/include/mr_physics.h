@@ -300,7 +300,8 @@ mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id);
  * increasing, copied) or a callback. Before the first / after the last key
  * the curve holds its end point. */
 typedef enum mr_curve_interp {
-  MR_CURVE_CATMULL_ROM = 0,  /* C¹ cubic through the keys (default) */
+  MR_CURVE_CATMULL_ROM = 0,  /* C¹ cubic through the keys, at rest at the
+                                first and last key (default) */
   MR_CURVE_LINEAR            /* polyline: ċ piecewise constant, c̈ = 0 */
 } mr_curve_interp;
 typedef void (*mr_curve_fn)(void *user, double t, double pos[3], double vel[3], double acc[3]);
@@ -377,6 +378,11 @@ typedef struct mr_step_report {
  * or an error (MR_ERR_TIME, MR_ERR_LIMIT). report may be NULL. */
 mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report);
 
+/* Takes one step of the planned Δt (mr_world_next_dt), or a shorter one if
+ * it is rejected or stopped at a contact time: for benchmarks and tests that
+ * watch the ATS step by step. */
+mr_status mr_world_step(mr_world *w, mr_step_report *report);
+
 double mr_world_time(const mr_world *w);
 double mr_world_next_dt(const mr_world *w);   /* Δt the ATS will try next */
 
@@ -401,8 +407,8 @@ uint64_t mr_world_state_hash(const mr_world *w);
 /* ------------------------------------------------------------------- ATS */
 
 /* The §4.5 rule as a pure function, exposed so it can be tested and reused.
- * error > high: reject, Δt_new = Δt_old·(high/error)^¼ (unless Δt_old is
- * already dt_min: then accept). error < low: Δt_new = Δt_old·(low/error)^¼.
+ * error > high: reject, Δt_new = Δt_old·min((high/error)^¼, ½) (unless
+ * Δt_old is already dt_min: then accept). error < low: Δt_new = Δt_old·(low/error)^¼.
  * Otherwise keep Δt. The result is clamped to [dt_min, dt_max]. */
 typedef struct mr_ats_params { double dt_min, dt_max, low, high; } mr_ats_params;
 typedef struct mr_ats_decision { int accept; double dt_next; } mr_ats_decision;

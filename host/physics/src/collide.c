@@ -147,6 +147,12 @@ double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x)
   return len - w->leaves[c->a].r - w->leaves[c->b].r;
 }
 
+static void leaf_velocity(const mr_leaf *l, const double *v, double out[3])
+{
+  for (int k = 0; k < 3; k++)
+    out[k] = (1.0 - l->s) * v[3 * l->p0 + k] + l->s * v[3 * l->p1 + k];
+}
+
 /* Adds s·(weight)·n at the particles of leaf l. */
 static int leaf_jac(mr_world *w, const mr_leaf *l, const double n[3], double s)
 {
@@ -162,10 +168,19 @@ static int leaf_jac(mr_world *w, const mr_leaf *l, const double n[3], double s)
   return 0;
 }
 
-static void leaf_velocity(const mr_leaf *l, const double *v, double out[3])
+double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v)
 {
-  for (int k = 0; k < 3; k++)
-    out[k] = (1.0 - l->s) * v[3 * l->p0 + k] + l->s * v[3 * l->p1 + k];
+  if (c->kind == MR_CONTACT_PLANE) {
+    const double *n = w->planes[c->b].n, *q = &v[3 * c->a];
+    return n[0] * q[0] + n[1] * q[1] + n[2] * q[2];
+  }
+  double d[3], len, va[3], vb[3];
+  sphere_geometry(w, c, x, d, &len);
+  if (!(len > 1e-12))
+    return 0.0;
+  leaf_velocity(&w->leaves[c->a], v, va);
+  leaf_velocity(&w->leaves[c->b], v, vb);
+  return (d[0] * (vb[0] - va[0]) + d[1] * (vb[1] - va[1]) + d[2] * (vb[2] - va[2])) / len;
 }
 
 double mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v,

@@ -18,14 +18,19 @@ static int segment(const double *times, int n, double t)
   return lo;
 }
 
-/* Tangent at key i from its neighbours (one-sided at the ends), dP/dt. */
+/* Tangent at key i, dP/dt, from its neighbours. The first and last keys
+ * get zero: the curve starts from rest and comes to rest, so holding the end
+ * point afterwards asks for no jump in velocity, which a constraint can only
+ * follow with a jolt. */
 static void tangent(const mr_curve *c, int i, double m[3])
 {
-  int a = i > 0 ? i - 1 : i;
-  int b = i < c->key_count - 1 ? i + 1 : i;
-  double dt = c->times[b] - c->times[a];
+  if (i == 0 || i == c->key_count - 1) {
+    m[0] = m[1] = m[2] = 0.0;
+    return;
+  }
+  double dt = c->times[i + 1] - c->times[i - 1];
   for (int k = 0; k < 3; k++)
-    m[k] = (c->points[3 * b + k] - c->points[3 * a + k]) / dt;
+    m[k] = (c->points[3 * (i + 1) + k] - c->points[3 * (i - 1) + k]) / dt;
 }
 
 void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], double acc[3])

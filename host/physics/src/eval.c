@@ -129,7 +129,7 @@ static void friction(mr_world *w, int rows, const double *v, double *f)
     if (!(speed > 0))
       continue;
     double mag = ct->friction * nforce;
-    double stop = w->mass[p] * speed / w->h_step;
+    double stop = 2.0 * w->mass[p] * speed / w->h_step;
     if (stop < mag)
       mag = stop;
     for (int k = 0; k < 3; k++)

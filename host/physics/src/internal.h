@@ -164,6 +164,7 @@ int mr_collide_build_passes(mr_world *w);
 int mr_colliders(const mr_world *w);
 int mr_contacts_detect(mr_world *w, const double *x, double gap, mr_contact_list *out);
 double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x);
+double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v);
 /* Writes the contact's J row into w->J; returns χ and sets χ̇ and J̇q̇. */
 double mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v,
                       double *chidot, double *jdqd);

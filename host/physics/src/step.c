@@ -194,19 +194,13 @@ static void record_step(mr_world *w, double h, double e)
     s->max_error = e;
 }
 
-mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
+/* Takes steps until t_target (INFINITY: exactly one planned step). */
+static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
 {
   mr_step_report rep;
   memset(&rep, 0, sizeof rep);
   if (report)
     *report = rep;
-  if (!w)
-    return MR_ERR_ARG;
-  if (!isfinite(t_target))
-    return mr_fail(w, MR_ERR_NONFINITE, "mr_world_step_to: target time is NaN or Inf");
-  if (t_target < w->t)
-    return mr_fail(w, MR_ERR_TIME, "mr_world_step_to: target %.9g s is before the world time %.9g s",
-                   t_target, w->t);
   if (mr_world_ensure_ready(w) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory");
   w->started = 1;
@@ -215,10 +209,11 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
   const int colliders = mr_colliders(w);
   const int n3 = 3 * w->n;
   const size_t bytes = (size_t)n3 * sizeof(double);
+  const int single = isinf(t_target);
   mr_status result = MR_OK;
   int calls = 0;
 
-  while (w->t < t_target) {
+  while (single ? calls == 0 : w->t < t_target) {
     if (calls++ >= w->def.max_steps_per_call) {
       if (report)
         *report = rep;
@@ -229,11 +224,12 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
     double h = planned;
     int landing = 0;
     /* Land on the target; never leave a sliver of a step behind it. */
-    if (h >= rem || rem - h < 1e-3 * h) {
+    if (!single && (h >= rem || rem - h < 1e-3 * h)) {
       h = rem;
       landing = 1;
     }
-    int shortened = landing && h < planned;
+    /* Rounding in t + Δt must not count as a shortened step. */
+    int shortened = landing && h < planned * (1.0 - 1e-9);
 
     /* 1. Contacts at the start state. */
     if (colliders) {
@@ -244,7 +240,15 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
       if (mr_impulses_apply(w, t, &collided) != 0)
         return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (impulses)");
       rep.collisions += collided;
-      w->stats.resting_contacts = w->contacts.n;
+      /* §5.4, eq. 13b: only contacts with χ̇ = 0 rest; separating ones (a
+       * bounce just given) are left free, or the contact force would hold
+       * them back. */
+      int kept = 0;
+      for (int c = 0; c < w->contacts.n; c++)
+        if (mr_contact_rate(w, &w->contacts.c[c], w->x, w->v) <= 1e-3 * w->def.rest_speed + 1e-9)
+          w->contacts.c[kept++] = w->contacts.c[c];
+      w->contacts.n = kept;
+      w->stats.resting_contacts = kept;
     }
     memcpy(w->x0, w->x, bytes);
     memcpy(w->v0, w->v, bytes);
@@ -280,7 +284,7 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
         rep.rejected++;
         rejected_any = 1;
         h = dec.dt_next;
-        landing = h >= t_target - t;
+        landing = !single && h >= t_target - t;
         if (landing)
           h = t_target - t;
         continue;
@@ -352,4 +356,27 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
     return MR_DEPENDENT;
   }
   return result;
+}
+
+mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
+{
+  if (report)
+    memset(report, 0, sizeof *report);
+  if (!w)
+    return MR_ERR_ARG;
+  if (!isfinite(t_target))
+    return mr_fail(w, MR_ERR_NONFINITE, "mr_world_step_to: target time is NaN or Inf");
+  if (t_target < w->t)
+    return mr_fail(w, MR_ERR_TIME, "mr_world_step_to: target %.9g s is before the world time %.9g s",
+                   t_target, w->t);
+  return advance(w, t_target, report);
+}
+
+mr_status mr_world_step(mr_world *w, mr_step_report *report)
+{
+  if (report)
+    memset(report, 0, sizeof *report);
+  if (!w)
+    return MR_ERR_ARG;
+  return advance(w, INFINITY, report);
 }
