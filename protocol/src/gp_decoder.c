@@ -1,0 +1,197 @@
+/* The streaming decoder. Bytes go in one at a time or a buffer at a time; a
+ * frame ends at each 0x00. Every frame ends in exactly one event, and every
+ * event has its counter, so a tester can account for each byte sent. The
+ * rules, in order, are SPEC.md's "Receiver rules". Like Betaflight's MSP
+ * parser it never blocks and never allocates; unlike a state machine that
+ * reads a length field, it cannot be led astray by one: COBS makes the
+ * delimiter the only thing that ends a frame. */
+#include "gp.h"
+
+void gp_decoder_init(gp_decoder *d, uint32_t spec_hash) {
+  gp_decoder zero = {0};
+  *d = zero;
+  d->spec_hash = spec_hash;
+}
+
+const char *gp_event_name(gp_event ev) {
+  switch (ev) {
+  case GP_EV_NONE:
+    return "none";
+  case GP_EV_FRAME:
+    return "frame";
+  case GP_EV_FRAME_LATE:
+    return "late frame";
+  case GP_EV_DUPLICATE:
+    return "duplicate";
+  case GP_EV_CRC_ERROR:
+    return "crc error";
+  case GP_EV_FRAMING_ERROR:
+    return "framing error";
+  case GP_EV_OVERSIZE:
+    return "oversize frame";
+  case GP_EV_UNKNOWN_TYPE:
+    return "unknown type";
+  case GP_EV_SPEC_MISMATCH:
+    return "spec mismatch";
+  }
+  return "?";
+}
+
+static uint32_t load_le32(const uint8_t *p) {
+  return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static int crc_ok(uint32_t hash, const uint8_t *raw, size_t len) {
+  return gp_frame_crc(hash, raw, len - GP_CRC_LEN) == load_le32(raw + len - GP_CRC_LEN);
+}
+
+/* INFO is read whatever spec the sender was built from: its CRC does not
+ * cover the spec hash, and its first two fields never move (SPEC.md,
+ * "Versioning"). spec_hash sits after the type byte and proto_major. */
+static gp_event info_frame(gp_decoder *d, const uint8_t *raw, size_t len, gp_msg *out) {
+  const size_t frozen = 1u + 1u + 4u + GP_CRC_LEN;
+  if (len < frozen || !crc_ok(0, raw, len))
+    return len == 1u + GP_INFO_LEN + GP_CRC_LEN ? GP_EV_CRC_ERROR : GP_EV_FRAMING_ERROR;
+  uint32_t announced = load_le32(raw + 2);
+  if (announced != d->spec_hash) {
+    d->peer_hash = announced;
+    d->peer_known = 1;
+    if (len == 1u + GP_INFO_LEN + GP_CRC_LEN)
+      gp_payload_unpack(raw[0], raw + 1, GP_INFO_LEN, out);
+    else {
+      /* Another layout: only the frozen prefix means anything. */
+      gp_msg zero = {0};
+      *out = zero;
+      out->type = GP_INFO;
+      out->u.info.proto_major = raw[1];
+      out->u.info.spec_hash = announced;
+    }
+    return GP_EV_SPEC_MISMATCH;
+  }
+  if (len != 1u + GP_INFO_LEN + GP_CRC_LEN)
+    return GP_EV_FRAMING_ERROR;
+  gp_payload_unpack(raw[0], raw + 1, GP_INFO_LEN, out);
+  return GP_EV_FRAME;
+}
+
+/* Sequence accounting over a window of GP_SEQ_WINDOW numbers behind the
+ * highest seen: bit i of seq_seen stands for seq_high - i. */
+static gp_event sample_seq(gp_decoder *d, uint16_t seq) {
+  if (!d->have_seq) {
+    d->have_seq = 1;
+    d->seq_high = seq;
+    d->seq_seen = 1;
+    return GP_EV_FRAME;
+  }
+  int16_t delta = (int16_t)(uint16_t)(seq - d->seq_high);
+  if (delta > 0) {
+    d->c.lost += (uint32_t)(delta - 1);
+    d->seq_seen = (unsigned)delta >= GP_SEQ_WINDOW ? 1u : (d->seq_seen << delta) | 1u;
+    d->seq_high = seq;
+    return GP_EV_FRAME;
+  }
+  unsigned back = (unsigned)(-(int)delta);
+  if (back >= GP_SEQ_WINDOW) {
+    /* Too far back for reordering: the device started counting again. */
+    d->c.seq_restarts++;
+    d->seq_high = seq;
+    d->seq_seen = 1;
+    return GP_EV_FRAME;
+  }
+  uint64_t bit = (uint64_t)1 << back;
+  if (d->seq_seen & bit) {
+    d->c.duplicates++;
+    return GP_EV_DUPLICATE;
+  }
+  d->seq_seen |= bit;
+  d->c.reordered++;
+  if (d->c.lost)
+    d->c.lost--; /* it was counted lost when the gap opened */
+  return GP_EV_FRAME_LATE;
+}
+
+static gp_event frame_end(gp_decoder *d, gp_msg *out) {
+  int n = gp_cobs_decode(d->buf, d->len, d->raw, sizeof d->raw);
+  if (n < (int)(1u + GP_CRC_LEN))
+    return GP_EV_FRAMING_ERROR;
+  size_t len = (size_t)n;
+  const uint8_t *raw = d->raw;
+  if (raw[0] == GP_INFO)
+    return info_frame(d, raw, len, out);
+  const gp_msg_desc *desc = gp_msg_find(raw[0]);
+  if (desc && len != 1u + desc->len + GP_CRC_LEN)
+    return GP_EV_FRAMING_ERROR;
+  if (!crc_ok(d->spec_hash, raw, len)) {
+    if (d->peer_known && crc_ok(d->peer_hash, raw, len))
+      return GP_EV_SPEC_MISMATCH;
+    return GP_EV_CRC_ERROR;
+  }
+  if (!desc)
+    return GP_EV_UNKNOWN_TYPE;
+  gp_payload_unpack(raw[0], raw + 1, desc->len, out);
+  if (raw[0] == GP_SAMPLE)
+    return sample_seq(d, out->u.sample.seq);
+  return GP_EV_FRAME;
+}
+
+static void count(gp_decoder *d, gp_event ev) {
+  switch (ev) {
+  case GP_EV_FRAME:
+  case GP_EV_FRAME_LATE:
+    d->c.frames++;
+    break;
+  case GP_EV_CRC_ERROR:
+    d->c.crc_errors++;
+    break;
+  case GP_EV_FRAMING_ERROR:
+    d->c.framing_errors++;
+    break;
+  case GP_EV_OVERSIZE:
+    d->c.oversize++;
+    break;
+  case GP_EV_UNKNOWN_TYPE:
+    d->c.unknown_type++;
+    break;
+  case GP_EV_SPEC_MISMATCH:
+    d->c.spec_mismatch++;
+    break;
+  case GP_EV_NONE:
+  case GP_EV_DUPLICATE: /* counted where detected */
+    break;
+  }
+}
+
+size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out,
+                       gp_event *ev) {
+  *ev = GP_EV_NONE;
+  for (size_t i = 0; i < n; i++) {
+    uint8_t b = data[i];
+    d->c.bytes++;
+    if (b != 0) {
+      if (d->overflow)
+        continue;
+      if (d->len == sizeof d->buf) {
+        /* Report an oversize frame once, as soon as it is certain, then
+         * drop its bytes up to the next delimiter. */
+        d->overflow = 1;
+        d->len = 0;
+        *ev = GP_EV_OVERSIZE;
+        count(d, *ev);
+        return i + 1;
+      }
+      d->buf[d->len++] = b;
+      continue;
+    }
+    if (d->overflow) {
+      d->overflow = 0;
+      continue;
+    }
+    if (d->len == 0)
+      continue; /* back-to-back delimiters: idle or resync */
+    *ev = frame_end(d, out);
+    d->len = 0;
+    count(d, *ev);
+    return i + 1;
+  }
+  return n;
+}
