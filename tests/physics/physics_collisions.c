@@ -204,6 +204,63 @@ static void sphere_tree_puppets_do_not_interpenetrate(void **state)
   mr_world_destroy(w);
 }
 
+/* Self-collision (§4.4): two arms of one puppet, hinged at a pinned
+ * shoulder, swing towards each other. Their hand spheres (parts {A} and
+ * {C}) collide and bounce; the shoulder's big sphere (part {B}) overlaps
+ * both hands from the start but is adjacent to them (joined by the arms'
+ * distance constraints) and so is never tested. */
+static void non_adjacent_parts_of_one_puppet_collide(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0;
+  mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_SELF_COLLISION, &def);
+  const double r = 0.1;
+  int b = add(w, (double[3]){0, 0, 0}, NULL, 0.0, 0);
+  int a = add(w, (double[3]){1, 0, 0}, (double[3]){0, 1, 0}, r, 0);
+  int c = add(w, (double[3]){0, 1, 0}, (double[3]){1, 0, 0}, r, 0);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = b;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = b;
+  d.b = a;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  d.b = c;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.count = 1;
+  part.restitution = 1.0;
+  part.particles = &a;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &c;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &b;
+  part.radius = 0.95;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  double worst = INFINITY;
+  for (int f = 1; f <= 600; f++) { /* they meet at t = π/4 s */
+    assert_int_equal(mr_world_step_to(w, f * 0.002, NULL), MR_OK);
+    double xa[3], xc[3];
+    mr_world_particle_state(w, a, xa, NULL);
+    mr_world_particle_state(w, c, xc, NULL);
+    double dist = sqrt((xa[0] - xc[0]) * (xa[0] - xc[0]) + (xa[1] - xc[1]) * (xa[1] - xc[1]) +
+                       (xa[2] - xc[2]) * (xa[2] - xc[2]));
+    worst = fmin(worst, dist - 2 * r);
+  }
+  double va[3];
+  mr_world_particle_state(w, a, NULL, va);
+  mr_world_stats st;
+  mr_world_get_stats(w, &st);
+  printf("self-collision: smallest gap %.3g m, collisions %llu, hand A now moving (%.3f, %.3f)\n", worst,
+         (unsigned long long)st.collisions, va[0], va[1]);
+  assert_int_equal((int)st.collisions, 1);
+  assert_true(worst > -2e-4);
+  assert_true(va[1] < 0); /* A swung back down */
+  assert_int_equal((int)mr_world_pass_calls(w, MR_PASS_PUPPET_COLLISION), 0);
+  mr_world_destroy(w);
+}
+
 int main(void)
 {
   const struct CMUnitTest tests[] = {
@@ -211,6 +268,7 @@ int main(void)
     cmocka_unit_test(resting_contact_holds_without_sinking_or_jitter),
     cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
     cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),
+    cmocka_unit_test(non_adjacent_parts_of_one_puppet_collide),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -103,7 +103,7 @@ static uint64_t run(mr_world *w)
     double t = i / 60.0;
     mr_pose pose = mr_pose_identity();
     pose.position[0] = 0.4 * sin(3.0 * t);
-    pose.position[1] = 0.3 * sin(5.0 * t);
+    pose.position[1] = 2.0 + 0.3 * sin(5.0 * t);
     double a = 0.3 * sin(2.0 * t);
     pose.orientation[0] = cos(a / 2);
     pose.orientation[2] = sin(a / 2);

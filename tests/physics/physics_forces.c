@@ -214,6 +214,60 @@ static void string_hangs_at_static_stretch_and_correction_limits_it(void **state
   mr_world_destroy(w);
 }
 
+/* The correction keeps a rigid body whole: a tetrahedron hung from three
+ * soft strings (they would sag 35 %) is lifted as one piece, its links stay
+ * within 0.1 % and its strings within the 10 % limit (to the 1e-3 left
+ * between a projection sweep and the next string sweep). */
+static void string_correction_keeps_rigid_groups_whole(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_STRINGS | MR_EFFECT_FRAMES | MR_EFFECT_DRAG |
+                MR_EFFECT_CONSTRAINTS | MR_EFFECT_STRING_CORRECTION;
+  def.drag = 1.0;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_frame_def fd = mr_default_frame_def();
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
+  const double top[3][3] = {{-0.2, 2, 0}, {0.2, 2, 0}, {0, 2, 0.3}};
+  const double body[4][3] = {{-0.2, 1, 0}, {0.2, 1, 0}, {0, 1, 0.3}, {0, 0.7, 0.1}};
+  int f[3], b[4];
+  for (int i = 0; i < 3; i++)
+    f[i] = add(w, top[i][0], top[i][1], top[i][2], 1.0, frame);
+  for (int i = 0; i < 4; i++)
+    b[i] = add(w, body[i][0], body[i][1], body[i][2], 1.0, -1);
+  mr_rigid_group_def grp = mr_default_rigid_group_def();
+  grp.particles = b;
+  grp.count = 4;
+  assert_int_equal(mr_world_add_rigid_group(w, &grp, NULL), MR_OK);
+  for (int i = 0; i < 3; i++) {
+    mr_string_def s = mr_default_string_def();
+    s.frame_particle = f[i];
+    s.puppet_particle = b[i];
+    s.stiffness = 40.0;
+    s.damping = 1.0;
+    assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
+  }
+  double worst_dev = 0, worst_len = 0;
+  for (int fr = 1; fr <= 300; fr++) {
+    assert_int_equal(mr_world_step_to(w, fr / 60.0, NULL), MR_OK);
+    worst_dev = fmax(worst_dev, mr_world_deviation(w));
+    for (int i = 0; i < 3; i++) {
+      double xb[3], xf[3];
+      mr_world_particle_state(w, b[i], xb, NULL);
+      mr_world_particle_state(w, f[i], xf, NULL);
+      worst_len = fmax(worst_len, sqrt((xb[0] - xf[0]) * (xb[0] - xf[0]) + (xb[1] - xf[1]) * (xb[1] - xf[1]) +
+                                       (xb[2] - xf[2]) * (xb[2] - xf[2])));
+    }
+  }
+  printf("string correction on a rigid group: longest string %.4f m (limit 1.1), deviation <= %.3g\n",
+         worst_len, worst_dev);
+  assert_true(worst_len < 1.1 * (1 + 1e-3));
+  assert_true(worst_dev < 1e-3);
+  mr_world_destroy(w);
+}
+
 /* Frame particles follow the pose exactly: here a 0.5 m shift and a 90°
  * turn about y, reached at t = 1 s and held. */
 static void frame_particles_follow_target_pose(void **state)
@@ -348,6 +402,7 @@ int main(void)
     cmocka_unit_test(sine_spring_rises_as_sine_and_caps),
     cmocka_unit_test(damper_opposes_relative_velocity),
     cmocka_unit_test(string_hangs_at_static_stretch_and_correction_limits_it),
+    cmocka_unit_test(string_correction_keeps_rigid_groups_whole),
     cmocka_unit_test(frame_particles_follow_target_pose),
     cmocka_unit_test(particle_follows_time_dependent_curve),
     cmocka_unit_test(rigid_group_of_seven_stays_rigid),

@@ -89,16 +89,20 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
 
 /* ------------------------------------------------------------------ build */
 
-static int cmp_axis;
-static const double *cmp_c;
-static int by_axis(const void *a, const void *b)
+/* Sorts leaf indices by their centre's coordinate on `axis` (ties by index,
+ * a total order, so builds are reproducible). Insertion sort: a puppet has
+ * tens of leaves, and it keeps no state outside the call. */
+static void sort_by_axis(int *idx, int n, const double *c, int axis)
 {
-  double u = cmp_c[3 * *(const int *)a + cmp_axis], v = cmp_c[3 * *(const int *)b + cmp_axis];
-  if (u < v)
-    return -1;
-  if (u > v)
-    return 1;
-  return *(const int *)a - *(const int *)b; /* a total order keeps builds reproducible */
+  for (int i = 1; i < n; i++) {
+    int v = idx[i], j = i - 1;
+    double key = c[3 * v + axis];
+    while (j >= 0 && (c[3 * idx[j] + axis] > key || (c[3 * idx[j] + axis] == key && idx[j] > v))) {
+      idx[j + 1] = idx[j];
+      j--;
+    }
+    idx[j + 1] = v;
+  }
 }
 
 /* Builds the subtree over leaves idx[0..n) and returns its node index;
@@ -122,9 +126,7 @@ static int build(mr_world *w, int *idx, int n)
   for (int k = 1; k < 3; k++)
     if (hi[k] - lo[k] > hi[axis] - lo[axis])
       axis = k;
-  cmp_axis = axis;
-  cmp_c = w->leaf_c;
-  qsort(idx, (size_t)n, sizeof *idx, by_axis);
+  sort_by_axis(idx, n, w->leaf_c, axis);
   int left = build(w, idx, n / 2);
   int right = build(w, idx + n / 2, n - n / 2);
   node = w->nnodes++;
