@@ -55,6 +55,14 @@ static void watch(watcher *w, double t, mr_scene_run_result *r) {
   w->anchored = true;
 }
 
+/* The frame heads for the track's pose at time t, reached at t (§6.2). */
+static void place_frame(const mr_scene *s, mr_scene_world *sw, double t) {
+  mr_scene_pose pose;
+  mr_scene_control_pose_at(s, t, &pose);
+  mr_pose goal = mr_scene_pose_to_physics(&pose);
+  mr_world_set_frame_target(sw->world, sw->frame, &goal, t);
+}
+
 static mr_scene_status run_fail(const mr_scene *s, mr_scene_error *err, mr_scene_status st,
                                 const char *msg, double t) {
   err->status = st;
@@ -99,32 +107,26 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
   double t_frame = -1.0;
   while (t < duration - LAND_S && rc == MR_SCENE_OK) {
     double target = t + mr_world_next_dt(sw.world);
+    double end = duration;
     if (fps > 0) {
       if (!(t_frame > t + LAND_S)) {
         frame_k++;
         t_frame = fmin((double)frame_k / fps, duration);
-        if (sw.frame >= 0) {
-          mr_scene_pose pose;
-          mr_scene_control_pose_at(s, t_frame, &pose);
-          mr_pose goal = mr_scene_pose_to_physics(&pose);
-          mr_world_set_frame_target(sw.world, sw.frame, &goal, t_frame);
-        }
+        if (sw.frame >= 0)
+          place_frame(s, &sw, t_frame);
       }
-      if (target > t_frame - LAND_S)
-        target = t_frame;
-    } else {
-      if (target > duration - LAND_S)
-        target = duration;
-      if (sw.frame >= 0) {
-        mr_scene_pose pose;
-        mr_scene_control_pose_at(s, target, &pose);
-        mr_pose goal = mr_scene_pose_to_physics(&pose);
-        mr_world_set_frame_target(sw.world, sw.frame, &goal, target);
-      }
+      end = t_frame;
     }
+    /* One ATS step at a time, so the trace sees each; the step that would
+     * pass a frame time or the end lands on it instead. */
+    bool land = target > end - LAND_S;
+    if (land)
+      target = end;
+    if (fps <= 0 && sw.frame >= 0)
+      place_frame(s, &sw, target);
     mr_step_report rep;
     memset(&rep, 0, sizeof rep);
-    mr_status st = mr_world_step_to(sw.world, target, &rep);
+    mr_status st = land ? mr_world_step_to(sw.world, target, &rep) : mr_world_step(sw.world, &rep);
     r->last_status = st;
     if (st < 0) {
       char msg[400];
