@@ -138,12 +138,86 @@ static void run_reports_every_step_to_the_callback(void **state) {
   mr_scene_free(&s);
 }
 
+/* A scene that sets nothing runs with the paper's settings (§7): the
+ * loader leaves them unset and the physics' defaults apply. */
+static void unset_settings_are_the_papers(void **state) {
+  (void)state;
+  const char *text = "physics:\n"
+                     "  effects: [gravity]\n"
+                     "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+  mr_scene s;
+  load(text, &s);
+  assert_true(isnan(s.settings.dt_min) && isnan(s.settings.dt_max));
+  assert_true(isnan(s.settings.threshold_min) && isnan(s.settings.threshold_max));
+  assert_string_equal(s.settings.integrator, "");
+  mr_world_def d = mr_default_world_def();
+  assert_true(d.dt_min == 0.01 && d.dt_max == 0.05);
+  assert_true(d.deviation_low == 1e-4 && d.deviation_high == 1e-2);
+  assert_int_equal(d.integrator, MR_INTEGRATOR_RK4);
+  /* The run's steps stay inside those bounds. */
+  mr_scene_run_opts o = {1.0, NULL, NULL};
+  mr_scene_run_result r;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_true(r.dt_max <= 0.05 + 1e-12);
+  assert_true(r.steps >= 20); /* 1 s at no more than 0.05 s a step */
+  mr_scene_free(&s);
+}
+
+typedef struct frames {
+  double fps, last_t;
+  int crossed;
+  uint64_t rows;
+} frames;
+
+static void check_frame_landing(void *user, const mr_scene_step *step) {
+  frames *f = user;
+  /* No frame time k/fps lies strictly inside a step. */
+  double k_prev = floor(f->last_t * f->fps + 1e-9);
+  double k_now = ceil(step->t * f->fps - 1e-9);
+  if (k_now - k_prev > 1)
+    f->crossed = 1;
+  f->last_t = step->t;
+  f->rows++;
+}
+
+/* With sim.fps the steps land on every frame time, as in the theater. */
+static void steps_land_on_frame_times_with_fps(void **state) {
+  (void)state;
+  const char *text = "sim: {duration: 3, fps: 30}\n"
+                     "physics:\n"
+                     "  effects: [gravity, constraints, strings, control]\n"
+                     "  particles:\n"
+                     "    - {name: a, position: [0, 1, 0], mass: 0.5}\n"
+                     "    - {name: b, position: [0.2, 1, 0], mass: 0.5}\n"
+                     "  constraints: [{between: [a, b]}]\n"
+                     "  control:\n"
+                     "    pose: {position: [0, 1.5, 0]}\n"
+                     "    points: [{name: bar, offset: [0, 0, 0]}]\n"
+                     "    track: {oscillate: {amplitude: [0.1, 0, 0], frequency: 1}}\n"
+                     "  strings: [{from: bar, to: a, stiffness: 50, damping: 1}]\n";
+  mr_scene s;
+  load(text, &s);
+  frames f = {30.0, 0.0, 0, 0};
+  mr_scene_run_opts o = {0, check_frame_landing, &f};
+  mr_scene_run_result r;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_false(f.crossed);
+  assert_true(f.rows >= 90); /* at least one step per frame */
+  assert_true(r.dt_max <= 1.0 / 30.0 + 1e-12);
+  assert_true(r.pass_calls[MR_PASS_STRINGS] > 0);
+  mr_scene_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(every_scene_effect_maps_to_its_own_physics_bit),
       cmocka_unit_test(control_points_sit_where_the_scene_says),
       cmocka_unit_test(pinned_particle_stays_and_free_one_falls),
       cmocka_unit_test(run_reports_every_step_to_the_callback),
+      cmocka_unit_test(steps_land_on_frame_times_with_fps),
+      cmocka_unit_test(unset_settings_are_the_papers),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
