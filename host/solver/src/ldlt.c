@@ -1,8 +1,8 @@
 /* Sparse LDLᵀ of A = J M⁻¹ Jᵀ (§5.2 eq. 8, §5.3 eq. 9), with a pivot test
  * that finds dependent constraints.
  *
- * Rows are renumbered by reverse Cuthill–McKee (or kept in their natural
- * order when that fills in less), then factored up-looking: row k of L
+ * Rows are renumbered by whichever of minimum degree, reverse Cuthill–McKee
+ * and the natural order fills in least, then factored up-looking: row k of L
  * solves L₀ D₀ l = A(0:k−1, k) against the rows already done, and the pivot
  * is d_k = A_kk − Σ l_j² d_j. The nonzeros of row k are found by walking
  * A's entries up the elimination tree, so the work is proportional to the
@@ -28,7 +28,7 @@ void mr_ldlt_free(mr_ldlt *f)
 {
     mr_buf *bufs[] = { &f->pat_rp, &f->pat_col, &f->perm, &f->iperm, &f->parent, &f->lnz, &f->flag,
                        &f->stack, &f->lp, &f->dropped, &f->li, &f->lx, &f->diag, &f->y, &f->z,
-                       &f->skip, &f->res, &f->dx };
+                       &f->skip, &f->res, &f->dx, &f->cand, &f->bits };
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         free(bufs[i]->p);
     memset(f, 0, sizeof *f);
@@ -69,7 +69,7 @@ static int analyse(mr_ldlt *f, const mr_csr *A)
     const int n = A->n, nnz = A->row_ptr[n];
     const size_t dn = (size_t)n, si = sizeof(int);
     if (mr_buf_reserve(&f->pat_rp, dn + 1, si) || mr_buf_reserve(&f->pat_col, (size_t)nnz, si)
-        || mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si)
+        || mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si) || mr_buf_reserve(&f->cand, dn, si)
         || mr_buf_reserve(&f->parent, dn, si) || mr_buf_reserve(&f->lnz, dn, si)
         || mr_buf_reserve(&f->flag, dn, si) || mr_buf_reserve(&f->stack, 2 * dn, si)
         || mr_buf_reserve(&f->lp, dn + 1, si) || mr_buf_reserve(&f->dropped, dn, 1)
@@ -81,20 +81,37 @@ static int analyse(mr_ldlt *f, const mr_csr *A)
     int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int);
     int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
 
-    /* Natural order first, then RCM; keep whichever fills in less. */
-    for (int i = 0; i < n; i++)
-        perm[i] = iperm[i] = i;
-    size_t natural = symbolic(A, perm, iperm, parent, lnz, flag);
-    mr_order_rcm(A, perm, BUF(f, stack, int));
+    /* Try the natural order, minimum degree (while its n² bits stay
+     * small) and reverse Cuthill–McKee; keep whichever fills in least.
+     * Each try is one symbolic pass, cheap beside a factorisation, and runs
+     * only when the pattern changes. */
+    int *cand = BUF(f, cand, int);
+    size_t best = 0;
+    for (int way = 0; way < 3; way++) {
+        if (way == 0) {
+            for (int i = 0; i < n; i++)
+                cand[i] = i;
+        } else if (way == 1) {
+            if (n > MR_MIN_DEGREE_MAX_N)
+                continue;
+            size_t words = ((size_t)n + 63) / 64;
+            if (mr_buf_reserve(&f->bits, (size_t)n * words, sizeof(uint64_t)))
+                return MR_SOLVE_ENOMEM;
+            mr_order_min_degree(A, cand, f->bits.p, lnz);
+        } else {
+            mr_order_rcm(A, cand, BUF(f, stack, int));
+        }
+        for (int i = 0; i < n; i++)
+            iperm[cand[i]] = i;
+        size_t fill = symbolic(A, cand, iperm, parent, lnz, flag);
+        if (way == 0 || fill < best) {
+            best = fill;
+            memcpy(perm, cand, dn * si);
+        }
+    }
     for (int i = 0; i < n; i++)
         iperm[perm[i]] = i;
-    size_t rcm = symbolic(A, perm, iperm, parent, lnz, flag);
-    if (natural <= rcm) {
-        for (int i = 0; i < n; i++)
-            perm[i] = iperm[i] = i;
-        symbolic(A, perm, iperm, parent, lnz, flag);
-    }
-    f->nnz_l = natural <= rcm ? natural : rcm;
+    f->nnz_l = symbolic(A, perm, iperm, parent, lnz, flag);
     if (mr_buf_reserve(&f->li, f->nnz_l, si) || mr_buf_reserve(&f->lx, f->nnz_l, sizeof(double)))
         return MR_SOLVE_ENOMEM;
     int *lp = BUF(f, lp, int);

@@ -109,37 +109,27 @@ double mr_residual_norm(const mr_csr *A, const double *b, const double *x, const
     return scale * sqrt(ssq);
 }
 
-static double diag_of(const mr_csr *A, int i)
+int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag)
 {
-    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
-        if (A->col[q] == i)
-            return A->val[q];
-    return 0.0;
-}
-
-int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep)
-{
+    const int n = A->n;
+    for (int i = 0; i < n; i++) {
+        diag[i] = 0.0;
+        for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
+            if (A->col[q] == i)
+                diag[i] = A->val[q];
+    }
     int count = 0;
-    for (int j = 0; j < A->n; j++) {
-        double ajj = diag_of(A, j);
-        dep[j] = !(ajj > DBL_MIN);
-        if (!dep[j]) {
-            for (int q = A->row_ptr[j]; q < A->row_ptr[j + 1]; q++) {
-                int i = A->col[q];
-                if (i >= j)
-                    break;
-                if (dep[i])
-                    continue;
-                /* cos² of the angle between rows i and j of J M^-½; the
-                 * pivot row j would get after eliminating i alone is
-                 * A_jj (1 − cos²). */
-                double aij = A->val[q];
-                double cos2 = (aij / diag_of(A, i)) * (aij / ajj);
-                if (1.0 - cos2 <= pivot_tol) {
-                    dep[j] = 1;
-                    break;
-                }
-            }
+    for (int j = 0; j < n; j++) {
+        dep[j] = !(diag[j] > DBL_MIN);
+        for (int q = A->row_ptr[j]; q < A->row_ptr[j + 1] && !dep[j]; q++) {
+            int i = A->col[q];
+            if (i >= j || dep[i])
+                continue;
+            /* cos² of the angle between rows i and j of J M^-½; the pivot
+             * row j would get after eliminating i alone is A_jj (1 − cos²). */
+            double aij = A->val[q];
+            if (1.0 - (aij / diag[i]) * (aij / diag[j]) <= pivot_tol)
+                dep[j] = 1;
         }
         count += dep[j];
     }

@@ -5,6 +5,7 @@
 #include "mr_solver.h"
 
 #include <stddef.h>
+#include <stdint.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -25,6 +26,7 @@ typedef struct mr_ldlt {
     mr_buf parent, lnz, flag, stack, lp, dropped;
     mr_buf li, lx, diag, y, z;
     mr_buf skip, res, dx;       /* refinement: dropped rows by old index, r, δλ */
+    mr_buf cand, bits;          /* a candidate ordering; minimum degree's graph */
     size_t nnz_l;
 } mr_ldlt;
 
@@ -40,8 +42,9 @@ double mr_norm2(int n, const double *v);
 
 /* Flags rows that are dependent on their own (A_ii = 0) or parallel to an
  * earlier unflagged row (cos² ≥ 1 − pivot_tol in the M⁻¹ metric); this is
- * the LDLᵀ pivot test applied to pairs. Returns the count. */
-int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep);
+ * the LDLᵀ pivot test applied to pairs. Leaves A's diagonal in diag.
+ * Returns the count. */
+int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag);
 
 int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
 int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
@@ -51,6 +54,11 @@ void mr_ldlt_free(mr_ldlt *f);
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
  * 2n ints. */
 void mr_order_rcm(const mr_csr *A, int *perm, int *iw);
+
+/* Minimum degree on the elimination graph held as bitsets: bits needs
+ * n·⌈n/64⌉ words, deg n ints. Used up to MR_MIN_DEGREE_MAX_N rows. */
+#define MR_MIN_DEGREE_MAX_N 2048
+void mr_order_min_degree(const mr_csr *A, int *perm, uint64_t *bits, int *deg);
 
 /* solver_eigen.cpp: Eigen's SimplicialLDLT with the same dependent-row rule
  * as the C LDLᵀ. Returns an MR_SOLVE_* status. */
