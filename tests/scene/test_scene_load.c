@@ -69,7 +69,8 @@ static void settings_and_anchors_are_read(void **state) {
                      "    - {name: c, position: [0, 3, 0], mass: 1}\n"
                      "  springs:\n"
                      "    - &soft {between: [a, b], stiffness: 20, damping: 0.5}\n"
-                     "    - {between: [b, c], stiffness: 30}\n";
+                     "    - {between: [b, c], stiffness: 30}\n"
+                     "    - *soft\n";
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
@@ -79,8 +80,11 @@ static void settings_and_anchors_are_read(void **state) {
   assert_true(s.settings.dt_min == 0.01 && s.settings.threshold_max == 0.01);
   assert_string_equal(s.settings.method, "ldlt");
   assert_true(s.settings.ks == 50.0);
-  assert_int_equal(s.n_springs, 2);
+  assert_int_equal(s.n_springs, 3);
   assert_true(s.springs[0].stiffness == 20.0);
+  /* the alias repeats the anchored spring */
+  assert_true(s.springs[2].stiffness == 20.0 && s.springs[2].damping == 0.5);
+  assert_int_equal(s.springs[2].a, 0);
   assert_true(isnan(s.springs[1].damping));
   mr_scene_free(&s);
 }
@@ -213,6 +217,12 @@ static void unknown_names_and_shapes(void **state) {
                "string_correction");
 }
 
+static void unknown_alias_is_refused(void **state) {
+  (void)state;
+  expect_error(BASE "    - *nope\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:6:7: expected a defined anchor for alias '*nope'");
+}
+
 static void duplicate_keys_are_refused(void **state) {
   (void)state;
   expect_error(BASE "physics: {}\n", MR_SCENE_ERR_SYNTAX,
@@ -328,6 +338,7 @@ int main(void) {
       cmocka_unit_test(undeclared_effect_is_refused),
       cmocka_unit_test(unknown_names_and_shapes),
       cmocka_unit_test(duplicate_keys_are_refused),
+      cmocka_unit_test(unknown_alias_is_refused),
       cmocka_unit_test(degenerate_groups_are_refused),
       cmocka_unit_test(syntax_errors_name_the_place),
       cmocka_unit_test(not_yaml_is_refused),

@@ -266,8 +266,9 @@ static int on_event(builder *b, struct fy_event *e) {
     char name[128];
     snprintf(name, sizeof name, "%.*s", (int)(len < 120 ? len : 120), s ? s : "");
     mr_ynode *target = find_anchor(b, name);
+    /* The mark is at the name; the alias starts at its '*'. */
     if (target == NULL)
-      return fail(b->err, line, column,
+      return fail(b->err, line, column > 1 ? column - 1 : column,
                   "expected a defined anchor for alias '*%s'", name);
     return attach(b, target);
   }
