@@ -108,6 +108,7 @@ struct mr_world {
    * probe list for the end-of-step penetration test */
   mr_contact_list contacts, probe;
   int cap_active; unsigned char *contact_active; double *contact_pre;
+  int cap_valid; unsigned char *probe_valid;  /* offenders being located */
   double h_step;                 /* the step being integrated (friction) */
 
   /* solve workspace */

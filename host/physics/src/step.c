@@ -127,19 +127,26 @@ static double offenders_gap(mr_world *w, const double *x, const unsigned char *v
 static double locate_contact(mr_world *w, double t, double h, int *err)
 {
   const double slop = w->def.contact_slop, aim = -0.5 * slop;
-  unsigned char *valid = w->contact_active; /* free between steps */
-  if (ensure_contact_capacity(w, &w->probe) != 0) {
-    *err = 1;
-    return h;
+  /* Its own flags: every trial integration rewrites contact_active. */
+  if (w->probe.n > w->cap_valid) {
+    unsigned char *p = realloc(w->probe_valid, (size_t)w->probe.cap);
+    if (!p) {
+      *err = 1;
+      return h;
+    }
+    w->probe_valid = p;
+    w->cap_valid = w->probe.cap;
   }
-  valid = w->contact_active;
+  unsigned char *valid = w->probe_valid;
   int any = 0;
   double g0 = INFINITY;
   for (int i = 0; i < w->probe.n; i++) {
     double c0 = mr_contact_gap(w, &w->probe.c[i], w->x0);
-    /* Contacts already touching at the start are resting ones, held by
-     * eq. 13b; only contacts that were apart can be located in time. */
-    valid[i] = c0 > aim;
+    /* Contacts touching at the start are in the force system (eq. 13b),
+     * which pushes them back out; only contacts that were apart can be
+     * located in time. Rolling back for a touching one would cut the step
+     * to nothing. */
+    valid[i] = c0 > slop;
     any |= valid[i];
     if (valid[i] && c0 < g0)
       g0 = c0;
@@ -240,15 +247,7 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
       if (mr_impulses_apply(w, t, &collided) != 0)
         return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (impulses)");
       rep.collisions += collided;
-      /* §5.4, eq. 13b: only contacts with χ̇ = 0 rest; separating ones (a
-       * bounce just given) are left free, or the contact force would hold
-       * them back. */
-      int kept = 0;
-      for (int c = 0; c < w->contacts.n; c++)
-        if (mr_contact_rate(w, &w->contacts.c[c], w->x, w->v) <= 1e-3 * w->def.rest_speed + 1e-9)
-          w->contacts.c[kept++] = w->contacts.c[c];
-      w->contacts.n = kept;
-      w->stats.resting_contacts = kept;
+      w->stats.resting_contacts = w->contacts.n;
     }
     memcpy(w->x0, w->x, bytes);
     memcpy(w->v0, w->v, bytes);
@@ -333,7 +332,7 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
 
     /* Next Δt. */
     if (located) {
-      w->dt_next = 2.0 * h > 1e-9 ? 2.0 * h : 1e-9;
+      w->dt_next = fmax(2.0 * h, 1e-3 * w->def.dt_min);
       w->recovering = 1;
     } else if (w->recovering) {
       double twice = 2.0 * planned;
