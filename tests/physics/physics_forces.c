@@ -131,6 +131,22 @@ static void sine_spring_rises_as_sine_and_caps(void **state)
   }
 }
 
+/* Drag F = −c v: a 2 kg particle falling with c = 4 N·s/m approaches the
+ * terminal speed m g / c = 4.905 m/s as v(t) = v_T (1 − e^(−c t/m)). */
+static void drag_gives_terminal_velocity(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_DRAG, 4.0);
+  int p = add(w, 0, 100, 0, 2.0, -1);
+  assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
+  double v[3];
+  mr_world_particle_state(w, p, NULL, v);
+  double expect = -2.0 * g / 4.0 * (1 - exp(-2.0));
+  printf("drag: v(1 s) = %.6f m/s (expected %.6f)\n", v[1], expect);
+  assert_true(fabs(v[1] - expect) < 1e-5);
+  mr_world_destroy(w);
+}
+
 /* A damper (spring of stiffness 0) only opposes the relative velocity. */
 static void damper_opposes_relative_velocity(void **state)
 {
@@ -445,6 +461,7 @@ int main(void)
     cmocka_unit_test(triggered_force_follows_control_trigger_distance),
     cmocka_unit_test(sine_spring_rises_as_sine_and_caps),
     cmocka_unit_test(damper_opposes_relative_velocity),
+    cmocka_unit_test(drag_gives_terminal_velocity),
     cmocka_unit_test(string_hangs_at_static_stretch_and_correction_limits_it),
     cmocka_unit_test(string_correction_keeps_rigid_groups_whole),
     cmocka_unit_test(frame_particles_follow_target_pose),
