@@ -348,7 +348,7 @@ static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
 
     /* Next Δt. */
     if (located) {
-      w->dt_next = fmax(2.0 * h, 1e-3 * w->def.dt_min);
+      w->dt_next = fmin(fmax(2.0 * h, 1e-3 * w->def.dt_min), w->def.dt_max);
       w->recovering = 1;
     } else if (w->recovering) {
       double twice = 2.0 * planned;
