@@ -1,0 +1,16 @@
+/* Subcommands of the `marionette` program. Each takes the arguments after
+ * its name and returns the process exit status. */
+#ifndef MR_APP_H
+#define MR_APP_H
+
+/* Exit statuses shared by every subcommand. */
+enum {
+  MR_EXIT_OK = 0,
+  MR_EXIT_FAIL = 1,  /* the scene failed to load, to run, or its check */
+  MR_EXIT_USAGE = 2  /* bad command line */
+};
+
+int mr_cmd_sim(int argc, char **argv);
+void mr_cmd_sim_usage(void);
+
+#endif

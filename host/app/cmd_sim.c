@@ -1,0 +1,217 @@
+/* `marionette sim SCENE`: a scene run headless, with its summary, an
+ * optional per-step CSV trace, and an optional check against the scene's
+ * expect: section. The wall clock is read here, never in the physics. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "app.h"
+#include "mr_scene.h"
+#include "mr_scene_world.h"
+
+void mr_cmd_sim_usage(void) {
+  printf("usage: marionette sim [OPTIONS] SCENE\n"
+         "\n"
+         "Runs the scene file SCENE without rendering, as fast as possible, and\n"
+         "prints a summary: steps, rejected steps, mean/min/max time step, the\n"
+         "fraction of steps at the upper bound, max and RMS relative deviation,\n"
+         "resets, collisions, per-pass call counters and the state hash. The\n"
+         "control frame follows the scene's track (keyframes or oscillation),\n"
+         "sampled at the end of every step, or at sim.fps if the scene gives one.\n"
+         "The scene format: host/scenes/FORMAT.md.\n"
+         "\n"
+         "options:\n"
+         "  -t, --time SECONDS  simulated time (default: the scene's sim.duration,\n"
+         "                      10 s when the scene gives none)\n"
+         "  --csv FILE          write a per-step trace to FILE ('-' for stdout):\n"
+         "                      t,dt,error,accepted,rejected,reset,max_speed\n"
+         "  --check             verify the scene's expect: section (finite state,\n"
+         "                      deviation bound, resets, creep and jitter, or the\n"
+         "                      expected load error); exit 1 with one line on\n"
+         "                      stderr when an expectation is not met\n"
+         "  -q, --quiet         print nothing but errors and the check result\n"
+         "  -h, --help          show this help\n"
+         "\n"
+         "exit status: 0 success, 1 scene error or failed check, 2 bad usage.\n"
+         "Errors in the scene file read: marionette: FILE:LINE:COLUMN: what was expected\n");
+}
+
+typedef struct csv_sink {
+  FILE *f;
+  int failed;
+} csv_sink;
+
+static void on_step(void *user, const mr_scene_step *s) {
+  csv_sink *c = user;
+  /* %.17g: the trace must carry the exact doubles for comparisons. */
+  if (fprintf(c->f, "%.17g,%.17g,%.17g,%d,%d,%d,%.17g\n", s->t, s->dt, s->error, s->accepted,
+              s->rejected, s->reset, s->max_speed) < 0)
+    c->failed = 1;
+}
+
+static double wall_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, double wall) {
+  printf("scene: %s (%s)\n", scene->name, scene->path);
+  printf("simulated: %.3f s\n", r->sim_time);
+  printf("wall: %.3f s\n", wall);
+  printf("steps: %" PRIu64 "\n", r->steps);
+  printf("rejected: %" PRIu64 "\n", r->rejected);
+  printf("dt mean: %.4g s\n", r->dt_mean);
+  printf("dt min: %.4g s\n", r->dt_min);
+  printf("dt max: %.4g s\n", r->dt_max);
+  printf("at upper bound: %.1f %%\n", 100.0 * r->at_upper_fraction);
+  printf("deviation max: %.3e\n", r->max_deviation);
+  printf("deviation rms: %.3e\n", r->rms_deviation);
+  printf("resets: %" PRIu64 "\n", r->resets);
+  if (r->resets > 0)
+    printf("first reset: %s\n", r->first_reset);
+  printf("collisions: %" PRIu64 "\n", r->collisions);
+  printf("dependent rows: %d\n", r->dependent_rows);
+  printf("finite: %s\n", r->finite ? "yes" : "no");
+  if (scene->expect.n_watch > 0) {
+    printf("creep: %.3e m\n", r->creep);
+    printf("jitter: %.3e m/s\n", r->jitter);
+  }
+  for (int p = 0; p < MR_PASS_COUNT; p++)
+    printf("pass %s: %" PRIu64 "\n", mr_pass_name((mr_pass)p), r->pass_calls[p]);
+  printf("state hash: %016" PRIx64 "\n", r->hash);
+}
+
+/* --check on a scene that failed to load: a pass only if the file says it
+ * must fail, and with what. */
+static int check_load_error(const char *path, const mr_scene_error *err, int quiet) {
+  char expected[256];
+  if (mr_scene_expected_load_error(path, expected, sizeof expected) != 0)
+    return -1;
+  if (strstr(err->text, expected) == NULL) {
+    fprintf(stderr, "marionette: %s: check failed: expected a load error containing \"%s\", got: %s\n",
+            path, expected, err->text);
+    return MR_EXIT_FAIL;
+  }
+  if (!quiet)
+    printf("load error: %s\n", err->text);
+  printf("check: passed (%s failed to load as expected)\n", path);
+  return MR_EXIT_OK;
+}
+
+static int parse_seconds(const char *s, double *out) {
+  char *end = NULL;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (end == s || *end != '\0' || errno != 0 || !isfinite(v) || v <= 0 || v > 1e7)
+    return -1;
+  *out = v;
+  return 0;
+}
+
+int mr_cmd_sim(int argc, char **argv) {
+  const char *path = NULL, *csv_path = NULL;
+  double duration = 0;
+  int check = 0, quiet = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+      mr_cmd_sim_usage();
+      return MR_EXIT_OK;
+    } else if (strcmp(a, "-t") == 0 || strcmp(a, "--time") == 0) {
+      if (i + 1 >= argc || parse_seconds(argv[i + 1], &duration) != 0) {
+        fprintf(stderr, "marionette: sim: %s expects a positive number of seconds\n", a);
+        return MR_EXIT_USAGE;
+      }
+      i++;
+    } else if (strcmp(a, "--csv") == 0) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "marionette: sim: --csv expects a file name\n");
+        return MR_EXIT_USAGE;
+      }
+      csv_path = argv[++i];
+    } else if (strcmp(a, "--check") == 0) {
+      check = 1;
+    } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
+      quiet = 1;
+    } else if (a[0] == '-' && a[1] != '\0') {
+      fprintf(stderr, "marionette: sim: unknown option '%s' (see marionette sim --help)\n", a);
+      return MR_EXIT_USAGE;
+    } else if (path == NULL) {
+      path = a;
+    } else {
+      fprintf(stderr, "marionette: sim: expected one scene file, got '%s' too\n", a);
+      return MR_EXIT_USAGE;
+    }
+  }
+  if (path == NULL) {
+    fprintf(stderr, "marionette: sim: expected a scene file (see marionette sim --help)\n");
+    return MR_EXIT_USAGE;
+  }
+
+  mr_scene scene;
+  mr_scene_error err;
+  if (mr_scene_load(path, &scene, &err) != MR_SCENE_OK) {
+    if (check) {
+      int rc = check_load_error(path, &err, quiet);
+      if (rc >= 0)
+        return rc;
+    }
+    fprintf(stderr, "marionette: %s\n", err.text);
+    return MR_EXIT_FAIL;
+  }
+
+  csv_sink sink = {NULL, 0};
+  if (csv_path != NULL) {
+    sink.f = strcmp(csv_path, "-") == 0 ? stdout : fopen(csv_path, "w");
+    if (sink.f == NULL) {
+      fprintf(stderr, "marionette: %s: cannot write the trace: %s\n", csv_path, strerror(errno));
+      mr_scene_free(&scene);
+      return MR_EXIT_FAIL;
+    }
+    fprintf(sink.f, "t,dt,error,accepted,rejected,reset,max_speed\n");
+  }
+  mr_scene_run_opts opts = {duration, csv_path ? on_step : NULL, &sink};
+  mr_scene_run_result result;
+  double t0 = wall_seconds();
+  mr_scene_status st = mr_scene_run(&scene, &opts, &result, &err);
+  double wall = wall_seconds() - t0;
+  int rc = MR_EXIT_OK;
+  if (sink.f != NULL && sink.f != stdout && fclose(sink.f) != 0)
+    sink.failed = 1;
+  if (sink.failed) {
+    fprintf(stderr, "marionette: %s: writing the trace failed\n", csv_path);
+    rc = MR_EXIT_FAIL;
+  }
+  if (st != MR_SCENE_OK) {
+    if (check && scene.expect.has_load_error &&
+        strstr(err.text, scene.expect.load_error) != NULL) {
+      /* Refused when the world was built: as good as refused on load. */
+      printf("check: passed (%s refused as expected: %s)\n", path, err.text);
+      mr_scene_free(&scene);
+      return MR_EXIT_OK;
+    }
+    fprintf(stderr, "marionette: %s\n", err.text);
+    mr_scene_free(&scene);
+    return MR_EXIT_FAIL;
+  }
+  if (!quiet && !(csv_path != NULL && strcmp(csv_path, "-") == 0))
+    print_summary(&scene, &result, wall);
+  if (check) {
+    char why[512];
+    if (mr_scene_check(&scene, &result, why, sizeof why) != 0) {
+      fprintf(stderr, "marionette: %s: check failed: %s\n", path, why);
+      rc = MR_EXIT_FAIL;
+    } else {
+      printf("check: passed\n");
+    }
+  }
+  mr_scene_free(&scene);
+  return rc;
+}

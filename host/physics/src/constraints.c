@@ -1,0 +1,311 @@
+/* Geometric and time constraints (§5.1, §5.2, §6.1 method 3). Each kind
+ * writes, per scalar row i, its Jacobian row J_i = ∂C_i/∂q (into mr_jac),
+ * C_i, Ċ_i = J_i q̇ + ∂C_i/∂t and the acceleration bias
+ * J̇_i q̇ + ∂²C_i/∂t², the pieces of eq. 8:
+ *
+ *   J M⁻¹ Jᵀ λ = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t².
+ */
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Distance between a and b, d = x_a − x_b, L = |d|, u = d/L:
+ *   C   = L − length
+ *   J   = [ uᵀ (at a), −uᵀ (at b) ]
+ *   Ċ   = u·(v_a − v_b)
+ *   J̇q̇  = (|v_a − v_b|² − (u·(v_a − v_b))²) / L      (∂C/∂t = 0) */
+static int distance_rows(mr_world *w, const double *x, const double *v, double *c, double *cdot,
+                         double *bias)
+{
+  int r = 0;
+  for (int i = 0; i < w->nd; i++, r++) {
+    const mr_distance *d = &w->distances[i];
+    double dx[3], dv[3], u[3], nu[3];
+    for (int k = 0; k < 3; k++) {
+      dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
+      dv[k] = v[3 * d->a + k] - v[3 * d->b + k];
+    }
+    double len = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+    /* A collapsed link has no direction; keep the row (zero) so the row
+     * count is fixed and the solver reports it as dependent. */
+    double inv = len > 1e-12 ? 1.0 / len : 0.0;
+    for (int k = 0; k < 3; k++) {
+      u[k] = dx[k] * inv;
+      nu[k] = -u[k];
+    }
+    if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, d->a, u) != 0 ||
+        mr_jac_add(&w->J, d->b, nu) != 0)
+      return -1;
+    double rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
+    c[r] = len - d->length;
+    cdot[r] = rate;
+    bias[r] = (dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) * inv;
+  }
+  return r;
+}
+
+static const double unit[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+/* Pin to a point p: C = x − p (3 rows), J = I, Ċ = v, J̇q̇ = 0. */
+static int pin_rows(mr_world *w, const double *x, const double *v, double *c, double *cdot,
+                    double *bias)
+{
+  int r = 0;
+  for (int i = 0; i < w->np; i++) {
+    const mr_pin *p = &w->pins[i];
+    for (int k = 0; k < 3; k++, r++) {
+      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, p->particle, unit[k]) != 0)
+        return -1;
+      c[r] = x[3 * p->particle + k] - p->point[k];
+      cdot[r] = v[3 * p->particle + k];
+      bias[r] = 0.0;
+    }
+  }
+  return r;
+}
+
+/* Point on a time-dependent curve c(t): C = x − c(t), J = I,
+ * Ċ = v − ċ(t) (∂C/∂t = −ċ), J̇q̇ + ∂²C/∂t² = −c̈(t). */
+static int curve_rows(mr_world *w, double t, const double *x, const double *v, double *c,
+                      double *cdot, double *bias)
+{
+  int r = 0;
+  for (int i = 0; i < w->nc; i++) {
+    const mr_curve *cv = &w->curves[i];
+    double p[3], pv[3], pa[3];
+    mr_curve_eval(cv, t, p, pv, pa);
+    for (int k = 0; k < 3; k++, r++) {
+      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, cv->particle, unit[k]) != 0)
+        return -1;
+      c[r] = x[3 * cv->particle + k] - p[k];
+      cdot[r] = v[3 * cv->particle + k] - pv[k];
+      bias[r] = -pa[k];
+    }
+  }
+  return r;
+}
+
+int mr_constraint_row_count(const mr_world *w)
+{
+  return w->nd + 3 * w->np + 3 * w->nc;
+}
+
+int mr_world_constraint_rows(const mr_world *w)
+{
+  return w ? mr_constraint_row_count(w) : 0;
+}
+
+int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v, double *c,
+                        double *cdot, double *bias)
+{
+  w->pass_calls[MR_PASS_CONSTRAINTS]++;
+  int r0 = distance_rows(w, x, v, c, cdot, bias);
+  if (r0 < 0)
+    return -1;
+  int r1 = pin_rows(w, x, v, c + r0, cdot + r0, bias + r0);
+  if (r1 < 0)
+    return -1;
+  int r2 = curve_rows(w, t, x, v, c + r0 + r1, cdot + r0 + r1, bias + r0 + r1);
+  if (r2 < 0)
+    return -1;
+  return r0 + r1 + r2;
+}
+
+static double worse(double e, double d)
+{
+  /* NaN must win, so a non-finite state is never read as "no error". */
+  return (d > e || d != d) ? d : e;
+}
+
+/* §4.5: the largest relative deviation from the geometric constraints. */
+double mr_constraints_deviation(const mr_world *w, double t, const double *x)
+{
+  double e = 0.0;
+  for (int i = 0; i < w->nd; i++) {
+    const mr_distance *d = &w->distances[i];
+    double dx[3];
+    for (int k = 0; k < 3; k++)
+      dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
+    double len = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+    e = worse(e, fabs(len - d->length) / d->length);
+  }
+  for (int i = 0; i < w->np; i++) {
+    const mr_pin *p = &w->pins[i];
+    const double *q = &x[3 * p->particle];
+    double dd = sqrt((q[0] - p->point[0]) * (q[0] - p->point[0]) +
+                     (q[1] - p->point[1]) * (q[1] - p->point[1]) +
+                     (q[2] - p->point[2]) * (q[2] - p->point[2]));
+    e = worse(e, dd / w->def.deviation_length);
+  }
+  for (int i = 0; i < w->nc; i++) {
+    const mr_curve *cv = &w->curves[i];
+    double p[3], pv[3], pa[3];
+    mr_curve_eval(cv, t, p, pv, pa);
+    const double *q = &x[3 * cv->particle];
+    double dd = sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) +
+                     (q[2] - p[2]) * (q[2] - p[2]));
+    e = worse(e, dd / w->def.deviation_length);
+  }
+  return e;
+}
+
+double mr_world_deviation(const mr_world *w)
+{
+  return w ? mr_constraints_deviation(w, w->t, w->x) : 0.0;
+}
+
+/* ------------------------------------------------------------ definitions */
+
+mr_distance_def mr_default_distance_def(void)
+{
+  mr_distance_def d = {0, 0, -1.0};
+  return d;
+}
+
+mr_pin_def mr_default_pin_def(void)
+{
+  mr_pin_def d;
+  memset(&d, 0, sizeof d);
+  d.at_current = 1;
+  return d;
+}
+
+mr_curve_def mr_default_curve_def(void)
+{
+  mr_curve_def d;
+  memset(&d, 0, sizeof d);
+  d.interp = MR_CURVE_CATMULL_ROM;
+  return d;
+}
+
+/* A constraint must move something: a row on frame particles only has no
+ * mass to act on. */
+static int dynamic(const mr_world *w, int p)
+{
+  return w->inv_mass[p] > 0.0;
+}
+
+int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id)
+{
+  if (MR_GROW(w, w->distances, w->nd, w->cap_d) != 0)
+    return -1;
+  w->distances[w->nd] = (mr_distance){a, b, length};
+  if (out_id)
+    *out_id = w->nd;
+  w->nd++;
+  w->dirty = 1;
+  return 0;
+}
+
+mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_distance";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  if (mr_check_particle(w, def->a, what) != 0 || mr_check_particle(w, def->b, what) != 0)
+    return MR_ERR_ID;
+  if (def->a == def->b)
+    return mr_fail(w, MR_ERR_ARG, "%s: both ends are particle %d", what, def->a);
+  if (!dynamic(w, def->a) && !dynamic(w, def->b))
+    return mr_fail(w, MR_ERR_ARG, "%s: particles %d and %d are both on control frames", what,
+                   def->a, def->b);
+  if (!isfinite(def->length))
+    return mr_fail(w, MR_ERR_NONFINITE, "%s: length is NaN or Inf", what);
+  const double *xa = &w->x[3 * def->a], *xb = &w->x[3 * def->b];
+  double cur = sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
+                    (xa[2] - xb[2]) * (xa[2] - xb[2]));
+  double len = def->length < 0 ? cur : def->length;
+  /* §5.2: J = uᵀ needs a direction; a zero length or coincident ends have
+   * none, and C = |d| − 0 is not differentiable there. */
+  if (!(cur > 1e-9))
+    return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d and %d coincide", what, def->a, def->b);
+  if (!(len > 1e-9))
+    return mr_fail(w, MR_ERR_DEGENERATE, "%s: zero length between particles %d and %d", what,
+                   def->a, def->b);
+  if (mr_distance_add_internal(w, def->a, def->b, len, out_id) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  return MR_OK;
+}
+
+mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_pin";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  if (mr_check_particle(w, def->particle, what) != 0)
+    return MR_ERR_ID;
+  if (!dynamic(w, def->particle))
+    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, def->particle);
+  if (!def->at_current && !mr_finite3(def->point))
+    return mr_fail(w, MR_ERR_NONFINITE, "%s: point is NaN or Inf", what);
+  if (MR_GROW(w, w->pins, w->np, w->cap_p) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  mr_pin *p = &w->pins[w->np];
+  p->particle = def->particle;
+  memcpy(p->point, def->at_current ? &w->x[3 * def->particle] : def->point, sizeof p->point);
+  if (out_id)
+    *out_id = w->np;
+  w->np++;
+  w->dirty = 1;
+  return MR_OK;
+}
+
+mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_curve";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  if (mr_check_particle(w, def->particle, what) != 0)
+    return MR_ERR_ID;
+  if (!dynamic(w, def->particle))
+    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, def->particle);
+  if ((unsigned)def->interp > MR_CURVE_LINEAR)
+    return mr_fail(w, MR_ERR_ARG, "%s: unknown interpolation %d", what, (int)def->interp);
+  mr_curve c;
+  memset(&c, 0, sizeof c);
+  c.particle = def->particle;
+  c.interp = def->interp;
+  c.fn = def->fn;
+  c.user = def->user;
+  if (!def->fn) {
+    int n = def->key_count;
+    if (n < 1 || !def->times || !def->points)
+      return mr_fail(w, MR_ERR_ARG, "%s: needs a callback or at least one key", what);
+    for (int i = 0; i < n; i++) {
+      if (!isfinite(def->times[i]) || !mr_finite3(&def->points[3 * i]))
+        return mr_fail(w, MR_ERR_NONFINITE, "%s: key %d is NaN or Inf", what, i);
+      if (i > 0 && !(def->times[i] > def->times[i - 1]))
+        return mr_fail(w, MR_ERR_ARG, "%s: key %d: times must increase (%g after %g)", what, i,
+                       def->times[i], def->times[i - 1]);
+    }
+    c.key_count = n;
+    c.times = malloc((size_t)n * sizeof *c.times);
+    c.points = malloc((size_t)n * 3 * sizeof *c.points);
+    if (!c.times || !c.points) {
+      free(c.times);
+      free(c.points);
+      return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+    }
+    memcpy(c.times, def->times, (size_t)n * sizeof *c.times);
+    memcpy(c.points, def->points, (size_t)n * 3 * sizeof *c.points);
+  }
+  if (MR_GROW(w, w->curves, w->nc, w->cap_c) != 0) {
+    free(c.times);
+    free(c.points);
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  }
+  w->curves[w->nc] = c;
+  if (out_id)
+    *out_id = w->nc;
+  w->nc++;
+  w->dirty = 1;
+  return MR_OK;
+}

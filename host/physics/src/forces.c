@@ -1,0 +1,372 @@
+/* Applied forces F_a (§5.1, §6.2). Each kind is one pass; a world's pass
+ * list holds only the kinds it declared (requirement: an undeclared effect
+ * does not exist in the world, it is not skipped by a test per particle). */
+#include "internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* ---------------------------------------------------------------- passes */
+
+static void gravity_pass(mr_world *w, double t, const double *x, const double *v, double *f)
+{
+  (void)t, (void)x, (void)v;
+  const double *g = w->def.gravity;
+  for (int i = 0; i < w->n; i++) {
+    double m = w->mass[i];
+    f[3 * i + 0] += m * g[0];
+    f[3 * i + 1] += m * g[1];
+    f[3 * i + 2] += m * g[2];
+  }
+}
+
+/* Viscous friction F = −drag·v: the paper's default "particle friction". */
+static void drag_pass(mr_world *w, double t, const double *x, const double *v, double *f)
+{
+  (void)t, (void)x;
+  double c = w->def.drag;
+  for (int i = 0; i < w->n; i++) {
+    if (w->inv_mass[i] == 0.0)
+      continue;
+    for (int k = 0; k < 3; k++)
+      f[3 * i + k] -= c * v[3 * i + k];
+  }
+}
+
+/* Length L, unit direction u = (x_a − x_b)/L and rate L̇ = u·(v_a − v_b). */
+static double line(const double *x, const double *v, int a, int b, double u[3], double *rate)
+{
+  double d[3], dv[3];
+  for (int k = 0; k < 3; k++) {
+    d[k] = x[3 * a + k] - x[3 * b + k];
+    dv[k] = v[3 * a + k] - v[3 * b + k];
+  }
+  double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(len > 1e-12)) {
+    u[0] = u[1] = u[2] = 0.0;
+    *rate = 0.0;
+    return len;
+  }
+  for (int k = 0; k < 3; k++)
+    u[k] = d[k] / len;
+  *rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
+  return len;
+}
+
+/* Equal and opposite forces s·u on a and −s·u on b. */
+static void push_pair(double *f, int a, int b, const double u[3], double s)
+{
+  for (int k = 0; k < 3; k++) {
+    f[3 * a + k] += s * u[k];
+    f[3 * b + k] -= s * u[k];
+  }
+}
+
+/* F_a = −(ks (L − rest) + kd L̇) u. */
+static void springs_pass(mr_world *w, double t, const double *x, const double *v, double *f)
+{
+  (void)t;
+  for (int i = 0; i < w->ns; i++) {
+    const mr_spring *s = &w->springs[i];
+    double u[3], rate;
+    double len = line(x, v, s->a, s->b, u, &rate);
+    push_pair(f, s->a, s->b, u, -(s->ks * (len - s->rest) + s->kd * rate));
+  }
+}
+
+/* A string pulls and never pushes: tension max(0, ks (L − rest) + kd L̇). */
+static void strings_pass(mr_world *w, double t, const double *x, const double *v, double *f)
+{
+  (void)t;
+  for (int i = 0; i < w->nstr; i++) {
+    const mr_string *s = &w->strings[i];
+    double u[3], rate;
+    double len = line(x, v, s->puppet_particle, s->frame_particle, u, &rate);
+    if (len <= s->rest)
+      continue;
+    double tension = s->ks * (len - s->rest) + s->kd * rate;
+    if (tension > 0)
+      push_pair(f, s->puppet_particle, s->frame_particle, u, -tension);
+  }
+}
+
+static double dist(const double *x, int a, int b)
+{
+  double d[3] = {x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2]};
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+/* §6.2: F = −g · fraction · M_puppet · min(d/d0, max_scale). */
+static void antigravity_pass(mr_world *w, double t, const double *x, const double *v, double *f)
+{
+  (void)t, (void)v;
+  const double *g = w->def.gravity;
+  for (int i = 0; i < w->nag; i++) {
+    const mr_antigravity *a = &w->antigravity[i];
+    double scale = dist(x, a->trigger, a->acted) / a->d0;
+    if (scale > a->max_scale)
+      scale = a->max_scale;
+    double s = a->fraction * w->puppet_mass[w->puppet[a->acted]] * scale;
+    for (int k = 0; k < 3; k++)
+      f[3 * a->acted + k] -= s * g[k];
+  }
+}
+
+/* §6.2: F = clamp(gain · M_puppet · (d − d0), ±max) · û(acted → control),
+ * d = |x_control − x_trigger|. */
+static void triggered_pass(mr_world *w, double t, const double *x, const double *v, double *f)
+{
+  (void)t, (void)v;
+  for (int i = 0; i < w->ntr; i++) {
+    const mr_triggered *a = &w->triggered[i];
+    double s = a->gain * w->puppet_mass[w->puppet[a->acted]] *
+               (dist(x, a->control, a->trigger) - a->d0);
+    if (s > a->max_force)
+      s = a->max_force;
+    if (s < -a->max_force)
+      s = -a->max_force;
+    double l = dist(x, a->control, a->acted);
+    if (!(l > 1e-12))
+      continue;
+    for (int k = 0; k < 3; k++)
+      f[3 * a->acted + k] += s * (x[3 * a->control + k] - x[3 * a->acted + k]) / l;
+  }
+}
+
+/* §6.2: |F| = max · sin(π/2 · min(|L − rest|/reach, 1)): a shifted sine from
+ * 0° to 90°, flat (capped) beyond `reach`, restoring, plus damping. */
+static void sine_springs_pass(mr_world *w, double t, const double *x, const double *v, double *f)
+{
+  (void)t;
+  const double half_pi = 1.57079632679489661923;
+  for (int i = 0; i < w->nsin; i++) {
+    const mr_sine_spring *s = &w->sine_springs[i];
+    double u[3], rate;
+    double delta = line(x, v, s->a, s->b, u, &rate) - s->rest;
+    double r = fabs(delta) / s->reach;
+    double mag = s->max_force * sin(half_pi * (r < 1 ? r : 1.0));
+    push_pair(f, s->a, s->b, u, -(copysign(mag, delta) + s->kd * rate));
+  }
+}
+
+int mr_forces_build_passes(mr_world *w)
+{
+  static const struct {
+    uint32_t effect;
+    mr_pass pass;
+    mr_force_pass fn;
+  } table[] = {
+    {MR_EFFECT_GRAVITY, MR_PASS_GRAVITY, gravity_pass},
+    {MR_EFFECT_DRAG, MR_PASS_DRAG, drag_pass},
+    {MR_EFFECT_SPRINGS, MR_PASS_SPRINGS, springs_pass},
+    {MR_EFFECT_STRINGS, MR_PASS_STRINGS, strings_pass},
+    {MR_EFFECT_ANTIGRAVITY, MR_PASS_ANTIGRAVITY, antigravity_pass},
+    {MR_EFFECT_TRIGGERED, MR_PASS_TRIGGERED, triggered_pass},
+    {MR_EFFECT_SINE_SPRINGS, MR_PASS_SINE_SPRINGS, sine_springs_pass},
+  };
+  w->n_force_passes = 0;
+  for (size_t i = 0; i < sizeof table / sizeof table[0]; i++) {
+    if (!(w->def.effects & table[i].effect))
+      continue;
+    if (w->n_force_passes >= MR_MAX_PASSES)
+      return -1;
+    w->force_passes[w->n_force_passes] = table[i].fn;
+    w->force_pass_ids[w->n_force_passes] = table[i].pass;
+    w->n_force_passes++;
+  }
+  return 0;
+}
+
+/* ------------------------------------------------------------ definitions */
+
+mr_spring_def mr_default_spring_def(void)
+{
+  mr_spring_def d = {0, 0, -1.0, 100.0, 1.0};
+  return d;
+}
+
+mr_string_def mr_default_string_def(void)
+{
+  mr_string_def d = {0, 0, -1.0, 500.0, 5.0};
+  return d;
+}
+
+mr_antigravity_def mr_default_antigravity_def(void)
+{
+  mr_antigravity_def d = {0, 0, 0.5, 2.0};
+  return d;
+}
+
+mr_triggered_def mr_default_triggered_def(void)
+{
+  mr_triggered_def d = {0, 0, 0, 10.0, 100.0};
+  return d;
+}
+
+mr_sine_spring_def mr_default_sine_spring_def(void)
+{
+  mr_sine_spring_def d = {0, 0, -1.0, 50.0, 0.1, 1.0};
+  return d;
+}
+
+/* Two distinct existing particles; fills *len with their distance. */
+static mr_status check_pair(mr_world *w, int a, int b, const char *what, double *len)
+{
+  if (mr_check_particle(w, a, what) != 0 || mr_check_particle(w, b, what) != 0)
+    return MR_ERR_ID;
+  if (a == b)
+    return mr_fail(w, MR_ERR_ARG, "%s: both ends are particle %d", what, a);
+  *len = dist(w->x, a, b);
+  return MR_OK;
+}
+
+static mr_status check_rest(mr_world *w, const char *what, double rest, double current, double *out)
+{
+  if (!isfinite(rest))
+    return mr_fail(w, MR_ERR_NONFINITE, "%s: rest length is NaN or Inf", what);
+  *out = rest < 0 ? current : rest;
+  return MR_OK;
+}
+
+static mr_status check_gains(mr_world *w, const char *what, double a, double b)
+{
+  if (!isfinite(a) || !isfinite(b))
+    return mr_fail(w, MR_ERR_NONFINITE, "%s: a coefficient is NaN or Inf", what);
+  if (a < 0 || b < 0)
+    return mr_fail(w, MR_ERR_ARG, "%s: coefficients must be >= 0 (got %g, %g)", what, a, b);
+  return MR_OK;
+}
+
+mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_spring";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_SPRINGS, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  double len = 0.0, rest = 0.0;
+  mr_status s = check_pair(w, def->a, def->b, what, &len);
+  if (s == MR_OK)
+    s = check_rest(w, what, def->rest_length, len, &rest);
+  if (s == MR_OK)
+    s = check_gains(w, what, def->stiffness, def->damping);
+  if (s != MR_OK)
+    return s;
+  if (MR_GROW(w, w->springs, w->ns, w->cap_s) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  w->springs[w->ns] = (mr_spring){def->a, def->b, rest, def->stiffness, def->damping};
+  if (out_id)
+    *out_id = w->ns;
+  w->ns++;
+  return MR_OK;
+}
+
+mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_string";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_STRINGS, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  double len = 0.0, rest = 0.0;
+  mr_status s = check_pair(w, def->frame_particle, def->puppet_particle, what, &len);
+  if (s != MR_OK)
+    return s;
+  if (w->frame[def->frame_particle] < 0)
+    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is not on a control frame", what, def->frame_particle);
+  if (w->frame[def->puppet_particle] >= 0)
+    return mr_fail(w, MR_ERR_ARG, "%s: puppet particle %d is on a control frame", what,
+                   def->puppet_particle);
+  s = check_rest(w, what, def->rest_length, len, &rest);
+  if (s == MR_OK)
+    s = check_gains(w, what, def->stiffness, def->damping);
+  if (s != MR_OK)
+    return s;
+  if (MR_GROW(w, w->strings, w->nstr, w->cap_str) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  w->strings[w->nstr] =
+    (mr_string){def->frame_particle, def->puppet_particle, rest, def->stiffness, def->damping};
+  if (out_id)
+    *out_id = w->nstr;
+  w->nstr++;
+  return MR_OK;
+}
+
+mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_antigravity";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_ANTIGRAVITY, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  double d0;
+  mr_status s = check_pair(w, def->acted, def->trigger, what, &d0);
+  if (s == MR_OK)
+    s = check_gains(w, what, def->fraction, def->max_scale);
+  if (s != MR_OK)
+    return s;
+  if (!(d0 > 1e-9))
+    return mr_fail(w, MR_ERR_DEGENERATE, "%s: acted %d and trigger %d coincide", what, def->acted,
+                   def->trigger);
+  if (MR_GROW(w, w->antigravity, w->nag, w->cap_ag) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  w->antigravity[w->nag] = (mr_antigravity){def->acted, def->trigger, d0, def->fraction, def->max_scale};
+  if (out_id)
+    *out_id = w->nag;
+  w->nag++;
+  w->dirty = 1;
+  return MR_OK;
+}
+
+mr_status mr_world_add_triggered(mr_world *w, const mr_triggered_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_triggered";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_TRIGGERED, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  double d0, dummy;
+  mr_status s = check_pair(w, def->control, def->trigger, what, &d0);
+  if (s == MR_OK)
+    s = check_pair(w, def->acted, def->control, what, &dummy);
+  if (s == MR_OK)
+    s = check_gains(w, what, def->gain, def->max_force);
+  if (s != MR_OK)
+    return s;
+  if (MR_GROW(w, w->triggered, w->ntr, w->cap_tr) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  w->triggered[w->ntr] =
+    (mr_triggered){def->acted, def->control, def->trigger, d0, def->gain, def->max_force};
+  if (out_id)
+    *out_id = w->ntr;
+  w->ntr++;
+  w->dirty = 1;
+  return MR_OK;
+}
+
+mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_sine_spring";
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_SINE_SPRINGS, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  double len = 0.0, rest = 0.0;
+  mr_status s = check_pair(w, def->a, def->b, what, &len);
+  if (s == MR_OK)
+    s = check_rest(w, what, def->rest_length, len, &rest);
+  if (s == MR_OK)
+    s = check_gains(w, what, def->max_force, def->damping);
+  if (s != MR_OK)
+    return s;
+  if (!isfinite(def->reach) || !(def->reach > 0))
+    return mr_fail(w, MR_ERR_ARG, "%s: reach must be > 0 (got %g)", what, def->reach);
+  if (MR_GROW(w, w->sine_springs, w->nsin, w->cap_sin) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  w->sine_springs[w->nsin] =
+    (mr_sine_spring){def->a, def->b, rest, def->max_force, def->reach, def->damping};
+  if (out_id)
+    *out_id = w->nsin;
+  w->nsin++;
+  return MR_OK;
+}

@@ -1,0 +1,204 @@
+/* The world's private layout, shared by the files of mr_physics. Particle
+ * state is kept as structure of arrays: x and v (3n, hot, touched by every
+ * integrator stage) apart from mass, radius, puppet and frame data (cold). */
+#ifndef MR_PHYSICS_INTERNAL_H
+#define MR_PHYSICS_INTERNAL_H
+
+#include "mr_physics.h"
+
+#include <stdarg.h>
+
+/* ------------------------------------------------------------- elements */
+
+typedef struct mr_frame {
+  mr_pose from, to;     /* interpolated from `from` at t0 to `to` at t1 */
+  double t0, t1;
+} mr_frame;
+
+typedef struct mr_spring { int a, b; double rest, ks, kd; } mr_spring;
+typedef struct mr_string { int frame_particle, puppet_particle; double rest, ks, kd; } mr_string;
+typedef struct mr_antigravity { int acted, trigger; double d0, fraction, max_scale; } mr_antigravity;
+typedef struct mr_triggered { int acted, control, trigger; double d0, gain, max_force; } mr_triggered;
+typedef struct mr_sine_spring { int a, b; double rest, max_force, reach, kd; } mr_sine_spring;
+
+typedef struct mr_distance { int a, b; double length; } mr_distance;
+typedef struct mr_pin { int particle; double point[3]; } mr_pin;
+typedef struct mr_curve {
+  int particle;
+  int key_count;
+  double *times, *points;
+  mr_curve_interp interp;
+  mr_curve_fn fn;
+  void *user;
+} mr_curve;
+typedef struct mr_rigid_group { int first_distance, distance_count; } mr_rigid_group;
+
+typedef struct mr_plane { double n[3], offset, restitution, friction; } mr_plane;
+
+/* A leaf sphere of a part: centre (1−s)·x[p0] + s·x[p1]. */
+typedef struct mr_leaf { int p0, p1; double s, r; int part, puppet; } mr_leaf;
+typedef struct mr_part { int first_leaf, leaf_count, puppet; double restitution; } mr_part;
+typedef struct mr_tree_node { double c[3], r; int left, right, leaf; } mr_tree_node;
+typedef struct mr_tree { int puppet, first_node, node_count, root; } mr_tree;
+
+typedef enum mr_contact_kind { MR_CONTACT_PLANE, MR_CONTACT_SPHERES } mr_contact_kind;
+typedef struct mr_contact {
+  mr_contact_kind kind;
+  int a, b;             /* plane: particle a, plane b; spheres: leaves a, b */
+  double restitution, friction;
+} mr_contact;
+
+/* A force pass adds its forces into f (3n) for the state (x, v) at time t. */
+typedef void (*mr_force_pass)(mr_world *w, double t, const double *x, const double *v, double *f);
+typedef struct mr_contact_list { int n, cap; mr_contact *c; } mr_contact_list;
+/* A detector appends the contacts whose gap χ is at most `gap` in state x. */
+typedef int (*mr_detect_pass)(mr_world *w, const double *x, double gap, mr_contact_list *out);
+
+#define MR_MAX_PASSES 16
+
+#define MR_GROW(w, arr, count, cap)                                            \
+  mr_grow_array((w), (void **)&(arr), sizeof *(arr), (count) + 1, &(cap))
+
+/* --------------------------------------------------------------- world */
+
+struct mr_world {
+  mr_world_def def;
+  char err[256];
+  double t;
+  int started;          /* a step has been taken: start config is fixed */
+  int dirty;            /* elements added since the derived data was built */
+
+  /* particles */
+  int n, cap_n;
+  double *x, *v;                 /* 3n, hot */
+  double *mass, *inv_mass, *radius;
+  double *x_start, *v_start;     /* the start configuration (§7) */
+  double *local;                 /* 3n offsets in the particle's frame */
+  int *puppet, *frame;
+
+  int nf, cap_f;       mr_frame *frames;
+  int cap_fs;          double *frame_state;   /* per frame: p, q, ṗ, ω (13) */
+  int nkin, cap_kin;   int *kin;              /* particles carried by frames */
+  int ns, cap_s;       mr_spring *springs;
+  int nstr, cap_str;   mr_string *strings;
+  int nag, cap_ag;     mr_antigravity *antigravity;
+  int ntr, cap_tr;     mr_triggered *triggered;
+  int nsin, cap_sin;   mr_sine_spring *sine_springs;
+  int nd, cap_d;       mr_distance *distances;
+  int np, cap_p;       mr_pin *pins;
+  int nc, cap_c;       mr_curve *curves;
+  int ng, cap_g;       mr_rigid_group *groups;
+  int npl, cap_pl;     mr_plane *planes;
+  int nparts, cap_parts; mr_part *parts;
+  int nleaves, cap_leaves; mr_leaf *leaves;
+
+  /* derived at finalize */
+  int npuppets;
+  double *puppet_mass;
+  unsigned char *part_adjacent;  /* nparts × nparts */
+  int ntrees; mr_tree *trees;
+  int nnodes; mr_tree_node *nodes;
+  double *leaf_c;                /* 3 per leaf, refitted per detection */
+
+  /* the passes this world runs, built at creation (requirement 8) */
+  int n_force_passes; mr_force_pass force_passes[MR_MAX_PASSES]; mr_pass force_pass_ids[MR_MAX_PASSES];
+  int n_detect_passes; mr_detect_pass detect_passes[4]; mr_pass detect_pass_ids[4];
+  int has_frames, has_solve, has_string_correction;
+  uint64_t pass_calls[MR_PASS_COUNT];
+
+  /* contacts: found before a step and held during it (resting set), and a
+   * probe list for the end-of-step penetration test */
+  mr_contact_list contacts, probe;
+  int cap_active; unsigned char *contact_active; double *contact_pre;
+  int cap_valid; unsigned char *probe_valid;  /* offenders being located */
+  double h_step;                 /* the step being integrated (friction) */
+
+  /* solve workspace */
+  mr_jac J;
+  mr_csr A;
+  mr_solver *solver;
+  mr_solve_opts opts;
+  int cap_rows;
+  double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
+  int *row_contact;              /* −1 constraint row, else contact index */
+  int cap_scratch;               /* particles the 3n scratch below holds */
+  double *f, *tmp3n, *pa;        /* 3n scratch */
+
+  /* integrator scratch: state copies and stage derivatives */
+  double *x0, *v0, *x1, *v1, *xs, *vs, *k;  /* k: 8 × 3n for RK4 */
+
+  /* ATS */
+  double dt_next;
+  int recovering;                /* after a collision Δt doubles (§4.5) */
+
+  mr_world_stats stats;
+  int last_dependent;
+  mr_status fail;                /* why an inner stage returned −1 (0: memory) */
+};
+
+/* world.c */
+int mr_grow_array(mr_world *w, void **arr, size_t elem, int need, int *cap);
+mr_status mr_fail(mr_world *w, mr_status s, const char *fmt, ...);
+int mr_world_ensure_ready(mr_world *w);
+int mr_check_particle(mr_world *w, int id, const char *what);
+int mr_finite3(const double v[3]);
+int mr_require(mr_world *w, uint32_t effect, const char *what);
+
+/* frame.c */
+void mr_frame_eval(const mr_frame *fr, double t, double pos[3], double q[4],
+                   double vel[3], double omega[3]);
+void mr_quat_rotate(const double q[4], const double v[3], double out[3]);
+void mr_frames_place(mr_world *w, double t, double *x, double *v);
+
+/* curve.c */
+void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], double acc[3]);
+
+/* forces.c */
+int mr_forces_build_passes(mr_world *w);
+
+/* constraints.c: rows of C, J, J̇q̇ for eq. 8 */
+int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v,
+                        double *c, double *cdot, double *bias);
+int mr_constraint_row_count(const mr_world *w);
+double mr_constraints_deviation(const mr_world *w, double t, const double *x);
+int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id);
+
+/* collide.c */
+int mr_collide_build_passes(mr_world *w);
+int mr_colliders(const mr_world *w);
+int mr_contacts_detect(mr_world *w, const double *x, double gap, mr_contact_list *out);
+double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x);
+double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v);
+/* Writes the contact's J row into w->J and sets χ, χ̇ and J̇q̇; 0 or −1
+ * (out of memory). A NaN state gives NaN values, not a failure. */
+int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v, double *chi,
+                   double *chidot, double *jdqd);
+int mr_contact_push(mr_contact_list *l, mr_contact_kind kind, int a, int b, double e, double mu);
+void mr_contact_list_free(mr_contact_list *l);
+
+/* sphere_tree.c */
+int mr_trees_build(mr_world *w);
+void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3]);
+int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out);
+int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out);
+
+/* eval.c: accelerations for a state, eq. 1 and eq. 8 */
+int mr_eval(mr_world *w, double t, double *x, double *v, double *a);
+int mr_solve_reserve(mr_world *w, int rows);
+/* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda. */
+int mr_solve_rows(mr_world *w, int assemble);
+
+/* impulse.c: eq. 9 at contacts */
+int mr_impulses_apply(mr_world *w, double t, int *collided);
+
+/* integrate.c */
+int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0,
+                 double *x1, double *v1);
+
+/* string_correction.c */
+void mr_strings_correct(mr_world *w);
+
+/* rigid_group.c */
+mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n);
+
+#endif

@@ -1,0 +1,165 @@
+/* Rigid groups (§5.1): particles held by fixed distances. A tetrahedral
+ * clique of four non-coplanar particles is the smallest group with a unique
+ * inertia; every further particle is linked to exactly three particles
+ * already in the group and not coplanar with it. Three links fix a point in
+ * 3D, a fourth would be redundant and make J M⁻¹ Jᵀ singular, which is why
+ * §5.1 stops at three. */
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static double dist(const double *x, int a, int b)
+{
+  double d[3] = {x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2]};
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+/* |det(b−a, c−a, d−a)| / (|b−a| |c−a| |d−a|): 0 when coplanar, 1 for three
+ * orthogonal edges. Scale-free, so one threshold fits any model size. */
+static double flatness(const double *x, int a, int b, int c, int d)
+{
+  double e[3][3];
+  int o[3] = {b, c, d};
+  double norm = 1.0;
+  for (int i = 0; i < 3; i++) {
+    for (int k = 0; k < 3; k++)
+      e[i][k] = x[3 * o[i] + k] - x[3 * a + k];
+    norm *= sqrt(e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]);
+  }
+  double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+               e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+               e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  return norm > 0 ? fabs(det) / norm : 0.0;
+}
+
+/* |(b−a) × (c−a)| / (|b−a| |c−a|): 0 when collinear. */
+static double straightness(const double *x, int a, int b, int c)
+{
+  double u[3], v[3];
+  for (int k = 0; k < 3; k++) {
+    u[k] = x[3 * b + k] - x[3 * a + k];
+    v[k] = x[3 * c + k] - x[3 * a + k];
+  }
+  double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  double n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return n > 0 ? sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) / n : 0.0;
+}
+
+static const double min_shape = 1e-3;
+
+static int link(mr_world *w, int a, int b, int *n)
+{
+  /* Two frame particles are already rigid through their frame; a row
+   * between them would have no mass to act on. */
+  if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0)
+    return 0;
+  if (mr_distance_add_internal(w, a, b, dist(w->x, a, b), NULL) != 0)
+    return -1;
+  (*n)++;
+  return 0;
+}
+
+mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n)
+{
+  const char *what = "mr_world_add_rigid_group";
+  const double *x = w->x;
+  *first = w->nd;
+  *n = 0;
+  for (int i = 0; i < count; i++) {
+    if (mr_check_particle(w, ids[i], what) != 0)
+      return MR_ERR_ID;
+    for (int j = 0; j < i; j++) {
+      if (ids[i] == ids[j])
+        return mr_fail(w, MR_ERR_ARG, "%s: particle %d listed twice", what, ids[i]);
+      if (!(dist(x, ids[i], ids[j]) > 1e-9))
+        return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d and %d coincide", what, ids[j], ids[i]);
+    }
+  }
+  if (count == 3 && straightness(x, ids[0], ids[1], ids[2]) < min_shape)
+    return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d, %d, %d are collinear", what, ids[0],
+                   ids[1], ids[2]);
+  if (count >= 4) {
+    if (straightness(x, ids[0], ids[1], ids[2]) < min_shape ||
+        flatness(x, ids[0], ids[1], ids[2], ids[3]) < min_shape)
+      return mr_fail(w, MR_ERR_DEGENERATE,
+                     "%s: the first four particles (%d, %d, %d, %d) are coplanar; a rigid group "
+                     "starts with a tetrahedron", what, ids[0], ids[1], ids[2], ids[3]);
+  }
+  /* Choose every later particle's three partners before adding anything, so
+   * a failure leaves the world unchanged. */
+  int (*partners)[3] = NULL;
+  if (count > 4) {
+    partners = malloc((size_t)count * sizeof *partners);
+    if (!partners)
+      return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+    for (int i = 4; i < count; i++) {
+      /* Nearest triples first: the links stay short and well conditioned. */
+      int best[3] = {-1, -1, -1};
+      double best_len = INFINITY;
+      for (int a = 0; a < i; a++)
+        for (int b = a + 1; b < i; b++)
+          for (int c = b + 1; c < i; c++) {
+            if (flatness(x, ids[i], ids[a], ids[b], ids[c]) < min_shape)
+              continue;
+            double len = dist(x, ids[i], ids[a]) + dist(x, ids[i], ids[b]) + dist(x, ids[i], ids[c]);
+            if (len < best_len) {
+              best_len = len;
+              best[0] = ids[a];
+              best[1] = ids[b];
+              best[2] = ids[c];
+            }
+          }
+      if (best[0] < 0) {
+        free(partners);
+        return mr_fail(w, MR_ERR_DEGENERATE,
+                       "%s: particle %d is coplanar with every triple before it", what, ids[i]);
+      }
+      partners[i][0] = best[0];
+      partners[i][1] = best[1];
+      partners[i][2] = best[2];
+    }
+  }
+  int clique = count < 4 ? count : 4;
+  int ok = 0;
+  for (int i = 0; i < clique && ok == 0; i++)
+    for (int j = i + 1; j < clique && ok == 0; j++)
+      ok = link(w, ids[i], ids[j], n);
+  for (int i = 4; i < count && ok == 0; i++)
+    for (int k = 0; k < 3 && ok == 0; k++)
+      ok = link(w, ids[i], partners[i][k], n);
+  free(partners);
+  if (ok != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  return MR_OK;
+}
+
+mr_rigid_group_def mr_default_rigid_group_def(void)
+{
+  mr_rigid_group_def d = {NULL, 0};
+  return d;
+}
+
+mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_rigid_group";
+  if (!w || !def || (!def->particles && def->count > 0))
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
+    return MR_ERR_NOT_DECLARED;
+  if (def->count < 2)
+    return mr_fail(w, MR_ERR_ARG, "%s: needs at least 2 particles (got %d)", what, def->count);
+  if (MR_GROW(w, w->groups, w->ng, w->cap_g) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  int first, n;
+  mr_status s = mr_rigid_group_build(w, def->particles, def->count, &first, &n);
+  if (s != MR_OK) {
+    w->nd = first; /* drop links added before an allocation failure */
+    return s;
+  }
+  w->groups[w->ng] = (mr_rigid_group){first, n};
+  if (out_id)
+    *out_id = w->ng;
+  w->ng++;
+  return MR_OK;
+}

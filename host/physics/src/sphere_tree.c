@@ -1,0 +1,343 @@
+/* Sphere trees (§4.4, after Hubbard [16, 17]): each puppet's parts are
+ * covered by leaf spheres that ride on its particles (one per particle, sized
+ * by the model's extent, plus spheres along two-particle limbs). A binary
+ * tree over a puppet's leaves is built once by median splits; because the
+ * parts move and turn quickly, the tree's topology is kept and its spheres
+ * are refitted bottom-up before every test. Trees are traversed against each
+ * other (puppet–puppet) and against themselves (non-adjacent parts of one
+ * puppet). */
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+mr_part_def mr_default_part_def(void)
+{
+  mr_part_def d = {NULL, 0, 0.0, 0, 0.5};
+  return d;
+}
+
+void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3])
+{
+  (void)w;
+  for (int k = 0; k < 3; k++)
+    c[k] = (1.0 - l->s) * x[3 * l->p0 + k] + l->s * x[3 * l->p1 + k];
+}
+
+static int push_leaf(mr_world *w, int p0, int p1, double s, double r, int part, int puppet)
+{
+  if (MR_GROW(w, w->leaves, w->nleaves, w->cap_leaves) != 0)
+    return -1;
+  w->leaves[w->nleaves++] = (mr_leaf){p0, p1, s, r, part, puppet};
+  return 0;
+}
+
+mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
+{
+  const char *what = "mr_world_add_part";
+  if (!w || !def || (!def->particles && def->count > 0))
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (!(w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION)))
+    return mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world declares no sphere-tree collisions", what);
+  if (def->count < 1)
+    return mr_fail(w, MR_ERR_ARG, "%s: needs at least one particle", what);
+  if (!isfinite(def->radius) || !isfinite(def->restitution))
+    return mr_fail(w, MR_ERR_NONFINITE, "%s: radius or restitution is NaN or Inf", what);
+  if (def->radius < 0 || def->restitution < 0 || def->restitution > 1 || def->segment_spheres < 0)
+    return mr_fail(w, MR_ERR_ARG, "%s: need radius >= 0, 0 <= restitution <= 1, segment_spheres >= 0",
+                   what);
+  if (def->segment_spheres > 0 && def->count != 2)
+    return mr_fail(w, MR_ERR_ARG, "%s: segment_spheres needs a two-particle part", what);
+  int puppet = -1;
+  for (int i = 0; i < def->count; i++) {
+    int p = def->particles[i];
+    if (mr_check_particle(w, p, what) != 0)
+      return MR_ERR_ID;
+    if (w->frame[p] >= 0)
+      return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, p);
+    if (puppet >= 0 && w->puppet[p] != puppet)
+      return mr_fail(w, MR_ERR_ARG, "%s: particle %d is in puppet %d, the part is in puppet %d", what,
+                     p, w->puppet[p], puppet);
+    puppet = w->puppet[p];
+  }
+  if (MR_GROW(w, w->parts, w->nparts, w->cap_parts) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  int id = w->nparts, first = w->nleaves;
+  int ok = 0;
+  for (int i = 0; i < def->count && ok == 0; i++) {
+    int p = def->particles[i];
+    double r = w->radius[p] > def->radius ? w->radius[p] : def->radius;
+    ok = push_leaf(w, p, p, 0.0, r, id, puppet);
+  }
+  for (int j = 1; j <= def->segment_spheres && ok == 0; j++) {
+    int a = def->particles[0], b = def->particles[1];
+    double r = def->radius > 0 ? def->radius : fmax(w->radius[a], w->radius[b]);
+    ok = push_leaf(w, a, b, (double)j / (def->segment_spheres + 1), r, id, puppet);
+  }
+  if (ok != 0) {
+    w->nleaves = first;
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  }
+  w->parts[id] = (mr_part){first, w->nleaves - first, puppet, def->restitution};
+  w->nparts++;
+  w->dirty = 1;
+  if (out_id)
+    *out_id = id;
+  return MR_OK;
+}
+
+/* ------------------------------------------------------------------ build */
+
+/* Sorts leaf indices by their centre's coordinate on `axis` (ties by index,
+ * a total order, so builds are reproducible). Insertion sort: a puppet has
+ * tens of leaves, and it keeps no state outside the call. */
+static void sort_by_axis(int *idx, int n, const double *c, int axis)
+{
+  for (int i = 1; i < n; i++) {
+    int v = idx[i], j = i - 1;
+    double key = c[3 * v + axis];
+    while (j >= 0 && (c[3 * idx[j] + axis] > key || (c[3 * idx[j] + axis] == key && idx[j] > v))) {
+      idx[j + 1] = idx[j];
+      j--;
+    }
+    idx[j + 1] = v;
+  }
+}
+
+/* Builds the subtree over leaves idx[0..n) and returns its node index;
+ * children are emitted before their parent, so refitting is one pass. */
+static int build(mr_world *w, int *idx, int n)
+{
+  int node;
+  if (n == 1) {
+    node = w->nnodes++;
+    w->nodes[node] = (mr_tree_node){{0, 0, 0}, 0, -1, -1, idx[0]};
+    return node;
+  }
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) {
+      double c = w->leaf_c[3 * idx[i] + k];
+      lo[k] = fmin(lo[k], c);
+      hi[k] = fmax(hi[k], c);
+    }
+  int axis = 0;
+  for (int k = 1; k < 3; k++)
+    if (hi[k] - lo[k] > hi[axis] - lo[axis])
+      axis = k;
+  sort_by_axis(idx, n, w->leaf_c, axis);
+  int left = build(w, idx, n / 2);
+  int right = build(w, idx + n / 2, n - n / 2);
+  node = w->nnodes++;
+  w->nodes[node] = (mr_tree_node){{0, 0, 0}, 0, left, right, -1};
+  return node;
+}
+
+static int parts_touch(const mr_world *w, int i, int j)
+{
+  const mr_part *a = &w->parts[i], *b = &w->parts[j];
+  for (int u = 0; u < a->leaf_count; u++) {
+    const mr_leaf *la = &w->leaves[a->first_leaf + u];
+    if (la->s != 0.0)
+      continue;
+    for (int v = 0; v < b->leaf_count; v++) {
+      const mr_leaf *lb = &w->leaves[b->first_leaf + v];
+      if (lb->s == 0.0 && lb->p0 == la->p0)
+        return 1;
+    }
+  }
+  return 0;
+}
+
+static int part_has(const mr_world *w, int part, int p)
+{
+  const mr_part *a = &w->parts[part];
+  for (int u = 0; u < a->leaf_count; u++) {
+    const mr_leaf *l = &w->leaves[a->first_leaf + u];
+    if (l->s == 0.0 && l->p0 == p)
+      return 1;
+  }
+  return 0;
+}
+
+int mr_trees_build(mr_world *w)
+{
+  free(w->nodes);
+  free(w->trees);
+  free(w->leaf_c);
+  free(w->part_adjacent);
+  w->nodes = NULL;
+  w->trees = NULL;
+  w->leaf_c = NULL;
+  w->part_adjacent = NULL;
+  w->nnodes = w->ntrees = 0;
+  if (w->nleaves == 0)
+    return 0;
+  int np = w->nparts;
+  w->leaf_c = malloc((size_t)w->nleaves * 3 * sizeof *w->leaf_c);
+  w->nodes = malloc((size_t)(2 * w->nleaves) * sizeof *w->nodes);
+  w->trees = malloc((size_t)w->nleaves * sizeof *w->trees);
+  w->part_adjacent = calloc((size_t)np * (size_t)np, 1);
+  int *idx = malloc((size_t)w->nleaves * sizeof *idx);
+  if (!w->leaf_c || !w->nodes || !w->trees || !w->part_adjacent || !idx) {
+    free(idx);
+    return -1;
+  }
+  for (int i = 0; i < w->nleaves; i++)
+    mr_leaf_center(w, &w->leaves[i], w->x, &w->leaf_c[3 * i]);
+  /* One tree per puppet, in order of first appearance. */
+  for (int i = 0; i < w->nleaves; i++) {
+    int puppet = w->leaves[i].puppet, seen = 0;
+    for (int t = 0; t < w->ntrees && !seen; t++)
+      seen = w->trees[t].puppet == puppet;
+    if (seen)
+      continue;
+    int n = 0;
+    for (int j = i; j < w->nleaves; j++)
+      if (w->leaves[j].puppet == puppet)
+        idx[n++] = j;
+    int first = w->nnodes;
+    int root = build(w, idx, n);
+    w->trees[w->ntrees++] = (mr_tree){puppet, first, w->nnodes - first, root};
+  }
+  free(idx);
+  /* Adjacent parts (sharing a particle or joined by a distance constraint)
+   * touch by design and are never tested. */
+  for (int i = 0; i < np; i++)
+    for (int j = 0; j < np; j++)
+      if (i == j || parts_touch(w, i, j))
+        w->part_adjacent[i * np + j] = 1;
+  for (int d = 0; d < w->nd; d++)
+    for (int i = 0; i < np; i++)
+      if (part_has(w, i, w->distances[d].a))
+        for (int j = 0; j < np; j++)
+          if (part_has(w, j, w->distances[d].b))
+            w->part_adjacent[i * np + j] = w->part_adjacent[j * np + i] = 1;
+  return 0;
+}
+
+/* ----------------------------------------------------------------- refit */
+
+static void refit(mr_world *w, const mr_tree *t, const double *x)
+{
+  for (int i = t->first_node; i < t->first_node + t->node_count; i++) {
+    mr_tree_node *nd = &w->nodes[i];
+    if (nd->leaf >= 0) {
+      mr_leaf_center(w, &w->leaves[nd->leaf], x, nd->c);
+      nd->r = w->leaves[nd->leaf].r;
+      continue;
+    }
+    const mr_tree_node *a = &w->nodes[nd->left], *b = &w->nodes[nd->right];
+    double d[3] = {b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2]};
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (len + b->r <= a->r) {
+      memcpy(nd->c, a->c, sizeof nd->c);
+      nd->r = a->r;
+    } else if (len + a->r <= b->r) {
+      memcpy(nd->c, b->c, sizeof nd->c);
+      nd->r = b->r;
+    } else {
+      double r = 0.5 * (len + a->r + b->r);
+      double s = (r - a->r) / len;
+      for (int k = 0; k < 3; k++)
+        nd->c[k] = a->c[k] + s * d[k];
+      nd->r = r;
+    }
+  }
+}
+
+/* ------------------------------------------------------------- traversal */
+
+static double node_gap(const mr_tree_node *a, const mr_tree_node *b)
+{
+  double d[3] = {b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2]};
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - a->r - b->r;
+}
+
+/* Depth-first traversal of the node pair (a, b); same = a and b are the
+ * same tree, so (n, n) expands to its three distinct child pairs. */
+static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contact_list *out)
+{
+  int cap = 64, top = 0;
+  int stack_small[128];
+  int *stack = stack_small;
+  int *heap = NULL;
+  int rc = 0;
+  stack[top++] = ra;
+  stack[top++] = rb;
+  while (top > 0 && rc == 0) {
+    int b = stack[--top], a = stack[--top];
+    const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
+    if (!(a == b && same) && !(node_gap(na, nb) <= gap))
+      continue;
+    int pairs[3][2];
+    int np = 0;
+    if (na->leaf >= 0 && nb->leaf >= 0) {
+      if (a == b)
+        continue;
+      const mr_leaf *la = &w->leaves[na->leaf], *lb = &w->leaves[nb->leaf];
+      if (w->part_adjacent[la->part * w->nparts + lb->part])
+        continue;
+      double e = 0.5 * (w->parts[la->part].restitution + w->parts[lb->part].restitution);
+      if (mr_contact_push(out, MR_CONTACT_SPHERES, na->leaf, nb->leaf, e, 0.0) != 0)
+        rc = -1;
+      continue;
+    }
+    if (a == b && same) {
+      pairs[0][0] = na->left, pairs[0][1] = na->left;
+      pairs[1][0] = na->right, pairs[1][1] = na->right;
+      pairs[2][0] = na->left, pairs[2][1] = na->right;
+      np = 3;
+    } else if (nb->leaf >= 0 || (na->leaf < 0 && na->r >= nb->r)) {
+      pairs[0][0] = na->left, pairs[0][1] = b;
+      pairs[1][0] = na->right, pairs[1][1] = b;
+      np = 2;
+    } else {
+      pairs[0][0] = a, pairs[0][1] = nb->left;
+      pairs[1][0] = a, pairs[1][1] = nb->right;
+      np = 2;
+    }
+    if (top + 2 * np > cap * 2) {
+      int ncap = cap * 2;
+      int *p = realloc(heap, (size_t)ncap * 2 * sizeof *p);
+      if (!p) {
+        rc = -1;
+        break;
+      }
+      if (!heap)
+        memcpy(p, stack_small, (size_t)top * sizeof *p);
+      heap = stack = p;
+      cap = ncap;
+    }
+    for (int i = 0; i < np; i++) {
+      stack[top++] = pairs[i][0];
+      stack[top++] = pairs[i][1];
+    }
+  }
+  free(heap);
+  return rc;
+}
+
+int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out)
+{
+  w->pass_calls[MR_PASS_SELF_COLLISION]++;
+  for (int t = 0; t < w->ntrees; t++) {
+    refit(w, &w->trees[t], x);
+    if (traverse(w, w->trees[t].root, w->trees[t].root, 1, gap, out) != 0)
+      return -1;
+  }
+  return 0;
+}
+
+int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out)
+{
+  w->pass_calls[MR_PASS_PUPPET_COLLISION]++;
+  for (int t = 0; t < w->ntrees; t++)
+    refit(w, &w->trees[t], x);
+  for (int a = 0; a < w->ntrees; a++)
+    for (int b = a + 1; b < w->ntrees; b++)
+      if (traverse(w, w->trees[a].root, w->trees[b].root, 0, gap, out) != 0)
+        return -1;
+  return 0;
+}

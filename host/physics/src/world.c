@@ -1,0 +1,440 @@
+/* The world: creation from a definition, particles, errors, read-out,
+ * counters and the state hash. */
+#include "internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *mr_status_name(mr_status s)
+{
+  switch (s) {
+  case MR_OK: return "ok";
+  case MR_DIVERGED: return "diverged";
+  case MR_DEPENDENT: return "dependent constraints";
+  case MR_ERR_ARG: return "bad argument";
+  case MR_ERR_NOMEM: return "out of memory";
+  case MR_ERR_ID: return "unknown id";
+  case MR_ERR_NONFINITE: return "not finite";
+  case MR_ERR_DEGENERATE: return "degenerate";
+  case MR_ERR_NOT_DECLARED: return "effect not declared";
+  case MR_ERR_TIME: return "time goes backwards";
+  case MR_ERR_LIMIT: return "step limit";
+  case MR_ERR_SOLVER: return "solver failed";
+  }
+  return "unknown status";
+}
+
+const char *mr_pass_name(mr_pass p)
+{
+  static const char *const names[MR_PASS_COUNT] = {
+    "frames", "gravity", "drag", "springs", "strings", "antigravity",
+    "triggered", "sine-springs", "constraints", "solve", "planes",
+    "self-collision", "puppet-collision", "string-correction"};
+  return (unsigned)p < MR_PASS_COUNT ? names[p] : "unknown";
+}
+
+static const char *const integrator_names[] = {"rk4", "euler", "semi-implicit-euler", "midpoint"};
+
+const char *mr_integrator_name(mr_integrator i)
+{
+  return (unsigned)i < 4 ? integrator_names[i] : "unknown";
+}
+
+int mr_integrator_parse(const char *name, mr_integrator *out)
+{
+  if (!name || !out)
+    return -1;
+  for (int i = 0; i < 4; i++) {
+    if (strcmp(name, integrator_names[i]) == 0) {
+      *out = (mr_integrator)i;
+      return 0;
+    }
+  }
+  return -1;
+}
+
+mr_world_def mr_default_world_def(void)
+{
+  mr_world_def d;
+  memset(&d, 0, sizeof d);
+  d.gravity[1] = -9.81;
+  d.effects = MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS;
+  d.integrator = MR_INTEGRATOR_RK4;
+  /* §7: bounds 0.01–0.05 s, thresholds 0.01 %–1 %, average step ≈ 0.02 s. */
+  d.dt_initial = 0.02;
+  d.dt_min = 0.01;
+  d.dt_max = 0.05;
+  d.deviation_low = 1e-4;
+  d.deviation_high = 1e-2;
+  d.deviation_length = 1.0;
+  d.divergence_bound = 0.5;
+  d.max_steps_per_call = 1000000;
+  d.solver = MR_SOLVE_LDLT;
+  d.solver_tolerance = 1e-10;
+  d.solver_max_iterations = 1000;
+  /* C̈ + kd Ċ + ks C = 0 with kd = 2√ks: critically damped, ω = 10/s, well
+   * inside RK4's stability region at the 0.05 s upper bound (ω·Δt = 0.5). */
+  d.ks = 100.0;
+  d.kd = 20.0;
+  d.drag = 0.1;
+  d.contact_slop = 1e-4;
+  d.rest_speed = 0.05;
+  d.string_max_stretch = 0.1;
+  d.string_correction_iterations = 10;
+  return d;
+}
+
+mr_particle_def mr_default_particle_def(void)
+{
+  mr_particle_def d;
+  memset(&d, 0, sizeof d);
+  d.mass = 1.0;
+  d.frame = -1;
+  return d;
+}
+
+int mr_finite3(const double v[3])
+{
+  return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+mr_status mr_fail(mr_world *w, mr_status s, const char *fmt, ...)
+{
+  if (w) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(w->err, sizeof w->err, fmt, ap);
+    va_end(ap);
+  }
+  return s;
+}
+
+int mr_grow_array(mr_world *w, void **arr, size_t elem, int need, int *cap)
+{
+  (void)w;
+  if (need <= *cap)
+    return 0;
+  int c = *cap ? *cap : 8;
+  while (c < need)
+    c *= 2;
+  void *p = realloc(*arr, (size_t)c * elem);
+  if (!p)
+    return -1;
+  /* Zero the new tail so no uninitialised byte can reach the state hash. */
+  memset((char *)p + (size_t)*cap * elem, 0, (size_t)(c - *cap) * elem);
+  *arr = p;
+  *cap = c;
+  return 0;
+}
+
+int mr_check_particle(mr_world *w, int id, const char *what)
+{
+  if (id < 0 || id >= w->n) {
+    mr_fail(w, MR_ERR_ID, "%s: particle %d does not exist (world has %d)", what, id, w->n);
+    return -1;
+  }
+  return 0;
+}
+
+int mr_require(mr_world *w, uint32_t effect, const char *what)
+{
+  if (!(w->def.effects & effect)) {
+    mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world does not declare this effect", what);
+    return -1;
+  }
+  return 0;
+}
+
+static mr_status def_error(char *msg, size_t msg_size, mr_status s, const char *text)
+{
+  if (msg && msg_size)
+    snprintf(msg, msg_size, "mr_world_def: %s", text);
+  return s;
+}
+
+mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *msg, size_t msg_size)
+{
+  if (out_world)
+    *out_world = NULL;
+  if (!def || !out_world)
+    return def_error(msg, msg_size, MR_ERR_ARG, "def and out_world must not be NULL");
+  const double scalars[] = {def->dt_initial, def->dt_min, def->dt_max, def->deviation_low,
+                            def->deviation_high, def->deviation_length, def->divergence_bound,
+                            def->solver_tolerance, def->ks, def->kd, def->drag,
+                            def->contact_slop, def->rest_speed, def->string_max_stretch};
+  for (size_t i = 0; i < sizeof scalars / sizeof scalars[0]; i++)
+    if (!isfinite(scalars[i]))
+      return def_error(msg, msg_size, MR_ERR_NONFINITE, "a time step, threshold or gain is NaN or Inf");
+  if (!mr_finite3(def->gravity))
+    return def_error(msg, msg_size, MR_ERR_NONFINITE, "gravity is NaN or Inf");
+  if (!(def->dt_min > 0 && def->dt_min <= def->dt_max))
+    return def_error(msg, msg_size, MR_ERR_ARG, "need 0 < dt_min <= dt_max");
+  if (!(def->dt_initial > 0))
+    return def_error(msg, msg_size, MR_ERR_ARG, "need dt_initial > 0");
+  if (!(def->deviation_low > 0 && def->deviation_low <= def->deviation_high))
+    return def_error(msg, msg_size, MR_ERR_ARG, "need 0 < deviation_low <= deviation_high");
+  if (!(def->deviation_length > 0) || !(def->divergence_bound > def->deviation_high))
+    return def_error(msg, msg_size, MR_ERR_ARG,
+                     "need deviation_length > 0 and divergence_bound > deviation_high");
+  if (def->ks < 0 || def->kd < 0 || def->drag < 0 || def->contact_slop <= 0 || def->rest_speed < 0 ||
+      def->string_max_stretch < 0 || def->solver_tolerance <= 0)
+    return def_error(msg, msg_size, MR_ERR_ARG,
+                     "ks, kd, drag, rest_speed and string_max_stretch must be >= 0, "
+                     "contact_slop and solver_tolerance > 0");
+  if (def->max_steps_per_call < 1 || def->solver_max_iterations < 1 ||
+      def->string_correction_iterations < 0)
+    return def_error(msg, msg_size, MR_ERR_ARG,
+                     "max_steps_per_call and solver_max_iterations must be >= 1");
+  if ((unsigned)def->integrator > MR_INTEGRATOR_MIDPOINT)
+    return def_error(msg, msg_size, MR_ERR_ARG, "unknown integrator");
+  if ((unsigned)def->solver > MR_SOLVE_EIGEN)
+    return def_error(msg, msg_size, MR_ERR_ARG, "unknown solver method");
+  if (def->effects >> 13)
+    return def_error(msg, msg_size, MR_ERR_ARG, "unknown effect bits");
+
+  mr_world *w = calloc(1, sizeof *w);
+  if (!w)
+    return def_error(msg, msg_size, MR_ERR_NOMEM, "out of memory");
+  w->def = *def;
+  w->solver = mr_solver_create();
+  if (!w->solver) {
+    free(w);
+    return def_error(msg, msg_size, MR_ERR_NOMEM, "out of memory");
+  }
+  w->opts = mr_solve_opts_default();
+  w->opts.method = def->solver;
+  w->opts.tol = def->solver_tolerance;
+  w->opts.max_iter = def->solver_max_iterations;
+  w->dt_next = fmin(fmax(def->dt_initial, def->dt_min), def->dt_max);
+  w->dirty = 1; /* derived data and scratch are built at the first step */
+  w->stats.min_dt = INFINITY;
+  w->has_frames = (def->effects & MR_EFFECT_FRAMES) != 0;
+  w->has_solve = (def->effects & (MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES |
+                                  MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION)) != 0;
+  w->has_string_correction = (def->effects & MR_EFFECT_STRING_CORRECTION) &&
+                             (def->effects & MR_EFFECT_STRINGS);
+  if (mr_forces_build_passes(w) != 0 || mr_collide_build_passes(w) != 0) {
+    mr_world_destroy(w);
+    return def_error(msg, msg_size, MR_ERR_ARG, "too many passes");
+  }
+  *out_world = w;
+  return MR_OK;
+}
+
+void mr_world_destroy(mr_world *w)
+{
+  if (!w)
+    return;
+  void *arrays[] = {w->x, w->v, w->mass, w->inv_mass, w->radius, w->x_start, w->v_start,
+                    w->local, w->puppet, w->frame, w->frames, w->frame_state, w->kin, w->springs, w->strings,
+                    w->antigravity, w->triggered, w->sine_springs, w->distances, w->pins,
+                    w->groups, w->planes, w->parts, w->leaves, w->puppet_mass,
+                    w->part_adjacent, w->trees, w->nodes, w->leaf_c, w->contact_active, w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot, w->row_bias, w->row_jv, w->row_contact,
+                    w->f, w->tmp3n, w->pa, w->x0, w->v0, w->x1, w->v1, w->xs, w->vs, w->k};
+  for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
+    free(arrays[i]);
+  for (int i = 0; i < w->nc; i++) {
+    free(w->curves[i].times);
+    free(w->curves[i].points);
+  }
+  free(w->curves);
+  mr_contact_list_free(&w->contacts);
+  mr_contact_list_free(&w->probe);
+  mr_jac_free(&w->J);
+  mr_csr_free(&w->A);
+  mr_solver_destroy(w->solver);
+  free(w);
+}
+
+const char *mr_world_last_error(const mr_world *w)
+{
+  return w ? w->err : "no world";
+}
+
+/* Grows every per-particle array to hold n + 1 particles. */
+static int grow_particles(mr_world *w)
+{
+  if (w->n + 1 <= w->cap_n)
+    return 0;
+  int cap = w->cap_n ? 2 * w->cap_n : 16;
+  double **d3[] = {&w->x, &w->v, &w->x_start, &w->v_start, &w->local};
+  double **d1[] = {&w->mass, &w->inv_mass, &w->radius};
+  int **i1[] = {&w->puppet, &w->frame};
+  for (size_t i = 0; i < sizeof d3 / sizeof d3[0]; i++) {
+    double *p = realloc(*d3[i], (size_t)cap * 3 * sizeof *p);
+    if (!p)
+      return -1;
+    *d3[i] = p;
+  }
+  for (size_t i = 0; i < sizeof d1 / sizeof d1[0]; i++) {
+    double *p = realloc(*d1[i], (size_t)cap * sizeof *p);
+    if (!p)
+      return -1;
+    *d1[i] = p;
+  }
+  for (size_t i = 0; i < sizeof i1 / sizeof i1[0]; i++) {
+    int *p = realloc(*i1[i], (size_t)cap * sizeof *p);
+    if (!p)
+      return -1;
+    *i1[i] = p;
+  }
+  w->cap_n = cap;
+  return 0;
+}
+
+mr_status mr_world_add_particle(mr_world *w, const mr_particle_def *def, int *out_id)
+{
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "mr_world_add_particle: NULL argument");
+  int id = w->n;
+  if (!mr_finite3(def->position) || !mr_finite3(def->velocity) || !isfinite(def->radius) ||
+      !isfinite(def->mass))
+    return mr_fail(w, MR_ERR_NONFINITE, "particle %d: position, velocity, mass or radius is NaN or Inf", id);
+  if (def->radius < 0)
+    return mr_fail(w, MR_ERR_ARG, "particle %d: radius %g is negative", id, def->radius);
+  if (def->puppet < 0)
+    return mr_fail(w, MR_ERR_ARG, "particle %d: puppet id %d is negative", id, def->puppet);
+  if (def->frame >= 0) {
+    if (def->frame >= w->nf)
+      return mr_fail(w, MR_ERR_ID, "particle %d: frame %d does not exist", id, def->frame);
+  } else if (def->frame != -1) {
+    return mr_fail(w, MR_ERR_ID, "particle %d: frame %d is neither -1 nor a frame id", id, def->frame);
+  } else if (!(def->mass > 0)) {
+    return mr_fail(w, MR_ERR_ARG, "particle %d: mass %g must be > 0", id, def->mass);
+  }
+  if (grow_particles(w) != 0 || (def->frame >= 0 && MR_GROW(w, w->kin, w->nkin, w->cap_kin) != 0))
+    return mr_fail(w, MR_ERR_NOMEM, "particle %d: out of memory", id);
+  int kin = def->frame >= 0;
+  for (int k = 0; k < 3; k++) {
+    w->x[3 * id + k] = def->position[k];
+    w->v[3 * id + k] = kin ? 0.0 : def->velocity[k];
+    w->local[3 * id + k] = 0.0;
+  }
+  w->mass[id] = kin ? 0.0 : def->mass;
+  w->inv_mass[id] = kin ? 0.0 : 1.0 / def->mass;
+  w->radius[id] = def->radius;
+  w->puppet[id] = def->puppet;
+  w->frame[id] = def->frame;
+  if (kin) {
+    /* local = R(q)ᵀ (x − p) for the frame's pose at the world's time. */
+    double p[3], q[4], vel[3], om[3], d[3], qc[4];
+    mr_frame_eval(&w->frames[def->frame], w->t, p, q, vel, om);
+    for (int k = 0; k < 3; k++)
+      d[k] = def->position[k] - p[k];
+    qc[0] = q[0];
+    qc[1] = -q[1];
+    qc[2] = -q[2];
+    qc[3] = -q[3];
+    mr_quat_rotate(qc, d, &w->local[3 * id]);
+    w->kin[w->nkin++] = id;
+    w->n = id + 1;
+    mr_frames_place(w, w->t, w->x, w->v);
+  }
+  memcpy(&w->x_start[3 * id], &w->x[3 * id], 3 * sizeof(double));
+  memcpy(&w->v_start[3 * id], &w->v[3 * id], 3 * sizeof(double));
+  w->n = id + 1;
+  w->dirty = 1;
+  if (out_id)
+    *out_id = id;
+  return MR_OK;
+}
+
+int mr_world_particle_count(const mr_world *w)
+{
+  return w ? w->n : 0;
+}
+
+mr_status mr_world_particle_state(const mr_world *w, int id, double pos[3], double vel[3])
+{
+  if (!w)
+    return MR_ERR_ARG;
+  if (id < 0 || id >= w->n)
+    return MR_ERR_ID;
+  for (int k = 0; k < 3; k++) {
+    if (pos)
+      pos[k] = w->x[3 * id + k];
+    if (vel)
+      vel[k] = w->v[3 * id + k];
+  }
+  return MR_OK;
+}
+
+int mr_world_positions(const mr_world *w, double *xyz, int count)
+{
+  if (!w || !xyz || count <= 0)
+    return 0;
+  int m = count < w->n ? count : w->n;
+  memcpy(xyz, w->x, (size_t)m * 3 * sizeof(double));
+  return m;
+}
+
+mr_status mr_world_set_particle_state(mr_world *w, int id, const double pos[3], const double vel[3])
+{
+  if (!w || !pos || !vel)
+    return mr_fail(w, MR_ERR_ARG, "mr_world_set_particle_state: NULL argument");
+  if (mr_check_particle(w, id, "mr_world_set_particle_state") != 0)
+    return MR_ERR_ID;
+  if (!mr_finite3(pos) || !mr_finite3(vel))
+    return mr_fail(w, MR_ERR_NONFINITE, "mr_world_set_particle_state: particle %d: NaN or Inf", id);
+  if (w->frame[id] >= 0)
+    return mr_fail(w, MR_ERR_ARG, "mr_world_set_particle_state: particle %d is carried by frame %d",
+                   id, w->frame[id]);
+  memcpy(&w->x[3 * id], pos, 3 * sizeof(double));
+  memcpy(&w->v[3 * id], vel, 3 * sizeof(double));
+  if (!w->started) {
+    memcpy(&w->x_start[3 * id], pos, 3 * sizeof(double));
+    memcpy(&w->v_start[3 * id], vel, 3 * sizeof(double));
+  }
+  return MR_OK;
+}
+
+double mr_world_time(const mr_world *w)
+{
+  return w ? w->t : 0.0;
+}
+
+double mr_world_next_dt(const mr_world *w)
+{
+  return w ? w->dt_next : 0.0;
+}
+
+void mr_world_get_stats(const mr_world *w, mr_world_stats *out)
+{
+  if (!w || !out)
+    return;
+  *out = w->stats;
+  if (w->stats.steps == 0)
+    out->min_dt = 0.0;
+}
+
+uint64_t mr_world_pass_calls(const mr_world *w, mr_pass p)
+{
+  if (!w || (unsigned)p >= MR_PASS_COUNT)
+    return 0;
+  return w->pass_calls[p];
+}
+
+static uint64_t fnv1a(uint64_t h, const void *data, size_t len)
+{
+  const unsigned char *b = data;
+  for (size_t i = 0; i < len; i++) {
+    h ^= b[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+uint64_t mr_world_state_hash(const mr_world *w)
+{
+  uint64_t h = 14695981039346656037ull;
+  if (!w)
+    return h;
+  h = fnv1a(h, &w->t, sizeof w->t);
+  if (w->n > 0) {
+    h = fnv1a(h, w->x, (size_t)w->n * 3 * sizeof(double));
+    h = fnv1a(h, w->v, (size_t)w->n * 3 * sizeof(double));
+  }
+  return h;
+}

@@ -1,0 +1,393 @@
+#include "scene_yaml.h"
+
+#include <libfyaml.h>
+#include <stdalign.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* All nodes and texts of one document live in one arena, so aliases may
+ * share nodes and freeing is one walk over the blocks. */
+struct mr_yarena {
+  struct mr_yarena *next;
+  size_t used;
+  size_t cap;
+  alignas(max_align_t) unsigned char data[];
+};
+
+static void *arena_alloc(mr_yarena **head, size_t size) {
+  size = (size + alignof(max_align_t) - 1) & ~(alignof(max_align_t) - 1);
+  mr_yarena *a = *head;
+  if (a == NULL || a->cap - a->used < size) {
+    size_t cap = size > 16384 ? size : 16384;
+    mr_yarena *b = malloc(sizeof *b + cap);
+    if (b == NULL)
+      return NULL;
+    b->next = a;
+    b->used = 0;
+    b->cap = cap;
+    *head = b;
+    a = b;
+  }
+  void *p = a->data + a->used;
+  a->used += size;
+  memset(p, 0, size);
+  return p;
+}
+
+static void arena_free(mr_yarena *a) {
+  while (a != NULL) {
+    mr_yarena *next = a->next;
+    free(a);
+    a = next;
+  }
+}
+
+/* A container under construction: children gather in a growable array and
+ * move into the arena when the container ends. */
+typedef struct frame {
+  mr_ynode *node;
+  mr_ynode **tmp;
+  size_t n;
+  size_t cap;
+  char *anchor; /* registered when the container ends */
+} frame;
+
+typedef struct anchor {
+  char *name;
+  mr_ynode *node;
+} anchor;
+
+typedef struct builder {
+  mr_ydoc *doc;
+  mr_yerror *err;
+  frame *stack;
+  size_t depth;
+  size_t stack_cap;
+  anchor *anchors;
+  size_t n_anchors;
+  size_t anchors_cap;
+  int documents;
+} builder;
+
+static int fail(mr_yerror *err, int line, int column, const char *fmt, ...) {
+  err->line = line;
+  err->column = column;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(err->message, sizeof err->message, fmt, ap);
+  va_end(ap);
+  return -1;
+}
+
+static char *token_dup(mr_yarena **arena, struct fy_token *t) {
+  size_t len = 0;
+  const char *s = t ? fy_token_get_text(t, &len) : "";
+  if (s == NULL) {
+    s = "";
+    len = 0;
+  }
+  char *out = arena_alloc(arena, len + 1);
+  if (out != NULL) {
+    memcpy(out, s, len);
+    out[len] = '\0';
+  }
+  return out;
+}
+
+static char *token_strdup(struct fy_token *t) {
+  size_t len = 0;
+  const char *s = fy_token_get_text(t, &len);
+  char *out = malloc(len + 1);
+  if (out != NULL) {
+    memcpy(out, s ? s : "", len);
+    out[len] = '\0';
+  }
+  return out;
+}
+
+static int add_anchor(builder *b, char *name, mr_ynode *node) {
+  if (b->n_anchors == b->anchors_cap) {
+    size_t cap = b->anchors_cap ? 2 * b->anchors_cap : 8;
+    anchor *a = realloc(b->anchors, cap * sizeof *a);
+    if (a == NULL) {
+      free(name);
+      return fail(b->err, node->line, node->column, "out of memory");
+    }
+    b->anchors = a;
+    b->anchors_cap = cap;
+  }
+  /* A later anchor of the same name shadows the earlier one (YAML 1.2). */
+  b->anchors[b->n_anchors].name = name;
+  b->anchors[b->n_anchors].node = node;
+  b->n_anchors++;
+  return 0;
+}
+
+static mr_ynode *find_anchor(const builder *b, const char *name) {
+  for (size_t i = b->n_anchors; i-- > 0;)
+    if (strcmp(b->anchors[i].name, name) == 0)
+      return b->anchors[i].node;
+  return NULL;
+}
+
+static bool same_scalar(const mr_ynode *a, const mr_ynode *b) {
+  return a->kind == MR_YNODE_SCALAR && b->kind == MR_YNODE_SCALAR &&
+         strcmp(a->text, b->text) == 0;
+}
+
+/* Attach a finished node to the container on top of the stack. */
+static int attach(builder *b, mr_ynode *node) {
+  if (b->depth == 0) {
+    b->doc->root = node;
+    return 0;
+  }
+  frame *f = &b->stack[b->depth - 1];
+  if (f->node->kind == MR_YNODE_MAP && f->n % 2 == 0) {
+    if (node->kind != MR_YNODE_SCALAR)
+      return fail(b->err, node->line, node->column,
+                  "expected a plain key, got a %s as a mapping key",
+                  mr_ynode_kind_name(node->kind));
+    for (size_t i = 0; i < f->n; i += 2)
+      if (same_scalar(f->tmp[i], node))
+        return fail(b->err, node->line, node->column,
+                    "duplicate key '%s' (first at line %d, column %d)",
+                    node->text, f->tmp[i]->line, f->tmp[i]->column);
+  }
+  if (f->n == f->cap) {
+    size_t cap = f->cap ? 2 * f->cap : 8;
+    mr_ynode **t = realloc(f->tmp, cap * sizeof *t);
+    if (t == NULL)
+      return fail(b->err, node->line, node->column, "out of memory");
+    f->tmp = t;
+    f->cap = cap;
+  }
+  f->tmp[f->n++] = node;
+  return 0;
+}
+
+static mr_ynode *new_node(builder *b, mr_ynode_kind kind, const struct fy_mark *m) {
+  mr_ynode *n = arena_alloc(&b->doc->arena, sizeof *n);
+  if (n == NULL) {
+    fail(b->err, m ? m->line + 1 : 0, m ? m->column + 1 : 0, "out of memory");
+    return NULL;
+  }
+  n->kind = kind;
+  n->line = m ? m->line + 1 : 0;
+  n->column = m ? m->column + 1 : 0;
+  n->text = "";
+  return n;
+}
+
+static int open_container(builder *b, mr_ynode_kind kind, struct fy_event *e,
+                          struct fy_token *anchor_tok) {
+  mr_ynode *n = new_node(b, kind, fy_event_start_mark(e));
+  if (n == NULL)
+    return -1;
+  if (b->depth == b->stack_cap) {
+    size_t cap = b->stack_cap ? 2 * b->stack_cap : 16;
+    frame *s = realloc(b->stack, cap * sizeof *s);
+    if (s == NULL)
+      return fail(b->err, n->line, n->column, "out of memory");
+    b->stack = s;
+    b->stack_cap = cap;
+  }
+  frame *f = &b->stack[b->depth++];
+  memset(f, 0, sizeof *f);
+  f->node = n;
+  if (anchor_tok != NULL) {
+    f->anchor = token_strdup(anchor_tok);
+    if (f->anchor == NULL)
+      return fail(b->err, n->line, n->column, "out of memory");
+  }
+  return 0;
+}
+
+static int close_container(builder *b) {
+  frame *f = &b->stack[b->depth - 1];
+  mr_ynode *n = f->node;
+  if (f->n > 0) {
+    n->items = arena_alloc(&b->doc->arena, f->n * sizeof *n->items);
+    if (n->items == NULL)
+      return fail(b->err, n->line, n->column, "out of memory");
+    memcpy(n->items, f->tmp, f->n * sizeof *n->items);
+  }
+  n->count = n->kind == MR_YNODE_MAP ? f->n / 2 : f->n;
+  free(f->tmp);
+  char *name = f->anchor;
+  b->depth--;
+  if (name != NULL && add_anchor(b, name, n) != 0)
+    return -1;
+  return attach(b, n);
+}
+
+static int on_event(builder *b, struct fy_event *e) {
+  const struct fy_mark *m = fy_event_start_mark(e);
+  int line = m ? m->line + 1 : 0;
+  int column = m ? m->column + 1 : 0;
+  switch (e->type) {
+  case FYET_DOCUMENT_START:
+    if (++b->documents > 1)
+      return fail(b->err, line, column,
+                  "expected one YAML document, found a second one");
+    return 0;
+  case FYET_MAPPING_START:
+    return open_container(b, MR_YNODE_MAP, e, e->mapping_start.anchor);
+  case FYET_SEQUENCE_START:
+    return open_container(b, MR_YNODE_SEQ, e, e->sequence_start.anchor);
+  case FYET_MAPPING_END:
+  case FYET_SEQUENCE_END:
+    return close_container(b);
+  case FYET_SCALAR: {
+    mr_ynode *n = new_node(b, MR_YNODE_SCALAR, m);
+    if (n == NULL)
+      return -1;
+    n->text = token_dup(&b->doc->arena, e->scalar.value);
+    if (n->text == NULL)
+      return fail(b->err, line, column, "out of memory");
+    enum fy_scalar_style style = fy_token_scalar_style(e->scalar.value);
+    n->quoted = style != FYSS_PLAIN;
+    /* libfyaml marks a quoted scalar at its first character inside the
+     * quotes; point at the opening quote, where the value starts. */
+    if ((style == FYSS_SINGLE_QUOTED || style == FYSS_DOUBLE_QUOTED) && n->column > 1)
+      n->column--;
+    if (e->scalar.anchor != NULL) {
+      char *name = token_strdup(e->scalar.anchor);
+      if (name == NULL || add_anchor(b, name, n) != 0)
+        return fail(b->err, line, column, "out of memory");
+    }
+    return attach(b, n);
+  }
+  case FYET_ALIAS: {
+    size_t len = 0;
+    const char *s = fy_token_get_text(e->alias.anchor, &len);
+    char name[128];
+    snprintf(name, sizeof name, "%.*s", (int)(len < 120 ? len : 120), s ? s : "");
+    mr_ynode *target = find_anchor(b, name);
+    /* The mark is at the name; the alias starts at its '*'. */
+    if (target == NULL)
+      return fail(b->err, line, column > 1 ? column - 1 : column,
+                  "expected a defined anchor for alias '*%s'", name);
+    return attach(b, target);
+  }
+  default:
+    return 0;
+  }
+}
+
+/* Position of the first NUL byte, if any: such input is not a text file. */
+static bool find_nul(const char *text, size_t len, int *line, int *column) {
+  const char *z = memchr(text, '\0', len);
+  if (z == NULL)
+    return false;
+  *line = 1;
+  *column = 1;
+  for (const char *p = text; p < z; p++) {
+    if (*p == '\n') {
+      (*line)++;
+      *column = 1;
+    } else {
+      (*column)++;
+    }
+  }
+  return true;
+}
+
+int mr_ydoc_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
+  memset(doc, 0, sizeof *doc);
+  memset(err, 0, sizeof *err);
+  int nl, nc;
+  if (find_nul(text, len, &nl, &nc))
+    return fail(err, nl, nc, "expected a YAML text file, found a NUL byte");
+
+  struct fy_diag_cfg dcfg;
+  fy_diag_cfg_default(&dcfg);
+  dcfg.fp = NULL;
+  dcfg.colorize = false;
+  struct fy_diag *diag = fy_diag_create(&dcfg);
+  if (diag == NULL)
+    return fail(err, 0, 0, "out of memory");
+  fy_diag_set_collect_errors(diag, true);
+
+  struct fy_parse_cfg cfg;
+  memset(&cfg, 0, sizeof cfg);
+  cfg.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG;
+  cfg.diag = diag;
+  struct fy_parser *fyp = fy_parser_create(&cfg);
+  if (fyp == NULL || fy_parser_set_string(fyp, text, len) != 0) {
+    if (fyp != NULL)
+      fy_parser_destroy(fyp);
+    fy_diag_destroy(diag);
+    return fail(err, 0, 0, "out of memory");
+  }
+
+  builder b;
+  memset(&b, 0, sizeof b);
+  b.doc = doc;
+  b.err = err;
+  int rc = 0;
+  int last_line = 1, last_column = 1;
+  struct fy_event *e;
+  while ((e = fy_parser_parse(fyp)) != NULL) {
+    const struct fy_mark *m = fy_event_start_mark(e);
+    if (m != NULL) {
+      last_line = m->line + 1;
+      last_column = m->column + 1;
+    }
+    rc = on_event(&b, e);
+    fy_parser_event_free(fyp, e);
+    if (rc != 0)
+      break;
+  }
+  if (rc == 0 && fy_parser_get_stream_error(fyp)) {
+    void *it = NULL;
+    struct fy_diag_error *de = fy_diag_errors_iterate(diag, &it);
+    if (de != NULL)
+      /* libfyaml's collected diagnostics are already 1-based. */
+      rc = fail(err, de->line, de->column, "expected valid YAML: %s", de->msg);
+    else
+      rc = fail(err, last_line, last_column, "expected valid YAML");
+  }
+  for (size_t i = 0; i < b.depth; i++) {
+    free(b.stack[i].tmp);
+    free(b.stack[i].anchor);
+  }
+  free(b.stack);
+  for (size_t i = 0; i < b.n_anchors; i++)
+    free(b.anchors[i].name);
+  free(b.anchors);
+  fy_parser_destroy(fyp);
+  fy_diag_destroy(diag);
+  if (rc != 0)
+    mr_ydoc_free(doc);
+  return rc;
+}
+
+void mr_ydoc_free(mr_ydoc *doc) {
+  arena_free(doc->arena);
+  doc->arena = NULL;
+  doc->root = NULL;
+}
+
+const mr_ynode *mr_ynode_get(const mr_ynode *map, const char *key) {
+  if (map == NULL || map->kind != MR_YNODE_MAP)
+    return NULL;
+  for (size_t i = 0; i < map->count; i++)
+    if (strcmp(map->items[2 * i]->text, key) == 0)
+      return map->items[2 * i + 1];
+  return NULL;
+}
+
+const char *mr_ynode_kind_name(mr_ynode_kind kind) {
+  switch (kind) {
+  case MR_YNODE_SCALAR:
+    return "scalar";
+  case MR_YNODE_MAP:
+    return "mapping";
+  case MR_YNODE_SEQ:
+    return "sequence";
+  }
+  return "node";
+}

@@ -1,0 +1,255 @@
+/* Sparse LDLᵀ of A = J M⁻¹ Jᵀ (§5.2 eq. 8, §5.3 eq. 9), with a pivot test
+ * that finds dependent constraints.
+ *
+ * Rows are renumbered by whichever of minimum degree, reverse Cuthill–McKee
+ * and the natural order fills in least, then factored up-looking: row k of L
+ * solves L₀ D₀ l = A(0:k−1, k) against the rows already done, and the pivot
+ * is d_k = A_kk − Σ l_j² d_j. The nonzeros of row k are found by walking
+ * A's entries up the elimination tree, so the work is proportional to the
+ * nonzeros of L, not to k².
+ *
+ * The pivot has a meaning here: with B = J M^-½, d_k is the squared
+ * distance of row k of B from the span of the rows eliminated before it.
+ * So d_k ≤ pivot_tol · A_kk says that constraint k is (to sin² ≤ pivot_tol)
+ * a combination of earlier ones. Such a row is dropped: its column of L is
+ * zero and λ_k = 0, exactly as if the constraint had not been written. The
+ * remaining rows are independent and span the same forces Jᵀλ, so for a
+ * consistent b the answer satisfies every row; for an inconsistent b it
+ * satisfies the independent rows and stays bounded. */
+#include "solver_internal.h"
+
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define BUF(f, name, type) ((type *)(f)->name.p)
+
+void mr_ldlt_free(mr_ldlt *f)
+{
+    mr_buf *bufs[] = { &f->pat_rp, &f->pat_col, &f->perm, &f->iperm, &f->parent, &f->lnz, &f->flag,
+                       &f->stack, &f->lp, &f->dropped, &f->li, &f->lx, &f->diag, &f->y, &f->z,
+                       &f->skip, &f->res, &f->dx, &f->cand, &f->bits };
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
+        free(bufs[i]->p);
+    memset(f, 0, sizeof *f);
+}
+
+static int same_pattern(const mr_ldlt *f, const mr_csr *A)
+{
+    return f->have_symbolic && f->n == A->n && f->nnz == A->row_ptr[A->n]
+        && memcmp(f->pat_rp.p, A->row_ptr, (size_t)(A->n + 1) * sizeof(int)) == 0
+        && memcmp(f->pat_col.p, A->col, (size_t)f->nnz * sizeof(int)) == 0;
+}
+
+/* Elimination tree and column counts of L for the ordering in perm/iperm.
+ * Returns nnz(L) below the diagonal. */
+static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *parent, int *lnz, int *flag)
+{
+    size_t total = 0;
+    for (int k = 0; k < A->n; k++) {
+        parent[k] = -1;
+        flag[k] = k;
+        lnz[k] = 0;
+        int old = perm[k];
+        for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
+            for (int i = iperm[A->col[q]]; i < k && flag[i] != k; i = parent[i]) {
+                if (parent[i] == -1)
+                    parent[i] = k;
+                lnz[i]++;
+                total++;
+                flag[i] = k;
+            }
+        }
+    }
+    return total;
+}
+
+static int analyse(mr_ldlt *f, const mr_csr *A)
+{
+    const int n = A->n, nnz = A->row_ptr[n];
+    const size_t dn = (size_t)n, si = sizeof(int);
+    if (mr_buf_reserve(&f->pat_rp, dn + 1, si) || mr_buf_reserve(&f->pat_col, (size_t)nnz, si)
+        || mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si) || mr_buf_reserve(&f->cand, dn, si)
+        || mr_buf_reserve(&f->parent, dn, si) || mr_buf_reserve(&f->lnz, dn, si)
+        || mr_buf_reserve(&f->flag, dn, si) || mr_buf_reserve(&f->stack, 2 * dn, si)
+        || mr_buf_reserve(&f->lp, dn + 1, si) || mr_buf_reserve(&f->dropped, dn, 1)
+        || mr_buf_reserve(&f->diag, dn, sizeof(double)) || mr_buf_reserve(&f->y, dn, sizeof(double))
+        || mr_buf_reserve(&f->z, dn, sizeof(double)) || mr_buf_reserve(&f->skip, dn, 1)
+        || mr_buf_reserve(&f->res, dn, sizeof(double)) || mr_buf_reserve(&f->dx, dn, sizeof(double)))
+        return MR_SOLVE_ENOMEM;
+    f->have_symbolic = 0;
+    int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int);
+    int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
+
+    /* Try the natural order, minimum degree (while its n² bits stay
+     * small) and reverse Cuthill–McKee; keep whichever fills in least.
+     * Each try is one symbolic pass, cheap beside a factorisation, and runs
+     * only when the pattern changes. */
+    int *cand = BUF(f, cand, int);
+    size_t best = 0;
+    for (int way = 0; way < 3; way++) {
+        if (way == 0) {
+            for (int i = 0; i < n; i++)
+                cand[i] = i;
+        } else if (way == 1) {
+            if (n > MR_MIN_DEGREE_MAX_N)
+                continue;
+            size_t words = ((size_t)n + 63) / 64;
+            if (mr_buf_reserve(&f->bits, (size_t)n * words, sizeof(uint64_t)))
+                return MR_SOLVE_ENOMEM;
+            mr_order_min_degree(A, cand, f->bits.p, lnz);
+        } else {
+            mr_order_rcm(A, cand, BUF(f, stack, int));
+        }
+        for (int i = 0; i < n; i++)
+            iperm[cand[i]] = i;
+        size_t fill = symbolic(A, cand, iperm, parent, lnz, flag);
+        if (way == 0 || fill < best) {
+            best = fill;
+            memcpy(perm, cand, dn * si);
+        }
+    }
+    for (int i = 0; i < n; i++)
+        iperm[perm[i]] = i;
+    f->nnz_l = symbolic(A, perm, iperm, parent, lnz, flag);
+    if (mr_buf_reserve(&f->li, f->nnz_l, si) || mr_buf_reserve(&f->lx, f->nnz_l, sizeof(double)))
+        return MR_SOLVE_ENOMEM;
+    int *lp = BUF(f, lp, int);
+    lp[0] = 0;
+    for (int k = 0; k < n; k++)
+        lp[k + 1] = lp[k] + lnz[k];
+
+    memcpy(f->pat_rp.p, A->row_ptr, (dn + 1) * si);
+    memcpy(f->pat_col.p, A->col, (size_t)nnz * si);
+    f->n = n;
+    f->nnz = nnz;
+    f->have_symbolic = 1;
+    return 0;
+}
+
+/* Returns the number of dropped (dependent) rows. */
+static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol)
+{
+    const int n = A->n;
+    const int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *parent = BUF(f, parent, int);
+    const int *lp = BUF(f, lp, int);
+    int *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int), *stack = BUF(f, stack, int), *li = BUF(f, li, int);
+    unsigned char *dropped = BUF(f, dropped, unsigned char);
+    double *lx = BUF(f, lx, double), *diag = BUF(f, diag, double), *y = BUF(f, y, double);
+    int count = 0;
+
+    for (int k = 0; k < n; k++)
+        y[k] = 0.0;
+    for (int k = 0; k < n; k++) {
+        /* Scatter column k of PAPᵀ (rows ≤ k) into y and find the rows of L
+         * that row k touches, in an order where each comes before its
+         * ancestors in the elimination tree. */
+        int top = n, old = perm[k];
+        double akk = 0.0;
+        flag[k] = k;
+        lnz[k] = 0;
+        for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
+            int i = iperm[A->col[q]];
+            if (i > k)
+                continue;
+            y[i] += A->val[q];
+            if (i == k) {
+                akk = A->val[q];
+                continue;
+            }
+            int len = 0;
+            for (; flag[i] != k; i = parent[i]) {
+                stack[len++] = i;
+                flag[i] = k;
+            }
+            while (len > 0)
+                stack[--top] = stack[--len];
+        }
+        double d = y[k];
+        y[k] = 0.0;
+        for (; top < n; top++) {
+            int i = stack[top];
+            double yi = y[i];
+            y[i] = 0.0;
+            int end = lp[i] + lnz[i];
+            for (int p = lp[i]; p < end; p++)
+                y[li[p]] -= lx[p] * yi;
+            double l = dropped[i] ? 0.0 : yi / diag[i];
+            d -= l * yi;
+            li[end] = k;
+            lx[end] = l;
+            lnz[i]++;
+        }
+        /* The pivot test (see the top of this file); !(d > …) also catches
+         * a NaN pivot. */
+        if (!(akk > DBL_MIN) || !(d > pivot_tol * akk)) {
+            dropped[k] = 1;
+            diag[k] = 0.0;
+            count++;
+        } else {
+            dropped[k] = 0;
+            diag[k] = d;
+        }
+    }
+    return count;
+}
+
+/* x = (P L D Lᵀ Pᵀ)⁺ b with dropped rows' unknowns set to zero. */
+static void solve_factored(const mr_ldlt *f, const double *b, double *x)
+{
+    const int n = f->n;
+    const int *perm = BUF(f, perm, const int), *lp = BUF(f, lp, const int), *li = BUF(f, li, const int);
+    const double *lx = BUF(f, lx, const double), *diag = BUF(f, diag, const double);
+    const unsigned char *dropped = BUF(f, dropped, const unsigned char);
+    double *z = BUF(f, z, double);
+    for (int k = 0; k < n; k++)
+        z[k] = b[perm[k]];
+    for (int j = 0; j < n; j++)
+        for (int p = lp[j]; p < lp[j + 1]; p++)
+            z[li[p]] -= lx[p] * z[j];
+    for (int j = 0; j < n; j++)
+        z[j] = dropped[j] ? 0.0 : z[j] / diag[j];
+    for (int j = n - 1; j >= 0; j--)
+        for (int p = lp[j]; p < lp[j + 1]; p++)
+            z[j] -= lx[p] * z[li[p]];
+    for (int k = 0; k < n; k++)
+        x[perm[k]] = z[k];
+}
+
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+{
+    const int n = A->n;
+    if (!same_pattern(f, A)) {
+        int st = analyse(f, A);
+        if (st != 0)
+            return st;
+    }
+    r->dependent = factor(f, A, o->pivot_tol);
+    solve_factored(f, b, x);
+    r->iterations = 1;
+
+    /* Iterative refinement: a step or two recovers the digits that
+     * elimination loses on a badly scaled system (masses far apart). The
+     * test skips dropped rows, whose equations an inconsistent b can leave
+     * unsatisfiable. */
+    unsigned char *skip = BUF(f, skip, unsigned char);
+    const unsigned char *dropped = BUF(f, dropped, unsigned char);
+    const int *perm = BUF(f, perm, int);
+    for (int k = 0; k < n; k++)
+        skip[perm[k]] = dropped[k];
+    double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
+    const double stop = o->tol * mr_norm2(n, b);
+    for (int step = 0; step < 2 && mr_residual_norm(A, b, x, skip) > stop; step++) {
+        for (int i = 0; i < n; i++) {
+            double s = b[i];
+            for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
+                s -= A->val[q] * x[A->col[q]];
+            res[i] = s;
+        }
+        solve_factored(f, res, dx);
+        for (int i = 0; i < n; i++)
+            x[i] += dx[i];
+        r->iterations++;
+    }
+    return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+}

@@ -1,0 +1,200 @@
+/* The solver front: argument checks shared by every method, the workspace,
+ * and the dispatch. The methods live in one file each. */
+#include "solver_internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int mr_buf_reserve(mr_buf *b, size_t count, size_t elem_size)
+{
+    if (count == 0)
+        count = 1;
+    if (count <= b->cap)
+        return 0;
+    size_t cap = b->cap ? b->cap : 16;
+    while (cap < count)
+        cap *= 2;
+    void *p = realloc(b->p, cap * elem_size);
+    if (!p)
+        return MR_SOLVE_ENOMEM;
+    b->p = p;
+    b->cap = cap;
+    return 0;
+}
+
+mr_solve_opts mr_solve_opts_default(void)
+{
+    mr_solve_opts o = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12 };
+    return o;
+}
+
+static const char *const method_names[] = { "gauss-seidel", "cg", "ldlt", "eigen" };
+
+const char *mr_solve_method_name(mr_solve_method m)
+{
+    if ((int)m < 0 || (int)m >= (int)(sizeof method_names / sizeof method_names[0]))
+        return "unknown";
+    return method_names[m];
+}
+
+int mr_solve_method_parse(const char *name, mr_solve_method *out)
+{
+    if (!name || !out)
+        return -1;
+    for (int m = 0; m < (int)(sizeof method_names / sizeof method_names[0]); m++) {
+        if (strcmp(name, method_names[m]) == 0) {
+            *out = (mr_solve_method)m;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+mr_solver *mr_solver_create(void)
+{
+    return calloc(1, sizeof(mr_solver));
+}
+
+void mr_solver_destroy(mr_solver *s)
+{
+    if (!s)
+        return;
+    mr_buf *bufs[] = { &s->x, &s->r, &s->z, &s->p, &s->q, &s->dep, &s->inv_diag };
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
+        free(bufs[i]->p);
+    mr_ldlt_free(&s->ldlt);
+    mr_eigen_free(s->eigen);
+    free(s);
+}
+
+double mr_norm2(int n, const double *v)
+{
+    /* Scaled so that a large but finite vector does not overflow. */
+    double scale = 0.0, ssq = 1.0;
+    for (int i = 0; i < n; i++) {
+        double a = fabs(v[i]);
+        if (a == 0.0)
+            continue;
+        if (scale < a) {
+            ssq = 1.0 + ssq * (scale / a) * (scale / a);
+            scale = a;
+        } else {
+            ssq += (a / scale) * (a / scale);
+        }
+    }
+    return scale * sqrt(ssq);
+}
+
+double mr_residual_norm(const mr_csr *A, const double *b, const double *x, const unsigned char *skip)
+{
+    double scale = 0.0, ssq = 1.0;
+    for (int i = 0; i < A->n; i++) {
+        if (skip && skip[i])
+            continue;
+        double s = b[i];
+        for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
+            s -= A->val[q] * x[A->col[q]];
+        double a = fabs(s);
+        if (a == 0.0)
+            continue;
+        if (scale < a) {
+            ssq = 1.0 + ssq * (scale / a) * (scale / a);
+            scale = a;
+        } else {
+            ssq += (a / scale) * (a / scale);
+        }
+    }
+    return scale * sqrt(ssq);
+}
+
+int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag)
+{
+    const int n = A->n;
+    for (int i = 0; i < n; i++) {
+        diag[i] = 0.0;
+        for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
+            if (A->col[q] == i)
+                diag[i] = A->val[q];
+    }
+    int count = 0;
+    for (int j = 0; j < n; j++) {
+        dep[j] = !(diag[j] > DBL_MIN);
+        for (int q = A->row_ptr[j]; q < A->row_ptr[j + 1] && !dep[j]; q++) {
+            int i = A->col[q];
+            if (i >= j || dep[i])
+                continue;
+            /* cos² of the angle between rows i and j of J M^-½; the pivot
+             * row j would get after eliminating i alone is A_jj (1 − cos²). */
+            double aij = A->val[q];
+            if (1.0 - (aij / diag[i]) * (aij / diag[j]) <= pivot_tol)
+                dep[j] = 1;
+        }
+        count += dep[j];
+    }
+    return count;
+}
+
+static int all_finite(size_t n, const double *v)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
+int mr_solver_solve(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+{
+    mr_solve_result local;
+    if (!r)
+        r = &local;
+    r->status = MR_SOLVE_OK;
+    r->iterations = 0;
+    r->residual = 0.0;
+    r->dependent = 0;
+
+    mr_solve_opts def = mr_solve_opts_default();
+    if (!o)
+        o = &def;
+    if (!s || !A || (A->n > 0 && (!b || !x || !A->row_ptr))
+        || (int)o->method < MR_SOLVE_GAUSS_SEIDEL || (int)o->method > MR_SOLVE_EIGEN)
+        return r->status = MR_SOLVE_UNAVAILABLE;
+    if (A->n == 0)
+        return r->status;
+    if (!all_finite((size_t)A->row_ptr[A->n], A->val) || !all_finite((size_t)A->n, b))
+        return r->status = MR_SOLVE_NONFINITE;
+
+    /* b = 0: λ = 0 solves every consistent system and is the smallest
+     * answer; no method needs to iterate towards it. */
+    if (mr_norm2(A->n, b) == 0.0) {
+        memset(x, 0, (size_t)A->n * sizeof *x);
+        return r->status;
+    }
+
+    /* Work on a copy so that a failure (no memory, overflow) leaves the
+     * caller's x as it was. A non-finite warm start is replaced by zero. */
+    if (mr_buf_reserve(&s->x, (size_t)A->n, sizeof(double)) != 0)
+        return r->status = MR_SOLVE_ENOMEM;
+    double *xw = s->x.p;
+    if (all_finite((size_t)A->n, x))
+        memcpy(xw, x, (size_t)A->n * sizeof *xw);
+    else
+        memset(xw, 0, (size_t)A->n * sizeof *xw);
+
+    int st;
+    switch (o->method) {
+    case MR_SOLVE_GAUSS_SEIDEL: st = mr_gauss_seidel(s, o, A, b, xw, r); break;
+    case MR_SOLVE_CG: st = mr_cg(s, o, A, b, xw, r); break;
+    case MR_SOLVE_LDLT: st = mr_ldlt_solve(&s->ldlt, o, A, b, xw, r); break;
+    default: st = mr_eigen_solve(&s->eigen, o, A, b, xw, r); break;
+    }
+    if (st < 0)
+        return r->status = st;
+    if (!all_finite((size_t)A->n, xw))
+        return r->status = MR_SOLVE_NONFINITE;
+    memcpy(x, xw, (size_t)A->n * sizeof *x);
+    double nb = mr_norm2(A->n, b);
+    r->residual = mr_residual_norm(A, b, x, NULL) / (nb > DBL_MIN ? nb : DBL_MIN);
+    return r->status = st;
+}

@@ -1,0 +1,72 @@
+/* Shared between the solver translation units; not part of the API. */
+#ifndef MR_SOLVER_INTERNAL_H
+#define MR_SOLVER_INTERNAL_H
+
+#include "mr_solver.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A growable array: grown by mr_buf_reserve, never shrunk, so a solver that
+ * has seen a size once does not allocate again for it. */
+typedef struct mr_buf { void *p; size_t cap; } mr_buf;
+int mr_buf_reserve(mr_buf *b, size_t count, size_t elem_size);
+
+/* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
+ * only on A's pattern, which the physics keeps from step to step, so they
+ * are kept with a copy of the pattern they were computed for. */
+typedef struct mr_ldlt {
+    int n, nnz, have_symbolic;
+    mr_buf pat_rp, pat_col;     /* the pattern of the last A */
+    mr_buf perm, iperm;         /* new → old, old → new */
+    mr_buf parent, lnz, flag, stack, lp, dropped;
+    mr_buf li, lx, diag, y, z;
+    mr_buf skip, res, dx;       /* refinement: dropped rows by old index, r, δλ */
+    mr_buf cand, bits;          /* a candidate ordering; minimum degree's graph */
+    size_t nnz_l;
+} mr_ldlt;
+
+struct mr_solver {
+    mr_buf x, r, z, p, q, dep, inv_diag;
+    mr_ldlt ldlt;
+    void *eigen;                /* solver_eigen.cpp's workspace, made on first use */
+};
+
+/* ‖Ax − b‖₂ over the rows not flagged in skip (skip may be NULL). */
+double mr_residual_norm(const mr_csr *A, const double *b, const double *x, const unsigned char *skip);
+double mr_norm2(int n, const double *v);
+
+/* Flags rows that are dependent on their own (A_ii = 0) or parallel to an
+ * earlier unflagged row (cos² ≥ 1 − pivot_tol in the M⁻¹ metric); this is
+ * the LDLᵀ pivot test applied to pairs. Leaves A's diagonal in diag.
+ * Returns the count. */
+int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag);
+
+int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
+int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
+void mr_ldlt_free(mr_ldlt *f);
+
+/* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
+ * 2n ints. */
+void mr_order_rcm(const mr_csr *A, int *perm, int *iw);
+
+/* Minimum degree on the elimination graph held as bitsets: bits needs
+ * n·⌈n/64⌉ words, deg n ints. Used up to MR_MIN_DEGREE_MAX_N rows. */
+#define MR_MIN_DEGREE_MAX_N 2048
+void mr_order_min_degree(const mr_csr *A, int *perm, uint64_t *bits, int *deg);
+
+/* solver_eigen.cpp: Eigen's SimplicialLDLT with the same dependent-row rule
+ * as the C LDLᵀ. Returns an MR_SOLVE_* status. */
+int mr_eigen_solve(void **ws, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
+void mr_eigen_free(void *ws);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

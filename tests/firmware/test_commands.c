@@ -1,0 +1,268 @@
+/* Every command in messages.def gets its ACK or NACK; garbage, unknown,
+ * oversize, wrong-spec and broken commands get a NACK or silence, and the
+ * SAMPLE stream runs on through all of it without losing a frame. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "fake_hal.h"
+#include "fw_hal.h"
+
+static fw_core core;
+
+static int setup(void **state) {
+  (void)state;
+  fake_reset();
+  fw_core_init(&core);
+  fake_run(&core, 10);
+  return 0;
+}
+
+static void send_cmd(uint8_t type, uint8_t tag) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = type;
+  m.u.ping.tag = tag;
+  fake_send(&m);
+}
+
+/* The reply frames (ACK/NACK) after wire offset from. */
+static size_t reply_after(size_t from_wire, uint8_t type) {
+  fake_decode();
+  for (size_t i = 0; i < frames.n; i++)
+    if (frames.end[i] > from_wire && frames.ev[i] == GP_EV_FRAME && frames.msg[i].type == type)
+      return i;
+  return frames.n;
+}
+
+static void expect_ack(uint8_t type, uint8_t tag, size_t *idx) {
+  size_t from = fake.wire_len;
+  send_cmd(type, tag);
+  fake_run(&core, 20);
+  size_t i = reply_after(from, GP_ACK);
+  assert_true(i < frames.n);
+  assert_int_equal(frames.msg[i].u.ack.tag, tag);
+  assert_int_equal(frames.msg[i].u.ack.cmd, type);
+  assert_int_equal(reply_after(from, GP_NACK), frames.n);
+  if (idx) *idx = i;
+}
+
+static void expect_nack_raw(const uint8_t *wire, size_t n, uint8_t tag, uint8_t cmd, uint8_t reason) {
+  size_t from = fake.wire_len;
+  fake_rx(wire, n);
+  fake_run(&core, 20);
+  size_t i = reply_after(from, GP_NACK);
+  assert_true(i < frames.n);
+  assert_int_equal(frames.msg[i].u.nack.tag, tag);
+  assert_int_equal(frames.msg[i].u.nack.cmd, cmd);
+  assert_int_equal(frames.msg[i].u.nack.reason, reason);
+}
+
+static void set_rate(uint8_t tag, uint16_t rate, uint32_t baud) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_SET_RATE;
+  m.u.set_rate.tag = tag;
+  m.u.set_rate.frame_rate_hz = rate;
+  m.u.set_rate.baud = baud;
+  fake_send(&m);
+}
+
+/* A frame with a good CRC under our spec: type, payload bytes. */
+static size_t raw_frame(uint8_t type, const uint8_t *payload, size_t len, uint32_t hash,
+                        uint8_t *wire) {
+  uint8_t raw[64];
+  raw[0] = type;
+  memcpy(raw + 1, payload, len);
+  uint32_t crc = gp_frame_crc(hash, raw, 1 + len);
+  for (int k = 0; k < 4; k++) raw[1 + len + k] = (uint8_t)(crc >> (8 * k));
+  size_t n = gp_cobs_encode(raw, 1 + len + 4, wire, 80);
+  wire[n] = 0;
+  return n + 1;
+}
+
+static void firmware_commands_ping_and_info(void **state) {
+  (void)state;
+  size_t i;
+  expect_ack(GP_PING, 7, NULL);
+  expect_ack(GP_GET_INFO, 8, &i);
+  size_t j = fake_find(i + 1, GP_INFO);
+  assert_true(j < frames.n);
+  const gp_info *info = &frames.msg[j].u.info;
+  assert_int_equal(info->spec_hash, GP_SPEC_HASH);
+  assert_int_equal(info->proto_major, GP_PROTO_MAJOR);
+  assert_int_equal(info->frame_rate_hz, 250);
+  assert_int_equal(info->baud, 115200);
+  assert_int_equal(info->n_channels, 5);
+  assert_int_equal(info->adc_bits, 12);
+  assert_int_equal(info->sample_rate_hz, FW_TICK_HZ * FW_OVERSAMPLE);
+  assert_int_equal(info->uid[2], 0x8899AABBu);
+  assert_int_equal(info->cal_state, GP_CAL_DEFAULTS);
+}
+
+static void firmware_commands_set_rate(void **state) {
+  (void)state;
+  size_t i;
+  uint8_t w[80];
+  expect_ack(GP_PING, 1, NULL); /* line up */
+  size_t from = fake.wire_len;
+  set_rate(2, 100, 0);
+  fake_run(&core, 100);
+  i = reply_after(from, GP_ACK);
+  assert_true(i < frames.n);
+  assert_int_equal(frames.msg[i].u.ack.cmd, GP_SET_RATE);
+  /* After the ACK the frames come every 10 ms. */
+  size_t a = fake_find(i + 1, GP_SAMPLE), b = fake_find(a + 1, GP_SAMPLE);
+  assert_true(b < frames.n);
+  assert_int_equal(frames.msg[b].u.sample.t_us - frames.msg[a].u.sample.t_us, 10000u);
+
+  /* Refused: not a divisor of 1000, zero, above the tick rate, more than
+   * the link carries, and a baud rate the board does not offer. */
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_SET_RATE;
+  const struct { uint16_t rate; uint32_t baud; } bad[] = {
+      {3, 0}, {0, 0}, {2000, 921600}, {1000, 0}, {500, 115200}, {250, 12345}, {250, 57600},
+  };
+  for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+    m.u.set_rate.tag = (uint8_t)(30 + k);
+    m.u.set_rate.frame_rate_hz = bad[k].rate;
+    m.u.set_rate.baud = bad[k].baud;
+    size_t n = gp_encode(&m, GP_SPEC_HASH, w, sizeof w);
+    expect_nack_raw(w, n, (uint8_t)(30 + k), GP_SET_RATE, GP_NACK_BAD_ARGUMENT);
+  }
+  assert_int_equal(core.frame_rate_hz, 100);
+  assert_int_equal(fake.baud_changes, 0);
+}
+
+static void firmware_commands_stream_off_and_on(void **state) {
+  (void)state;
+  expect_ack(GP_STREAM_OFF, 3, NULL);
+  size_t from = fake.wire_len;
+  fake_run(&core, 2100);
+  fake_decode();
+  size_t samples = 0, infos = 0;
+  for (size_t i = 0; i < frames.n; i++) {
+    if (frames.end[i] <= from) continue;
+    samples += frames.msg[i].type == GP_SAMPLE;
+    infos += frames.msg[i].type == GP_INFO;
+  }
+  assert_int_equal(samples, 0);
+  assert_int_equal(infos, 2); /* INFO keeps its 1 Hz */
+  assert_int_equal(fake.led, 1); /* steady on while not streaming */
+  size_t ack;
+  expect_ack(GP_STREAM_ON, 4, &ack);
+  fake_run(&core, 100);
+  fake_decode();
+  /* An INFO goes first, then the SAMPLEs resume. */
+  size_t first_info = fake_find(ack + 1, GP_INFO), first_sample = fake_find(ack + 1, GP_SAMPLE);
+  assert_true(first_info < first_sample);
+  assert_true(first_sample < frames.n);
+  samples = 0;
+  for (size_t i = ack; i < frames.n; i++) samples += frames.msg[i].type == GP_SAMPLE;
+  assert_in_range(samples, 28, 31);
+}
+
+static void firmware_commands_get_status_counts(void **state) {
+  (void)state;
+  uint8_t w[80];
+  const uint8_t junk[] = {0x55, 0x66, 0x77, 0x00};
+  fake_rx(junk, sizeof junk); /* one corrupt frame */
+  uint8_t tag = 5;
+  size_t n = raw_frame(0x7E, &tag, 1, GP_SPEC_HASH, w); /* one NACK */
+  fake_rx(w, n);
+  fake_run(&core, 10);
+  size_t i;
+  expect_ack(GP_GET_STATUS, 9, &i);
+  size_t j = fake_find(i + 1, GP_STATUS);
+  assert_true(j < frames.n);
+  const gp_status *s = &frames.msg[j].u.status;
+  assert_int_equal(s->cmd_errors, 2);
+  assert_int_equal(s->overruns, 0);
+  assert_int_equal(s->dropped_frames, 0);
+  /* Every frame before the STATUS was queued before it. */
+  assert_int_equal(s->frames_sent, j);
+  assert_int_equal(s->t_us % 1000u, 0);
+  assert_true(s->t_us > 0);
+}
+
+static void firmware_commands_bad_input_keeps_streaming(void **state) {
+  (void)state;
+  uint8_t w[600];
+  size_t n;
+  uint8_t p[GP_MAX_PAYLOAD] = {0x42};
+
+  /* Answered with NACK: a valid frame of an unknown type, of a device-only
+   * type, and a known command of the wrong length. */
+  n = raw_frame(0x7F, p, 1, GP_SPEC_HASH, w);
+  expect_nack_raw(w, n, 0x42, 0x7F, GP_NACK_UNKNOWN_COMMAND);
+  n = raw_frame(GP_SAMPLE, p, GP_SAMPLE_LEN, GP_SPEC_HASH, w);
+  expect_nack_raw(w, n, 0x42, GP_SAMPLE, GP_NACK_UNKNOWN_COMMAND);
+  n = raw_frame(GP_PING, p, 2, GP_SPEC_HASH, w);
+  expect_nack_raw(w, n, 0x42, GP_PING, GP_NACK_BAD_LENGTH);
+  n = raw_frame(GP_SET_RATE, p, 3, GP_SPEC_HASH, w);
+  expect_nack_raw(w, n, 0x42, GP_SET_RATE, GP_NACK_BAD_LENGTH);
+
+  /* Silence: garbage, an oversize run, a foreign spec, a bad CRC, a
+   * truncated frame, idle delimiters. */
+  size_t from = fake.wire_len;
+  uint32_t seed = 12345;
+  for (size_t k = 0; k < 100; k++) {
+    seed = seed * 1103515245u + 12345u;
+    w[k] = (uint8_t)(1u + (seed >> 16) % 255u);
+  }
+  w[100] = 0;
+  fake_rx(w, 101);
+  memset(w, 0xAB, 500);
+  w[500] = 0;
+  fake_rx(w, 501);
+  fake_run(&core, 40);
+  n = raw_frame(GP_PING, p, 1, 0xDEADBEEFu, w);
+  fake_rx(w, n);
+  n = raw_frame(GP_PING, p, 1, GP_SPEC_HASH, w);
+  w[2] ^= 0x10;
+  fake_rx(w, n);
+  n = raw_frame(GP_GET_INFO, p, 1, GP_SPEC_HASH, w);
+  w[n - 3] = 0;
+  fake_rx(w, n - 2);
+  const uint8_t zeros[] = {0, 0, 0};
+  fake_rx(zeros, sizeof zeros);
+  fake_run(&core, 60);
+  size_t stray = reply_after(from, GP_NACK);
+  if (stray < frames.n)
+    fail_msg("unexpected NACK cmd 0x%02x reason %u", frames.msg[stray].u.nack.cmd,
+             frames.msg[stray].u.nack.reason);
+  assert_int_equal(reply_after(from, GP_ACK), frames.n);
+
+  /* Then a good command is still understood. */
+  expect_ack(GP_PING, 0x43, NULL);
+  assert_int_equal(core.cmd_errors, 4 + 5);
+
+  /* The stream never noticed: every SAMPLE present, 4 ms apart. */
+  fake_decode();
+  assert_int_equal(frames.c.lost + frames.c.crc_errors + frames.c.framing_errors, 0);
+  size_t samples = 0;
+  uint32_t prev = 0;
+  for (size_t i = fake_find(0, GP_SAMPLE); i < frames.n; i = fake_find(i + 1, GP_SAMPLE)) {
+    if (samples) assert_int_equal(frames.msg[i].u.sample.t_us - prev, 4000u);
+    prev = frames.msg[i].u.sample.t_us;
+    samples++;
+  }
+  assert_true(samples > 45);
+  assert_int_equal(samples, core.seq);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test_setup(firmware_commands_ping_and_info, setup),
+      cmocka_unit_test_setup(firmware_commands_set_rate, setup),
+      cmocka_unit_test_setup(firmware_commands_stream_off_and_on, setup),
+      cmocka_unit_test_setup(firmware_commands_get_status_counts, setup),
+      cmocka_unit_test_setup(firmware_commands_bad_input_keeps_streaming, setup),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

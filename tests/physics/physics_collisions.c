@@ -1,0 +1,355 @@
+/* Collisions (§4.4, §5.3, §5.4): a bounce to the height restitution
+ * predicts, resting contact, Coulomb friction against μg, and sphere-tree
+ * puppets that do not pass through each other. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+
+#include "mr_physics.h"
+
+static mr_world *make_world(uint32_t effects, mr_world_def *override)
+{
+  mr_world_def def = override ? *override : mr_default_world_def();
+  def.effects = effects;
+  mr_world *w = NULL;
+  char msg[200];
+  assert_int_equal(mr_world_create(&def, &w, msg, sizeof msg), MR_OK);
+  return w;
+}
+
+static int add(mr_world *w, const double x[3], const double v[3], double r, int puppet)
+{
+  mr_particle_def p = mr_default_particle_def();
+  for (int k = 0; k < 3; k++) {
+    p.position[k] = x[k];
+    p.velocity[k] = v ? v[k] : 0.0;
+  }
+  p.radius = r;
+  p.puppet = puppet;
+  int id = -1;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  return id;
+}
+
+static int floor_plane(mr_world *w, double e, double mu)
+{
+  mr_plane_def pl = mr_default_plane_def();
+  pl.restitution = e;
+  pl.friction = mu;
+  int id = -1;
+  assert_int_equal(mr_world_add_plane(w, &pl, &id), MR_OK);
+  return id;
+}
+
+/* Dropped from h₀ = 1 m (bottom of the ball above the floor), restitution
+ * e = 0.8: the ball leaves the floor at e·√(2 g h₀) and rises to e² h₀ =
+ * 0.64 m. RK4 is exact for free flight, the contact time is located to
+ * within the 1e-4 m contact slop and the apex is sampled every 1 ms
+ * (height error g·dt²/8 ≈ 1e-6 m), so we allow 1 mm. */
+static void ball_bounces_to_restitution_height(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES, &def);
+  const double r = 0.1, h0 = 1.0, e = 0.8;
+  int b = add(w, (double[3]){0, h0 + r, 0}, NULL, r, 0);
+  floor_plane(w, e, 0.0);
+  double apex = 0, lowest = INFINITY;
+  int bounced = 0;
+  for (int i = 1; i <= 1100; i++) {
+    assert_int_equal(mr_world_step_to(w, i * 0.001, NULL), MR_OK);
+    double x[3], v[3];
+    mr_world_particle_state(w, b, x, v);
+    lowest = fmin(lowest, x[1] - r);
+    if (v[1] > 0)
+      bounced = 1;
+    if (bounced)
+      apex = fmax(apex, x[1] - r);
+  }
+  mr_world_stats st;
+  mr_world_get_stats(w, &st);
+  printf("bounce: apex %.6f m, predicted %.6f m, lowest %.3g m, collisions %llu\n", apex, e * e * h0,
+         lowest, (unsigned long long)st.collisions);
+  assert_true(bounced);
+  assert_int_equal((int)st.collisions, 1);
+  assert_true(fabs(apex - e * e * h0) < 1e-3);
+  assert_true(lowest > -2e-4);
+  mr_world_destroy(w);
+}
+
+/* A particle placed on the floor at rest stays there: no sinking, no
+ * jitter, and a bouncing ball comes to rest on the floor instead of
+ * chattering. Contact rows carry a compliance of 1e-6 of their diagonal
+ * (eval.c), so a resting particle sags until K_s·χ makes up 1e-6 g:
+ * χ = −1e-6·g/K_s ≈ −1e-7 m. We allow twice that, and 1e-6 m/s. */
+static void resting_contact_holds_without_sinking_or_jitter(void **state)
+{
+  (void)state;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_DRAG, NULL);
+  const double r = 0.05;
+  int still = add(w, (double[3]){0, r, 0}, NULL, r, 0);
+  int ball = add(w, (double[3]){1, 0.5 + r, 0}, NULL, r, 1);
+  floor_plane(w, 0.5, 0.3);
+  double worst_y = 0, worst_v = 0;
+  for (int f = 1; f <= 600; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    double x[3], v[3];
+    mr_world_particle_state(w, still, x, v);
+    worst_y = fmax(worst_y, fabs(x[1] - r));
+    worst_v = fmax(worst_v, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  }
+  double xb[3], vb[3];
+  mr_world_particle_state(w, ball, xb, vb);
+  mr_world_stats st;
+  mr_world_get_stats(w, &st);
+  printf("resting: |y - r| <= %.3g m, |v| <= %.3g m/s; ball settles at %.3g m above rest, "
+         "|v| = %.3g, %llu collisions\n", worst_y, worst_v, xb[1] - r, fabs(vb[1]),
+         (unsigned long long)st.collisions);
+  assert_true(worst_y < 2e-6 * 9.81 / 100.0);
+  assert_true(worst_v < 1e-6);
+  assert_true(fabs(xb[1] - r) < 1e-4);
+  assert_true(fabs(vb[1]) < 1e-6);
+  assert_true(st.collisions >= 3);
+  mr_world_destroy(w);
+}
+
+/* Sliding at v₀ = 3 m/s with μ = 0.5 stops after v₀²/(2 μ g) = 0.9174 m.
+ * Kinetic friction is exact under RK4 (constant deceleration); near rest the
+ * force is limited to 2m|v|/Δt so it cannot reverse the motion. That tail
+ * slides h·v/2 instead of v²/(2μg), at most μ g Δt²/8 = 1.5 mm at the
+ * 0.05 s step, plus the step in which the limit takes over mid-way: we
+ * assert twice the tail bound, μ g Δt²/4 = 3.1 mm (0.33 %). */
+static void friction_stops_slide_at_mu_g_distance(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES, &def);
+  const double r = 0.05, v0 = 3.0, mu = 0.5;
+  int p = add(w, (double[3]){0, r, 0}, (double[3]){v0, 0, 0}, r, 0);
+  floor_plane(w, 0.0, mu);
+  for (int f = 1; f <= 30; f++)
+    assert_int_equal(mr_world_step_to(w, f * 0.1, NULL), MR_OK);
+  double x[3], v[3];
+  mr_world_particle_state(w, p, x, v);
+  double expect = v0 * v0 / (2 * mu * 9.81);
+  printf("friction: slid %.5f m, predicted %.5f m, error %.3g m, final speed %.3g m/s\n", x[0],
+         expect, x[0] - expect, fabs(v[0]));
+  assert_true(fabs(x[0] - expect) <= mu * 9.81 * 0.05 * 0.05 / 4);
+  assert_true(fabs(v[0]) < 1e-6);
+  assert_true(fabs(x[1] - r) < 2e-6 * 9.81 / 100.0); /* the contact's sag, see above */
+  mr_world_destroy(w);
+}
+
+static void tetra(mr_world *w, const double c[3], const double v[3], double r, int puppet, int ids[4])
+{
+  const double off[4][3] = {{0.2, 0, 0}, {-0.1, 0.17, 0}, {-0.1, -0.17, 0}, {0, 0, 0.2}};
+  for (int i = 0; i < 4; i++) {
+    double x[3] = {c[0] + off[i][0], c[1] + off[i][1], c[2] + off[i][2]};
+    ids[i] = add(w, x, v, r, puppet);
+  }
+  mr_rigid_group_def g = mr_default_rigid_group_def();
+  g.particles = ids;
+  g.count = 4;
+  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.particles = ids;
+  part.count = 4;
+  part.restitution = 0.9;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+}
+
+/* Planes other than the floor: a wall x ≤ 1 (normal (−1, 0, 0), offset −1)
+ * with restitution 1 sends a particle sliding at 2 m/s back at 2 m/s, its
+ * surface stopping at the wall. The normal is normalised on entry. */
+static void wall_plane_reflects_particle(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0;
+  mr_world *w = make_world(MR_EFFECT_PLANES, &def);
+  int p = add(w, (double[3]){0, 0, 0}, (double[3]){2, 0, 0}, 0.1, 0);
+  mr_plane_def wall = mr_default_plane_def();
+  wall.normal[0] = -3.0; /* not unit on purpose */
+  wall.normal[1] = 0.0;
+  wall.offset = -1.0;
+  wall.restitution = 1.0;
+  wall.friction = 0.0;
+  assert_int_equal(mr_world_add_plane(w, &wall, NULL), MR_OK);
+  double far = -INFINITY;
+  for (int f = 1; f <= 60; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    double x[3];
+    mr_world_particle_state(w, p, x, NULL);
+    far = fmax(far, x[0] + 0.1);
+  }
+  double x[3], v[3];
+  mr_world_particle_state(w, p, x, v);
+  printf("wall: farthest surface point %.6f m (wall at 1), v = %.6f m/s after\n", far, v[0]);
+  assert_true(far < 1.0 + 2e-4);
+  assert_true(fabs(v[0] + 2.0) < 1e-5); /* the contact's 1e-6 compliance costs 2e-6 of the rebound */
+  assert_true(fabs(x[0] - (0.9 - 2.0 * (1.0 - 0.45))) < 1e-3);
+  mr_world_destroy(w);
+}
+
+/* Two rigid tetrahedra (one part each, sphere radius 0.12 m per particle)
+ * thrown at each other at 2 m/s each: sampled every 2 ms, no leaf sphere of
+ * one ever overlaps one of the other by more than twice the contact slop,
+ * and they leave the impact moving apart. */
+static void sphere_tree_puppets_do_not_interpenetrate(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0;
+  mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION, &def);
+  const double r = 0.12;
+  int a[4], b[4];
+  tetra(w, (double[3]){-1, 0, 0}, (double[3]){2, 0, 0}, r, 0, a);
+  tetra(w, (double[3]){1, 0.05, 0.03}, (double[3]){-2, 0, 0}, r, 1, b);
+  double worst = INFINITY;
+  for (int f = 1; f <= 500; f++) {
+    assert_int_equal(mr_world_step_to(w, f * 0.002, NULL), MR_OK);
+    for (int i = 0; i < 4; i++)
+      for (int j = 0; j < 4; j++) {
+        double xa[3], xb[3];
+        mr_world_particle_state(w, a[i], xa, NULL);
+        mr_world_particle_state(w, b[j], xb, NULL);
+        double d = sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
+                        (xa[2] - xb[2]) * (xa[2] - xb[2]));
+        worst = fmin(worst, d - 2 * r);
+      }
+  }
+  double va[3], vb[3];
+  mr_world_particle_state(w, a[0], NULL, va);
+  mr_world_particle_state(w, b[0], NULL, vb);
+  mr_world_stats st;
+  mr_world_get_stats(w, &st);
+  printf("sphere trees: smallest gap %.3g m, collisions %llu, vx %.3f / %.3f, deviation %.3g\n", worst,
+         (unsigned long long)st.collisions, va[0], vb[0], mr_world_deviation(w));
+  assert_true(st.collisions >= 1);
+  assert_true(worst > -2e-4);
+  assert_true(va[0] < 0 && vb[0] > 0);
+  assert_true(mr_world_pass_calls(w, MR_PASS_PUPPET_COLLISION) > 0);
+  mr_world_destroy(w);
+}
+
+/* A rigid tetrahedron dropped tilted onto the floor lands on several
+ * points at once: its contact rows are redundant with each other and with
+ * the group's links. It must come to rest (speed under 1 mm/s over the last
+ * 2 s of 6 s, no particle below the floor by more than the slop) instead of
+ * chattering on its contacts. */
+static void rigid_body_settles_on_floor_without_chatter(void **state)
+{
+  (void)state;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_DRAG | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES,
+                           NULL);
+  const double r = 0.04;
+  const double pts[4][3] = {{0, 0.5, 0}, {0.3, 0.55, 0}, {0.1, 0.45, 0.3}, {0.12, 0.75, 0.1}};
+  int ids[4];
+  for (int i = 0; i < 4; i++)
+    ids[i] = add(w, pts[i], (double[3]){0.3, 0, 0}, r, 0);
+  mr_rigid_group_def g = mr_default_rigid_group_def();
+  g.particles = ids;
+  g.count = 4;
+  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+  floor_plane(w, 0.3, 0.5);
+  double late_speed = 0, lowest = INFINITY;
+  for (int f = 1; f <= 360; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    for (int i = 0; i < 4; i++) {
+      double x[3], v[3];
+      mr_world_particle_state(w, ids[i], x, v);
+      lowest = fmin(lowest, x[1] - r);
+      if (f > 240)
+        late_speed = fmax(late_speed, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    }
+  }
+  mr_world_stats st;
+  mr_world_get_stats(w, &st);
+  printf("tetrahedron on the floor: speed over the last 2 s <= %.3g m/s, lowest %.3g m, %llu "
+         "collisions, %d resting contacts, deviation %.3g\n", late_speed, lowest,
+         (unsigned long long)st.collisions, st.resting_contacts, mr_world_deviation(w));
+  assert_true(late_speed < 1e-3);
+  assert_true(lowest > -2e-4);
+  assert_true(st.resting_contacts >= 3);
+  assert_true(st.collisions < 40);
+  assert_true(mr_world_deviation(w) < 1e-4);
+  mr_world_destroy(w);
+}
+
+/* Self-collision (§4.4): two arms of one puppet, hinged at a pinned
+ * shoulder, swing towards each other. Their hand spheres (parts {A} and
+ * {C}) collide and bounce; the shoulder's big sphere (part {B}) overlaps
+ * both hands from the start but is adjacent to them (joined by the arms'
+ * distance constraints) and so is never tested. */
+static void non_adjacent_parts_of_one_puppet_collide(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0;
+  mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_SELF_COLLISION, &def);
+  const double r = 0.1;
+  int b = add(w, (double[3]){0, 0, 0}, NULL, 0.0, 0);
+  int a = add(w, (double[3]){1, 0, 0}, (double[3]){0, 1, 0}, r, 0);
+  int c = add(w, (double[3]){0, 1, 0}, (double[3]){1, 0, 0}, r, 0);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = b;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = b;
+  d.b = a;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  d.b = c;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.count = 1;
+  part.restitution = 1.0;
+  part.particles = &a;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &c;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &b;
+  part.radius = 0.95;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  double worst = INFINITY;
+  for (int f = 1; f <= 600; f++) { /* they meet at t = π/4 s */
+    assert_int_equal(mr_world_step_to(w, f * 0.002, NULL), MR_OK);
+    double xa[3], xc[3];
+    mr_world_particle_state(w, a, xa, NULL);
+    mr_world_particle_state(w, c, xc, NULL);
+    double dist = sqrt((xa[0] - xc[0]) * (xa[0] - xc[0]) + (xa[1] - xc[1]) * (xa[1] - xc[1]) +
+                       (xa[2] - xc[2]) * (xa[2] - xc[2]));
+    worst = fmin(worst, dist - 2 * r);
+  }
+  double va[3];
+  mr_world_particle_state(w, a, NULL, va);
+  mr_world_stats st;
+  mr_world_get_stats(w, &st);
+  printf("self-collision: smallest gap %.3g m, collisions %llu, hand A now moving (%.3f, %.3f)\n", worst,
+         (unsigned long long)st.collisions, va[0], va[1]);
+  assert_int_equal((int)st.collisions, 1);
+  assert_true(worst > -2e-4);
+  assert_true(va[1] < 0); /* A swung back down */
+  assert_int_equal((int)mr_world_pass_calls(w, MR_PASS_PUPPET_COLLISION), 0);
+  mr_world_destroy(w);
+}
+
+int main(void)
+{
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(ball_bounces_to_restitution_height),
+    cmocka_unit_test(resting_contact_holds_without_sinking_or_jitter),
+    cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
+    cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),
+    cmocka_unit_test(wall_plane_reflects_particle),
+    cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),
+    cmocka_unit_test(non_adjacent_parts_of_one_puppet_collide),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,183 @@
+/* Requirement 8: only declared effects exist in a world. The per-pass
+ * counters show that an undeclared pass never runs (not even a test per
+ * particle: its counter stays 0), that declared passes do, and that an
+ * element of an undeclared effect is refused when added. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <string.h>
+
+#include "mr_physics.h"
+
+static mr_world *make(uint32_t effects)
+{
+  mr_world_def def = mr_default_world_def();
+  def.effects = effects;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  return w;
+}
+
+static int add(mr_world *w, double x, double y, double z, int frame)
+{
+  mr_particle_def p = mr_default_particle_def();
+  p.position[0] = x;
+  p.position[1] = y;
+  p.position[2] = z;
+  p.radius = 0.05;
+  p.frame = frame;
+  int id = -1;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  return id;
+}
+
+static void gravity_only_world_runs_no_other_pass(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY);
+  add(w, 0, 1, 0, -1);
+  add(w, 1, 1, 0, -1);
+  assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
+  assert_true(mr_world_pass_calls(w, MR_PASS_GRAVITY) > 0);
+  for (int p = 0; p < MR_PASS_COUNT; p++)
+    if (p != MR_PASS_GRAVITY)
+      assert_int_equal(mr_world_pass_calls(w, (mr_pass)p), 0);
+  mr_world_destroy(w);
+}
+
+/* Constraints but no colliders: zero collision work, however many steps. */
+static void world_without_colliders_does_no_collision_work(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_DRAG);
+  int a = add(w, 0, 0, 0, -1), b = add(w, 1, 0, 0, -1);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = a;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  assert_int_equal(mr_world_step_to(w, 2.0, NULL), MR_OK);
+  assert_true(mr_world_pass_calls(w, MR_PASS_CONSTRAINTS) > 0);
+  assert_true(mr_world_pass_calls(w, MR_PASS_SOLVE) > 0);
+  assert_true(mr_world_pass_calls(w, MR_PASS_DRAG) > 0);
+  assert_int_equal(mr_world_pass_calls(w, MR_PASS_PLANES), 0);
+  assert_int_equal(mr_world_pass_calls(w, MR_PASS_SELF_COLLISION), 0);
+  assert_int_equal(mr_world_pass_calls(w, MR_PASS_PUPPET_COLLISION), 0);
+  assert_int_equal(mr_world_pass_calls(w, MR_PASS_SPRINGS), 0);
+  assert_int_equal(mr_world_pass_calls(w, MR_PASS_FRAMES), 0);
+  mr_world_destroy(w);
+}
+
+static void undeclared_elements_are_refused(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY);
+  int a = add(w, 0, 0, 0, -1), b = add(w, 1, 0, 0, -1);
+  mr_spring_def s = mr_default_spring_def();
+  s.a = a;
+  s.b = b;
+  assert_int_equal(mr_world_add_spring(w, &s, NULL), MR_ERR_NOT_DECLARED);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_ERR_NOT_DECLARED);
+  mr_plane_def pl = mr_default_plane_def();
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_ERR_NOT_DECLARED);
+  int ids[2] = {a, b};
+  mr_part_def part = mr_default_part_def();
+  part.particles = ids;
+  part.count = 2;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_ERR_NOT_DECLARED);
+  mr_frame_def fd = mr_default_frame_def();
+  assert_int_equal(mr_world_add_frame(w, &fd, NULL), MR_ERR_NOT_DECLARED);
+  mr_sine_spring_def ss = mr_default_sine_spring_def();
+  ss.a = a;
+  ss.b = b;
+  assert_int_equal(mr_world_add_sine_spring(w, &ss, NULL), MR_ERR_NOT_DECLARED);
+  mr_antigravity_def ag = mr_default_antigravity_def();
+  ag.acted = a;
+  ag.trigger = b;
+  assert_int_equal(mr_world_add_antigravity(w, &ag, NULL), MR_ERR_NOT_DECLARED);
+  mr_triggered_def tr = mr_default_triggered_def();
+  tr.acted = a;
+  tr.control = b;
+  tr.trigger = a;
+  assert_int_equal(mr_world_add_triggered(w, &tr, NULL), MR_ERR_NOT_DECLARED);
+  assert_non_null(strstr(mr_world_last_error(w), "declare"));
+  mr_world_destroy(w);
+}
+
+/* Every effect declared and present: every pass runs. */
+static void every_declared_pass_runs(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_DRAG | MR_EFFECT_SPRINGS | MR_EFFECT_STRINGS |
+                     MR_EFFECT_ANTIGRAVITY | MR_EFFECT_TRIGGERED | MR_EFFECT_SINE_SPRINGS |
+                     MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES | MR_EFFECT_SELF_COLLISION |
+                     MR_EFFECT_PUPPET_COLLISION | MR_EFFECT_STRING_CORRECTION | MR_EFFECT_FRAMES);
+  mr_frame_def fd = mr_default_frame_def();
+  fd.pose.position[1] = 3.0;
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
+  int c = add(w, 0, 3, 0, frame);
+  int a = add(w, 0, 2, 0, -1), b = add(w, 0.3, 2, 0, -1), e = add(w, 0, 1.5, 0.3, -1);
+  int ids[2] = {a, b};
+  mr_distance_def d = mr_default_distance_def();
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_spring_def s = mr_default_spring_def();
+  s.a = b;
+  s.b = e;
+  assert_int_equal(mr_world_add_spring(w, &s, NULL), MR_OK);
+  mr_string_def str = mr_default_string_def();
+  str.frame_particle = c;
+  str.puppet_particle = a;
+  assert_int_equal(mr_world_add_string(w, &str, NULL), MR_OK);
+  mr_antigravity_def ag = mr_default_antigravity_def();
+  ag.acted = a;
+  ag.trigger = e;
+  assert_int_equal(mr_world_add_antigravity(w, &ag, NULL), MR_OK);
+  mr_triggered_def tr = mr_default_triggered_def();
+  tr.acted = a;
+  tr.control = c;
+  tr.trigger = e;
+  assert_int_equal(mr_world_add_triggered(w, &tr, NULL), MR_OK);
+  mr_sine_spring_def ss = mr_default_sine_spring_def();
+  ss.a = a;
+  ss.b = e;
+  assert_int_equal(mr_world_add_sine_spring(w, &ss, NULL), MR_OK);
+  mr_plane_def pl = mr_default_plane_def();
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.particles = ids;
+  part.count = 2;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &e;
+  part.count = 1;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  assert_true(mr_world_step_to(w, 1.0, NULL) >= MR_OK);
+  for (int p = 0; p < MR_PASS_COUNT; p++) {
+    printf("%-18s %llu\n", mr_pass_name((mr_pass)p),
+           (unsigned long long)mr_world_pass_calls(w, (mr_pass)p));
+    assert_true(mr_world_pass_calls(w, (mr_pass)p) > 0);
+  }
+  mr_world_destroy(w);
+}
+
+int main(void)
+{
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(gravity_only_world_runs_no_other_pass),
+    cmocka_unit_test(world_without_colliders_does_no_collision_work),
+    cmocka_unit_test(undeclared_elements_are_refused),
+    cmocka_unit_test(every_declared_pass_runs),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

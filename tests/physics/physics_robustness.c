@@ -1,0 +1,251 @@
+/* Hard cases: divergence (§7) resets to the start configuration and carries
+ * on; dependent constraints are reported with bounded forces (§4.3, §5.1);
+ * bad input is refused at build time with a message naming it. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "mr_physics.h"
+
+static mr_world *make(uint32_t effects, mr_solve_method solver)
+{
+  mr_world_def def = mr_default_world_def();
+  def.effects = effects;
+  def.solver = solver;
+  mr_world *w = NULL;
+  char msg[200];
+  assert_int_equal(mr_world_create(&def, &w, msg, sizeof msg), MR_OK);
+  return w;
+}
+
+static int add(mr_world *w, double x, double y, double z)
+{
+  mr_particle_def p = mr_default_particle_def();
+  p.position[0] = x;
+  p.position[1] = y;
+  p.position[2] = z;
+  int id = -1;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  return id;
+}
+
+/* A hand-driven point that goes NaN for 30 ms (a broken input device). */
+static void nan_curve(void *user, double t, double pos[3], double vel[3], double acc[3])
+{
+  (void)user;
+  double bad = (t >= 0.5 && t < 0.53) ? NAN : 0.0;
+  pos[0] = 0.2 * sin(4 * t) + bad;
+  pos[1] = 1.0;
+  pos[2] = 0.0;
+  vel[0] = 0.8 * cos(4 * t);
+  vel[1] = vel[2] = 0.0;
+  acc[0] = -3.2 * sin(4 * t);
+  acc[1] = acc[2] = 0.0;
+}
+
+static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state)
+{
+  (void)state;
+  /* A floor too, so the NaN state also passes through contact detection. */
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_DRAG | MR_EFFECT_PLANES,
+                     MR_SOLVE_LDLT);
+  int hand = add(w, 0, 1, 0), bob = add(w, 0.3, 0.3, 0.1);
+  mr_plane_def floor = mr_default_plane_def();
+  floor.offset = -1.0;
+  assert_int_equal(mr_world_add_plane(w, &floor, NULL), MR_OK);
+  add(w, 2, -1, 0); /* resting on the floor: its contact row is in every solve */
+  mr_curve_def c = mr_default_curve_def();
+  c.particle = hand;
+  c.fn = nan_curve;
+  assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = hand;
+  d.b = bob;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  double start[9];
+  mr_world_positions(w, start, 3);
+  int resets = 0, moved = 0;
+  while (mr_world_time(w) < 2.0) {
+    mr_step_report rep;
+    mr_status s = mr_world_step(w, &rep);
+    if (s == MR_DIVERGED) {
+      /* Right after the reset the state is the start state, bit for bit. */
+      double now[9];
+      mr_world_positions(w, now, 3);
+      assert_memory_equal(now, start, sizeof now);
+      assert_int_equal(rep.divergences, 1);
+      assert_non_null(strstr(mr_world_last_error(w), "start configuration"));
+      resets++;
+    } else {
+      assert_int_equal(s, MR_OK);
+    }
+    double x[3];
+    mr_world_particle_state(w, bob, x, NULL);
+    assert_true(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]));
+    if (mr_world_time(w) > 0.6 && fabs(x[0] - 0.3) > 1e-3)
+      moved = 1;
+  }
+  mr_world_stats st;
+  mr_world_get_stats(w, &st);
+  printf("divergence: %d resets (stats %llu), deviation at 2 s %.3g\n", resets,
+         (unsigned long long)st.divergences, mr_world_deviation(w));
+  assert_true(resets >= 1 && resets <= 5);
+  assert_int_equal((int)st.divergences, resets);
+  assert_true(moved);
+  assert_true(mr_world_deviation(w) < 1e-2);
+  mr_world_destroy(w);
+}
+
+/* A rigid tetrahedron (6 links, §5.1) hung from a pin, plus a duplicate of
+ * one link: J has a dependent row. Each solver must report it (LDLᵀ names
+ * it) or at least stay bounded; the multipliers (constraint forces per unit
+ * length) stay under 100 N, the order of the tetrahedron's weight × a few. */
+static void dependent_rows_reported_and_forces_bounded(void **state)
+{
+  (void)state;
+  const mr_solve_method methods[] = {MR_SOLVE_LDLT, MR_SOLVE_EIGEN, MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG};
+  for (int m = 0; m < 4; m++) {
+    mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_DRAG, methods[m]);
+    int ids[4] = {add(w, 0, 0, 0), add(w, 0.4, 0, 0), add(w, 0.2, 0, 0.35), add(w, 0.2, 0.3, 0.1)};
+    mr_rigid_group_def g = mr_default_rigid_group_def();
+    g.particles = ids;
+    g.count = 4;
+    assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+    assert_int_equal(mr_world_constraint_rows(w), 6);
+    mr_distance_def d = mr_default_distance_def();
+    d.a = ids[0];
+    d.b = ids[1];
+    assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+    mr_pin_def pin = mr_default_pin_def();
+    pin.particle = ids[3];
+    assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+    double worst = 0;
+    int reported = 0;
+    for (int f = 1; f <= 120; f++) {
+      mr_step_report rep;
+      mr_status s = mr_world_step_to(w, f / 60.0, &rep);
+      assert_true(s == MR_OK || s == MR_DEPENDENT);
+      if (s == MR_DEPENDENT) {
+        assert_true(rep.dependent >= 1);
+        assert_non_null(strstr(mr_world_last_error(w), "dependent"));
+        reported = 1;
+      }
+      mr_world_stats st;
+      mr_world_get_stats(w, &st);
+      worst = fmax(worst, st.max_multiplier);
+      assert_true(isfinite(st.max_multiplier));
+    }
+    mr_world_stats st;
+    mr_world_get_stats(w, &st);
+    printf("%-12s dependent reported: %s, max |lambda| %.3g, deviation %.3g, divergences %llu\n",
+           mr_solve_method_name(methods[m]), reported ? "yes" : "no", worst, mr_world_deviation(w),
+           (unsigned long long)st.divergences);
+    if (methods[m] == MR_SOLVE_LDLT)
+      assert_true(reported);
+    assert_true(worst < 100.0);
+    assert_true(mr_world_deviation(w) < 1e-3);
+    assert_int_equal((int)st.divergences, 0);
+    mr_world_destroy(w);
+  }
+}
+
+static void bad_input_is_refused_with_a_message(void **state)
+{
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS, MR_SOLVE_LDLT);
+  int a = add(w, 0, 0, 0), b = add(w, 0, 0, 0), c = add(w, 1, 0, 0), e = add(w, 0, 1, 0);
+  int rows = mr_world_constraint_rows(w);
+
+  mr_distance_def d = mr_default_distance_def(); /* coincident particles */
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_ERR_DEGENERATE);
+  assert_non_null(strstr(mr_world_last_error(w), "coincide"));
+  d.b = c; /* zero length */
+  d.length = 0.0;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_ERR_DEGENERATE);
+  assert_non_null(strstr(mr_world_last_error(w), "zero length"));
+  d.length = NAN;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_ERR_NONFINITE);
+  d.length = -1;
+  d.b = 99;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_ERR_ID);
+  assert_non_null(strstr(mr_world_last_error(w), "99"));
+
+  mr_particle_def p = mr_default_particle_def();
+  p.mass = -1.0;
+  int n = mr_world_particle_count(w);
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_ERR_ARG);
+  assert_non_null(strstr(mr_world_last_error(w), "mass"));
+  p.mass = 0.0;
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_ERR_ARG);
+  p.mass = 1.0;
+  p.position[1] = NAN;
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_ERR_NONFINITE);
+  p.position[1] = 0;
+  p.velocity[2] = INFINITY;
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_ERR_NONFINITE);
+  assert_int_equal(mr_world_particle_count(w), n);
+
+  int flat[4] = {a, c, e, add(w, 1, 1, 0)}; /* all in z = 0 */
+  mr_rigid_group_def g = mr_default_rigid_group_def();
+  g.particles = flat;
+  g.count = 4;
+  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_ERR_DEGENERATE);
+  assert_non_null(strstr(mr_world_last_error(w), "coplanar"));
+  int same[3] = {a, b, c};
+  g.particles = same;
+  g.count = 3;
+  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_ERR_DEGENERATE);
+  assert_int_equal(mr_world_constraint_rows(w), rows); /* nothing half-added */
+
+  double nan3[3] = {NAN, 0, 0}, zero3[3] = {0, 0, 0};
+  assert_int_equal(mr_world_set_particle_state(w, a, nan3, zero3), MR_ERR_NONFINITE);
+  assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
+  assert_int_equal(mr_world_step_to(w, 0.5, NULL), MR_ERR_TIME);
+  assert_int_equal(mr_world_step_to(w, NAN, NULL), MR_ERR_NONFINITE);
+  mr_world_destroy(w);
+
+  mr_world_def def = mr_default_world_def();
+  char msg[200] = "";
+  def.dt_min = 0.1; /* above dt_max */
+  assert_int_equal(mr_world_create(&def, &w, msg, sizeof msg), MR_ERR_ARG);
+  assert_null(w);
+  assert_non_null(strstr(msg, "dt_min"));
+  def = mr_default_world_def();
+  def.gravity[1] = NAN;
+  assert_int_equal(mr_world_create(&def, &w, msg, sizeof msg), MR_ERR_NONFINITE);
+  assert_non_null(strstr(msg, "gravity"));
+}
+
+/* The step guard: a world asked for far more steps than it may take in one
+ * call stops with MR_ERR_LIMIT instead of running away. */
+static void step_limit_stops_runaway_calls(void **state)
+{
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.max_steps_per_call = 50;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  add(w, 0, 0, 0);
+  assert_int_equal(mr_world_step_to(w, 1e6, NULL), MR_ERR_LIMIT);
+  assert_true(mr_world_time(w) > 0.4 && mr_world_time(w) < 3.0);
+  mr_world_destroy(w);
+}
+
+int main(void)
+{
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(nan_world_resets_to_start_counts_and_keeps_stepping),
+    cmocka_unit_test(dependent_rows_reported_and_forces_bounded),
+    cmocka_unit_test(bad_input_is_refused_with_a_message),
+    cmocka_unit_test(step_limit_stops_runaway_calls),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

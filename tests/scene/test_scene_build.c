@@ -1,0 +1,223 @@
+/* A scene built into a physics world: ids, effects, the control frame's
+ * pose, pins. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mr_scene.h"
+#include "mr_scene_world.h"
+
+static void load(const char *text, mr_scene *s) {
+  mr_scene_error e;
+  mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), s, &e);
+  if (st != MR_SCENE_OK)
+    fail_msg("%s", e.text);
+}
+
+static void every_scene_effect_maps_to_its_own_physics_bit(void **state) {
+  (void)state;
+  uint32_t seen = 0;
+  for (unsigned i = 0; i < MR_SCENE_FX_COUNT; i++) {
+    uint32_t b = mr_scene_physics_effects(1u << i);
+    assert_int_equal(b & (b - 1), 0); /* one bit */
+    assert_int_not_equal(b, 0);
+    assert_int_equal(seen & b, 0);    /* not shared */
+    seen |= b;
+  }
+  assert_int_equal(mr_scene_physics_effects(MR_SCENE_FX_DRAG), MR_EFFECT_DRAG);
+  assert_int_equal(mr_scene_physics_effects(MR_SCENE_FX_FLOOR), MR_EFFECT_PLANES);
+  assert_int_equal(mr_scene_physics_effects(MR_SCENE_FX_CONTROL), MR_EFFECT_FRAMES);
+  assert_int_equal(mr_scene_physics_effects(0), 0);
+}
+
+/* The physics places control points from the frame's quaternion; the scene
+ * computes them from Euler angles. Both must agree, or strings would start
+ * stretched. */
+static void control_points_sit_where_the_scene_says(void **state) {
+  (void)state;
+  const char *text = "physics:\n"
+                     "  effects: [control]\n"
+                     "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+                     "  control:\n"
+                     "    pose: {position: [0.5, 2, -1], rotation: [30, -50, 70]}\n"
+                     "    points:\n"
+                     "      - {name: p, offset: [0.3, 0.1, -0.2]}\n"
+                     "      - {name: q, offset: [-0.25, 0, 0.4]}\n";
+  mr_scene s;
+  load(text, &s);
+  mr_scene_world sw;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
+  assert_true(sw.frame >= 0);
+  for (size_t i = 0; i < 2; i++) {
+    double want[3], got[3];
+    mr_scene_control_point_world(&s, i, &s.control_pose, want);
+    assert_int_equal(mr_world_particle_state(sw.world, sw.control_ids[i], got, NULL), MR_OK);
+    for (int k = 0; k < 3; k++)
+      assert_true(fabs(got[k] - want[k]) < 1e-12);
+  }
+  mr_scene_world_free(&sw);
+  mr_scene_free(&s);
+}
+
+static void pinned_particle_stays_and_free_one_falls(void **state) {
+  (void)state;
+  const char *text = "physics:\n"
+                     "  effects: [gravity, constraints]\n"
+                     "  particles:\n"
+                     "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
+                     "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
+                     "    - {name: c, position: [3, 2, 0], mass: 1}\n"
+                     "  constraints: [{between: [a, b]}]\n";
+  mr_scene s;
+  load(text, &s);
+  mr_scene_world sw;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
+  assert_int_equal(mr_world_particle_count(sw.world), 3);
+  assert_int_equal(mr_world_constraint_rows(sw.world), 4); /* pin (3) + distance (1) */
+  assert_true(mr_world_step_to(sw.world, 1.0, NULL) >= 0);
+  double pa[3], pb[3], pc[3];
+  mr_world_particle_state(sw.world, sw.particle_ids[0], pa, NULL);
+  mr_world_particle_state(sw.world, sw.particle_ids[1], pb, NULL);
+  mr_world_particle_state(sw.world, sw.particle_ids[2], pc, NULL);
+  assert_true(fabs(pa[1] - 2.0) < 1e-6 && fabs(pa[0]) < 1e-6);
+  /* b swings on its 0.5 m link; c falls freely: 2 - g/2 after 1 s */
+  double d = sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]));
+  assert_true(fabs(d - 0.5) < 0.005);
+  assert_true(fabs(pc[1] - (2.0 - 9.81 / 2)) < 1e-6);
+  mr_scene_world_free(&sw);
+  mr_scene_free(&s);
+}
+
+typedef struct tally {
+  uint64_t accepted;
+  double dt_sum;
+  double last_t;
+  int ordered;
+} tally;
+
+static void count_step(void *user, const mr_scene_step *step) {
+  tally *t = user;
+  t->accepted += (uint64_t)step->accepted;
+  t->dt_sum += step->dt * step->accepted;
+  if (!(step->t > t->last_t))
+    t->ordered = 0;
+  t->last_t = step->t;
+}
+
+static void run_reports_every_step_to_the_callback(void **state) {
+  (void)state;
+  const char *text = "sim: {duration: 2}\n"
+                     "physics:\n"
+                     "  effects: [gravity, constraints]\n"
+                     "  particles:\n"
+                     "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
+                     "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
+                     "  constraints: [{between: [a, b]}]\n";
+  mr_scene s;
+  load(text, &s);
+  tally t = {0, 0, 0, 1};
+  mr_scene_run_opts o = {0, count_step, &t};
+  mr_scene_run_result r;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_true(r.sim_time == 2.0);
+  assert_true(r.finite);
+  assert_int_equal(t.accepted, r.steps);
+  assert_true(t.ordered);
+  assert_true(t.last_t == 2.0);
+  assert_true(r.dt_max <= 0.05 + 1e-12);
+  assert_true(fabs(r.dt_mean - t.dt_sum / (double)t.accepted) < 1e-12);
+  assert_int_equal(r.resets, 0);
+  mr_scene_free(&s);
+}
+
+/* A scene that sets nothing runs with the paper's settings (§7): the
+ * loader leaves them unset and the physics' defaults apply. */
+static void unset_settings_are_the_papers(void **state) {
+  (void)state;
+  const char *text = "physics:\n"
+                     "  effects: [gravity]\n"
+                     "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+  mr_scene s;
+  load(text, &s);
+  assert_true(isnan(s.settings.dt_min) && isnan(s.settings.dt_max));
+  assert_true(isnan(s.settings.threshold_min) && isnan(s.settings.threshold_max));
+  assert_string_equal(s.settings.integrator, "");
+  mr_world_def d = mr_default_world_def();
+  assert_true(d.dt_min == 0.01 && d.dt_max == 0.05);
+  assert_true(d.deviation_low == 1e-4 && d.deviation_high == 1e-2);
+  assert_int_equal(d.integrator, MR_INTEGRATOR_RK4);
+  /* The run's steps stay inside those bounds. */
+  mr_scene_run_opts o = {1.0, NULL, NULL};
+  mr_scene_run_result r;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_true(r.dt_max <= 0.05 + 1e-12);
+  assert_true(r.steps >= 20); /* 1 s at no more than 0.05 s a step */
+  mr_scene_free(&s);
+}
+
+typedef struct frames {
+  double fps, last_t;
+  int crossed;
+  uint64_t rows;
+} frames;
+
+static void check_frame_landing(void *user, const mr_scene_step *step) {
+  frames *f = user;
+  /* No frame time k/fps lies strictly inside a step. */
+  double k_prev = floor(f->last_t * f->fps + 1e-9);
+  double k_now = ceil(step->t * f->fps - 1e-9);
+  if (k_now - k_prev > 1)
+    f->crossed = 1;
+  f->last_t = step->t;
+  f->rows++;
+}
+
+/* With sim.fps the steps land on every frame time, as in the theater. */
+static void steps_land_on_frame_times_with_fps(void **state) {
+  (void)state;
+  const char *text = "sim: {duration: 3, fps: 30}\n"
+                     "physics:\n"
+                     "  effects: [gravity, constraints, strings, control]\n"
+                     "  particles:\n"
+                     "    - {name: a, position: [0, 1, 0], mass: 0.5}\n"
+                     "    - {name: b, position: [0.2, 1, 0], mass: 0.5}\n"
+                     "  constraints: [{between: [a, b]}]\n"
+                     "  control:\n"
+                     "    pose: {position: [0, 1.5, 0]}\n"
+                     "    points: [{name: bar, offset: [0, 0, 0]}]\n"
+                     "    track: {oscillate: {amplitude: [0.1, 0, 0], frequency: 1}}\n"
+                     "  strings: [{from: bar, to: a, stiffness: 50, damping: 1}]\n";
+  mr_scene s;
+  load(text, &s);
+  frames f = {30.0, 0.0, 0, 0};
+  mr_scene_run_opts o = {0, check_frame_landing, &f};
+  mr_scene_run_result r;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_false(f.crossed);
+  assert_true(f.rows >= 90); /* at least one step per frame */
+  assert_true(r.dt_max <= 1.0 / 30.0 + 1e-12);
+  assert_true(r.pass_calls[MR_PASS_STRINGS] > 0);
+  mr_scene_free(&s);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(every_scene_effect_maps_to_its_own_physics_bit),
+      cmocka_unit_test(control_points_sit_where_the_scene_says),
+      cmocka_unit_test(pinned_particle_stays_and_free_one_falls),
+      cmocka_unit_test(run_reports_every_step_to_the_callback),
+      cmocka_unit_test(steps_land_on_frame_times_with_fps),
+      cmocka_unit_test(unset_settings_are_the_papers),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,351 @@
+/* The scene loader: what a good file becomes, and for each kind of bad
+ * file the exact file:line:column and message. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mr_scene.h"
+#include "scene_proc.h"
+
+#define BASE                                                                                  \
+  "physics:\n"                                                                                \
+  "  effects: [gravity, constraints]\n"                                                       \
+  "  particles:\n"                                                                            \
+  "    - {name: a, position: [0, 1, 0], mass: 1}\n"                                          \
+  "    - {name: b, position: [1, 1, 0], mass: 2}\n"
+
+/* Loads text as "t.yaml" and expects a failure whose text is exactly
+ * `expected`. */
+static void expect_error(const char *text, mr_scene_status status, const char *expected) {
+  mr_scene s;
+  mr_scene_error e;
+  mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), &s, &e);
+  if (st == MR_SCENE_OK)
+    mr_scene_free(&s);
+  assert_int_equal(st, status);
+  assert_string_equal(e.text, expected);
+}
+
+static void good_scene_loads_with_paper_defaults(void **state) {
+  (void)state;
+  const char *text = "# a comment\n" BASE "  constraints:\n    - {between: [a, b]}\n";
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
+  assert_int_equal(s.n_particles, 2);
+  assert_string_equal(s.particles[1].name, "b");
+  assert_true(s.particles[1].mass == 2.0);
+  assert_int_equal(s.n_distances, 1);
+  assert_true(fabs(s.distances[0].length - 1.0) < 1e-15);
+  assert_int_equal(s.distances[0].pos.line, 8); /* after the comment line */
+  assert_int_equal(s.effects, MR_SCENE_FX_GRAVITY | MR_SCENE_FX_CONSTRAINTS);
+  assert_true(s.gravity[1] == -9.81);
+  /* Settings the file leaves out stay NaN: the physics library's defaults,
+   * which are the paper's, apply. */
+  assert_true(isnan(s.settings.dt_max));
+  assert_true(s.duration == 10.0);
+  mr_scene_free(&s);
+}
+
+static void settings_and_anchors_are_read(void **state) {
+  (void)state;
+  const char *text = "name: anchors\n"
+                     "sim: {duration: 60, fps: 25}\n"
+                     "physics:\n"
+                     "  effects: [gravity, drag, springs]\n"
+                     "  drag: 0.5\n"
+                     "  ats: {dt_min: 0.01, dt_max: 0.05, threshold_min: 0.0001, "
+                     "threshold_max: 0.01}\n"
+                     "  solver: {integrator: rk4, method: ldlt, ks: 50, kd: 10}\n"
+                     "  particles:\n"
+                     "    - {name: a, position: [0, 1, 0], mass: 1}\n"
+                     "    - {name: b, position: [0, 2, 0], mass: 1}\n"
+                     "    - {name: c, position: [0, 3, 0], mass: 1}\n"
+                     "  springs:\n"
+                     "    - &soft {between: [a, b], stiffness: 20, damping: 0.5}\n"
+                     "    - {between: [b, c], stiffness: 30}\n"
+                     "    - *soft\n";
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
+  assert_string_equal(s.name, "anchors");
+  assert_true(s.duration == 60.0 && s.fps == 25.0);
+  assert_true(s.drag == 0.5);
+  assert_true(s.settings.dt_min == 0.01 && s.settings.threshold_max == 0.01);
+  assert_string_equal(s.settings.method, "ldlt");
+  assert_true(s.settings.ks == 50.0);
+  assert_int_equal(s.n_springs, 3);
+  assert_true(s.springs[0].stiffness == 20.0);
+  /* the alias repeats the anchored spring */
+  assert_true(s.springs[2].stiffness == 20.0 && s.springs[2].damping == 0.5);
+  assert_int_equal(s.springs[2].a, 0);
+  assert_true(isnan(s.springs[1].damping));
+  mr_scene_free(&s);
+}
+
+static void keyframes_ease_and_hold(void **state) {
+  (void)state;
+  const char *text = "physics:\n"
+                     "  effects: [control]\n"
+                     "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+                     "  control:\n"
+                     "    points: [{name: bar, offset: [1, 0, 0]}]\n"
+                     "    pose: {position: [0, 2, 0]}\n"
+                     "    track:\n"
+                     "      keyframes:\n"
+                     "        - {t: 1, position: [0, 2, 0]}\n"
+                     "        - {t: 3, position: [2, 2, 0], rotation: [0, 0, 90]}\n";
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
+  mr_scene_pose p;
+  mr_scene_control_pose_at(&s, 0.0, &p);
+  assert_true(p.position[0] == 0.0 && p.position[1] == 2.0);
+  mr_scene_control_pose_at(&s, 2.0, &p); /* halfway: smoothstep(0.5) = 0.5 */
+  assert_true(fabs(p.position[0] - 1.0) < 1e-12);
+  mr_scene_control_pose_at(&s, 1.5, &p); /* smoothstep(0.25) = 0.15625 */
+  assert_true(fabs(p.position[0] - 2 * 0.15625) < 1e-12);
+  mr_scene_control_pose_at(&s, 10.0, &p);
+  assert_true(p.position[0] == 2.0 && p.rotation_deg[2] == 90.0);
+  /* 90 degrees about z takes the offset (1, 0, 0) to (0, 1, 0). */
+  double w[3];
+  mr_scene_control_point_world(&s, 0, &p, w);
+  assert_true(fabs(w[0] - 2.0) < 1e-12 && fabs(w[1] - 3.0) < 1e-12 && fabs(w[2]) < 1e-12);
+  mr_scene_free(&s);
+}
+
+static void oscillation_follows_the_sine(void **state) {
+  (void)state;
+  const char *text = "physics:\n"
+                     "  effects: [control]\n"
+                     "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+                     "  control:\n"
+                     "    points: [{name: bar, offset: [0, 0, 0]}]\n"
+                     "    pose: {position: [0, 2, 0]}\n"
+                     "    track: {oscillate: {amplitude: [0.3, 0, 0], frequency: 3}}\n";
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
+  mr_scene_pose p;
+  mr_scene_control_pose_at(&s, 1.0 / 12.0, &p); /* a quarter period at 3 Hz */
+  assert_true(fabs(p.position[0] - 0.3) < 1e-12);
+  assert_true(p.position[1] == 2.0);
+  mr_scene_free(&s);
+}
+
+static void unknown_top_level_key(void **state) {
+  (void)state;
+  expect_error(BASE "bogus: 1\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:6:1: unknown key 'bogus' in the scene; expected one of: format, name, "
+               "sim, physics, expect");
+}
+
+static void theater_section_is_reserved(void **state) {
+  (void)state;
+  expect_error("lights: []\n" BASE, MR_SCENE_ERR_SCHEMA,
+               "t.yaml:1:1: section 'lights' is reserved for the theater and not supported by "
+               "this version; expected one of: format, name, sim, physics, expect");
+}
+
+static void unknown_particle_key(void **state) {
+  (void)state;
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], masss: 1}\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:6:38: unknown key 'masss' in a particle; expected one of: name, "
+               "position, velocity, mass, radius, pinned");
+}
+
+static void nan_is_refused(void **state) {
+  (void)state;
+  expect_error(BASE "    - {name: c, position: [2, .nan, 0], mass: 1}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:31: expected a finite number for position, got '.nan'");
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: .inf}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:44: expected a finite number for mass, got '.inf'");
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: NaN}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:44: expected a finite number for mass, got 'NaN'");
+}
+
+static void negative_and_zero_mass_are_refused(void **state) {
+  (void)state;
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: -1}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:44: expected a positive mass in kg for particle 'c', got -1");
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: 0}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:44: expected a positive mass in kg for particle 'c', got 0");
+}
+
+static void coincident_particles_are_refused(void **state) {
+  (void)state;
+  expect_error(BASE "    - {name: c, position: [1, 1, 0], mass: 1}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:7: particle 'c' coincides with particle 'b' (line 5); expected "
+               "distinct positions");
+}
+
+static void zero_length_constraints_are_refused(void **state) {
+  (void)state;
+  expect_error(BASE "  constraints:\n    - {between: [a, a]}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:7:17: zero-length constraint: both ends are 'a'; expected two particles");
+  expect_error(BASE "  constraints:\n    - {between: [a, b], length: 0}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:7:33: zero-length constraint between 'a' and 'b'; expected a length "
+               "above 1e-06 m");
+}
+
+static void undeclared_effect_is_refused(void **state) {
+  (void)state;
+  expect_error(BASE "  springs:\n    - {between: [a, b], stiffness: 10}\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:7:5: springs are declared but effect 'springs' is not listed in "
+               "physics.effects");
+}
+
+static void unknown_names_and_shapes(void **state) {
+  (void)state;
+  expect_error(BASE "  constraints:\n    - {between: [a, z]}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:7:21: expected the name of a particle declared under particles, got 'z'");
+  expect_error(BASE "    - {name: c, position: [2, 1], mass: 1}\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:6:27: expected [x, y, z] (three numbers) for position, got a sequence "
+               "of 2 items");
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: \"heavy\"}\n",
+               MR_SCENE_ERR_SCHEMA, "t.yaml:6:44: expected a number for mass, got 'heavy'");
+  expect_error(BASE "  effects2: []\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:6:3: unknown key 'effects2' in physics; expected one of: effects, "
+               "gravity, drag, ats, solver, contact, particles, control, constraints, groups, "
+               "springs, strings, sine_springs, antigravity, triggered, floor, parts, "
+               "string_correction");
+}
+
+static void unknown_alias_is_refused(void **state) {
+  (void)state;
+  expect_error(BASE "    - *nope\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:6:7: expected a defined anchor for alias '*nope'");
+}
+
+static void duplicate_keys_are_refused(void **state) {
+  (void)state;
+  expect_error(BASE "physics: {}\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:6:1: duplicate key 'physics' (first at line 1, column 1)");
+}
+
+static void degenerate_groups_are_refused(void **state) {
+  (void)state;
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: 1}\n"
+                    "  groups:\n    - {name: bar, particles: [a, b, c]}\n",
+               MR_SCENE_ERR_VALUE,
+               "t.yaml:8:37: group 'bar': 'a', 'b' and 'c' are collinear; expected members "
+               "in general position (§5.1)");
+}
+
+static void syntax_errors_name_the_place(void **state) {
+  (void)state;
+  expect_error("physics:\n  effects: [gravity\n  particles: []\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:4:1: expected valid YAML: flow sequence without a closing bracket");
+  expect_error("physics:\n\t- 1\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:2:1: expected valid YAML: tab character may not be used as indentation");
+}
+
+static void not_yaml_is_refused(void **state) {
+  (void)state;
+  static const char binary[] = "\x7f" "ELF\x02\x01\x01\x00\x00\x00";
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", binary, sizeof binary - 1, &s, &e),
+                   MR_SCENE_ERR_SYNTAX);
+  assert_string_equal(e.text, "t.yaml:1:8: expected a YAML text file, found a NUL byte");
+  expect_error("just some words\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:1:1: expected a mapping with a 'physics' section at the top level, got a "
+               "scalar");
+  expect_error("", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:1:1: expected a mapping with a 'physics' section, the file is empty");
+}
+
+static void missing_file_is_an_io_error(void **state) {
+  (void)state;
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load("/nonexistent/dir/scene.yaml", &s, &e), MR_SCENE_ERR_IO);
+  assert_string_equal(e.text, "/nonexistent/dir/scene.yaml: expected a readable scene file: "
+                              "No such file or directory");
+  assert_int_equal(e.line, 0);
+}
+
+static void file_errors_carry_the_path(void **state) {
+  (void)state;
+  const char text[] = BASE "    - {name: c, position: [2, 1, 0], mass: -3}\n";
+  const char *path = scene_tmp_file("load_negative.yaml", text, sizeof text - 1);
+  assert_non_null(path);
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load(path, &s, &e), MR_SCENE_ERR_VALUE);
+  char expected[4200];
+  snprintf(expected, sizeof expected,
+           "%s:6:44: expected a positive mass in kg for particle 'c', got -3", path);
+  assert_string_equal(e.text, expected);
+  assert_int_equal(e.line, 6);
+  assert_int_equal(e.column, 44);
+}
+
+static void expected_load_error_is_readable_from_a_broken_scene(void **state) {
+  (void)state;
+  const char text[] = "expect: {load_error: \"coincides with\"}\n" BASE
+                      "    - {name: c, position: [1, 1, 0], mass: 1}\n";
+  const char *path = scene_tmp_file("load_expect.yaml", text, sizeof text - 1);
+  char out[64];
+  assert_int_equal(mr_scene_expected_load_error(path, out, sizeof out), 0);
+  assert_string_equal(out, "coincides with");
+}
+
+/* The commented example in FORMAT.md is a scene that loads. */
+static void format_md_example_loads(void **state) {
+  (void)state;
+  FILE *f = fopen(MR_SOURCE_DIR "/host/scenes/FORMAT.md", "r");
+  assert_non_null(f);
+  static char doc[65536];
+  size_t n = fread(doc, 1, sizeof doc - 1, f);
+  fclose(f);
+  doc[n] = '\0';
+  char *start = strstr(doc, "```yaml\n");
+  assert_non_null(start);
+  start += strlen("```yaml\n");
+  char *end = strstr(start, "```");
+  assert_non_null(end);
+  mr_scene s;
+  mr_scene_error e;
+  mr_scene_status st = mr_scene_load_text("FORMAT.md", start, (size_t)(end - start), &s, &e);
+  if (st != MR_SCENE_OK)
+    fail_msg("%s", e.text);
+  assert_int_equal(s.n_particles, 3);
+  assert_int_equal(s.n_strings, 1);
+  assert_true(s.expect.present);
+  mr_scene_free(&s);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(good_scene_loads_with_paper_defaults),
+      cmocka_unit_test(settings_and_anchors_are_read),
+      cmocka_unit_test(keyframes_ease_and_hold),
+      cmocka_unit_test(oscillation_follows_the_sine),
+      cmocka_unit_test(unknown_top_level_key),
+      cmocka_unit_test(theater_section_is_reserved),
+      cmocka_unit_test(unknown_particle_key),
+      cmocka_unit_test(nan_is_refused),
+      cmocka_unit_test(negative_and_zero_mass_are_refused),
+      cmocka_unit_test(coincident_particles_are_refused),
+      cmocka_unit_test(zero_length_constraints_are_refused),
+      cmocka_unit_test(undeclared_effect_is_refused),
+      cmocka_unit_test(unknown_names_and_shapes),
+      cmocka_unit_test(duplicate_keys_are_refused),
+      cmocka_unit_test(unknown_alias_is_refused),
+      cmocka_unit_test(degenerate_groups_are_refused),
+      cmocka_unit_test(syntax_errors_name_the_place),
+      cmocka_unit_test(not_yaml_is_refused),
+      cmocka_unit_test(missing_file_is_an_io_error),
+      cmocka_unit_test(file_errors_carry_the_path),
+      cmocka_unit_test(expected_load_error_is_readable_from_a_broken_scene),
+      cmocka_unit_test(format_md_example_loads),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,267 @@
+/* `marionette sim` as a user meets it: a real process, its exit status and
+ * what it prints. The program's path comes as the first argument. */
+#include <inttypes.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mr_scene.h"
+#include "mr_scene_world.h"
+#include "scene_proc.h"
+
+static char *marionette;
+
+#define SCENES MR_SOURCE_DIR "/host/scenes"
+
+/* Runs marionette with the arguments up to a NULL. */
+static void run(scene_proc *p, ...) {
+  char *argv[16] = {marionette};
+  int n = 1;
+  va_list ap;
+  va_start(ap, p);
+  const char *a;
+  while ((a = va_arg(ap, const char *)) != NULL && n < 15)
+    argv[n++] = (char *)a;
+  va_end(ap);
+  argv[n] = NULL;
+  assert_int_equal(scene_proc_run(argv, p), 0);
+}
+
+static uint64_t field_u64(const char *text, const char *key) {
+  char v[64];
+  assert_int_equal(scene_proc_field(text, key, v, sizeof v), 0);
+  return strtoull(v, NULL, 10);
+}
+
+static void help_lists_subcommands_and_flags(void **state) {
+  (void)state;
+  scene_proc p;
+  run(&p, "--help", NULL);
+  assert_int_equal(p.status, 0);
+  assert_non_null(strstr(p.out, "  sim SCENE "));
+  scene_proc_free(&p);
+  run(&p, "sim", "--help", NULL);
+  assert_int_equal(p.status, 0);
+  const char *flags[] = {"--time SECONDS", "--csv FILE", "--check", "--quiet", "--help"};
+  for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
+    assert_non_null(strstr(p.out, flags[i]));
+  scene_proc_free(&p);
+  run(&p, "dance", NULL);
+  assert_int_equal(p.status, 2);
+  assert_string_equal(p.err, "marionette: unknown command 'dance'; expected one of: sim (see --help)\n");
+  scene_proc_free(&p);
+}
+
+static void load_errors_are_one_line_with_the_place(void **state) {
+  (void)state;
+  const char text[] = "physics:\n"
+                      "  effects: [gravity]\n"
+                      "  particles:\n"
+                      "    - {name: a, position: [0, 1, 0], mass: -2}\n";
+  const char *path = scene_tmp_file("sim_negative.yaml", text, sizeof text - 1);
+  char expected[4300];
+  snprintf(expected, sizeof expected,
+           "marionette: %s:4:44: expected a positive mass in kg for particle 'a', got -2\n", path);
+  scene_proc p;
+  run(&p, "sim", path, NULL);
+  assert_int_equal(p.status, 1);
+  assert_string_equal(p.err, expected);
+  assert_string_equal(p.out, "");
+  scene_proc_free(&p);
+
+  run(&p, "sim", "/nonexistent/scene.yaml", NULL);
+  assert_int_equal(p.status, 1);
+  assert_string_equal(p.err, "marionette: /nonexistent/scene.yaml: expected a readable scene "
+                             "file: No such file or directory\n");
+  scene_proc_free(&p);
+
+  const char binary[] = "\x7f" "ELF\x02\x01\x01";
+  path = scene_tmp_file("sim_binary.yaml", binary, sizeof binary); /* with its NUL */
+  snprintf(expected, sizeof expected,
+           "marionette: %s:1:8: expected a YAML text file, found a NUL byte\n", path);
+  run(&p, "sim", path, NULL);
+  assert_int_equal(p.status, 1);
+  assert_string_equal(p.err, expected);
+  scene_proc_free(&p);
+}
+
+static void bad_usage_exits_2(void **state) {
+  (void)state;
+  scene_proc p;
+  run(&p, "sim", NULL);
+  assert_int_equal(p.status, 2);
+  scene_proc_free(&p);
+  run(&p, "sim", "--time", "-3", SCENES "/puppet.yaml", NULL);
+  assert_int_equal(p.status, 2);
+  assert_string_equal(p.err, "marionette: sim: --time expects a positive number of seconds\n");
+  scene_proc_free(&p);
+  run(&p, "sim", "--bogus", SCENES "/puppet.yaml", NULL);
+  assert_int_equal(p.status, 2);
+  scene_proc_free(&p);
+}
+
+/* Requirement 11: the same scene twice gives the same state, bit for bit,
+ * and the program prints the hash the library computes in-process. */
+static void same_scene_same_state_hash(void **state) {
+  (void)state;
+  const char *scene_path = SCENES "/puppet.yaml";
+  scene_proc a, b;
+  run(&a, "sim", "--time", "4", scene_path, NULL);
+  run(&b, "sim", "--time", "4", scene_path, NULL);
+  assert_int_equal(a.status, 0);
+  assert_int_equal(b.status, 0);
+  char ha[64], hb[64];
+  assert_int_equal(scene_proc_field(a.out, "state hash", ha, sizeof ha), 0);
+  assert_int_equal(scene_proc_field(b.out, "state hash", hb, sizeof hb), 0);
+  assert_int_equal(strlen(ha), 16);
+  assert_string_equal(ha, hb);
+  assert_int_equal(field_u64(a.out, "steps"), field_u64(b.out, "steps"));
+
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load(scene_path, &s, &e), MR_SCENE_OK);
+  mr_scene_run_opts opts = {4.0, NULL, NULL};
+  mr_scene_run_result r;
+  assert_int_equal(mr_scene_run(&s, &opts, &r, &e), MR_SCENE_OK);
+  char lib[64];
+  snprintf(lib, sizeof lib, "%016" PRIx64, r.hash);
+  assert_string_equal(ha, lib);
+  assert_int_equal(field_u64(a.out, "steps"), r.steps);
+
+  /* A different run length is a different state: the hash is not constant. */
+  opts.duration = 3.0;
+  mr_scene_run_result r3;
+  assert_int_equal(mr_scene_run(&s, &opts, &r3, &e), MR_SCENE_OK);
+  assert_true(r3.hash != r.hash);
+  mr_scene_free(&s);
+  scene_proc_free(&a);
+  scene_proc_free(&b);
+}
+
+/* "Simulate only the effects a scene calls for": passes of effects the
+ * scene does not declare never run. */
+static void undeclared_effects_have_zero_pass_calls(void **state) {
+  (void)state;
+  const char text[] = "physics:\n"
+                      "  effects: [gravity, constraints]\n"
+                      "  particles:\n"
+                      "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
+                      "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
+                      "  constraints:\n"
+                      "    - {between: [a, b]}\n";
+  const char *path = scene_tmp_file("sim_effects.yaml", text, sizeof text - 1);
+  scene_proc p;
+  run(&p, "sim", "--time", "2", path, NULL);
+  assert_int_equal(p.status, 0);
+  uint64_t steps = field_u64(p.out, "steps");
+  assert_true(steps > 0);
+  assert_true(field_u64(p.out, "pass gravity") >= steps);
+  assert_true(field_u64(p.out, "pass constraints") >= steps);
+  assert_true(field_u64(p.out, "pass solve") >= steps);
+  const char *off[] = {"pass drag",         "pass springs",         "pass strings",
+                       "pass antigravity",  "pass triggered",       "pass sine-springs",
+                       "pass planes",       "pass self-collision",  "pass puppet-collision",
+                       "pass string-correction", "pass frames"};
+  for (size_t i = 0; i < sizeof off / sizeof off[0]; i++) {
+    char v[32];
+    assert_int_equal(scene_proc_field(p.out, off[i], v, sizeof v), 0);
+    assert_string_equal(v, "0");
+  }
+  scene_proc_free(&p);
+}
+
+static void csv_has_one_row_per_step_call(void **state) {
+  (void)state;
+  char csv[4200];
+  snprintf(csv, sizeof csv, "%s/tests/scene/tmp/sim_trace.csv", MR_BINARY_DIR);
+  scene_proc p;
+  run(&p, "sim", "--time", "2", "--csv", csv, SCENES "/puppet.yaml", NULL);
+  assert_int_equal(p.status, 0);
+  uint64_t steps = field_u64(p.out, "steps");
+  FILE *f = fopen(csv, "r");
+  assert_non_null(f);
+  char line[512];
+  assert_non_null(fgets(line, sizeof line, f));
+  assert_string_equal(line, "t,dt,error,accepted,rejected,reset,max_speed\n");
+  uint64_t accepted = 0;
+  double t = 0, last_t = -1;
+  int rows = 0;
+  while (fgets(line, sizeof line, f)) {
+    double dt, err, speed;
+    int acc, rej, reset;
+    assert_int_equal(sscanf(line, "%lf,%lf,%lf,%d,%d,%d,%lf", &t, &dt, &err, &acc, &rej, &reset,
+                            &speed), 7);
+    assert_true(t > last_t);
+    assert_true(dt > 0 && dt <= 0.05 + 1e-12);
+    last_t = t;
+    accepted += (uint64_t)acc;
+    rows++;
+  }
+  fclose(f);
+  assert_true(rows > 0);
+  assert_int_equal(accepted, steps);
+  assert_true(t == 2.0);
+  scene_proc_free(&p);
+}
+
+static void check_fails_with_a_clear_line(void **state) {
+  (void)state;
+  /* A swinging pendulum cannot meet a deviation bound of 1e-30. */
+  const char text[] = "physics:\n"
+                      "  effects: [gravity, constraints]\n"
+                      "  particles:\n"
+                      "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
+                      "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
+                      "  constraints:\n"
+                      "    - {between: [a, b]}\n"
+                      "expect: {max_deviation: 1e-30}\n";
+  const char *path = scene_tmp_file("sim_check.yaml", text, sizeof text - 1);
+  scene_proc p;
+  run(&p, "sim", "--check", "--quiet", "--time", "1", path, NULL);
+  assert_int_equal(p.status, 1);
+  char prefix[4300];
+  snprintf(prefix, sizeof prefix, "marionette: %s: check failed: expected max deviation <= 1e-30, got ",
+           path);
+  assert_memory_equal(p.err, prefix, strlen(prefix));
+  /* one line */
+  assert_ptr_equal(strchr(p.err, '\n'), p.err + strlen(p.err) - 1);
+  scene_proc_free(&p);
+}
+
+static void example_puppet_runs_cleanly(void **state) {
+  (void)state;
+  scene_proc p;
+  run(&p, "sim", "--check", SCENES "/puppet.yaml", NULL);
+  assert_int_equal(p.status, 0);
+  assert_int_equal(field_u64(p.out, "resets"), 0);
+  assert_true(field_u64(p.out, "pass strings") > 0);
+  assert_true(field_u64(p.out, "pass antigravity") > 0);
+  assert_true(field_u64(p.out, "pass planes") > 0);
+  assert_non_null(strstr(p.out, "check: passed\n"));
+  scene_proc_free(&p);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: %s PATH-TO-marionette\n", argv[0]);
+    return 2;
+  }
+  marionette = argv[1];
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(help_lists_subcommands_and_flags),
+      cmocka_unit_test(load_errors_are_one_line_with_the_place),
+      cmocka_unit_test(bad_usage_exits_2),
+      cmocka_unit_test(same_scene_same_state_hash),
+      cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
+      cmocka_unit_test(csv_has_one_row_per_step_call),
+      cmocka_unit_test(check_fails_with_a_clear_line),
+      cmocka_unit_test(example_puppet_runs_cleanly),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
