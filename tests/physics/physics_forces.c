@@ -73,6 +73,12 @@ static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **stat
   accel(w, acted, 1e-4, a);
   printf("antigravity: a = %.4f m/s² at 2·d0 (expected %.4f)\n", a[1], 0.5 * g);
   assert_true(fabs(a[1] - 0.5 * g) < 1e-2);
+  /* At 3·d0 the scale stays capped at max_scale = 2. */
+  mr_world_particle_state(w, acted, x, v);
+  double xt3[3] = {x[0], x[1] - 1.5, x[2]}, vt3[3] = {0, v[1], 0};
+  assert_int_equal(mr_world_set_particle_state(w, trig, xt3, vt3), MR_OK);
+  accel(w, acted, 1e-4, a);
+  assert_true(fabs(a[1] - 0.5 * g) < 1e-2);
   mr_world_destroy(w);
 }
 
