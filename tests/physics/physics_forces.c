@@ -135,6 +135,21 @@ static void sine_spring_rises_as_sine_and_caps(void **state)
     assert_true(fabs(acc[0] - expect) < 1e-3);
     mr_world_destroy(w);
   }
+  /* Its damping acts on the rate along the line, as a damper's does: at the
+   * rest length, moving apart at 2 m/s with damping 3 N·s/m. */
+  mr_world *w = make(MR_EFFECT_SINE_SPRINGS, 0.0);
+  int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
+  mr_sine_spring_def s = mr_default_sine_spring_def();
+  s.a = a;
+  s.b = b;
+  s.damping = 3.0;
+  assert_int_equal(mr_world_add_sine_spring(w, &s, NULL), MR_OK);
+  double x[3] = {1, 0, 0}, v[3] = {2, 0.5, 0}, acc[3];
+  assert_int_equal(mr_world_set_particle_state(w, b, x, v), MR_OK);
+  accel(w, b, 1e-6, acc);
+  assert_true(fabs(acc[0] + 6.0) < 1e-2); /* the sine part adds only 50·sin(π/2·2e-5) */
+  assert_true(fabs(acc[1]) < 1e-3);
+  mr_world_destroy(w);
 }
 
 /* Drag F = −c v: a 2 kg particle falling with c = 4 N·s/m approaches the
