@@ -165,6 +165,68 @@ static void tetra(mr_world *w, const double c[3], const double v[3], double r, i
   assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
 }
 
+/* Coulomb friction on a 20° slope (§4.4), for a particle and for a rigid
+ * tetrahedron lying on three points, both starting at rest on it. With
+ * μ = 0.5 > tan 20° = 0.364 friction holds them: static friction must
+ * cancel the pull along the slope (applied only against a velocity and
+ * limited by it, friction let this particle creep 0.28 m in 10 s). With μ
+ * below tan 20° they slide 10 s with
+ * s = ½ g (sinθ − μ cosθ) t². */
+static double slope_run(int body, double mu)
+{
+  const double th = 20.0 * 3.14159265358979323846 / 180.0;
+  const double n[3] = {-sin(th), cos(th), 0}, along[3] = {cos(th), sin(th), 0}, side[3] = {0, 0, 1};
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_CONSTRAINTS, NULL);
+  mr_plane_def pl = mr_default_plane_def();
+  pl.normal[0] = n[0];
+  pl.normal[1] = n[1];
+  pl.restitution = 0.0;
+  pl.friction = mu;
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  /* In slope coordinates (along, normal, side); radius 0.02 m. */
+  const double pts[4][3] = {{0, 0.02, 0}, {0.3, 0.02, 0}, {0.15, 0.02, 0.25}, {0.15, 0.25, 0.08}};
+  int count = body ? 4 : 1, ids[4];
+  for (int i = 0; i < count; i++) {
+    double x[3];
+    for (int k = 0; k < 3; k++)
+      x[k] = pts[i][0] * along[k] + pts[i][1] * n[k] + pts[i][2] * side[k];
+    ids[i] = add(w, x, NULL, 0.02, 0);
+  }
+  if (body) {
+    mr_rigid_group_def g = mr_default_rigid_group_def();
+    g.particles = ids;
+    g.count = 4;
+    assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+  }
+  double x0[3], x[3];
+  mr_world_particle_state(w, ids[0], x0, NULL);
+  for (int f = 1; f <= 600; f++)
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+  mr_world_particle_state(w, ids[0], x, NULL);
+  double s = 0;
+  for (int k = 0; k < 3; k++)
+    s += (x0[k] - x[k]) * along[k]; /* downhill is −along */
+  if (body)
+    assert_true(mr_world_deviation(w) < 1e-6);
+  mr_world_destroy(w);
+  return s;
+}
+
+static void friction_holds_on_a_slope_and_slides_below_tan_theta(void **state)
+{
+  (void)state;
+  const double th = 20.0 * 3.14159265358979323846 / 180.0, g = 9.81;
+  for (int body = 0; body < 2; body++) {
+    double held = slope_run(body, 0.5);
+    double mu = body ? 0.3 : 0.2, slid = slope_run(body, mu);
+    double expect = 0.5 * g * (sin(th) - mu * cos(th)) * 100.0;
+    printf("slope, %s: mu 0.5 moved %.3g m in 10 s; mu %.1f slid %.6f m (expected %.6f)\n",
+           body ? "tetrahedron" : "particle", held, mu, slid, expect);
+    assert_true(fabs(held) < 1e-4);
+    assert_true(fabs(slid - expect) < 1e-4 * expect);
+  }
+}
+
 /* Planes other than the floor: a wall x ≤ 1 (normal (−1, 0, 0), offset −1)
  * with restitution 1 sends a particle sliding at 2 m/s back at 2 m/s, its
  * surface stopping at the wall. The normal is normalised on entry. */
@@ -349,6 +411,7 @@ int main(void)
     cmocka_unit_test(ball_bounces_to_restitution_height),
     cmocka_unit_test(resting_contact_holds_without_sinking_or_jitter),
     cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
+    cmocka_unit_test(friction_holds_on_a_slope_and_slides_below_tan_theta),
     cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),
     cmocka_unit_test(wall_plane_reflects_particle),
     cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),

@@ -122,7 +122,7 @@ struct mr_world {
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
   int *row_contact;              /* −1 constraint row, else contact index */
   int cap_scratch;               /* particles the 3n scratch below holds */
-  double *f, *tmp3n, *pa;        /* 3n scratch */
+  double *f, *tmp3n, *pa, *fric;  /* 3n scratch (fric: resting-contact friction) */
 
   /* integrator scratch: state copies and stage derivatives */
   double *x0, *v0, *x1, *v1, *xs, *vs, *k;  /* k: 8 × 3n for RK4 */

@@ -50,7 +50,7 @@ int mr_world_ensure_ready(mr_world *w)
   if (!w->dirty && w->cap_scratch >= w->n)
     return 0;
   size_t n3 = (size_t)(w->n > 0 ? w->n : 1) * 3;
-  double **arr[] = {&w->f, &w->tmp3n, &w->pa, &w->x0, &w->v0, &w->xs, &w->vs};
+  double **arr[] = {&w->f, &w->tmp3n, &w->pa, &w->fric, &w->x0, &w->v0, &w->xs, &w->vs};
   for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
     if (realloc_d(arr[i], n3) != 0)
       return -1;
