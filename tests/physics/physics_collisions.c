@@ -227,6 +227,54 @@ static void friction_holds_on_a_slope_and_slides_below_tan_theta(void **state)
   }
 }
 
+/* Coulomb friction between sphere-tree spheres (§4.4): a ball (r = 5 cm,
+ * puppet 1) lies at rest on a pinned sphere of radius 100 m (puppet 0),
+ * 20° off its top, which is locally a 20° slope. With μ = 0.5 it stays; with
+ * μ = 0.2 and μ = 0 it slides 1 s down with s ≈ ½ g (sinθ − μ cosθ) t²
+ * (within 2 %: the slope steepens by 0.4° over the slide). */
+static double ball_on_sphere(double mu, double t_end)
+{
+  const double th = 20.0 * 3.14159265358979323846 / 180.0, R = 100.0, r = 0.05;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION, NULL);
+  int big = add(w, (double[3]){0, 0, 0}, NULL, R, 0);
+  int ball = add(w, (double[3]){(R + r) * sin(th), (R + r) * cos(th), 0}, NULL, r, 1);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = big;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.count = 1;
+  part.restitution = 0.0;
+  part.friction = mu;
+  part.particles = &big;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &ball;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  double x0[3], x[3];
+  mr_world_particle_state(w, ball, x0, NULL);
+  for (int f = 1; f <= (int)(t_end * 60.0 + 0.5); f++)
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+  mr_world_particle_state(w, ball, x, NULL);
+  double gap = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - R - r;
+  assert_true(fabs(gap) < 1e-3); /* it stays on the surface */
+  mr_world_destroy(w);
+  return sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) + (x[2] - x0[2]) * (x[2] - x0[2]));
+}
+
+static void friction_between_sphere_tree_spheres(void **state)
+{
+  (void)state;
+  const double th = 20.0 * 3.14159265358979323846 / 180.0, g = 9.81;
+  double held = ball_on_sphere(0.5, 2.0);
+  printf("ball on a sphere, mu 0.5: moved %.3g m in 2 s\n", held);
+  assert_true(held < 1e-4);
+  const double mus[2] = {0.2, 0.0};
+  for (int i = 0; i < 2; i++) {
+    double slid = ball_on_sphere(mus[i], 1.0), expect = 0.5 * g * (sin(th) - mus[i] * cos(th));
+    printf("ball on a sphere, mu %.1f: slid %.4f m in 1 s (plane: %.4f m)\n", mus[i], slid, expect);
+    assert_true(fabs(slid - expect) < 0.02 * expect);
+  }
+}
+
 /* Planes other than the floor: a wall x ≤ 1 (normal (−1, 0, 0), offset −1)
  * with restitution 1 sends a particle sliding at 2 m/s back at 2 m/s, its
  * surface stopping at the wall. The normal is normalised on entry. */
@@ -412,6 +460,7 @@ int main(void)
     cmocka_unit_test(resting_contact_holds_without_sinking_or_jitter),
     cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
     cmocka_unit_test(friction_holds_on_a_slope_and_slides_below_tan_theta),
+    cmocka_unit_test(friction_between_sphere_tree_spheres),
     cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),
     cmocka_unit_test(wall_plane_reflects_particle),
     cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),

@@ -131,18 +131,23 @@ static void rhs_eq8(mr_world *w, int rows, const double *a_free)
     w->rhs[i] = -w->row_bias[i] - w->row_jv[i] - w->def.ks * w->row_c[i] - w->def.kd * w->row_cdot[i];
 }
 
-/* Coulomb friction at resting plane contacts (§4.4), with N the contact's
- * multiplier. The friction that would stop a particle's sliding within half
- * a step against everything else pushing it along the plane is
- *   f_stop = f_now − m (a_t + v_t / (h/2)),
- * with a_t the tangential part of its acceleration under all forces so far
- * (applied, constraint, and the friction f_now of the previous round). If
- * |f_stop| ≤ μN the contact sticks and f_stop is the friction: static
+/* Coulomb friction at resting contacts (§4.4), with N the contact's
+ * multiplier, on the relative motion of its two sides (a particle against a
+ * plane, or two spheres of the sphere trees). The friction that would stop
+ * the sliding within half a step against everything else pushing along the
+ * contact is
+ *   f_stop = f_now − m_eff (a_t + v_t / (h/2)),
+ * with v_t, a_t the relative tangential velocity and acceleration under all
+ * forces so far (applied, constraint, and every contact's friction f_now of
+ * the previous round) and m_eff the effective mass of that relative motion.
+ * If |f_stop| ≤ μN the contact sticks and f_stop is the friction: static
  * friction, so a body on a slope its friction can hold stays put instead of
  * creeping at about g sinθ h/2. Otherwise it slides, and friction is μN
- * against the sliding velocity. fr holds each particle's friction; the
- * change is added to f. Returns the largest change, N. */
-static double friction(mr_world *w, int rows, const double *v, const double *acc, double *fr, double *f)
+ * against the sliding velocity. fr holds each contact's friction (3 per
+ * contact); each change is added to f, and to acc so that the next contact
+ * on the same particle sees it. Returns the largest change, N. */
+static double friction(mr_world *w, int rows, const double *x, const double *v, double *acc, double *fr,
+                       double *f)
 {
   const double tau = 0.5 * w->h_step;
   double change = 0.0;
@@ -151,35 +156,33 @@ static double friction(mr_world *w, int rows, const double *v, const double *acc
     if (c < 0)
       continue;
     const mr_contact *ct = &w->contacts.c[c];
-    double nforce = w->lambda[r];
-    if (ct->kind != MR_CONTACT_PLANE || ct->friction <= 0)
+    if (ct->friction <= 0)
       continue;
-    int p = ct->a;
-    double *fp = &fr[3 * p], next[3] = {0, 0, 0};
+    double *fc = &fr[3 * c], next[3] = {0, 0, 0};
+    double nforce = w->lambda[r];
     if (nforce > 0) {
-      const double *n = w->planes[ct->b].n;
-      const double *vp = &v[3 * p], *ap = &acc[3 * p];
-      double vn = vp[0] * n[0] + vp[1] * n[1] + vp[2] * n[2];
-      double an = ap[0] * n[0] + ap[1] * n[1] + ap[2] * n[2];
-      double vt[3];
-      for (int k = 0; k < 3; k++) {
-        vt[k] = vp[k] - vn * n[k];
-        next[k] = fp[k] - w->mass[p] * (ap[k] - an * n[k] + vt[k] / tau);
-      }
+      double vt[3], at[3];
+      double inv = mr_contact_slip(w, ct, x, v, vt);
+      mr_contact_slip(w, ct, x, acc, at);
+      if (!(inv > 0))
+        continue;
+      for (int k = 0; k < 3; k++)
+        next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
       double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
       double need = sqrt(next[0] * next[0] + next[1] * next[1] + next[2] * next[2]);
       double limit = ct->friction * nforce;
-      if (need > limit) {
+      if (need > limit)
         for (int k = 0; k < 3; k++)
           next[k] = speed > 0 ? -limit * vt[k] / speed : limit * next[k] / need;
-      }
     }
+    double d[3];
     for (int k = 0; k < 3; k++) {
-      double d = next[k] - fp[k];
-      change = fmax(change, fabs(d));
-      f[3 * p + k] += d;
-      fp[k] = next[k];
+      d[k] = next[k] - fc[k];
+      change = fmax(change, fabs(d[k]));
+      fc[k] = next[k];
     }
+    mr_contact_spread(w, ct, d, 1.0, 0, f);
+    mr_contact_spread(w, ct, d, 1.0, 1, acc);
   }
   return change;
 }
@@ -243,15 +246,15 @@ int mr_eval(mr_world *w, double t, double *x, double *v, double *a)
      * repeat a few rounds (a rigid body on a slope sticks only when its
      * contacts agree). Each round needs a + M⁻¹ Jᵀ λ, put in pa (free
      * during a step). */
-    memset(w->fric, 0, (size_t)n3 * sizeof *w->fric);
+    memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
     double scale = 0;
     for (int r = 0; r < rows; r++)
       scale = fmax(scale, fabs(w->lambda[r]));
-    for (int round = 0; round < 8; round++) {
+    for (int round = 0; round < 32; round++) {
       mr_jac_tmul(&w->J, w->lambda, w->pa);
       for (int i = 0; i < n3; i++)
         w->pa[i] = a[i] + w->pa[i] * w->inv_mass[i / 3];
-      double change = friction(w, rows, v, w->pa, w->fric, f);
+      double change = friction(w, rows, x, v, w->pa, w->fric, f);
       if (round > 0 && !(change > 1e-9 * scale))
         break;
       accelerations(w, f, a);

@@ -37,7 +37,7 @@ static int ensure_contact_capacity(mr_world *w, const mr_contact_list *l)
   if (!a)
     return -1;
   w->contact_active = a;
-  if (realloc_d(&w->contact_pre, (size_t)cap) != 0)
+  if (realloc_d(&w->contact_pre, (size_t)cap) != 0 || realloc_d(&w->fric, 3 * (size_t)cap) != 0)
     return -1;
   w->cap_active = cap;
   return 0;
@@ -50,7 +50,7 @@ int mr_world_ensure_ready(mr_world *w)
   if (!w->dirty && w->cap_scratch >= w->n)
     return 0;
   size_t n3 = (size_t)(w->n > 0 ? w->n : 1) * 3;
-  double **arr[] = {&w->f, &w->tmp3n, &w->pa, &w->fric, &w->x0, &w->v0, &w->xs, &w->vs};
+  double **arr[] = {&w->f, &w->tmp3n, &w->pa, &w->x0, &w->v0, &w->xs, &w->vs};
   for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
     if (realloc_d(arr[i], n3) != 0)
       return -1;
