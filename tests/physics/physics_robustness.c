@@ -75,10 +75,16 @@ static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state)
     mr_step_report rep;
     mr_status s = mr_world_step(w, &rep);
     if (s == MR_DIVERGED) {
-      /* Right after the reset the state is the start state, bit for bit. */
+      /* Right after the reset the state is the start state, bit for bit:
+       * positions, and velocities (all started at rest). */
       double now[9];
       mr_world_positions(w, now, 3);
       assert_memory_equal(now, start, sizeof now);
+      for (int i = 1; i < 3; i++) {
+        double vel[3];
+        mr_world_particle_state(w, i, NULL, vel);
+        assert_true(vel[0] == 0.0 && vel[1] == 0.0 && vel[2] == 0.0);
+      }
       assert_int_equal(rep.divergences, 1);
       assert_non_null(strstr(mr_world_last_error(w), "start configuration"));
       resets++;
