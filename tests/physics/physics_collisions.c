@@ -275,6 +275,54 @@ static void friction_between_sphere_tree_spheres(void **state)
   }
 }
 
+/* A resting sphere contact on a curved path needs its J̇q̇ (eq. 8): a ball
+ * (r = 0.05 m, 1 kg) orbits a pinned sphere (R = 0.25 m) at 3 m/s, pulled
+ * to its centre by a spring (200 N/m, rest 0: 60 N inwards) of which the
+ * orbit needs m v²/d = 30 N, so the contact pushes with 30 N. Without the
+ * centripetal term v²/d = 30 m/s² the contact would hold the wrong
+ * acceleration and the gap would settle near −30/K_s = −0.3 m. No gravity,
+ * no friction: the ball keeps its speed and stays on the surface. */
+static void ball_orbits_a_sphere_on_a_resting_contact(void **state)
+{
+  (void)state;
+  const double R = 0.25, r = 0.05, d = R + r, speed = 3.0;
+  mr_world_def def = mr_default_world_def();
+  def.gravity[1] = 0.0;
+  mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_SPRINGS | MR_EFFECT_PUPPET_COLLISION, &def);
+  int centre = add(w, (double[3]){0, 0, 0}, NULL, R, 0);
+  int ball = add(w, (double[3]){d, 0, 0}, (double[3]){0, 0, speed}, r, 1);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = centre;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_spring_def sp = mr_default_spring_def();
+  sp.a = centre;
+  sp.b = ball;
+  sp.rest_length = 0.0;
+  sp.stiffness = 200.0;
+  sp.damping = 0.0;
+  assert_int_equal(mr_world_add_spring(w, &sp, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.count = 1;
+  part.friction = 0.0;
+  part.particles = &centre;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &ball;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  double worst_gap = 0, worst_speed = 0;
+  for (int f = 1; f <= 120; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    double x[3], v[3];
+    mr_world_particle_state(w, ball, x, v);
+    worst_gap = fmax(worst_gap, fabs(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - d));
+    worst_speed = fmax(worst_speed, fabs(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - speed));
+  }
+  printf("orbit on a sphere contact: |gap| <= %.3g m, |speed - 3| <= %.3g m/s over 2 s\n", worst_gap,
+         worst_speed);
+  assert_true(worst_gap < 1e-3);
+  assert_true(worst_speed < 0.03);
+  mr_world_destroy(w);
+}
+
 /* Planes other than the floor: a wall x ≤ 1 (normal (−1, 0, 0), offset −1)
  * with restitution 1 sends a particle sliding at 2 m/s back at 2 m/s, its
  * surface stopping at the wall. The normal is normalised on entry. */
@@ -461,6 +509,7 @@ int main(void)
     cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
     cmocka_unit_test(friction_holds_on_a_slope_and_slides_below_tan_theta),
     cmocka_unit_test(friction_between_sphere_tree_spheres),
+    cmocka_unit_test(ball_orbits_a_sphere_on_a_resting_contact),
     cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),
     cmocka_unit_test(wall_plane_reflects_particle),
     cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),
