@@ -165,6 +165,164 @@ static void tetra(mr_world *w, const double c[3], const double v[3], double r, i
   assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
 }
 
+/* Coulomb friction on a 20° slope (§4.4), for a particle and for a rigid
+ * tetrahedron lying on three points, both starting at rest on it. With
+ * μ = 0.5 > tan 20° = 0.364 friction holds them: static friction must
+ * cancel the pull along the slope (applied only against a velocity and
+ * limited by it, friction let this particle creep 0.28 m in 10 s). With μ
+ * below tan 20° they slide 10 s with
+ * s = ½ g (sinθ − μ cosθ) t². */
+static double slope_run(int body, double mu)
+{
+  const double th = 20.0 * 3.14159265358979323846 / 180.0;
+  const double n[3] = {-sin(th), cos(th), 0}, along[3] = {cos(th), sin(th), 0}, side[3] = {0, 0, 1};
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_CONSTRAINTS, NULL);
+  mr_plane_def pl = mr_default_plane_def();
+  pl.normal[0] = n[0];
+  pl.normal[1] = n[1];
+  pl.restitution = 0.0;
+  pl.friction = mu;
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  /* In slope coordinates (along, normal, side); radius 0.02 m. */
+  const double pts[4][3] = {{0, 0.02, 0}, {0.3, 0.02, 0}, {0.15, 0.02, 0.25}, {0.15, 0.25, 0.08}};
+  int count = body ? 4 : 1, ids[4];
+  for (int i = 0; i < count; i++) {
+    double x[3];
+    for (int k = 0; k < 3; k++)
+      x[k] = pts[i][0] * along[k] + pts[i][1] * n[k] + pts[i][2] * side[k];
+    ids[i] = add(w, x, NULL, 0.02, 0);
+  }
+  if (body) {
+    mr_rigid_group_def g = mr_default_rigid_group_def();
+    g.particles = ids;
+    g.count = 4;
+    assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+  }
+  double x0[3], x[3];
+  mr_world_particle_state(w, ids[0], x0, NULL);
+  for (int f = 1; f <= 600; f++)
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+  mr_world_particle_state(w, ids[0], x, NULL);
+  double s = 0;
+  for (int k = 0; k < 3; k++)
+    s += (x0[k] - x[k]) * along[k]; /* downhill is −along */
+  if (body)
+    assert_true(mr_world_deviation(w) < 1e-6);
+  mr_world_destroy(w);
+  return s;
+}
+
+static void friction_holds_on_a_slope_and_slides_below_tan_theta(void **state)
+{
+  (void)state;
+  const double th = 20.0 * 3.14159265358979323846 / 180.0, g = 9.81;
+  for (int body = 0; body < 2; body++) {
+    double held = slope_run(body, 0.5);
+    double mu = body ? 0.3 : 0.2, slid = slope_run(body, mu);
+    double expect = 0.5 * g * (sin(th) - mu * cos(th)) * 100.0;
+    printf("slope, %s: mu 0.5 moved %.3g m in 10 s; mu %.1f slid %.6f m (expected %.6f)\n",
+           body ? "tetrahedron" : "particle", held, mu, slid, expect);
+    assert_true(fabs(held) < 1e-4);
+    assert_true(fabs(slid - expect) < 1e-4 * expect);
+  }
+}
+
+/* Coulomb friction between sphere-tree spheres (§4.4): a ball (r = 5 cm,
+ * puppet 1) lies at rest on a pinned sphere of radius 100 m (puppet 0),
+ * 20° off its top, which is locally a 20° slope. With μ = 0.5 it stays; with
+ * μ = 0.2 and μ = 0 it slides 1 s down with s ≈ ½ g (sinθ − μ cosθ) t²
+ * (within 2 %: the slope steepens by 0.4° over the slide). */
+static double ball_on_sphere(double mu, double t_end)
+{
+  const double th = 20.0 * 3.14159265358979323846 / 180.0, R = 100.0, r = 0.05;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION, NULL);
+  int big = add(w, (double[3]){0, 0, 0}, NULL, R, 0);
+  int ball = add(w, (double[3]){(R + r) * sin(th), (R + r) * cos(th), 0}, NULL, r, 1);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = big;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.count = 1;
+  part.restitution = 0.0;
+  part.friction = mu;
+  part.particles = &big;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &ball;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  double x0[3], x[3];
+  mr_world_particle_state(w, ball, x0, NULL);
+  for (int f = 1; f <= (int)(t_end * 60.0 + 0.5); f++)
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+  mr_world_particle_state(w, ball, x, NULL);
+  double gap = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - R - r;
+  assert_true(fabs(gap) < 1e-3); /* it stays on the surface */
+  mr_world_destroy(w);
+  return sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) + (x[2] - x0[2]) * (x[2] - x0[2]));
+}
+
+static void friction_between_sphere_tree_spheres(void **state)
+{
+  (void)state;
+  const double th = 20.0 * 3.14159265358979323846 / 180.0, g = 9.81;
+  double held = ball_on_sphere(0.5, 2.0);
+  printf("ball on a sphere, mu 0.5: moved %.3g m in 2 s\n", held);
+  assert_true(held < 1e-4);
+  const double mus[2] = {0.2, 0.0};
+  for (int i = 0; i < 2; i++) {
+    double slid = ball_on_sphere(mus[i], 1.0), expect = 0.5 * g * (sin(th) - mus[i] * cos(th));
+    printf("ball on a sphere, mu %.1f: slid %.4f m in 1 s (plane: %.4f m)\n", mus[i], slid, expect);
+    assert_true(fabs(slid - expect) < 0.02 * expect);
+  }
+}
+
+/* A resting sphere contact on a curved path needs its J̇q̇ (eq. 8): a ball
+ * (r = 0.05 m, 1 kg) orbits a pinned sphere (R = 0.25 m) at 3 m/s, pulled
+ * to its centre by a spring (200 N/m, rest 0: 60 N inwards) of which the
+ * orbit needs m v²/d = 30 N, so the contact pushes with 30 N. Without the
+ * centripetal term v²/d = 30 m/s² the contact would hold the wrong
+ * acceleration and the gap would settle near −30/K_s = −0.3 m. No gravity,
+ * no friction: the ball keeps its speed and stays on the surface. */
+static void ball_orbits_a_sphere_on_a_resting_contact(void **state)
+{
+  (void)state;
+  const double R = 0.25, r = 0.05, d = R + r, speed = 3.0;
+  mr_world_def def = mr_default_world_def();
+  def.gravity[1] = 0.0;
+  mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_SPRINGS | MR_EFFECT_PUPPET_COLLISION, &def);
+  int centre = add(w, (double[3]){0, 0, 0}, NULL, R, 0);
+  int ball = add(w, (double[3]){d, 0, 0}, (double[3]){0, 0, speed}, r, 1);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = centre;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_spring_def sp = mr_default_spring_def();
+  sp.a = centre;
+  sp.b = ball;
+  sp.rest_length = 0.0;
+  sp.stiffness = 200.0;
+  sp.damping = 0.0;
+  assert_int_equal(mr_world_add_spring(w, &sp, NULL), MR_OK);
+  mr_part_def part = mr_default_part_def();
+  part.count = 1;
+  part.friction = 0.0;
+  part.particles = &centre;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  part.particles = &ball;
+  assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  double worst_gap = 0, worst_speed = 0;
+  for (int f = 1; f <= 120; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    double x[3], v[3];
+    mr_world_particle_state(w, ball, x, v);
+    worst_gap = fmax(worst_gap, fabs(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - d));
+    worst_speed = fmax(worst_speed, fabs(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - speed));
+  }
+  printf("orbit on a sphere contact: |gap| <= %.3g m, |speed - 3| <= %.3g m/s over 2 s\n", worst_gap,
+         worst_speed);
+  assert_true(worst_gap < 1e-3);
+  assert_true(worst_speed < 0.03);
+  mr_world_destroy(w);
+}
+
 /* Planes other than the floor: a wall x ≤ 1 (normal (−1, 0, 0), offset −1)
  * with restitution 1 sends a particle sliding at 2 m/s back at 2 m/s, its
  * surface stopping at the wall. The normal is normalised on entry. */
@@ -334,6 +492,9 @@ static void non_adjacent_parts_of_one_puppet_collide(void **state)
   printf("self-collision: smallest gap %.3g m, collisions %llu, hand A now moving (%.3f, %.3f)\n", worst,
          (unsigned long long)st.collisions, va[0], va[1]);
   assert_int_equal((int)st.collisions, 1);
+  /* B overlaps A and C all along; as adjacent parts they never make a
+   * contact, so once the hands are apart no contact is left. */
+  assert_int_equal(st.resting_contacts, 0);
   assert_true(worst > -2e-4);
   assert_true(va[1] < 0); /* A swung back down */
   assert_int_equal((int)mr_world_pass_calls(w, MR_PASS_PUPPET_COLLISION), 0);
@@ -346,6 +507,9 @@ int main(void)
     cmocka_unit_test(ball_bounces_to_restitution_height),
     cmocka_unit_test(resting_contact_holds_without_sinking_or_jitter),
     cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
+    cmocka_unit_test(friction_holds_on_a_slope_and_slides_below_tan_theta),
+    cmocka_unit_test(friction_between_sphere_tree_spheres),
+    cmocka_unit_test(ball_orbits_a_sphere_on_a_resting_contact),
     cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),
     cmocka_unit_test(wall_plane_reflects_particle),
     cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),

@@ -73,6 +73,12 @@ static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **stat
   accel(w, acted, 1e-4, a);
   printf("antigravity: a = %.4f m/s² at 2·d0 (expected %.4f)\n", a[1], 0.5 * g);
   assert_true(fabs(a[1] - 0.5 * g) < 1e-2);
+  /* At 3·d0 the scale stays capped at max_scale = 2. */
+  mr_world_particle_state(w, acted, x, v);
+  double xt3[3] = {x[0], x[1] - 1.5, x[2]}, vt3[3] = {0, v[1], 0};
+  assert_int_equal(mr_world_set_particle_state(w, trig, xt3, vt3), MR_OK);
+  accel(w, acted, 1e-4, a);
+  assert_true(fabs(a[1] - 0.5 * g) < 1e-2);
   mr_world_destroy(w);
 }
 
@@ -129,6 +135,21 @@ static void sine_spring_rises_as_sine_and_caps(void **state)
     assert_true(fabs(acc[0] - expect) < 1e-3);
     mr_world_destroy(w);
   }
+  /* Its damping acts on the rate along the line, as a damper's does: at the
+   * rest length, moving apart at 2 m/s with damping 3 N·s/m. */
+  mr_world *w = make(MR_EFFECT_SINE_SPRINGS, 0.0);
+  int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
+  mr_sine_spring_def s = mr_default_sine_spring_def();
+  s.a = a;
+  s.b = b;
+  s.damping = 3.0;
+  assert_int_equal(mr_world_add_sine_spring(w, &s, NULL), MR_OK);
+  double x[3] = {1, 0, 0}, v[3] = {2, 0.5, 0}, acc[3];
+  assert_int_equal(mr_world_set_particle_state(w, b, x, v), MR_OK);
+  accel(w, b, 1e-6, acc);
+  assert_true(fabs(acc[0] + 6.0) < 1e-2); /* the sine part adds only 50·sin(π/2·2e-5) */
+  assert_true(fabs(acc[1]) < 1e-3);
+  mr_world_destroy(w);
 }
 
 /* Drag F = −c v: a 2 kg particle falling with c = 4 N·s/m approaches the
@@ -217,11 +238,20 @@ static void string_hangs_at_static_stretch_and_correction_limits_it(void **state
   mr_world_destroy(w);
   w = hanging_string(MR_EFFECT_STRING_CORRECTION, 20.0, &bob);
   double worst = 0;
+  int at_limit = 0;
   for (int f = 1; f <= 600; f++) {
     assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
-    mr_world_particle_state(w, bob, x, NULL);
+    double vb[3];
+    mr_world_particle_state(w, bob, x, vb);
     worst = fmax(worst, 2 - x[1]);
+    /* A string held at its limit has lost the velocity that lengthens it
+     * (the same principle applied to the damper, §6.2). */
+    if (2 - x[1] > 1.1 * (1 - 1e-9)) {
+      at_limit++;
+      assert_true(vb[1] >= -1e-12);
+    }
   }
+  assert_true(at_limit > 100);
   printf("string correction: length %.4f m uncorrected, at most %.4f m corrected (limit 1.1)\n", sag,
          worst);
   assert_true(sag > 1.4);

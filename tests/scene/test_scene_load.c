@@ -238,6 +238,35 @@ static void degenerate_groups_are_refused(void **state) {
                "in general position (§5.1)");
 }
 
+/* A part's restitution and friction (Coulomb μ against other parts) are
+ * read; a negative friction names its place. */
+static void part_friction_is_read_and_checked(void **state) {
+  (void)state;
+  const char *fx = "physics:\n"
+                   "  effects: [gravity, constraints, self_collision]\n"
+                   "  particles:\n"
+                   "    - {name: a, position: [0, 1, 0], mass: 1}\n"
+                   "    - {name: b, position: [1, 1, 0], mass: 2}\n"
+                   "  parts:\n";
+  char text[512];
+  snprintf(text, sizeof text, "%s    - {particles: [a], restitution: 0.2, friction: 0.7}\n"
+                              "    - {particles: [b]}\n", fx);
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
+  assert_int_equal(s.n_parts, 2);
+  assert_true(s.parts[0].friction == 0.7 && s.parts[0].restitution == 0.2);
+  assert_true(isnan(s.parts[1].friction)); /* left out: the library's default */
+  mr_scene_free(&s);
+  snprintf(text, sizeof text, "%s    - {particles: [a], friction: -0.1}\n", fx);
+  mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), &s, &e);
+  if (st == MR_SCENE_OK)
+    mr_scene_free(&s);
+  assert_int_equal(st, MR_SCENE_ERR_VALUE);
+  assert_non_null(strstr(e.text, "t.yaml:7:"));
+  assert_non_null(strstr(e.text, "friction"));
+}
+
 static void syntax_errors_name_the_place(void **state) {
   (void)state;
   expect_error("physics:\n  effects: [gravity\n  particles: []\n", MR_SCENE_ERR_SYNTAX,
@@ -340,7 +369,8 @@ int main(void) {
       cmocka_unit_test(duplicate_keys_are_refused),
       cmocka_unit_test(unknown_alias_is_refused),
       cmocka_unit_test(degenerate_groups_are_refused),
-      cmocka_unit_test(syntax_errors_name_the_place),
+      cmocka_unit_test(part_friction_is_read_and_checked),
+    cmocka_unit_test(syntax_errors_name_the_place),
       cmocka_unit_test(not_yaml_is_refused),
       cmocka_unit_test(missing_file_is_an_io_error),
       cmocka_unit_test(file_errors_carry_the_path),

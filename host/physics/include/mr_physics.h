@@ -360,6 +360,8 @@ typedef struct mr_part_def {
   double radius;            /* m; default 0 */
   int segment_spheres;      /* default 0 */
   double restitution;       /* default 0.5 */
+  double friction;          /* Coulomb μ ≥ 0 against other parts' spheres
+                               (the mean of the two parts'); default 0.3 */
 } mr_part_def;
 mr_part_def mr_default_part_def(void);
 mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id);

@@ -218,3 +218,70 @@ int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const doub
   *chi = len - la->r - lb->r;
   return 0;
 }
+
+/* The particles carrying a contact, with their weights: side a first (the
+ * plane has none), then side b. Returns their number (at most 4). */
+static int carriers(const mr_world *w, const mr_contact *c, int p[4], double wt[4])
+{
+  if (c->kind == MR_CONTACT_PLANE) {
+    p[0] = c->a;
+    wt[0] = 1.0;
+    return 1;
+  }
+  int n = 0;
+  const mr_leaf *side[2] = {&w->leaves[c->a], &w->leaves[c->b]};
+  for (int k = 0; k < 2; k++) {
+    double sign = k == 0 ? -1.0 : 1.0;
+    p[n] = side[k]->p0;
+    wt[n++] = sign * (1.0 - side[k]->s);
+    if (side[k]->s > 0) {
+      p[n] = side[k]->p1;
+      wt[n++] = sign * side[k]->s;
+    }
+  }
+  return n;
+}
+
+static void contact_normal(const mr_world *w, const mr_contact *c, const double *x, double n[3])
+{
+  if (c->kind == MR_CONTACT_PLANE) {
+    for (int k = 0; k < 3; k++)
+      n[k] = w->planes[c->b].n[k];
+    return;
+  }
+  double d[3], len;
+  sphere_geometry(w, c, x, d, &len);
+  for (int k = 0; k < 3; k++)
+    n[k] = len > 1e-12 ? d[k] / len : 0.0;
+}
+
+double mr_contact_slip(const mr_world *w, const mr_contact *c, const double *x, const double *q,
+                       double out[3])
+{
+  int p[4];
+  double wt[4], n[3], rel[3] = {0, 0, 0}, inv = 0.0;
+  int np = carriers(w, c, p, wt);
+  for (int i = 0; i < np; i++) {
+    for (int k = 0; k < 3; k++)
+      rel[k] += wt[i] * q[3 * p[i] + k];
+    inv += wt[i] * wt[i] * w->inv_mass[p[i]];
+  }
+  contact_normal(w, c, x, n);
+  double rn = rel[0] * n[0] + rel[1] * n[1] + rel[2] * n[2];
+  for (int k = 0; k < 3; k++)
+    out[k] = rel[k] - rn * n[k];
+  return inv;
+}
+
+void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3], double s, int by_mass,
+                       double *out)
+{
+  int p[4];
+  double wt[4];
+  int np = carriers(w, c, p, wt);
+  for (int i = 0; i < np; i++) {
+    double k = s * wt[i] * (by_mass ? w->inv_mass[p[i]] : 1.0);
+    for (int j = 0; j < 3; j++)
+      out[3 * p[i] + j] += k * f[j];
+  }
+}

@@ -131,34 +131,60 @@ static void rhs_eq8(mr_world *w, int rows, const double *a_free)
     w->rhs[i] = -w->row_bias[i] - w->row_jv[i] - w->def.ks * w->row_c[i] - w->def.kd * w->row_cdot[i];
 }
 
-/* Coulomb friction at resting plane contacts (§4.4): −μN v̂_t, where N is
- * the contact's multiplier. Near rest the force is limited to what stops the
- * particle within the step (m|v_t|/h), so it never reverses the motion. */
-static void friction(mr_world *w, int rows, const double *v, double *f)
+/* Coulomb friction at resting contacts (§4.4), with N the contact's
+ * multiplier, on the relative motion of its two sides (a particle against a
+ * plane, or two spheres of the sphere trees). The friction that would stop
+ * the sliding within half a step against everything else pushing along the
+ * contact is
+ *   f_stop = f_now − m_eff (a_t + v_t / (h/2)),
+ * with v_t, a_t the relative tangential velocity and acceleration under all
+ * forces so far (applied, constraint, and every contact's friction f_now of
+ * the previous round) and m_eff the effective mass of that relative motion.
+ * If |f_stop| ≤ μN the contact sticks and f_stop is the friction: static
+ * friction, so a body on a slope its friction can hold stays put instead of
+ * creeping at about g sinθ h/2. Otherwise it slides, and friction is μN
+ * against the sliding velocity. fr holds each contact's friction (3 per
+ * contact); each change is added to f, and to acc so that the next contact
+ * on the same particle sees it. Returns the largest change, N. */
+static double friction(mr_world *w, int rows, const double *x, const double *v, double *acc, double *fr,
+                       double *f)
 {
+  const double tau = 0.5 * w->h_step;
+  double change = 0.0;
   for (int r = 0; r < rows; r++) {
     int c = w->row_contact[r];
     if (c < 0)
       continue;
     const mr_contact *ct = &w->contacts.c[c];
+    if (ct->friction <= 0)
+      continue;
+    double *fc = &fr[3 * c], next[3] = {0, 0, 0};
     double nforce = w->lambda[r];
-    if (ct->kind != MR_CONTACT_PLANE || ct->friction <= 0 || !(nforce > 0))
-      continue;
-    int p = ct->a;
-    const double *n = w->planes[ct->b].n;
-    const double *vp = &v[3 * p];
-    double vn = vp[0] * n[0] + vp[1] * n[1] + vp[2] * n[2];
-    double vt[3] = {vp[0] - vn * n[0], vp[1] - vn * n[1], vp[2] - vn * n[2]};
-    double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-    if (!(speed > 0))
-      continue;
-    double mag = ct->friction * nforce;
-    double stop = 2.0 * w->mass[p] * speed / w->h_step;
-    if (stop < mag)
-      mag = stop;
-    for (int k = 0; k < 3; k++)
-      f[3 * p + k] -= mag * vt[k] / speed;
+    if (nforce > 0) {
+      double vt[3], at[3];
+      double inv = mr_contact_slip(w, ct, x, v, vt);
+      mr_contact_slip(w, ct, x, acc, at);
+      if (!(inv > 0))
+        continue;
+      for (int k = 0; k < 3; k++)
+        next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
+      double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
+      double need = sqrt(next[0] * next[0] + next[1] * next[1] + next[2] * next[2]);
+      double limit = ct->friction * nforce;
+      if (need > limit)
+        for (int k = 0; k < 3; k++)
+          next[k] = speed > 0 ? -limit * vt[k] / speed : limit * next[k] / need;
+    }
+    double d[3];
+    for (int k = 0; k < 3; k++) {
+      d[k] = next[k] - fc[k];
+      change = fmax(change, fabs(d[k]));
+      fc[k] = next[k];
+    }
+    mr_contact_spread(w, ct, d, 1.0, 0, f);
+    mr_contact_spread(w, ct, d, 1.0, 1, acc);
   }
+  return change;
 }
 
 int mr_eval(mr_world *w, double t, double *x, double *v, double *a)
@@ -215,12 +241,27 @@ int mr_eval(mr_world *w, double t, double *x, double *v, double *a)
                    w->lambda[r] > 0;
   if (has_friction) {
     /* Friction is an applied force the constraints must carry too: add it
-     * and solve again with the same J M⁻¹ Jᵀ. */
-    friction(w, rows, v, f);
-    accelerations(w, f, a);
-    rhs_eq8(w, rows, a);
-    if (mr_solve_rows(w, 0) != 0)
-      return -1;
+     * and solve again with the same J M⁻¹ Jᵀ. The constraints then share
+     * it out differently, which changes what each contact must hold, so
+     * repeat a few rounds (a rigid body on a slope sticks only when its
+     * contacts agree). Each round needs a + M⁻¹ Jᵀ λ, put in pa (free
+     * during a step). */
+    memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
+    double scale = 0;
+    for (int r = 0; r < rows; r++)
+      scale = fmax(scale, fabs(w->lambda[r]));
+    for (int round = 0; round < 32; round++) {
+      mr_jac_tmul(&w->J, w->lambda, w->pa);
+      for (int i = 0; i < n3; i++)
+        w->pa[i] = a[i] + w->pa[i] * w->inv_mass[i / 3];
+      double change = friction(w, rows, x, v, w->pa, w->fric, f);
+      if (round > 0 && !(change > 1e-9 * scale))
+        break;
+      accelerations(w, f, a);
+      rhs_eq8(w, rows, a);
+      if (mr_solve_rows(w, 0) != 0)
+        return -1;
+    }
   }
   /* §5.2, eq. 5: F_c = Jᵀ λ. */
   mr_jac_tmul(&w->J, w->lambda, w->tmp3n);

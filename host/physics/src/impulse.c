@@ -68,25 +68,23 @@ int mr_impulses_apply(mr_world *w, double t, int *collided)
   }
   if (!any)
     return 0;
-  /* Coulomb friction at impact as applied momentum: the tangential impulse
-   * is at most μ times the normal impulse a free particle would take. */
+  /* Coulomb friction at impact as applied momentum, on the relative
+   * tangential motion of the contact's two sides (a particle and a plane, or
+   * two spheres): at most μ times the normal impulse (1 + e)·(−χ̇⁻)·m_eff the
+   * contact would take on its own, and no more than stops the sliding. */
   memset(pa, 0, (size_t)n3 * sizeof *pa);
   for (int c = 0; c < nct; c++) {
     const mr_contact *ct = &w->contacts.c[c];
-    if (ct->kind != MR_CONTACT_PLANE || ct->friction <= 0 || !(pre[c] < -w->def.rest_speed))
+    if (ct->friction <= 0 || !(pre[c] < -w->def.rest_speed))
       continue;
-    int p = ct->a;
-    const double *n = w->planes[ct->b].n;
-    const double *vp = &v[3 * p];
-    double vn = vp[0] * n[0] + vp[1] * n[1] + vp[2] * n[2];
-    double vt[3] = {vp[0] - vn * n[0], vp[1] - vn * n[1], vp[2] - vn * n[2]};
+    double vt[3];
+    double inv = mr_contact_slip(w, ct, x, v, vt);
     double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-    if (!(speed > 0))
+    if (!(speed > 0) || !(inv > 0))
       continue;
-    double pn = w->mass[p] * (1.0 + ct->restitution) * -pre[c];
-    double mag = fmin(ct->friction * pn, w->mass[p] * speed);
-    for (int k = 0; k < 3; k++)
-      pa[3 * p + k] -= mag * vt[k] / speed;
+    double pn = (1.0 + ct->restitution) * -pre[c] / inv;
+    double mag = fmin(ct->friction * pn, speed / inv);
+    mr_contact_spread(w, ct, vt, -mag / speed, 0, pa);
   }
   for (int i = 0; i < n3; i++)
     w->tmp3n[i] = pa[i] * w->inv_mass[i / 3];

@@ -37,7 +37,7 @@ typedef struct mr_plane { double n[3], offset, restitution, friction; } mr_plane
 
 /* A leaf sphere of a part: centre (1−s)·x[p0] + s·x[p1]. */
 typedef struct mr_leaf { int p0, p1; double s, r; int part, puppet; } mr_leaf;
-typedef struct mr_part { int first_leaf, leaf_count, puppet; double restitution; } mr_part;
+typedef struct mr_part { int first_leaf, leaf_count, puppet; double restitution, friction; } mr_part;
 typedef struct mr_tree_node { double c[3], r; int left, right, leaf; } mr_tree_node;
 typedef struct mr_tree { int puppet, first_node, node_count, root; } mr_tree;
 
@@ -110,6 +110,7 @@ struct mr_world {
    * probe list for the end-of-step penetration test */
   mr_contact_list contacts, probe;
   int cap_active; unsigned char *contact_active; double *contact_pre;
+  double *fric;                  /* 3 per contact: resting-contact friction */
   int cap_valid; unsigned char *probe_valid;  /* offenders being located */
   double h_step;                 /* the step being integrated (friction) */
 
@@ -175,6 +176,17 @@ int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const doub
                    double *chidot, double *jdqd);
 int mr_contact_push(mr_contact_list *l, mr_contact_kind kind, int a, int b, double e, double mu);
 void mr_contact_list_free(mr_contact_list *l);
+/* Friction at a contact (§4.4) acts on the relative motion of its two sides:
+ * the particle against a plane, or sphere b against sphere a.
+ * mr_contact_slip: the tangential part of the relative q (a velocity or an
+ * acceleration, 3n) into out; returns 1/m_eff = Σ w² / m over the particles
+ * carrying the contact (w: their leaf weights), 0 if nothing can move.
+ * mr_contact_spread: adds s·f to side b's particles (s·w·f) and −s·w·f to
+ * side a's, into out (3n); with by_mass, each term divided by its mass. */
+double mr_contact_slip(const mr_world *w, const mr_contact *c, const double *x, const double *q,
+                       double out[3]);
+void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3], double s, int by_mass,
+                       double *out);
 
 /* sphere_tree.c */
 int mr_trees_build(mr_world *w);

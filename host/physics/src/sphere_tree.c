@@ -14,7 +14,7 @@
 
 mr_part_def mr_default_part_def(void)
 {
-  mr_part_def d = {NULL, 0, 0.0, 0, 0.5};
+  mr_part_def d = {NULL, 0, 0.0, 0, 0.5, 0.3};
   return d;
 }
 
@@ -42,10 +42,12 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
     return mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world declares no sphere-tree collisions", what);
   if (def->count < 1)
     return mr_fail(w, MR_ERR_ARG, "%s: needs at least one particle", what);
-  if (!isfinite(def->radius) || !isfinite(def->restitution))
-    return mr_fail(w, MR_ERR_NONFINITE, "%s: radius or restitution is NaN or Inf", what);
-  if (def->radius < 0 || def->restitution < 0 || def->restitution > 1 || def->segment_spheres < 0)
-    return mr_fail(w, MR_ERR_ARG, "%s: need radius >= 0, 0 <= restitution <= 1, segment_spheres >= 0",
+  if (!isfinite(def->radius) || !isfinite(def->restitution) || !isfinite(def->friction))
+    return mr_fail(w, MR_ERR_NONFINITE, "%s: radius, restitution or friction is NaN or Inf", what);
+  if (def->radius < 0 || def->restitution < 0 || def->restitution > 1 || def->segment_spheres < 0 ||
+      def->friction < 0)
+    return mr_fail(w, MR_ERR_ARG,
+                   "%s: need radius >= 0, 0 <= restitution <= 1, friction >= 0, segment_spheres >= 0",
                    what);
   if (def->segment_spheres > 0 && def->count != 2)
     return mr_fail(w, MR_ERR_ARG, "%s: segment_spheres needs a two-particle part", what);
@@ -79,7 +81,7 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
     w->nleaves = first;
     return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   }
-  w->parts[id] = (mr_part){first, w->nleaves - first, puppet, def->restitution};
+  w->parts[id] = (mr_part){first, w->nleaves - first, puppet, def->restitution, def->friction};
   w->nparts++;
   w->dirty = 1;
   if (out_id)
@@ -280,7 +282,8 @@ static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contac
       if (w->part_adjacent[la->part * w->nparts + lb->part])
         continue;
       double e = 0.5 * (w->parts[la->part].restitution + w->parts[lb->part].restitution);
-      if (mr_contact_push(out, MR_CONTACT_SPHERES, na->leaf, nb->leaf, e, 0.0) != 0)
+      double mu = 0.5 * (w->parts[la->part].friction + w->parts[lb->part].friction);
+      if (mr_contact_push(out, MR_CONTACT_SPHERES, na->leaf, nb->leaf, e, mu) != 0)
         rc = -1;
       continue;
     }

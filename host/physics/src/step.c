@@ -37,7 +37,7 @@ static int ensure_contact_capacity(mr_world *w, const mr_contact_list *l)
   if (!a)
     return -1;
   w->contact_active = a;
-  if (realloc_d(&w->contact_pre, (size_t)cap) != 0)
+  if (realloc_d(&w->contact_pre, (size_t)cap) != 0 || realloc_d(&w->fric, 3 * (size_t)cap) != 0)
     return -1;
   w->cap_active = cap;
   return 0;

@@ -232,7 +232,7 @@ void mr_world_destroy(mr_world *w)
                     w->antigravity, w->triggered, w->sine_springs, w->distances, w->pins,
                     w->groups, w->planes, w->parts, w->leaves, w->puppet_mass,
                     w->part_adjacent, w->trees, w->nodes, w->leaf_c, w->contact_active, w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot, w->row_bias, w->row_jv, w->row_contact,
-                    w->f, w->tmp3n, w->pa, w->x0, w->v0, w->x1, w->v1, w->xs, w->vs, w->k};
+                    w->f, w->tmp3n, w->pa, w->fric, w->x0, w->v0, w->x1, w->v1, w->xs, w->vs, w->k};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
     free(arrays[i]);
   for (int i = 0; i < w->nc; i++) {

@@ -140,6 +140,7 @@ typedef struct mr_scene_part {
   double radius;
   int segment_spheres;
   double restitution;
+  double friction; /* Coulomb mu against other parts */
   mr_scene_pos pos;
 } mr_scene_part;
 

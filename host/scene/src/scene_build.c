@@ -262,6 +262,7 @@ static mr_scene_status add_collisions(const mr_scene *s, mr_scene_world *sw,
     d.count = (int)p->count;
     set_if(&d.radius, p->radius);
     set_if(&d.restitution, p->restitution);
+    set_if(&d.friction, p->friction);
     if (p->segment_spheres >= 0)
       d.segment_spheres = p->segment_spheres;
     st = mr_world_add_part(sw->world, &d, &id);

@@ -120,7 +120,7 @@ int mr_scene_read_groups(mr_reader *r, const mr_ynode *n) {
 
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"particles", "radius", "segment_spheres", "restitution",
-                                     NULL};
+                                     "friction", NULL};
   mr_scene *s = r->scene;
   if (rd_seq(r, n, "physics.parts") != 0)
     return -1;
@@ -143,11 +143,12 @@ int mr_scene_read_parts(mr_reader *r, const mr_ynode *n) {
       return -1;
     if (p->count == 0)
       return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected at least one particle in a part");
-    p->radius = p->restitution = NAN;
+    p->radius = p->restitution = p->friction = NAN;
     p->segment_spheres = -1;
     double seg = -1;
     if (rd_nonneg_key(r, it, "radius", &p->radius) != 0 ||
         rd_nonneg_key(r, it, "restitution", &p->restitution) != 0 ||
+        rd_nonneg_key(r, it, "friction", &p->friction) != 0 ||
         rd_nonneg_key(r, it, "segment_spheres", &seg) != 0)
       return -1;
     if (!isnan(p->restitution) && p->restitution > 1)
