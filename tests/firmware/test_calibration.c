@@ -1,6 +1,7 @@
-/* Calibration: captured between CAL_START and CAL_SAVE (or two button
- * presses), stored with a version and a CRC, restored after a reset; a
- * corrupt record falls back to the defaults and INFO says CORRUPT. */
+/* Calibration: captured between CAL_START and CAL_SAVE (or between pressing
+ * and releasing the button), stored with a version and a CRC, restored after
+ * a reset; a corrupt record falls back to the defaults and INFO says
+ * CORRUPT. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
