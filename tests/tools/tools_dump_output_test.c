@@ -1,5 +1,6 @@
-/* glove-dump never loses data quietly: lines stdout cannot take make it stop
- * with an error, and bytes of a frame the stream ended inside are named. */
+/* What glove-dump writes: lines stdout cannot take make it stop with an
+ * error, bytes of a frame the stream ended inside are named, and --record
+ * keeps exactly the bytes it read. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,6 +10,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "gp.h"
+#include "mr_io.h"
 #include "tools_proc.h"
 
 static char *g_dir;
@@ -80,10 +83,71 @@ static void tools_dump_output_stream_cut_inside_a_frame_is_reported(void **state
   free(whole);
 }
 
+static void tools_dump_output_record_keeps_every_byte_read(void **state) {
+  (void)state;
+  char in[1024], rec[1024], c1[1024], c2[1024];
+  snprintf(in, sizeof in, "%s", tt_path(g_dir, "f.bin"));
+  snprintf(rec, sizeof rec, "%s", tt_path(g_dir, "f.mrec"));
+  snprintf(c1, sizeof c1, "%s", tt_path(g_dir, "f1.txt"));
+  snprintf(c2, sizeof c2, "%s", tt_path(g_dir, "f2.txt"));
+  {
+    char o[1100];
+    snprintf(o, sizeof o, "file:%s", in);
+    const char *argv[] = {tt_glove_gen, "--fast", "-q", "-n", "3000", "--faults", "0.1",
+                          "--seed", "5", "--stall-frames", "1:5", "-o", o, NULL};
+    assert_int_equal(tt_run(argv, NULL, NULL, 60), 0);
+  }
+  {
+    const char *argv[] = {tt_glove_dump, "-q", "--keep-going", "--record", rec,
+                          "--counters", c1, in, NULL};
+    assert_int_equal(tt_run(argv, NULL, NULL, 60), 3); /* wrong-hash faults */
+  }
+  /* The chunks, joined, are the input byte for byte, in non-decreasing time. */
+  size_t len, got_len = 0;
+  char *want = tt_read_file(in, &len);
+  uint8_t *got = malloc(len + 1);
+  mr_rec_reader r;
+  mr_err err;
+  uint64_t t_ns, last = 0;
+  const uint8_t *data;
+  size_t n;
+  int rc;
+  assert_non_null(want);
+  assert_non_null(got);
+  assert_int_equal(mr_rec_reader_open(&r, rec, &err), 0);
+  assert_int_equal(r.header.spec_hash, GP_SPEC_HASH);
+  while ((rc = mr_rec_reader_next(&r, &t_ns, &data, &n, &err)) == 1) {
+    assert_true(got_len + n <= len);
+    assert_true(t_ns >= last);
+    memcpy(got + got_len, data, n);
+    got_len += n;
+    last = t_ns;
+  }
+  mr_rec_reader_close(&r);
+  assert_int_equal(rc, 0);
+  assert_int_equal(got_len, len);
+  assert_memory_equal(got, want, len);
+  /* And replaying it counts the same. */
+  {
+    const char *argv[] = {tt_glove_dump, "-q", "--keep-going", "--counters", c2, rec, NULL};
+    assert_int_equal(tt_run(argv, NULL, NULL, 60), 3);
+  }
+  char *a = tt_read_file(c1, NULL), *b = tt_read_file(c2, NULL);
+  assert_non_null(a);
+  assert_non_null(b);
+  assert_true(tt_kv(a, "frames") > 2000);
+  assert_string_equal(a, b);
+  free(a);
+  free(b);
+  free(got);
+  free(want);
+}
+
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(tools_dump_output_full_stdout_is_an_error),
       cmocka_unit_test(tools_dump_output_stream_cut_inside_a_frame_is_reported),
+      cmocka_unit_test(tools_dump_output_record_keeps_every_byte_read),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, setup, teardown);
