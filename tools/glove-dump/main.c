@@ -265,7 +265,7 @@ int main(int argc, char **argv) {
   char spec_buf[512];
   double reconnect = -1, idle = -1;
   long baud = 0;
-  int realtime = 0, c, rc = 0, hung_up = 0;
+  int realtime = 0, c, rc = 0, hung_up = 0, ended = 0;
   mr_io io;
   mr_err err;
   struct sigaction sa;
@@ -404,7 +404,10 @@ int main(int argc, char **argv) {
         stop = feed(&D, buf, have);
         have = 0;
       }
-      if (st == MR_IO_EOF) break;
+      if (st == MR_IO_EOF) {
+        ended = 1;
+        break;
+      }
       if (st == MR_IO_ERROR) {
         fprintf(stderr, "glove-dump: %s\n", err.msg);
         rc = 1;
@@ -444,7 +447,7 @@ int main(int argc, char **argv) {
 
   /* Bytes after the last delimiter are a frame that never ended: the
    * decoder holds them, and no event will ever name them. */
-  if (!g_stop && D.dec.len && !D.dec.overflow)
+  if ((ended || hung_up) && D.dec.len && !D.dec.overflow)
     fprintf(stderr,
             "glove-dump: %s: the stream ended inside a frame: its last %zu bytes (from "
             "byte %llu) were not decoded\n",
