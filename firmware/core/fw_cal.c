@@ -112,7 +112,11 @@ fw_cal_result fw_cal_save(fw_cal *cal) {
 }
 
 fw_cal_result fw_cal_clear(fw_cal *cal) {
+  /* A NACK means nothing changed (SPEC.md, NACK): a failed erase keeps the
+   * calibration in use, so the host can retry instead of seeing DEFAULTS
+   * that the next reset would undo. */
+  if (fw_hal_flash_erase() != 0) return FW_CAL_ERR_FLASH;
   set_defaults(cal);
   cal->state = GP_CAL_DEFAULTS;
-  return fw_hal_flash_erase() == 0 ? FW_CAL_OK : FW_CAL_ERR_FLASH;
+  return FW_CAL_OK;
 }

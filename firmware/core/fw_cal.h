@@ -44,7 +44,8 @@ void fw_cal_feed(fw_cal *cal, const uint16_t ch[FW_N_CH]);
 /* Ends the capture and stores it. On failure the previous calibration stays
  * in use and the capture keeps running (except for FW_CAL_ERR_STATE). */
 fw_cal_result fw_cal_save(fw_cal *cal);
-/* Forgets the calibration: defaults in use, the page erased. */
+/* Forgets the calibration: the page erased, then defaults in use. If the
+ * erase fails, FW_CAL_ERR_FLASH and the calibration is left as it was. */
 fw_cal_result fw_cal_clear(fw_cal *cal);
 
 /* Record (de)serialisation, public for the tests that corrupt it. */

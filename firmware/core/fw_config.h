@@ -82,6 +82,12 @@
 #if FW_BLOCKQ_DEPTH < 2 || (FW_BLOCKQ_DEPTH & (FW_BLOCKQ_DEPTH - 1)) != 0
 #error "FW_BLOCKQ_DEPTH must be a power of two, at least 2"
 #endif
+/* The UART queues index with free-running 32-bit counters modulo their
+ * size, which stays right across the counters' wrap only for a power of two;
+ * and the largest frame (INFO, 59 bytes on the wire) must fit. */
+#if FW_TXQ_BYTES < 64 || (FW_TXQ_BYTES & (FW_TXQ_BYTES - 1)) != 0
+#error "FW_TXQ_BYTES must be a power of two, at least 64"
+#endif
 
 /* Samples in one tick's block: FW_OVERSAMPLE scans of FW_N_CH channels,
  * scan after scan (ch0 ch1 .. ch4 ch0 ch1 ..). */

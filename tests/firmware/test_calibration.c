@@ -1,6 +1,7 @@
-/* Calibration: captured between CAL_START and CAL_SAVE (or two button
- * presses), stored with a version and a CRC, restored after a reset; a
- * corrupt record falls back to the defaults and INFO says CORRUPT. */
+/* Calibration: captured between CAL_START and CAL_SAVE (or between pressing
+ * and releasing the button), stored with a version and a CRC, restored after
+ * a reset; a corrupt record falls back to the defaults and INFO says
+ * CORRUPT. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -169,6 +170,32 @@ static void firmware_calibration_refusals(void **state) {
   assert_int_equal(core.cmd_errors, 4);
 }
 
+/* A refused CAL_CLEAR changes nothing: the stored range stays in use. */
+static void firmware_calibration_failed_clear_keeps_the_calibration(void **state) {
+  (void)state;
+  cmd(GP_CAL_START, 1);
+  sweep(700, 3300);
+  cmd(GP_CAL_SAVE, 2);
+  assert_int_equal(last_reply(), 1);
+  fake.flash_fail_write = 1;
+  cmd(GP_CAL_CLEAR, 3);
+  assert_int_equal(last_reply(), 100 + GP_NACK_FLASH_ERROR);
+  const gp_info *info = last_info();
+  assert_int_equal(info->cal_state, GP_CAL_VALID);
+  assert_int_equal(info->cal_min[0], 700);
+  assert_int_equal(info->cal_max[4], 3340);
+  fake_decode();
+  size_t s = frames.n;
+  while (s-- > 0 && frames.msg[s].type != GP_SAMPLE) {
+  }
+  assert_true(frames.msg[s].u.sample.flags & GP_SAMPLE_F_CALIBRATED);
+  /* The record is still in flash, and a retry that works clears it. */
+  fake.flash_fail_write = 0;
+  cmd(GP_CAL_CLEAR, 4);
+  assert_int_equal(last_reply(), 1);
+  assert_int_equal(last_info()->cal_state, GP_CAL_DEFAULTS);
+}
+
 static void firmware_calibration_board_without_storage(void **state) {
   (void)state;
   fake.flash_absent = 1;
@@ -223,6 +250,7 @@ int main(void) {
       cmocka_unit_test_setup(firmware_calibration_save_survives_reset, setup),
       cmocka_unit_test_setup(firmware_calibration_corrupt_record_falls_back, setup),
       cmocka_unit_test_setup(firmware_calibration_refusals, setup),
+      cmocka_unit_test_setup(firmware_calibration_failed_clear_keeps_the_calibration, setup),
       cmocka_unit_test_setup(firmware_calibration_board_without_storage, setup),
       cmocka_unit_test_setup(firmware_calibration_by_button, setup),
   };

@@ -137,6 +137,12 @@ static int ack_then(uint8_t type) {
   return a < n_msgs && find_after(a + 1, type) < n_msgs;
 }
 static int ack_info(void) { return ack_then(GP_INFO); }
+static size_t find_nack(size_t from, uint8_t tag) {
+  for (size_t i = from; i < n_msgs; i++)
+    if (msgs[i].type == GP_NACK && msgs[i].u.nack.tag == tag) return i;
+  return n_msgs;
+}
+static int nacked(void) { return find_nack(mark, want_tag) < n_msgs; }
 static int ack_status(void) { return ack_then(GP_STATUS); }
 static int ack_and_60_samples(void) {
   size_t a = find_ack(mark, want_tag), n = 0;
@@ -171,8 +177,27 @@ static void firmware_qemu_streams_and_answers(void **state) {
   uint8_t junk[97];
   for (size_t i = 0; i < sizeof junk; i++) junk[i] = (uint8_t)(0x80 + (i * 37) % 120);
   junk[sizeof junk - 1] = 0;
+  size_t garbage_at = n_msgs;
   assert_int_equal(write(to_qemu, junk, sizeof junk), (ssize_t)sizeof junk);
   assert_true(pump(20.0, enough_samples));
+  /* Garbage gets silence: no tag in it can be trusted. */
+  assert_int_equal(find_after(garbage_at, GP_ACK), n_msgs);
+  assert_int_equal(find_after(garbage_at, GP_NACK), n_msgs);
+
+  /* A rate the link cannot carry (1000 Hz at 115200 is 182 %) is refused
+   * with the command's tag, and the stream keeps its 4 ms. */
+  memset(&m, 0, sizeof m);
+  m.type = GP_SET_RATE;
+  m.u.set_rate.tag = 0x34;
+  m.u.set_rate.frame_rate_hz = 1000;
+  mark = n_msgs;
+  want_tag = 0x34;
+  send_msg(&m);
+  assert_true(pump(10.0, nacked));
+  size_t nack = find_nack(mark, 0x34);
+  assert_int_equal(msgs[nack].u.nack.cmd, GP_SET_RATE);
+  assert_int_equal(msgs[nack].u.nack.reason, GP_NACK_BAD_ARGUMENT);
+  assert_int_equal(find_after(mark, GP_ACK), n_msgs);
 
   /* SET_RATE 500 Hz at 230400 baud (500 Hz needs more than 115200 can
    * carry in half its time; QEMU's USART has no speed, the pipe follows). */
@@ -220,7 +245,7 @@ static void firmware_qemu_streams_and_answers(void **state) {
   send_msg(&m);
   assert_true(pump(10.0, ack_status));
   size_t st_i = find_after(find_ack(mark, 0x33), GP_STATUS);
-  assert_true(msgs[st_i].u.status.cmd_errors >= 1);   /* the garbage */
+  assert_true(msgs[st_i].u.status.cmd_errors >= 2);   /* the garbage, the refused rate */
   assert_true(msgs[st_i].u.status.adc_timeouts > 0); /* QEMU never sets EOC */
   stop_qemu();
 

@@ -225,6 +225,12 @@ static void tools_io_bad_specs_are_errors_that_name_them(void **state) {
   expect_open_fails("", MR_E_SPEC, "empty");
   expect_open_fails("tcp:localhost", MR_E_SPEC, "tcp:localhost");
   expect_open_fails("tcp-listen:", MR_E_SPEC, "tcp-listen:");
+  /* A port past 65535 would otherwise wrap (99999 is 34463) to a port
+   * nobody asked for. */
+  expect_open_fails("tcp-listen:99999", MR_E_SPEC, "99999");
+  expect_open_fails("tcp:127.0.0.1:65536", MR_E_SPEC, "65536");
+  expect_open_fails("tcp:127.0.0.1:0", MR_E_SPEC, "tcp:127.0.0.1:0");
+  expect_open_fails("tcp:127.0.0.1:50x", MR_E_SPEC, "50x");
   expect_open_fails("serial:/dev/ttyS0@fast", MR_E_SPEC, "fast");
   expect_open_fails("serial:@9600", MR_E_SPEC, "serial:@9600");
   expect_open_fails("/nonexistent/glove.bin", MR_E_SYSTEM, "/nonexistent/glove.bin");

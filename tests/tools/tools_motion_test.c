@@ -11,7 +11,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include "gg_motion.h"
+#include "gp.h"
+#include "mr_io.h"
 #include "tools_proc.h"
 
 static char *g_dir;
@@ -143,6 +148,95 @@ static void tools_motion_csv_track_interpolates(void **state) {
   gg_motion_free(&m);
 }
 
+/* A .mrec recording as a track: its SAMPLEs timed by their device clock
+ * (across its 32-bit wrap), other frames and noise skipped. */
+static size_t sample_wire(uint16_t seq, uint32_t t_us, uint8_t *w) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_SAMPLE;
+  m.u.sample.seq = seq;
+  m.u.sample.t_us = t_us;
+  for (int c = 0; c < GG_CHANNELS; c++) m.u.sample.ch[c] = (uint16_t)(100 * seq + c);
+  return gp_encode(&m, GP_SPEC_HASH, w, GP_MAX_WIRE);
+}
+
+static void write_take(const char *name, int cut_last) {
+  mr_rec_writer w;
+  mr_err err;
+  uint8_t buf[8 * GP_MAX_WIRE];
+  size_t n = 0;
+  gp_msg info;
+  assert_int_equal(mr_rec_writer_open(&w, tt_path(g_dir, name), GP_SPEC_HASH, 0, &err), 0);
+  memset(&info, 0, sizeof info);
+  info.type = GP_INFO;
+  info.u.info.spec_hash = GP_SPEC_HASH;
+  n += gp_encode(&info, GP_SPEC_HASH, buf, GP_MAX_WIRE);
+  for (uint16_t k = 0; k < 3; k++) n += sample_wire(k, 0xFFFFF000u + 4000u * k, buf + n);
+  assert_int_equal(mr_rec_writer_add(&w, 1000, buf, n, &err), 0);
+  n = 0;
+  buf[n++] = 0x42; /* noise: one bad frame */
+  buf[n++] = 0;
+  for (uint16_t k = 3; k < 5; k++) n += sample_wire(k, 0xFFFFF000u + 4000u * k, buf + n);
+  assert_int_equal(mr_rec_writer_add(&w, 2000, buf, n, &err), 0);
+  n = sample_wire(5, 0xFFFFF000u + 4000u * 5, buf);
+  assert_int_equal(mr_rec_writer_add(&w, 3000, buf, n, &err), 0);
+  assert_int_equal(mr_rec_writer_close(&w, &err), 0);
+  if (cut_last) {
+    size_t len;
+    free(tt_read_file(tt_path(g_dir, name), &len));
+    assert_int_equal(truncate(tt_path(g_dir, name), (off_t)(len - 5)), 0);
+  }
+}
+
+static void tools_motion_mrec_track_follows_the_recorded_samples(void **state) {
+  gg_motion m;
+  uint16_t ch[GG_CHANNELS];
+  (void)state;
+  write_take("take.mrec", 0);
+  load(&m, "all mrec file=take.mrec loop=0\nring mrec file=take.mrec column=0 loop=0\n");
+  gg_motion_eval(&m, 0, ch);
+  assert_int_equal(ch[0], 0);
+  assert_int_equal(ch[4], 4);
+  gg_motion_eval(&m, 0.002, ch); /* halfway from sample 0 to 1 */
+  assert_int_equal(ch[0], 50);
+  assert_int_equal(ch[1], 51);
+  assert_int_equal(ch[3], 50);
+  gg_motion_eval(&m, 0.010, ch); /* halfway from 2 to 3, across the clock's wrap */
+  assert_int_equal(ch[2], 252);
+  gg_motion_eval(&m, 0.020, ch); /* the last sample */
+  assert_int_equal(ch[0], 500);
+  gg_motion_eval(&m, 5, ch);
+  assert_int_equal(ch[4], 504);
+  gg_motion_free(&m);
+}
+
+/* A recording whose last chunk was cut short (its recorder was killed) still
+ * gives the samples before it, and says what was missing. */
+static void tools_motion_mrec_track_cut_short_keeps_what_came_before(void **state) {
+  gg_motion m;
+  uint16_t ch[GG_CHANNELS];
+  char *said;
+  int saved = dup(2), to = open(tt_path(g_dir, "warn.txt"), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  (void)state;
+  write_take("cut.mrec", 1);
+  assert_true(saved >= 0 && to >= 0);
+  fflush(stderr);
+  dup2(to, 2);
+  load(&m, "all mrec file=cut.mrec loop=0\n");
+  fflush(stderr);
+  dup2(saved, 2);
+  close(saved);
+  close(to);
+  gg_motion_eval(&m, 5, ch);
+  assert_int_equal(ch[0], 400); /* sample 4, the last complete one */
+  gg_motion_free(&m);
+  said = tt_read_file(tt_path(g_dir, "warn.txt"), NULL);
+  assert_non_null(said);
+  if (!strstr(said, "cut.mrec: byte ") || !strstr(said, "5 missing"))
+    fail_msg("the cut was not reported: '%s'", said);
+  free(said);
+}
+
 static void expect_error(const char *text, const char *where) {
   gg_motion m;
   char err[600], want[1200];
@@ -187,6 +281,8 @@ int main(void) {
       cmocka_unit_test(tools_motion_keys_loop_and_clamp),
       cmocka_unit_test(tools_motion_walk_is_bounded_and_seeded),
       cmocka_unit_test(tools_motion_csv_track_interpolates),
+      cmocka_unit_test(tools_motion_mrec_track_follows_the_recorded_samples),
+      cmocka_unit_test(tools_motion_mrec_track_cut_short_keeps_what_came_before),
       cmocka_unit_test(tools_motion_errors_name_file_line_and_column),
       cmocka_unit_test(tools_motion_default_stays_in_range_and_moves),
   };

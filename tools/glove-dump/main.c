@@ -60,7 +60,8 @@ static void usage(FILE *f) {
 "  -h, --help             this text\n"
 "\n"
 "Exit: 0 end of stream or hang-up, 1 error (cannot open, read error,\n"
-"malformed recording), 2 bad usage, 3 spec mismatch, 130 SIGINT.\n"
+"malformed recording, stdout not writable), 2 bad usage, 3 spec mismatch,\n"
+"130 SIGINT.\n"
 "A spec mismatch prints exactly:\n"
 "  glove-dump: spec mismatch (device 0xDEVICE, host 0xHOST)\n");
 }
@@ -94,6 +95,7 @@ typedef struct dump {
   mr_rec_writer rec;
   int recording;
   uint64_t t0_ns;
+  int out_errno; /* set when stdout refused the lines: they would be lost */
 } dump;
 
 static uint64_t now_ns(void) {
@@ -106,6 +108,13 @@ static uint64_t unix_ns(void) {
   struct timespec ts;
   clock_gettime(CLOCK_REALTIME, &ts);
   return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+}
+
+/* Lines that cannot be written (a full disk, a reader that went away) are
+ * lost: stop and say so instead of decoding on into nothing. */
+static int stdout_failed(dump *D) {
+  if (!D->out_errno && ferror(stdout)) D->out_errno = errno ? errno : EIO;
+  return D->out_errno != 0;
 }
 
 /* Feeds bytes through the decoder; returns 1 when dumping should stop. */
@@ -150,7 +159,7 @@ static int feed(dump *D, const uint8_t *p, size_t n) {
     }
     if (D->max_frames && D->dec.c.frames >= D->max_frames) return 1;
   }
-  return 0;
+  return stdout_failed(D);
 }
 
 static int record(dump *D, const uint8_t *p, size_t n) {
@@ -256,7 +265,7 @@ int main(int argc, char **argv) {
   char spec_buf[512];
   double reconnect = -1, idle = -1;
   long baud = 0;
-  int realtime = 0, c, rc = 0, hung_up = 0;
+  int realtime = 0, c, rc = 0, hung_up = 0, ended = 0;
   mr_io io;
   mr_err err;
   struct sigaction sa;
@@ -395,7 +404,10 @@ int main(int argc, char **argv) {
         stop = feed(&D, buf, have);
         have = 0;
       }
-      if (st == MR_IO_EOF) break;
+      if (st == MR_IO_EOF) {
+        ended = 1;
+        break;
+      }
       if (st == MR_IO_ERROR) {
         fprintf(stderr, "glove-dump: %s\n", err.msg);
         rc = 1;
@@ -433,7 +445,19 @@ int main(int argc, char **argv) {
     if (!hung_up) mr_io_close(&io);
   }
 
-  fflush(stdout);
+  /* Bytes after the last delimiter are a frame that never ended: the
+   * decoder holds them, and no event will ever name them. */
+  if ((ended || hung_up) && D.dec.len && !D.dec.overflow)
+    fprintf(stderr,
+            "glove-dump: %s: the stream ended inside a frame: its last %zu bytes (from "
+            "byte %llu) were not decoded\n",
+            spec, D.dec.len, (unsigned long long)(D.dec.c.bytes - D.dec.len));
+  if (fflush(stdout) != 0 && !D.out_errno) D.out_errno = errno ? errno : EIO;
+  if (stdout_failed(&D)) {
+    fprintf(stderr, "glove-dump: stdout: cannot write the decoded frames: %s\n",
+            strerror(D.out_errno));
+    rc = 1;
+  }
   fprintf(stderr, "glove-dump: counters\n");
   gd_print_counters(stderr, &D.dec.c);
   if (counters_path) {

@@ -1,7 +1,7 @@
 /* Frame generation and fault injection for one glove. Each fault is applied
- * exactly as PROTOCOL.md maps it to decoder counters, and the expected
- * counters are kept as the frames go out, so the truth file is what the
- * decoder must report, not an estimate. */
+ * exactly as tools/README.md ("Faults") maps it to decoder counters, and the
+ * expected counters are kept as the frames go out, so the truth file is what
+ * the decoder must report, not an estimate. */
 #include <math.h>
 #include <string.h>
 

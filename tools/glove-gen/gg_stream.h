@@ -1,6 +1,5 @@
 /* One glove's stream: frames in order, INFO at 1 Hz, and the injected faults
- * with the decoder counters they must cause (PROTOCOL.md, "Fault injection ->
- * expected counters"). */
+ * with the decoder counters they must cause (tools/README.md, "Faults"). */
 #ifndef GG_STREAM_H
 #define GG_STREAM_H
 

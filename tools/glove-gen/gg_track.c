@@ -151,7 +151,8 @@ fail:
 }
 
 /* Decodes the SAMPLE frames of a recording; their device time (unwrapped)
- * becomes the track's time. A cut-short last chunk keeps what came before. */
+ * becomes the track's time. A cut-short last chunk keeps what came before,
+ * and is reported on stderr. */
 gg_track *gg_track_load_mrec(const char *path, char *err, size_t errcap) {
   mr_rec_reader r;
   mr_err e;
@@ -198,6 +199,9 @@ gg_track *gg_track_load_mrec(const char *path, char *err, size_t errcap) {
     snprintf(err, errcap, "%s", e.msg);
     goto fail_nofile;
   }
+  /* A recorder that was killed leaves the last chunk short: the samples
+   * before it are good, but say what is missing rather than hide it. */
+  if (rc < 0) fprintf(stderr, "glove-gen: %s (the samples before it are used)\n", e.msg);
   if (t->n == 0) {
     snprintf(err, errcap, "%s: no SAMPLE frames in the recording", path);
     goto fail_nofile;

@@ -100,9 +100,13 @@ int fw_hal_flash_read(void *data, size_t len) {
   return 0;
 }
 
-/* Waits out a flash operation (the CPU stalls on flash reads meanwhile, so
- * sampling pauses: the core counts the missed ticks as overruns) and
- * reports its error flags. */
+/* Waits out a flash operation and reports its error flags. The CPU stalls
+ * on flash reads meanwhile, interrupt handlers included: the DMA keeps
+ * overwriting its two blocks, but only what they hold at the end is handed
+ * over (one or two ticks), so the ticks of the stall (up to a sector erase,
+ * hundreds of ms) are neither sampled nor counted as overruns, and the
+ * device clock (tick count) falls behind by that much at each CAL_SAVE or
+ * CAL_CLEAR. */
 static int flash_wait(void) {
   fw_hal_watchdog_kick();
   bounded_wait(&FLASH_SR, FLASH_SR_BSY, 0u, FLASH_WAIT_POLLS);

@@ -4,7 +4,8 @@
  * regular files, FIFOs, pseudo-terminals, TCP sockets and serial devices.
  * libserialport lists, opens and configures real serial devices; ptys go
  * through termios on a plain fd, because libserialport cannot open them
- * (DESIGN.md, "Serial ports").
+ * (measured: sp_get_port_by_name fails on /dev/pts/N, and sp_open on a pty
+ * fails with "Inappropriate ioctl for device").
  *
  * Nothing here prints or aborts: every failure comes back as a status plus an
  * mr_err naming what and where.
@@ -149,7 +150,7 @@ typedef struct mr_serial_info {
 /* Fills up to cap entries, sets *n to how many ports exist. 0 or -1. */
 int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_err *err);
 
-/* --- stream recordings (*.mrec; PROTOCOL.md "Stream recording format") ------ */
+/* --- stream recordings (*.mrec; protocol/SPEC.md, "Stream recordings") ----- */
 
 #define MR_REC_MAGIC "MRSTREAM"
 #define MR_REC_VERSION 1u

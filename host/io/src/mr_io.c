@@ -152,6 +152,15 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
     if (!*host || !*port)
       return mr_err_set(err, MR_E_SPEC, "%s: expected %s", spec,
                         listen ? "tcp-listen:[HOST:]PORT" : "tcp:HOST:PORT");
+    /* A number, checked here: getaddrinfo takes any digits and keeps the
+     * low 16 bits, so 99999 would quietly become port 34463. */
+    {
+      char *end;
+      unsigned long pn = strtoul(port, &end, 10);
+      if (*end || port[0] < '0' || port[0] > '9' || pn > 65535 || (!listen && pn == 0))
+        return mr_err_set(err, MR_E_SPEC, "%s: port '%s' is not %s", spec, port,
+                          listen ? "0..65535" : "1..65535");
+    }
     return listen ? mr_io_tcp_listen(io, host, port, err)
                   : mr_io_tcp_connect(io, host, port, err);
   }
