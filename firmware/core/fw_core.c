@@ -273,6 +273,7 @@ void fw_core_poll(fw_core *c) {
       send_nack(c, fr.tag, fr.cmd, fr.reason);
       break;
     case FW_RX_CORRUPT:
+    case FW_RX_ECHO:
       c->cmd_errors++;
       break;
     default:

@@ -17,7 +17,8 @@ static fw_rx_result frame_end(fw_rx *rx, fw_rx_frame *out) {
   out->cmd = raw[0];
   out->tag = body > 1 ? raw[1] : 0; /* every command starts with its tag */
   const gp_msg_desc *d = gp_msg_find(raw[0]);
-  if (d == 0 || d->dir != GP_DIR_HOST) {
+  if (d != 0 && d->dir == GP_DIR_DEVICE) return FW_RX_ECHO;
+  if (d == 0) {
     out->reason = GP_NACK_UNKNOWN_COMMAND;
     return FW_RX_NACK;
   }

@@ -20,6 +20,9 @@ typedef enum fw_rx_result {
   FW_RX_COMMAND,     /* a valid command: msg filled */
   FW_RX_NACK,        /* a frame with a good CRC to refuse: tag, cmd, reason filled */
   FW_RX_CORRUPT,     /* a frame to drop silently (bad CRC, framing, oversize) */
+  FW_RX_ECHO,        /* a glove-to-host frame, such as our own output looped
+                      * back to RX: dropped silently, since a NACK would be
+                      * echoed too and feed itself */
 } fw_rx_result;
 
 typedef struct fw_rx_frame {
