@@ -79,6 +79,8 @@ static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, d
   printf("collisions: %" PRIu64 "\n", r->collisions);
   printf("dependent rows: %d\n", r->dependent_rows);
   printf("finite: %s\n", r->finite ? "yes" : "no");
+  if (r->string_stretch > 0) /* some string states its rest length */
+    printf("string stretch max: %.3g x rest\n", r->string_stretch);
   if (scene->expect.n_watch > 0) {
     printf("creep: %.3e m\n", r->creep);
     printf("jitter: %.3e m/s\n", r->jitter);

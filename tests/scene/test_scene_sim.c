@@ -234,6 +234,34 @@ static void check_fails_with_a_clear_line(void **state) {
   scene_proc_free(&p);
 }
 
+/* A string that never leaves its rest length cannot meet a stretch
+ * expectation, and the summary reports the stretch it did reach. */
+static void string_stretch_is_measured_and_checked(void **state) {
+  (void)state;
+  const char text[] = "physics:\n"
+                      "  effects: [gravity, strings, control]\n"
+                      "  particles:\n"
+                      "    - {name: w, position: [0, 1, 0], mass: 1}\n"
+                      "  control:\n"
+                      "    pose: {position: [0, 1.5, 0]}\n"
+                      "    points: [{name: bar, offset: [0, 0, 0]}]\n"
+                      "  strings:\n"
+                      "    - {from: bar, to: w, stiffness: 1000, damping: 10, rest: 0.5}\n"
+                      "expect: {min_string_stretch: 3}\n";
+  const char *path = scene_tmp_file("sim_stretch.yaml", text, sizeof text - 1);
+  scene_proc p;
+  run(&p, "sim", "--check", "--time", "2", path, NULL);
+  assert_int_equal(p.status, 1);
+  char v[64];
+  assert_int_equal(scene_proc_field(p.out, "string stretch max", v, sizeof v), 0);
+  double stretch = strtod(v, NULL);
+  /* 1 kg on 1000 N/m sags 9.8 mm below its 0.5 m rest: about 1.02 x. */
+  assert_true(stretch > 1.0 && stretch < 1.1);
+  assert_non_null(strstr(p.err, "check failed: expected a string stretched to >= 3 x its rest "
+                                "length, got "));
+  scene_proc_free(&p);
+}
+
 static void example_puppet_runs_cleanly(void **state) {
   (void)state;
   scene_proc p;
@@ -261,6 +289,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
       cmocka_unit_test(csv_has_one_row_per_step_call),
       cmocka_unit_test(check_fails_with_a_clear_line),
+      cmocka_unit_test(string_stretch_is_measured_and_checked),
       cmocka_unit_test(example_puppet_runs_cleanly),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -216,6 +216,9 @@ typedef struct mr_scene_expect {
   double max_deviation;
   long resets_min, resets_max;
   double min_mean_dt;
+  /* The largest length/rest ratio any string reaches at an accepted step
+   * must be at least this: proof that a stretch case really stretched. */
+  double min_string_stretch;
   char load_error[256]; /* the load must fail with text containing this */
   bool has_load_error;
   /* Creep and jitter: after `settle` seconds, no listed particle moves

@@ -66,6 +66,7 @@ typedef struct mr_scene_run_result {
   /* Rest checks (expect.rest): largest displacement of a watched particle
    * from its position at `settle`, and its largest speed after `settle`. */
   double creep, jitter;
+  double string_stretch;    /* largest length/rest of any string after any step */
   mr_status last_status;    /* of the last step call */
   char first_reset[256];    /* the physics' account of the first reset */
 } mr_scene_run_result;

@@ -59,8 +59,9 @@ static int read_rest(mr_reader *r, const mr_ynode *v) {
 }
 
 int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"finite", "max_deviation", "resets", "min_mean_dt",
-                                     "rest",   "load_error",    NULL};
+  static const char *const keys[] = {"finite",     "max_deviation", "resets",
+                                     "min_mean_dt", "min_string_stretch", "rest",
+                                     "load_error", NULL};
   mr_scene_expect *e = &r->scene->expect;
   if (rd_map(r, n, "expect", keys) != 0)
     return -1;
@@ -79,7 +80,8 @@ int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
   if ((v = mr_ynode_get(n, "finite")) != NULL && rd_bool(r, v, "finite", &e->finite) != 0)
     return -1;
   if (rd_positive_key(r, n, "max_deviation", &e->max_deviation) != 0 ||
-      rd_positive_key(r, n, "min_mean_dt", &e->min_mean_dt) != 0)
+      rd_positive_key(r, n, "min_mean_dt", &e->min_mean_dt) != 0 ||
+      rd_positive_key(r, n, "min_string_stretch", &e->min_string_stretch) != 0)
     return -1;
   if ((v = mr_ynode_get(n, "resets")) != NULL && read_resets(r, v) != 0)
     return -1;

@@ -36,6 +36,7 @@ static void defaults(mr_scene *s) {
   s->expect.resets_min = -1;
   s->expect.resets_max = -1;
   s->expect.min_mean_dt = NAN;
+  s->expect.min_string_stretch = NAN;
   s->expect.settle = NAN;
   s->expect.creep = NAN;
   s->expect.jitter = NAN;

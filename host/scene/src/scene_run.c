@@ -29,6 +29,25 @@ static double max_speed(const mr_scene_world *sw) {
   return m;
 }
 
+/* How far the most stretched string is past its rest length, as a ratio:
+ * the distance from its control point to its particle over its rest. Only
+ * strings whose file states a rest length above 0 have a ratio. */
+static double string_stretch(const mr_scene *s, const mr_scene_world *sw) {
+  double m = 0;
+  for (size_t i = 0; i < s->n_strings; i++) {
+    const mr_scene_string *str = &s->strings[i];
+    double a[3], b[3];
+    if (!(str->rest > 0))
+      continue;
+    if (mr_world_particle_state(sw->world, sw->control_ids[str->control], a, NULL) != MR_OK ||
+        mr_world_particle_state(sw->world, sw->particle_ids[str->particle], b, NULL) != MR_OK)
+      continue;
+    double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    m = fmax(m, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / str->rest);
+  }
+  return m;
+}
+
 typedef struct watcher {
   const mr_scene_expect *e;
   const mr_scene_world *sw;
@@ -144,6 +163,7 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
     if (!state_finite(xyz, n) || !isfinite(row.error))
       r->finite = false;
     row.max_speed = max_speed(&sw);
+    r->string_stretch = fmax(r->string_stretch, string_stretch(s, &sw));
     if (!isfinite(row.max_speed))
       r->finite = false;
     r->steps += (uint64_t)rep.steps;
@@ -214,6 +234,11 @@ int mr_scene_check(const mr_scene *s, const mr_scene_run_result *r, char *why, s
   }
   if (!isnan(e->min_mean_dt) && !(r->dt_mean >= e->min_mean_dt)) {
     snprintf(why, size, "expected mean dt >= %g s, got %g s", e->min_mean_dt, r->dt_mean);
+    return -1;
+  }
+  if (!isnan(e->min_string_stretch) && !(r->string_stretch >= e->min_string_stretch)) {
+    snprintf(why, size, "expected a string stretched to >= %g x its rest length, got %g x",
+             e->min_string_stretch, r->string_stretch);
     return -1;
   }
   if (!isnan(e->creep) && !(r->creep <= e->creep)) {
