@@ -107,11 +107,13 @@ static void send_sample(fw_core *c) {
   send(c, wire, n);
 }
 
-static uint8_t cal_nack_reason(fw_cal_result r) {
+/* The reply to a calibration command, from what the calibration did. */
+static void reply_cal(fw_core *c, uint8_t tag, uint8_t cmd, fw_cal_result r) {
   switch (r) {
-  case FW_CAL_ERR_STATE: return GP_NACK_BAD_STATE;
-  case FW_CAL_ERR_SPAN: return GP_NACK_BAD_ARGUMENT;
-  default: return GP_NACK_FLASH_ERROR;
+  case FW_CAL_OK: send_ack(c, tag, cmd); break;
+  case FW_CAL_ERR_STATE: send_nack(c, tag, cmd, GP_NACK_BAD_STATE); break;
+  case FW_CAL_ERR_SPAN: send_nack(c, tag, cmd, GP_NACK_BAD_ARGUMENT); break;
+  default: send_nack(c, tag, cmd, GP_NACK_FLASH_ERROR); break;
   }
 }
 
@@ -129,7 +131,6 @@ static void set_rate(fw_core *c, const gp_set_rate *r) {
 static void command(fw_core *c, const gp_msg *m) {
   /* Every command's first field is its tag; PING's layout stands for all. */
   uint8_t tag = m->u.ping.tag;
-  fw_cal_result r;
   switch (m->type) {
   case GP_PING:
     send_ack(c, tag, GP_PING);
@@ -155,18 +156,10 @@ static void command(fw_core *c, const gp_msg *m) {
     send_ack(c, tag, GP_CAL_START);
     break;
   case GP_CAL_SAVE:
-    r = fw_cal_save(&c->cal);
-    if (r == FW_CAL_OK)
-      send_ack(c, tag, GP_CAL_SAVE);
-    else
-      send_nack(c, tag, GP_CAL_SAVE, cal_nack_reason(r));
+    reply_cal(c, tag, GP_CAL_SAVE, fw_cal_save(&c->cal));
     break;
   case GP_CAL_CLEAR:
-    r = fw_cal_clear(&c->cal);
-    if (r == FW_CAL_OK)
-      send_ack(c, tag, GP_CAL_CLEAR);
-    else
-      send_nack(c, tag, GP_CAL_CLEAR, cal_nack_reason(r));
+    reply_cal(c, tag, GP_CAL_CLEAR, fw_cal_clear(&c->cal));
     break;
   case GP_GET_STATUS:
     send_ack(c, tag, GP_GET_STATUS);
