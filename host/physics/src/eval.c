@@ -93,9 +93,12 @@ static void accelerations(const mr_world *w, const double *f, double *a)
       a[3 * i + k] = f[3 * i + k] * w->inv_mass[i];
 }
 
-/* Rows of the constraints and of the active resting contacts into w->J,
- * with C, Ċ and the bias J̇q̇ + ∂²C/∂t² per row. */
-static int build_rows(mr_world *w, double t, const double *x, const double *v)
+/* Rows of the constraints and of the active contacts (w->contact_active)
+ * into w->J, with C, Ċ and the bias J̇q̇ + ∂²C/∂t² per row, and for each
+ * row the contact it stands for (-1 for a constraint). Returns the number
+ * of rows, or -1 when out of memory. The force solve (eq. 8) and the
+ * impulse solve (eq. 9, which does not read the bias) share it. */
+int mr_rows_build(mr_world *w, double t, const double *x, const double *v)
 {
   int nc = mr_constraint_row_count(w);
   if (mr_solve_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0)
@@ -216,7 +219,7 @@ int mr_eval(mr_world *w, double t, double *x, double *v, double *a)
   /* Resting contacts push and never pull (§5.4, eq. 13b): a contact whose
    * multiplier comes out negative is released and the system solved again. */
   for (int round = 0; round <= w->contacts.n; round++) {
-    rows = build_rows(w, t, x, v);
+    rows = mr_rows_build(w, t, x, v);
     if (rows < 0)
       return -1;
     if (rows == 0)

@@ -17,34 +17,6 @@
 #include <math.h>
 #include <string.h>
 
-static int build(mr_world *w, double t, const double *x, const double *v, const unsigned char *active,
-                 int *nrows)
-{
-  int nc = mr_constraint_row_count(w);
-  if (mr_solve_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0)
-    return -1;
-  int r = 0;
-  if (nc > 0) {
-    r = mr_constraints_rows(w, t, x, v, w->row_c, w->row_cdot, w->row_bias);
-    if (r < 0)
-      return -1;
-  }
-  for (int i = 0; i < r; i++)
-    w->row_contact[i] = -1;
-  for (int c = 0; c < w->contacts.n; c++) {
-    if (!active[c])
-      continue;
-    double chidot, jdqd;
-    if (mr_contact_row(w, &w->contacts.c[c], x, v, &w->row_c[r], &chidot, &jdqd) != 0)
-      return -1;
-    w->row_cdot[r] = chidot;
-    w->row_contact[r] = c;
-    r++;
-  }
-  *nrows = r;
-  return 0;
-}
-
 int mr_impulses_apply(mr_world *w, double t, int *collided)
 {
   *collided = 0;
@@ -89,8 +61,8 @@ int mr_impulses_apply(mr_world *w, double t, int *collided)
   for (int i = 0; i < n3; i++)
     w->tmp3n[i] = pa[i] * w->inv_mass[i / 3];
   for (int round = 0; round <= nct + 1; round++) {
-    int rows;
-    if (build(w, t, x, v, active, &rows) != 0)
+    int rows = mr_rows_build(w, t, x, v);
+    if (rows < 0)
       return -1;
     if (rows == 0) {
       for (int i = 0; i < n3; i++)

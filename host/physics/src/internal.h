@@ -172,6 +172,7 @@ double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x);
 double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v);
 /* Writes the contact's J row into w->J and sets χ, χ̇ and J̇q̇; 0 or −1
  * (out of memory). A NaN state gives NaN values, not a failure. */
+int mr_rows_build(mr_world *w, double t, const double *x, const double *v);
 int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v, double *chi,
                    double *chidot, double *jdqd);
 int mr_contact_push(mr_contact_list *l, mr_contact_kind kind, int a, int b, double e, double mu);
