@@ -17,15 +17,7 @@ int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const
         return MR_SOLVE_ENOMEM;
     unsigned char *dep = s->dep.p;
     double *inv_diag = s->inv_diag.p;
-    r->dependent = mr_screen_pairs(A, o->pivot_tol, dep, inv_diag);
-    for (int i = 0; i < n; i++) {
-        if (dep[i]) {
-            x[i] = 0.0;
-            inv_diag[i] = 0.0;
-        } else {
-            inv_diag[i] = 1.0 / inv_diag[i];
-        }
-    }
+    r->dependent = mr_screen_for_iteration(A, o->pivot_tol, dep, inv_diag, x);
 
     const double stop = o->tol * mr_norm2(n, b);
     if (mr_residual_norm(A, b, x, dep) <= stop)

@@ -69,20 +69,26 @@ void mr_solver_destroy(mr_solver *s)
     free(s);
 }
 
+/* One term of a sum of squares kept as scale²·ssq, so that a large but
+ * finite vector does not overflow. */
+static void ssq_add(double *scale, double *ssq, double a)
+{
+    if (a == 0.0)
+        return;
+    if (*scale < a) {
+        *ssq = 1.0 + *ssq * (*scale / a) * (*scale / a);
+        *scale = a;
+    } else {
+        *ssq += (a / *scale) * (a / *scale);
+    }
+}
+
 double mr_norm2(int n, const double *v)
 {
-    /* Scaled so that a large but finite vector does not overflow. */
     double scale = 0.0, ssq = 1.0;
     for (int i = 0; i < n; i++) {
         double a = fabs(v[i]);
-        if (a == 0.0)
-            continue;
-        if (scale < a) {
-            ssq = 1.0 + ssq * (scale / a) * (scale / a);
-            scale = a;
-        } else {
-            ssq += (a / scale) * (a / scale);
-        }
+        ssq_add(&scale, &ssq, a);
     }
     return scale * sqrt(ssq);
 }
@@ -97,14 +103,7 @@ double mr_residual_norm(const mr_csr *A, const double *b, const double *x, const
         for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
             s -= A->val[q] * x[A->col[q]];
         double a = fabs(s);
-        if (a == 0.0)
-            continue;
-        if (scale < a) {
-            ssq = 1.0 + ssq * (scale / a) * (scale / a);
-            scale = a;
-        } else {
-            ssq += (a / scale) * (a / scale);
-        }
+        ssq_add(&scale, &ssq, a);
     }
     return scale * sqrt(ssq);
 }
@@ -132,6 +131,21 @@ int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, doubl
                 dep[j] = 1;
         }
         count += dep[j];
+    }
+    return count;
+}
+
+int mr_screen_for_iteration(const mr_csr *A, double pivot_tol, unsigned char *dep, double *inv_diag,
+                            double *x)
+{
+    int count = mr_screen_pairs(A, pivot_tol, dep, inv_diag);
+    for (int i = 0; i < A->n; i++) {
+        if (dep[i]) {
+            x[i] = 0.0;
+            inv_diag[i] = 0.0;
+        } else {
+            inv_diag[i] = 1.0 / inv_diag[i];
+        }
     }
     return count;
 }

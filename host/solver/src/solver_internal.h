@@ -45,6 +45,11 @@ double mr_norm2(int n, const double *v);
  * the LDLᵀ pivot test applied to pairs. Leaves A's diagonal in diag.
  * Returns the count. */
 int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag);
+/* mr_screen_pairs as the iterative methods start: the flagged rows' x set
+ * to 0 and their inverse diagonal to 0 (they take no part), the others'
+ * inverse diagonal in inv_diag. Returns the count of flagged rows. */
+int mr_screen_for_iteration(const mr_csr *A, double pivot_tol, unsigned char *dep, double *inv_diag,
+                            double *x);
 
 int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
 int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
