@@ -29,31 +29,48 @@ static void set_stream_opts(int fd) {
   fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
 }
 
-int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_err *err) {
+/* Resolves host:port and returns a socket connected to the first address
+ * that takes a connection, or, when listening, bound and listening on the
+ * first that can be bound. Returns -1 with errno from the last attempt, or
+ * with *gai set when the name does not resolve. */
+static int open_stream(const char *host, const char *port, int listening, int *gai) {
   struct addrinfo hints, *res = NULL, *ai;
-  int rc, fd = -1, last_errno = 0;
+  int fd = -1, one = 1, last_errno = 0;
   memset(&hints, 0, sizeof hints);
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_STREAM;
-  rc = getaddrinfo(host, port, &hints, &res);
-  if (rc != 0)
-    return mr_err_set(err, MR_E_SPEC, "tcp:%s:%s: %s", host, port, gai_strerror(rc));
+  hints.ai_flags = listening ? AI_PASSIVE : 0;
+  *gai = getaddrinfo(host, port, &hints, &res);
+  if (*gai != 0)
+    return -1;
   for (ai = res; ai; ai = ai->ai_next) {
     fd = socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
     if (fd < 0) {
       last_errno = errno;
       continue;
     }
-    if (connect(fd, ai->ai_addr, ai->ai_addrlen) == 0) break;
+    if (listening) {
+      setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+      if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, 1) == 0) break;
+    } else if (connect(fd, ai->ai_addr, ai->ai_addrlen) == 0) {
+      break;
+    }
     last_errno = errno;
     close(fd);
     fd = -1;
   }
   freeaddrinfo(res);
-  if (fd < 0) {
-    errno = last_errno;
+  if (fd < 0) errno = last_errno;
+  return fd;
+}
+
+int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_err *err) {
+  int gai;
+  int fd = open_stream(host, port, 0, &gai);
+  if (gai != 0)
+    return mr_err_set(err, MR_E_SPEC, "tcp:%s:%s: %s", host, port, gai_strerror(gai));
+  if (fd < 0)
     return mr_err_sys(err, "tcp:%s:%s: cannot connect", host, port);
-  }
   set_stream_opts(fd);
   io->fd = fd;
   io->kind = MR_IO_TCP;
@@ -63,32 +80,12 @@ int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_err *err
 }
 
 int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_err *err) {
-  struct addrinfo hints, *res = NULL, *ai;
-  int rc, fd = -1, one = 1, last_errno = 0;
-  memset(&hints, 0, sizeof hints);
-  hints.ai_family = AF_UNSPEC;
-  hints.ai_socktype = SOCK_STREAM;
-  hints.ai_flags = AI_PASSIVE;
-  rc = getaddrinfo(host, port, &hints, &res);
-  if (rc != 0)
-    return mr_err_set(err, MR_E_SPEC, "tcp-listen:%s:%s: %s", host, port, gai_strerror(rc));
-  for (ai = res; ai; ai = ai->ai_next) {
-    fd = socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
-    if (fd < 0) {
-      last_errno = errno;
-      continue;
-    }
-    setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-    if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, 1) == 0) break;
-    last_errno = errno;
-    close(fd);
-    fd = -1;
-  }
-  freeaddrinfo(res);
-  if (fd < 0) {
-    errno = last_errno;
+  int gai;
+  int fd = open_stream(host, port, 1, &gai);
+  if (gai != 0)
+    return mr_err_set(err, MR_E_SPEC, "tcp-listen:%s:%s: %s", host, port, gai_strerror(gai));
+  if (fd < 0)
     return mr_err_sys(err, "tcp-listen:%s:%s: cannot listen", host, port);
-  }
   io->listen_fd = fd;
   io->fd = -1;
   io->kind = MR_IO_TCP_LISTEN;
