@@ -27,7 +27,12 @@ int fw_filter_block(fw_filter *f, const uint16_t block[FW_BLOCK_LEN],
       if (step == 0 && d != 0) step = d > 0 ? 1 : -1;
       f->y[c] += step;
     }
-    uint32_t y = ((uint32_t)f->y[c] + (1u << (FW_FILTER_FRAC_BITS - 1u))) >> FW_FILTER_FRAC_BITS;
+    /* Nearest count; a tie goes the way the filter is moving (down only when
+     * the input is below the state), so a falling step rounds exactly as the
+     * mirror image of a rising one. At rest a tie rounds up, as the mean
+     * above does. */
+    uint32_t half = (1u << (FW_FILTER_FRAC_BITS - 1u)) - (x < f->y[c] ? 1u : 0u);
+    uint32_t y = ((uint32_t)f->y[c] + half) >> FW_FILTER_FRAC_BITS;
     out[c] = (uint16_t)(y > FW_ADC_MAX ? FW_ADC_MAX : y);
   }
   f->primed = 1;

@@ -38,20 +38,68 @@ static void firmware_filter_step_settles_as_documented(void **state) {
   assert_int_equal(ticks_to(99), 35);
 }
 
+/* Runs a step from lo to hi: out[n] is channel 0's count n + 1 blocks after
+ * the step (every channel is checked to agree). */
+#define CURVE_TICKS 200u
+static void step_curve(uint16_t lo, uint16_t hi, uint16_t out[CURVE_TICKS]) {
+  fw_filter f;
+  uint16_t block[FW_BLOCK_LEN], y[FW_N_CH];
+  fw_filter_init(&f);
+  fill(block, lo);
+  fw_filter_block(&f, block, y);
+  fill(block, hi);
+  for (unsigned n = 0; n < CURVE_TICKS; n++) {
+    fw_filter_block(&f, block, y);
+    for (unsigned c = 1; c < FW_N_CH; c++) assert_int_equal(y[c], y[0]);
+    out[n] = y[0];
+  }
+}
+
+/* Every count of a falling step is the mirror image of the rising one, tick
+ * by tick and until both have settled: the steps include ones whose
+ * fixed-point state lands exactly half-way between two counts. */
 static void firmware_filter_falling_step_mirrors_rising(void **state) {
   (void)state;
-  fw_filter f;
-  uint16_t block[FW_BLOCK_LEN], out[FW_N_CH];
-  fw_filter_init(&f);
-  fill(block, 3000);
-  fw_filter_block(&f, block, out);
-  fill(block, 1000);
-  unsigned n90 = 0;
-  for (unsigned n = 1; n <= 100 && !n90; n++) {
-    fw_filter_block(&f, block, out);
-    if ((unsigned)(3000 - out[0]) * 100u >= 2000u * 90u) n90 = n;
+  static const uint16_t lows[] = {0, 1, 1000, 2047};
+  uint16_t rise[CURVE_TICKS], fall[CURVE_TICKS];
+  for (unsigned l = 0; l < sizeof lows / sizeof lows[0]; l++) {
+    for (unsigned d = 1; d <= 2048; d++) {
+      uint16_t lo = lows[l], hi = (uint16_t)(lo + d);
+      step_curve(lo, hi, rise);
+      step_curve(hi, lo, fall);
+      for (unsigned n = 0; n < CURVE_TICKS; n++)
+        if (rise[n] - lo != hi - fall[n])
+          fail_msg("step %u..%u, tick %u: rising %u above, falling %u below", lo, hi, n + 1,
+                   rise[n] - lo, hi - fall[n]);
+      assert_int_equal(rise[CURVE_TICKS - 1], hi);
+      assert_int_equal(fall[CURVE_TICKS - 1], lo);
+    }
   }
-  assert_int_equal(n90, 18);
+  /* The documented step (1000 to 3000) reaches 90 % after 18 ticks both ways. */
+  step_curve(3000, 1000, fall);
+  unsigned n90 = 0;
+  while (n90 < CURVE_TICKS && (unsigned)(3000 - fall[n90]) * 100u < 2000u * 90u) n90++;
+  assert_int_equal(n90 + 1, 18);
+}
+
+/* A level half-way between two counts (oversamples 100, 101, 100, 101)
+ * reads as the upper count, as the mean of a single block does, whether the
+ * filter comes to it from below or from above. */
+static void firmware_filter_settles_a_half_count_level_on_the_upper_count(void **state) {
+  (void)state;
+  static const uint16_t starts[] = {0, 99, 100, 101, 102, 4095};
+  for (unsigned k = 0; k < sizeof starts / sizeof starts[0]; k++) {
+    fw_filter f;
+    uint16_t block[FW_BLOCK_LEN], out[FW_N_CH];
+    fw_filter_init(&f);
+    fill(block, starts[k]);
+    fw_filter_block(&f, block, out);
+    for (unsigned s = 0; s < FW_OVERSAMPLE; s++)
+      for (unsigned c = 0; c < FW_N_CH; c++) block[s * FW_N_CH + c] = (uint16_t)(100 + s % 2u);
+    for (int i = 0; i < 300; i++) fw_filter_block(&f, block, out);
+    for (unsigned c = 0; c < FW_N_CH; c++)
+      if (out[c] != 101) fail_msg("from %u: settled on %u, not 101", starts[k], out[c]);
+  }
 }
 
 static void firmware_filter_lags_a_ramp_by_seven_ticks(void **state) {
@@ -116,6 +164,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(firmware_filter_step_settles_as_documented),
       cmocka_unit_test(firmware_filter_falling_step_mirrors_rising),
+      cmocka_unit_test(firmware_filter_settles_a_half_count_level_on_the_upper_count),
       cmocka_unit_test(firmware_filter_lags_a_ramp_by_seven_ticks),
       cmocka_unit_test(firmware_filter_reaches_the_exact_level),
       cmocka_unit_test(firmware_filter_averages_the_oversamples),
