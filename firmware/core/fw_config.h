@@ -79,6 +79,9 @@
 #if FW_FILTER_FRAC_BITS < 1 || FW_FILTER_FRAC_BITS > 16
 #error "FW_FILTER_FRAC_BITS must be 1..16"
 #endif
+#if FW_BUTTON_DEBOUNCE_TICKS < 1
+#error "FW_BUTTON_DEBOUNCE_TICKS must be at least 1"
+#endif
 #if FW_BLOCKQ_DEPTH < 2 || (FW_BLOCKQ_DEPTH & (FW_BLOCKQ_DEPTH - 1)) != 0
 #error "FW_BLOCKQ_DEPTH must be a power of two, at least 2"
 #endif

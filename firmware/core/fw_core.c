@@ -178,12 +178,15 @@ static void command(fw_core *c, const gp_msg *m) {
  * once (a refused save keeps capturing, and the INFO says RUNNING). */
 static void button_tick(fw_core *c) {
   uint8_t raw = fw_hal_button() ? 1 : 0;
+  /* button_count counts the ticks in a row that read raw, this one
+   * included: the change is taken on the FW_BUTTON_DEBOUNCE_TICKS-th. */
   if (raw != c->button_raw) {
     c->button_raw = raw;
-    c->button_count = 0;
-    return;
+    c->button_count = 1;
+  } else if (c->button_count < FW_BUTTON_DEBOUNCE_TICKS) {
+    c->button_count++;
   }
-  if (raw == c->button || ++c->button_count < FW_BUTTON_DEBOUNCE_TICKS) return;
+  if (raw == c->button || c->button_count < FW_BUTTON_DEBOUNCE_TICKS) return;
   c->button = raw;
   if (raw)
     fw_cal_start(&c->cal);

@@ -245,6 +245,76 @@ static void firmware_calibration_by_button(void **state) {
   assert_int_equal(frames.msg[i].u.info.cal_min[0], 800);
 }
 
+/* The button counts once it has read the same for FW_BUTTON_DEBOUNCE_TICKS
+ * (20) ticks in a row, the first of them included: a press of 19 ticks is a
+ * bounce, the 20th tick of a press starts the capture, and the 20th tick of
+ * the release saves it. */
+static void firmware_calibration_button_debounce_is_20_ticks(void **state) {
+  (void)state;
+  assert_int_equal(FW_BUTTON_DEBOUNCE_TICKS, 20);
+  fake.button = 1;
+  fake_run(&core, 19);
+  fake.button = 0;
+  fake_run(&core, 50);
+  assert_int_equal(core.cal.state, GP_CAL_DEFAULTS);
+
+  fake.button = 1;
+  fake_run(&core, 19);
+  assert_int_equal(core.cal.state, GP_CAL_DEFAULTS);
+  fake_run(&core, 1);
+  assert_int_equal(core.cal.state, GP_CAL_RUNNING);
+  sweep(800, 3200);
+
+  fake.button = 0;
+  fake_run(&core, 19);
+  assert_int_equal(core.cal.state, GP_CAL_RUNNING);
+  assert_int_equal(fake.flash_writes, 0);
+  fake_run(&core, 1);
+  assert_int_equal(core.cal.state, GP_CAL_VALID);
+  assert_int_equal(fake.flash_writes, 1);
+}
+
+/* A string that moved by exactly FW_CAL_MIN_SPAN counts is enough; one count
+ * less is refused. Directly, and through CAL_SAVE with the filter between. */
+static void firmware_calibration_accepts_a_span_of_exactly_the_minimum(void **state) {
+  (void)state;
+  fw_cal cal;
+  fw_cal_load(&cal);
+  for (unsigned short_ch = 0; short_ch < FW_N_CH; short_ch++) {
+    uint16_t lo[FW_N_CH], hi[FW_N_CH];
+    for (unsigned c = 0; c < FW_N_CH; c++) {
+      lo[c] = (uint16_t)(1000 + 100 * c);
+      hi[c] = (uint16_t)(lo[c] + FW_CAL_MIN_SPAN - (c == short_ch ? 1u : 0u));
+    }
+    fw_cal_start(&cal);
+    fw_cal_feed(&cal, lo);
+    fw_cal_feed(&cal, hi);
+    assert_int_equal(fw_cal_save(&cal), FW_CAL_ERR_SPAN);
+    assert_int_equal(cal.state, GP_CAL_RUNNING);
+  }
+  uint16_t lo[FW_N_CH], hi[FW_N_CH];
+  for (unsigned c = 0; c < FW_N_CH; c++) {
+    lo[c] = (uint16_t)(1000 + 100 * c);
+    hi[c] = (uint16_t)(lo[c] + FW_CAL_MIN_SPAN);
+  }
+  fw_cal_start(&cal);
+  fw_cal_feed(&cal, lo);
+  fw_cal_feed(&cal, hi);
+  assert_int_equal(fw_cal_save(&cal), FW_CAL_OK);
+  assert_int_equal(cal.state, GP_CAL_VALID);
+  assert_int_equal(cal.min[2], 1200);
+  assert_int_equal(cal.max[2], 1200 + FW_CAL_MIN_SPAN);
+
+  cmd(GP_CAL_START, 1);
+  sweep(2000, (uint16_t)(2000 + FW_CAL_MIN_SPAN));
+  cmd(GP_CAL_SAVE, 2);
+  assert_int_equal(last_reply(), 1);
+  const gp_info *info = last_info();
+  assert_int_equal(info->cal_state, GP_CAL_VALID);
+  for (unsigned c = 0; c < FW_N_CH; c++)
+    assert_int_equal(info->cal_max[c] - info->cal_min[c], FW_CAL_MIN_SPAN);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(firmware_calibration_save_survives_reset, setup),
@@ -253,6 +323,8 @@ int main(void) {
       cmocka_unit_test_setup(firmware_calibration_failed_clear_keeps_the_calibration, setup),
       cmocka_unit_test_setup(firmware_calibration_board_without_storage, setup),
       cmocka_unit_test_setup(firmware_calibration_by_button, setup),
+      cmocka_unit_test_setup(firmware_calibration_button_debounce_is_20_ticks, setup),
+      cmocka_unit_test_setup(firmware_calibration_accepts_a_span_of_exactly_the_minimum, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
