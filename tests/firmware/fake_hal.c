@@ -23,15 +23,19 @@ void fake_reset(void) {
   fake.uid[2] = 0x8899AABBu;
 }
 
-static void sample(void) {
+void fake_sample_at(uint32_t tick) {
   uint16_t *slot = fw_blockq_slot(&fake.q);
   if (slot == NULL) {
     fw_blockq_drop(&fake.q);
-  } else {
-    for (unsigned s = 0; s < FW_OVERSAMPLE; s++)
-      for (unsigned c = 0; c < FW_N_CH; c++) slot[s * FW_N_CH + c] = fake.level[c];
-    fw_blockq_commit(&fake.q, fake.tick);
+    return;
   }
+  for (unsigned s = 0; s < FW_OVERSAMPLE; s++)
+    for (unsigned c = 0; c < FW_N_CH; c++) slot[s * FW_N_CH + c] = fake.level[c];
+  fw_blockq_commit(&fake.q, tick);
+}
+
+static void sample(void) {
+  fake_sample_at(fake.tick);
   fake.tick++;
 }
 

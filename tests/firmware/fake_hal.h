@@ -53,6 +53,9 @@ void fake_reset(void);
 /* Advances one tick: samples a block (unless skip), runs polls main-loop
  * passes, and lets the line carry one tick's worth of bytes. */
 void fake_step(fw_core *c, int skip_sample, unsigned polls);
+/* Queues one block of the current levels stamped with tick, without moving
+ * the timer on: what a board that hands the same tick over twice would do. */
+void fake_sample_at(uint32_t tick);
 /* fake_step with one sample and one poll, n times. */
 void fake_run(fw_core *c, unsigned ticks);
 /* Queues bytes as if the host had sent them. */

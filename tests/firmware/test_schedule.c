@@ -80,10 +80,88 @@ static void firmware_schedule_missed_ticks_cost_at_most_one_tick(void **state) {
   assert_int_equal(core.overruns, skipped);
 }
 
+/* INFO goes out on ticks 0, 1000, 2000, ...: at a 1000 Hz frame rate every
+ * tick has a SAMPLE, and an INFO is queued just before the SAMPLE of its
+ * own tick, so the SAMPLE after each INFO names the tick it went out on.
+ * Ticks 2000 and 2001 are never sampled: that INFO is late, the next is
+ * back on the grid. */
+static void firmware_schedule_info_goes_out_every_1000_ticks(void **state) {
+  (void)state;
+  core.frame_rate_hz = 1000;
+  core.baud = 921600;
+  fake.baud = 921600;
+  for (unsigned t = 0; t < 10500; t++) fake_step(&core, t == 2000 || t == 2001, 1);
+  fake_run(&core, 20);
+  fake_decode();
+  assert_int_equal(frames.c.crc_errors + frames.c.framing_errors + frames.c.lost, 0);
+  assert_int_equal(core.dropped_frames, 0);
+  unsigned k = 0;
+  for (size_t i = fake_find(0, GP_INFO); i < frames.n; i = fake_find(i + 1, GP_INFO), k++) {
+    size_t s = fake_find(i + 1, GP_SAMPLE);
+    assert_true(s < frames.n);
+    uint32_t tick = frames.msg[s].u.sample.t_us / FW_TICK_US;
+    uint32_t want = k == 2 ? 2002u : 1000u * k;
+    if (tick != want) fail_msg("INFO %u went out on tick %u, not %u", k, tick, want);
+  }
+  assert_int_equal(k, 11);
+}
+
+/* A block handed over twice with the same tick number is taken once: the
+ * copy moves neither the filter, nor the calibration capture, nor the
+ * button's debounce, nor the schedule. */
+static void firmware_schedule_a_repeated_tick_is_processed_once(void **state) {
+  (void)state;
+  fake_run(&core, 100);
+  fw_cal_start(&core.cal);
+  fake.button = 1;
+  fake_run(&core, FW_BUTTON_DEBOUNCE_TICKS - 1);
+  fake_decode();
+  size_t samples_before = 0;
+  for (size_t i = fake_find(0, GP_SAMPLE); i < frames.n; i = fake_find(i + 1, GP_SAMPLE))
+    samples_before++;
+  uint16_t seq = core.seq;
+  uint32_t sent = core.frames_sent;
+
+  /* The copy of the last tick carries levels no real tick had. */
+  for (unsigned c = 0; c < FW_N_CH; c++) fake.level[c] = 4000;
+  fake_sample_at(fake.tick - 1u);
+  fw_core_poll(&core);
+  for (unsigned c = 0; c < FW_N_CH; c++) {
+    assert_int_equal(core.ch[c], 2048);
+    assert_int_equal(core.cal.run_max[c], 2048);
+  }
+  assert_int_equal(core.seq, seq);
+  assert_int_equal(core.frames_sent, sent);
+  assert_int_equal(core.cal.state, GP_CAL_RUNNING);
+  assert_int_equal(core.button, 0);
+  assert_int_equal(core.overruns, 0);
+
+  /* The next real tick is the debounce's twentieth read; the stream goes on
+   * with one SAMPLE per four ticks, none flagged. */
+  for (unsigned c = 0; c < FW_N_CH; c++) fake.level[c] = 2048;
+  fake_run(&core, 1);
+  assert_int_equal(core.button, 1);
+  fake_run(&core, 100);
+  fake_decode();
+  size_t samples = 0;
+  uint32_t prev_t = 0;
+  for (size_t i = fake_find(0, GP_SAMPLE); i < frames.n; i = fake_find(i + 1, GP_SAMPLE)) {
+    const gp_sample *smp = &frames.msg[i].u.sample;
+    if (samples > 0) assert_int_equal(smp->t_us - prev_t, 4000u);
+    assert_int_equal(smp->flags & (GP_SAMPLE_F_OVERRUN | GP_SAMPLE_F_CLIPPED), 0);
+    prev_t = smp->t_us;
+    samples++;
+  }
+  assert_true(samples > samples_before);
+  assert_int_equal(core.overruns, 0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(firmware_schedule_timestamps_follow_the_timer, setup),
       cmocka_unit_test_setup(firmware_schedule_missed_ticks_cost_at_most_one_tick, setup),
+      cmocka_unit_test_setup(firmware_schedule_info_goes_out_every_1000_ticks, setup),
+      cmocka_unit_test_setup(firmware_schedule_a_repeated_tick_is_processed_once, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
