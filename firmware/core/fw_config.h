@@ -43,9 +43,22 @@
 #define FW_FRAME_RATE_HZ 250u
 /* Serial link at boot: 8N1 at this baud rate. */
 #define FW_BAUD 115200u
-/* Baud rates SET_RATE accepts (SPEC.md lists them; the Black Pill's USART1
- * reaches all of them within 0.2 % at 96 MHz). */
-#define FW_BAUDS {9600u, 19200u, 38400u, 57600u, 115200u, 230400u, 460800u, 921600u}
+/* Baud rates SET_RATE accepts (SPEC.md lists them). The Black Pill's build
+ * checks that its USART1 reaches each within 0.2 %. */
+#define FW_BAUD_LIST(X) X(9600u) X(19200u) X(38400u) X(57600u) X(115200u) X(230400u) \
+  X(460800u) X(921600u)
+#define FW_BAUD_ITEM(b) b,
+#define FW_BAUDS {FW_BAUD_LIST(FW_BAUD_ITEM)}
+
+/* The crystal on the Black Pill (HSE), in Hz. WeAct's boards carry 25 MHz,
+ * many clones 8 MHz: the marking on the silver can says which
+ * (hardware/troubleshooting.md). The clock tree is derived from it and
+ * checked at compile time (boards/blackpill_f411/clock_f411.h); the build
+ * makes an image for each (`make firmware`: blackpill_f411 uses this value,
+ * blackpill_f411_8mhz sets 8 MHz). The QEMU board has no crystal. */
+#ifndef FW_HSE_HZ
+#define FW_HSE_HZ 25000000u
+#endif
 /* SET_RATE refuses a SAMPLE stream that would fill more than this share of
  * the link, leaving room for INFO, replies and clock error. */
 #define FW_LINK_MAX_PERCENT 50u

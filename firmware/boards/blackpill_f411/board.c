@@ -4,6 +4,7 @@
 #include "board.h"
 #include "board_f411.h"
 #include "board_pins.h"
+#include "clock_f411.h"
 #include "fw_core.h"
 #include "fw_hal.h"
 #include "stm32f4_regs.h"
@@ -16,15 +17,16 @@
 #define FLASH_WAIT_POLLS 100000000u
 
 static fw_core core;
-uint32_t board_sysclk_hz = 16000000u; /* HSI until clock_init switches */
+uint32_t board_sysclk_hz = CLOCK_HSI_HZ; /* until clock_init switches to the PLL */
 
 static void bounded_wait(volatile uint32_t *reg, uint32_t mask, uint32_t want, uint32_t polls) {
   while ((*reg & mask) != want && polls-- > 0u) {
   }
 }
 
-/* 96 MHz from the PLL: HSE 25 MHz / 25 * 192 / 2 (and / 4 = 48 MHz for USB).
- * If the crystal does not start, the same PLL runs from HSI 16 MHz / 16. */
+/* 96 MHz from the PLL, with M, N, P and Q derived from the crystal in
+ * clock_f411.h (25 MHz: / 25 * 192 / 2; 8 MHz: / 4 * 96 / 2). If the
+ * crystal does not start, the same PLL runs from HSI 16 MHz. */
 static void clock_init(void) {
   /* The regulator resets to scale 2 (HCLK up to 84 MHz); 96 MHz needs
    * scale 1 (RM0383, PWR_CR.VOS), set before the PLL starts. */
@@ -33,8 +35,7 @@ static void clock_init(void) {
   RCC_CR |= RCC_CR_HSEON;
   bounded_wait(&RCC_CR, RCC_CR_HSERDY, RCC_CR_HSERDY, 200000u);
   int hse = (RCC_CR & RCC_CR_HSERDY) != 0;
-  RCC_PLLCFGR = RCC_PLLCFGR_M(hse ? 25u : 16u) | RCC_PLLCFGR_N(192u) | RCC_PLLCFGR_P2 |
-                RCC_PLLCFGR_Q(4u) | (hse ? RCC_PLLCFGR_SRC_HSE : 0u);
+  RCC_PLLCFGR = hse ? CLOCK_PLLCFGR_HSE : CLOCK_PLLCFGR_HSI;
   /* 3 wait states for 90 < HCLK <= 100 MHz at 2.7-3.6 V (RM0383, table 5). */
   FLASH_ACR = FLASH_ACR_LATENCY(3u) | FLASH_ACR_PRFTEN | FLASH_ACR_ICEN | FLASH_ACR_DCEN;
   /* APB1 at most 50 MHz: /2 (its timers run at 2x = 96 MHz); APB2 /1. */
@@ -44,7 +45,7 @@ static void clock_init(void) {
   if (!(RCC_CR & RCC_CR_PLLRDY)) return; /* stay on HSI 16 MHz */
   RCC_CFGR = (RCC_CFGR & ~3u) | RCC_CFGR_SW_PLL;
   bounded_wait(&RCC_CFGR, RCC_CFGR_SWS_MASK, RCC_CFGR_SWS_PLL, 200000u);
-  if ((RCC_CFGR & RCC_CFGR_SWS_MASK) == RCC_CFGR_SWS_PLL) board_sysclk_hz = 96000000u;
+  if ((RCC_CFGR & RCC_CFGR_SWS_MASK) == RCC_CFGR_SWS_PLL) board_sysclk_hz = CLOCK_SYSCLK_HZ;
 }
 
 void board_pin_mode(unsigned pin, unsigned mode, unsigned af) {

@@ -2,6 +2,7 @@
  * main loop never waits on the line. */
 #include "board_f411.h"
 #include "board_pins.h"
+#include "clock_f411.h"
 #include "fw_hal.h"
 #include "stm32f4_regs.h"
 
@@ -13,9 +14,10 @@ static volatile uint8_t rxq[RXQ_BYTES];
 static volatile uint32_t rx_head, rx_tail; /* head: interrupt, tail: main loop */
 
 void fw_hal_uart_set_baud(uint32_t baud) {
-  /* Oversampling by 16: BRR = f_APB2 / baud, rounded (mantissa and fraction
-   * together). At 96 MHz every rate in FW_BAUDS is within 0.2 %. */
-  USART1_BRR = (board_sysclk_hz + baud / 2u) / baud;
+  /* At 96 MHz every rate in FW_BAUD_LIST is within 0.2 % (checked in
+   * clock_f411.h); on the HSI alone (a PLL that never locked) the fast ones
+   * are not. */
+  USART1_BRR = CLOCK_USART_BRR(board_sysclk_hz, baud);
 }
 
 void uart_init(uint32_t baud) {
