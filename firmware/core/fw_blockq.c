@@ -3,7 +3,6 @@
 void fw_blockq_init(fw_blockq *q) {
   atomic_init(&q->head, 0u);
   atomic_init(&q->tail, 0u);
-  q->dropped = 0;
 }
 
 uint16_t *fw_blockq_slot(fw_blockq *q) {
@@ -19,8 +18,6 @@ void fw_blockq_commit(fw_blockq *q, uint32_t tick) {
   /* Release: the counts and tick are visible before the consumer sees head. */
   atomic_store_explicit(&q->head, head + 1u, memory_order_release);
 }
-
-void fw_blockq_drop(fw_blockq *q) { q->dropped++; }
 
 int fw_blockq_take(fw_blockq *q, uint16_t out[FW_BLOCK_LEN], uint32_t *tick) {
   unsigned tail = atomic_load_explicit(&q->tail, memory_order_relaxed);

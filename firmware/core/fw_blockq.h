@@ -18,16 +18,15 @@ typedef struct fw_blockq {
   uint32_t tick[FW_BLOCKQ_DEPTH];
   atomic_uint head; /* written by the producer only */
   atomic_uint tail; /* written by the consumer only */
-  uint32_t dropped; /* producer only */
 } fw_blockq;
 
 void fw_blockq_init(fw_blockq *q);
-/* Producer: the slot to fill for the next block, or NULL when full (then the
- * block is lost: call fw_blockq_drop). */
+/* Producer: the slot to fill for the next block, or NULL when full. A block
+ * that finds no slot is simply lost: the core counts it as an overrun from
+ * the gap it leaves in the tick numbers. */
 uint16_t *fw_blockq_slot(fw_blockq *q);
 /* Producer: publishes the filled slot as tick's block. */
 void fw_blockq_commit(fw_blockq *q, uint32_t tick);
-void fw_blockq_drop(fw_blockq *q);
 /* Consumer: copies the oldest block out. Returns 1, or 0 if empty. */
 int fw_blockq_take(fw_blockq *q, uint16_t out[FW_BLOCK_LEN], uint32_t *tick);
 

@@ -19,6 +19,7 @@ typedef struct fake_hal {
   uint32_t tick;           /* next tick the timer will sample */
   uint16_t level[FW_N_CH]; /* what the ADC converts, per channel */
   uint32_t adc_timeouts;
+  uint32_t blocks_lost;    /* blocks that found the queue full */
 
   /* transmit queue (FW_TXQ_BYTES) and the line behind it */
   uint8_t txq[FW_TXQ_BYTES];

@@ -156,12 +156,35 @@ static void firmware_schedule_a_repeated_tick_is_processed_once(void **state) {
   assert_int_equal(core.overruns, 0);
 }
 
+/* A main loop that falls further behind than the block queue holds loses the
+ * blocks that found it full; nothing counts them at the queue, and nothing
+ * needs to: the gap they leave in the tick numbers is counted as overruns
+ * and flagged in the next SAMPLE. */
+static void firmware_schedule_blocks_the_queue_cannot_hold_count_as_overruns(void **state) {
+  (void)state;
+  fake_run(&core, 10);
+  for (unsigned t = 0; t < FW_BLOCKQ_DEPTH + 3u; t++) fake_step(&core, 0, 0);
+  assert_int_equal(core.overruns, 0);
+  /* The first tick after the stall is sampled before the loop runs, into a
+   * queue that is still full: four blocks lost in all. */
+  fake_run(&core, 20);
+  assert_int_equal(fake.blocks_lost, 4);
+  assert_int_equal(core.overruns, 4);
+  fake_decode();
+  size_t flagged = 0;
+  for (size_t i = fake_find(0, GP_SAMPLE); i < frames.n; i = fake_find(i + 1, GP_SAMPLE))
+    if (frames.msg[i].u.sample.flags & GP_SAMPLE_F_OVERRUN) flagged++;
+  assert_int_equal(flagged, 1);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(firmware_schedule_timestamps_follow_the_timer, setup),
       cmocka_unit_test_setup(firmware_schedule_missed_ticks_cost_at_most_one_tick, setup),
       cmocka_unit_test_setup(firmware_schedule_info_goes_out_every_1000_ticks, setup),
       cmocka_unit_test_setup(firmware_schedule_a_repeated_tick_is_processed_once, setup),
+      cmocka_unit_test_setup(firmware_schedule_blocks_the_queue_cannot_hold_count_as_overruns,
+                             setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

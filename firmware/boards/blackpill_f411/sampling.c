@@ -77,9 +77,7 @@ void sampling_start(void) {
 
 static void hand_over(const volatile uint16_t *half) {
   uint16_t *slot = fw_blockq_slot(&blocks);
-  if (slot == 0) {
-    fw_blockq_drop(&blocks);
-  } else {
+  if (slot != 0) {
     for (unsigned i = 0; i < FW_BLOCK_LEN; i++) slot[i] = half[i];
     fw_blockq_commit(&blocks, tick_count);
   }

@@ -8,8 +8,8 @@
  * is no DMA, RCC, flash interface or watchdog in the model, so calibration
  * storage reports "none" (INFO: GP_CAL_DEFAULTS, CAL_SAVE: NACK FLASH_ERROR)
  * and the watchdog is not used. */
-#include "../blackpill_f411/board_pins.h"
 #include "board.h"
+#include "board_pins.h"
 #include "fw_blockq.h"
 #include "fw_core.h"
 #include "fw_hal.h"
@@ -45,9 +45,7 @@ static uint16_t convert(uint8_t channel) {
 void SysTick_Handler(void);
 void SysTick_Handler(void) {
   uint16_t *slot = fw_blockq_slot(&blocks);
-  if (slot == 0) {
-    fw_blockq_drop(&blocks);
-  } else {
+  if (slot != 0) {
     for (unsigned s = 0; s < FW_OVERSAMPLE; s++)
       for (unsigned c = 0; c < FW_N_CH; c++) slot[s * FW_N_CH + c] = convert(adc_channels[c]);
     fw_blockq_commit(&blocks, tick_count);
