@@ -49,6 +49,9 @@
   X(460800u) X(921600u)
 #define FW_BAUD_ITEM(b) b,
 #define FW_BAUDS {FW_BAUD_LIST(FW_BAUD_ITEM)}
+/* SET_RATE refuses a SAMPLE stream that would fill more than this share of
+ * the link, leaving room for INFO, replies and clock error. */
+#define FW_LINK_MAX_PERCENT 50u
 
 /* The crystal on the Black Pill (HSE), in Hz. WeAct's boards carry 25 MHz,
  * many clones 8 MHz: the marking on the silver can says which
@@ -59,9 +62,6 @@
 #ifndef FW_HSE_HZ
 #define FW_HSE_HZ 25000000u
 #endif
-/* SET_RATE refuses a SAMPLE stream that would fill more than this share of
- * the link, leaving room for INFO, replies and clock error. */
-#define FW_LINK_MAX_PERCENT 50u
 
 /* INFO is repeated this often (and sent on GET_INFO). */
 #define FW_INFO_PERIOD_TICKS FW_TICK_HZ
