@@ -174,9 +174,12 @@ void fw_hal_uid(uint32_t uid[3]) {
 
 /* --- the target ----------------------------------------------------------- */
 
-/* Ticks the line needs at the slowest baud to carry a full transmit queue,
- * twice over for the frames that fall due meanwhile. */
-#define DRAIN_TICKS (FW_TXQ_BYTES * 10u * FW_TICK_HZ / 9600u * 2u)
+/* A bound on the ticks the line needs, once the input is read, to carry a
+ * full transmit queue at the slowest baud, then the INFO of a baud switch:
+ * SAMPLEs may take half the line (FW_LINK_MAX_PERCENT) and INFO another 6 %
+ * at 9600 baud, so the backlog shrinks at more than a third of the line's
+ * rate; four times the bare drain time covers it. */
+#define DRAIN_TICKS (4u * (FW_TXQ_BYTES + GP_MAX_WIRE) * 10u * FW_TICK_HZ / 9600u)
 
 /* Runs a fresh glove on stream, frames_in being the most frames it can hold. */
 static void run(const uint8_t *stream, size_t size, size_t frames_in) {
