@@ -32,7 +32,7 @@ static double dot(int n, const double *a, const double *b)
     return sum;
 }
 
-int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
 {
     const int n = A->n;
     const size_t dn = (size_t)n;

@@ -10,7 +10,7 @@
  * solvers leave them out of the elimination. */
 #include "solver_internal.h"
 
-int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
 {
     const int n = A->n;
     if (mr_buf_reserve(&s->dep, (size_t)n, 1) != 0 || mr_buf_reserve(&s->inv_diag, (size_t)n, sizeof(double)) != 0)
