@@ -46,7 +46,7 @@ static int same_source(const struct mr_csr_plan *pl, const mr_jac *J, const doub
     return 0;
   if (J->rows > 0 && memcmp(pl->jrp.p, J->row_ptr, (size_t)(J->rows + 1) * sizeof(int)) != 0)
     return 0;
-  if (memcmp(pl->jpart.p, J->particle, (size_t)ne * sizeof(int)) != 0)
+  if (ne > 0 && memcmp(pl->jpart.p, J->particle, (size_t)ne * sizeof(int)) != 0)
     return 0;
   const unsigned char *pin = pl->pinned.p;
   for (int p = 0; p < J->n_particles; p++)
