@@ -198,7 +198,9 @@ static double dot3(const double a[3], const double b[3])
 }
 
 /* The numbers: row i's sums scattered into the dense work row, in J's
- * entry order, then gathered into A's sorted columns. */
+ * entry order, then gathered into A's sorted columns. Only the lower
+ * triangle and the diagonal are summed (each particle's list is in row
+ * order, so the rest of a list lies above): symmetrise() copies them up. */
 static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass)
 {
   const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
@@ -207,10 +209,10 @@ static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const do
     for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
       int p = J->particle[e];
       double w = inv_mass[p]; /* a pinned particle's list is empty */
-      for (int q = pstart[p]; q < pstart[p + 1]; q++)
+      for (int q = pstart[p]; q < pstart[p + 1] && prow[q] <= i; q++)
         work[prow[q]] += w * dot3(J->d[e], J->d[pent[q]]);
     }
-    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++) {
+    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1] && A->col[q] <= i; q++) {
       A->val[q] = work[A->col[q]];
       work[A->col[q]] = 0.0;
     }

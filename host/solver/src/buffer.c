@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int mr_grow(void *pp, size_t *cap, size_t count, size_t elem_size)
+int mr_grow_to(void *pp, size_t *cap, size_t count, size_t elem_size)
 {
   void **p = pp;
   if (count == 0)

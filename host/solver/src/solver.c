@@ -124,15 +124,20 @@ double mr_residual_norm(const mr_csr *A, const double *b, const double *x, const
     return scale * sqrt(ssq);
 }
 
-int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag)
+void mr_csr_diagonal(const mr_csr *A, double *diag)
 {
-    const int n = A->n;
-    for (int i = 0; i < n; i++) {
+    for (int i = 0; i < A->n; i++) {
         diag[i] = 0.0;
         for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
             if (A->col[q] == i)
                 diag[i] = A->val[q];
     }
+}
+
+int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag)
+{
+    const int n = A->n;
+    mr_csr_diagonal(A, diag);
     int count = 0;
     for (int j = 0; j < n; j++) {
         dep[j] = !(diag[j] > DBL_MIN);
@@ -151,9 +156,13 @@ int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, doubl
     return count;
 }
 
-int mr_screen_for_iteration(const mr_csr *A, double pivot_tol, unsigned char *dep, double *inv_diag,
-                            double *x)
+int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x)
 {
+    if (mr_buf_reserve(&s->dep, (size_t)A->n, 1) != 0
+        || mr_buf_reserve(&s->inv_diag, (size_t)A->n, sizeof(double)) != 0)
+        return MR_SOLVE_ENOMEM;
+    unsigned char *dep = s->dep.p;
+    double *inv_diag = s->inv_diag.p;
     int count = mr_screen_pairs(A, pivot_tol, dep, inv_diag);
     for (int i = 0; i < A->n; i++) {
         if (dep[i]) {

@@ -161,13 +161,9 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
     if (mr_pattern_keep(&w.pattern, A) != 0)
       return MR_SOLVE_ENOMEM;
   }
-  for (int i = 0; i < n; i++) {
-    w.adiag[i] = 0.0;
-    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
-      if (A->col[q] == i)
-        w.adiag[i] = A->val[q];
+  mr_csr_diagonal(A, w.adiag.data());
+  for (int i = 0; i < n; i++)
     w.dep[i] = !(w.adiag[i] > DBL_MIN);
-  }
   // Each pass that does not solve marks a row, so n + 1 passes end.
   for (int pass = 0; pass <= n; pass++) {
     load(w, A, false);

@@ -15,7 +15,15 @@ extern "C" {
  * hold count elements of elem_size bytes, its capacity *cap doubling from
  * 16. Arrays never shrink, so a size seen once is never allocated again.
  * 0 or MR_SOLVE_ENOMEM (then *pp and *cap are as they were). */
-int mr_grow(void *pp, size_t *cap, size_t count, size_t elem_size);
+int mr_grow_to(void *pp, size_t *cap, size_t count, size_t elem_size);
+static inline int mr_grow(void *pp, size_t *cap, size_t count, size_t elem_size)
+{
+  /* The common case, inline: the physics adds every Jacobian entry
+   * through here. */
+  if (count <= *cap && *(void **)pp)
+    return 0;
+  return mr_grow_to(pp, cap, count, elem_size);
+}
 
 /* An array that carries its own capacity. */
 typedef struct mr_buf {
@@ -67,17 +75,19 @@ double mr_norm2(int n, const double *v);
 /* out = b − A x. */
 void mr_residual(const mr_csr *A, const double *b, const double *x, double *out);
 
+/* A's diagonal (0 where none is stored). */
+void mr_csr_diagonal(const mr_csr *A, double *diag);
+
 /* Flags rows that are dependent on their own (A_ii = 0) or parallel to an
  * earlier unflagged row (cos² ≥ 1 − pivot_tol in the M⁻¹ metric); this is
  * the LDLᵀ pivot test applied to pairs. Leaves A's diagonal in diag.
  * Returns the count. */
 int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag);
-/* mr_screen_pairs as the iterative methods start: the flagged rows' x set
- * to 0 and their inverse diagonal to 0 (they take no part), the others'
- * inverse diagonal in inv_diag. Returns the count of flagged rows. */
-int mr_screen_for_iteration(const mr_csr *A, double pivot_tol, unsigned char *dep,
-                            double *inv_diag, double *x);
-
+/* mr_screen_pairs as the iterative methods start, into s->dep and
+ * s->inv_diag: the flagged rows' x set to 0 and their inverse diagonal to
+ * 0 (they take no part), the others' inverse diagonal. Returns the count
+ * of flagged rows, or MR_SOLVE_ENOMEM. */
+int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x);
 int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
                     double *x, mr_solve_result *r);
 int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
