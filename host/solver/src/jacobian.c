@@ -37,6 +37,15 @@ mr_solve_status mr_jac_reset(mr_jac *J, int n_particles)
     return MR_SOLVE_OK;
 }
 
+mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries)
+{
+    if (!J || rows < 0 || entries < 0)
+        return MR_SOLVE_BAD_ARG;
+    if (grow_rows(J, rows) != 0 || grow_entries(J, entries) != 0)
+        return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_OK;
+}
+
 int mr_jac_begin_row(mr_jac *J)
 {
     if (!J || !J->row_ptr)
