@@ -208,17 +208,19 @@ static double dot3(const double a[3], const double b[3])
 static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass)
 {
   const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
-  double *work = pl->work.p;
+  const int *jrp = J->row_ptr, *part = J->particle, *rp = A->row_ptr, *col = A->col;
+  const double(*d)[3] = (const double(*)[3])J->d;
+  double *work = pl->work.p, *val = A->val;
   for (int i = 0; i < J->rows; i++) {
-    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-      int p = J->particle[e];
-      double w = inv_mass[p]; /* a pinned particle's list is empty */
-      for (int q = pstart[p]; q < pstart[p + 1] && prow[q] <= i; q++)
-        work[prow[q]] += w * dot3(J->d[e], J->d[pent[q]]);
+    for (int e = jrp[i], e_end = jrp[i + 1]; e < e_end; e++) {
+      const int p = part[e];
+      const double w = inv_mass[p]; /* a pinned particle's list is empty */
+      for (int q = pstart[p], q_end = pstart[p + 1]; q < q_end && prow[q] <= i; q++)
+        work[prow[q]] += w * dot3(d[e], d[pent[q]]);
     }
-    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1] && A->col[q] <= i; q++) {
-      A->val[q] = work[A->col[q]];
-      work[A->col[q]] = 0.0;
+    for (int q = rp[i], q_end = rp[i + 1]; q < q_end && col[q] <= i; q++) {
+      val[q] = work[col[q]];
+      work[col[q]] = 0.0;
     }
   }
 }

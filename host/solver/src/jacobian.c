@@ -75,7 +75,7 @@ mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3])
             return MR_SOLVE_OK;
         }
     }
-    if (grow_entries(J, end + 1) != 0)
+    if ((size_t)end + 1 > J->cap_entries && grow_entries(J, end + 1) != 0)
         return MR_SOLVE_ENOMEM;
     J->particle[end] = particle;
     memcpy(J->d[end], d, sizeof J->d[end]);
