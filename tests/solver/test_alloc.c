@@ -19,13 +19,12 @@
 static int counting;
 static long allocations;
 
-#define COUNTED(ret, name, params, args)                                                         \
-  ret __real_##name params;                                                                      \
-  ret __wrap_##name params;                                                                      \
-  ret __wrap_##name params                                                                       \
-  {                                                                                              \
-    allocations += counting;                                                                     \
-    return __real_##name args;                                                                   \
+#define COUNTED(ret, name, params, args) \
+  ret __real_##name params;              \
+  ret __wrap_##name params;              \
+  ret __wrap_##name params {             \
+    allocations += counting;             \
+    return __real_##name args;           \
   }
 COUNTED(void *, malloc, (size_t n), (n))
 COUNTED(void *, calloc, (size_t n, size_t size), (n, size))
@@ -42,20 +41,17 @@ COUNTED(void *, _Znam, (size_t n), (n)) /* operator new[] */
  * contact row on the last particle. The positions move with t. */
 enum { N = 100 };
 
-static void position(int i, double t, double x[3])
-{
+static void position(int i, double t, double x[3]) {
   x[0] = 0.1 * i;
   x[1] = 0.05 * sin(i + t);
   x[2] = 0.02 * cos(2.0 * i + t);
 }
 
-static void add_link(mr_jac *J, int a, int b, double t)
-{
+static void add_link(mr_jac *J, int a, int b, double t) {
   double xa[3], xb[3], u[3], nu[3], len = 0.0;
   position(a, t, xa);
   position(b, t, xb);
-  for (int c = 0; c < 3; c++)
-    len += (xa[c] - xb[c]) * (xa[c] - xb[c]);
+  for (int c = 0; c < 3; c++) len += (xa[c] - xb[c]) * (xa[c] - xb[c]);
   for (int c = 0; c < 3; c++) {
     u[c] = (xa[c] - xb[c]) / sqrt(len);
     nu[c] = -u[c];
@@ -65,12 +61,10 @@ static void add_link(mr_jac *J, int a, int b, double t)
   assert_int_equal(mr_jac_add(J, b, nu), MR_SOLVE_OK);
 }
 
-static void build(mr_jac *J, double t, int contact)
-{
-  static const double along_x[3] = {1, 0, 0}, up[3] = {0, 0, 1};
+static void build(mr_jac *J, double t, int contact) {
+  static const double along_x[3] = { 1, 0, 0 }, up[3] = { 0, 0, 1 };
   assert_int_equal(mr_jac_reset(J, N), MR_SOLVE_OK);
-  for (int i = 0; i + 1 < N; i++)
-    add_link(J, i, i + 1, t);
+  for (int i = 0; i + 1 < N; i++) add_link(J, i, i + 1, t);
   add_link(J, 3, 4, t);
   for (int i = 10; i < N; i += 10) {
     assert_true(mr_jac_begin_row(J) >= 0);
@@ -91,8 +85,7 @@ typedef struct rig {
 
 /* One evaluation: J at time t, A = J M⁻¹ Jᵀ, b = J M⁻¹ f for gravity (a
  * consistent right-hand side, as eq. 8's −J M⁻¹ F_a term is), the solve. */
-static void evaluate(rig *r, const mr_solve_def *def, double t, int contact)
-{
+static void evaluate(rig *r, const mr_solve_def *def, double t, int contact) {
   build(&r->J, t, contact);
   assert_int_equal(mr_csr_assemble(&r->A, &r->J, r->inv_mass), MR_SOLVE_OK);
   mr_jac_mul(&r->J, r->accel, r->b);
@@ -104,8 +97,7 @@ static void evaluate(rig *r, const mr_solve_def *def, double t, int contact)
   assert_true(isfinite(res.residual));
 }
 
-static void rig_init(rig *r)
-{
+static void rig_init(rig *r) {
   memset(r, 0, sizeof *r);
   r->solver = mr_solver_create();
   assert_non_null(r->solver);
@@ -115,8 +107,7 @@ static void rig_init(rig *r)
   }
 }
 
-static void rig_free(rig *r)
-{
+static void rig_free(rig *r) {
   mr_solver_destroy(r->solver);
   mr_csr_free(&r->A);
   mr_jac_free(&r->J);
@@ -125,8 +116,7 @@ static void rig_free(rig *r)
 /* contact_every: the contact row comes and goes every that many
  * evaluations (0: always there). Returns the allocations counted over 200
  * evaluations after one warm-up evaluation at the largest size. */
-static long allocations_when_warm(mr_solve_method method, int contact_every)
-{
+static long allocations_when_warm(mr_solve_method method, int contact_every) {
   rig r;
   rig_init(&r);
   mr_solve_def def = mr_default_solve_def();
@@ -142,8 +132,7 @@ static long allocations_when_warm(mr_solve_method method, int contact_every)
   return allocations;
 }
 
-static void every_method_allocates_nothing_once_warm(void **state)
-{
+static void every_method_allocates_nothing_once_warm(void **state) {
   (void)state;
   for (int m = 0; m < MR_SOLVE_METHOD_COUNT; m++) {
     long n = allocations_when_warm((mr_solve_method)m, 0);
@@ -155,8 +144,7 @@ static void every_method_allocates_nothing_once_warm(void **state)
 /* Every object keeps its arrays at the largest size seen, so a system
  * whose pattern changes and shrinks (a contact lifting off) and grows back
  * to a size already seen allocates nothing either. */
-static void no_method_allocates_when_a_contact_comes_and_goes(void **state)
-{
+static void no_method_allocates_when_a_contact_comes_and_goes(void **state) {
   (void)state;
   for (int m = 0; m < MR_SOLVE_METHOD_COUNT; m++) {
     long n = allocations_when_warm((mr_solve_method)m, 25);
@@ -168,8 +156,7 @@ static void no_method_allocates_when_a_contact_comes_and_goes(void **state)
 /* With room reserved for the largest system, not even the first
  * evaluation allocates, under any method, while contacts come and go: what
  * a world needs to allocate nothing after it is made. */
-static void reserving_room_makes_even_the_first_evaluation_allocation_free(void **state)
-{
+static void reserving_room_makes_even_the_first_evaluation_allocation_free(void **state) {
   (void)state;
   const int rows = N + 20, entries = 2 * rows;
   for (int m = 0; m < MR_SOLVE_METHOD_COUNT; m++) {
@@ -183,8 +170,7 @@ static void reserving_room_makes_even_the_first_evaluation_allocation_free(void 
     def.max_iter = 50;
     allocations = 0;
     counting = 1;
-    for (int it = 0; it < 100; it++)
-      evaluate(&r, &def, 0.01 * it, (it / 10) % 2);
+    for (int it = 0; it < 100; it++) evaluate(&r, &def, 0.01 * it, (it / 10) % 2);
     counting = 0;
     rig_free(&r);
     if (allocations != 0)
@@ -192,11 +178,10 @@ static void reserving_room_makes_even_the_first_evaluation_allocation_free(void 
   }
 }
 
-static void reserving_refuses_negative_sizes(void **state)
-{
+static void reserving_refuses_negative_sizes(void **state) {
   (void)state;
-  mr_jac J = {0};
-  mr_csr A = {0};
+  mr_jac J = { 0 };
+  mr_csr A = { 0 };
   mr_solver *s = mr_solver_create();
   assert_int_equal(mr_jac_reserve(&J, -1, 0), MR_SOLVE_BAD_ARG);
   assert_int_equal(mr_csr_reserve(&A, 1, -1, 0), MR_SOLVE_BAD_ARG);
@@ -206,8 +191,7 @@ static void reserving_refuses_negative_sizes(void **state)
 }
 
 /* The counter itself works: a cold start allocates. */
-static void a_cold_start_is_counted(void **state)
-{
+static void a_cold_start_is_counted(void **state) {
   (void)state;
   rig r;
   allocations = 0;
@@ -221,14 +205,13 @@ static void a_cold_start_is_counted(void **state)
   assert_true(allocations > 3);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(a_cold_start_is_counted),
-      cmocka_unit_test(every_method_allocates_nothing_once_warm),
-      cmocka_unit_test(no_method_allocates_when_a_contact_comes_and_goes),
-      cmocka_unit_test(reserving_room_makes_even_the_first_evaluation_allocation_free),
-      cmocka_unit_test(reserving_refuses_negative_sizes),
+    cmocka_unit_test(a_cold_start_is_counted),
+    cmocka_unit_test(every_method_allocates_nothing_once_warm),
+    cmocka_unit_test(no_method_allocates_when_a_contact_comes_and_goes),
+    cmocka_unit_test(reserving_room_makes_even_the_first_evaluation_allocation_free),
+    cmocka_unit_test(reserving_refuses_negative_sizes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -15,9 +15,8 @@
 #include "solver_systems.h"
 
 /* A and a fresh assembly of the same J agree in every bit. */
-static void assert_same_as_fresh(const mr_csr *A, const test_system *s)
-{
-  mr_csr fresh = {0};
+static void assert_same_as_fresh(const mr_csr *A, const test_system *s) {
+  mr_csr fresh = { 0 };
   assert_int_equal(mr_csr_assemble(&fresh, &s->J, s->inv_mass), MR_SOLVE_OK);
   assert_int_equal(mr_csr_pattern_builds(&fresh), 1);
   assert_int_equal(A->n, fresh.n);
@@ -30,30 +29,26 @@ static void assert_same_as_fresh(const mr_csr *A, const test_system *s)
 
 /* New numbers in the same pattern, as a step of the physics gives: every
  * Jacobian entry and every movable particle's inverse mass changes. */
-static void move(test_system *s, double by)
-{
+static void move(test_system *s, double by) {
   const int ne = s->J.row_ptr[s->J.rows];
   for (int e = 0; e < ne; e++)
-    for (int c = 0; c < 3; c++)
-      s->J.d[e][c] *= 1.0 + by * (double)((e + c) % 7 - 3);
+    for (int c = 0; c < 3; c++) s->J.d[e][c] *= 1.0 + by * (double)((e + c) % 7 - 3);
   for (int p = 0; p < s->np; p++)
-    if (s->inv_mass[p] != 0.0)
-      s->inv_mass[p] *= 1.0 + by * (double)(p % 5);
+    if (s->inv_mass[p] != 0.0) s->inv_mass[p] *= 1.0 + by * (double)(p % 5);
 }
 
-static void cached_assembly_equals_a_fresh_one_bit_for_bit(void **state)
-{
+static void cached_assembly_equals_a_fresh_one_bit_for_bit(void **state) {
   (void)state;
   test_system s;
   test_system_random(&s, 150, 7);
-  mr_csr A = {0};
+  mr_csr A = { 0 };
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), MR_SOLVE_OK);
   double *before = malloc((size_t)A.nnz * sizeof *before);
   for (int step = 1; step <= 5; step++) {
     memcpy(before, A.val, (size_t)A.nnz * sizeof *before);
     move(&s, 1e-3 * step);
     assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), MR_SOLVE_OK);
-    assert_int_equal(mr_csr_pattern_builds(&A), 1); /* the numbers only */
+    assert_int_equal(mr_csr_pattern_builds(&A), 1);                          /* the numbers only */
     assert_true(memcmp(A.val, before, (size_t)A.nnz * sizeof *before) != 0); /* and they changed */
     assert_same_as_fresh(&A, &s);
   }
@@ -62,15 +57,14 @@ static void cached_assembly_equals_a_fresh_one_bit_for_bit(void **state)
   test_system_free(&s);
 }
 
-static void an_added_contact_row_is_noticed(void **state)
-{
+static void an_added_contact_row_is_noticed(void **state) {
   (void)state;
   test_system s;
   test_system_random(&s, 60, 11);
-  mr_csr A = {0};
+  mr_csr A = { 0 };
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), MR_SOLVE_OK);
   /* A contact: a row along the floor's normal on a movable particle. */
-  const double up[3] = {0, 0, 1};
+  const double up[3] = { 0, 0, 1 };
   test_system_pin(&s, s.np - 1, up);
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), MR_SOLVE_OK);
   assert_int_equal(mr_csr_pattern_builds(&A), 2);
@@ -80,12 +74,11 @@ static void an_added_contact_row_is_noticed(void **state)
   test_system_free(&s);
 }
 
-static void a_row_naming_another_particle_is_noticed(void **state)
-{
+static void a_row_naming_another_particle_is_noticed(void **state) {
   (void)state;
   test_system s;
   test_system_random(&s, 60, 13);
-  mr_csr A = {0};
+  mr_csr A = { 0 };
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), MR_SOLVE_OK);
   /* Same rows, same entry count: only the last entry's particle changes
    * (a contact moving to the next particle). */
@@ -98,12 +91,11 @@ static void a_row_naming_another_particle_is_noticed(void **state)
   test_system_free(&s);
 }
 
-static void pinning_or_releasing_a_particle_is_noticed(void **state)
-{
+static void pinning_or_releasing_a_particle_is_noticed(void **state) {
   (void)state;
   test_system s;
   test_system_random(&s, 60, 17);
-  mr_csr A = {0};
+  mr_csr A = { 0 };
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), MR_SOLVE_OK);
   int p = s.J.particle[s.J.row_ptr[s.J.rows] - 1];
   double w = s.inv_mass[p];
@@ -120,12 +112,11 @@ static void pinning_or_releasing_a_particle_is_noticed(void **state)
   test_system_free(&s);
 }
 
-static void a_removed_row_is_noticed(void **state)
-{
+static void a_removed_row_is_noticed(void **state) {
   (void)state;
   test_system s;
   test_system_random(&s, 60, 19);
-  mr_csr A = {0};
+  mr_csr A = { 0 };
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), MR_SOLVE_OK);
   s.J.rows--; /* the last contact lifts off */
   s.k--;
@@ -137,14 +128,13 @@ static void a_removed_row_is_noticed(void **state)
   test_system_free(&s);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(cached_assembly_equals_a_fresh_one_bit_for_bit),
-      cmocka_unit_test(an_added_contact_row_is_noticed),
-      cmocka_unit_test(a_row_naming_another_particle_is_noticed),
-      cmocka_unit_test(pinning_or_releasing_a_particle_is_noticed),
-      cmocka_unit_test(a_removed_row_is_noticed),
+    cmocka_unit_test(cached_assembly_equals_a_fresh_one_bit_for_bit),
+    cmocka_unit_test(an_added_contact_row_is_noticed),
+    cmocka_unit_test(a_row_naming_another_particle_is_noticed),
+    cmocka_unit_test(pinning_or_releasing_a_particle_is_noticed),
+    cmocka_unit_test(a_removed_row_is_noticed),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -26,9 +26,9 @@ typedef enum mr_solve_status {
   MR_SOLVE_NOT_CONVERGED = 1, /* the iteration cap came first; x is the best found */
   MR_SOLVE_DEPENDENT = 2,     /* dependent rows found, their λ set to 0 (README.md) */
   MR_SOLVE_ENOMEM = -1,
-  MR_SOLVE_NONFINITE = -2,    /* NaN or Inf in A or b; x untouched */
-  MR_SOLVE_UNAVAILABLE = -3,  /* a NULL object, or a method outside the enum */
-  MR_SOLVE_BAD_ARG = -4       /* a particle out of range, or no row begun */
+  MR_SOLVE_NONFINITE = -2,   /* NaN or Inf in A or b; x untouched */
+  MR_SOLVE_UNAVAILABLE = -3, /* a NULL object, or a method outside the enum */
+  MR_SOLVE_BAD_ARG = -4      /* a particle out of range, or no row begun */
 } mr_solve_status;
 /* "ok", "not converged", ...; "unknown" outside the enum. */
 const char *mr_solve_status_name(mr_solve_status s);
@@ -48,7 +48,7 @@ mr_solve_status mr_jac_reset(mr_jac *J, int n_particles); /* keeps capacity */
 /* Room for rows rows and entries entries in all, so that building J up to
  * that size allocates nothing. */
 mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries);
-int mr_jac_begin_row(mr_jac *J);                          /* the new row's index, or -1 */
+int mr_jac_begin_row(mr_jac *J); /* the new row's index, or -1 */
 /* Into the current row; a particle named twice in a row is summed once. */
 mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]);
 void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k);     /* J v */

@@ -34,58 +34,49 @@ struct mr_csr_plan {
 
 #define INTS(b) ((int *)(b).p)
 
-static int pinned(const double *inv_mass, int p)
-{
+static int pinned(const double *inv_mass, int p) {
   return !inv_mass || inv_mass[p] == 0.0;
 }
 
 static int same_source(const struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass,
-                       int ne)
-{
-  if (!pl->valid || pl->rows != J->rows || pl->np != J->n_particles || pl->ne != ne)
-    return 0;
+                       int ne) {
+  if (!pl->valid || pl->rows != J->rows || pl->np != J->n_particles || pl->ne != ne) return 0;
   if (J->rows > 0 && memcmp(pl->jrp.p, J->row_ptr, (size_t)(J->rows + 1) * sizeof(int)) != 0)
     return 0;
-  if (ne > 0 && memcmp(pl->jpart.p, J->particle, (size_t)ne * sizeof(int)) != 0)
-    return 0;
+  if (ne > 0 && memcmp(pl->jpart.p, J->particle, (size_t)ne * sizeof(int)) != 0) return 0;
   const unsigned char *pin = pl->pinned.p;
   for (int p = 0; p < J->n_particles; p++)
-    if (pin[p] != pinned(inv_mass, p))
-      return 0;
+    if (pin[p] != pinned(inv_mass, p)) return 0;
   return 1;
 }
 
 /* The plan's arrays for k rows, np particles and ne entries of J. */
-static int plan_reserve(struct mr_csr_plan *pl, size_t k, size_t np, size_t ne)
-{
+static int plan_reserve(struct mr_csr_plan *pl, size_t k, size_t np, size_t ne) {
   if (mr_buf_reserve(&pl->rp, k + 1, sizeof(int)) || mr_buf_reserve(&pl->jrp, k + 1, sizeof(int)) ||
       mr_buf_reserve(&pl->jpart, ne, sizeof(int)) || mr_buf_reserve(&pl->pinned, np, 1) ||
-      mr_buf_reserve(&pl->pstart, np + 1, sizeof(int)) || mr_buf_reserve(&pl->prow, ne, sizeof(int)) ||
-      mr_buf_reserve(&pl->pent, ne, sizeof(int)) || mr_buf_reserve(&pl->mark, k, sizeof(int)) ||
-      mr_buf_reserve(&pl->cursor, k + 1, sizeof(int)) || mr_buf_reserve(&pl->work, k, sizeof(double)))
+      mr_buf_reserve(&pl->pstart, np + 1, sizeof(int)) ||
+      mr_buf_reserve(&pl->prow, ne, sizeof(int)) || mr_buf_reserve(&pl->pent, ne, sizeof(int)) ||
+      mr_buf_reserve(&pl->mark, k, sizeof(int)) ||
+      mr_buf_reserve(&pl->cursor, k + 1, sizeof(int)) ||
+      mr_buf_reserve(&pl->work, k, sizeof(double)))
     return MR_SOLVE_ENOMEM;
   return 0;
 }
 
 /* A's entries: nnz columns and values, and the unsorted columns. */
-static int plan_reserve_entries(struct mr_csr_plan *pl, size_t nnz)
-{
+static int plan_reserve_entries(struct mr_csr_plan *pl, size_t nnz) {
   if (mr_buf_reserve(&pl->ucol, nnz, sizeof(int)) || mr_buf_reserve(&pl->col, nnz, sizeof(int)) ||
       mr_buf_reserve(&pl->val, nnz, sizeof(double)))
     return MR_SOLVE_ENOMEM;
   return 0;
 }
 
-static void keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
-{
+static void keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne) {
   const int k = J->rows, np = J->n_particles;
-  if (k > 0)
-    memcpy(pl->jrp.p, J->row_ptr, ((size_t)k + 1) * sizeof(int));
-  if (ne > 0)
-    memcpy(pl->jpart.p, J->particle, (size_t)ne * sizeof(int));
+  if (k > 0) memcpy(pl->jrp.p, J->row_ptr, ((size_t)k + 1) * sizeof(int));
+  if (ne > 0) memcpy(pl->jpart.p, J->particle, (size_t)ne * sizeof(int));
   unsigned char *pin = pl->pinned.p;
-  for (int p = 0; p < np; p++)
-    pin[p] = (unsigned char)pinned(inv_mass, p);
+  for (int p = 0; p < np; p++) pin[p] = (unsigned char)pinned(inv_mass, p);
   pl->rows = k;
   pl->np = np;
   pl->ne = ne;
@@ -93,49 +84,42 @@ static void keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *i
 
 /* Particle → (row, entry) lists by a counting sort over J's entries; a
  * pinned particle gets an empty list. */
-static void particle_lists(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
-{
+static void particle_lists(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass,
+                           int ne) {
   const int np = J->n_particles;
   int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
   memset(pstart, 0, ((size_t)np + 1) * sizeof *pstart);
   for (int e = 0; e < ne; e++)
-    if (!pinned(inv_mass, J->particle[e]))
-      pstart[J->particle[e] + 1]++;
-  for (int p = 0; p < np; p++)
-    pstart[p + 1] += pstart[p];
+    if (!pinned(inv_mass, J->particle[e])) pstart[J->particle[e] + 1]++;
+  for (int p = 0; p < np; p++) pstart[p + 1] += pstart[p];
   for (int i = 0; i < J->rows; i++) {
     for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
       int p = J->particle[e];
-      if (pinned(inv_mass, p))
-        continue;
+      if (pinned(inv_mass, p)) continue;
       int at = pstart[p]++;
       prow[at] = i;
       pent[at] = e;
     }
   }
-  for (int p = np; p > 0; p--)
-    pstart[p] = pstart[p - 1];
+  for (int p = np; p > 0; p--) pstart[p] = pstart[p - 1];
   pstart[0] = 0;
 }
 
 /* The columns of row i of A (the diagonal first, then the rows sharing a
  * movable particle, unsorted) into out when out is not NULL. Returns the
  * count. mark[j] == i marks column j as seen for row i. */
-static int row_columns(const struct mr_csr_plan *pl, const mr_jac *J, int i, int *mark, int *out)
-{
+static int row_columns(const struct mr_csr_plan *pl, const mr_jac *J, int i, int *mark, int *out) {
   const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *part = J->particle;
   int c = 0;
   mark[i] = i;
-  if (out)
-    out[c] = i;
+  if (out) out[c] = i;
   c++;
   for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
     for (int q = pstart[part[e]]; q < pstart[part[e] + 1]; q++) {
       int j = prow[q];
       if (mark[j] != i) {
         mark[j] = i;
-        if (out)
-          out[c] = j;
+        if (out) out[c] = j;
         c++;
       }
     }
@@ -146,58 +130,48 @@ static int row_columns(const struct mr_csr_plan *pl, const mr_jac *J, int i, int
 /* A's row_ptr and sorted columns. Each row's columns are listed unsorted
  * into ucol, then one counting transpose sorts them all: A is symmetric,
  * so the transpose of its pattern is the pattern itself. */
-static int build_pattern(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J)
-{
+static int build_pattern(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J) {
   const int k = J->rows;
   int *mark = INTS(pl->mark), *cnt = INTS(pl->cursor);
-  for (int i = 0; i < k; i++)
-    mark[i] = -1;
+  for (int i = 0; i < k; i++) mark[i] = -1;
   int nnz = 0;
-  for (int i = 0; i < k; i++)
-    nnz += row_columns(pl, J, i, mark, NULL);
-  if (plan_reserve_entries(pl, (size_t)nnz) != 0)
-    return MR_SOLVE_ENOMEM;
+  for (int i = 0; i < k; i++) nnz += row_columns(pl, J, i, mark, NULL);
+  if (plan_reserve_entries(pl, (size_t)nnz) != 0) return MR_SOLVE_ENOMEM;
   int *ucol = INTS(pl->ucol), *rp = INTS(pl->rp), *col = INTS(pl->col);
   memset(cnt, 0, ((size_t)k + 1) * sizeof *cnt);
-  for (int i = 0; i < k; i++)
-    mark[i] = -1;
+  for (int i = 0; i < k; i++) mark[i] = -1;
   for (int i = 0, at = 0; i < k; i++) {
     int c = row_columns(pl, J, i, mark, ucol + at);
-    for (int t = at; t < at + c; t++)
-      cnt[ucol[t] + 1]++;
+    for (int t = at; t < at + c; t++) cnt[ucol[t] + 1]++;
     at += c;
   }
-  for (int i = 0; i < k; i++)
-    cnt[i + 1] += cnt[i];
+  for (int i = 0; i < k; i++) cnt[i + 1] += cnt[i];
   memcpy(rp, cnt, ((size_t)k + 1) * sizeof *rp);
   /* Row i lists as many columns as column i has rows (A's pattern is
    * symmetric: rows i and j share a particle or they do not). */
   for (int i = 0, at = 0; i < k; i++) {
-    for (int end = at + (rp[i + 1] - rp[i]); at < end; at++)
-      col[cnt[ucol[at]]++] = i;
+    for (int end = at + (rp[i + 1] - rp[i]); at < end; at++) col[cnt[ucol[at]]++] = i;
   }
   A->n = k;
   A->nnz = nnz;
   return 0;
 }
 
-static int replan(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
-{
+static int replan(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass,
+                  int ne) {
   pl->valid = 0;
   if (plan_reserve(pl, (size_t)J->rows, (size_t)J->n_particles, (size_t)ne) != 0)
     return MR_SOLVE_ENOMEM;
   memset(pl->work.p, 0, (size_t)J->rows * sizeof(double));
   keep_source(pl, J, inv_mass, ne);
   particle_lists(pl, J, inv_mass, ne);
-  if (build_pattern(A, pl, J) != 0)
-    return MR_SOLVE_ENOMEM;
+  if (build_pattern(A, pl, J) != 0) return MR_SOLVE_ENOMEM;
   pl->valid = 1;
   pl->builds++;
   return 0;
 }
 
-static double dot3(const double a[3], const double b[3])
-{
+static double dot3(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
@@ -205,8 +179,7 @@ static double dot3(const double a[3], const double b[3])
  * entry order, then gathered into A's sorted columns. Only the lower
  * triangle and the diagonal are summed (each particle's list is in row
  * order, so the rest of a list lies above): symmetrise() copies them up. */
-static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass)
-{
+static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass) {
   const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
   const int *jrp = J->row_ptr, *part = J->particle, *rp = A->row_ptr, *col = A->col;
   const double(*d)[3] = (const double(*)[3])J->d;
@@ -231,8 +204,7 @@ static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const do
  * Row j's lower entries come before its diagonal; rows are visited in
  * ascending order, so row i's upper entries are filled in ascending column
  * order, one cursor each, starting just past its diagonal. */
-static void symmetrise(mr_csr *A, int *cursor)
-{
+static void symmetrise(mr_csr *A, int *cursor) {
   for (int j = 0; j < A->n; j++) {
     for (int q = A->row_ptr[j]; q < A->row_ptr[j + 1]; q++) {
       int i = A->col[q];
@@ -245,17 +217,13 @@ static void symmetrise(mr_csr *A, int *cursor)
   }
 }
 
-static int plan_of(mr_csr *A)
-{
-  if (!A->plan && !(A->plan = calloc(1, sizeof *A->plan)))
-    return MR_SOLVE_ENOMEM;
+static int plan_of(mr_csr *A) {
+  if (!A->plan && !(A->plan = calloc(1, sizeof *A->plan))) return MR_SOLVE_ENOMEM;
   return 0;
 }
 
-mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries)
-{
-  if (!A || rows < 0 || particles < 0 || entries < 0)
-    return MR_SOLVE_BAD_ARG;
+mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries) {
+  if (!A || rows < 0 || particles < 0 || entries < 0) return MR_SOLVE_BAD_ARG;
   const size_t k = (size_t)rows;
   if (plan_of(A) != 0 || plan_reserve(A->plan, k, (size_t)particles, (size_t)entries) != 0 ||
       plan_reserve_entries(A->plan, k * k) != 0)
@@ -263,15 +231,11 @@ mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries)
   return MR_SOLVE_OK;
 }
 
-mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass)
-{
-  if (!J || !A)
-    return MR_SOLVE_UNAVAILABLE;
+mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass) {
+  if (!J || !A) return MR_SOLVE_UNAVAILABLE;
   const int ne = J->rows > 0 ? J->row_ptr[J->rows] : 0;
-  if (ne > 0 && !inv_mass)
-    return MR_SOLVE_UNAVAILABLE;
-  if (plan_of(A) != 0)
-    return MR_SOLVE_ENOMEM;
+  if (ne > 0 && !inv_mass) return MR_SOLVE_UNAVAILABLE;
+  if (plan_of(A) != 0) return MR_SOLVE_ENOMEM;
   struct mr_csr_plan *pl = A->plan;
   if (!same_source(pl, J, inv_mass, ne) && replan(A, pl, J, inv_mass, ne) != 0)
     return MR_SOLVE_ENOMEM;
@@ -284,20 +248,17 @@ mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_ma
   return MR_SOLVE_OK;
 }
 
-unsigned long mr_csr_pattern_builds(const mr_csr *A)
-{
+unsigned long mr_csr_pattern_builds(const mr_csr *A) {
   return A && A->plan ? A->plan->builds : 0;
 }
 
-void mr_csr_free(mr_csr *A)
-{
-  if (!A)
-    return;
+void mr_csr_free(mr_csr *A) {
+  if (!A) return;
   struct mr_csr_plan *pl = A->plan;
   if (pl) {
-    mr_buf *const bufs[] = {&pl->rp,     &pl->col,  &pl->val,  &pl->jrp,  &pl->jpart,
-                            &pl->pinned, &pl->pstart, &pl->prow, &pl->pent, &pl->mark,
-                            &pl->cursor, &pl->ucol, &pl->work};
+    mr_buf *const bufs[] = { &pl->rp,     &pl->col,    &pl->val,  &pl->jrp,  &pl->jpart,
+                             &pl->pinned, &pl->pstart, &pl->prow, &pl->pent, &pl->mark,
+                             &pl->cursor, &pl->ucol,   &pl->work };
     mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
     free(pl);
   }

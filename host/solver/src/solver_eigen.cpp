@@ -45,21 +45,22 @@ class KeptLDLT : public Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::Natura
 public:
   // Eigen sizes L's storage exactly; it grows here instead, by doubling,
   // to nnz_l (known from the ordering), so that Eigen finds room.
-  void reserve_l(Eigen::Index nnz_l)
-  {
+  void reserve_l(Eigen::Index nnz_l) {
     auto &data = this->m_matrix.data();
     if (data.allocatedSize() < nnz_l)
       data.reserve(std::max(nnz_l, 2 * data.allocatedSize()) - data.size());
   }
-  void analyse(const SpMat &upper, Eigen::Index nnz_l)
-  {
+  void analyse(const SpMat &upper, Eigen::Index nnz_l) {
     reserve_l(nnz_l);
     this->analyzePattern_preordered(upper, true);
   }
-  void refactor(const SpMat &upper) { this->template factorize_preordered<true>(upper); }
-  const Eigen::VectorXd &pivots() const { return this->m_diag; }
-  void solve_in_place(Eigen::VectorXd &v) const
-  {
+  void refactor(const SpMat &upper) {
+    this->template factorize_preordered<true>(upper);
+  }
+  const Eigen::VectorXd &pivots() const {
+    return this->m_diag;
+  }
+  void solve_in_place(Eigen::VectorXd &v) const {
     this->matrixL().solveInPlace(v);
     v = this->m_diag.asDiagonal().inverse() * v;
     this->matrixU().solveInPlace(v);
@@ -71,29 +72,27 @@ struct EigenWorkspace {
   mr_ldlt order = {};      // the ordering: order.perm is new → old
   int size = 0;            // the kept matrices' size: the largest n seen
   KeptLDLT ldlt;
-  SpMat upper;              // the upper triangle of P A Pᵀ, identity beyond n
-  std::vector<int> src;     // upper's value t is A->val[src[t]]
+  SpMat upper;          // the upper triangle of P A Pᵀ, identity beyond n
+  std::vector<int> src; // upper's value t is A->val[src[t]]
   std::vector<int> outer, inner;
   std::vector<std::pair<int, int>> column;
-  std::vector<char> dep;    // by old index
+  std::vector<char> dep; // by old index
   Eigen::VectorXd adiag, scale, rhs;
-  ~EigenWorkspace()
-  {
+  ~EigenWorkspace() {
     mr_pattern_free(&pattern);
     mr_ldlt_free(&order);
   }
-  const int *perm() const { return static_cast<const int *>(order.perm.p); }
+  const int *perm() const {
+    return static_cast<const int *>(order.perm.p);
+  }
 };
 
 // The kept matrices grow to hold n rows, by doubling as mr_grow does;
 // they never shrink.
-void grow(EigenWorkspace &w, int n)
-{
-  if (n <= w.size)
-    return;
+void grow(EigenWorkspace &w, int n) {
+  if (n <= w.size) return;
   int size = w.size ? w.size : 16;
-  while (size < n)
-    size *= 2;
+  while (size < n) size *= 2;
   w.size = size;
   w.dep.resize(size);
   w.adiag.resize(size);
@@ -104,12 +103,10 @@ void grow(EigenWorkspace &w, int n)
 
 // The ordering and the permuted upper triangle's pattern, each column's
 // rows ascending, then Eigen's symbolic analysis of it.
-void analyse(EigenWorkspace &w, const mr_csr *A)
-{
+void analyse(EigenWorkspace &w, const mr_csr *A) {
   const int n = A->n;
   size_t nnz_l = 0;
-  if (mr_ldlt_order(&w.order, A, &nnz_l) != 0)
-    throw std::bad_alloc();
+  if (mr_ldlt_order(&w.order, A, &nnz_l) != 0) throw std::bad_alloc();
   grow(w, n);
   const int *perm = w.perm(), *inv = static_cast<const int *>(w.order.iperm.p);
   // A is symmetric and stores both triangles: column c of the upper
@@ -123,8 +120,7 @@ void analyse(EigenWorkspace &w, const mr_csr *A)
       w.column.emplace_back(c, -1);
     else
       for (int q = A->row_ptr[perm[c]]; q < A->row_ptr[perm[c] + 1]; q++)
-        if (inv[A->col[q]] <= c)
-          w.column.emplace_back(inv[A->col[q]], q);
+        if (inv[A->col[q]] <= c) w.column.emplace_back(inv[A->col[q]], q);
     std::sort(w.column.begin(), w.column.end());
     for (const auto &e : w.column) {
       w.inner.push_back(e.first);
@@ -146,8 +142,7 @@ void analyse(EigenWorkspace &w, const mr_csr *A)
 // Room for any pattern of up to rows rows: the ordering's scratch, the
 // kept matrices at their size, the upper triangle and L dense, and Eigen's
 // own arrays, made by analysing and factoring the identity once.
-void reserve(EigenWorkspace &w, int rows)
-{
+void reserve(EigenWorkspace &w, int rows) {
   const size_t n = (size_t)rows;
   if (mr_ldlt_reserve(&w.order, rows) != 0 || mr_pattern_reserve(&w.pattern, n, n * n) != 0)
     throw std::bad_alloc();
@@ -173,8 +168,7 @@ void reserve(EigenWorkspace &w, int rows)
 
 // A's numbers into the upper triangle: a dependent row and column become
 // the identity's; with scaled, the others are D^-½ A D^-½'s.
-void load(EigenWorkspace &w, const mr_csr *A, bool scaled)
-{
+void load(EigenWorkspace &w, const mr_csr *A, bool scaled) {
   const int *outer = w.upper.outerIndexPtr(), *inner = w.upper.innerIndexPtr(), *perm = w.perm();
   double *val = w.upper.valuePtr();
   for (int c = 0; c < A->n; c++) {
@@ -194,13 +188,11 @@ void load(EigenWorkspace &w, const mr_csr *A, bool scaled)
 // The old index of the first row in elimination order whose pivot fails
 // the test d ≤ tol · diag, or -1. Only the first is trusted: Eigen goes on
 // dividing by the tiny pivot, which spoils every pivot after it.
-int first_small_pivot(const EigenWorkspace &w, int n, double tol, bool unit_diag)
-{
+int first_small_pivot(const EigenWorkspace &w, int n, double tol, bool unit_diag) {
   const Eigen::VectorXd &d = w.ldlt.pivots();
   for (int t = 0; t < n; t++) {
     const int old = w.perm()[t];
-    if (!w.dep[old] && !(d[t] > tol * (unit_diag ? 1.0 : w.adiag[old])))
-      return old;
+    if (!w.dep[old] && !(d[t] > tol * (unit_diag ? 1.0 : w.adiag[old]))) return old;
   }
   return -1;
 }
@@ -211,33 +203,27 @@ int first_small_pivot(const EigenWorkspace &w, int n, double tol, bool unit_diag
 // threshold, so a dependent pivot (≈ δ) still fails the test, and a shift
 // only raises the others. δ is kept above rounding so that it makes every
 // pivot nonzero. Returns the row, or -1 when none can be found.
-int find_zero_pivot(EigenWorkspace &w, const mr_csr *A, double pivot_tol)
-{
+int find_zero_pivot(EigenWorkspace &w, const mr_csr *A, double pivot_tol) {
   const double shift = std::max(1e-3 * pivot_tol, 8.0 * DBL_EPSILON);
   const double threshold = std::max(pivot_tol, 16.0 * shift);
-  for (int i = 0; i < A->n; i++)
-    w.scale[i] = 1.0 / std::sqrt(w.adiag[i]);
+  for (int i = 0; i < A->n; i++) w.scale[i] = 1.0 / std::sqrt(w.adiag[i]);
   load(w, A, true);
   w.ldlt.setShift(shift, 1.0);
   w.ldlt.refactor(w.upper);
-  if (w.ldlt.info() != Eigen::Success)
-    return -1;
+  if (w.ldlt.info() != Eigen::Success) return -1;
   return first_small_pivot(w, A->n, threshold, true);
 }
 
 int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
-          mr_solve_result *r)
-{
+          mr_solve_result *r) {
   const int n = A->n;
   if (!mr_pattern_same(&w.pattern, A)) {
     w.pattern.valid = 0; // until the analysis below is complete
     analyse(w, A);
-    if (mr_pattern_keep(&w.pattern, A) != 0)
-      return MR_SOLVE_ENOMEM;
+    if (mr_pattern_keep(&w.pattern, A) != 0) return MR_SOLVE_ENOMEM;
   }
   mr_csr_diagonal(A, w.adiag.data());
-  for (int i = 0; i < n; i++)
-    w.dep[i] = !(w.adiag[i] > DBL_MIN);
+  for (int i = 0; i < n; i++) w.dep[i] = !(w.adiag[i] > DBL_MIN);
   // Each pass that does not solve marks a row, so n + 1 passes end.
   for (int pass = 0; pass <= n; pass++) {
     load(w, A, false);
@@ -246,25 +232,21 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
     const bool factored = w.ldlt.info() == Eigen::Success;
     int bad = factored ? first_small_pivot(w, n, o->pivot_tol, false)
                        : find_zero_pivot(w, A, o->pivot_tol);
-    if (!factored && bad < 0)
-      return MR_SOLVE_NOT_CONVERGED;
+    if (!factored && bad < 0) return MR_SOLVE_NOT_CONVERGED;
     if (bad >= 0) {
       w.dep[bad] = 1;
       continue;
     }
     const int *perm = w.perm();
-    for (int t = 0; t < w.size; t++)
-      w.rhs[t] = t < n && !w.dep[perm[t]] ? b[perm[t]] : 0.0;
+    for (int t = 0; t < w.size; t++) w.rhs[t] = t < n && !w.dep[perm[t]] ? b[perm[t]] : 0.0;
     w.ldlt.solve_in_place(w.rhs);
-    for (int t = 0; t < n; t++)
-      x[perm[t]] = w.rhs[t];
+    for (int t = 0; t < n; t++) x[perm[t]] = w.rhs[t];
     break;
   }
   int count = 0;
   for (int i = 0; i < n; i++) {
     count += w.dep[i];
-    if (w.dep[i])
-      x[i] = 0.0;
+    if (w.dep[i]) x[i] = 0.0;
   }
   r->dependent = count;
   r->iterations = 1;
@@ -274,11 +256,9 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
 } // namespace
 
 extern "C" int mr_eigen_solve(void **ws, const mr_solve_def *o, const mr_csr *A, const double *b,
-                              double *x, mr_solve_result *r)
-{
+                              double *x, mr_solve_result *r) {
   try {
-    if (!*ws)
-      *ws = new EigenWorkspace();
+    if (!*ws) *ws = new EigenWorkspace();
     return solve(*static_cast<EigenWorkspace *>(*ws), o, A, b, x, r);
   } catch (const std::bad_alloc &) {
     return MR_SOLVE_ENOMEM;
@@ -287,11 +267,9 @@ extern "C" int mr_eigen_solve(void **ws, const mr_solve_def *o, const mr_csr *A,
   }
 }
 
-extern "C" int mr_eigen_reserve(void **ws, int rows)
-{
+extern "C" int mr_eigen_reserve(void **ws, int rows) {
   try {
-    if (!*ws)
-      *ws = new EigenWorkspace();
+    if (!*ws) *ws = new EigenWorkspace();
     reserve(*static_cast<EigenWorkspace *>(*ws), rows);
     return MR_SOLVE_OK;
   } catch (const std::bad_alloc &) {
@@ -301,7 +279,6 @@ extern "C" int mr_eigen_reserve(void **ws, int rows)
   }
 }
 
-extern "C" void mr_eigen_free(void *ws)
-{
+extern "C" void mr_eigen_free(void *ws) {
   delete static_cast<EigenWorkspace *>(ws);
 }

@@ -16,12 +16,10 @@ extern "C" {
  * 16. Arrays never shrink, so a size seen once is never allocated again.
  * 0 or MR_SOLVE_ENOMEM (then *pp and *cap are as they were). */
 int mr_grow_to(void *pp, size_t *cap, size_t count, size_t elem_size);
-static inline int mr_grow(void *pp, size_t *cap, size_t count, size_t elem_size)
-{
+static inline int mr_grow(void *pp, size_t *cap, size_t count, size_t elem_size) {
   /* The common case, inline: the physics adds every Jacobian entry
    * through here. */
-  if (count <= *cap && *(void **)pp)
-    return 0;
+  if (count <= *cap && *(void **)pp) return 0;
   return mr_grow_to(pp, cap, count, elem_size);
 }
 
