@@ -21,7 +21,7 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state)
     test_system s;
     test_system_random(&s, 30, 5);
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[30], x[30];
     test_rng rng = { 6 };
     test_system_consistent_rhs(&s, &rng, b);
@@ -39,7 +39,7 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state)
                 b[12] = -INFINITY;
             for (int i = 0; i < 30; i++)
                 x[i] = 1234.5 + i;
-            mr_solve_opts o = mr_solve_opts_default();
+            mr_solve_def o = mr_default_solve_def();
             o.method = methods[m];
             mr_solve_result r;
             assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, &r), MR_SOLVE_NONFINITE);
@@ -52,7 +52,7 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state)
     }
     /* A NaN mass reaches A through the assembly and is caught there. */
     s.inv_mass[3] = NAN;
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     assert_int_equal(mr_solver_solve(solver, NULL, &A, b, x, NULL), MR_SOLVE_NONFINITE);
     mr_solver_destroy(solver);
     mr_csr_free(&A);
@@ -66,9 +66,9 @@ static void empty_and_zero_systems(void **state)
     mr_jac J = { 0 };
     mr_csr A = { 0 };
     assert_int_equal(mr_jac_reset(&J, 3), 0);
-    assert_int_equal(mr_assemble_jmjt(&J, (const double[]){ 1, 1, 1 }, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, (const double[]){ 1, 1, 1 }), 0);
     for (int m = 0; m < N_METHODS; m++) {
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         mr_solve_result r = { 9, 9, 9.0, 9 };
         assert_int_equal(mr_solver_solve(solver, &o, &A, NULL, NULL, &r), MR_SOLVE_OK);
@@ -79,12 +79,12 @@ static void empty_and_zero_systems(void **state)
     /* b = 0 gives λ = 0 whatever the warm start. */
     test_system s;
     test_system_random(&s, 20, 8);
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[20] = { 0 }, x[20];
     for (int m = 0; m < N_METHODS; m++) {
         for (int i = 0; i < 20; i++)
             x[i] = 3.0;
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_OK);
         for (int i = 0; i < 20; i++)
@@ -96,10 +96,10 @@ static void empty_and_zero_systems(void **state)
     mr_jac_begin_row(&J);
     mr_jac_add(&J, 0, d);
     mr_jac_begin_row(&J);
-    assert_int_equal(mr_assemble_jmjt(&J, (const double[]){ 0, 0 }, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, (const double[]){ 0, 0 }), 0);
     for (int m = 0; m < N_METHODS; m++) {
         double bz[2] = { 1, -1 }, xz[2] = { 5, 5 };
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         mr_solve_result r;
         assert_int_equal(mr_solver_solve(solver, &o, &A, bz, xz, &r), MR_SOLVE_DEPENDENT);
@@ -120,14 +120,14 @@ static void iteration_cap_reports_not_converged(void **state)
     test_system s;
     test_system_random(&s, 200, 9);
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[200], x[200];
     test_rng rng = { 10 };
     test_system_consistent_rhs(&s, &rng, b);
     mr_solver *solver = mr_solver_create();
     for (int m = 0; m < 2; m++) {
         memset(x, 0, sizeof x);
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         o.max_iter = 5;
         mr_solve_result r;
@@ -144,7 +144,7 @@ static void iteration_cap_reports_not_converged(void **state)
     /* A non-finite warm start is replaced by zero, not propagated. */
     for (int i = 0; i < 200; i++)
         x[i] = i % 2 ? NAN : 1.0;
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     o.method = MR_SOLVE_CG;
     assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_OK);
     for (int i = 0; i < 200; i++)
@@ -152,6 +152,31 @@ static void iteration_cap_reports_not_converged(void **state)
     mr_solver_destroy(solver);
     mr_csr_free(&A);
     test_system_free(&s);
+}
+
+/* The list for "expected one of" messages is the same table: every
+ * method's name once, then NULL; and every status has words. */
+static void name_list_and_status_names_come_from_the_tables(void **state)
+{
+    (void)state;
+    const char *const *list = mr_solve_method_names();
+    int count = 0;
+    for (; list[count]; count++) {
+        mr_solve_method m;
+        assert_int_equal(mr_solve_method_parse(list[count], &m), 0);
+        assert_int_equal(m, count);
+        assert_string_equal(mr_solve_method_name(m), list[count]);
+    }
+    assert_int_equal(count, MR_SOLVE_METHOD_COUNT);
+    const mr_solve_status all[] = { MR_SOLVE_OK, MR_SOLVE_NOT_CONVERGED, MR_SOLVE_DEPENDENT, MR_SOLVE_ENOMEM,
+                                    MR_SOLVE_NONFINITE, MR_SOLVE_UNAVAILABLE, MR_SOLVE_BAD_ARG };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
+        assert_string_not_equal(mr_solve_status_name(all[i]), "unknown");
+        for (size_t j = 0; j < i; j++)
+            assert_string_not_equal(mr_solve_status_name(all[i]), mr_solve_status_name(all[j]));
+    }
+    assert_string_equal(mr_solve_status_name((mr_solve_status)99), "unknown");
+    assert_string_equal(mr_solve_status_name(MR_SOLVE_ENOMEM), "out of memory");
 }
 
 static void names_parse_and_defaults(void **state)
@@ -171,7 +196,7 @@ static void names_parse_and_defaults(void **state)
     assert_int_equal(out, MR_SOLVE_CG);
     assert_string_equal(mr_solve_method_name((mr_solve_method)17), "unknown");
 
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     assert_int_equal(o.method, MR_SOLVE_LDLT);
     assert_true(o.tol == 1e-10 && o.max_iter == 1000 && o.pivot_tol == 1e-12);
 
@@ -182,7 +207,7 @@ static void names_parse_and_defaults(void **state)
     mr_jac_reset(&J, 1);
     mr_jac_begin_row(&J);
     mr_jac_add(&J, 0, d);
-    assert_int_equal(mr_assemble_jmjt(&J, (const double[]){ 2.0 }, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, (const double[]){ 2.0 }), 0);
     double b[1] = { 3 }, x[1] = { 0 };
     o.method = (mr_solve_method)9;
     assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_UNAVAILABLE);
@@ -211,13 +236,13 @@ static void workspace_reuse_matches_a_fresh_solver(void **state)
         test_system_random(&s, sizes[t], seeds[t]);
         if (t == 3)
             test_system_copy_row(&s, 100); /* 301 rows: one dependent */
-        assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+        assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
         double *b = malloc((size_t)s.k * sizeof *b);
         double *x1 = malloc((size_t)s.k * sizeof *x1), *x2 = malloc((size_t)s.k * sizeof *x2);
         test_rng rng = { seeds[t] + 40 };
         test_system_consistent_rhs(&s, &rng, b);
         for (int m = 0; m < N_METHODS; m++) {
-            mr_solve_opts o = mr_solve_opts_default();
+            mr_solve_def o = mr_default_solve_def();
             o.method = methods[m];
             o.max_iter = 100000;
             memset(x1, 0, (size_t)s.k * sizeof *x1);
@@ -235,11 +260,11 @@ static void workspace_reuse_matches_a_fresh_solver(void **state)
         /* Same pattern, new values: the LDLᵀ's cached ordering must not
          * hold stale numbers. Scale every mass by 3: λ scales by 1/3. */
         if (t == 0) {
-            mr_solve_opts o = mr_solve_opts_default();
+            mr_solve_def o = mr_default_solve_def();
             assert_int_equal(mr_solver_solve(reused, &o, &A, b, x1, NULL), MR_SOLVE_OK);
             for (int p = 0; p < s.np; p++)
                 s.inv_mass[p] *= 3.0;
-            assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+            assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
             assert_int_equal(mr_solver_solve(reused, &o, &A, b, x2, NULL), MR_SOLVE_OK);
             for (int i = 0; i < s.k; i++)
                 assert_near(x2[i], x1[i] / 3.0, 1e-9 * (1.0 + (x1[i] < 0 ? -x1[i] : x1[i])));
@@ -260,6 +285,7 @@ int main(void)
         cmocka_unit_test(empty_and_zero_systems),
         cmocka_unit_test(iteration_cap_reports_not_converged),
         cmocka_unit_test(names_parse_and_defaults),
+        cmocka_unit_test(name_list_and_status_names_come_from_the_tables),
         cmocka_unit_test(workspace_reuse_matches_a_fresh_solver),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -27,7 +27,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "mr_solver.h"
+#include "mr_solve_method.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -203,7 +203,7 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
     free(w);
     return def_error(msg, msg_size, MR_ERR_NOMEM, "out of memory");
   }
-  w->opts = mr_solve_opts_default();
+  w->opts = mr_default_solve_def();
   w->opts.method = def->solver;
   w->opts.tol = def->solver_tolerance;
   w->opts.max_iter = def->solver_max_iterations;

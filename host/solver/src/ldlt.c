@@ -26,19 +26,12 @@
 
 void mr_ldlt_free(mr_ldlt *f)
 {
-    mr_buf *bufs[] = { &f->pat_rp, &f->pat_col, &f->perm, &f->iperm, &f->parent, &f->lnz, &f->flag,
-                       &f->stack, &f->lp, &f->dropped, &f->li, &f->lx, &f->diag, &f->y, &f->z,
-                       &f->skip, &f->res, &f->dx, &f->cand, &f->bits };
-    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
-        free(bufs[i]->p);
+    mr_buf *const bufs[] = { &f->perm, &f->iperm, &f->parent, &f->lnz, &f->flag, &f->stack, &f->lp,
+                             &f->dropped, &f->li, &f->lx, &f->diag, &f->y, &f->z, &f->skip, &f->res,
+                             &f->dx, &f->cand, &f->bits };
+    mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
+    mr_pattern_free(&f->pattern);
     memset(f, 0, sizeof *f);
-}
-
-static int same_pattern(const mr_ldlt *f, const mr_csr *A)
-{
-    return f->have_symbolic && f->n == A->n && f->nnz == A->row_ptr[A->n]
-        && memcmp(f->pat_rp.p, A->row_ptr, (size_t)(A->n + 1) * sizeof(int)) == 0
-        && memcmp(f->pat_col.p, A->col, (size_t)f->nnz * sizeof(int)) == 0;
 }
 
 /* Elimination tree and column counts of L for the ordering in perm/iperm.
@@ -64,28 +57,49 @@ static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *
     return total;
 }
 
-static int analyse(mr_ldlt *f, const mr_csr *A)
+static int reserve_order(mr_ldlt *f, size_t n)
 {
-    const int n = A->n, nnz = A->row_ptr[n];
-    const size_t dn = (size_t)n, si = sizeof(int);
-    if (mr_buf_reserve(&f->pat_rp, dn + 1, si) || mr_buf_reserve(&f->pat_col, (size_t)nnz, si)
-        || mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si) || mr_buf_reserve(&f->cand, dn, si)
-        || mr_buf_reserve(&f->parent, dn, si) || mr_buf_reserve(&f->lnz, dn, si)
-        || mr_buf_reserve(&f->flag, dn, si) || mr_buf_reserve(&f->stack, 2 * dn, si)
-        || mr_buf_reserve(&f->lp, dn + 1, si) || mr_buf_reserve(&f->dropped, dn, 1)
-        || mr_buf_reserve(&f->diag, dn, sizeof(double)) || mr_buf_reserve(&f->y, dn, sizeof(double))
-        || mr_buf_reserve(&f->z, dn, sizeof(double)) || mr_buf_reserve(&f->skip, dn, 1)
-        || mr_buf_reserve(&f->res, dn, sizeof(double)) || mr_buf_reserve(&f->dx, dn, sizeof(double)))
+    const size_t si = sizeof(int);
+    if (mr_buf_reserve(&f->perm, n, si) || mr_buf_reserve(&f->iperm, n, si) || mr_buf_reserve(&f->cand, n, si)
+        || mr_buf_reserve(&f->parent, n, si) || mr_buf_reserve(&f->lnz, n, si)
+        || mr_buf_reserve(&f->flag, n, si) || mr_buf_reserve(&f->stack, 2 * n, si)
+        || (n <= MR_MIN_DEGREE_MAX_N && mr_buf_reserve(&f->bits, n * ((n + 63) / 64), sizeof(uint64_t))))
         return MR_SOLVE_ENOMEM;
-    f->have_symbolic = 0;
-    int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int);
+    return 0;
+}
+
+static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l)
+{
+    if (mr_buf_reserve(&f->lp, n + 1, sizeof(int)) || mr_buf_reserve(&f->dropped, n, 1)
+        || mr_buf_reserve(&f->diag, n, sizeof(double)) || mr_buf_reserve(&f->y, n, sizeof(double))
+        || mr_buf_reserve(&f->z, n, sizeof(double)) || mr_buf_reserve(&f->skip, n, 1)
+        || mr_buf_reserve(&f->res, n, sizeof(double)) || mr_buf_reserve(&f->dx, n, sizeof(double))
+        || mr_buf_reserve(&f->li, nnz_l, sizeof(int)) || mr_buf_reserve(&f->lx, nnz_l, sizeof(double)))
+        return MR_SOLVE_ENOMEM;
+    return 0;
+}
+
+int mr_ldlt_reserve(mr_ldlt *f, int rows)
+{
+    const size_t n = (size_t)rows;
+    if (reserve_order(f, n) || reserve_factor(f, n, n * (n > 0 ? n - 1 : 0) / 2)
+        || mr_pattern_reserve(&f->pattern, n, n * n))
+        return MR_SOLVE_ENOMEM;
+    return 0;
+}
+
+int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l)
+{
+    const int n = A->n;
+    if (reserve_order(f, (size_t)n))
+        return MR_SOLVE_ENOMEM;
+    int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *cand = BUF(f, cand, int);
     int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
 
     /* Try the natural order, minimum degree (while its n² bits stay
      * small) and reverse Cuthill–McKee; keep whichever fills in least.
      * Each try is one symbolic pass, cheap beside a factorisation, and runs
      * only when the pattern changes. */
-    int *cand = BUF(f, cand, int);
     size_t best = 0;
     for (int way = 0; way < 3; way++) {
         if (way == 0) {
@@ -94,9 +108,6 @@ static int analyse(mr_ldlt *f, const mr_csr *A)
         } else if (way == 1) {
             if (n > MR_MIN_DEGREE_MAX_N)
                 continue;
-            size_t words = ((size_t)n + 63) / 64;
-            if (mr_buf_reserve(&f->bits, (size_t)n * words, sizeof(uint64_t)))
-                return MR_SOLVE_ENOMEM;
             mr_order_min_degree(A, cand, f->bits.p, lnz);
         } else {
             mr_order_rcm(A, cand, BUF(f, stack, int));
@@ -106,25 +117,29 @@ static int analyse(mr_ldlt *f, const mr_csr *A)
         size_t fill = symbolic(A, cand, iperm, parent, lnz, flag);
         if (way == 0 || fill < best) {
             best = fill;
-            memcpy(perm, cand, dn * si);
+            memcpy(perm, cand, (size_t)n * sizeof *perm);
         }
     }
     for (int i = 0; i < n; i++)
         iperm[perm[i]] = i;
-    f->nnz_l = symbolic(A, perm, iperm, parent, lnz, flag);
-    if (mr_buf_reserve(&f->li, f->nnz_l, si) || mr_buf_reserve(&f->lx, f->nnz_l, sizeof(double)))
+    *nnz_l = best;
+    return 0;
+}
+
+static int analyse(mr_ldlt *f, const mr_csr *A)
+{
+    const int n = A->n;
+    f->pattern.valid = 0;
+    if (mr_ldlt_order(f, A, &f->nnz_l) != 0 || reserve_factor(f, (size_t)n, f->nnz_l) != 0)
         return MR_SOLVE_ENOMEM;
+    /* The lnz of the ordering kept, not of the last one tried. */
+    int *lnz = BUF(f, lnz, int);
+    symbolic(A, BUF(f, perm, int), BUF(f, iperm, int), BUF(f, parent, int), lnz, BUF(f, flag, int));
     int *lp = BUF(f, lp, int);
     lp[0] = 0;
     for (int k = 0; k < n; k++)
         lp[k + 1] = lp[k] + lnz[k];
-
-    memcpy(f->pat_rp.p, A->row_ptr, (dn + 1) * si);
-    memcpy(f->pat_col.p, A->col, (size_t)nnz * si);
-    f->n = n;
-    f->nnz = nnz;
-    f->have_symbolic = 1;
-    return 0;
+    return mr_pattern_keep(&f->pattern, A);
 }
 
 /* Returns the number of dropped (dependent) rows. */
@@ -197,7 +212,7 @@ static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol)
 /* x = (P L D Lᵀ Pᵀ)⁺ b with dropped rows' unknowns set to zero. */
 static void solve_factored(const mr_ldlt *f, const double *b, double *x)
 {
-    const int n = f->n;
+    const int n = f->pattern.n;
     const int *perm = BUF(f, perm, const int), *lp = BUF(f, lp, const int), *li = BUF(f, li, const int);
     const double *lx = BUF(f, lx, const double), *diag = BUF(f, diag, const double);
     const unsigned char *dropped = BUF(f, dropped, const unsigned char);
@@ -216,10 +231,10 @@ static void solve_factored(const mr_ldlt *f, const double *b, double *x)
         x[perm[k]] = z[k];
 }
 
-int mr_ldlt_solve(mr_ldlt *f, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
 {
     const int n = A->n;
-    if (!same_pattern(f, A)) {
+    if (!mr_pattern_same(&f->pattern, A)) {
         int st = analyse(f, A);
         if (st != 0)
             return st;
@@ -240,12 +255,7 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_opts *o, const mr_csr *A, const dou
     double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
     const double stop = o->tol * mr_norm2(n, b);
     for (int step = 0; step < 2 && mr_residual_norm(A, b, x, skip) > stop; step++) {
-        for (int i = 0; i < n; i++) {
-            double s = b[i];
-            for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
-                s -= A->val[q] * x[A->col[q]];
-            res[i] = s;
-        }
+        mr_residual(A, b, x, res);
         solve_factored(f, res, dx);
         for (int i = 0; i < n; i++)
             x[i] += dx[i];
