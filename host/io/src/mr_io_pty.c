@@ -31,10 +31,10 @@ static speed_t baud_to_speed(int baud) {
 
 /* Raw 8N1: no echo, no line editing, no CR/LF translation, no flow control,
  * reads return whatever has arrived. */
-static int set_raw(int fd, int baud, const char *path, mr_err *err) {
+static int set_raw(int fd, int baud, const char *path, mr_io_err *err) {
   struct termios t;
   speed_t sp = baud_to_speed(baud);
-  if (tcgetattr(fd, &t) != 0) return mr_err_sys(err, "%s: tcgetattr", path);
+  if (tcgetattr(fd, &t) != 0) return mr_io_err_sys(err, "%s: tcgetattr", path);
   cfmakeraw(&t);
   t.c_cflag |= CLOCAL | CREAD;
   t.c_cflag &= ~(tcflag_t)(CSTOPB | PARENB | CRTSCTS);
@@ -45,17 +45,17 @@ static int set_raw(int fd, int baud, const char *path, mr_err *err) {
     cfsetispeed(&t, sp);
     cfsetospeed(&t, sp);
   }
-  if (tcsetattr(fd, TCSANOW, &t) != 0) return mr_err_sys(err, "%s: tcsetattr", path);
+  if (tcsetattr(fd, TCSANOW, &t) != 0) return mr_io_err_sys(err, "%s: tcsetattr", path);
   return 0;
 }
 
-int mr_io_pty_create(mr_io *io, mr_err *err) {
+int mr_io_pty_create(mr_io *io, mr_io_err *err) {
   const char *name;
   int slave;
   io->fd = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (io->fd < 0) return mr_err_sys(err, "pty: posix_openpt");
+  if (io->fd < 0) return mr_io_err_sys(err, "pty: posix_openpt");
   if (grantpt(io->fd) != 0 || unlockpt(io->fd) != 0 || !(name = ptsname(io->fd))) {
-    mr_err_sys(err, "pty: grantpt/unlockpt/ptsname");
+    mr_io_err_sys(err, "pty: grantpt/unlockpt/ptsname");
     goto fail;
   }
   snprintf(io->path, sizeof io->path, "%s", name);
@@ -66,7 +66,7 @@ int mr_io_pty_create(mr_io *io, mr_err *err) {
    * POLLHUP on the master until a peer opens the slave: mr_io_wait_peer. */
   slave = open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (slave < 0) {
-    mr_err_sys(err, "%s: cannot open the new pty's slave side", name);
+    mr_io_err_sys(err, "%s: cannot open the new pty's slave side", name);
     goto fail;
   }
   if (set_raw(slave, MR_IO_DEFAULT_BAUD, name, err) != 0) {
@@ -83,10 +83,10 @@ fail:
   return -1;
 }
 
-int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_err *err) {
+int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_io_err *err) {
   int flags = (io->mode & MR_IO_WRITE) ? O_RDWR : O_RDONLY;
   io->fd = open(path, flags | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (io->fd < 0) return mr_err_sys(err, "%s: cannot open", path);
+  if (io->fd < 0) return mr_io_err_sys(err, "%s: cannot open", path);
   if (set_raw(io->fd, baud, path, err) != 0) {
     close(io->fd);
     io->fd = -1;
@@ -108,7 +108,7 @@ static int master_hup(const mr_io *io) {
   return poll(&p, 1, 0) == 1 && (p.revents & POLLHUP);
 }
 
-mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_err *err) {
+mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_err *err) {
   long long start = mr_io_now_ms();
   (void)err;
   if (io->kind != MR_IO_PTY || io->peer_seen) return MR_IO_OK;
@@ -125,7 +125,7 @@ mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_err *err) {
   }
 }
 
-mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_err *err) {
+mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_err *err) {
   long long start = mr_io_now_ms(), empty_since = -1;
   if (io->kind != MR_IO_PTY) return MR_IO_OK;
   for (;;) {
@@ -134,13 +134,13 @@ mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_err *err) {
     /* What the slave side still holds is only visible through a slave fd. */
     fd = open(io->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-      mr_err_sys(err, "%s: cannot open to check the queue", io->path);
-      return MR_IO_ERROR;
+      mr_io_err_sys(err, "%s: cannot open to check the queue", io->path);
+      return MR_IO_ERR_SYSTEM;
     }
     if (ioctl(fd, FIONREAD, &queued) != 0) {
-      mr_err_sys(err, "%s: FIONREAD", io->path);
+      mr_io_err_sys(err, "%s: FIONREAD", io->path);
       close(fd);
-      return MR_IO_ERROR;
+      return MR_IO_ERR_SYSTEM;
     }
     close(fd);
     /* FIONREAD counts only the line discipline's buffer; bytes still in the
