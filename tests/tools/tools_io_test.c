@@ -12,6 +12,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -222,6 +224,54 @@ static void tools_io_file_and_fifo_end_with_eof(void **state) {
   free(dir);
 }
 
+/* mr_io_drain returns only once the reader has every byte: closing a pty's
+ * master discards what the slave side has not read yet (measured: nothing
+ * of 11 KiB written is readable after the close), so a drain that returns
+ * early loses the end of the stream. The reader here is slow on purpose and
+ * keeps its count in shared memory, where the drain's caller can see it. */
+static void tools_io_pty_drain_returns_once_the_reader_has_every_byte(void **state) {
+  enum { TOTAL = 24000, STEP = 600 };
+  static uint8_t sent[TOTAL];
+  volatile size_t *read_so_far;
+  mr_io master;
+  mr_io_err err;
+  pid_t child;
+  (void)state;
+  fill(sent, TOTAL, 5);
+  read_so_far = mmap(NULL, sizeof *read_so_far, PROT_READ | PROT_WRITE,
+                     MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  assert_true(read_so_far != MAP_FAILED);
+  *read_so_far = 0;
+  tt_assert_io_ok(mr_io_open(&master, "pty", MR_IO_WRITE, &err), err);
+  child = fork();
+  assert_true(child >= 0);
+  if (child == 0) {
+    mr_io slave;
+    uint8_t buf[STEP];
+    close(master.fd); /* only the parent holds the glove's side */
+    if (mr_io_open(&slave, mr_io_path(&master), MR_IO_READ, &err) != 0) {
+      fprintf(stderr, "child: %s\n", err.msg);
+      _exit(1);
+    }
+    for (;;) {
+      size_t n = 0;
+      struct timespec ts = {0, 5000000L};
+      if (mr_io_read(&slave, buf, sizeof buf, 10000, &n, &err) != MR_IO_OK) break;
+      *read_so_far += n;
+      nanosleep(&ts, NULL);
+    }
+    _exit(0);
+  }
+  assert_int_equal(mr_io_write(&master, sent, TOTAL, 10000, NULL, &err), MR_IO_OK);
+  /* The kernel holds at most about 12 KiB between the two sides. */
+  assert_true(*read_so_far < TOTAL);
+  assert_int_equal(mr_io_drain(&master, 20000, &err), MR_IO_OK);
+  assert_int_equal(*read_so_far, TOTAL);
+  mr_io_close(&master);
+  assert_int_equal(tt_wait(child, 30), 0);
+  munmap((void *)read_so_far, sizeof *read_so_far);
+}
+
 static void expect_open_fails(const char *spec, mr_io_status code, const char *names) {
   mr_io io;
   mr_io_err err;
@@ -306,6 +356,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
       cmocka_unit_test(tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read),
+      cmocka_unit_test(tools_io_pty_drain_returns_once_the_reader_has_every_byte),
       cmocka_unit_test(tools_io_tcp_peer_close_is_hangup),
       cmocka_unit_test(tools_io_file_and_fifo_end_with_eof),
       cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),

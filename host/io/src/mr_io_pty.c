@@ -125,33 +125,44 @@ mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_err *err) {
   }
 }
 
+/* Bytes written to the master wait in two places before the reader sees
+ * them: the slave's flip buffer, moved on by a kernel worker, and then the
+ * line discipline's read buffer, which FIONREAD counts. A poll on the slave
+ * with nothing readable makes the kernel run that worker to completion
+ * first (n_tty_poll calls tty_buffer_flush_work), so a FIONREAD of 0 right
+ * after it means both are empty. Without the poll, a FIONREAD of 0 only says
+ * the worker has not caught up: under load it could stay behind for longer
+ * than any fixed grace period, and closing the master then discarded the
+ * end of the stream. */
+static mr_io_status queued_bytes(mr_io *io, int *queued, mr_io_err *err) {
+  struct pollfd p;
+  int fd = open(io->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    mr_io_err_sys(err, "%s: cannot open to check the queue", io->path);
+    return MR_IO_ERR_SYSTEM;
+  }
+  p.fd = fd;
+  p.events = POLLIN;
+  p.revents = 0;
+  if (poll(&p, 1, 0) < 0 || ioctl(fd, FIONREAD, queued) != 0) {
+    mr_io_err_sys(err, "%s: FIONREAD", io->path);
+    close(fd);
+    return MR_IO_ERR_SYSTEM;
+  }
+  close(fd);
+  return MR_IO_OK;
+}
+
 mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_err *err) {
-  long long start = mr_io_now_ms(), empty_since = -1;
+  long long start = mr_io_now_ms();
   if (io->kind != MR_IO_PTY) return MR_IO_OK;
   for (;;) {
-    int queued = 0, fd, left;
+    int queued = 0, left;
+    mr_io_status st;
     if (master_hup(io)) return MR_IO_HANGUP;
-    /* What the slave side still holds is only visible through a slave fd. */
-    fd = open(io->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) {
-      mr_io_err_sys(err, "%s: cannot open to check the queue", io->path);
-      return MR_IO_ERR_SYSTEM;
-    }
-    if (ioctl(fd, FIONREAD, &queued) != 0) {
-      mr_io_err_sys(err, "%s: FIONREAD", io->path);
-      close(fd);
-      return MR_IO_ERR_SYSTEM;
-    }
-    close(fd);
-    /* FIONREAD counts only the line discipline's buffer; bytes still in the
-     * tty's flip buffer (up to 16 KiB measured) move in when the reader makes
-     * room. So the queue must stay empty for a while, not just once. */
-    if (queued == 0) {
-      if (empty_since < 0) empty_since = mr_io_now_ms();
-      if (mr_io_now_ms() - empty_since >= 100) return MR_IO_OK;
-    } else {
-      empty_since = -1;
-    }
+    st = queued_bytes(io, &queued, err);
+    if (st != MR_IO_OK) return st;
+    if (queued == 0) return MR_IO_OK;
     left = mr_io_ms_left(start, timeout_ms);
     if (left == 0) return MR_IO_TIMEOUT;
     sleep_ms(left < 0 || left > 2 ? 2 : left);
