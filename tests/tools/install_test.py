@@ -2,7 +2,8 @@
 """`make install` puts the programs, their man pages and the udev rule in
 place under DESTDIR; each man page renders without warnings and names every
 option its program's --help lists; the Makefile hands PREFIX and the udev
-folder to the install.
+folder to the install, keeps the build log off the screen and runs the
+benchmark for make bench.
 
 usage: install_test.py SOURCE_DIR BUILD_DIR UDEV_RULES_DIR
 """
@@ -58,6 +59,22 @@ def render(page):
     return text, "".join("unknown request: " + ln for ln in bad)
 
 
+def check_front_door():
+    """The Makefile's promises, read from what it would run (make -n): the
+    build stays off the screen, sub-makes print no directory lines, and
+    make bench runs the benchmark."""
+    n = run(["make", "-n", "firmware"], cwd=SRC).stdout
+    check("Entering directory" not in n, "make firmware prints no 'Entering directory' lines")
+    n = run(["make", "-n", "build"], cwd=SRC).stdout
+    builds = [l for l in n.splitlines() if l.startswith("cmake --build")]
+    check(builds and all(">/dev/null" in l.split("||")[0] for l in builds),
+          "make build keeps the build log off the screen: " + " / ".join(builds))
+    check(run(["make", "-n", "build", "V=1"], cwd=SRC).stdout.count(">/dev/null") == 0,
+          "make build V=1 shows the build log")
+    n = run(["make", "-n", "bench"], cwd=SRC).stdout
+    check("tools/protocol-bench/protocol-bench" in n, "make bench runs protocol-bench")
+
+
 def main():
     dest = tempfile.mkdtemp(prefix="mr-install-test-")
     try:
@@ -96,6 +113,7 @@ def main():
             n = run(["make", "-s", "-n", "-C", SRC, "install", "PREFIX=" + prefix])
             check("--prefix " + prefix in n.stdout and "MR_UDEV_RULES_DIR=" + want in n.stdout,
                   "make install PREFIX=%s installs under %s, the rule in %s" % (prefix, prefix, want))
+        check_front_door()
     finally:
         shutil.rmtree(dest, ignore_errors=True)
     if failures:
