@@ -35,7 +35,7 @@ static void expect_one_line(const char *const argv[], const char *name, int stat
       !strstr(o.err, want) || strstr(o.err, argv[0]))
     fail_msg("%s %s: exit %d (want %d), stderr '%s' (want one line '%s...%s...', without the "
              "program's path)",
-             name, argv[1], o.status, status, o.err, prefix, want);
+             name, argv[1] ? argv[1] : "", o.status, status, o.err, prefix, want);
   tt_output_free(&o);
 }
 
@@ -74,6 +74,10 @@ static void tools_cli_bad_usage_exits_2_with_one_line_naming_the_program(void **
   {
     const char *a[] = {D, "a.bin", "b.bin", NULL};
     expect_one_line(a, "glove-dump", 2, "one SOURCE only");
+  }
+  {
+    const char *a[] = {M, NULL};
+    expect_one_line(a, "marionette", 2, "expected a command");
   }
   {
     const char *a[] = {M, "bogus", NULL};
