@@ -53,7 +53,11 @@ int mr_io_pty_create(mr_io *io, mr_io_err *err) {
   const char *name;
   int slave;
   io->fd = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (io->fd < 0) return mr_io_err_sys(err, "pty: posix_openpt");
+  /* In a container or chroot without devpts this is the first thing that
+   * fails, with a bare "No such device": name the likely cause. */
+  if (io->fd < 0)
+    return mr_io_err_sys(err, "pty: cannot create a pseudo-terminal (is devpts mounted on "
+                              "/dev/pts?)");
   if (grantpt(io->fd) != 0 || unlockpt(io->fd) != 0 || !(name = ptsname(io->fd))) {
     mr_io_err_sys(err, "pty: grantpt/unlockpt/ptsname");
     goto fail;
