@@ -75,11 +75,13 @@ bench: build
 	@$(BUILD)/tools/protocol-bench/protocol-bench
 
 # The programs, their man pages and the udev rule, under $(DESTDIR)$(PREFIX)
-# (the udev rule under $(DESTDIR)$(UDEV_RULES_DIR)). Run it as root, or with
-# sudo, for a system prefix.
-install: build
-	@cmake -S . -B $(BUILD) -DMR_UDEV_RULES_DIR=$(UDEV_RULES_DIR) $(QUIET)
-	@cmake --install $(BUILD) --prefix $(PREFIX)
+# (the udev rule under $(DESTDIR)$(UDEV_RULES_DIR)): `make`, then
+# `sudo make install`. It builds nothing, so that root never writes into the
+# build tree.
+install:
+	@[ -x $(BUILD)/host/app/marionette ] || \
+	  { echo "make install: nothing built in $(BUILD)/ yet; run make first" >&2; exit 1; }
+	@MR_UDEV_RULES_DIR=$(UDEV_RULES_DIR) cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-fuzz

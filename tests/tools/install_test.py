@@ -5,7 +5,7 @@ option its program's --help lists; the Makefile hands PREFIX and the udev
 folder to the install, keeps the build log off the screen and runs the
 benchmark for make bench.
 
-usage: install_test.py SOURCE_DIR BUILD_DIR UDEV_RULES_DIR
+usage: install_test.py SOURCE_DIR BUILD_DIR
 """
 import os
 import re
@@ -14,7 +14,7 @@ import subprocess
 import sys
 import tempfile
 
-SRC, BUILD, UDEV = sys.argv[1], sys.argv[2], sys.argv[3]
+SRC, BUILD = sys.argv[1], sys.argv[2]
 PREFIX = "/usr/local"
 PROGRAMS = {"marionette": [["--help"], ["sim", "--help"]],
             "glove-gen": [["--help"]],
@@ -78,16 +78,24 @@ def check_front_door():
 def main():
     dest = tempfile.mkdtemp(prefix="mr-install-test-")
     try:
-        env = dict(os.environ, DESTDIR=dest)
+        env = {k: v for k, v in os.environ.items() if k != "MR_UDEV_RULES_DIR"}
+        env["DESTDIR"] = dest
         r = run(["cmake", "--install", BUILD, "--prefix", PREFIX], env=env)
         check(r.returncode == 0, "cmake --install exits 0: " + r.stderr.strip())
         root = dest + PREFIX
-        udev = os.path.join(dest + (UDEV if os.path.isabs(UDEV) else PREFIX + "/" + UDEV),
-                            "99-marionette-glove.rules")
-        check(os.path.isfile(udev), "the udev rule is installed at " + udev)
-        if os.path.isfile(udev):
-            check(open(udev).read() == open(SRC + "/hardware/99-marionette-glove.rules").read(),
-                  "the installed udev rule is the one in hardware/")
+        rule = open(SRC + "/hardware/99-marionette-glove.rules").read()
+        udev = dest + PREFIX + "/lib/udev/rules.d/99-marionette-glove.rules"
+        check(os.path.isfile(udev) and open(udev).read() == rule,
+              "by default the udev rule is installed at PREFIX/lib/udev/rules.d")
+        # The folder make install picks for /usr/local, where udev reads it.
+        env["MR_UDEV_RULES_DIR"] = "/etc/udev/rules.d"
+        r = run(["cmake", "--install", BUILD, "--prefix", PREFIX], env=env)
+        udev = dest + "/etc/udev/rules.d/99-marionette-glove.rules"
+        check(r.returncode == 0 and os.path.isfile(udev) and open(udev).read() == rule,
+              "MR_UDEV_RULES_DIR=/etc/udev/rules.d puts the rule there, under DESTDIR")
+        listing = run(["find", dest, "-type", "f"]).stdout.split()
+        check(len(listing) == 8, "install puts exactly 3 programs, 3 man pages and the rule "
+              "(twice here): " + " ".join(sorted(listing)))
         for prog, helps in PROGRAMS.items():
             exe = os.path.join(root, "bin", prog)
             page = os.path.join(root, "share/man/man1", prog + ".1")
@@ -111,8 +119,10 @@ def main():
                              ("/usr/local", "/etc/udev/rules.d"),
                              ("/opt/mr", "/opt/mr/lib/udev/rules.d")):
             n = run(["make", "-s", "-n", "-C", SRC, "install", "PREFIX=" + prefix])
-            check("--prefix " + prefix in n.stdout and "MR_UDEV_RULES_DIR=" + want in n.stdout,
-                  "make install PREFIX=%s installs under %s, the rule in %s" % (prefix, prefix, want))
+            check("--prefix " + prefix in n.stdout and "MR_UDEV_RULES_DIR=%s cmake" % want in n.stdout
+                  and "cmake -S" not in n.stdout,
+                  "make install PREFIX=%s installs under %s, the rule in %s, and builds nothing"
+                  % (prefix, prefix, want))
         check_front_door()
     finally:
         shutil.rmtree(dest, ignore_errors=True)
