@@ -1,11 +1,42 @@
 # The front door. Native code builds with CMake into build/ (and build-asan/
 # for the sanitizer run, build-fuzz/ for libFuzzer); the firmware cross-builds
 # with its own Makefile into build/firmware/.
-.PHONY: all deps build build-asan firmware test test-native test-asan fuzz demo bench clean
+.PHONY: all deps build build-asan firmware test test-native test-asan fuzz demo bench \
+        install clean
 
 JOBS      ?= $(shell nproc)
 BUILD     := build
 FUZZ_SECS ?= 60
+PREFIX    ?= /usr/local
+# udev reads rules from /usr/lib/udev/rules.d and /etc/udev/rules.d only:
+# PREFIX=/usr puts the rule in the first, the default /usr/local in the
+# second, and any other prefix (a home folder, a staging tree) keeps it under
+# $(PREFIX)/lib/udev/rules.d, to be copied to /etc/udev/rules.d by hand.
+ifeq ($(PREFIX),/usr)
+UDEV_RULES_DIR ?= /usr/lib/udev/rules.d
+else ifeq ($(PREFIX),/usr/local)
+UDEV_RULES_DIR ?= /etc/udev/rules.d
+else
+UDEV_RULES_DIR ?= $(PREFIX)/lib/udev/rules.d
+endif
+
+# A build is a means, not the show: no "Entering directory" lines from make,
+# no per-file lines from CMake's generated makefiles; warnings, errors and
+# the one line per step below still come through. V=1 brings the log back.
+MAKEFLAGS += --no-print-directory
+ifeq ($(V),1)
+QUIET :=
+else
+QUIET := >/dev/null
+endif
+# Configures $(1) with the CMake flags $(2), then builds target(s) $(3)
+# quietly; on failure the build runs again in the foreground (one job, so
+# the first error is the last thing on screen).
+define cmake_build
+	@cmake -S . -B $(1) $(2) $(QUIET)
+	@echo "make: building $(1)/ (V=1 shows the build log)"
+	@cmake --build $(1) -j $(JOBS) $(3) $(QUIET) || cmake --build $(1) -j 1 $(3)
+endef
 
 all: build
 
@@ -13,15 +44,13 @@ deps:
 	@tools/install-deps.sh
 
 build: deps
-	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-	@cmake --build $(BUILD) -j $(JOBS)
+	$(call cmake_build,$(BUILD),-DCMAKE_BUILD_TYPE=RelWithDebInfo,)
 
 build-asan: deps
-	@cmake -S . -B $(BUILD)-asan -DCMAKE_BUILD_TYPE=Debug -DMR_SANITIZE=ON >/dev/null
-	@cmake --build $(BUILD)-asan -j $(JOBS)
+	$(call cmake_build,$(BUILD)-asan,-DCMAKE_BUILD_TYPE=Debug -DMR_SANITIZE=ON,)
 
 firmware: deps
-	@if [ -f firmware/Makefile ]; then $(MAKE) --no-print-directory -C firmware OUT=$(CURDIR)/$(BUILD)/firmware; fi
+	@if [ -f firmware/Makefile ]; then $(MAKE) -C firmware OUT=$(CURDIR)/$(BUILD)/firmware; fi
 
 test-native: build firmware
 	@cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS)
@@ -32,15 +61,27 @@ test-asan: build-asan firmware
 # Bounded libFuzzer runs over the committed seed corpora (a scratch copy, so
 # the committed corpus stays as reviewed).
 fuzz: deps
-	@cmake -S . -B $(BUILD)-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMR_FUZZ=ON >/dev/null
-	@cmake --build $(BUILD)-fuzz -j $(JOBS) --target fuzz_targets
+	$(call cmake_build,$(BUILD)-fuzz,-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMR_FUZZ=ON,--target fuzz_targets)
 	@tests/fuzz/run.sh $(BUILD)-fuzz $(FUZZ_SECS)
 
 test: test-native test-asan fuzz
 
 demo: build
 	@tools/demo.sh $(BUILD)
+
+# The decoder's throughput and the wire cost of a SAMPLE frame.
+bench: build
+	@$(BUILD)/tools/protocol-bench/protocol-bench
+
+# The programs, their man pages and the udev rule, under $(DESTDIR)$(PREFIX)
+# (the udev rule under $(DESTDIR)$(UDEV_RULES_DIR)): `make`, then
+# `sudo make install`. It builds nothing, so that root never writes into the
+# build tree.
+install:
+	@[ -x $(BUILD)/host/app/marionette ] || \
+	  { echo "make install: nothing built in $(BUILD)/ yet; run make first" >&2; exit 1; }
+	@MR_UDEV_RULES_DIR=$(UDEV_RULES_DIR) cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-fuzz

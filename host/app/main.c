@@ -22,7 +22,8 @@ static void usage(FILE *f) {
 
 int main(int argc, char **argv) {
   if (argc < 2) {
-    usage(stderr);
+    /* Bad usage is one line, like every other usage error; --help has the rest. */
+    fprintf(stderr, "marionette: expected a command: sim (see marionette --help)\n");
     return MR_EXIT_USAGE;
   }
   const char *cmd = argv[1];

@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "mr_scene.h"
-#include "scene_proc.h"
+#include "test_proc.h"
 
 static char *marionette, *scene_path;
 
@@ -37,14 +37,14 @@ static void scene_declares_an_outcome(void **state) {
 static void sim_check_passes(void **state) {
   (void)state;
   char *argv[] = {marionette, "sim", "--check", "--quiet", scene_path, NULL};
-  scene_proc p;
-  assert_int_equal(scene_proc_run(argv, &p), 0);
+  tt_output p;
+  assert_int_equal(tt_capture(argv, &p), 0);
   if (p.status != 0)
     fprintf(stderr, "%s", p.err);
   assert_int_equal(p.status, 0);
   assert_string_equal(p.err, "");
   assert_non_null(strstr(p.out, "check: passed"));
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 int main(int argc, char **argv) {

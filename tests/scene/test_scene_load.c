@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "mr_scene.h"
-#include "scene_proc.h"
+#include "test_proc.h"
 
 #define BASE                                                                                  \
   "physics:\n"                                                                                \
@@ -303,7 +303,7 @@ static void missing_file_is_an_io_error(void **state) {
 static void file_errors_carry_the_path(void **state) {
   (void)state;
   const char text[] = BASE "    - {name: c, position: [2, 1, 0], mass: -3}\n";
-  const char *path = scene_tmp_file("load_negative.yaml", text, sizeof text - 1);
+  const char *path = tt_tmp_file("load_negative.yaml", text, sizeof text - 1);
   assert_non_null(path);
   mr_scene s;
   mr_scene_error e;
@@ -320,7 +320,7 @@ static void expected_load_error_is_readable_from_a_broken_scene(void **state) {
   (void)state;
   const char text[] = "expect: {load_error: \"coincides with\"}\n" BASE
                       "    - {name: c, position: [1, 1, 0], mass: 1}\n";
-  const char *path = scene_tmp_file("load_expect.yaml", text, sizeof text - 1);
+  const char *path = tt_tmp_file("load_expect.yaml", text, sizeof text - 1);
   char out[64];
   assert_int_equal(mr_scene_expected_load_error(path, out, sizeof out), 0);
   assert_string_equal(out, "coincides with");

@@ -13,14 +13,14 @@
 
 #include "mr_scene.h"
 #include "mr_scene_world.h"
-#include "scene_proc.h"
+#include "test_proc.h"
 
 static char *marionette;
 
 #define SCENES MR_SOURCE_DIR "/host/scenes"
 
 /* Runs marionette with the arguments up to a NULL. */
-static void run(scene_proc *p, ...) {
+static void run(tt_output *p, ...) {
   char *argv[16] = {marionette};
   int n = 1;
   va_list ap;
@@ -30,32 +30,32 @@ static void run(scene_proc *p, ...) {
     argv[n++] = (char *)a;
   va_end(ap);
   argv[n] = NULL;
-  assert_int_equal(scene_proc_run(argv, p), 0);
+  assert_int_equal(tt_capture(argv, p), 0);
 }
 
 static uint64_t field_u64(const char *text, const char *key) {
   char v[64];
-  assert_int_equal(scene_proc_field(text, key, v, sizeof v), 0);
+  assert_int_equal(tt_field(text, key, v, sizeof v), 0);
   return strtoull(v, NULL, 10);
 }
 
 static void help_lists_subcommands_and_flags(void **state) {
   (void)state;
-  scene_proc p;
+  tt_output p;
   run(&p, "--help", NULL);
   assert_int_equal(p.status, 0);
   assert_non_null(strstr(p.out, "  sim SCENE "));
-  scene_proc_free(&p);
+  tt_output_free(&p);
   run(&p, "sim", "--help", NULL);
   assert_int_equal(p.status, 0);
   const char *flags[] = {"--time SECONDS", "--csv FILE", "--check", "--quiet", "--help"};
   for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
     assert_non_null(strstr(p.out, flags[i]));
-  scene_proc_free(&p);
+  tt_output_free(&p);
   run(&p, "dance", NULL);
   assert_int_equal(p.status, 2);
   assert_string_equal(p.err, "marionette: unknown command 'dance'; expected one of: sim (see --help)\n");
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 static void load_errors_are_one_line_with_the_place(void **state) {
@@ -64,46 +64,46 @@ static void load_errors_are_one_line_with_the_place(void **state) {
                       "  effects: [gravity]\n"
                       "  particles:\n"
                       "    - {name: a, position: [0, 1, 0], mass: -2}\n";
-  const char *path = scene_tmp_file("sim_negative.yaml", text, sizeof text - 1);
+  const char *path = tt_tmp_file("sim_negative.yaml", text, sizeof text - 1);
   char expected[4300];
   snprintf(expected, sizeof expected,
            "marionette: %s:4:44: expected a positive mass in kg for particle 'a', got -2\n", path);
-  scene_proc p;
+  tt_output p;
   run(&p, "sim", path, NULL);
   assert_int_equal(p.status, 1);
   assert_string_equal(p.err, expected);
   assert_string_equal(p.out, "");
-  scene_proc_free(&p);
+  tt_output_free(&p);
 
   run(&p, "sim", "/nonexistent/scene.yaml", NULL);
   assert_int_equal(p.status, 1);
   assert_string_equal(p.err, "marionette: /nonexistent/scene.yaml: expected a readable scene "
                              "file: No such file or directory\n");
-  scene_proc_free(&p);
+  tt_output_free(&p);
 
   const char binary[] = "\x7f" "ELF\x02\x01\x01";
-  path = scene_tmp_file("sim_binary.yaml", binary, sizeof binary); /* with its NUL */
+  path = tt_tmp_file("sim_binary.yaml", binary, sizeof binary); /* with its NUL */
   snprintf(expected, sizeof expected,
            "marionette: %s:1:8: expected a YAML text file, found a NUL byte\n", path);
   run(&p, "sim", path, NULL);
   assert_int_equal(p.status, 1);
   assert_string_equal(p.err, expected);
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 static void bad_usage_exits_2(void **state) {
   (void)state;
-  scene_proc p;
+  tt_output p;
   run(&p, "sim", NULL);
   assert_int_equal(p.status, 2);
-  scene_proc_free(&p);
+  tt_output_free(&p);
   run(&p, "sim", "--time", "-3", SCENES "/puppet.yaml", NULL);
   assert_int_equal(p.status, 2);
   assert_string_equal(p.err, "marionette: sim: --time expects a positive number of seconds\n");
-  scene_proc_free(&p);
+  tt_output_free(&p);
   run(&p, "sim", "--bogus", SCENES "/puppet.yaml", NULL);
   assert_int_equal(p.status, 2);
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 /* Requirement 11: the same scene twice gives the same state, bit for bit,
@@ -111,14 +111,14 @@ static void bad_usage_exits_2(void **state) {
 static void same_scene_same_state_hash(void **state) {
   (void)state;
   const char *scene_path = SCENES "/puppet.yaml";
-  scene_proc a, b;
+  tt_output a, b;
   run(&a, "sim", "--time", "4", scene_path, NULL);
   run(&b, "sim", "--time", "4", scene_path, NULL);
   assert_int_equal(a.status, 0);
   assert_int_equal(b.status, 0);
   char ha[64], hb[64];
-  assert_int_equal(scene_proc_field(a.out, "state hash", ha, sizeof ha), 0);
-  assert_int_equal(scene_proc_field(b.out, "state hash", hb, sizeof hb), 0);
+  assert_int_equal(tt_field(a.out, "state hash", ha, sizeof ha), 0);
+  assert_int_equal(tt_field(b.out, "state hash", hb, sizeof hb), 0);
   assert_int_equal(strlen(ha), 16);
   assert_string_equal(ha, hb);
   assert_int_equal(field_u64(a.out, "steps"), field_u64(b.out, "steps"));
@@ -140,8 +140,8 @@ static void same_scene_same_state_hash(void **state) {
   assert_int_equal(mr_scene_run(&s, &opts, &r3, &e), MR_SCENE_OK);
   assert_true(r3.hash != r.hash);
   mr_scene_free(&s);
-  scene_proc_free(&a);
-  scene_proc_free(&b);
+  tt_output_free(&a);
+  tt_output_free(&b);
 }
 
 /* "Simulate only the effects a scene calls for": passes of effects the
@@ -155,8 +155,8 @@ static void undeclared_effects_have_zero_pass_calls(void **state) {
                       "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
                       "  constraints:\n"
                       "    - {between: [a, b]}\n";
-  const char *path = scene_tmp_file("sim_effects.yaml", text, sizeof text - 1);
-  scene_proc p;
+  const char *path = tt_tmp_file("sim_effects.yaml", text, sizeof text - 1);
+  tt_output p;
   run(&p, "sim", "--time", "2", path, NULL);
   assert_int_equal(p.status, 0);
   uint64_t steps = field_u64(p.out, "steps");
@@ -170,17 +170,17 @@ static void undeclared_effects_have_zero_pass_calls(void **state) {
                        "pass string-correction", "pass frames"};
   for (size_t i = 0; i < sizeof off / sizeof off[0]; i++) {
     char v[32];
-    assert_int_equal(scene_proc_field(p.out, off[i], v, sizeof v), 0);
+    assert_int_equal(tt_field(p.out, off[i], v, sizeof v), 0);
     assert_string_equal(v, "0");
   }
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 static void csv_has_one_row_per_step_call(void **state) {
   (void)state;
   char csv[4200];
-  snprintf(csv, sizeof csv, "%s/tests/scene/tmp/sim_trace.csv", MR_BINARY_DIR);
-  scene_proc p;
+  snprintf(csv, sizeof csv, "%s", tt_tmp_file("sim_trace.csv", "", 0));
+  tt_output p;
   run(&p, "sim", "--time", "2", "--csv", csv, SCENES "/puppet.yaml", NULL);
   assert_int_equal(p.status, 0);
   uint64_t steps = field_u64(p.out, "steps");
@@ -207,7 +207,7 @@ static void csv_has_one_row_per_step_call(void **state) {
   assert_true(rows > 0);
   assert_int_equal(accepted, steps);
   assert_true(t == 2.0);
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 static void check_fails_with_a_clear_line(void **state) {
@@ -221,8 +221,8 @@ static void check_fails_with_a_clear_line(void **state) {
                       "  constraints:\n"
                       "    - {between: [a, b]}\n"
                       "expect: {max_deviation: 1e-30}\n";
-  const char *path = scene_tmp_file("sim_check.yaml", text, sizeof text - 1);
-  scene_proc p;
+  const char *path = tt_tmp_file("sim_check.yaml", text, sizeof text - 1);
+  tt_output p;
   run(&p, "sim", "--check", "--quiet", "--time", "1", path, NULL);
   assert_int_equal(p.status, 1);
   char prefix[4300];
@@ -231,7 +231,7 @@ static void check_fails_with_a_clear_line(void **state) {
   assert_memory_equal(p.err, prefix, strlen(prefix));
   /* one line */
   assert_ptr_equal(strchr(p.err, '\n'), p.err + strlen(p.err) - 1);
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 /* A string that never leaves its rest length cannot meet a stretch
@@ -248,23 +248,23 @@ static void string_stretch_is_measured_and_checked(void **state) {
                       "  strings:\n"
                       "    - {from: bar, to: w, stiffness: 1000, damping: 10, rest: 0.5}\n"
                       "expect: {min_string_stretch: 3}\n";
-  const char *path = scene_tmp_file("sim_stretch.yaml", text, sizeof text - 1);
-  scene_proc p;
+  const char *path = tt_tmp_file("sim_stretch.yaml", text, sizeof text - 1);
+  tt_output p;
   run(&p, "sim", "--check", "--time", "2", path, NULL);
   assert_int_equal(p.status, 1);
   char v[64];
-  assert_int_equal(scene_proc_field(p.out, "string stretch max", v, sizeof v), 0);
+  assert_int_equal(tt_field(p.out, "string stretch max", v, sizeof v), 0);
   double stretch = strtod(v, NULL);
   /* 1 kg on 1000 N/m sags 9.8 mm below its 0.5 m rest: about 1.02 x. */
   assert_true(stretch > 1.0 && stretch < 1.1);
   assert_non_null(strstr(p.err, "check failed: expected a string stretched to >= 3 x its rest "
                                 "length, got "));
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 static void example_puppet_runs_cleanly(void **state) {
   (void)state;
-  scene_proc p;
+  tt_output p;
   run(&p, "sim", "--check", SCENES "/puppet.yaml", NULL);
   assert_int_equal(p.status, 0);
   assert_int_equal(field_u64(p.out, "resets"), 0);
@@ -272,7 +272,7 @@ static void example_puppet_runs_cleanly(void **state) {
   assert_true(field_u64(p.out, "pass antigravity") > 0);
   assert_true(field_u64(p.out, "pass planes") > 0);
   assert_non_null(strstr(p.out, "check: passed\n"));
-  scene_proc_free(&p);
+  tt_output_free(&p);
 }
 
 int main(int argc, char **argv) {

@@ -6,11 +6,14 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -29,7 +32,7 @@ static mr_io_status read_until_not_ok(mr_io *io, uint8_t *buf, size_t cap, size_
                                       int timeout_ms) {
   for (;;) {
     size_t got = 0;
-    mr_err err;
+    mr_io_err err;
     mr_io_status st = mr_io_read(io, buf + *total, cap - *total, timeout_ms, &got, &err);
     if (st != MR_IO_OK) return st;
     *total += got;
@@ -41,7 +44,7 @@ static mr_io_status read_until_not_ok(mr_io *io, uint8_t *buf, size_t cap, size_
  * another process holding the master, which exits mid-stream. */
 static void tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read(void **state) {
   mr_io master, slave;
-  mr_err err;
+  mr_io_err err;
   int go[2];
   pid_t child;
   uint8_t sent[2 * BURST], got[4 * BURST];
@@ -50,10 +53,10 @@ static void tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read(void **st
   (void)state;
   fill(sent, BURST, 1);
   fill(sent + BURST, BURST, 2);
-  assert_int_equal(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), 0);
+  tt_assert_io_ok(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), err);
   assert_true(mr_io_is_pty_slave(mr_io_path(&master)));
   snprintf(spec, sizeof spec, "serial:%s@115200", mr_io_path(&master));
-  assert_int_equal(mr_io_open(&slave, spec, MR_IO_READ, &err), 0);
+  tt_assert_io_ok(mr_io_open(&slave, spec, MR_IO_READ, &err), err);
   assert_int_equal(slave.kind, MR_IO_TTY);
   assert_int_equal(pipe(go), 0);
   child = fork();
@@ -94,14 +97,14 @@ static void tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read(void **st
  * a peer process opens the slave, writes, and exits. */
 static void tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read(void **state) {
   mr_io master;
-  mr_err err;
+  mr_io_err err;
   pid_t child;
   uint8_t sent[BURST], got[2 * BURST];
   size_t total = 0;
   int go[2];
   (void)state;
   fill(sent, BURST, 3);
-  assert_int_equal(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), 0);
+  tt_assert_io_ok(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), err);
   /* No peer yet: waiting for one times out. */
   assert_int_equal(mr_io_wait_peer(&master, 30, &err), MR_IO_TIMEOUT);
   assert_int_equal(pipe(go), 0);
@@ -111,7 +114,10 @@ static void tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read(void **sta
     mr_io slave;
     char c;
     close(go[1]);
-    if (mr_io_open(&slave, mr_io_path(&master), MR_IO_READ | MR_IO_WRITE, &err) != 0) _exit(1);
+    if (mr_io_open(&slave, mr_io_path(&master), MR_IO_READ | MR_IO_WRITE, &err) != 0) {
+      fprintf(stderr, "child: %s\n", err.msg);
+      _exit(1);
+    }
     if (mr_io_write(&slave, sent, BURST / 2, 5000, NULL, &err) != MR_IO_OK) _exit(2);
     if (read(go[0], &c, 1) != 1) _exit(3);
     if (mr_io_write(&slave, sent + BURST / 2, BURST - BURST / 2, 5000, NULL, &err) != MR_IO_OK)
@@ -140,14 +146,14 @@ static void tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read(void **sta
 
 static void tools_io_tcp_peer_close_is_hangup(void **state) {
   mr_io srv;
-  mr_err err;
+  mr_io_err err;
   pid_t child;
   uint8_t sent[BURST], got[2 * BURST];
   size_t total = 0;
   char spec[64];
   (void)state;
   fill(sent, BURST, 4);
-  assert_int_equal(mr_io_open(&srv, "tcp-listen:127.0.0.1:0", MR_IO_READ, &err), 0);
+  tt_assert_io_ok(mr_io_open(&srv, "tcp-listen:127.0.0.1:0", MR_IO_READ, &err), err);
   assert_true(srv.port > 0);
   /* Nobody connects: a bounded wait, then a timeout. */
   assert_int_equal(mr_io_accept(&srv, 20, &err), MR_IO_TIMEOUT);
@@ -156,7 +162,10 @@ static void tools_io_tcp_peer_close_is_hangup(void **state) {
   assert_true(child >= 0);
   if (child == 0) {
     mr_io cli;
-    if (mr_io_open(&cli, spec, MR_IO_WRITE, &err) != 0) _exit(1);
+    if (mr_io_open(&cli, spec, MR_IO_WRITE, &err) != 0) {
+      fprintf(stderr, "child: %s\n", err.msg);
+      _exit(1);
+    }
     if (mr_io_write(&cli, sent, BURST, 5000, NULL, &err) != MR_IO_OK) _exit(2);
     mr_io_close(&cli);
     _exit(0);
@@ -174,17 +183,17 @@ static void tools_io_file_and_fifo_end_with_eof(void **state) {
   uint8_t sent[BURST], got[2 * BURST];
   size_t total = 0;
   mr_io io;
-  mr_err err;
+  mr_io_err err;
   pid_t child;
   (void)state;
   assert_non_null(dir);
   fill(sent, BURST, 5);
   snprintf(path, sizeof path, "%s", tt_path(dir, "plain.bin"));
-  assert_int_equal(mr_io_open(&io, path, MR_IO_WRITE, &err), 0);
+  tt_assert_io_ok(mr_io_open(&io, path, MR_IO_WRITE, &err), err);
   assert_int_equal(io.kind, MR_IO_FILE);
   assert_int_equal(mr_io_write(&io, sent, BURST, 1000, NULL, &err), MR_IO_OK);
   mr_io_close(&io);
-  assert_int_equal(mr_io_open(&io, path, MR_IO_READ, &err), 0);
+  tt_assert_io_ok(mr_io_open(&io, path, MR_IO_READ, &err), err);
   assert_int_equal(read_until_not_ok(&io, got, sizeof got, &total, 1000), MR_IO_EOF);
   assert_int_equal(total, BURST);
   assert_memory_equal(got, sent, BURST);
@@ -196,11 +205,14 @@ static void tools_io_file_and_fifo_end_with_eof(void **state) {
   assert_true(child >= 0);
   if (child == 0) {
     mr_io w;
-    if (mr_io_open(&w, path, MR_IO_WRITE, &err) != 0 || w.kind != MR_IO_FIFO) _exit(1);
+    if (mr_io_open(&w, path, MR_IO_WRITE, &err) != 0 || w.kind != MR_IO_FIFO) {
+      fprintf(stderr, "child: %s\n", err.msg);
+      _exit(1);
+    }
     if (mr_io_write(&w, sent, BURST, 5000, NULL, &err) != MR_IO_OK) _exit(2);
     _exit(0);
   }
-  assert_int_equal(mr_io_open(&io, path, MR_IO_READ, &err), 0);
+  tt_assert_io_ok(mr_io_open(&io, path, MR_IO_READ, &err), err);
   assert_int_equal(io.kind, MR_IO_FIFO);
   total = 0;
   assert_int_equal(read_until_not_ok(&io, got, sizeof got, &total, 10000), MR_IO_EOF);
@@ -212,36 +224,114 @@ static void tools_io_file_and_fifo_end_with_eof(void **state) {
   free(dir);
 }
 
-static void expect_open_fails(const char *spec, mr_err_code code, const char *names) {
+/* mr_io_drain returns only once the reader has every byte: closing a pty's
+ * master discards what the slave side has not read yet (measured: nothing
+ * of 11 KiB written is readable after the close), so a drain that returns
+ * early loses the end of the stream. The reader here is slow on purpose and
+ * keeps its count in shared memory, where the drain's caller can see it. */
+static void tools_io_pty_drain_returns_once_the_reader_has_every_byte(void **state) {
+  enum { TOTAL = 24000, STEP = 600 };
+  static uint8_t sent[TOTAL];
+  volatile size_t *read_so_far;
+  mr_io master;
+  mr_io_err err;
+  pid_t child;
+  (void)state;
+  fill(sent, TOTAL, 5);
+  read_so_far = mmap(NULL, sizeof *read_so_far, PROT_READ | PROT_WRITE,
+                     MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  assert_true(read_so_far != MAP_FAILED);
+  *read_so_far = 0;
+  tt_assert_io_ok(mr_io_open(&master, "pty", MR_IO_WRITE, &err), err);
+  child = fork();
+  assert_true(child >= 0);
+  if (child == 0) {
+    mr_io slave;
+    uint8_t buf[STEP];
+    close(master.fd); /* only the parent holds the glove's side */
+    if (mr_io_open(&slave, mr_io_path(&master), MR_IO_READ, &err) != 0) {
+      fprintf(stderr, "child: %s\n", err.msg);
+      _exit(1);
+    }
+    for (;;) {
+      size_t n = 0;
+      struct timespec ts = {0, 5000000L};
+      if (mr_io_read(&slave, buf, sizeof buf, 10000, &n, &err) != MR_IO_OK) break;
+      *read_so_far += n;
+      nanosleep(&ts, NULL);
+    }
+    _exit(0);
+  }
+  assert_int_equal(mr_io_write(&master, sent, TOTAL, 10000, NULL, &err), MR_IO_OK);
+  /* The kernel holds at most about 12 KiB between the two sides. */
+  assert_true(*read_so_far < TOTAL);
+  assert_int_equal(mr_io_drain(&master, 20000, &err), MR_IO_OK);
+  assert_int_equal(*read_so_far, TOTAL);
+  mr_io_close(&master);
+  assert_int_equal(tt_wait(child, 30), 0);
+  munmap((void *)read_so_far, sizeof *read_so_far);
+}
+
+static void expect_open_fails(const char *spec, mr_io_status code, const char *names) {
   mr_io io;
-  mr_err err;
+  mr_io_err err;
   assert_int_equal(mr_io_open(&io, spec, MR_IO_READ, &err), -1);
-  if (err.code != code) fail_msg("%s: code %d, expected %d (%s)", spec, err.code, code, err.msg);
+  if (err.status != code) fail_msg("%s: code %d, expected %d (%s)", spec, err.status, code, err.msg);
   if (!strstr(err.msg, names)) fail_msg("%s: '%s' does not name '%s'", spec, err.msg, names);
 }
 
 static void tools_io_bad_specs_are_errors_that_name_them(void **state) {
   (void)state;
-  expect_open_fails("", MR_E_SPEC, "empty");
-  expect_open_fails("tcp:localhost", MR_E_SPEC, "tcp:localhost");
-  expect_open_fails("tcp-listen:", MR_E_SPEC, "tcp-listen:");
+  expect_open_fails("", MR_IO_ERR_SPEC, "empty");
+  expect_open_fails("tcp:localhost", MR_IO_ERR_SPEC, "tcp:localhost");
+  expect_open_fails("tcp-listen:", MR_IO_ERR_SPEC, "tcp-listen:");
   /* A port past 65535 would otherwise wrap (99999 is 34463) to a port
    * nobody asked for. */
-  expect_open_fails("tcp-listen:99999", MR_E_SPEC, "99999");
-  expect_open_fails("tcp:127.0.0.1:65536", MR_E_SPEC, "65536");
-  expect_open_fails("tcp:127.0.0.1:0", MR_E_SPEC, "tcp:127.0.0.1:0");
-  expect_open_fails("tcp:127.0.0.1:50x", MR_E_SPEC, "50x");
-  expect_open_fails("serial:/dev/ttyS0@fast", MR_E_SPEC, "fast");
-  expect_open_fails("serial:@9600", MR_E_SPEC, "serial:@9600");
-  expect_open_fails("/nonexistent/glove.bin", MR_E_SYSTEM, "/nonexistent/glove.bin");
-  expect_open_fails("serial:/dev/ttyNOSUCH0", MR_E_SERIAL, "/dev/ttyNOSUCH0");
+  expect_open_fails("tcp-listen:99999", MR_IO_ERR_SPEC, "99999");
+  expect_open_fails("tcp:127.0.0.1:65536", MR_IO_ERR_SPEC, "65536");
+  expect_open_fails("tcp:127.0.0.1:0", MR_IO_ERR_SPEC, "tcp:127.0.0.1:0");
+  expect_open_fails("tcp:127.0.0.1:50x", MR_IO_ERR_SPEC, "50x");
+  expect_open_fails("serial:/dev/ttyS0@fast", MR_IO_ERR_SPEC, "fast");
+  expect_open_fails("serial:@9600", MR_IO_ERR_SPEC, "serial:@9600");
+  expect_open_fails("/nonexistent/glove.bin", MR_IO_ERR_SYSTEM, "/nonexistent/glove.bin");
+}
+
+/* One failure, one message: a device that is not there reads the same
+ * whether it was named as a path, a serial port (with or without a baud) or
+ * a file, so the tools built on mr_io all say it one way. */
+static void tools_io_a_missing_device_fails_with_one_message_for_every_spec(void **state) {
+  const char *specs[] = {"/dev/ttyNOSUCH0", "serial:/dev/ttyNOSUCH0",
+                         "serial:/dev/ttyNOSUCH0@9600", "file:/dev/ttyNOSUCH0"};
+  (void)state;
+  for (size_t i = 0; i < sizeof specs / sizeof specs[0]; i++) {
+    mr_io io;
+    mr_io_err err;
+    assert_int_equal(mr_io_open(&io, specs[i], MR_IO_READ, &err), -1);
+    if (err.status != MR_IO_ERR_SYSTEM || err.sys_errno != ENOENT ||
+        strcmp(err.msg, "/dev/ttyNOSUCH0: cannot open: No such file or directory") != 0)
+      fail_msg("%s: status %s, errno %d, message '%s'", specs[i],
+               mr_io_status_name(err.status), err.sys_errno, err.msg);
+  }
+}
+
+/* The library's one status type: every value has its own name, and only the
+ * MR_IO_ERR_* values count as failures. */
+static void tools_io_status_names_are_distinct_and_only_errors_fail(void **state) {
+  (void)state;
+  for (int a = MR_IO_OK; a <= MR_IO_ERR_ARG; a++) {
+    assert_int_equal(mr_io_failed((mr_io_status)a), a >= MR_IO_ERR_SYSTEM);
+    assert_string_not_equal(mr_io_status_name((mr_io_status)a), "?");
+    for (int b = MR_IO_OK; b < a; b++)
+      assert_string_not_equal(mr_io_status_name((mr_io_status)a),
+                              mr_io_status_name((mr_io_status)b));
+  }
 }
 
 static void tools_io_pty_slave_detection(void **state) {
   mr_io master;
-  mr_err err;
+  mr_io_err err;
   (void)state;
-  assert_int_equal(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), 0);
+  tt_assert_io_ok(mr_io_open(&master, "pty", MR_IO_READ | MR_IO_WRITE, &err), err);
   assert_true(mr_io_is_pty_slave(mr_io_path(&master)));
   assert_false(mr_io_is_pty_slave("/dev/null"));
   assert_false(mr_io_is_pty_slave("/dev/ptmx"));
@@ -252,7 +342,7 @@ static void tools_io_pty_slave_detection(void **state) {
 static void tools_io_serial_list_does_not_fail(void **state) {
   mr_serial_info ports[32];
   size_t n = 999;
-  mr_err err;
+  mr_io_err err;
   (void)state;
   assert_int_equal(mr_serial_list(ports, 32, &n, &err), 0);
   assert_true(n < 999);
@@ -266,9 +356,12 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
       cmocka_unit_test(tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read),
+      cmocka_unit_test(tools_io_pty_drain_returns_once_the_reader_has_every_byte),
       cmocka_unit_test(tools_io_tcp_peer_close_is_hangup),
       cmocka_unit_test(tools_io_file_and_fifo_end_with_eof),
       cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),
+      cmocka_unit_test(tools_io_a_missing_device_fails_with_one_message_for_every_spec),
+      cmocka_unit_test(tools_io_status_names_are_distinct_and_only_errors_fail),
       cmocka_unit_test(tools_io_pty_slave_detection),
       cmocka_unit_test(tools_io_serial_list_does_not_fail),
   };

@@ -47,7 +47,7 @@ static void tools_pty_roundtrip_frames_and_counters_survive_the_pty(void **state
     gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
     assert_true(gen > 0);
   }
-  assert_int_equal(tt_wait_for_file(path_file, 60), 0);
+  assert_int_equal(tt_await_file(gen, path_file, tt_path(dir, "gen.err"), 60), 0);
   p = tt_read_file(path_file, NULL);
   assert_non_null(p);
   assert_int_equal(strncmp(p, "/dev/pts/", 9), 0);
@@ -107,10 +107,10 @@ static void tools_pty_roundtrip_unplug_mid_stream_keeps_frames_read(void **state
     /* Real time: 200 s of stream, far more than the test waits for. */
     const char *argv[] = {tt_glove_gen, "-n", "100000", "--rate", "500", "--seed", "6",
                           "-o", "pty", "--path-file", path_file, "--wait", "60", NULL};
-    gen = tt_spawn(argv, NULL, NULL);
+    gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
     assert_true(gen > 0);
   }
-  assert_int_equal(tt_wait_for_file(path_file, 60), 0);
+  assert_int_equal(tt_await_file(gen, path_file, tt_path(dir, "gen.err"), 60), 0);
   p = tt_read_file(path_file, NULL);
   assert_non_null(p);
   snprintf(dev, sizeof dev, "%.*s", (int)strcspn(p, "\n"), p);

@@ -38,7 +38,7 @@ static void tools_reconnect_counters_span_both_connections(void **state) {
     dump = tt_spawn(argv, csv_path, tt_path(dir, "dump.err"));
     assert_true(dump > 0);
   }
-  assert_int_equal(tt_wait_for_file(path_file, 60), 0);
+  assert_int_equal(tt_await_file(dump, path_file, tt_path(dir, "dump.err"), 60), 0);
   p = tt_read_file(path_file, NULL);
   assert_non_null(p);
   snprintf(addr, sizeof addr, "tcp:%.*s", (int)strcspn(p, "\n"), p);

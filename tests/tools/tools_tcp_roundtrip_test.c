@@ -27,7 +27,7 @@ static void tools_tcp_roundtrip_frames_and_counters_survive_loopback(void **stat
     gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
     assert_true(gen > 0);
   }
-  assert_int_equal(tt_wait_for_file(path_file, 60), 0);
+  assert_int_equal(tt_await_file(gen, path_file, tt_path(dir, "gen.err"), 60), 0);
   p = tt_read_file(path_file, NULL);
   assert_non_null(p);
   assert_int_equal(strncmp(p, "127.0.0.1:", 10), 0);

@@ -60,16 +60,29 @@ static void usage(FILE *f) {
 "  -h, --help             this text\n"
 "\n"
 "Exit: 0 end of stream or hang-up, 1 error (cannot open, read error,\n"
-"malformed recording, stdout not writable), 2 bad usage, 3 spec mismatch,\n"
-"130 SIGINT.\n"
+"malformed recording, stdout not writable), 2 bad usage (also a SOURCE that\n"
+"does not parse), 3 spec mismatch, 130 SIGINT.\n"
 "A spec mismatch prints exactly:\n"
 "  glove-dump: spec mismatch (device 0xDEVICE, host 0xHOST)\n");
+}
+
+/* getopt's own messages start with argv[0], often a long path, and take two
+ * lines with ours; this names the option alone. */
+static int bad_option(int c, char **argv) {
+  const char *arg = argv[optind - 1];
+  if (c == ':')
+    fprintf(stderr, "glove-dump: option '%s' needs a value (see --help)\n", arg);
+  else if (optopt && strncmp(arg, "--", 2) != 0)
+    fprintf(stderr, "glove-dump: unknown option '-%c' (see --help)\n", optopt);
+  else
+    fprintf(stderr, "glove-dump: unknown option '%s' (see --help)\n", arg);
+  return EXIT_USAGE;
 }
 
 static int list_ports(void) {
   mr_serial_info ports[64];
   size_t n;
-  mr_err err;
+  mr_io_err err;
   if (mr_serial_list(ports, 64, &n, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     return 1;
@@ -163,7 +176,7 @@ static int feed(dump *D, const uint8_t *p, size_t n) {
 }
 
 static int record(dump *D, const uint8_t *p, size_t n) {
-  mr_err err;
+  mr_io_err err;
   if (!D->recording || !n) return 0;
   if (mr_rec_writer_add(&D->rec, now_ns() - D->t0_ns, p, n, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
@@ -183,7 +196,7 @@ static void sleep_ns(uint64_t ns) {
 static int dump_recording(dump *D, mr_io *io, const uint8_t *prefix, size_t prefix_len,
                           int realtime) {
   mr_rec_reader r;
-  mr_err err;
+  mr_io_err err;
   uint64_t t_ns, start = now_ns();
   const uint8_t *data;
   size_t len;
@@ -205,7 +218,7 @@ static int dump_recording(dump *D, mr_io *io, const uint8_t *prefix, size_t pref
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     /* The chunks before a cut-short end were decoded: a recorder that was
      * killed leaves such a file, and that is not an error. */
-    return err.code == MR_E_TRUNCATED ? 0 : 1;
+    return err.status == MR_IO_ERR_TRUNCATED ? 0 : 1;
   }
   return 0;
 }
@@ -231,7 +244,7 @@ static int write_path_file(const char *path, const char *what) {
 
 static int reopen(mr_io *io, const char *spec, double secs) {
   uint64_t start = now_ns();
-  mr_err err;
+  mr_io_err err;
   fprintf(stderr, "glove-dump: %s: waiting for it to come back%s\n", spec,
           secs > 0 ? "" : " (Ctrl-C to stop)");
   while (!g_stop) {
@@ -267,11 +280,12 @@ int main(int argc, char **argv) {
   long baud = 0;
   int realtime = 0, c, rc = 0, hung_up = 0, ended = 0;
   mr_io io;
-  mr_err err;
+  mr_io_err err;
   struct sigaction sa;
 
   D.events = 1;
-  while ((c = getopt_long(argc, argv, "qn:h", opts, NULL)) != -1) {
+  opterr = 0; /* bad_option says it in one line, without the program's path */
+  while ((c = getopt_long(argc, argv, ":qn:h", opts, NULL)) != -1) {
     char *end;
     switch (c) {
     case O_CSV: D.csv = 1; break;
@@ -312,7 +326,7 @@ int main(int argc, char **argv) {
     case O_PATH_FILE: path_file = optarg; break;
     case O_LIST: return list_ports();
     case 'h': usage(stdout); return 0;
-    default: fprintf(stderr, "glove-dump: see --help\n"); return EXIT_USAGE;
+    default: return bad_option(c, argv);
     }
   }
   if (optind < argc) spec = argv[optind++];
@@ -341,8 +355,10 @@ int main(int argc, char **argv) {
   gp_decoder_init(&D.dec, GP_SPEC_HASH);
   D.t0_ns = now_ns();
   if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
-    fprintf(stderr, "glove-dump: %s\n", err.msg);
-    return 1;
+    /* A SOURCE that does not parse is the user's usage, not a failure. */
+    fprintf(stderr, "glove-dump: %s%s\n", err.msg,
+            err.status == MR_IO_ERR_SPEC ? " (see --help)" : "");
+    return err.status == MR_IO_ERR_SPEC ? EXIT_USAGE : 1;
   }
   if (path_file && write_path_file(path_file, mr_io_path(&io)) != 0) {
     mr_io_close(&io);
@@ -408,7 +424,7 @@ int main(int argc, char **argv) {
         ended = 1;
         break;
       }
-      if (st == MR_IO_ERROR) {
+      if (mr_io_failed(st)) {
         fprintf(stderr, "glove-dump: %s\n", err.msg);
         rc = 1;
         break;

@@ -155,7 +155,7 @@ fail:
  * and is reported on stderr. */
 gg_track *gg_track_load_mrec(const char *path, char *err, size_t errcap) {
   mr_rec_reader r;
-  mr_err e;
+  mr_io_err e;
   gp_decoder *d = malloc(sizeof *d);
   gg_track *t = track_new();
   size_t cap = 0;
@@ -195,7 +195,7 @@ gg_track *gg_track_load_mrec(const char *path, char *err, size_t errcap) {
     }
   }
   mr_rec_reader_close(&r);
-  if (rc < 0 && e.code != MR_E_TRUNCATED) {
+  if (rc < 0 && e.status != MR_IO_ERR_TRUNCATED) {
     snprintf(err, errcap, "%s", e.msg);
     goto fail_nofile;
   }

@@ -77,13 +77,27 @@ static void usage(FILE *f) {
 "      --progress          progress on stderr (default when stderr is a terminal)\n"
 "  -q, --quiet             no messages but errors\n"
 "  -h, --help              this text\n"
-"Exit: 0 done (or stopped by SIGINT/SIGTERM), 1 error, 2 bad usage.\n");
+"Exit: 0 done (or stopped by SIGINT/SIGTERM), 1 error, 2 bad usage (also: an\n"
+"output spec that does not parse, or stdout is a terminal).\n");
 }
 
 static int die_usage(const char *fmt, const char *arg) {
   fprintf(stderr, "glove-gen: ");
   fprintf(stderr, fmt, arg);
   fprintf(stderr, " (see --help)\n");
+  return 2;
+}
+
+/* getopt's own messages start with argv[0], often a long path, and take two
+ * lines with ours; this names the option alone. */
+static int bad_option(int c, char **argv) {
+  const char *arg = argv[optind - 1];
+  if (c == ':')
+    fprintf(stderr, "glove-gen: option '%s' needs a value (see --help)\n", arg);
+  else if (optopt && strncmp(arg, "--", 2) != 0)
+    fprintf(stderr, "glove-gen: unknown option '-%c' (see --help)\n", optopt);
+  else
+    fprintf(stderr, "glove-gen: unknown option '%s' (see --help)\n", arg);
   return 2;
 }
 
@@ -137,7 +151,7 @@ typedef struct glove {
 /* Writes one slot's bytes, riding out signals; 0, or -1 once the reader is
  * gone or the output failed. */
 static int send_bytes(glove *g, int idx, const uint8_t *buf, size_t len, uint64_t t_ns) {
-  mr_err err;
+  mr_io_err err;
   size_t off = 0;
   if (g->recording && len) {
     if (mr_rec_writer_add(&g->rec, t_ns, buf, len, &err) != 0) {
@@ -206,7 +220,8 @@ int main(int argc, char **argv) {
   uint64_t t0, next_progress;
   uint8_t buf[GG_SLOT_MAX];
 
-  while ((c = getopt_long(argc, argv, "o:r:n:d:s:qh", opts, NULL)) != -1) {
+  opterr = 0; /* bad_option says it in one line, without the program's path */
+  while ((c = getopt_long(argc, argv, ":o:r:n:d:s:qh", opts, NULL)) != -1) {
     double d;
     uint64_t u;
     switch (c) {
@@ -295,13 +310,21 @@ int main(int argc, char **argv) {
         rates[c - O_FAULT0] = d;
         break;
       }
-      fprintf(stderr, "glove-gen: see --help\n");
-      return 2;
+      return bad_option(c, argv);
     }
     (void)u;
   }
   if (optind < argc) return die_usage("unexpected argument '%s'", argv[optind]);
   if (n_out == 0) specs[n_out++] = "-";
+  /* Binary on a terminal garbles the screen and can leave it in a strange
+   * mode, so refuse, as compressors do, and say how to get the bytes. */
+  for (int i = 0; i < n_out; i++) {
+    if (strcmp(specs[i], "-") == 0 && isatty(STDOUT_FILENO)) {
+      fprintf(stderr, "glove-gen: not writing a binary stream to a terminal; pipe it "
+                      "(glove-gen | glove-dump) or give -o FILE\n");
+      return 2;
+    }
+  }
   if (n_truth && n_truth != n_out)
     return die_usage("give one --truth per output%s", "");
   if (n_rec && n_rec != n_out) return die_usage("give one --record per output%s", "");
@@ -345,11 +368,13 @@ int main(int argc, char **argv) {
 
   for (int i = 0; i < n_out; i++) {
     glove *g = &gloves[i];
-    mr_err err;
+    mr_io_err err;
     gg_stream_config cfg;
     if (mr_io_open(&g->io, g->spec, MR_IO_WRITE, &err) != 0) {
-      fprintf(stderr, "glove-gen: %s\n", err.msg);
-      rc = 1;
+      /* An output spec that does not parse is the user's usage. */
+      fprintf(stderr, "glove-gen: %s%s\n", err.msg,
+              err.status == MR_IO_ERR_SPEC ? " (see --help)" : "");
+      rc = err.status == MR_IO_ERR_SPEC ? 2 : 1;
       goto out;
     }
     g->open = 1;
@@ -410,11 +435,11 @@ int main(int argc, char **argv) {
     glove *g = &gloves[i];
     long long waited_ms = 0;
     for (;;) {
-      mr_err err;
+      mr_io_err err;
       mr_io_status st = g->io.kind == MR_IO_PTY ? mr_io_wait_peer(&g->io, 200, &err)
                                                 : mr_io_accept(&g->io, 200, &err);
       if (st == MR_IO_OK) break;
-      if (st == MR_IO_ERROR) {
+      if (mr_io_failed(st)) {
         fprintf(stderr, "glove-gen: glove %d: %s\n", i, err.msg);
         rc = 1;
         goto out;
@@ -466,7 +491,7 @@ int main(int argc, char **argv) {
   for (int i = 0; i < n_out; i++) {
     glove *g = &gloves[i];
     size_t n = gg_stream_finish(&g->stream, buf);
-    mr_err err;
+    mr_io_err err;
     if (g->gone) continue;
     if (n && send_bytes(g, i, buf, n, now_ns() - t0) != 0) continue;
     if (g->io.kind == MR_IO_PTY) {
@@ -480,7 +505,7 @@ int main(int argc, char **argv) {
 out:
   for (int i = 0; i < n_out; i++) {
     glove *g = &gloves[i];
-    mr_err err;
+    mr_io_err err;
     if (g->truth) {
       gg_stream_write_expect(&g->stream, g->truth);
       if (fclose(g->truth) != 0) {

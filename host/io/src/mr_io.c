@@ -53,26 +53,26 @@ int mr_io_is_pty_slave(const char *path) {
   return 0;
 }
 
-static int parse_baud(const char *s, int *baud, const char *spec, mr_err *err) {
+static int parse_baud(const char *s, int *baud, const char *spec, mr_io_err *err) {
   char *end;
   long v;
   errno = 0;
   v = strtol(s, &end, 10);
   if (errno || end == s || *end || v <= 0 || v > 100000000)
-    return mr_err_set(err, MR_E_SPEC, "%s: baud rate '%s' is not a positive integer",
+    return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: baud rate '%s' is not a positive integer",
                       spec, s);
   *baud = (int)v;
   return 0;
 }
 
 /* "serial:DEV[@BAUD]" and character devices given by path. */
-static int open_serial(mr_io *io, const char *dev_at_baud, const char *spec, mr_err *err) {
+static int open_serial(mr_io *io, const char *dev_at_baud, const char *spec, mr_io_err *err) {
   char dev[256];
   const char *at = strrchr(dev_at_baud, '@');
   size_t n = at ? (size_t)(at - dev_at_baud) : strlen(dev_at_baud);
   int baud = MR_IO_DEFAULT_BAUD;
   if (n == 0 || n >= sizeof dev)
-    return mr_err_set(err, MR_E_SPEC, "%s: expected serial:DEVICE[@BAUD]", spec);
+    return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: expected serial:DEVICE[@BAUD]", spec);
   memcpy(dev, dev_at_baud, n);
   dev[n] = 0;
   if (at && parse_baud(at + 1, &baud, spec, err) != 0) return -1;
@@ -80,7 +80,7 @@ static int open_serial(mr_io *io, const char *dev_at_baud, const char *spec, mr_
   return mr_io_serial_open(io, dev, baud, err);
 }
 
-static int open_file(mr_io *io, const char *path, mr_err *err) {
+static int open_file(mr_io *io, const char *path, mr_io_err *err) {
   struct stat st;
   int flags = (io->mode & MR_IO_WRITE) ? ((io->mode & MR_IO_READ) ? O_RDWR : O_WRONLY)
                                         : O_RDONLY;
@@ -89,9 +89,9 @@ static int open_file(mr_io *io, const char *path, mr_err *err) {
     if (!(stat(path, &st) == 0 && S_ISFIFO(st.st_mode))) flags |= O_CREAT | O_TRUNC;
   }
   io->fd = open(path, flags | O_CLOEXEC, 0644);
-  if (io->fd < 0) return mr_err_sys(err, "%s: cannot open", path);
+  if (io->fd < 0) return mr_io_err_sys(err, "%s: cannot open", path);
   if (fstat(io->fd, &st) != 0) {
-    mr_err_sys(err, "%s: cannot stat", path);
+    mr_io_err_sys(err, "%s: cannot stat", path);
     close(io->fd);
     io->fd = -1;
     return -1;
@@ -107,26 +107,26 @@ static int open_file(mr_io *io, const char *path, mr_err *err) {
  * port raises DTR, which resets some boards. */
 static int is_mem_device(const struct stat *st) { return major(st->st_rdev) == 1; }
 
-int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
+int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err) {
   struct stat st;
   io_reset(io);
   io->mode = mode;
   io->baud = MR_IO_DEFAULT_BAUD;
   io->peer_seen = 1;
-  if (!spec || !*spec) return mr_err_set(err, MR_E_SPEC, "empty source/sink spec");
+  if (!spec || !*spec) return mr_io_err_set(err, MR_IO_ERR_SPEC, "empty source/sink spec");
   if (!(mode & (MR_IO_READ | MR_IO_WRITE)))
-    return mr_err_set(err, MR_E_ARG, "%s: open mode must read or write", spec);
+    return mr_io_err_set(err, MR_IO_ERR_ARG, "%s: open mode must read or write", spec);
 
   if (strcmp(spec, "-") == 0) {
     if ((mode & MR_IO_READ) && (mode & MR_IO_WRITE))
-      return mr_err_set(err, MR_E_SPEC, "-: stdin/stdout is one direction only");
+      return mr_io_err_set(err, MR_IO_ERR_SPEC, "-: stdin/stdout is one direction only");
     io->kind = MR_IO_STDIO;
     io->fd = (mode & MR_IO_READ) ? STDIN_FILENO : STDOUT_FILENO;
     snprintf(io->path, sizeof io->path, "%s", (mode & MR_IO_READ) ? "stdin" : "stdout");
     return 0;
   }
   if (strncmp(spec, "file:", 5) == 0) {
-    if (!spec[5]) return mr_err_set(err, MR_E_SPEC, "%s: expected file:PATH", spec);
+    if (!spec[5]) return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: expected file:PATH", spec);
     return open_file(io, spec + 5, err);
   }
   if (strcmp(spec, "pty") == 0) return mr_io_pty_create(io, err);
@@ -138,7 +138,7 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
     const char *port = colon ? colon + 1 : rest;
     if (colon) {
       size_t hn = (size_t)(colon - rest);
-      if (hn >= sizeof host) return mr_err_set(err, MR_E_SPEC, "%s: host name too long", spec);
+      if (hn >= sizeof host) return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: host name too long", spec);
       memcpy(host, rest, hn);
       host[hn] = 0;
       /* [::1]:5000 */
@@ -147,10 +147,10 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
         host[hn - 2] = 0;
       }
     } else if (!listen) {
-      return mr_err_set(err, MR_E_SPEC, "%s: expected tcp:HOST:PORT", spec);
+      return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: expected tcp:HOST:PORT", spec);
     }
     if (!*host || !*port)
-      return mr_err_set(err, MR_E_SPEC, "%s: expected %s", spec,
+      return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: expected %s", spec,
                         listen ? "tcp-listen:[HOST:]PORT" : "tcp:HOST:PORT");
     /* A number, checked here: getaddrinfo takes any digits and keeps the
      * low 16 bits, so 99999 would quietly become port 34463. */
@@ -158,7 +158,7 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_err *err) {
       char *end;
       unsigned long pn = strtoul(port, &end, 10);
       if (*end || port[0] < '0' || port[0] > '9' || pn > 65535 || (!listen && pn == 0))
-        return mr_err_set(err, MR_E_SPEC, "%s: port '%s' is not %s", spec, port,
+        return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: port '%s' is not %s", spec, port,
                           listen ? "0..65535" : "1..65535");
     }
     return listen ? mr_io_tcp_listen(io, host, port, err)
@@ -180,12 +180,12 @@ static int is_gone_errno(int e) {
 }
 
 mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t *got,
-                        mr_err *err) {
+                        mr_io_err *err) {
   long long start = mr_io_now_ms();
   *got = 0;
   if (!(io->mode & MR_IO_READ)) {
-    mr_err_set(err, MR_E_ARG, "%s: not opened for reading", io->path);
-    return MR_IO_ERROR;
+    mr_io_err_set(err, MR_IO_ERR_ARG, "%s: not opened for reading", io->path);
+    return MR_IO_ERR_ARG;
   }
   if (cap == 0) return MR_IO_OK;
   if (io->kind == MR_IO_TCP_LISTEN || (io->kind == MR_IO_PTY && !io->peer_seen)) {
@@ -200,13 +200,13 @@ mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t
     if (r < 0) {
       /* A signal ends the wait early, so that the caller can look at it. */
       if (errno == EINTR) return MR_IO_TIMEOUT;
-      mr_err_sys(err, "%s: poll", io->path);
-      return MR_IO_ERROR;
+      mr_io_err_sys(err, "%s: poll", io->path);
+      return MR_IO_ERR_SYSTEM;
     }
     if (r == 0) return MR_IO_TIMEOUT;
     if (p.revents & POLLNVAL) {
-      mr_err_set(err, MR_E_ARG, "%s: descriptor %d is not open", io->path, io->fd);
-      return MR_IO_ERROR;
+      mr_io_err_set(err, MR_IO_ERR_ARG, "%s: descriptor %d is not open", io->path, io->fd);
+      return MR_IO_ERR_ARG;
     }
     /* Read even on POLLHUP: bytes that arrived before the hang-up come first. */
     n = read(io->fd, buf, cap);
@@ -218,20 +218,20 @@ mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t
     if (errno == EAGAIN || errno == EWOULDBLOCK) continue;
     if (errno == EINTR) return MR_IO_TIMEOUT;
     if (is_gone_errno(errno)) return MR_IO_HANGUP;
-    mr_err_sys(err, "%s: read", io->path);
-    return MR_IO_ERROR;
+    mr_io_err_sys(err, "%s: read", io->path);
+    return MR_IO_ERR_SYSTEM;
   }
 }
 
 mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
-                         size_t *sent, mr_err *err) {
+                         size_t *sent, mr_io_err *err) {
   long long start = mr_io_now_ms();
   const uint8_t *p = buf;
   size_t done = 0;
   mr_io_status st = MR_IO_OK;
   if (!(io->mode & MR_IO_WRITE)) {
-    mr_err_set(err, MR_E_ARG, "%s: not opened for writing", io->path);
-    st = MR_IO_ERROR;
+    mr_io_err_set(err, MR_IO_ERR_ARG, "%s: not opened for writing", io->path);
+    st = MR_IO_ERR_ARG;
     goto out;
   }
   if (io->kind == MR_IO_TCP_LISTEN || (io->kind == MR_IO_PTY && !io->peer_seen)) {
@@ -248,8 +248,8 @@ mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
         st = MR_IO_TIMEOUT;
         goto out;
       }
-      mr_err_sys(err, "%s: poll", io->path);
-      st = MR_IO_ERROR;
+      mr_io_err_sys(err, "%s: poll", io->path);
+      st = MR_IO_ERR_SYSTEM;
       goto out;
     }
     if (r == 0) {
@@ -275,8 +275,8 @@ mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
       st = MR_IO_HANGUP;
       goto out;
     }
-    mr_err_sys(err, "%s: write", io->path);
-    st = MR_IO_ERROR;
+    mr_io_err_sys(err, "%s: write", io->path);
+    st = MR_IO_ERR_SYSTEM;
     goto out;
   }
 out:
@@ -292,7 +292,12 @@ const char *mr_io_status_name(mr_io_status st) {
   case MR_IO_TIMEOUT: return "timeout";
   case MR_IO_EOF: return "end of stream";
   case MR_IO_HANGUP: return "hang-up";
-  case MR_IO_ERROR: return "error";
+  case MR_IO_ERR_SYSTEM: return "system error";
+  case MR_IO_ERR_SPEC: return "bad spec";
+  case MR_IO_ERR_SERIAL: return "serial port error";
+  case MR_IO_ERR_FORMAT: return "malformed recording";
+  case MR_IO_ERR_TRUNCATED: return "recording cut short";
+  case MR_IO_ERR_ARG: return "bad argument";
   }
   return "?";
 }

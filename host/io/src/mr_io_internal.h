@@ -11,15 +11,15 @@
 #endif
 
 /* Fill *err (if not NULL) and return -1. */
-int mr_err_set(mr_err *err, mr_err_code code, const char *fmt, ...) MR_PRINTF(3, 4);
+int mr_io_err_set(mr_io_err *err, mr_io_status status, const char *fmt, ...) MR_PRINTF(3, 4);
 /* The same for a failed system call: appends strerror(errno). */
-int mr_err_sys(mr_err *err, const char *fmt, ...) MR_PRINTF(2, 3);
+int mr_io_err_sys(mr_io_err *err, const char *fmt, ...) MR_PRINTF(2, 3);
 
-int mr_io_pty_create(mr_io *io, mr_err *err);
-int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_err *err);
-int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_err *err);
-int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_err *err);
-int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_err *err);
+int mr_io_pty_create(mr_io *io, mr_io_err *err);
+int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_io_err *err);
+int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_io_err *err);
+int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_err *err);
+int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_io_err *err);
 void mr_io_serial_close(mr_io *io);
 
 /* Milliseconds left of a timeout started at start_ms (negative: forever). */

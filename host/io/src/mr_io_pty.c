@@ -31,10 +31,10 @@ static speed_t baud_to_speed(int baud) {
 
 /* Raw 8N1: no echo, no line editing, no CR/LF translation, no flow control,
  * reads return whatever has arrived. */
-static int set_raw(int fd, int baud, const char *path, mr_err *err) {
+static int set_raw(int fd, int baud, const char *path, mr_io_err *err) {
   struct termios t;
   speed_t sp = baud_to_speed(baud);
-  if (tcgetattr(fd, &t) != 0) return mr_err_sys(err, "%s: tcgetattr", path);
+  if (tcgetattr(fd, &t) != 0) return mr_io_err_sys(err, "%s: tcgetattr", path);
   cfmakeraw(&t);
   t.c_cflag |= CLOCAL | CREAD;
   t.c_cflag &= ~(tcflag_t)(CSTOPB | PARENB | CRTSCTS);
@@ -45,17 +45,21 @@ static int set_raw(int fd, int baud, const char *path, mr_err *err) {
     cfsetispeed(&t, sp);
     cfsetospeed(&t, sp);
   }
-  if (tcsetattr(fd, TCSANOW, &t) != 0) return mr_err_sys(err, "%s: tcsetattr", path);
+  if (tcsetattr(fd, TCSANOW, &t) != 0) return mr_io_err_sys(err, "%s: tcsetattr", path);
   return 0;
 }
 
-int mr_io_pty_create(mr_io *io, mr_err *err) {
+int mr_io_pty_create(mr_io *io, mr_io_err *err) {
   const char *name;
   int slave;
   io->fd = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (io->fd < 0) return mr_err_sys(err, "pty: posix_openpt");
+  /* In a container or chroot without devpts this is the first thing that
+   * fails, with a bare "No such device": name the likely cause. */
+  if (io->fd < 0)
+    return mr_io_err_sys(err, "pty: cannot create a pseudo-terminal (is devpts mounted on "
+                              "/dev/pts?)");
   if (grantpt(io->fd) != 0 || unlockpt(io->fd) != 0 || !(name = ptsname(io->fd))) {
-    mr_err_sys(err, "pty: grantpt/unlockpt/ptsname");
+    mr_io_err_sys(err, "pty: grantpt/unlockpt/ptsname");
     goto fail;
   }
   snprintf(io->path, sizeof io->path, "%s", name);
@@ -66,7 +70,7 @@ int mr_io_pty_create(mr_io *io, mr_err *err) {
    * POLLHUP on the master until a peer opens the slave: mr_io_wait_peer. */
   slave = open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (slave < 0) {
-    mr_err_sys(err, "%s: cannot open the new pty's slave side", name);
+    mr_io_err_sys(err, "%s: cannot open the new pty's slave side", name);
     goto fail;
   }
   if (set_raw(slave, MR_IO_DEFAULT_BAUD, name, err) != 0) {
@@ -83,10 +87,10 @@ fail:
   return -1;
 }
 
-int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_err *err) {
+int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_io_err *err) {
   int flags = (io->mode & MR_IO_WRITE) ? O_RDWR : O_RDONLY;
   io->fd = open(path, flags | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (io->fd < 0) return mr_err_sys(err, "%s: cannot open", path);
+  if (io->fd < 0) return mr_io_err_sys(err, "%s: cannot open", path);
   if (set_raw(io->fd, baud, path, err) != 0) {
     close(io->fd);
     io->fd = -1;
@@ -108,7 +112,7 @@ static int master_hup(const mr_io *io) {
   return poll(&p, 1, 0) == 1 && (p.revents & POLLHUP);
 }
 
-mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_err *err) {
+mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_err *err) {
   long long start = mr_io_now_ms();
   (void)err;
   if (io->kind != MR_IO_PTY || io->peer_seen) return MR_IO_OK;
@@ -125,33 +129,44 @@ mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_err *err) {
   }
 }
 
-mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_err *err) {
-  long long start = mr_io_now_ms(), empty_since = -1;
+/* Bytes written to the master wait in two places before the reader sees
+ * them: the slave's flip buffer, moved on by a kernel worker, and then the
+ * line discipline's read buffer, which FIONREAD counts. A poll on the slave
+ * with nothing readable makes the kernel run that worker to completion
+ * first (n_tty_poll calls tty_buffer_flush_work), so a FIONREAD of 0 right
+ * after it means both are empty. Without the poll, a FIONREAD of 0 only says
+ * the worker has not caught up: under load it could stay behind for longer
+ * than any fixed grace period, and closing the master then discarded the
+ * end of the stream. */
+static mr_io_status queued_bytes(mr_io *io, int *queued, mr_io_err *err) {
+  struct pollfd p;
+  int fd = open(io->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    mr_io_err_sys(err, "%s: cannot open to check the queue", io->path);
+    return MR_IO_ERR_SYSTEM;
+  }
+  p.fd = fd;
+  p.events = POLLIN;
+  p.revents = 0;
+  if (poll(&p, 1, 0) < 0 || ioctl(fd, FIONREAD, queued) != 0) {
+    mr_io_err_sys(err, "%s: FIONREAD", io->path);
+    close(fd);
+    return MR_IO_ERR_SYSTEM;
+  }
+  close(fd);
+  return MR_IO_OK;
+}
+
+mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_err *err) {
+  long long start = mr_io_now_ms();
   if (io->kind != MR_IO_PTY) return MR_IO_OK;
   for (;;) {
-    int queued = 0, fd, left;
+    int queued = 0, left;
+    mr_io_status st;
     if (master_hup(io)) return MR_IO_HANGUP;
-    /* What the slave side still holds is only visible through a slave fd. */
-    fd = open(io->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) {
-      mr_err_sys(err, "%s: cannot open to check the queue", io->path);
-      return MR_IO_ERROR;
-    }
-    if (ioctl(fd, FIONREAD, &queued) != 0) {
-      mr_err_sys(err, "%s: FIONREAD", io->path);
-      close(fd);
-      return MR_IO_ERROR;
-    }
-    close(fd);
-    /* FIONREAD counts only the line discipline's buffer; bytes still in the
-     * tty's flip buffer (up to 16 KiB measured) move in when the reader makes
-     * room. So the queue must stay empty for a while, not just once. */
-    if (queued == 0) {
-      if (empty_since < 0) empty_since = mr_io_now_ms();
-      if (mr_io_now_ms() - empty_since >= 100) return MR_IO_OK;
-    } else {
-      empty_since = -1;
-    }
+    st = queued_bytes(io, &queued, err);
+    if (st != MR_IO_OK) return st;
+    if (queued == 0) return MR_IO_OK;
     left = mr_io_ms_left(start, timeout_ms);
     if (left == 0) return MR_IO_TIMEOUT;
     sleep_ms(left < 0 || left > 2 ? 2 : left);

@@ -6,16 +6,17 @@
 #include <libserialport.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "mr_io_internal.h"
 
-static int sp_fail(mr_err *err, enum sp_return rc, const char *what, const char *path) {
+static int sp_fail(mr_io_err *err, enum sp_return rc, const char *what, const char *path) {
   if (rc == SP_ERR_FAIL) {
     char *m = sp_last_error_message();
-    mr_err_set(err, MR_E_SERIAL, "%s: %s: %s", path, what, m ? m : "failed");
+    mr_io_err_set(err, MR_IO_ERR_SERIAL, "%s: %s: %s", path, what, m ? m : "failed");
     if (m) sp_free_error_message(m);
   } else {
-    mr_err_set(err, MR_E_SERIAL, "%s: %s: %s", path, what,
+    mr_io_err_set(err, MR_IO_ERR_SERIAL, "%s: %s: %s", path, what,
                rc == SP_ERR_ARG ? "invalid argument"
                : rc == SP_ERR_SUPP ? "not supported by this device"
                : rc == SP_ERR_MEM ? "out of memory" : "failed");
@@ -23,17 +24,26 @@ static int sp_fail(mr_err *err, enum sp_return rc, const char *what, const char 
   return -1;
 }
 
-int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_err *err) {
+int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_io_err *err) {
   struct sp_port *port = NULL;
+  struct stat st;
   enum sp_return rc;
   int fd = -1;
   enum sp_mode mode = (io->mode & MR_IO_WRITE) ? SP_MODE_READ_WRITE : SP_MODE_READ;
 
+  /* A missing device or a refused open reads exactly as it does for a file
+   * (mr_io_open's open_file): one failure, one message, whatever the kind. */
+  if (stat(path, &st) != 0) return mr_io_err_sys(err, "%s: cannot open", path);
   rc = sp_get_port_by_name(path, &port);
-  if (rc != SP_OK) return sp_fail(err, rc, "no such serial port", path);
+  if (rc != SP_OK) return sp_fail(err, rc, "not a serial port", path);
   rc = sp_open(port, mode);
   if (rc != SP_OK) {
-    sp_fail(err, rc, "cannot open", path);
+    if (rc == SP_ERR_FAIL) {
+      errno = sp_last_error_code();
+      mr_io_err_sys(err, "%s: cannot open", path);
+    } else {
+      sp_fail(err, rc, "cannot open", path);
+    }
     sp_free_port(port);
     return -1;
   }
@@ -52,7 +62,7 @@ int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_err *err) {
   if (sp_get_port_handle(port, &fd) != SP_OK || fd < 0) {
     sp_close(port);
     sp_free_port(port);
-    return mr_err_set(err, MR_E_SERIAL, "%s: no file descriptor for the port", path);
+    return mr_io_err_set(err, MR_IO_ERR_SERIAL, "%s: no file descriptor for the port", path);
   }
   fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
   io->sp = port;
@@ -76,7 +86,7 @@ static void copy_str(char *dst, size_t cap, const char *src) {
   snprintf(dst, cap, "%s", src ? src : "");
 }
 
-int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_err *err) {
+int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_io_err *err) {
   struct sp_port **ports = NULL;
   enum sp_return rc = sp_list_ports(&ports);
   size_t i;

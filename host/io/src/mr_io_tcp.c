@@ -64,13 +64,13 @@ static int open_stream(const char *host, const char *port, int listening, int *g
   return fd;
 }
 
-int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_err *err) {
+int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_io_err *err) {
   int gai;
   int fd = open_stream(host, port, 0, &gai);
   if (gai != 0)
-    return mr_err_set(err, MR_E_SPEC, "tcp:%s:%s: %s", host, port, gai_strerror(gai));
+    return mr_io_err_set(err, MR_IO_ERR_SPEC, "tcp:%s:%s: %s", host, port, gai_strerror(gai));
   if (fd < 0)
-    return mr_err_sys(err, "tcp:%s:%s: cannot connect", host, port);
+    return mr_io_err_sys(err, "tcp:%s:%s: cannot connect", host, port);
   set_stream_opts(fd);
   io->fd = fd;
   io->kind = MR_IO_TCP;
@@ -79,13 +79,13 @@ int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_err *err
   return 0;
 }
 
-int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_err *err) {
+int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_err *err) {
   int gai;
   int fd = open_stream(host, port, 1, &gai);
   if (gai != 0)
-    return mr_err_set(err, MR_E_SPEC, "tcp-listen:%s:%s: %s", host, port, gai_strerror(gai));
+    return mr_io_err_set(err, MR_IO_ERR_SPEC, "tcp-listen:%s:%s: %s", host, port, gai_strerror(gai));
   if (fd < 0)
-    return mr_err_sys(err, "tcp-listen:%s:%s: cannot listen", host, port);
+    return mr_io_err_sys(err, "tcp-listen:%s:%s: cannot listen", host, port);
   io->listen_fd = fd;
   io->fd = -1;
   io->kind = MR_IO_TCP_LISTEN;
@@ -94,7 +94,7 @@ int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_err *err)
   return 0;
 }
 
-mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_err *err) {
+mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_io_err *err) {
   struct pollfd p;
   int r, fd;
   if (io->kind != MR_IO_TCP_LISTEN) return MR_IO_OK;
@@ -104,15 +104,15 @@ mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_err *err) {
   r = poll(&p, 1, timeout_ms);
   if (r < 0 && errno == EINTR) return MR_IO_TIMEOUT;
   if (r < 0) {
-    mr_err_sys(err, "%s: poll", io->path);
-    return MR_IO_ERROR;
+    mr_io_err_sys(err, "%s: poll", io->path);
+    return MR_IO_ERR_SYSTEM;
   }
   if (r == 0) return MR_IO_TIMEOUT;
   fd = accept(io->listen_fd, NULL, NULL);
   if (fd < 0) {
     if (errno == EINTR || errno == EAGAIN || errno == ECONNABORTED) return MR_IO_TIMEOUT;
-    mr_err_sys(err, "%s: accept", io->path);
-    return MR_IO_ERROR;
+    mr_io_err_sys(err, "%s: accept", io->path);
+    return MR_IO_ERR_SYSTEM;
   }
   fcntl(fd, F_SETFD, FD_CLOEXEC);
   set_stream_opts(fd);

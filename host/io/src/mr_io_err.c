@@ -5,10 +5,10 @@
 
 #include "mr_io_internal.h"
 
-int mr_err_set(mr_err *err, mr_err_code code, const char *fmt, ...) {
+int mr_io_err_set(mr_io_err *err, mr_io_status status, const char *fmt, ...) {
   if (err) {
     va_list ap;
-    err->code = code;
+    err->status = status;
     err->sys_errno = 0;
     va_start(ap, fmt);
     vsnprintf(err->msg, sizeof err->msg, fmt, ap);
@@ -17,12 +17,12 @@ int mr_err_set(mr_err *err, mr_err_code code, const char *fmt, ...) {
   return -1;
 }
 
-int mr_err_sys(mr_err *err, const char *fmt, ...) {
+int mr_io_err_sys(mr_io_err *err, const char *fmt, ...) {
   int e = errno;
   if (err) {
     va_list ap;
     size_t n;
-    err->code = MR_E_SYSTEM;
+    err->status = MR_IO_ERR_SYSTEM;
     err->sys_errno = e;
     va_start(ap, fmt);
     vsnprintf(err->msg, sizeof err->msg, fmt, ap);

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""`make install` puts the programs, their man pages and the udev rule in
+place under DESTDIR; each man page renders without warnings and names every
+option its program's --help lists; the Makefile hands PREFIX and the udev
+folder to the install, keeps the build log off the screen and runs the
+benchmark for make bench.
+
+usage: install_test.py SOURCE_DIR BUILD_DIR
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+SRC, BUILD = sys.argv[1], sys.argv[2]
+PREFIX = "/usr/local"
+PROGRAMS = {"marionette": [["--help"], ["sim", "--help"]],
+            "glove-gen": [["--help"]],
+            "glove-dump": [["--help"]]}
+failures = []
+
+
+def check(ok, what):
+    if not ok:
+        failures.append(what)
+        print("FAIL: " + what)
+
+
+def run(argv, **kw):
+    return subprocess.run(argv, capture_output=True, text=True, timeout=120, **kw)
+
+
+def help_options(text):
+    """The options a --help lists: the first column of its option lines."""
+    opts = set()
+    for line in text.splitlines():
+        m = re.match(r"^\s+(-[A-Za-z0-9])?(?:,\s*)?(--[a-z][a-z0-9-]*)?", line)
+        if m:
+            opts.update(o for o in m.groups() if o)
+    return opts
+
+
+def render(page):
+    """The page as plain text, and what the formatter warned about."""
+    if shutil.which("groff"):
+        warn = run(["groff", "-man", "-Tascii", "-ww", "-z", page]).stderr
+        text = run(["groff", "-man", "-Tascii", "-P-cbou", page]).stdout
+        return text, warn
+    if shutil.which("mandoc"):
+        warn = run(["mandoc", "-Tlint", "-Wwarning", page]).stdout
+        return run(["mandoc", "-Tascii", page]).stdout, warn
+    # No formatter: every request must be one the man macros know.
+    known = {"TH", "SH", "SS", "TP", "PP", "IP", "B", "I", "BI", "IB", "BR", "RB",
+             "IR", "RI", "EX", "EE", "br"}
+    bad = [ln for ln in open(page) if ln.startswith(".") and ln[1:].split()[0] not in known]
+    text = re.sub(r"\\f[BIRP]|\\\(..|\\~", "", open(page).read()).replace("\\-", "-")
+    return text, "".join("unknown request: " + ln for ln in bad)
+
+
+def check_front_door():
+    """The Makefile's promises, read from what it would run (make -n): the
+    build stays off the screen, sub-makes print no directory lines, and
+    make bench runs the benchmark."""
+    n = run(["make", "-n", "firmware"], cwd=SRC).stdout
+    check("Entering directory" not in n, "make firmware prints no 'Entering directory' lines")
+    n = run(["make", "-n", "build"], cwd=SRC).stdout
+    builds = [l for l in n.splitlines() if l.startswith("cmake --build")]
+    check(builds and all(">/dev/null" in l.split("||")[0] for l in builds),
+          "make build keeps the build log off the screen: " + " / ".join(builds))
+    check(run(["make", "-n", "build", "V=1"], cwd=SRC).stdout.count(">/dev/null") == 0,
+          "make build V=1 shows the build log")
+    n = run(["make", "-n", "bench"], cwd=SRC).stdout
+    check("tools/protocol-bench/protocol-bench" in n, "make bench runs protocol-bench")
+
+
+def main():
+    dest = tempfile.mkdtemp(prefix="mr-install-test-")
+    try:
+        env = {k: v for k, v in os.environ.items() if k != "MR_UDEV_RULES_DIR"}
+        env["DESTDIR"] = dest
+        r = run(["cmake", "--install", BUILD, "--prefix", PREFIX], env=env)
+        check(r.returncode == 0, "cmake --install exits 0: " + r.stderr.strip())
+        root = dest + PREFIX
+        rule = open(SRC + "/hardware/99-marionette-glove.rules").read()
+        udev = dest + PREFIX + "/lib/udev/rules.d/99-marionette-glove.rules"
+        check(os.path.isfile(udev) and open(udev).read() == rule,
+              "by default the udev rule is installed at PREFIX/lib/udev/rules.d")
+        # The folder make install picks for /usr/local, where udev reads it.
+        env["MR_UDEV_RULES_DIR"] = "/etc/udev/rules.d"
+        r = run(["cmake", "--install", BUILD, "--prefix", PREFIX], env=env)
+        udev = dest + "/etc/udev/rules.d/99-marionette-glove.rules"
+        check(r.returncode == 0 and os.path.isfile(udev) and open(udev).read() == rule,
+              "MR_UDEV_RULES_DIR=/etc/udev/rules.d puts the rule there, under DESTDIR")
+        listing = run(["find", dest, "-type", "f"]).stdout.split()
+        check(len(listing) == 8, "install puts exactly 3 programs, 3 man pages and the rule "
+              "(twice here): " + " ".join(sorted(listing)))
+        for prog, helps in PROGRAMS.items():
+            exe = os.path.join(root, "bin", prog)
+            page = os.path.join(root, "share/man/man1", prog + ".1")
+            check(os.access(exe, os.X_OK), prog + " is installed executable in bin/")
+            check(os.path.isfile(page), prog + ".1 is installed in share/man/man1/")
+            if not (os.access(exe, os.X_OK) and os.path.isfile(page)):
+                continue
+            text, warn = render(page)
+            check(warn.strip() == "", prog + ".1 renders without warnings: " + warn.strip())
+            check(prog in text and "EXIT STATUS" in text, prog + ".1 renders to text")
+            for args in helps:
+                h = run([exe] + args)
+                check(h.returncode == 0, "installed %s %s exits 0" % (prog, " ".join(args)))
+                opts = help_options(h.stdout)
+                check(len(opts) >= 2, "%s %s lists options" % (prog, " ".join(args)))
+                for o in sorted(opts):
+                    check(re.search(r"(?<![\w-])%s(?![\w-])" % re.escape(o), text) is not None,
+                          "%s.1 describes %s (from %s %s)" % (prog, o, prog, " ".join(args)))
+        # The Makefile's install target passes PREFIX and picks the udev folder.
+        for prefix, want in (("/usr", "/usr/lib/udev/rules.d"),
+                             ("/usr/local", "/etc/udev/rules.d"),
+                             ("/opt/mr", "/opt/mr/lib/udev/rules.d")):
+            n = run(["make", "-s", "-n", "-C", SRC, "install", "PREFIX=" + prefix])
+            check("--prefix " + prefix in n.stdout and "MR_UDEV_RULES_DIR=%s cmake" % want in n.stdout
+                  and "cmake -S" not in n.stdout,
+                  "make install PREFIX=%s installs under %s, the rule in %s, and builds nothing"
+                  % (prefix, prefix, want))
+        check_front_door()
+    finally:
+        shutil.rmtree(dest, ignore_errors=True)
+    if failures:
+        print("%d check(s) failed" % len(failures))
+        return 1
+    print("install: programs, man pages and udev rule in place; every --help option documented")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
