@@ -11,8 +11,8 @@
 static const double PI = 3.14159265358979323846;
 
 static int read_pose(mr_reader *r, const mr_ynode *n, const char *what, mr_scene_pose *p) {
-  if (rd_vec3_key(r, n, "position", p->position) != 0 ||
-      rd_vec3_key(r, n, "rotation", p->rotation_deg) != 0)
+  if (mr_scene_read_vec3_key(r, n, "position", p->position) != 0 ||
+      mr_scene_read_vec3_key(r, n, "rotation", p->rotation_deg) != 0)
     return -1;
   (void)what;
   return 0;
@@ -21,32 +21,32 @@ static int read_pose(mr_reader *r, const mr_ynode *n, const char *what, mr_scene
 static int read_points(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"name", "offset", NULL};
   mr_scene *s = r->scene;
-  if (rd_seq(r, n, "control.points") != 0)
+  if (mr_scene_read_seq(r, n, "control.points") != 0)
     return -1;
   s->control_points = calloc(n->count ? n->count : 1, sizeof *s->control_points);
   if (s->control_points == NULL)
-    return rd_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
+    return mr_scene_read_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
   for (size_t i = 0; i < n->count; i++) {
     const mr_ynode *it = n->items[i];
     mr_scene_control_point *c = &s->control_points[i];
     const mr_ynode *v;
-    if (rd_map(r, it, "a control point", keys) != 0)
+    if (mr_scene_read_map(r, it, "a control point", keys) != 0)
       return -1;
-    if ((v = rd_need(r, it, "name", "a control point")) == NULL ||
-        rd_name(r, v, "control point name", c->name) != 0)
+    if ((v = mr_scene_read_need(r, it, "name", "a control point")) == NULL ||
+        mr_scene_read_name(r, v, "control point name", c->name) != 0)
       return -1;
     if (mr_scene_find_particle(s, c->name) != (size_t)-1)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                      "expected a control point name unused by particles, '%s' is a particle",
                      c->name);
     if (mr_scene_find_control_point(s, c->name) != (size_t)-1)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                      "expected a unique control point name, '%s' is already declared",
                      c->name);
-    if ((v = rd_need(r, it, "offset", "a control point")) == NULL ||
-        rd_vec3(r, v, "offset", c->offset) != 0)
+    if ((v = mr_scene_read_need(r, it, "offset", "a control point")) == NULL ||
+        mr_scene_read_vec3(r, v, "offset", c->offset) != 0)
       return -1;
-    c->pos = rd_pos(it);
+    c->pos = mr_scene_read_pos(it);
     s->n_control_points = i + 1;
   }
   return 0;
@@ -56,32 +56,32 @@ static int read_keyframes(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"t", "position", "rotation", NULL};
   mr_scene *s = r->scene;
   mr_scene_track *tr = &s->track;
-  if (rd_seq(r, n, "control.track.keyframes") != 0)
+  if (mr_scene_read_seq(r, n, "control.track.keyframes") != 0)
     return -1;
   if (n->count == 0)
-    return rd_fail(r, n, MR_SCENE_ERR_VALUE, "expected at least one keyframe");
+    return mr_scene_read_fail(r, n, MR_SCENE_ERR_VALUE, "expected at least one keyframe");
   tr->keys = calloc(n->count, sizeof *tr->keys);
   if (tr->keys == NULL)
-    return rd_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
+    return mr_scene_read_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
   tr->kind = MR_SCENE_TRACK_KEYFRAMES;
   for (size_t i = 0; i < n->count; i++) {
     const mr_ynode *it = n->items[i];
     mr_scene_keyframe *k = &tr->keys[i];
     const mr_ynode *v;
-    if (rd_map(r, it, "a keyframe", keys) != 0)
+    if (mr_scene_read_map(r, it, "a keyframe", keys) != 0)
       return -1;
-    if ((v = rd_need(r, it, "t", "a keyframe")) == NULL || rd_number(r, v, "t", &k->t) != 0)
+    if ((v = mr_scene_read_need(r, it, "t", "a keyframe")) == NULL || mr_scene_read_number(r, v, "t", &k->t) != 0)
       return -1;
     if (k->t < 0)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected t >= 0, got %g", k->t);
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected t >= 0, got %g", k->t);
     if (i > 0 && !(k->t > tr->keys[i - 1].t))
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                      "expected keyframe times in increasing order, got %g after %g", k->t,
                      tr->keys[i - 1].t);
     k->pose = s->control_pose;
     if (read_pose(r, it, "a keyframe", &k->pose) != 0)
       return -1;
-    k->pos = rd_pos(it);
+    k->pos = mr_scene_read_pos(it);
     tr->n_keys = i + 1;
   }
   return 0;
@@ -91,41 +91,41 @@ static int read_oscillate(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"amplitude", "rotation", "frequency", "phase",
                                      "start",     "ramp",     NULL};
   mr_scene_track *tr = &r->scene->track;
-  if (rd_map(r, n, "control.track.oscillate", keys) != 0)
+  if (mr_scene_read_map(r, n, "control.track.oscillate", keys) != 0)
     return -1;
   tr->kind = MR_SCENE_TRACK_OSCILLATE;
-  if (rd_need(r, n, "frequency", "control.track.oscillate") == NULL)
+  if (mr_scene_read_need(r, n, "frequency", "control.track.oscillate") == NULL)
     return -1;
-  if (rd_vec3_key(r, n, "amplitude", tr->amplitude) != 0 ||
-      rd_vec3_key(r, n, "rotation", tr->amplitude_deg) != 0 ||
-      rd_positive_key(r, n, "frequency", &tr->frequency_hz) != 0 ||
-      rd_number_key(r, n, "phase", &tr->phase_deg) != 0 ||
-      rd_nonneg_key(r, n, "start", &tr->start) != 0 ||
-      rd_nonneg_key(r, n, "ramp", &tr->ramp) != 0)
+  if (mr_scene_read_vec3_key(r, n, "amplitude", tr->amplitude) != 0 ||
+      mr_scene_read_vec3_key(r, n, "rotation", tr->amplitude_deg) != 0 ||
+      mr_scene_read_positive_key(r, n, "frequency", &tr->frequency_hz) != 0 ||
+      mr_scene_read_number_key(r, n, "phase", &tr->phase_deg) != 0 ||
+      mr_scene_read_nonneg_key(r, n, "start", &tr->start) != 0 ||
+      mr_scene_read_nonneg_key(r, n, "ramp", &tr->ramp) != 0)
     return -1;
   return 0;
 }
 
 static int read_track(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"keyframes", "interpolation", "oscillate", NULL};
-  if (rd_map(r, n, "control.track", keys) != 0)
+  if (mr_scene_read_map(r, n, "control.track", keys) != 0)
     return -1;
-  const mr_ynode *k = mr_ynode_get(n, "keyframes");
-  const mr_ynode *o = mr_ynode_get(n, "oscillate");
-  const mr_ynode *v = mr_ynode_get(n, "interpolation");
+  const mr_ynode *k = mr_scene_yaml_get(n, "keyframes");
+  const mr_ynode *o = mr_scene_yaml_get(n, "oscillate");
+  const mr_ynode *v = mr_scene_yaml_get(n, "interpolation");
   if (k != NULL && o != NULL)
-    return rd_fail(r, o, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail(r, o, MR_SCENE_ERR_SCHEMA,
                    "expected either keyframes or oscillate in control.track, not both");
   if (k == NULL && o == NULL)
-    return rd_fail(r, n, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail(r, n, MR_SCENE_ERR_SCHEMA,
                    "expected keyframes or oscillate in control.track");
   if (v != NULL) {
     if (k == NULL)
-      return rd_fail(r, v, MR_SCENE_ERR_SCHEMA, "interpolation applies to keyframes only");
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "interpolation applies to keyframes only");
     if (v->kind == MR_YNODE_SCALAR && strcmp(v->text, "linear") == 0)
       r->scene->track.linear = true;
     else if (!(v->kind == MR_YNODE_SCALAR && strcmp(v->text, "smooth") == 0))
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected interpolation linear or smooth");
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected interpolation linear or smooth");
   }
   return k != NULL ? read_keyframes(r, k) : read_oscillate(r, o);
 }
@@ -133,17 +133,17 @@ static int read_track(mr_reader *r, const mr_ynode *n) {
 int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"points", "pose", "track", NULL};
   static const char *const pose_keys[] = {"position", "rotation", NULL};
-  if (rd_map(r, n, "physics.control", keys) != 0)
+  if (mr_scene_read_map(r, n, "physics.control", keys) != 0)
     return -1;
-  const mr_ynode *v = rd_need(r, n, "points", "physics.control");
+  const mr_ynode *v = mr_scene_read_need(r, n, "points", "physics.control");
   if (v == NULL || read_points(r, v) != 0)
     return -1;
-  if ((v = mr_ynode_get(n, "pose")) != NULL) {
-    if (rd_map(r, v, "control.pose", pose_keys) != 0 ||
+  if ((v = mr_scene_yaml_get(n, "pose")) != NULL) {
+    if (mr_scene_read_map(r, v, "control.pose", pose_keys) != 0 ||
         read_pose(r, v, "control.pose", &r->scene->control_pose) != 0)
       return -1;
   }
-  if ((v = mr_ynode_get(n, "track")) != NULL && read_track(r, v) != 0)
+  if ((v = mr_scene_yaml_get(n, "track")) != NULL && read_track(r, v) != 0)
     return -1;
   return 0;
 }

@@ -12,49 +12,49 @@ static int read_resets(mr_reader *r, const mr_ynode *v) {
   mr_scene_expect *e = &r->scene->expect;
   if (v->kind == MR_YNODE_SCALAR) {
     long n;
-    if (rd_long(r, v, "resets", &n) != 0)
+    if (mr_scene_read_long(r, v, "resets", &n) != 0)
       return -1;
     if (n < 0)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected resets >= 0, got %ld", n);
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected resets >= 0, got %ld", n);
     e->resets_min = e->resets_max = n;
     return 0;
   }
-  if (rd_map(r, v, "expect.resets", keys) != 0)
+  if (mr_scene_read_map(r, v, "expect.resets", keys) != 0)
     return -1;
   const mr_ynode *m;
-  if ((m = mr_ynode_get(v, "min")) != NULL &&
-      (rd_long(r, m, "resets.min", &e->resets_min) != 0 || e->resets_min < 0))
-    return e->resets_min < 0 ? rd_fail(r, m, MR_SCENE_ERR_VALUE, "expected min >= 0") : -1;
-  if ((m = mr_ynode_get(v, "max")) != NULL &&
-      (rd_long(r, m, "resets.max", &e->resets_max) != 0 || e->resets_max < 0))
-    return e->resets_max < 0 ? rd_fail(r, m, MR_SCENE_ERR_VALUE, "expected max >= 0") : -1;
+  if ((m = mr_scene_yaml_get(v, "min")) != NULL &&
+      (mr_scene_read_long(r, m, "resets.min", &e->resets_min) != 0 || e->resets_min < 0))
+    return e->resets_min < 0 ? mr_scene_read_fail(r, m, MR_SCENE_ERR_VALUE, "expected min >= 0") : -1;
+  if ((m = mr_scene_yaml_get(v, "max")) != NULL &&
+      (mr_scene_read_long(r, m, "resets.max", &e->resets_max) != 0 || e->resets_max < 0))
+    return e->resets_max < 0 ? mr_scene_read_fail(r, m, MR_SCENE_ERR_VALUE, "expected max >= 0") : -1;
   return 0;
 }
 
 static int read_rest(mr_reader *r, const mr_ynode *v) {
   static const char *const keys[] = {"particles", "settle", "creep", "jitter", NULL};
   mr_scene_expect *e = &r->scene->expect;
-  if (rd_map(r, v, "expect.rest", keys) != 0)
+  if (mr_scene_read_map(r, v, "expect.rest", keys) != 0)
     return -1;
-  const mr_ynode *p = rd_need(r, v, "particles", "expect.rest");
-  if (p == NULL || rd_seq(r, p, "expect.rest.particles") != 0)
+  const mr_ynode *p = mr_scene_read_need(r, v, "particles", "expect.rest");
+  if (p == NULL || mr_scene_read_seq(r, p, "expect.rest.particles") != 0)
     return -1;
   e->watch = calloc(p->count ? p->count : 1, sizeof *e->watch);
   if (e->watch == NULL)
-    return rd_fail(r, p, MR_SCENE_ERR_NOMEM, "out of memory");
+    return mr_scene_read_fail(r, p, MR_SCENE_ERR_NOMEM, "out of memory");
   for (size_t i = 0; i < p->count; i++) {
-    if (rd_particle_ref(r, p->items[i], &e->watch[i]) != 0)
+    if (mr_scene_read_particle_ref(r, p->items[i], &e->watch[i]) != 0)
       return -1;
     e->n_watch = i + 1;
   }
-  if (rd_need(r, v, "settle", "expect.rest") == NULL)
+  if (mr_scene_read_need(r, v, "settle", "expect.rest") == NULL)
     return -1;
-  if (rd_nonneg_key(r, v, "settle", &e->settle) != 0 ||
-      rd_positive_key(r, v, "creep", &e->creep) != 0 ||
-      rd_positive_key(r, v, "jitter", &e->jitter) != 0)
+  if (mr_scene_read_nonneg_key(r, v, "settle", &e->settle) != 0 ||
+      mr_scene_read_positive_key(r, v, "creep", &e->creep) != 0 ||
+      mr_scene_read_positive_key(r, v, "jitter", &e->jitter) != 0)
     return -1;
   if (isnan(e->creep) && isnan(e->jitter))
-    return rd_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected creep or jitter in expect.rest");
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected creep or jitter in expect.rest");
   return 0;
 }
 
@@ -63,29 +63,29 @@ int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
                                      "min_mean_dt", "min_string_stretch", "rest",
                                      "load_error", NULL};
   mr_scene_expect *e = &r->scene->expect;
-  if (rd_map(r, n, "expect", keys) != 0)
+  if (mr_scene_read_map(r, n, "expect", keys) != 0)
     return -1;
   e->present = true;
-  e->pos = rd_pos(n);
+  e->pos = mr_scene_read_pos(n);
   const mr_ynode *v;
-  if ((v = mr_ynode_get(n, "load_error")) != NULL)
+  if ((v = mr_scene_yaml_get(n, "load_error")) != NULL)
     /* The scene loaded, so the expected error did not happen; --check
      * reports that. Keep the text for its message. */
     e->has_load_error = true;
   if (v != NULL) {
     if (v->kind != MR_YNODE_SCALAR)
-      return rd_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected a text for load_error");
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected a text for load_error");
     snprintf(e->load_error, sizeof e->load_error, "%s", v->text);
   }
-  if ((v = mr_ynode_get(n, "finite")) != NULL && rd_bool(r, v, "finite", &e->finite) != 0)
+  if ((v = mr_scene_yaml_get(n, "finite")) != NULL && mr_scene_read_bool(r, v, "finite", &e->finite) != 0)
     return -1;
-  if (rd_positive_key(r, n, "max_deviation", &e->max_deviation) != 0 ||
-      rd_positive_key(r, n, "min_mean_dt", &e->min_mean_dt) != 0 ||
-      rd_positive_key(r, n, "min_string_stretch", &e->min_string_stretch) != 0)
+  if (mr_scene_read_positive_key(r, n, "max_deviation", &e->max_deviation) != 0 ||
+      mr_scene_read_positive_key(r, n, "min_mean_dt", &e->min_mean_dt) != 0 ||
+      mr_scene_read_positive_key(r, n, "min_string_stretch", &e->min_string_stretch) != 0)
     return -1;
-  if ((v = mr_ynode_get(n, "resets")) != NULL && read_resets(r, v) != 0)
+  if ((v = mr_scene_yaml_get(n, "resets")) != NULL && read_resets(r, v) != 0)
     return -1;
-  if ((v = mr_ynode_get(n, "rest")) != NULL && read_rest(r, v) != 0)
+  if ((v = mr_scene_yaml_get(n, "rest")) != NULL && read_rest(r, v) != 0)
     return -1;
   return 0;
 }
@@ -104,13 +104,13 @@ int mr_scene_expected_load_error(const char *path, char *out, size_t size) {
   mr_ydoc doc;
   mr_yerror err;
   int rc = -1;
-  if (mr_ydoc_parse(buf, len, &doc, &err) == 0) {
-    const mr_ynode *v = mr_ynode_get(mr_ynode_get(doc.root, "expect"), "load_error");
+  if (mr_scene_yaml_parse(buf, len, &doc, &err) == 0) {
+    const mr_ynode *v = mr_scene_yaml_get(mr_scene_yaml_get(doc.root, "expect"), "load_error");
     if (v != NULL && v->kind == MR_YNODE_SCALAR) {
       snprintf(out, size, "%s", v->text);
       rc = 0;
     }
-    mr_ydoc_free(&doc);
+    mr_scene_yaml_free(&doc);
   }
   free(buf);
   return rc;

@@ -11,10 +11,10 @@
 /* *out is the section's sequence, or NULL when the file has none. */
 static int section(mr_reader *r, const mr_ynode *physics, const char *key, unsigned fx,
                    const char *what, const mr_ynode **out) {
-  const mr_ynode *n = *out = mr_ynode_get(physics, key);
+  const mr_ynode *n = *out = mr_scene_yaml_get(physics, key);
   if (n == NULL)
     return 0;
-  if (rd_seq(r, n, key) != 0 || (n->count > 0 && rd_need_effect(r, n, fx, what) != 0))
+  if (mr_scene_read_seq(r, n, key) != 0 || (n->count > 0 && mr_scene_read_need_effect(r, n, fx, what) != 0))
     return -1;
   return 0;
 }
@@ -22,25 +22,25 @@ static int section(mr_reader *r, const mr_ynode *physics, const char *key, unsig
 static void *alloc_items(mr_reader *r, const mr_ynode *n, size_t size) {
   void *p = calloc(n->count ? n->count : 1, size);
   if (p == NULL)
-    rd_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
+    mr_scene_read_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
   return p;
 }
 
 static int pair(mr_reader *r, const mr_ynode *it, const char *what, mr_scene_ref *a,
                 mr_scene_ref *b) {
-  const mr_ynode *v = rd_need(r, it, "between", what);
+  const mr_ynode *v = mr_scene_read_need(r, it, "between", what);
   if (v == NULL)
     return -1;
   if (v->kind != MR_YNODE_SEQ || v->count != 2)
-    return rd_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected [point, point] for between in %s",
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected [point, point] for between in %s",
                    what);
-  if (rd_point_ref(r, v->items[0], a) != 0 || rd_point_ref(r, v->items[1], b) != 0)
+  if (mr_scene_read_point_ref(r, v->items[0], a) != 0 || mr_scene_read_point_ref(r, v->items[1], b) != 0)
     return -1;
   if (a->control == b->control && a->index == b->index)
-    return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                    "zero-length %s: both ends are the same point; expected two points", what);
   if (a->control && b->control)
-    return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                    "%s between two control points moves nothing; expected a particle", what);
   return 0;
 }
@@ -59,19 +59,19 @@ static int read_springs(mr_reader *r, const mr_ynode *physics) {
     const mr_ynode *it = n->items[i];
     mr_scene_spring *sp = &s->springs[i];
     mr_scene_ref a, b;
-    if (rd_map(r, it, "a spring", keys) != 0 || pair(r, it, "a spring", &a, &b) != 0)
+    if (mr_scene_read_map(r, it, "a spring", keys) != 0 || pair(r, it, "a spring", &a, &b) != 0)
       return -1;
     if (a.control || b.control)
-      return rd_fail(r, mr_ynode_get(it, "between"), MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, mr_scene_yaml_get(it, "between"), MR_SCENE_ERR_VALUE,
                      "expected two particles for a spring (use strings for control points)");
     sp->a = a.index;
     sp->b = b.index;
     sp->rest = sp->stiffness = sp->damping = NAN;
-    if (rd_nonneg_key(r, it, "rest", &sp->rest) != 0 ||
-        rd_nonneg_key(r, it, "stiffness", &sp->stiffness) != 0 ||
-        rd_nonneg_key(r, it, "damping", &sp->damping) != 0)
+    if (mr_scene_read_nonneg_key(r, it, "rest", &sp->rest) != 0 ||
+        mr_scene_read_nonneg_key(r, it, "stiffness", &sp->stiffness) != 0 ||
+        mr_scene_read_nonneg_key(r, it, "damping", &sp->damping) != 0)
       return -1;
-    sp->pos = rd_pos(it);
+    sp->pos = mr_scene_read_pos(it);
     s->n_springs = i + 1;
   }
   return 0;
@@ -91,20 +91,20 @@ static int read_strings(mr_reader *r, const mr_ynode *physics) {
     const mr_ynode *it = n->items[i];
     mr_scene_string *st = &s->strings[i];
     const mr_ynode *v;
-    if (rd_map(r, it, "a string", keys) != 0)
+    if (mr_scene_read_map(r, it, "a string", keys) != 0)
       return -1;
-    if ((v = rd_need(r, it, "from", "a string")) == NULL ||
-        rd_control_ref(r, v, &st->control) != 0)
+    if ((v = mr_scene_read_need(r, it, "from", "a string")) == NULL ||
+        mr_scene_read_control_ref(r, v, &st->control) != 0)
       return -1;
-    if ((v = rd_need(r, it, "to", "a string")) == NULL ||
-        rd_particle_ref(r, v, &st->particle) != 0)
+    if ((v = mr_scene_read_need(r, it, "to", "a string")) == NULL ||
+        mr_scene_read_particle_ref(r, v, &st->particle) != 0)
       return -1;
     st->rest = st->stiffness = st->damping = NAN;
-    if (rd_nonneg_key(r, it, "rest", &st->rest) != 0 ||
-        rd_positive_key(r, it, "stiffness", &st->stiffness) != 0 ||
-        rd_nonneg_key(r, it, "damping", &st->damping) != 0)
+    if (mr_scene_read_nonneg_key(r, it, "rest", &st->rest) != 0 ||
+        mr_scene_read_positive_key(r, it, "stiffness", &st->stiffness) != 0 ||
+        mr_scene_read_nonneg_key(r, it, "damping", &st->damping) != 0)
       return -1;
-    st->pos = rd_pos(it);
+    st->pos = mr_scene_read_pos(it);
     s->n_strings = i + 1;
   }
   return 0;
@@ -123,16 +123,16 @@ static int read_sine_springs(mr_reader *r, const mr_ynode *physics) {
   for (size_t i = 0; i < n->count; i++) {
     const mr_ynode *it = n->items[i];
     mr_scene_sine_spring *sp = &s->sine_springs[i];
-    if (rd_map(r, it, "a sine spring", keys) != 0 ||
+    if (mr_scene_read_map(r, it, "a sine spring", keys) != 0 ||
         pair(r, it, "a sine spring", &sp->a, &sp->b) != 0)
       return -1;
     sp->rest = sp->max_force = sp->reach = sp->damping = NAN;
-    if (rd_nonneg_key(r, it, "rest", &sp->rest) != 0 ||
-        rd_positive_key(r, it, "max_force", &sp->max_force) != 0 ||
-        rd_positive_key(r, it, "reach", &sp->reach) != 0 ||
-        rd_nonneg_key(r, it, "damping", &sp->damping) != 0)
+    if (mr_scene_read_nonneg_key(r, it, "rest", &sp->rest) != 0 ||
+        mr_scene_read_positive_key(r, it, "max_force", &sp->max_force) != 0 ||
+        mr_scene_read_positive_key(r, it, "reach", &sp->reach) != 0 ||
+        mr_scene_read_nonneg_key(r, it, "damping", &sp->damping) != 0)
       return -1;
-    sp->pos = rd_pos(it);
+    sp->pos = mr_scene_read_pos(it);
     s->n_sine_springs = i + 1;
   }
   return 0;
@@ -141,7 +141,7 @@ static int read_sine_springs(mr_reader *r, const mr_ynode *physics) {
 static int distinct(mr_reader *r, const mr_ynode *at, mr_scene_ref a, mr_scene_ref b,
                     const char *what) {
   if (a.control == b.control && a.index == b.index)
-    return rd_fail(r, at, MR_SCENE_ERR_VALUE, "expected %s to be a different point", what);
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE, "expected %s to be a different point", what);
   return 0;
 }
 
@@ -159,23 +159,23 @@ static int read_antigravity(mr_reader *r, const mr_ynode *physics) {
     const mr_ynode *it = n->items[i];
     mr_scene_antigravity *ag = &s->antigravities[i];
     const mr_ynode *v;
-    if (rd_map(r, it, "an antigravity force", keys) != 0)
+    if (mr_scene_read_map(r, it, "an antigravity force", keys) != 0)
       return -1;
-    if ((v = rd_need(r, it, "acted", "an antigravity force")) == NULL ||
-        rd_point_ref(r, v, &ag->acted) != 0)
+    if ((v = mr_scene_read_need(r, it, "acted", "an antigravity force")) == NULL ||
+        mr_scene_read_point_ref(r, v, &ag->acted) != 0)
       return -1;
     if (ag->acted.control)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                      "expected a particle to act on, not a control point");
-    if ((v = rd_need(r, it, "trigger", "an antigravity force")) == NULL ||
-        rd_point_ref(r, v, &ag->trigger) != 0 ||
+    if ((v = mr_scene_read_need(r, it, "trigger", "an antigravity force")) == NULL ||
+        mr_scene_read_point_ref(r, v, &ag->trigger) != 0 ||
         distinct(r, v, ag->acted, ag->trigger, "the trigger") != 0)
       return -1;
     ag->fraction = ag->max_scale = NAN;
-    if (rd_nonneg_key(r, it, "fraction", &ag->fraction) != 0 ||
-        rd_positive_key(r, it, "max_scale", &ag->max_scale) != 0)
+    if (mr_scene_read_nonneg_key(r, it, "fraction", &ag->fraction) != 0 ||
+        mr_scene_read_positive_key(r, it, "max_scale", &ag->max_scale) != 0)
       return -1;
-    ag->pos = rd_pos(it);
+    ag->pos = mr_scene_read_pos(it);
     s->n_antigravities = i + 1;
   }
   return 0;
@@ -195,27 +195,27 @@ static int read_triggered(mr_reader *r, const mr_ynode *physics) {
     const mr_ynode *it = n->items[i];
     mr_scene_triggered *tg = &s->triggered[i];
     const mr_ynode *v;
-    if (rd_map(r, it, "a triggered force", keys) != 0)
+    if (mr_scene_read_map(r, it, "a triggered force", keys) != 0)
       return -1;
-    if ((v = rd_need(r, it, "acted", "a triggered force")) == NULL ||
-        rd_point_ref(r, v, &tg->acted) != 0)
+    if ((v = mr_scene_read_need(r, it, "acted", "a triggered force")) == NULL ||
+        mr_scene_read_point_ref(r, v, &tg->acted) != 0)
       return -1;
     if (tg->acted.control)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                      "expected a particle to act on, not a control point");
-    if ((v = rd_need(r, it, "control", "a triggered force")) == NULL ||
-        rd_point_ref(r, v, &tg->control) != 0 ||
+    if ((v = mr_scene_read_need(r, it, "control", "a triggered force")) == NULL ||
+        mr_scene_read_point_ref(r, v, &tg->control) != 0 ||
         distinct(r, v, tg->acted, tg->control, "control") != 0)
       return -1;
-    if ((v = rd_need(r, it, "trigger", "a triggered force")) == NULL ||
-        rd_point_ref(r, v, &tg->trigger) != 0 ||
+    if ((v = mr_scene_read_need(r, it, "trigger", "a triggered force")) == NULL ||
+        mr_scene_read_point_ref(r, v, &tg->trigger) != 0 ||
         distinct(r, v, tg->control, tg->trigger, "the trigger") != 0)
       return -1;
     tg->gain = tg->max_force = NAN;
-    if (rd_nonneg_key(r, it, "gain", &tg->gain) != 0 ||
-        rd_positive_key(r, it, "max_force", &tg->max_force) != 0)
+    if (mr_scene_read_nonneg_key(r, it, "gain", &tg->gain) != 0 ||
+        mr_scene_read_positive_key(r, it, "max_force", &tg->max_force) != 0)
       return -1;
-    tg->pos = rd_pos(it);
+    tg->pos = mr_scene_read_pos(it);
     s->n_triggered = i + 1;
   }
   return 0;

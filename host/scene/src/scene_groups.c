@@ -57,7 +57,7 @@ static int check_member(mr_reader *r, const mr_scene_group *g, size_t k, const m
   const double *pk = s->particles[m[k]].position;
   if (k == 2 && triangle_quality(s->particles[m[0]].position,
                                  s->particles[m[1]].position, pk) < GENERAL_POSITION_MIN)
-    return rd_fail(r, at, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
                    "group '%s': '%s', '%s' and '%s' are collinear; expected members in "
                    "general position (§5.1)",
                    g->name, s->particles[m[0]].name, s->particles[m[1]].name,
@@ -72,7 +72,7 @@ static int check_member(mr_reader *r, const mr_scene_group *g, size_t k, const m
                                         s->particles[m[j]].position,
                                         s->particles[m[l]].position));
   if (best < GENERAL_POSITION_MIN)
-    return rd_fail(r, at, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
                    "group '%s': '%s' is coplanar with every three earlier members; "
                    "expected members in general position (§5.1)",
                    g->name, s->particles[m[k]].name);
@@ -82,33 +82,33 @@ static int check_member(mr_reader *r, const mr_scene_group *g, size_t k, const m
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"name", "particles", NULL};
   mr_scene *s = r->scene;
-  if (rd_seq(r, n, "physics.groups") != 0)
+  if (mr_scene_read_seq(r, n, "physics.groups") != 0)
     return -1;
-  if (n->count > 0 && rd_need_effect(r, n, MR_SCENE_FX_CONSTRAINTS, "rigid groups are") != 0)
+  if (n->count > 0 && mr_scene_read_need_effect(r, n, MR_SCENE_FX_CONSTRAINTS, "rigid groups are") != 0)
     return -1;
   s->groups = calloc(n->count ? n->count : 1, sizeof *s->groups);
   if (s->groups == NULL)
-    return rd_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
+    return mr_scene_read_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
   for (size_t gi = 0; gi < n->count; gi++) {
     const mr_ynode *it = n->items[gi];
     mr_scene_group *g = &s->groups[gi];
     s->n_groups = gi + 1;
     const mr_ynode *v;
-    if (rd_map(r, it, "a group", keys) != 0)
+    if (mr_scene_read_map(r, it, "a group", keys) != 0)
       return -1;
-    if ((v = rd_need(r, it, "name", "a group")) == NULL ||
-        rd_name(r, v, "group name", g->name) != 0)
+    if ((v = mr_scene_read_need(r, it, "name", "a group")) == NULL ||
+        mr_scene_read_name(r, v, "group name", g->name) != 0)
       return -1;
     for (size_t j = 0; j < gi; j++)
       if (strcmp(s->groups[j].name, g->name) == 0)
-        return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+        return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                        "expected a unique group name, '%s' is already declared", g->name);
-    g->pos = rd_pos(it);
-    if ((v = rd_need(r, it, "particles", "a group")) == NULL ||
-        rd_particle_list(r, v, "a group", &g->members, &g->count) != 0)
+    g->pos = mr_scene_read_pos(it);
+    if ((v = mr_scene_read_need(r, it, "particles", "a group")) == NULL ||
+        mr_scene_read_particle_list(r, v, "a group", &g->members, &g->count) != 0)
       return -1;
     if (v->count < 2 || v->count > GROUP_MAX)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                      "expected 2 to %d particles in group '%s', got %zu", GROUP_MAX, g->name,
                      v->count);
     for (size_t k = 0; k < g->count; k++)
@@ -122,44 +122,44 @@ int mr_scene_read_parts(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"particles", "radius", "segment_spheres", "restitution",
                                      "friction", NULL};
   mr_scene *s = r->scene;
-  if (rd_seq(r, n, "physics.parts") != 0)
+  if (mr_scene_read_seq(r, n, "physics.parts") != 0)
     return -1;
   if (n->count > 0 &&
-      rd_need_effect(r, n, MR_SCENE_FX_SELF_COLLISION, "collision parts are") != 0)
+      mr_scene_read_need_effect(r, n, MR_SCENE_FX_SELF_COLLISION, "collision parts are") != 0)
     return -1;
   s->parts = calloc(n->count ? n->count : 1, sizeof *s->parts);
   if (s->parts == NULL)
-    return rd_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
+    return mr_scene_read_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
   for (size_t i = 0; i < n->count; i++) {
     const mr_ynode *it = n->items[i];
     mr_scene_part *p = &s->parts[i];
     s->n_parts = i + 1;
     const mr_ynode *v;
-    if (rd_map(r, it, "a part", keys) != 0)
+    if (mr_scene_read_map(r, it, "a part", keys) != 0)
       return -1;
-    p->pos = rd_pos(it);
-    if ((v = rd_need(r, it, "particles", "a part")) == NULL ||
-        rd_particle_list(r, v, "a part", &p->members, &p->count) != 0)
+    p->pos = mr_scene_read_pos(it);
+    if ((v = mr_scene_read_need(r, it, "particles", "a part")) == NULL ||
+        mr_scene_read_particle_list(r, v, "a part", &p->members, &p->count) != 0)
       return -1;
     if (p->count == 0)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected at least one particle in a part");
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected at least one particle in a part");
     p->radius = p->restitution = p->friction = NAN;
     p->segment_spheres = -1;
     double seg = -1;
-    if (rd_nonneg_key(r, it, "radius", &p->radius) != 0 ||
-        rd_nonneg_key(r, it, "restitution", &p->restitution) != 0 ||
-        rd_nonneg_key(r, it, "friction", &p->friction) != 0 ||
-        rd_nonneg_key(r, it, "segment_spheres", &seg) != 0)
+    if (mr_scene_read_nonneg_key(r, it, "radius", &p->radius) != 0 ||
+        mr_scene_read_nonneg_key(r, it, "restitution", &p->restitution) != 0 ||
+        mr_scene_read_nonneg_key(r, it, "friction", &p->friction) != 0 ||
+        mr_scene_read_nonneg_key(r, it, "segment_spheres", &seg) != 0)
       return -1;
     if (!isnan(p->restitution) && p->restitution > 1)
-      return rd_fail(r, mr_ynode_get(it, "restitution"), MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, mr_scene_yaml_get(it, "restitution"), MR_SCENE_ERR_VALUE,
                      "expected restitution between 0 and 1, got %g", p->restitution);
     if (seg >= 0) {
       if (seg != floor(seg) || seg > 64)
-        return rd_fail(r, mr_ynode_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
+        return mr_scene_read_fail(r, mr_scene_yaml_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
                        "expected a whole number of segment spheres from 0 to 64");
       if (seg > 0 && p->count != 2)
-        return rd_fail(r, mr_ynode_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
+        return mr_scene_read_fail(r, mr_scene_yaml_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
                        "segment spheres need a part of exactly two particles");
       p->segment_spheres = (int)seg;
     }

@@ -18,43 +18,43 @@ typedef struct mr_reader {
 #define MR_PRINTF(a, b)
 #endif
 
-/* Fills the error; returns -1 so callers can `return rd_fail(...)`. */
-int rd_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
+/* Fills the error; returns -1 so callers can `return mr_scene_read_fail(...)`. */
+int mr_scene_read_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
                const char *fmt, ...) MR_PRINTF(5, 6);
-int rd_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
+int mr_scene_read_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
             const char *fmt, ...) MR_PRINTF(4, 5);
 
 /* node must be a mapping whose keys are all in allowed (NULL-terminated). */
-int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
+int mr_scene_read_map(mr_reader *r, const mr_ynode *node, const char *what,
            const char *const *allowed);
-int rd_seq(mr_reader *r, const mr_ynode *node, const char *what);
-int rd_number(mr_reader *r, const mr_ynode *node, const char *what, double *out);
+int mr_scene_read_seq(mr_reader *r, const mr_ynode *node, const char *what);
+int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, double *out);
 /* Optional key of map: *out is left alone when the key is absent. */
-int rd_number_key(mr_reader *r, const mr_ynode *map, const char *key,
+int mr_scene_read_number_key(mr_reader *r, const mr_ynode *map, const char *key,
                   double *out);
-int rd_positive_key(mr_reader *r, const mr_ynode *map, const char *key,
+int mr_scene_read_positive_key(mr_reader *r, const mr_ynode *map, const char *key,
                     double *out);
-int rd_nonneg_key(mr_reader *r, const mr_ynode *map, const char *key,
+int mr_scene_read_nonneg_key(mr_reader *r, const mr_ynode *map, const char *key,
                   double *out);
-int rd_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]);
-int rd_vec3_key(mr_reader *r, const mr_ynode *map, const char *key, double out[3]);
-int rd_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out);
-int rd_long(mr_reader *r, const mr_ynode *node, const char *what, long *out);
-int rd_name(mr_reader *r, const mr_ynode *node, const char *what,
+int mr_scene_read_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]);
+int mr_scene_read_vec3_key(mr_reader *r, const mr_ynode *map, const char *key, double out[3]);
+int mr_scene_read_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out);
+int mr_scene_read_long(mr_reader *r, const mr_ynode *node, const char *what, long *out);
+int mr_scene_read_name(mr_reader *r, const mr_ynode *node, const char *what,
             char out[MR_SCENE_NAME_MAX]);
 /* A required key; fails naming the mapping when absent. */
-const mr_ynode *rd_need(mr_reader *r, const mr_ynode *map, const char *key,
+const mr_ynode *mr_scene_read_need(mr_reader *r, const mr_ynode *map, const char *key,
                         const char *what);
 /* Name of a particle or control point, resolved to its index. */
-int rd_particle_ref(mr_reader *r, const mr_ynode *node, size_t *out);
-int rd_control_ref(mr_reader *r, const mr_ynode *node, size_t *out);
+int mr_scene_read_particle_ref(mr_reader *r, const mr_ynode *node, size_t *out);
+int mr_scene_read_control_ref(mr_reader *r, const mr_ynode *node, size_t *out);
 /* Either of the two. */
-int rd_point_ref(mr_reader *r, const mr_ynode *node, mr_scene_ref *out);
+int mr_scene_read_point_ref(mr_reader *r, const mr_ynode *node, mr_scene_ref *out);
 /* A sequence of particle names, resolved, each at most once. */
-int rd_particle_list(mr_reader *r, const mr_ynode *node, const char *what,
+int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *what,
                      size_t **out, size_t *count);
 
-mr_scene_pos rd_pos(const mr_ynode *node);
+mr_scene_pos mr_scene_read_pos(const mr_ynode *node);
 
 /* Sections, one file each. */
 int mr_scene_read_physics(mr_reader *r, const mr_ynode *physics);
@@ -64,6 +64,6 @@ int mr_scene_read_groups(mr_reader *r, const mr_ynode *groups);
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *parts);
 int mr_scene_read_forces(mr_reader *r, const mr_ynode *physics);
 /* Fails unless the scene declared effect fx; `what` names the item. */
-int rd_need_effect(mr_reader *r, const mr_ynode *at, unsigned fx, const char *what);
+int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, unsigned fx, const char *what);
 
 #endif

@@ -28,7 +28,7 @@ static int vfail(mr_reader *r, int line, int column, mr_scene_status status,
   return -1;
 }
 
-int rd_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
+int mr_scene_read_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
                const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
@@ -37,7 +37,7 @@ int rd_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
   return -1;
 }
 
-int rd_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
+int mr_scene_read_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
             const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
@@ -46,7 +46,7 @@ int rd_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
   return -1;
 }
 
-mr_scene_pos rd_pos(const mr_ynode *node) {
+mr_scene_pos mr_scene_read_pos(const mr_ynode *node) {
   mr_scene_pos p = {node ? node->line : 0, node ? node->column : 0};
   return p;
 }
@@ -54,7 +54,7 @@ mr_scene_pos rd_pos(const mr_ynode *node) {
 /* Quotes a scalar for a message, shortened so one line stays one line. */
 static const char *shown(const mr_ynode *n, char *buf, size_t size) {
   if (n->kind != MR_YNODE_SCALAR) {
-    snprintf(buf, size, "a %s", mr_ynode_kind_name(n->kind));
+    snprintf(buf, size, "a %s", mr_scene_yaml_kind_name(n->kind));
     return buf;
   }
   char tmp[40];
@@ -66,11 +66,11 @@ static const char *shown(const mr_ynode *n, char *buf, size_t size) {
   return buf;
 }
 
-int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
+int mr_scene_read_map(mr_reader *r, const mr_ynode *node, const char *what,
            const char *const *allowed) {
   char b[64];
   if (node->kind != MR_YNODE_MAP)
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a mapping for %s, got %s",
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a mapping for %s, got %s",
                    what, shown(node, b, sizeof b));
   for (size_t i = 0; i < node->count; i++) {
     const mr_ynode *key = node->items[2 * i];
@@ -84,7 +84,7 @@ int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
       for (const char *const *a = allowed; *a != NULL && used < sizeof list; a++)
         used += (size_t)snprintf(list + used, sizeof list - used, "%s%s",
                                  a == allowed ? "" : ", ", *a);
-      return rd_fail(r, key, MR_SCENE_ERR_SCHEMA,
+      return mr_scene_read_fail(r, key, MR_SCENE_ERR_SCHEMA,
                      "unknown key '%s' in %s; expected one of: %s", key->text,
                      what, list);
     }
@@ -92,10 +92,10 @@ int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
   return 0;
 }
 
-int rd_seq(mr_reader *r, const mr_ynode *node, const char *what) {
+int mr_scene_read_seq(mr_reader *r, const mr_ynode *node, const char *what) {
   char b[64];
   if (node->kind != MR_YNODE_SEQ)
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA,
                    "expected a sequence (- item or [a, b]) for %s, got %s", what,
                    shown(node, b, sizeof b));
   return 0;
@@ -111,73 +111,73 @@ static bool is_nan_or_inf(const char *s) {
          strcasecmp(t, "infinity") == 0;
 }
 
-int rd_number(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
+int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
   char b[64];
   if (node->kind != MR_YNODE_SCALAR || node->quoted || node->text[0] == '\0')
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
                    what, shown(node, b, sizeof b));
   if (is_nan_or_inf(node->text))
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected a finite number for %s, got %s", what,
                    shown(node, b, sizeof b));
   const char *s = node->text;
   /* Decimal only: strtod would also take hex floats and "nan(...)". */
   for (const char *p = s; *p; p++)
     if (!(isdigit((unsigned char)*p) || strchr("+-.eE", *p)))
-      return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
+      return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
                      what, shown(node, b, sizeof b));
   char *end = NULL;
   errno = 0;
   double v = strtod(s, &end);
   if (end == s || *end != '\0')
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
                    what, shown(node, b, sizeof b));
   if (!isfinite(v) || errno == ERANGE)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected a finite number for %s, got %s", what,
                    shown(node, b, sizeof b));
   *out = v;
   return 0;
 }
 
-int rd_number_key(mr_reader *r, const mr_ynode *map, const char *key, double *out) {
-  const mr_ynode *v = mr_ynode_get(map, key);
-  return v ? rd_number(r, v, key, out) : 0;
+int mr_scene_read_number_key(mr_reader *r, const mr_ynode *map, const char *key, double *out) {
+  const mr_ynode *v = mr_scene_yaml_get(map, key);
+  return v ? mr_scene_read_number(r, v, key, out) : 0;
 }
 
-int rd_positive_key(mr_reader *r, const mr_ynode *map, const char *key,
+int mr_scene_read_positive_key(mr_reader *r, const mr_ynode *map, const char *key,
                     double *out) {
-  const mr_ynode *v = mr_ynode_get(map, key);
+  const mr_ynode *v = mr_scene_yaml_get(map, key);
   if (v == NULL)
     return 0;
   double x;
-  if (rd_number(r, v, key, &x) != 0)
+  if (mr_scene_read_number(r, v, key, &x) != 0)
     return -1;
   if (!(x > 0))
-    return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected a positive number for %s, got %g",
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected a positive number for %s, got %g",
                    key, x);
   *out = x;
   return 0;
 }
 
-int rd_nonneg_key(mr_reader *r, const mr_ynode *map, const char *key, double *out) {
-  const mr_ynode *v = mr_ynode_get(map, key);
+int mr_scene_read_nonneg_key(mr_reader *r, const mr_ynode *map, const char *key, double *out) {
+  const mr_ynode *v = mr_scene_yaml_get(map, key);
   if (v == NULL)
     return 0;
   double x;
-  if (rd_number(r, v, key, &x) != 0)
+  if (mr_scene_read_number(r, v, key, &x) != 0)
     return -1;
   if (x < 0)
-    return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                    "expected a number >= 0 for %s, got %g", key, x);
   *out = x;
   return 0;
 }
 
-int rd_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]) {
+int mr_scene_read_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]) {
   char b[64];
   if (node->kind != MR_YNODE_SEQ || node->count != 3)
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA,
                    "expected [x, y, z] (three numbers) for %s, got %s%s", what,
                    node->kind == MR_YNODE_SEQ ? "a sequence of " : "",
                    node->kind == MR_YNODE_SEQ
@@ -185,18 +185,18 @@ int rd_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3])
                        : shown(node, b, sizeof b));
   double v[3];
   for (int i = 0; i < 3; i++)
-    if (rd_number(r, node->items[i], what, &v[i]) != 0)
+    if (mr_scene_read_number(r, node->items[i], what, &v[i]) != 0)
       return -1;
   memcpy(out, v, sizeof v);
   return 0;
 }
 
-int rd_vec3_key(mr_reader *r, const mr_ynode *map, const char *key, double out[3]) {
-  const mr_ynode *v = mr_ynode_get(map, key);
-  return v ? rd_vec3(r, v, key, out) : 0;
+int mr_scene_read_vec3_key(mr_reader *r, const mr_ynode *map, const char *key, double out[3]) {
+  const mr_ynode *v = mr_scene_yaml_get(map, key);
+  return v ? mr_scene_read_vec3(r, v, key, out) : 0;
 }
 
-int rd_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out) {
+int mr_scene_read_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out) {
   char b[64];
   if (node->kind == MR_YNODE_SCALAR && !node->quoted) {
     if (strcmp(node->text, "true") == 0) {
@@ -208,11 +208,11 @@ int rd_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out) {
       return 0;
     }
   }
-  return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected true or false for %s, got %s",
+  return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected true or false for %s, got %s",
                  what, shown(node, b, sizeof b));
 }
 
-int rd_long(mr_reader *r, const mr_ynode *node, const char *what, long *out) {
+int mr_scene_read_long(mr_reader *r, const mr_ynode *node, const char *what, long *out) {
   char b[64];
   if (node->kind == MR_YNODE_SCALAR && !node->quoted && node->text[0] != '\0') {
     char *end = NULL;
@@ -223,67 +223,67 @@ int rd_long(mr_reader *r, const mr_ynode *node, const char *what, long *out) {
       return 0;
     }
   }
-  return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected an integer for %s, got %s",
+  return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected an integer for %s, got %s",
                  what, shown(node, b, sizeof b));
 }
 
-int rd_name(mr_reader *r, const mr_ynode *node, const char *what,
+int mr_scene_read_name(mr_reader *r, const mr_ynode *node, const char *what,
             char out[MR_SCENE_NAME_MAX]) {
   char b[64];
   if (node->kind != MR_YNODE_SCALAR || node->text[0] == '\0')
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a name for %s, got %s", what,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a name for %s, got %s", what,
                    shown(node, b, sizeof b));
   size_t n = strlen(node->text);
   if (n >= MR_SCENE_NAME_MAX)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected a name of at most %d characters for %s",
                    MR_SCENE_NAME_MAX - 1, what);
   for (const char *p = node->text; *p; p++)
     if (!(isalnum((unsigned char)*p) || *p == '_' || *p == '-' || *p == '.'))
-      return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                      "expected a name of letters, digits, '_', '-' or '.' for %s, got %s",
                      what, shown(node, b, sizeof b));
   memcpy(out, node->text, n + 1);
   return 0;
 }
 
-const mr_ynode *rd_need(mr_reader *r, const mr_ynode *map, const char *key,
+const mr_ynode *mr_scene_read_need(mr_reader *r, const mr_ynode *map, const char *key,
                         const char *what) {
-  const mr_ynode *v = mr_ynode_get(map, key);
+  const mr_ynode *v = mr_scene_yaml_get(map, key);
   if (v == NULL)
-    rd_fail(r, map, MR_SCENE_ERR_SCHEMA, "expected key '%s' in %s", key, what);
+    mr_scene_read_fail(r, map, MR_SCENE_ERR_SCHEMA, "expected key '%s' in %s", key, what);
   return v;
 }
 
-int rd_particle_ref(mr_reader *r, const mr_ynode *node, size_t *out) {
+int mr_scene_read_particle_ref(mr_reader *r, const mr_ynode *node, size_t *out) {
   char name[MR_SCENE_NAME_MAX];
-  if (rd_name(r, node, "a particle", name) != 0)
+  if (mr_scene_read_name(r, node, "a particle", name) != 0)
     return -1;
   size_t i = mr_scene_find_particle(r->scene, name);
   if (i == (size_t)-1)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected the name of a particle declared under particles, got '%s'",
                    name);
   *out = i;
   return 0;
 }
 
-int rd_control_ref(mr_reader *r, const mr_ynode *node, size_t *out) {
+int mr_scene_read_control_ref(mr_reader *r, const mr_ynode *node, size_t *out) {
   char name[MR_SCENE_NAME_MAX];
-  if (rd_name(r, node, "a control point", name) != 0)
+  if (mr_scene_read_name(r, node, "a control point", name) != 0)
     return -1;
   size_t i = mr_scene_find_control_point(r->scene, name);
   if (i == (size_t)-1)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected the name of a control point declared under control.points, got '%s'",
                    name);
   *out = i;
   return 0;
 }
 
-int rd_point_ref(mr_reader *r, const mr_ynode *node, mr_scene_ref *out) {
+int mr_scene_read_point_ref(mr_reader *r, const mr_ynode *node, mr_scene_ref *out) {
   char name[MR_SCENE_NAME_MAX];
-  if (rd_name(r, node, "a point", name) != 0)
+  if (mr_scene_read_name(r, node, "a point", name) != 0)
     return -1;
   size_t i = mr_scene_find_particle(r->scene, name);
   if (i != (size_t)-1) {
@@ -297,25 +297,25 @@ int rd_point_ref(mr_reader *r, const mr_ynode *node, mr_scene_ref *out) {
     out->index = i;
     return 0;
   }
-  return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+  return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                  "expected the name of a particle or control point, got '%s'", name);
 }
 
-int rd_particle_list(mr_reader *r, const mr_ynode *node, const char *what, size_t **out,
+int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *what, size_t **out,
                      size_t *count) {
-  if (rd_seq(r, node, what) != 0)
+  if (mr_scene_read_seq(r, node, what) != 0)
     return -1;
   size_t *m = calloc(node->count ? node->count : 1, sizeof *m);
   if (m == NULL)
-    return rd_fail(r, node, MR_SCENE_ERR_NOMEM, "out of memory");
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_NOMEM, "out of memory");
   *out = m;
   *count = 0;
   for (size_t k = 0; k < node->count; k++) {
-    if (rd_particle_ref(r, node->items[k], &m[k]) != 0)
+    if (mr_scene_read_particle_ref(r, node->items[k], &m[k]) != 0)
       return -1;
     for (size_t j = 0; j < k; j++)
       if (m[j] == m[k])
-        return rd_fail(r, node->items[k], MR_SCENE_ERR_VALUE,
+        return mr_scene_read_fail(r, node->items[k], MR_SCENE_ERR_VALUE,
                        "particle '%s' is listed twice in %s",
                        r->scene->particles[m[k]].name, what);
     *count = k + 1;
@@ -323,13 +323,13 @@ int rd_particle_list(mr_reader *r, const mr_ynode *node, const char *what, size_
   return 0;
 }
 
-int rd_need_effect(mr_reader *r, const mr_ynode *at, unsigned fx, const char *what) {
+int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, unsigned fx, const char *what) {
   if (r->scene->effects & fx)
     return 0;
   unsigned bit = 0;
   while (!(fx & (1u << bit)))
     bit++;
-  return rd_fail(r, at, MR_SCENE_ERR_SCHEMA,
+  return mr_scene_read_fail(r, at, MR_SCENE_ERR_SCHEMA,
                  "%s declared but effect '%s' is not listed in physics.effects", what,
                  mr_scene_effect_name(bit));
 }

@@ -149,7 +149,7 @@ static int attach(builder *b, mr_ynode *node) {
     if (node->kind != MR_YNODE_SCALAR)
       return fail(b->err, node->line, node->column,
                   "expected a plain key, got a %s as a mapping key",
-                  mr_ynode_kind_name(node->kind));
+                  mr_scene_yaml_kind_name(node->kind));
     for (size_t i = 0; i < f->n; i += 2)
       if (same_scalar(f->tmp[i], node))
         return fail(b->err, node->line, node->column,
@@ -295,7 +295,7 @@ static bool find_nul(const char *text, size_t len, int *line, int *column) {
   return true;
 }
 
-int mr_ydoc_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
+int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
   memset(doc, 0, sizeof *doc);
   memset(err, 0, sizeof *err);
   int nl, nc;
@@ -361,17 +361,17 @@ int mr_ydoc_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
   fy_parser_destroy(fyp);
   fy_diag_destroy(diag);
   if (rc != 0)
-    mr_ydoc_free(doc);
+    mr_scene_yaml_free(doc);
   return rc;
 }
 
-void mr_ydoc_free(mr_ydoc *doc) {
+void mr_scene_yaml_free(mr_ydoc *doc) {
   arena_free(doc->arena);
   doc->arena = NULL;
   doc->root = NULL;
 }
 
-const mr_ynode *mr_ynode_get(const mr_ynode *map, const char *key) {
+const mr_ynode *mr_scene_yaml_get(const mr_ynode *map, const char *key) {
   if (map == NULL || map->kind != MR_YNODE_MAP)
     return NULL;
   for (size_t i = 0; i < map->count; i++)
@@ -380,7 +380,7 @@ const mr_ynode *mr_ynode_get(const mr_ynode *map, const char *key) {
   return NULL;
 }
 
-const char *mr_ynode_kind_name(mr_ynode_kind kind) {
+const char *mr_scene_yaml_kind_name(mr_ynode_kind kind) {
   switch (kind) {
   case MR_YNODE_SCALAR:
     return "scalar";
