@@ -31,6 +31,8 @@ static void scene_declares_an_outcome(void **state) {
   assert_true(s.expect.resets_min >= 0 || s.expect.resets_max >= 0);
   /* Zero resets unless the scene is the reset case, which needs one. */
   assert_true(s.expect.resets_max == 0 || s.expect.resets_min >= 1);
+  /* Determinism pinned: every case that runs names the state it ends on. */
+  assert_true(s.expect.has_state_hash);
   mr_scene_free(&s);
 }
 

@@ -227,6 +227,10 @@ typedef struct mr_scene_expect {
   size_t *watch;
   size_t n_watch;
   double settle, creep, jitter;
+  /* The state hash at the end of a run of sim.duration: determinism
+   * pinned, not only repeated. */
+  bool has_state_hash;
+  uint64_t state_hash;
   mr_scene_pos pos;
 } mr_scene_expect;
 

@@ -2,7 +2,9 @@
  * carry their own pass criteria, so the suite is one folder of files. */
 #include "scene_read.h"
 
+#include <ctype.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -58,10 +60,30 @@ static int read_rest(mr_reader *r, const mr_ynode *v) {
   return 0;
 }
 
+/* 0x and one to sixteen hex digits: the hash as `marionette sim` prints it. */
+static int read_state_hash(mr_reader *r, const mr_ynode *v, uint64_t *out) {
+  const char *s = v->text;
+  size_t n = v->kind == MR_YNODE_SCALAR ? strlen(s) : 0;
+  bool ok = !v->quoted && n > 2 && n <= 18 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
+  uint64_t h = 0;
+  for (size_t i = 2; ok && i < n; i++) {
+    int d = isdigit((unsigned char)s[i]) ? s[i] - '0'
+            : isxdigit((unsigned char)s[i]) ? tolower((unsigned char)s[i]) - 'a' + 10
+                                             : -1;
+    ok = d >= 0;
+    h = h << 4 | (uint64_t)(d & 15);
+  }
+  if (!ok)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA,
+                              "expected state_hash as 0x and up to 16 hex digits");
+  *out = h;
+  return 0;
+}
+
 int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"finite",     "max_deviation", "resets",
                                      "min_mean_dt", "min_string_stretch", "rest",
-                                     "load_error", NULL};
+                                     "load_error", "state_hash", NULL};
   mr_scene_expect *e = &r->scene->expect;
   if (mr_scene_read_map(r, n, "expect", keys) != 0)
     return -1;
@@ -87,6 +109,11 @@ int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
     return -1;
   if ((v = mr_scene_yaml_get(n, "rest")) != NULL && read_rest(r, v) != 0)
     return -1;
+  if ((v = mr_scene_yaml_get(n, "state_hash")) != NULL) {
+    if (read_state_hash(r, v, &e->state_hash) != 0)
+      return -1;
+    e->has_state_hash = true;
+  }
   return 0;
 }
 
