@@ -155,8 +155,8 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
       break;
     }
     t = mr_world_time(sw.world);
-    mr_world_stats stats;
-    mr_world_get_stats(sw.world, &stats);
+    mr_stats stats;
+    mr_world_stats(sw.world, &stats);
     mr_scene_step row = {t, stats.last_dt, stats.last_error, rep.steps, rep.rejected,
                          rep.divergences > 0, 0};
     mr_world_positions(sw.world, xyz, n);
