@@ -127,12 +127,12 @@ static void world_rejects_and_follows_rule_step_by_step(void **state)
   int bob;
   mr_world *w = pendulum(high, low, &bob);
   const mr_ats_params p = {0.01, 0.05, low, high};
-  mr_world_stats st;
+  mr_stats st;
   int checked = 0;
   uint64_t rejected_before = 0;
   for (int i = 0; i < 300; i++) {
     assert_int_equal(mr_world_step(w, NULL), MR_OK);
-    mr_world_get_stats(w, &st);
+    mr_world_stats(w, &st);
     assert_true(st.last_dt >= 0.01 && st.last_dt <= 0.05);
     if (st.last_dt > 0.01)
       assert_true(st.last_error <= high);
@@ -175,13 +175,13 @@ static void dt_doubles_back_after_floor_impact(void **state)
     assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
     double dts[400];
     int n = 0, impact = -1;
-    mr_world_stats st;
+    mr_stats st;
     while (n < 400 && mr_world_time(w) < 2.0) {
       uint64_t c0;
-      mr_world_get_stats(w, &st);
+      mr_world_stats(w, &st);
       c0 = st.collisions;
       assert_int_equal(mr_world_step(w, NULL), MR_OK);
-      mr_world_get_stats(w, &st);
+      mr_world_stats(w, &st);
       dts[n] = st.last_dt;
       /* §7: the bounds hold for every step, the ones after a contact too. */
       assert_true(dts[n] <= def.dt_max);

@@ -64,7 +64,7 @@ mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *firs
 {
   const char *what = "mr_world_add_rigid_group";
   const double *x = w->x;
-  *first = w->nd;
+  *first = w->distances.n;
   *n = 0;
   for (int i = 0; i < count; i++) {
     if (mr_check_particle(w, ids[i], what) != 0)
@@ -136,30 +136,27 @@ mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *firs
 
 mr_rigid_group_def mr_default_rigid_group_def(void)
 {
-  mr_rigid_group_def d = {NULL, 0};
-  return d;
+  return (mr_rigid_group_def){.cookie = MR_DEF_COOKIE};
 }
 
 mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, int *out_id)
 {
   const char *what = "mr_world_add_rigid_group";
-  if (!w || !def || (!def->particles && def->count > 0))
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
+  if (s != MR_OK)
+    return s;
+  if (!def->particles && def->count > 0)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL particles", what);
   if (def->count < 2)
     return mr_fail(w, MR_ERR_ARG, "%s: needs at least 2 particles (got %d)", what, def->count);
-  if (MR_GROW(w, w->groups, w->ng, w->cap_g) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   int first, n;
-  mr_status s = mr_rigid_group_build(w, def->particles, def->count, &first, &n);
+  s = mr_rigid_group_build(w, def->particles, def->count, &first, &n);
   if (s != MR_OK) {
-    w->nd = first; /* drop links added before an allocation failure */
+    w->distances.n = first; /* drop links added before an allocation failure */
     return s;
   }
-  w->groups[w->ng] = (mr_rigid_group){first, n};
   if (out_id)
-    *out_id = w->ng;
-  w->ng++;
+    *out_id = w->n_groups;
+  w->n_groups++;
   return MR_OK;
 }

@@ -56,9 +56,6 @@ int mr_world_ensure_ready(mr_world *w)
       return -1;
   if (realloc_d(&w->k, 8 * n3) != 0)
     return -1;
-  /* x1/v1 trade places with x/v on every accepted step: size them alike. */
-  if (realloc_d(&w->x1, (size_t)w->cap_n * 3 + 3) != 0 || realloc_d(&w->v1, (size_t)w->cap_n * 3 + 3) != 0)
-    return -1;
   w->cap_scratch = w->n;
   int np = 0;
   for (int i = 0; i < w->n; i++)
@@ -189,7 +186,7 @@ static double locate_contact(mr_world *w, double t, double h, int *err)
 
 static void record_step(mr_world *w, double h, double e)
 {
-  mr_world_stats *s = &w->stats;
+  mr_stats *s = &w->stats;
   s->steps++;
   s->last_dt = h;
   if (h < s->min_dt)

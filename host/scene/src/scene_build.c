@@ -9,7 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const double PI = 3.14159265358979323846;
 
 uint32_t mr_scene_physics_effects(unsigned fx) {
   static const uint32_t map[MR_SCENE_FX_COUNT] = {
@@ -25,18 +24,7 @@ uint32_t mr_scene_physics_effects(unsigned fx) {
 }
 
 mr_pose mr_scene_pose_to_physics(const mr_scene_pose *p) {
-  mr_pose o = mr_pose_identity();
-  memcpy(o.position, p->position, sizeof o.position);
-  /* x first, then y, then z: q = qz qy qx, as mr_scene_control_point_world. */
-  double hx = p->rotation_deg[0] * PI / 360.0;
-  double hy = p->rotation_deg[1] * PI / 360.0;
-  double hz = p->rotation_deg[2] * PI / 360.0;
-  double cx = cos(hx), sx = sin(hx), cy = cos(hy), sy = sin(hy), cz = cos(hz), sz = sin(hz);
-  o.orientation[0] = cz * cy * cx + sz * sy * sx;
-  o.orientation[1] = cz * cy * sx - sz * sy * cx;
-  o.orientation[2] = cz * sy * cx + sz * cy * sx;
-  o.orientation[3] = sz * cy * cx - cz * sy * sx;
-  return o;
+  return mr_pose_from_euler_deg(p->position, p->rotation_deg);
 }
 
 static mr_scene_status fail(const mr_scene *s, mr_scene_error *err, mr_scene_pos at,

@@ -163,8 +163,8 @@ static double next_target(run *u, double t, bool *land) {
 /* Folds one step call into the result and returns its trace row. */
 static mr_scene_step record(run *u, const mr_step_report *rep) {
   mr_scene_run_result *r = u->r;
-  mr_world_stats stats;
-  mr_world_get_stats(u->sw.world, &stats);
+  mr_stats stats;
+  mr_world_stats(u->sw.world, &stats);
   mr_scene_step row = {mr_world_time(u->sw.world), stats.last_dt, stats.last_error, rep->steps,
                        rep->rejected, rep->divergences > 0, max_speed(&u->sw)};
   mr_world_positions(u->sw.world, u->xyz, u->n);
