@@ -4,6 +4,7 @@
 
 #include <ctype.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,8 +34,14 @@ static int read_resets(mr_reader *r, const mr_ynode *v) {
   return 0;
 }
 
+#define EXPECT(field) offsetof(mr_scene_expect, field)
+
 static int read_rest(mr_reader *r, const mr_ynode *v) {
   static const char *const keys[] = {"particles", "settle", "creep", "jitter", NULL};
+  static const mr_scene_field fields[] = {
+      {"settle", MR_SCENE_FIELD_NONNEG, EXPECT(settle), 0, 0},
+      {"creep", MR_SCENE_FIELD_POSITIVE, EXPECT(creep), 0, 0},
+      {"jitter", MR_SCENE_FIELD_POSITIVE, EXPECT(jitter), 0, 0}};
   mr_scene_expect *e = &r->scene->expect;
   if (mr_scene_read_map(r, v, "expect.rest", keys) != 0)
     return -1;
@@ -45,15 +52,12 @@ static int read_rest(mr_reader *r, const mr_ynode *v) {
   if (e->watch == NULL)
     return mr_scene_read_fail(r, p, MR_SCENE_ERR_NOMEM, "out of memory");
   for (size_t i = 0; i < p->count; i++) {
-    if (mr_scene_read_particle_ref(r, p->items[i], &e->watch[i]) != 0)
+    if (mr_scene_read_particle(r, p->items[i], &e->watch[i]) != 0)
       return -1;
     e->n_watch = i + 1;
   }
-  if (mr_scene_read_need(r, v, "settle", "expect.rest") == NULL)
-    return -1;
-  if (mr_scene_read_nonneg_key(r, v, "settle", &e->settle) != 0 ||
-      mr_scene_read_positive_key(r, v, "creep", &e->creep) != 0 ||
-      mr_scene_read_positive_key(r, v, "jitter", &e->jitter) != 0)
+  if (mr_scene_read_need(r, v, "settle", "expect.rest") == NULL ||
+      mr_scene_read_fields(r, v, fields, 3, e) != 0)
     return -1;
   if (isnan(e->creep) && isnan(e->jitter))
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected creep or jitter in expect.rest");
@@ -84,6 +88,10 @@ int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {"finite",     "max_deviation", "resets",
                                      "min_mean_dt", "min_string_stretch", "rest",
                                      "load_error", "state_hash", NULL};
+  static const mr_scene_field fields[] = {
+      {"max_deviation", MR_SCENE_FIELD_POSITIVE, EXPECT(max_deviation), 0, 0},
+      {"min_mean_dt", MR_SCENE_FIELD_POSITIVE, EXPECT(min_mean_dt), 0, 0},
+      {"min_string_stretch", MR_SCENE_FIELD_POSITIVE, EXPECT(min_string_stretch), 0, 0}};
   mr_scene_expect *e = &r->scene->expect;
   if (mr_scene_read_map(r, n, "expect", keys) != 0)
     return -1;
@@ -101,9 +109,7 @@ int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
   }
   if ((v = mr_scene_yaml_get(n, "finite")) != NULL && mr_scene_read_bool(r, v, "finite", &e->finite) != 0)
     return -1;
-  if (mr_scene_read_positive_key(r, n, "max_deviation", &e->max_deviation) != 0 ||
-      mr_scene_read_positive_key(r, n, "min_mean_dt", &e->min_mean_dt) != 0 ||
-      mr_scene_read_positive_key(r, n, "min_string_stretch", &e->min_string_stretch) != 0)
+  if (mr_scene_read_fields(r, n, fields, 3, e) != 0)
     return -1;
   if ((v = mr_scene_yaml_get(n, "resets")) != NULL && read_resets(r, v) != 0)
     return -1;

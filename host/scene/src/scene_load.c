@@ -3,17 +3,10 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static const char *const effect_names[MR_SCENE_FX_COUNT] = {
-    "gravity",     "drag",  "springs",        "strings",           "antigravity", "triggered",
-    "sine_springs", "constraints", "floor", "self_collision", "string_correction", "control"};
-
-const char *mr_scene_effect_name(unsigned bit_index) {
-  return bit_index < MR_SCENE_FX_COUNT ? effect_names[bit_index] : "?";
-}
 
 /* Sections the theater will add to the same files; refusing them now keeps a
  * newer file from being half-understood by this version. */
@@ -23,33 +16,27 @@ static const char *const theater_sections[] = {"models", "lights", "camera", "st
 
 static void defaults(mr_scene *s) {
   memset(s, 0, sizeof *s);
-  s->gravity[1] = -9.81;
-  mr_scene_settings *st = &s->settings;
-  st->ks = st->kd = st->tolerance = NAN;
-  st->dt_initial = st->dt_min = st->dt_max = NAN;
-  st->threshold_min = st->threshold_max = st->divergence = st->deviation_length = NAN;
-  st->contact_slop = st->rest_speed = st->string_max_stretch = NAN;
+  s->world = mr_default_world_def();
+  s->floor.def = mr_default_plane_def();
+  s->control_pose = mr_pose_identity();
+  memcpy(s->track.turn, s->control_pose.orientation, sizeof s->track.turn);
   s->duration = 10.0;
   s->fps = 0.0;
-  s->expect.finite = true;
-  s->expect.max_deviation = NAN;
-  s->expect.resets_min = -1;
-  s->expect.resets_max = -1;
-  s->expect.min_mean_dt = NAN;
-  s->expect.min_string_stretch = NAN;
-  s->expect.settle = NAN;
-  s->expect.creep = NAN;
-  s->expect.jitter = NAN;
+  mr_scene_expect *e = &s->expect;
+  e->finite = true;
+  e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
+  e->settle = e->creep = e->jitter = NAN;
+  e->resets_min = e->resets_max = -1;
 }
 
 static int read_sim(mr_reader *r, const mr_ynode *sim) {
   static const char *const keys[] = {"duration", "fps", NULL};
+  static const mr_scene_field fields[] = {
+      {"duration", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, duration), 0, 0},
+      {"fps", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, fps), 0, 0}};
   if (mr_scene_read_map(r, sim, "sim", keys) != 0)
     return -1;
-  if (mr_scene_read_positive_key(r, sim, "duration", &r->scene->duration) != 0 ||
-      mr_scene_read_positive_key(r, sim, "fps", &r->scene->fps) != 0)
-    return -1;
-  return 0;
+  return mr_scene_read_fields(r, sim, fields, 2, r->scene);
 }
 
 static int read_root(mr_reader *r, const mr_ynode *root) {
@@ -183,16 +170,12 @@ void mr_scene_free(mr_scene *s) {
   free(s->particles);
   free(s->distances);
   for (size_t i = 0; i < s->n_groups; i++)
-    free(s->groups[i].members);
+    free((int *)s->groups[i].def.particles);
   free(s->groups);
   for (size_t i = 0; i < s->n_parts; i++)
-    free(s->parts[i].members);
+    free((int *)s->parts[i].def.particles);
   free(s->parts);
-  free(s->springs);
-  free(s->strings);
-  free(s->sine_springs);
-  free(s->antigravities);
-  free(s->triggered);
+  free(s->forces);
   free(s->control_points);
   free(s->track.keys);
   free(s->expect.watch);

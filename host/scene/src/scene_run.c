@@ -35,16 +35,16 @@ static double max_speed(const mr_scene_world *sw) {
  * strings whose file states a rest length above 0 have a ratio. */
 static double string_stretch(const mr_scene *s, const mr_scene_world *sw) {
   double m = 0;
-  for (size_t i = 0; i < s->n_strings; i++) {
-    const mr_scene_string *str = &s->strings[i];
+  for (size_t i = 0; i < s->n_forces; i++) {
+    const mr_string_def *str = &s->forces[i].def.string;
     double a[3], b[3];
-    if (!(str->rest > 0))
+    if (s->forces[i].kind != MR_EFFECT_STRINGS || !(str->rest_length > 0))
       continue;
-    if (mr_world_particle_state(sw->world, sw->control_ids[str->control], a, NULL) != MR_OK ||
-        mr_world_particle_state(sw->world, sw->particle_ids[str->particle], b, NULL) != MR_OK)
+    if (mr_world_particle_state(sw->world, str->frame_particle, a, NULL) != MR_OK ||
+        mr_world_particle_state(sw->world, str->puppet_particle, b, NULL) != MR_OK)
       continue;
     double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    m = fmax(m, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / str->rest);
+    m = fmax(m, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / str->rest_length);
   }
   return m;
 }
@@ -62,7 +62,7 @@ static void watch(watcher *w, double t, mr_scene_run_result *r) {
     return;
   for (size_t k = 0; k < e->n_watch; k++) {
     double p[3], v[3];
-    mr_world_particle_state(w->sw->world, w->sw->particle_ids[e->watch[k]], p, v);
+    mr_world_particle_state(w->sw->world, e->watch[k], p, v);
     if (!w->anchored) {
       memcpy(&w->anchor[3 * k], p, sizeof p);
       continue;
@@ -77,9 +77,8 @@ static void watch(watcher *w, double t, mr_scene_run_result *r) {
 
 /* The frame heads for the track's pose at time t, reached at t (§6.2). */
 static void place_frame(const mr_scene *s, mr_scene_world *sw, double t) {
-  mr_scene_pose pose;
-  mr_scene_control_pose_at(s, t, &pose);
-  mr_pose goal = mr_scene_pose_to_physics(&pose);
+  mr_pose goal;
+  mr_scene_control_pose_at(s, t, &goal);
   mr_world_set_frame_target(sw->world, sw->frame, &goal, t);
 }
 
@@ -115,8 +114,7 @@ static mr_scene_status run_open(run *u, mr_scene_error *err) {
     return rc;
   u->duration = u->opts && u->opts->duration > 0 ? u->opts->duration : s->duration;
   u->fps = s->fps;
-  mr_world_def def = mr_default_world_def();
-  u->dt_max = isnan(s->settings.dt_max) ? def.dt_max : s->settings.dt_max;
+  u->dt_max = s->world.dt_max;
   u->n = mr_world_particle_count(u->sw.world);
   u->xyz = malloc((size_t)(u->n > 0 ? u->n : 1) * 3 * sizeof *u->xyz);
   double *anchor = calloc(s->expect.n_watch ? 3 * s->expect.n_watch : 1, sizeof *anchor);
