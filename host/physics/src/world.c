@@ -303,8 +303,10 @@ void mr_world_destroy(mr_world *w)
                     w->local, w->puppet, w->frame, w->frame_state, w->puppet_mass,
                     w->part_adjacent, w->trees, w->nodes, w->leaf_c, w->contact_active,
                     w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot,
-                    w->row_bias, w->row_jv, w->row_contact, w->f, w->tmp3n, w->pa, w->fric,
-                    w->x0, w->v0, w->x1, w->v1, w->xs, w->vs, w->k};
+                    w->row_bias, w->row_jv, w->row_contact, w->fric, w->x1, w->v1,
+                    w->scratch.x0, w->scratch.v0, w->scratch.xs, w->scratch.vs, w->scratch.k,
+                    w->scratch.force, w->scratch.constraint_force, w->scratch.acc_try,
+                    w->scratch.impact_momentum, w->scratch.impact_dv, w->scratch.v_try};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
     free(arrays[i]);
   for (int i = 0; i < w->curves.n; i++) {
