@@ -102,6 +102,7 @@ struct mr_world {
   int ntrees; mr_tree *trees;
   int nnodes; mr_tree_node *nodes;
   double *leaf_c;                /* 3 per leaf, refitted per detection */
+  int *tree_stack, cap_tree_stack; /* node pairs of a traversal */
 
   /* the passes this world runs, built at creation (requirement 8) */
   int n_force_passes; mr_force_pass force_passes[MR_MAX_PASSES]; mr_pass force_pass_ids[MR_MAX_PASSES];

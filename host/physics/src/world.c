@@ -301,7 +301,7 @@ void mr_world_destroy(mr_world *w)
     return;
   void *arrays[] = {w->x, w->v, w->mass, w->inv_mass, w->radius, w->x_start, w->v_start,
                     w->local, w->puppet, w->frame, w->frame_state, w->puppet_mass,
-                    w->part_adjacent, w->trees, w->nodes, w->leaf_c, w->contact_active,
+                    w->part_adjacent, w->tree_stack, w->trees, w->nodes, w->leaf_c, w->contact_active,
                     w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot,
                     w->row_bias, w->row_jv, w->row_contact, w->fric, w->x1, w->v1,
                     w->scratch.x0, w->scratch.v0, w->scratch.xs, w->scratch.vs, w->scratch.k,
