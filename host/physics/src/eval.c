@@ -54,7 +54,7 @@ int mr_solve_rows(mr_world *w, int assemble)
 {
   int k = w->J.rows;
   if (assemble) {
-    if (mr_assemble_jmjt(&w->J, w->inv_mass, &w->A) != 0)
+    if (mr_csr_assemble(&w->A, &w->J, w->inv_mass) != 0)
       return -1;
     soften_contacts(w);
   }

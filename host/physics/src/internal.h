@@ -5,6 +5,7 @@
 #define MR_PHYSICS_INTERNAL_H
 
 #include "mr_physics.h"
+#include "mr_solver.h"
 
 #include <stdarg.h>
 
@@ -123,7 +124,7 @@ struct mr_world {
   mr_jac J;
   mr_csr A;
   mr_solver *solver;
-  mr_solve_opts opts;
+  mr_solve_def opts;
   int cap_rows;
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
   int *row_contact;              /* −1 constraint row, else contact index */

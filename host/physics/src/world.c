@@ -261,7 +261,7 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
                      "max_steps_per_call and solver_max_iterations must be >= 1");
   if ((unsigned)def->integrator >= MR_INTEGRATOR_COUNT)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown integrator");
-  if ((unsigned)def->solver > MR_SOLVE_EIGEN)
+  if ((unsigned)def->solver >= MR_SOLVE_METHOD_COUNT)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown solver method");
   if (def->effects & ~(uint32_t)MR_EFFECT_ALL)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown effect bits");
@@ -275,7 +275,7 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
     free(w);
     return def_error(msg, msg_size, MR_ERR_NOMEM, "out of memory");
   }
-  w->opts = mr_solve_opts_default();
+  w->opts = mr_default_solve_def();
   w->opts.method = def->solver;
   w->opts.tol = def->solver_tolerance;
   w->opts.max_iter = def->solver_max_iterations;

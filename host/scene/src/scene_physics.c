@@ -1,6 +1,7 @@
 /* The `physics:` section: effects, settings, particles and constraints.
  * Forces are in scene_forces.c, groups and parts in scene_groups.c, the
  * control frame in scene_control.c. */
+#include "mr_solve_method.h"
 #include "scene_read.h"
 
 #include <math.h>
@@ -122,7 +123,7 @@ static int read_solver(mr_reader *r, const mr_ynode *n) {
                                      "tolerance",  "max_iterations", NULL};
   static const char *const integrators[] = {"rk4", "midpoint", "semi-implicit-euler",
                                             "euler", NULL};
-  static const char *const methods[] = {"ldlt", "gauss-seidel", "cg", "eigen", NULL};
+  const char *const *methods = mr_solve_method_names();
   if (rd_map(r, n, "physics.solver", keys) != 0)
     return -1;
   mr_scene_settings *s = &r->scene->settings;
