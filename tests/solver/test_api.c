@@ -21,7 +21,7 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state)
     test_system s;
     test_system_random(&s, 30, 5);
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[30], x[30];
     test_rng rng = { 6 };
     test_system_consistent_rhs(&s, &rng, b);
@@ -39,7 +39,7 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state)
                 b[12] = -INFINITY;
             for (int i = 0; i < 30; i++)
                 x[i] = 1234.5 + i;
-            mr_solve_opts o = mr_solve_opts_default();
+            mr_solve_def o = mr_default_solve_def();
             o.method = methods[m];
             mr_solve_result r;
             assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, &r), MR_SOLVE_NONFINITE);
@@ -52,7 +52,7 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state)
     }
     /* A NaN mass reaches A through the assembly and is caught there. */
     s.inv_mass[3] = NAN;
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     assert_int_equal(mr_solver_solve(solver, NULL, &A, b, x, NULL), MR_SOLVE_NONFINITE);
     mr_solver_destroy(solver);
     mr_csr_free(&A);
@@ -66,9 +66,9 @@ static void empty_and_zero_systems(void **state)
     mr_jac J = { 0 };
     mr_csr A = { 0 };
     assert_int_equal(mr_jac_reset(&J, 3), 0);
-    assert_int_equal(mr_assemble_jmjt(&J, (const double[]){ 1, 1, 1 }, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, (const double[]){ 1, 1, 1 }), 0);
     for (int m = 0; m < N_METHODS; m++) {
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         mr_solve_result r = { 9, 9, 9.0, 9 };
         assert_int_equal(mr_solver_solve(solver, &o, &A, NULL, NULL, &r), MR_SOLVE_OK);
@@ -79,12 +79,12 @@ static void empty_and_zero_systems(void **state)
     /* b = 0 gives λ = 0 whatever the warm start. */
     test_system s;
     test_system_random(&s, 20, 8);
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[20] = { 0 }, x[20];
     for (int m = 0; m < N_METHODS; m++) {
         for (int i = 0; i < 20; i++)
             x[i] = 3.0;
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_OK);
         for (int i = 0; i < 20; i++)
@@ -96,10 +96,10 @@ static void empty_and_zero_systems(void **state)
     mr_jac_begin_row(&J);
     mr_jac_add(&J, 0, d);
     mr_jac_begin_row(&J);
-    assert_int_equal(mr_assemble_jmjt(&J, (const double[]){ 0, 0 }, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, (const double[]){ 0, 0 }), 0);
     for (int m = 0; m < N_METHODS; m++) {
         double bz[2] = { 1, -1 }, xz[2] = { 5, 5 };
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         mr_solve_result r;
         assert_int_equal(mr_solver_solve(solver, &o, &A, bz, xz, &r), MR_SOLVE_DEPENDENT);
@@ -120,14 +120,14 @@ static void iteration_cap_reports_not_converged(void **state)
     test_system s;
     test_system_random(&s, 200, 9);
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[200], x[200];
     test_rng rng = { 10 };
     test_system_consistent_rhs(&s, &rng, b);
     mr_solver *solver = mr_solver_create();
     for (int m = 0; m < 2; m++) {
         memset(x, 0, sizeof x);
-        mr_solve_opts o = mr_solve_opts_default();
+        mr_solve_def o = mr_default_solve_def();
         o.method = methods[m];
         o.max_iter = 5;
         mr_solve_result r;
@@ -144,7 +144,7 @@ static void iteration_cap_reports_not_converged(void **state)
     /* A non-finite warm start is replaced by zero, not propagated. */
     for (int i = 0; i < 200; i++)
         x[i] = i % 2 ? NAN : 1.0;
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     o.method = MR_SOLVE_CG;
     assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_OK);
     for (int i = 0; i < 200; i++)
@@ -171,7 +171,7 @@ static void names_parse_and_defaults(void **state)
     assert_int_equal(out, MR_SOLVE_CG);
     assert_string_equal(mr_solve_method_name((mr_solve_method)17), "unknown");
 
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     assert_int_equal(o.method, MR_SOLVE_LDLT);
     assert_true(o.tol == 1e-10 && o.max_iter == 1000 && o.pivot_tol == 1e-12);
 
@@ -182,7 +182,7 @@ static void names_parse_and_defaults(void **state)
     mr_jac_reset(&J, 1);
     mr_jac_begin_row(&J);
     mr_jac_add(&J, 0, d);
-    assert_int_equal(mr_assemble_jmjt(&J, (const double[]){ 2.0 }, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, (const double[]){ 2.0 }), 0);
     double b[1] = { 3 }, x[1] = { 0 };
     o.method = (mr_solve_method)9;
     assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_UNAVAILABLE);
@@ -211,13 +211,13 @@ static void workspace_reuse_matches_a_fresh_solver(void **state)
         test_system_random(&s, sizes[t], seeds[t]);
         if (t == 3)
             test_system_copy_row(&s, 100); /* 301 rows: one dependent */
-        assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+        assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
         double *b = malloc((size_t)s.k * sizeof *b);
         double *x1 = malloc((size_t)s.k * sizeof *x1), *x2 = malloc((size_t)s.k * sizeof *x2);
         test_rng rng = { seeds[t] + 40 };
         test_system_consistent_rhs(&s, &rng, b);
         for (int m = 0; m < N_METHODS; m++) {
-            mr_solve_opts o = mr_solve_opts_default();
+            mr_solve_def o = mr_default_solve_def();
             o.method = methods[m];
             o.max_iter = 100000;
             memset(x1, 0, (size_t)s.k * sizeof *x1);
@@ -235,11 +235,11 @@ static void workspace_reuse_matches_a_fresh_solver(void **state)
         /* Same pattern, new values: the LDLᵀ's cached ordering must not
          * hold stale numbers. Scale every mass by 3: λ scales by 1/3. */
         if (t == 0) {
-            mr_solve_opts o = mr_solve_opts_default();
+            mr_solve_def o = mr_default_solve_def();
             assert_int_equal(mr_solver_solve(reused, &o, &A, b, x1, NULL), MR_SOLVE_OK);
             for (int p = 0; p < s.np; p++)
                 s.inv_mass[p] *= 3.0;
-            assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+            assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
             assert_int_equal(mr_solver_solve(reused, &o, &A, b, x2, NULL), MR_SOLVE_OK);
             for (int i = 0; i < s.k; i++)
                 assert_near(x2[i], x1[i] / 3.0, 1e-9 * (1.0 + (x1[i] < 0 ? -x1[i] : x1[i])));

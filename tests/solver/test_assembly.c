@@ -137,7 +137,7 @@ static void assembly_matches_dense_jmjt(void **state)
     for (size_t t = 0; t < sizeof sizes / sizeof sizes[0]; t++) {
         test_system s;
         test_system_random(&s, sizes[t], 100 + t);
-        assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+        assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
         check_against_dense(&s, &A);
         /* Sparse: rows meet only through shared particles. */
         if (sizes[t] == 150)
@@ -168,7 +168,7 @@ static void assembly_handles_fixed_particles_and_zero_rows(void **state)
     memset(s.dense_j + (size_t)s.k * 12, 0, 12 * sizeof *s.dense_j);
     s.k++;
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     check_against_dense(&s, &A);
     /* Row 2 (two fixed particles) and row 4 (empty) keep only their zero
      * diagonal. */
@@ -185,7 +185,7 @@ static void assembly_of_an_empty_jacobian(void **state)
     mr_jac J = { 0 };
     mr_csr A = { 0 };
     assert_int_equal(mr_jac_reset(&J, 0), 0);
-    assert_int_equal(mr_assemble_jmjt(&J, NULL, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, NULL), 0);
     assert_int_equal(A.n, 0);
     assert_int_equal(A.nnz, 0);
     assert_int_equal(A.row_ptr[0], 0);
@@ -194,9 +194,9 @@ static void assembly_of_an_empty_jacobian(void **state)
     assert_int_equal(mr_jac_reset(&J, 1), 0);
     mr_jac_begin_row(&J);
     mr_jac_add(&J, 0, d);
-    assert_int_equal(mr_assemble_jmjt(&J, NULL, &A), MR_SOLVE_UNAVAILABLE);
-    assert_int_equal(mr_assemble_jmjt(NULL, d, &A), MR_SOLVE_UNAVAILABLE);
-    assert_int_equal(mr_assemble_jmjt(&J, d, NULL), MR_SOLVE_UNAVAILABLE);
+    assert_int_equal(mr_csr_assemble(&A, &J, NULL), MR_SOLVE_UNAVAILABLE);
+    assert_int_equal(mr_csr_assemble(&A, NULL, d), MR_SOLVE_UNAVAILABLE);
+    assert_int_equal(mr_csr_assemble(NULL, &J, d), MR_SOLVE_UNAVAILABLE);
     mr_csr_free(&A);
     mr_jac_free(&J);
 }

@@ -20,9 +20,9 @@
 static const mr_solve_method methods[] = { MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG, MR_SOLVE_LDLT, MR_SOLVE_EIGEN };
 #define N_METHODS 4
 
-static mr_solve_opts opts_for(mr_solve_method m)
+static mr_solve_def opts_for(mr_solve_method m)
 {
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     o.method = m;
     o.tol = 1e-12;
     o.max_iter = 100000;
@@ -62,19 +62,19 @@ static void check_methods(const test_system *full, const double *b_full, const t
 {
     mr_solver *solver = mr_solver_create();
     mr_csr A = { 0 }, Aref = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&full->J, full->inv_mass, &A), 0);
-    assert_int_equal(mr_assemble_jmjt(&ref->J, ref->inv_mass, &Aref), 0);
+    assert_int_equal(mr_csr_assemble(&A, &full->J, full->inv_mass), 0);
+    assert_int_equal(mr_csr_assemble(&Aref, &ref->J, ref->inv_mass), 0);
     int n3 = 3 * full->J.n_particles;
     double *lam_ref = calloc((size_t)ref->k, sizeof *lam_ref), *lam = calloc((size_t)full->k, sizeof *lam);
     double *f_ref = malloc((size_t)n3 * sizeof *f_ref), *f = malloc((size_t)n3 * sizeof *f);
-    mr_solve_opts oe = opts_for(MR_SOLVE_EIGEN);
+    mr_solve_def oe = opts_for(MR_SOLVE_EIGEN);
     mr_solve_result r;
     assert_int_equal(mr_solver_solve(solver, &oe, &Aref, b_ref, lam_ref, &r), MR_SOLVE_OK);
     test_dense_jt(ref, lam_ref, f_ref);
     double lam_ref_norm = test_norm(ref->k, lam_ref), f_ref_norm = test_norm(n3, f_ref);
 
     for (int m = 0; m < N_METHODS; m++) {
-        mr_solve_opts o = opts_for(methods[m]);
+        mr_solve_def o = opts_for(methods[m]);
         memset(lam, 0, (size_t)full->k * sizeof *lam);
         int st = mr_solver_solve(solver, &o, &A, b_full, lam, &r);
         int direct = methods[m] == MR_SOLVE_LDLT || methods[m] == MR_SOLVE_EIGEN;
@@ -222,13 +222,13 @@ static void cg_reports_an_inconsistent_hidden_dependency(void **state)
     test_system_pin(&s, 2, ey);
     test_system_pin(&s, 2, exy);
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[9], lam[9] = { 0 };
     test_rng rng = { 42 };
     test_system_consistent_rhs(&s, &rng, b);
     b[8] += 1.0;
     mr_solver *solver = mr_solver_create();
-    mr_solve_opts o = opts_for(MR_SOLVE_CG);
+    mr_solve_def o = opts_for(MR_SOLVE_CG);
     mr_solve_result r;
     int st = mr_solver_solve(solver, &o, &A, b, lam, &r);
     printf("cg, inconsistent three-row dependency: status %d dependent %d iterations %d |lam| %.3f\n", st,

@@ -19,9 +19,9 @@ static const uint64_t seeds[] = { 1, 2, 3 };
 /* The iterative solvers are run to a residual tight enough that the
  * remaining error in λ is below the bound even on the worst-conditioned of
  * these systems; the defaults (tol 1e-10) are for the physics. */
-static mr_solve_opts opts_for(mr_solve_method m)
+static mr_solve_def opts_for(mr_solve_method m)
 {
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     o.method = m;
     if (m == MR_SOLVE_GAUSS_SEIDEL) {
         o.tol = 1e-12;
@@ -48,7 +48,7 @@ static void oracle_agrees_on_random_systems(void **state)
             uint64_t seed = seeds[ri] * 1000u + (uint64_t)sizes[si];
             test_system_random(&s, sizes[si], seed);
             assert_int_equal(s.k, sizes[si]);
-            assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+            assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
             double *b = malloc((size_t)s.k * sizeof *b);
             double *xe = calloc((size_t)s.k, sizeof *xe);
             double *x = calloc((size_t)s.k, sizeof *x);
@@ -61,14 +61,14 @@ static void oracle_agrees_on_random_systems(void **state)
                 for (int i = 0; i < s.k; i++)
                     b[i] = test_rng_range(&rng, -1.0, 1.0);
 
-            mr_solve_opts oe = opts_for(MR_SOLVE_EIGEN);
+            mr_solve_def oe = opts_for(MR_SOLVE_EIGEN);
             mr_solve_result re;
             assert_int_equal(mr_solver_solve(solver, &oe, &A, b, xe, &re), MR_SOLVE_OK);
             assert_int_equal(re.dependent, 0);
             assert_true(re.residual < 1e-12);
 
             for (int m = 0; m < 3; m++) {
-                mr_solve_opts o = opts_for(methods[m]);
+                mr_solve_def o = opts_for(methods[m]);
                 mr_solve_result r;
                 memset(x, 0, (size_t)s.k * sizeof *x);
                 int st = mr_solver_solve(solver, &o, &A, b, x, &r);
@@ -109,12 +109,12 @@ static void warm_start_at_the_answer_needs_no_sweeps(void **state)
     test_system s;
     test_system_random(&s, 120, 77);
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double b[120], x[120] = { 0 };
     test_rng rng = { 78 };
     test_system_consistent_rhs(&s, &rng, b);
     mr_solver *solver = mr_solver_create();
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     mr_solve_result r;
     o.method = MR_SOLVE_EIGEN;
     assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, &r), MR_SOLVE_OK);

@@ -34,7 +34,7 @@ static void orderings_are_permutations(void **state)
     for (size_t t = 0; t < sizeof sizes / sizeof sizes[0]; t++) {
         test_system s;
         test_system_random(&s, sizes[t], 300 + t);
-        assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+        assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
         int n = A.n;
         int *perm = malloc((size_t)n * sizeof *perm), *iw = malloc(2 * (size_t)n * sizeof *iw);
         uint64_t *bits = malloc((size_t)n * (((size_t)n + 63) / 64) * sizeof *bits);
@@ -74,13 +74,13 @@ static void arrowhead_gets_no_fill(void **state)
         mr_jac_add(&J, p, p % 2 ? d : e);
     }
     mr_csr A = { 0 };
-    assert_int_equal(mr_assemble_jmjt(&J, inv_mass, &A), 0);
+    assert_int_equal(mr_csr_assemble(&A, &J, inv_mass), 0);
     int lower = (A.nnz - A.n) / 2;
     double b[N + 1], x[N + 1] = { 0 }, xe[N + 1] = { 0 };
     for (int i = 0; i <= N; i++)
         b[i] = 1.0 + i % 5;
     mr_solver *s = mr_solver_create();
-    mr_solve_opts o = mr_solve_opts_default();
+    mr_solve_def o = mr_default_solve_def();
     assert_int_equal(mr_solver_solve(s, &o, &A, b, x, NULL), MR_SOLVE_OK);
     assert_int_equal((int)s->ldlt.nnz_l, lower);
     o.method = MR_SOLVE_EIGEN;
@@ -132,7 +132,7 @@ static void chosen_ordering_fills_least(void **state)
         test_system s;
         test_system_random(&s, n, 1000 + (uint64_t)n);
         mr_csr A = { 0 };
-        assert_int_equal(mr_assemble_jmjt(&s.J, s.inv_mass, &A), 0);
+        assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
         double *b = calloc((size_t)n, sizeof *b), *x = calloc((size_t)n, sizeof *x);
         int *perm = malloc((size_t)n * sizeof *perm), *iw = malloc(2 * (size_t)n * sizeof *iw);
         for (int i = 0; i < n; i++)

@@ -35,7 +35,7 @@
 #include <stdint.h>
 
 #include "mr_pose.h"
-#include "mr_solver.h"
+#include "mr_solve_method.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -5,6 +5,7 @@
 #define MR_PHYSICS_INTERNAL_H
 
 #include "mr_physics.h"
+#include "mr_solver.h"
 
 #include <stdarg.h>
 
@@ -96,12 +97,13 @@ struct mr_world {
   mr_list leaves;                 /* mr_leaf */
 
   /* derived at finalize */
-  int npuppets;
+  int npuppets, cap_puppets;
   double *puppet_mass;
   unsigned char *part_adjacent;  /* nparts × nparts */
   int ntrees; mr_tree *trees;
   int nnodes; mr_tree_node *nodes;
   double *leaf_c;                /* 3 per leaf, refitted per detection */
+  int *tree_stack, cap_tree_stack; /* node pairs of a traversal */
 
   /* the passes this world runs, built at creation (requirement 8) */
   int n_force_passes; mr_force_pass force_passes[MR_MAX_PASSES]; mr_pass force_pass_ids[MR_MAX_PASSES];
@@ -112,24 +114,38 @@ struct mr_world {
   /* contacts: found before a step and held during it (resting set), and a
    * probe list for the end-of-step penetration test */
   mr_contact_list contacts, probe;
-  int cap_active; unsigned char *contact_active; double *contact_pre;
+  int cap_contact;               /* what the four per-contact arrays hold */
+  unsigned char *contact_active; /* in the system being solved (eq. 9 or 8) */
+  double *contact_pre;           /* χ̇⁻ before an impulse */
   double *fric;                  /* 3 per contact: resting-contact friction */
-  int cap_valid; unsigned char *probe_valid;  /* offenders being located */
-  double h_step;                 /* the step being integrated (friction) */
+  unsigned char *probe_valid;    /* per probe contact: being located in time */
 
-  /* solve workspace */
+  /* solve workspace: rows of eq. 8 / eq. 9 */
   mr_jac J;
   mr_csr A;
   mr_solver *solver;
-  mr_solve_opts opts;
+  mr_solve_def opts;
   int cap_rows;
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
   int *row_contact;              /* −1 constraint row, else contact index */
-  int cap_scratch;               /* particles the 3n scratch below holds */
-  double *f, *tmp3n, *pa;        /* 3n scratch */
 
-  /* integrator scratch: state copies and stage derivatives */
-  double *x0, *v0, *x1, *v1, *xs, *vs, *k;  /* k: 8 × 3n for RK4 */
+  /* The end state of a step, traded with x and v when it is accepted. */
+  double *x1, *v1;
+
+  /* Per-step scratch, 3n each unless said (mr_world_ensure_ready sizes
+   * them). Each buffer has one meaning throughout a step. */
+  int cap_scratch;               /* particles the scratch holds */
+  struct {
+    double *x0, *v0;             /* the state at the start of the step */
+    double *xs, *vs;             /* integrator stage state */
+    double *k;                   /* stage derivatives, 8 × 3n (RK4) */
+    double *force;               /* F of the evaluation under way */
+    double *constraint_force;    /* Jᵀ λ of the evaluation under way */
+    double *acc_try;             /* a + M⁻¹ Jᵀ λ within friction rounds */
+    double *impact_momentum;     /* L_a, friction at an impact (eq. 9) */
+    double *impact_dv;           /* M⁻¹ L_a */
+    double *v_try;               /* q̇⁺ of a trial impulse */
+  } scratch;
 
   /* ATS */
   double dt_next;
@@ -211,8 +227,9 @@ void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double
 int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out);
 int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out);
 
-/* eval.c: accelerations for a state, eq. 1 and eq. 8 */
-int mr_eval(mr_world *w, double t, double *x, double *v, double *a);
+/* eval.c: accelerations for a state, eq. 1 and eq. 8, during a step of
+ * length h (static friction aims to stop sliding within h/2). */
+int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a);
 int mr_solve_reserve(mr_world *w, int rows);
 /* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda. */
 int mr_solve_rows(mr_world *w, int assemble);

@@ -254,69 +254,73 @@ static double node_gap(const mr_tree_node *a, const mr_tree_node *b)
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - a->r - b->r;
 }
 
+/* Two leaves within the gap: a contact, unless their parts are adjacent. */
+static int leaf_pair(mr_world *w, int leaf_a, int leaf_b, mr_contact_list *out)
+{
+  const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, leaf_a), *lb = &MR_AT(w->leaves, mr_leaf, leaf_b);
+  if (w->part_adjacent[la->part * w->parts.n + lb->part])
+    return 0;
+  const mr_part *pa = &MR_AT(w->parts, mr_part, la->part), *pb = &MR_AT(w->parts, mr_part, lb->part);
+  double e = 0.5 * (pa->restitution + pb->restitution);
+  double mu = 0.5 * (pa->friction + pb->friction);
+  return mr_contact_push(out, MR_CONTACT_SPHERES, leaf_a, leaf_b, e, mu);
+}
+
+/* The child pairs of the node pair (a, b) to test next: (n, n) of one tree
+ * expands to its three distinct pairs, otherwise the larger node (or the
+ * one that is not a leaf) is split. */
+static int expand(const mr_world *w, int a, int b, int same, int pairs[3][2])
+{
+  const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
+  if (a == b && same) {
+    pairs[0][0] = na->left, pairs[0][1] = na->left;
+    pairs[1][0] = na->right, pairs[1][1] = na->right;
+    pairs[2][0] = na->left, pairs[2][1] = na->right;
+    return 3;
+  }
+  if (nb->leaf >= 0 || (na->leaf < 0 && na->r >= nb->r)) {
+    pairs[0][0] = na->left, pairs[0][1] = b;
+    pairs[1][0] = na->right, pairs[1][1] = b;
+  } else {
+    pairs[0][0] = a, pairs[0][1] = nb->left;
+    pairs[1][0] = a, pairs[1][1] = nb->right;
+  }
+  return 2;
+}
+
 /* Depth-first traversal of the node pair (a, b); same = a and b are the
- * same tree, so (n, n) expands to its three distinct child pairs. */
+ * same tree. */
 static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contact_list *out)
 {
-  int cap = 64, top = 0;
-  int stack_small[128];
-  int *stack = stack_small;
-  int *heap = NULL;
-  int rc = 0;
+  int top = 0;
+  if (mr_grow((void **)&w->tree_stack, &w->cap_tree_stack, 2, sizeof(int)) != 0)
+    return -1;
+  int *stack = w->tree_stack;
   stack[top++] = ra;
   stack[top++] = rb;
-  while (top > 0 && rc == 0) {
+  while (top > 0) {
     int b = stack[--top], a = stack[--top];
     const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
     if (!(a == b && same) && !(node_gap(na, nb) <= gap))
       continue;
-    int pairs[3][2];
-    int np = 0;
     if (na->leaf >= 0 && nb->leaf >= 0) {
-      if (a == b)
-        continue;
-      const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, na->leaf), *lb = &MR_AT(w->leaves, mr_leaf, nb->leaf);
-      if (w->part_adjacent[la->part * w->parts.n + lb->part])
-        continue;
-      double e = 0.5 * (MR_AT(w->parts, mr_part, la->part).restitution + MR_AT(w->parts, mr_part, lb->part).restitution);
-      double mu = 0.5 * (MR_AT(w->parts, mr_part, la->part).friction + MR_AT(w->parts, mr_part, lb->part).friction);
-      if (mr_contact_push(out, MR_CONTACT_SPHERES, na->leaf, nb->leaf, e, mu) != 0)
-        rc = -1;
+      if (a != b && leaf_pair(w, na->leaf, nb->leaf, out) != 0)
+        return -1;
       continue;
     }
-    if (a == b && same) {
-      pairs[0][0] = na->left, pairs[0][1] = na->left;
-      pairs[1][0] = na->right, pairs[1][1] = na->right;
-      pairs[2][0] = na->left, pairs[2][1] = na->right;
-      np = 3;
-    } else if (nb->leaf >= 0 || (na->leaf < 0 && na->r >= nb->r)) {
-      pairs[0][0] = na->left, pairs[0][1] = b;
-      pairs[1][0] = na->right, pairs[1][1] = b;
-      np = 2;
-    } else {
-      pairs[0][0] = a, pairs[0][1] = nb->left;
-      pairs[1][0] = a, pairs[1][1] = nb->right;
-      np = 2;
-    }
-    if (top + 2 * np > cap * 2) {
-      int ncap = cap * 2;
-      int *p = realloc(heap, (size_t)ncap * 2 * sizeof *p);
-      if (!p) {
-        rc = -1;
-        break;
-      }
-      if (!heap)
-        memcpy(p, stack_small, (size_t)top * sizeof *p);
-      heap = stack = p;
-      cap = ncap;
-    }
+    int pairs[3][2];
+    int np = expand(w, a, b, same, pairs);
+    /* The stack is the world's, kept between calls: it grows to the
+     * deepest traversal once and then the step allocates nothing. */
+    if (mr_grow((void **)&w->tree_stack, &w->cap_tree_stack, top + 2 * np, sizeof(int)) != 0)
+      return -1;
+    stack = w->tree_stack;
     for (int i = 0; i < np; i++) {
       stack[top++] = pairs[i][0];
       stack[top++] = pairs[i][1];
     }
   }
-  free(heap);
-  return rc;
+  return 0;
 }
 
 int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out)

@@ -261,7 +261,7 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
                      "max_steps_per_call and solver_max_iterations must be >= 1");
   if ((unsigned)def->integrator >= MR_INTEGRATOR_COUNT)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown integrator");
-  if ((unsigned)def->solver > MR_SOLVE_EIGEN)
+  if ((unsigned)def->solver >= MR_SOLVE_METHOD_COUNT)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown solver method");
   if (def->effects & ~(uint32_t)MR_EFFECT_ALL)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown effect bits");
@@ -275,7 +275,7 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
     free(w);
     return def_error(msg, msg_size, MR_ERR_NOMEM, "out of memory");
   }
-  w->opts = mr_solve_opts_default();
+  w->opts = mr_default_solve_def();
   w->opts.method = def->solver;
   w->opts.tol = def->solver_tolerance;
   w->opts.max_iter = def->solver_max_iterations;
@@ -301,10 +301,12 @@ void mr_world_destroy(mr_world *w)
     return;
   void *arrays[] = {w->x, w->v, w->mass, w->inv_mass, w->radius, w->x_start, w->v_start,
                     w->local, w->puppet, w->frame, w->frame_state, w->puppet_mass,
-                    w->part_adjacent, w->trees, w->nodes, w->leaf_c, w->contact_active,
+                    w->part_adjacent, w->tree_stack, w->trees, w->nodes, w->leaf_c, w->contact_active,
                     w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot,
-                    w->row_bias, w->row_jv, w->row_contact, w->f, w->tmp3n, w->pa, w->fric,
-                    w->x0, w->v0, w->x1, w->v1, w->xs, w->vs, w->k};
+                    w->row_bias, w->row_jv, w->row_contact, w->fric, w->x1, w->v1,
+                    w->scratch.x0, w->scratch.v0, w->scratch.xs, w->scratch.vs, w->scratch.k,
+                    w->scratch.force, w->scratch.constraint_force, w->scratch.acc_try,
+                    w->scratch.impact_momentum, w->scratch.impact_dv, w->scratch.v_try};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
     free(arrays[i]);
   for (int i = 0; i < w->curves.n; i++) {

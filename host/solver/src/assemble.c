@@ -6,196 +6,276 @@
  * assembly walks particle → rows lists instead of forming 3n-wide products.
  * The diagonal is always stored (a zero row of J still gets A_ii = 0), so
  * every solver finds its pivot without a search and can flag such a row as
- * dependent. */
-#include "mr_solver.h"
+ * dependent.
+ *
+ * A's pattern depends only on which particles each row of J names and on
+ * which particles are pinned (w_p = 0 adds nothing). The physics rebuilds J
+ * every evaluation with the same rows, so the plan keeps that pattern, the
+ * particle → rows lists and A's sorted columns, and a call that finds them
+ * unchanged only recomputes the numbers. */
+#include "solver_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-static int csr_reserve(mr_csr *A, int n, int nnz)
+struct mr_csr_plan {
+  mr_buf rp, col, val; /* A's arrays: A->row_ptr, col and val point here */
+  /* The pattern the plan was built for: J's rows, their particles, and
+   * which particles were pinned. */
+  int valid, rows, np, ne;
+  mr_buf jrp, jpart, pinned;
+  /* Particle → entries of J that name it (movable particles only): the
+   * transpose of J's pattern. */
+  mr_buf pstart, prow, pent;
+  mr_buf mark, cursor, ucol; /* scratch of the pattern build and the symmetrising copy */
+  mr_buf work;               /* one row of A, dense; zero between rows */
+  unsigned long builds;
+};
+
+#define INTS(b) ((int *)(b).p)
+
+static int pinned(const double *inv_mass, int p)
 {
-    /* row_ptr always has room for cap + 1 entries and cap >= n (the diagonal
-     * is stored), so one capacity governs all three arrays. */
-    int need = nnz > n ? nnz : n;
-    if (need <= A->cap && A->row_ptr)
-        return 0;
-    int cap = A->cap > 0 ? A->cap : 16;
-    while (cap < need)
-        cap *= 2;
-    int *rp = realloc(A->row_ptr, (size_t)(cap + 1) * sizeof *rp);
-    if (!rp)
-        return MR_SOLVE_ENOMEM;
-    A->row_ptr = rp;
-    int *col = realloc(A->col, (size_t)cap * sizeof *col);
-    if (!col)
-        return MR_SOLVE_ENOMEM;
-    A->col = col;
-    double *val = realloc(A->val, (size_t)cap * sizeof *val);
-    if (!val)
-        return MR_SOLVE_ENOMEM;
-    A->val = val;
-    A->cap = cap;
+  return !inv_mass || inv_mass[p] == 0.0;
+}
+
+static int same_source(const struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass,
+                       int ne)
+{
+  if (!pl->valid || pl->rows != J->rows || pl->np != J->n_particles || pl->ne != ne)
     return 0;
+  if (J->rows > 0 && memcmp(pl->jrp.p, J->row_ptr, (size_t)(J->rows + 1) * sizeof(int)) != 0)
+    return 0;
+  if (ne > 0 && memcmp(pl->jpart.p, J->particle, (size_t)ne * sizeof(int)) != 0)
+    return 0;
+  const unsigned char *pin = pl->pinned.p;
+  for (int p = 0; p < J->n_particles; p++)
+    if (pin[p] != pinned(inv_mass, p))
+      return 0;
+  return 1;
+}
+
+static int keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
+{
+  const int k = J->rows, np = J->n_particles;
+  if (mr_buf_reserve(&pl->jrp, (size_t)k + 1, sizeof(int)) ||
+      mr_buf_reserve(&pl->jpart, (size_t)ne, sizeof(int)) ||
+      mr_buf_reserve(&pl->pinned, (size_t)np, 1))
+    return MR_SOLVE_ENOMEM;
+  if (k > 0)
+    memcpy(pl->jrp.p, J->row_ptr, ((size_t)k + 1) * sizeof(int));
+  if (ne > 0)
+    memcpy(pl->jpart.p, J->particle, (size_t)ne * sizeof(int));
+  unsigned char *pin = pl->pinned.p;
+  for (int p = 0; p < np; p++)
+    pin[p] = (unsigned char)pinned(inv_mass, p);
+  pl->rows = k;
+  pl->np = np;
+  pl->ne = ne;
+  return 0;
+}
+
+/* Particle → (row, entry) lists by a counting sort over J's entries; a
+ * pinned particle gets an empty list. */
+static void particle_lists(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
+{
+  const int np = J->n_particles;
+  int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
+  memset(pstart, 0, ((size_t)np + 1) * sizeof *pstart);
+  for (int e = 0; e < ne; e++)
+    if (!pinned(inv_mass, J->particle[e]))
+      pstart[J->particle[e] + 1]++;
+  for (int p = 0; p < np; p++)
+    pstart[p + 1] += pstart[p];
+  for (int i = 0; i < J->rows; i++) {
+    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
+      int p = J->particle[e];
+      if (pinned(inv_mass, p))
+        continue;
+      int at = pstart[p]++;
+      prow[at] = i;
+      pent[at] = e;
+    }
+  }
+  for (int p = np; p > 0; p--)
+    pstart[p] = pstart[p - 1];
+  pstart[0] = 0;
+}
+
+/* The columns of row i of A (the diagonal first, then the rows sharing a
+ * movable particle, unsorted) into out when out is not NULL. Returns the
+ * count. mark[j] == i marks column j as seen for row i. */
+static int row_columns(const struct mr_csr_plan *pl, const mr_jac *J, int i, int *mark, int *out)
+{
+  const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *part = J->particle;
+  int c = 0;
+  mark[i] = i;
+  if (out)
+    out[c] = i;
+  c++;
+  for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
+    for (int q = pstart[part[e]]; q < pstart[part[e] + 1]; q++) {
+      int j = prow[q];
+      if (mark[j] != i) {
+        mark[j] = i;
+        if (out)
+          out[c] = j;
+        c++;
+      }
+    }
+  }
+  return c;
+}
+
+/* A's row_ptr and sorted columns. Each row's columns are listed unsorted
+ * into ucol, then one counting transpose sorts them all: A is symmetric,
+ * so the transpose of its pattern is the pattern itself. */
+static int build_pattern(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J)
+{
+  const int k = J->rows;
+  int *mark = INTS(pl->mark), *cnt = INTS(pl->cursor);
+  for (int i = 0; i < k; i++)
+    mark[i] = -1;
+  int nnz = 0;
+  for (int i = 0; i < k; i++)
+    nnz += row_columns(pl, J, i, mark, NULL);
+  if (mr_buf_reserve(&pl->ucol, (size_t)nnz, sizeof(int)) ||
+      mr_buf_reserve(&pl->col, (size_t)nnz, sizeof(int)) ||
+      mr_buf_reserve(&pl->val, (size_t)nnz, sizeof(double)))
+    return MR_SOLVE_ENOMEM;
+  int *ucol = INTS(pl->ucol), *rp = INTS(pl->rp), *col = INTS(pl->col);
+  memset(cnt, 0, ((size_t)k + 1) * sizeof *cnt);
+  for (int i = 0; i < k; i++)
+    mark[i] = -1;
+  for (int i = 0, at = 0; i < k; i++) {
+    int c = row_columns(pl, J, i, mark, ucol + at);
+    for (int t = at; t < at + c; t++)
+      cnt[ucol[t] + 1]++;
+    at += c;
+  }
+  for (int i = 0; i < k; i++)
+    cnt[i + 1] += cnt[i];
+  memcpy(rp, cnt, ((size_t)k + 1) * sizeof *rp);
+  /* Row i lists as many columns as column i has rows (A's pattern is
+   * symmetric: rows i and j share a particle or they do not). */
+  for (int i = 0, at = 0; i < k; i++) {
+    for (int end = at + (rp[i + 1] - rp[i]); at < end; at++)
+      col[cnt[ucol[at]]++] = i;
+  }
+  A->n = k;
+  A->nnz = nnz;
+  return 0;
+}
+
+static int plan_reserve(struct mr_csr_plan *pl, const mr_jac *J, int ne)
+{
+  const size_t k = (size_t)J->rows, np = (size_t)J->n_particles, sne = (size_t)ne;
+  if (mr_buf_reserve(&pl->rp, k + 1, sizeof(int)) || mr_buf_reserve(&pl->pstart, np + 1, sizeof(int)) ||
+      mr_buf_reserve(&pl->prow, sne, sizeof(int)) || mr_buf_reserve(&pl->pent, sne, sizeof(int)) ||
+      mr_buf_reserve(&pl->mark, k, sizeof(int)) || mr_buf_reserve(&pl->cursor, k + 1, sizeof(int)) ||
+      mr_buf_reserve(&pl->work, k, sizeof(double)))
+    return MR_SOLVE_ENOMEM;
+  memset(pl->work.p, 0, k * sizeof(double));
+  return 0;
+}
+
+static int replan(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
+{
+  pl->valid = 0;
+  if (plan_reserve(pl, J, ne) != 0 || keep_source(pl, J, inv_mass, ne) != 0)
+    return MR_SOLVE_ENOMEM;
+  particle_lists(pl, J, inv_mass, ne);
+  if (build_pattern(A, pl, J) != 0)
+    return MR_SOLVE_ENOMEM;
+  pl->valid = 1;
+  pl->builds++;
+  return 0;
 }
 
 static double dot3(const double a[3], const double b[3])
 {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-int mr_assemble_jmjt(const mr_jac *J, const double *inv_mass, mr_csr *A)
+/* The numbers: row i's sums scattered into the dense work row, in J's
+ * entry order, then gathered into A's sorted columns. Only the lower
+ * triangle and the diagonal are summed (each particle's list is in row
+ * order, so the rest of a list lies above): symmetrise() copies them up. */
+static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass)
 {
-    if (!J || !A)
-        return MR_SOLVE_UNAVAILABLE;
-    const int k = J->rows, np = J->n_particles;
-    const int ne = k > 0 ? J->row_ptr[k] : 0;
-    if (ne > 0 && !inv_mass)
-        return MR_SOLVE_UNAVAILABLE;
-
-    /* Scratch: particle → entry lists (the transpose of J's pattern), the
-     * per-row column marker, and an unsorted copy of A that one transpose
-     * turns into sorted rows (A is symmetric, so its transpose is itself). */
-    size_t ints = (size_t)(np + 1) + (size_t)ne * 2 + (size_t)k * 3 + 1;
-    int *iw = malloc(ints * sizeof *iw);
-    if (!iw)
-        return MR_SOLVE_ENOMEM;
-    int *pstart = iw;              /* np + 1 */
-    int *prow = pstart + np + 1;   /* ne: row of each listed entry */
-    int *pent = prow + ne;         /* ne: the entry itself */
-    int *mark = pent + ne;         /* k */
-    int *slot = mark + k;          /* k */
-    int *cnt = slot + k;           /* k + 1 */
-
-    memset(pstart, 0, (size_t)(np + 1) * sizeof *pstart);
-    for (int e = 0; e < ne; e++)
-        if (inv_mass[J->particle[e]] != 0.0) /* a pinned particle adds nothing */
-            pstart[J->particle[e] + 1]++;
-    for (int p = 0; p < np; p++)
-        pstart[p + 1] += pstart[p];
-    for (int i = 0; i < k; i++) {
-        for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-            int p = J->particle[e];
-            if (inv_mass[p] == 0.0)
-                continue;
-            int at = pstart[p]++;
-            prow[at] = i;
-            pent[at] = e;
-        }
+  const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
+  double *work = pl->work.p;
+  for (int i = 0; i < J->rows; i++) {
+    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
+      int p = J->particle[e];
+      double w = inv_mass[p]; /* a pinned particle's list is empty */
+      for (int q = pstart[p]; q < pstart[p + 1] && prow[q] <= i; q++)
+        work[prow[q]] += w * dot3(J->d[e], J->d[pent[q]]);
     }
-    for (int p = np; p > 0; p--)
-        pstart[p] = pstart[p - 1];
-    pstart[0] = 0;
-
-    /* Symbolic pass: count each row's columns. */
-    for (int i = 0; i < k; i++)
-        mark[i] = -1;
-    int nnz = 0;
-    for (int i = 0; i < k; i++) {
-        mark[i] = i;
-        int c = 1;
-        for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-            int p = J->particle[e];
-            if (inv_mass[p] == 0.0)
-                continue;
-            for (int q = pstart[p]; q < pstart[p + 1]; q++) {
-                int j = prow[q];
-                if (mark[j] != i) {
-                    mark[j] = i;
-                    c++;
-                }
-            }
-        }
-        cnt[i] = c;
-        nnz += c;
+    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1] && A->col[q] <= i; q++) {
+      A->val[q] = work[A->col[q]];
+      work[A->col[q]] = 0.0;
     }
+  }
+}
 
-    int *ucol = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *ucol);
-    double *uval = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *uval);
-    int *urp = malloc((size_t)(k + 1) * sizeof *urp);
-    if (!ucol || !uval || !urp || csr_reserve(A, k, nnz) != 0) {
-        free(ucol);
-        free(uval);
-        free(urp);
-        free(iw);
-        return MR_SOLVE_ENOMEM;
+/* Rounding may leave A_ij and A_ji a few ulps apart (the two sums run over
+ * the shared particles in different orders). Copy the lower triangle onto
+ * the upper so every solver sees the same symmetric matrix, bit for bit.
+ * Row j's lower entries come before its diagonal; rows are visited in
+ * ascending order, so row i's upper entries are filled in ascending column
+ * order, one cursor each, starting just past its diagonal. */
+static void symmetrise(mr_csr *A, int *cursor)
+{
+  for (int j = 0; j < A->n; j++) {
+    for (int q = A->row_ptr[j]; q < A->row_ptr[j + 1]; q++) {
+      int i = A->col[q];
+      if (i == j) {
+        cursor[j] = q + 1;
+        break;
+      }
+      A->val[cursor[i]++] = A->val[q];
     }
+  }
+}
 
-    /* Numeric pass into the unsorted copy. */
-    urp[0] = 0;
-    for (int i = 0; i < k; i++)
-        mark[i] = -1;
-    for (int i = 0; i < k; i++) {
-        int at = urp[i];
-        mark[i] = i;
-        slot[i] = at;
-        ucol[at] = i;
-        uval[at] = 0.0;
-        at++;
-        for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-            int p = J->particle[e];
-            double w = inv_mass[p];
-            if (w == 0.0)
-                continue;
-            for (int q = pstart[p]; q < pstart[p + 1]; q++) {
-                int j = prow[q];
-                if (mark[j] != i) {
-                    mark[j] = i;
-                    slot[j] = at;
-                    ucol[at] = j;
-                    uval[at] = 0.0;
-                    at++;
-                }
-                uval[slot[j]] += w * dot3(J->d[e], J->d[pent[q]]);
-            }
-        }
-        urp[i + 1] = at;
-    }
+mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass)
+{
+  if (!J || !A)
+    return MR_SOLVE_UNAVAILABLE;
+  const int ne = J->rows > 0 ? J->row_ptr[J->rows] : 0;
+  if (ne > 0 && !inv_mass)
+    return MR_SOLVE_UNAVAILABLE;
+  if (!A->plan && !(A->plan = calloc(1, sizeof *A->plan)))
+    return MR_SOLVE_ENOMEM;
+  struct mr_csr_plan *pl = A->plan;
+  if (!same_source(pl, J, inv_mass, ne) && replan(A, pl, J, inv_mass, ne) != 0)
+    return MR_SOLVE_ENOMEM;
+  A->row_ptr = pl->rp.p;
+  A->col = pl->col.p;
+  A->val = pl->val.p;
+  A->row_ptr[0] = 0;
+  numeric(A, pl, J, inv_mass);
+  symmetrise(A, pl->cursor.p);
+  return MR_SOLVE_OK;
+}
 
-    /* Transpose into A: rows come out with ascending columns. */
-    A->n = k;
-    A->nnz = nnz;
-    memset(cnt, 0, (size_t)(k + 1) * sizeof *cnt);
-    for (int q = 0; q < nnz; q++)
-        cnt[ucol[q] + 1]++;
-    for (int i = 0; i < k; i++)
-        cnt[i + 1] += cnt[i];
-    memcpy(A->row_ptr, cnt, (size_t)(k + 1) * sizeof *cnt);
-    for (int i = 0; i < k; i++) {
-        for (int q = urp[i]; q < urp[i + 1]; q++) {
-            int at = cnt[ucol[q]]++;
-            A->col[at] = i;
-            A->val[at] = uval[q];
-        }
-    }
-
-    /* Rounding may leave A_ij and A_ji a few ulps apart (the two sums run
-     * over the shared particles in different orders). Copy the upper
-     * triangle onto the lower so every solver sees the same symmetric
-     * matrix, bit for bit. Rows are visited in ascending order, so row j's
-     * lower entries are met in ascending column order: one cursor each. */
-    for (int j = 0; j < k; j++)
-        cnt[j] = A->row_ptr[j];
-    for (int i = 0; i < k; i++) {
-        for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++) {
-            int j = A->col[q];
-            if (j > i)
-                A->val[cnt[j]++] = A->val[q];
-        }
-    }
-
-    free(ucol);
-    free(uval);
-    free(urp);
-    free(iw);
-    return 0;
+unsigned long mr_csr_pattern_builds(const mr_csr *A)
+{
+  return A && A->plan ? A->plan->builds : 0;
 }
 
 void mr_csr_free(mr_csr *A)
 {
-    if (!A)
-        return;
-    free(A->row_ptr);
-    free(A->col);
-    free(A->val);
-    memset(A, 0, sizeof *A);
+  if (!A)
+    return;
+  struct mr_csr_plan *pl = A->plan;
+  if (pl) {
+    mr_buf *const bufs[] = {&pl->rp,     &pl->col,  &pl->val,  &pl->jrp,  &pl->jpart,
+                            &pl->pinned, &pl->pstart, &pl->prow, &pl->pent, &pl->mark,
+                            &pl->cursor, &pl->ucol, &pl->work};
+    mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
+    free(pl);
+  }
+  memset(A, 0, sizeof *A);
 }

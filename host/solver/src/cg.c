@@ -32,18 +32,20 @@ static double dot(int n, const double *a, const double *b)
     return sum;
 }
 
-int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
 {
     const int n = A->n;
     const size_t dn = (size_t)n;
-    if (mr_buf_reserve(&s->dep, dn, 1) != 0 || mr_buf_reserve(&s->inv_diag, dn, sizeof(double)) != 0
-        || mr_buf_reserve(&s->r, dn, sizeof(double)) != 0 || mr_buf_reserve(&s->z, dn, sizeof(double)) != 0
+    if (mr_buf_reserve(&s->r, dn, sizeof(double)) != 0 || mr_buf_reserve(&s->z, dn, sizeof(double)) != 0
         || mr_buf_reserve(&s->p, dn, sizeof(double)) != 0 || mr_buf_reserve(&s->q, dn, sizeof(double)) != 0)
         return MR_SOLVE_ENOMEM;
-    unsigned char *dep = s->dep.p;
-    double *inv_diag = s->inv_diag.p, *res = s->r.p, *z = s->z.p, *p = s->p.p, *ap = s->q.p;
-
-    r->dependent = mr_screen_for_iteration(A, o->pivot_tol, dep, inv_diag, x);
+    int screened = mr_screen_for_iteration(s, A, o->pivot_tol, x);
+    if (screened < 0)
+        return screened;
+    r->dependent = screened;
+    const unsigned char *dep = s->dep.p;
+    const double *inv_diag = s->inv_diag.p;
+    double *res = s->r.p, *z = s->z.p, *p = s->p.p, *ap = s->q.p;
 
     const double stop = o->tol * mr_norm2(n, b);
     /* The recurred residual drifts from the true one, so convergence is

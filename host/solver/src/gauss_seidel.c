@@ -10,14 +10,15 @@
  * solvers leave them out of the elimination. */
 #include "solver_internal.h"
 
-int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
 {
     const int n = A->n;
-    if (mr_buf_reserve(&s->dep, (size_t)n, 1) != 0 || mr_buf_reserve(&s->inv_diag, (size_t)n, sizeof(double)) != 0)
-        return MR_SOLVE_ENOMEM;
-    unsigned char *dep = s->dep.p;
-    double *inv_diag = s->inv_diag.p;
-    r->dependent = mr_screen_for_iteration(A, o->pivot_tol, dep, inv_diag, x);
+    int screened = mr_screen_for_iteration(s, A, o->pivot_tol, x);
+    if (screened < 0)
+        return screened;
+    r->dependent = screened;
+    const unsigned char *dep = s->dep.p;
+    const double *inv_diag = s->inv_diag.p;
 
     const double stop = o->tol * mr_norm2(n, b);
     if (mr_residual_norm(A, b, x, dep) <= stop)

@@ -2,55 +2,39 @@
  * blocks: a distance or pin constraint touches one or two particles, so a
  * row holds a handful of (particle, ∂C_i/∂x_particle) pairs instead of 3n
  * numbers. */
-#include "mr_solver.h"
+#include "solver_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-static int grow_rows(mr_jac *J, int need)
+/* row_ptr holds rows + 1 entries. */
+static int grow_rows(mr_jac *J, int rows)
 {
-    if (need <= J->cap_rows)
-        return 0;
-    int cap = J->cap_rows ? J->cap_rows : 16;
-    while (cap < need)
-        cap *= 2;
-    int *p = realloc(J->row_ptr, (size_t)(cap + 1) * sizeof *p);
-    if (!p)
+    return mr_grow(&J->row_ptr, &J->cap_rows, (size_t)rows + 1, sizeof *J->row_ptr);
+}
+
+/* particle and d share one count; each keeps its own copy of the
+ * capacity until both have grown. */
+static int grow_entries(mr_jac *J, int entries)
+{
+    size_t cap_p = J->cap_entries, cap_d = J->cap_entries;
+    if (mr_grow(&J->particle, &cap_p, (size_t)entries, sizeof *J->particle) != 0 ||
+            mr_grow(&J->d, &cap_d, (size_t)entries, sizeof *J->d) != 0)
         return MR_SOLVE_ENOMEM;
-    J->row_ptr = p;
-    J->cap_rows = cap;
+    J->cap_entries = cap_p;
     return 0;
 }
 
-static int grow_entries(mr_jac *J, int need)
-{
-    if (need <= J->cap_entries)
-        return 0;
-    int cap = J->cap_entries ? J->cap_entries : 32;
-    while (cap < need)
-        cap *= 2;
-    int *p = realloc(J->particle, (size_t)cap * sizeof *p);
-    if (!p)
-        return MR_SOLVE_ENOMEM;
-    J->particle = p;
-    double(*d)[3] = realloc(J->d, (size_t)cap * sizeof *d);
-    if (!d)
-        return MR_SOLVE_ENOMEM;
-    J->d = d;
-    J->cap_entries = cap;
-    return 0;
-}
-
-int mr_jac_reset(mr_jac *J, int n_particles)
+mr_solve_status mr_jac_reset(mr_jac *J, int n_particles)
 {
     if (!J || n_particles < 0)
-        return MR_SOLVE_ENOMEM;
+        return MR_SOLVE_BAD_ARG;
     J->rows = 0;
     J->n_particles = n_particles;
-    if (grow_rows(J, 1) != 0)
+    if (grow_rows(J, 0) != 0)
         return MR_SOLVE_ENOMEM;
     J->row_ptr[0] = 0;
-    return 0;
+    return MR_SOLVE_OK;
 }
 
 int mr_jac_begin_row(mr_jac *J)
@@ -65,10 +49,10 @@ int mr_jac_begin_row(mr_jac *J)
     return J->rows - 1;
 }
 
-int mr_jac_add(mr_jac *J, int particle, const double d[3])
+mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3])
 {
     if (!J || J->rows == 0 || particle < 0 || particle >= J->n_particles)
-        return -1;
+        return MR_SOLVE_BAD_ARG;
     int start = J->row_ptr[J->rows - 1];
     int end = J->row_ptr[J->rows];
     /* A constraint may name a particle twice (e.g. a term built from two
@@ -79,7 +63,7 @@ int mr_jac_add(mr_jac *J, int particle, const double d[3])
             J->d[e][0] += d[0];
             J->d[e][1] += d[1];
             J->d[e][2] += d[2];
-            return 0;
+            return MR_SOLVE_OK;
         }
     }
     if (grow_entries(J, end + 1) != 0)
@@ -87,7 +71,7 @@ int mr_jac_add(mr_jac *J, int particle, const double d[3])
     J->particle[end] = particle;
     memcpy(J->d[end], d, sizeof J->d[end]);
     J->row_ptr[J->rows] = end + 1;
-    return 0;
+    return MR_SOLVE_OK;
 }
 
 void mr_jac_free(mr_jac *J)

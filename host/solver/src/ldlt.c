@@ -26,19 +26,12 @@
 
 void mr_ldlt_free(mr_ldlt *f)
 {
-    mr_buf *bufs[] = { &f->pat_rp, &f->pat_col, &f->perm, &f->iperm, &f->parent, &f->lnz, &f->flag,
-                       &f->stack, &f->lp, &f->dropped, &f->li, &f->lx, &f->diag, &f->y, &f->z,
-                       &f->skip, &f->res, &f->dx, &f->cand, &f->bits };
-    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
-        free(bufs[i]->p);
+    mr_buf *const bufs[] = { &f->perm, &f->iperm, &f->parent, &f->lnz, &f->flag, &f->stack, &f->lp,
+                             &f->dropped, &f->li, &f->lx, &f->diag, &f->y, &f->z, &f->skip, &f->res,
+                             &f->dx, &f->cand, &f->bits };
+    mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
+    mr_pattern_free(&f->pattern);
     memset(f, 0, sizeof *f);
-}
-
-static int same_pattern(const mr_ldlt *f, const mr_csr *A)
-{
-    return f->have_symbolic && f->n == A->n && f->nnz == A->row_ptr[A->n]
-        && memcmp(f->pat_rp.p, A->row_ptr, (size_t)(A->n + 1) * sizeof(int)) == 0
-        && memcmp(f->pat_col.p, A->col, (size_t)f->nnz * sizeof(int)) == 0;
 }
 
 /* Elimination tree and column counts of L for the ordering in perm/iperm.
@@ -66,10 +59,9 @@ static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *
 
 static int analyse(mr_ldlt *f, const mr_csr *A)
 {
-    const int n = A->n, nnz = A->row_ptr[n];
+    const int n = A->n;
     const size_t dn = (size_t)n, si = sizeof(int);
-    if (mr_buf_reserve(&f->pat_rp, dn + 1, si) || mr_buf_reserve(&f->pat_col, (size_t)nnz, si)
-        || mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si) || mr_buf_reserve(&f->cand, dn, si)
+    if (mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si) || mr_buf_reserve(&f->cand, dn, si)
         || mr_buf_reserve(&f->parent, dn, si) || mr_buf_reserve(&f->lnz, dn, si)
         || mr_buf_reserve(&f->flag, dn, si) || mr_buf_reserve(&f->stack, 2 * dn, si)
         || mr_buf_reserve(&f->lp, dn + 1, si) || mr_buf_reserve(&f->dropped, dn, 1)
@@ -77,7 +69,7 @@ static int analyse(mr_ldlt *f, const mr_csr *A)
         || mr_buf_reserve(&f->z, dn, sizeof(double)) || mr_buf_reserve(&f->skip, dn, 1)
         || mr_buf_reserve(&f->res, dn, sizeof(double)) || mr_buf_reserve(&f->dx, dn, sizeof(double)))
         return MR_SOLVE_ENOMEM;
-    f->have_symbolic = 0;
+    f->pattern.valid = 0;
     int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int);
     int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
 
@@ -119,12 +111,7 @@ static int analyse(mr_ldlt *f, const mr_csr *A)
     for (int k = 0; k < n; k++)
         lp[k + 1] = lp[k] + lnz[k];
 
-    memcpy(f->pat_rp.p, A->row_ptr, (dn + 1) * si);
-    memcpy(f->pat_col.p, A->col, (size_t)nnz * si);
-    f->n = n;
-    f->nnz = nnz;
-    f->have_symbolic = 1;
-    return 0;
+    return mr_pattern_keep(&f->pattern, A);
 }
 
 /* Returns the number of dropped (dependent) rows. */
@@ -197,7 +184,7 @@ static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol)
 /* x = (P L D Lᵀ Pᵀ)⁺ b with dropped rows' unknowns set to zero. */
 static void solve_factored(const mr_ldlt *f, const double *b, double *x)
 {
-    const int n = f->n;
+    const int n = f->pattern.n;
     const int *perm = BUF(f, perm, const int), *lp = BUF(f, lp, const int), *li = BUF(f, li, const int);
     const double *lx = BUF(f, lx, const double), *diag = BUF(f, diag, const double);
     const unsigned char *dropped = BUF(f, dropped, const unsigned char);
@@ -216,10 +203,10 @@ static void solve_factored(const mr_ldlt *f, const double *b, double *x)
         x[perm[k]] = z[k];
 }
 
-int mr_ldlt_solve(mr_ldlt *f, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
 {
     const int n = A->n;
-    if (!same_pattern(f, A)) {
+    if (!mr_pattern_same(&f->pattern, A)) {
         int st = analyse(f, A);
         if (st != 0)
             return st;
@@ -240,12 +227,7 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_opts *o, const mr_csr *A, const dou
     double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
     const double stop = o->tol * mr_norm2(n, b);
     for (int step = 0; step < 2 && mr_residual_norm(A, b, x, skip) > stop; step++) {
-        for (int i = 0; i < n; i++) {
-            double s = b[i];
-            for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
-                s -= A->val[q] * x[A->col[q]];
-            res[i] = s;
-        }
+        mr_residual(A, b, x, res);
         solve_factored(f, res, dx);
         for (int i = 0; i < n; i++)
             x[i] += dx[i];

@@ -7,34 +7,24 @@
 #include <stdlib.h>
 #include <string.h>
 
-int mr_buf_reserve(mr_buf *b, size_t count, size_t elem_size)
+mr_solve_def mr_default_solve_def(void)
 {
-    if (count == 0)
-        count = 1;
-    if (count <= b->cap)
-        return 0;
-    size_t cap = b->cap ? b->cap : 16;
-    while (cap < count)
-        cap *= 2;
-    void *p = realloc(b->p, cap * elem_size);
-    if (!p)
-        return MR_SOLVE_ENOMEM;
-    b->p = p;
-    b->cap = cap;
-    return 0;
+    mr_solve_def d = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12 };
+    return d;
 }
 
-mr_solve_opts mr_solve_opts_default(void)
-{
-    mr_solve_opts o = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12 };
-    return o;
-}
-
-static const char *const method_names[] = { "gauss-seidel", "cg", "ldlt", "eigen" };
+/* The one table of method names, by enum value, NULL-terminated. */
+static const char *const method_names[MR_SOLVE_METHOD_COUNT + 1] = {
+    [MR_SOLVE_GAUSS_SEIDEL] = "gauss-seidel",
+    [MR_SOLVE_CG] = "cg",
+    [MR_SOLVE_LDLT] = "ldlt",
+    [MR_SOLVE_EIGEN] = "eigen",
+    [MR_SOLVE_METHOD_COUNT] = NULL,
+};
 
 const char *mr_solve_method_name(mr_solve_method m)
 {
-    if ((int)m < 0 || (int)m >= (int)(sizeof method_names / sizeof method_names[0]))
+    if ((int)m < 0 || (int)m >= MR_SOLVE_METHOD_COUNT)
         return "unknown";
     return method_names[m];
 }
@@ -43,13 +33,32 @@ int mr_solve_method_parse(const char *name, mr_solve_method *out)
 {
     if (!name || !out)
         return -1;
-    for (int m = 0; m < (int)(sizeof method_names / sizeof method_names[0]); m++) {
+    for (int m = 0; m < MR_SOLVE_METHOD_COUNT; m++) {
         if (strcmp(name, method_names[m]) == 0) {
             *out = (mr_solve_method)m;
             return 0;
         }
     }
     return -1;
+}
+
+const char *const *mr_solve_method_names(void)
+{
+    return method_names;
+}
+
+const char *mr_solve_status_name(mr_solve_status s)
+{
+    switch (s) {
+    case MR_SOLVE_OK: return "ok";
+    case MR_SOLVE_NOT_CONVERGED: return "not converged";
+    case MR_SOLVE_DEPENDENT: return "dependent rows";
+    case MR_SOLVE_ENOMEM: return "out of memory";
+    case MR_SOLVE_NONFINITE: return "not finite";
+    case MR_SOLVE_UNAVAILABLE: return "unavailable";
+    case MR_SOLVE_BAD_ARG: return "bad argument";
+    }
+    return "unknown";
 }
 
 mr_solver *mr_solver_create(void)
@@ -61,9 +70,8 @@ void mr_solver_destroy(mr_solver *s)
 {
     if (!s)
         return;
-    mr_buf *bufs[] = { &s->x, &s->r, &s->z, &s->p, &s->q, &s->dep, &s->inv_diag };
-    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
-        free(bufs[i]->p);
+    mr_buf *const bufs[] = { &s->x, &s->r, &s->z, &s->p, &s->q, &s->dep, &s->inv_diag };
+    mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
     mr_ldlt_free(&s->ldlt);
     mr_eigen_free(s->eigen);
     free(s);
@@ -93,30 +101,43 @@ double mr_norm2(int n, const double *v)
     return scale * sqrt(ssq);
 }
 
+static double row_residual(const mr_csr *A, const double *b, const double *x, int i)
+{
+    double s = b[i];
+    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
+        s -= A->val[q] * x[A->col[q]];
+    return s;
+}
+
+void mr_residual(const mr_csr *A, const double *b, const double *x, double *out)
+{
+    for (int i = 0; i < A->n; i++)
+        out[i] = row_residual(A, b, x, i);
+}
+
 double mr_residual_norm(const mr_csr *A, const double *b, const double *x, const unsigned char *skip)
 {
     double scale = 0.0, ssq = 1.0;
-    for (int i = 0; i < A->n; i++) {
-        if (skip && skip[i])
-            continue;
-        double s = b[i];
-        for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
-            s -= A->val[q] * x[A->col[q]];
-        double a = fabs(s);
-        ssq_add(&scale, &ssq, a);
-    }
+    for (int i = 0; i < A->n; i++)
+        if (!(skip && skip[i]))
+            ssq_add(&scale, &ssq, fabs(row_residual(A, b, x, i)));
     return scale * sqrt(ssq);
 }
 
-int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag)
+void mr_csr_diagonal(const mr_csr *A, double *diag)
 {
-    const int n = A->n;
-    for (int i = 0; i < n; i++) {
+    for (int i = 0; i < A->n; i++) {
         diag[i] = 0.0;
         for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
             if (A->col[q] == i)
                 diag[i] = A->val[q];
     }
+}
+
+int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag)
+{
+    const int n = A->n;
+    mr_csr_diagonal(A, diag);
     int count = 0;
     for (int j = 0; j < n; j++) {
         dep[j] = !(diag[j] > DBL_MIN);
@@ -135,9 +156,13 @@ int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, doubl
     return count;
 }
 
-int mr_screen_for_iteration(const mr_csr *A, double pivot_tol, unsigned char *dep, double *inv_diag,
-                            double *x)
+int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x)
 {
+    if (mr_buf_reserve(&s->dep, (size_t)A->n, 1) != 0
+        || mr_buf_reserve(&s->inv_diag, (size_t)A->n, sizeof(double)) != 0)
+        return MR_SOLVE_ENOMEM;
+    unsigned char *dep = s->dep.p;
+    double *inv_diag = s->inv_diag.p;
     int count = mr_screen_pairs(A, pivot_tol, dep, inv_diag);
     for (int i = 0; i < A->n; i++) {
         if (dep[i]) {
@@ -158,7 +183,8 @@ static int all_finite(size_t n, const double *v)
     return 1;
 }
 
-int mr_solver_solve(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
+mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
+                                double *x, mr_solve_result *r)
 {
     mr_solve_result local;
     if (!r)
@@ -168,11 +194,11 @@ int mr_solver_solve(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const
     r->residual = 0.0;
     r->dependent = 0;
 
-    mr_solve_opts def = mr_solve_opts_default();
+    mr_solve_def def = mr_default_solve_def();
     if (!o)
         o = &def;
     if (!s || !A || (A->n > 0 && (!b || !x || !A->row_ptr))
-        || (int)o->method < MR_SOLVE_GAUSS_SEIDEL || (int)o->method > MR_SOLVE_EIGEN)
+        || (int)o->method < 0 || (int)o->method >= MR_SOLVE_METHOD_COUNT)
         return r->status = MR_SOLVE_UNAVAILABLE;
     if (A->n == 0)
         return r->status;
@@ -204,11 +230,11 @@ int mr_solver_solve(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const
     default: st = mr_eigen_solve(&s->eigen, o, A, b, xw, r); break;
     }
     if (st < 0)
-        return r->status = st;
+        return r->status = (mr_solve_status)st;
     if (!all_finite((size_t)A->n, xw))
         return r->status = MR_SOLVE_NONFINITE;
     memcpy(x, xw, (size_t)A->n * sizeof *x);
     double nb = mr_norm2(A->n, b);
     r->residual = mr_residual_norm(A, b, x, NULL) / (nb > DBL_MIN ? nb : DBL_MIN);
-    return r->status = st;
+    return r->status = (mr_solve_status)st;
 }

@@ -11,49 +11,89 @@
 extern "C" {
 #endif
 
-/* A growable array: grown by mr_buf_reserve, never shrunk, so a solver that
- * has seen a size once does not allocate again for it. */
-typedef struct mr_buf { void *p; size_t cap; } mr_buf;
+/* The one growth rule for every array in the library: *pp (a T **) grows to
+ * hold count elements of elem_size bytes, its capacity *cap doubling from
+ * 16. Arrays never shrink, so a size seen once is never allocated again.
+ * 0 or MR_SOLVE_ENOMEM (then *pp and *cap are as they were). */
+int mr_grow_to(void *pp, size_t *cap, size_t count, size_t elem_size);
+static inline int mr_grow(void *pp, size_t *cap, size_t count, size_t elem_size)
+{
+  /* The common case, inline: the physics adds every Jacobian entry
+   * through here. */
+  if (count <= *cap && *(void **)pp)
+    return 0;
+  return mr_grow_to(pp, cap, count, elem_size);
+}
+
+/* An array that carries its own capacity. */
+typedef struct mr_buf {
+  void *p;
+  size_t cap;
+} mr_buf;
 int mr_buf_reserve(mr_buf *b, size_t count, size_t elem_size);
+/* Frees every buffer of the list and zeroes it. */
+void mr_bufs_free(mr_buf *const *bufs, size_t count);
+
+/* A copy of a CSR pattern (row_ptr and col), to tell whether work that
+ * depends only on the pattern (an ordering, a symbolic factorisation) still
+ * holds for a new matrix. */
+typedef struct mr_pattern {
+  int valid, n, nnz;
+  mr_buf rp, col;
+} mr_pattern;
+int mr_pattern_same(const mr_pattern *pat, const mr_csr *A);
+int mr_pattern_keep(mr_pattern *pat, const mr_csr *A); /* 0 or MR_SOLVE_ENOMEM */
+void mr_pattern_free(mr_pattern *pat);
+
+/* How many times mr_csr_assemble has rebuilt A's pattern (not only its
+ * numbers) since A was zeroed: for the tests of the pattern cache. */
+unsigned long mr_csr_pattern_builds(const mr_csr *A);
 
 /* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
  * only on A's pattern, which the physics keeps from step to step, so they
  * are kept with a copy of the pattern they were computed for. */
 typedef struct mr_ldlt {
-    int n, nnz, have_symbolic;
-    mr_buf pat_rp, pat_col;     /* the pattern of the last A */
-    mr_buf perm, iperm;         /* new → old, old → new */
-    mr_buf parent, lnz, flag, stack, lp, dropped;
-    mr_buf li, lx, diag, y, z;
-    mr_buf skip, res, dx;       /* refinement: dropped rows by old index, r, δλ */
-    mr_buf cand, bits;          /* a candidate ordering; minimum degree's graph */
-    size_t nnz_l;
+  mr_pattern pattern;
+  mr_buf perm, iperm; /* new → old, old → new */
+  mr_buf parent, lnz, flag, stack, lp, dropped;
+  mr_buf li, lx, diag, y, z;
+  mr_buf skip, res, dx; /* refinement: dropped rows by old index, r, δλ */
+  mr_buf cand, bits;    /* a candidate ordering; minimum degree's graph */
+  size_t nnz_l;
 } mr_ldlt;
 
 struct mr_solver {
-    mr_buf x, r, z, p, q, dep, inv_diag;
-    mr_ldlt ldlt;
-    void *eigen;                /* solver_eigen.cpp's workspace, made on first use */
+  mr_buf x, r, z, p, q, dep, inv_diag;
+  mr_ldlt ldlt;
+  void *eigen; /* solver_eigen.cpp's workspace, made on first use */
 };
 
 /* ‖Ax − b‖₂ over the rows not flagged in skip (skip may be NULL). */
-double mr_residual_norm(const mr_csr *A, const double *b, const double *x, const unsigned char *skip);
+double mr_residual_norm(const mr_csr *A, const double *b, const double *x,
+                        const unsigned char *skip);
 double mr_norm2(int n, const double *v);
+/* out = b − A x. */
+void mr_residual(const mr_csr *A, const double *b, const double *x, double *out);
+
+/* A's diagonal (0 where none is stored). */
+void mr_csr_diagonal(const mr_csr *A, double *diag);
 
 /* Flags rows that are dependent on their own (A_ii = 0) or parallel to an
  * earlier unflagged row (cos² ≥ 1 − pivot_tol in the M⁻¹ metric); this is
  * the LDLᵀ pivot test applied to pairs. Leaves A's diagonal in diag.
  * Returns the count. */
 int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag);
-/* mr_screen_pairs as the iterative methods start: the flagged rows' x set
- * to 0 and their inverse diagonal to 0 (they take no part), the others'
- * inverse diagonal in inv_diag. Returns the count of flagged rows. */
-int mr_screen_for_iteration(const mr_csr *A, double pivot_tol, unsigned char *dep, double *inv_diag,
-                            double *x);
-
-int mr_gauss_seidel(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
-int mr_cg(mr_solver *s, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
-int mr_ldlt_solve(mr_ldlt *f, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
+/* mr_screen_pairs as the iterative methods start, into s->dep and
+ * s->inv_diag: the flagged rows' x set to 0 and their inverse diagonal to
+ * 0 (they take no part), the others' inverse diagonal. Returns the count
+ * of flagged rows, or MR_SOLVE_ENOMEM. */
+int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x);
+int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
+                    double *x, mr_solve_result *r);
+int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
+          mr_solve_result *r);
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
+                  mr_solve_result *r);
 void mr_ldlt_free(mr_ldlt *f);
 
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
@@ -67,7 +107,8 @@ void mr_order_min_degree(const mr_csr *A, int *perm, uint64_t *bits, int *deg);
 
 /* solver_eigen.cpp: Eigen's SimplicialLDLT with the same dependent-row rule
  * as the C LDLᵀ. Returns an MR_SOLVE_* status. */
-int mr_eigen_solve(void **ws, const mr_solve_opts *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r);
+int mr_eigen_solve(void **ws, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
+                   mr_solve_result *r);
 void mr_eigen_free(void *ws);
 
 #ifdef __cplusplus

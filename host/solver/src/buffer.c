@@ -1,0 +1,67 @@
+/* The library's storage: one growth rule for every array, and the copy of a
+ * matrix pattern that tells cached work from stale. */
+#include "solver_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int mr_grow_to(void *pp, size_t *cap, size_t count, size_t elem_size)
+{
+  void **p = pp;
+  if (count == 0)
+    count = 1;
+  if (count <= *cap && *p)
+    return 0;
+  size_t grown = *cap ? *cap : 16;
+  while (grown < count)
+    grown *= 2;
+  void *q = realloc(*p, grown * elem_size);
+  if (!q)
+    return MR_SOLVE_ENOMEM;
+  *p = q;
+  *cap = grown;
+  return 0;
+}
+
+int mr_buf_reserve(mr_buf *b, size_t count, size_t elem_size)
+{
+  return mr_grow(&b->p, &b->cap, count, elem_size);
+}
+
+void mr_bufs_free(mr_buf *const *bufs, size_t count)
+{
+  for (size_t i = 0; i < count; i++) {
+    free(bufs[i]->p);
+    bufs[i]->p = NULL;
+    bufs[i]->cap = 0;
+  }
+}
+
+int mr_pattern_same(const mr_pattern *pat, const mr_csr *A)
+{
+  return pat->valid && pat->n == A->n && pat->nnz == A->row_ptr[A->n] &&
+         memcmp(pat->rp.p, A->row_ptr, (size_t)(A->n + 1) * sizeof(int)) == 0 &&
+         memcmp(pat->col.p, A->col, (size_t)pat->nnz * sizeof(int)) == 0;
+}
+
+int mr_pattern_keep(mr_pattern *pat, const mr_csr *A)
+{
+  const int nnz = A->row_ptr[A->n];
+  pat->valid = 0;
+  if (mr_buf_reserve(&pat->rp, (size_t)A->n + 1, sizeof(int)) != 0 ||
+      mr_buf_reserve(&pat->col, (size_t)nnz, sizeof(int)) != 0)
+    return MR_SOLVE_ENOMEM;
+  memcpy(pat->rp.p, A->row_ptr, ((size_t)A->n + 1) * sizeof(int));
+  memcpy(pat->col.p, A->col, (size_t)nnz * sizeof(int));
+  pat->n = A->n;
+  pat->nnz = nnz;
+  pat->valid = 1;
+  return 0;
+}
+
+void mr_pattern_free(mr_pattern *pat)
+{
+  mr_buf *const bufs[] = {&pat->rp, &pat->col};
+  mr_bufs_free(bufs, 2);
+  pat->valid = 0;
+}
