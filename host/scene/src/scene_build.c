@@ -142,21 +142,20 @@ static mr_scene_status create_world(const mr_scene *s, mr_scene_world *sw, mr_sc
   return MR_SCENE_OK;
 }
 
+typedef mr_scene_status (*build_stage)(const mr_scene *s, mr_scene_world *sw,
+                                       mr_scene_error *err);
+
 mr_scene_status mr_scene_build(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
+  /* Particles before the control points, which are numbered after them;
+   * both before anything that names them. */
+  static const build_stage stages[] = {create_world,    add_particles, add_control,
+                                       add_constraints, add_forces,    add_collisions};
   memset(sw, 0, sizeof *sw);
   memset(err, 0, sizeof *err);
   sw->frame = -1;
-  mr_scene_status rc = create_world(s, sw, err);
-  if (rc == MR_SCENE_OK)
-    rc = add_particles(s, sw, err);
-  if (rc == MR_SCENE_OK)
-    rc = add_control(s, sw, err);
-  if (rc == MR_SCENE_OK)
-    rc = add_constraints(s, sw, err);
-  if (rc == MR_SCENE_OK)
-    rc = add_forces(s, sw, err);
-  if (rc == MR_SCENE_OK)
-    rc = add_collisions(s, sw, err);
+  mr_scene_status rc = MR_SCENE_OK;
+  for (size_t i = 0; i < sizeof stages / sizeof stages[0] && rc == MR_SCENE_OK; i++)
+    rc = stages[i](s, sw, err);
   if (rc != MR_SCENE_OK)
     mr_scene_world_free(sw);
   return rc;

@@ -34,9 +34,8 @@ static int read_point(mr_reader *r, const mr_ynode *it, void *slot) {
   const mr_scene *s = r->scene;
   mr_scene_control_point *c = slot;
   const mr_ynode *v;
-  if (mr_scene_read_map(r, it, "a control point", keys) != 0 ||
-      (v = mr_scene_read_need(r, it, "name", "a control point")) == NULL ||
-      mr_scene_read_name(r, v, "control point name", c->name) != 0)
+  if ((v = mr_scene_read_named(r, it, "a control point", keys, "control point name",
+                               c->name)) == NULL)
     return -1;
   if (mr_scene_find_particle(s, c->name) != (size_t)-1)
     return mr_scene_read_fail(

@@ -95,9 +95,7 @@ static int read_group(mr_reader *r, const mr_ynode *it, void *slot) {
   mr_scene_group *g = slot;
   const mr_ynode *v;
   g->def = mr_default_rigid_group_def();
-  if (mr_scene_read_map(r, it, "a group", keys) != 0 ||
-      (v = mr_scene_read_need(r, it, "name", "a group")) == NULL ||
-      mr_scene_read_name(r, v, "group name", g->name) != 0)
+  if ((v = mr_scene_read_named(r, it, "a group", keys, "group name", g->name)) == NULL)
     return -1;
   for (size_t j = 0; j + 1 < s->n_groups; j++)
     if (strcmp(s->groups[j].name, g->name) == 0)

@@ -206,9 +206,7 @@ static int read_particle(mr_reader *r, const mr_ynode *it, void *slot) {
   mr_scene_particle *p = slot;
   const mr_ynode *v;
   p->def = mr_default_particle_def();
-  if (mr_scene_read_map(r, it, "a particle", keys) != 0 ||
-      (v = mr_scene_read_need(r, it, "name", "a particle")) == NULL ||
-      mr_scene_read_name(r, v, "particle name", p->name) != 0)
+  if ((v = mr_scene_read_named(r, it, "a particle", keys, "particle name", p->name)) == NULL)
     return -1;
   if (mr_scene_find_particle(r->scene, p->name) < r->scene->n_particles - 1)
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,

@@ -36,6 +36,11 @@ int mr_scene_read_bool(mr_reader *r, const mr_ynode *node, const char *what, boo
 int mr_scene_read_long(mr_reader *r, const mr_ynode *node, const char *what, long *out);
 int mr_scene_read_name(mr_reader *r, const mr_ynode *node, const char *what,
                        char out[MR_SCENE_NAME_MAX]);
+/* An item that is a mapping of `keys` with a required name: the name's
+ * node, or NULL after an error. `label` names the name ("group name"). */
+const mr_ynode *mr_scene_read_named(mr_reader *r, const mr_ynode *item, const char *what,
+                                    const char *const *keys, const char *label,
+                                    char name[MR_SCENE_NAME_MAX]);
 /* A required key; fails naming the mapping when absent. */
 const mr_ynode *mr_scene_read_need(mr_reader *r, const mr_ynode *map, const char *key,
                                    const char *what);

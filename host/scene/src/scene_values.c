@@ -209,6 +209,17 @@ int mr_scene_read_name(mr_reader *r, const mr_ynode *node, const char *what,
   return 0;
 }
 
+const mr_ynode *mr_scene_read_named(mr_reader *r, const mr_ynode *item, const char *what,
+                                    const char *const *keys, const char *label,
+                                    char name[MR_SCENE_NAME_MAX]) {
+  const mr_ynode *v;
+  if (mr_scene_read_map(r, item, what, keys) != 0 ||
+      (v = mr_scene_read_need(r, item, "name", what)) == NULL ||
+      mr_scene_read_name(r, v, label, name) != 0)
+    return NULL;
+  return v;
+}
+
 const mr_ynode *mr_scene_read_need(mr_reader *r, const mr_ynode *map, const char *key,
                         const char *what) {
   const mr_ynode *v = mr_scene_yaml_get(map, key);
