@@ -30,13 +30,13 @@ int posix_memalign(void **out, size_t align, size_t size);
 static int counting;
 static unsigned long allocations;
 
+#if !defined(__SANITIZE_ADDRESS__)
 static void count(void)
 {
   if (counting)
     allocations++;
 }
 
-#if !defined(__SANITIZE_ADDRESS__)
 void *malloc(size_t size)
 {
   count();
