@@ -1,6 +1,7 @@
-/* Requirement 9: the same world and the same inputs give bit-identical
- * states after N steps (the library reads no clock), shown by the state
- * hash; a perturbation of one input by one part in 10¹² changes it. */
+/* Determinism (host/physics/README.md): the same world and the same inputs
+ * give bit-identical states after N steps (the library reads no clock),
+ * shown by the state hash; a perturbation of one input by one part in 10¹²
+ * changes it. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

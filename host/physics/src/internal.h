@@ -105,7 +105,7 @@ struct mr_world {
   double *leaf_c;                /* 3 per leaf, refitted per detection */
   int *tree_stack, cap_tree_stack; /* node pairs of a traversal */
 
-  /* the passes this world runs, built at creation (requirement 8) */
+  /* the passes this world runs, built at creation from its effects */
   int n_force_passes; mr_force_pass force_passes[MR_MAX_PASSES]; mr_pass force_pass_ids[MR_MAX_PASSES];
   int n_detect_passes; mr_detect_pass detect_passes[4]; mr_pass detect_pass_ids[4];
   int has_frames, has_solve, has_string_correction;

@@ -223,15 +223,9 @@ static mr_status def_error(char *msg, size_t msg_size, mr_status s, const char *
   return s;
 }
 
-mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *msg, size_t msg_size)
+/* Every field of a world definition in range. MR_OK or the first failure. */
+static mr_status check_world_def(const mr_world_def *def, char *msg, size_t msg_size)
 {
-  if (out_world)
-    *out_world = NULL;
-  if (!def || !out_world)
-    return def_error(msg, msg_size, MR_ERR_ARG, "def and out_world must not be NULL");
-  if (def->cookie != MR_DEF_COOKIE)
-    return def_error(msg, msg_size, MR_ERR_ARG,
-                     "not made by mr_default_world_def() (start from the maker, never from {0})");
   const double scalars[] = {def->dt_initial, def->dt_min, def->dt_max, def->deviation_low,
                             def->deviation_high, def->deviation_length, def->divergence_bound,
                             def->solver_tolerance, def->ks, def->kd, def->drag,
@@ -265,6 +259,21 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown solver method");
   if (def->effects & ~(uint32_t)MR_EFFECT_ALL)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown effect bits");
+  return MR_OK;
+}
+
+mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *msg, size_t msg_size)
+{
+  if (out_world)
+    *out_world = NULL;
+  if (!def || !out_world)
+    return def_error(msg, msg_size, MR_ERR_ARG, "def and out_world must not be NULL");
+  if (def->cookie != MR_DEF_COOKIE)
+    return def_error(msg, msg_size, MR_ERR_ARG,
+                     "not made by mr_default_world_def() (start from the maker, never from {0})");
+  mr_status st = check_world_def(def, msg, msg_size);
+  if (st != MR_OK)
+    return st;
 
   mr_world *w = calloc(1, sizeof *w);
   if (!w)

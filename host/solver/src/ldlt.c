@@ -57,27 +57,21 @@ static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *
     return total;
 }
 
-static int analyse(mr_ldlt *f, const mr_csr *A)
+int mr_ldlt_order(mr_ldlt *f, const mr_csr *A)
 {
     const int n = A->n;
     const size_t dn = (size_t)n, si = sizeof(int);
     if (mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si) || mr_buf_reserve(&f->cand, dn, si)
         || mr_buf_reserve(&f->parent, dn, si) || mr_buf_reserve(&f->lnz, dn, si)
-        || mr_buf_reserve(&f->flag, dn, si) || mr_buf_reserve(&f->stack, 2 * dn, si)
-        || mr_buf_reserve(&f->lp, dn + 1, si) || mr_buf_reserve(&f->dropped, dn, 1)
-        || mr_buf_reserve(&f->diag, dn, sizeof(double)) || mr_buf_reserve(&f->y, dn, sizeof(double))
-        || mr_buf_reserve(&f->z, dn, sizeof(double)) || mr_buf_reserve(&f->skip, dn, 1)
-        || mr_buf_reserve(&f->res, dn, sizeof(double)) || mr_buf_reserve(&f->dx, dn, sizeof(double)))
+        || mr_buf_reserve(&f->flag, dn, si) || mr_buf_reserve(&f->stack, 2 * dn, si))
         return MR_SOLVE_ENOMEM;
-    f->pattern.valid = 0;
-    int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int);
+    int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *cand = BUF(f, cand, int);
     int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
 
     /* Try the natural order, minimum degree (while its n² bits stay
      * small) and reverse Cuthill–McKee; keep whichever fills in least.
      * Each try is one symbolic pass, cheap beside a factorisation, and runs
      * only when the pattern changes. */
-    int *cand = BUF(f, cand, int);
     size_t best = 0;
     for (int way = 0; way < 3; way++) {
         if (way == 0) {
@@ -103,14 +97,28 @@ static int analyse(mr_ldlt *f, const mr_csr *A)
     }
     for (int i = 0; i < n; i++)
         iperm[perm[i]] = i;
-    f->nnz_l = symbolic(A, perm, iperm, parent, lnz, flag);
-    if (mr_buf_reserve(&f->li, f->nnz_l, si) || mr_buf_reserve(&f->lx, f->nnz_l, sizeof(double)))
+    return 0;
+}
+
+static int analyse(mr_ldlt *f, const mr_csr *A)
+{
+    const int n = A->n;
+    const size_t dn = (size_t)n;
+    f->pattern.valid = 0;
+    if (mr_buf_reserve(&f->lp, dn + 1, sizeof(int)) || mr_buf_reserve(&f->dropped, dn, 1)
+        || mr_buf_reserve(&f->diag, dn, sizeof(double)) || mr_buf_reserve(&f->y, dn, sizeof(double))
+        || mr_buf_reserve(&f->z, dn, sizeof(double)) || mr_buf_reserve(&f->skip, dn, 1)
+        || mr_buf_reserve(&f->res, dn, sizeof(double)) || mr_buf_reserve(&f->dx, dn, sizeof(double))
+        || mr_ldlt_order(f, A) != 0)
+        return MR_SOLVE_ENOMEM;
+    int *lnz = BUF(f, lnz, int);
+    f->nnz_l = symbolic(A, BUF(f, perm, int), BUF(f, iperm, int), BUF(f, parent, int), lnz, BUF(f, flag, int));
+    if (mr_buf_reserve(&f->li, f->nnz_l, sizeof(int)) || mr_buf_reserve(&f->lx, f->nnz_l, sizeof(double)))
         return MR_SOLVE_ENOMEM;
     int *lp = BUF(f, lp, int);
     lp[0] = 0;
     for (int k = 0; k < n; k++)
         lp[k + 1] = lp[k] + lnz[k];
-
     return mr_pattern_keep(&f->pattern, A);
 }
 

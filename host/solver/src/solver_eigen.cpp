@@ -1,6 +1,5 @@
-// MR_SOLVE_EIGEN: Eigen's SimplicialLDLT (approximate minimum degree
-// ordering, then a sparse LDLᵀ) behind the C interface in
-// solver_internal.h. The only C++ in the physics; it is also the oracle the
+// MR_SOLVE_EIGEN: Eigen's SimplicialLDLT (a sparse up-looking LDLᵀ)
+// behind the C interface in solver_internal.h. The only C++ in the physics; it is also the oracle the
 // C solvers are tested against.
 //
 // Eigen has no pivot threshold, so dependent rows are found afterwards with
@@ -8,19 +7,28 @@
 // Such a row is replaced by the identity row (its λ is then 0 and it no
 // longer couples to the others, exactly as if it were removed) and the
 // matrix factored again. Which row of a dependent set goes depends on the
-// ordering, so λ may differ from the C LDLᵀ's, while the forces Jᵀλ agree.
+// ordering and on rounding, so λ may differ from the C LDLᵀ's, while the
+// forces Jᵀλ agree.
 //
 // Storage: the ordering, the permuted upper triangle and Eigen's symbolic
 // analysis depend only on A's pattern, and replacing a row keeps the
-// pattern, so all three are made once per pattern. A call with the pattern
-// of the last one only copies numbers and refactors: no allocation.
+// pattern, so all three are made once per pattern and a call with the
+// pattern of the last one only copies numbers and refactors. Eigen's own
+// orderings and its public analyse and factorise calls allocate every
+// time, and its vectors reallocate whenever their size changes. So the
+// ordering is the C LDLᵀ's (minimum degree, RCM or natural, whichever
+// fills least: Eigen's numbers, not its ordering, are what the oracle
+// checks), the analysis and the factorisation are called on the kept
+// matrix directly, and the matrix keeps the largest size seen, the rows
+// beyond A's being identity rows. Once warm, no call allocates, whatever
+// the pattern, as long as A is no larger than one seen before.
 #include "solver_internal.h"
 
-#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
+#include <cmath>
 #include <cfloat>
 #include <new>
 #include <utility>
@@ -35,6 +43,13 @@ using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 // factors the kept matrix directly.
 class KeptLDLT : public Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> {
 public:
+  // Eigen sizes L's storage exactly; room for twice the nonzeros makes a
+  // pattern that fills a little more than the last one free.
+  void analyse(const SpMat &upper)
+  {
+    this->analyzePattern_preordered(upper, true);
+    this->m_matrix.data().reserve(this->m_matrix.nonZeros());
+  }
   void refactor(const SpMat &upper) { this->template factorize_preordered<true>(upper); }
   const Eigen::VectorXd &pivots() const { return this->m_diag; }
   void solve_in_place(Eigen::VectorXd &v) const
@@ -47,67 +62,90 @@ public:
 
 struct EigenWorkspace {
   mr_pattern pattern = {}; // A's pattern the members below were made for
+  mr_ldlt order = {};      // the ordering: order.perm is new → old
+  int size = 0;            // the kept matrices' size: the largest n seen
   KeptLDLT ldlt;
-  SpMat upper;           // the upper triangle of P A Pᵀ
-  std::vector<int> perm; // new → old
-  std::vector<int> src;  // upper's value t is A->val[src[t]]
-  std::vector<char> dep; // by old index
+  SpMat upper;              // the upper triangle of P A Pᵀ, identity beyond n
+  std::vector<int> src;     // upper's value t is A->val[src[t]]
+  std::vector<int> outer, inner;
+  std::vector<std::pair<int, int>> column;
+  std::vector<char> dep;    // by old index
   Eigen::VectorXd adiag, scale, rhs;
-  ~EigenWorkspace() { mr_pattern_free(&pattern); }
+  ~EigenWorkspace()
+  {
+    mr_pattern_free(&pattern);
+    mr_ldlt_free(&order);
+  }
+  const int *perm() const { return static_cast<const int *>(order.perm.p); }
 };
 
-// The ordering (Eigen's AMD on A's graph) and the permuted upper triangle's
-// pattern, each column's rows ascending.
+// The kept matrices grow to hold n rows, by doubling as mr_grow does;
+// they never shrink.
+void grow(EigenWorkspace &w, int n)
+{
+  if (n <= w.size)
+    return;
+  int size = w.size ? w.size : 16;
+  while (size < n)
+    size *= 2;
+  w.size = size;
+  w.dep.resize(size);
+  w.adiag.resize(size);
+  w.scale.resize(size);
+  w.rhs.resize(size);
+  w.outer.resize(size + 1);
+}
+
+// The ordering and the permuted upper triangle's pattern, each column's
+// rows ascending, then Eigen's symbolic analysis of it.
 void analyse(EigenWorkspace &w, const mr_csr *A)
 {
   const int n = A->n;
-  const SpMat full = Eigen::Map<const SpMat>(n, n, A->row_ptr[n], A->row_ptr, A->col, A->val);
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
-  Eigen::AMDOrdering<int>()(full, order);
-  w.perm.assign(order.indices().data(), order.indices().data() + n);
-  std::vector<int> inv(n);
-  for (int t = 0; t < n; t++)
-    inv[w.perm[t]] = t;
-
+  if (mr_ldlt_order(&w.order, A) != 0)
+    throw std::bad_alloc();
+  grow(w, n);
+  const int *perm = w.perm(), *inv = static_cast<const int *>(w.order.iperm.p);
   // A is symmetric and stores both triangles: column c of the upper
   // triangle is row perm[c] of A, restricted to new indices ≤ c.
-  std::vector<int> outer(n + 1, 0), inner;
-  std::vector<std::pair<int, int>> column;
+  w.inner.clear();
   w.src.clear();
-  for (int c = 0; c < n; c++) {
-    column.clear();
-    for (int q = A->row_ptr[w.perm[c]]; q < A->row_ptr[w.perm[c] + 1]; q++)
-      if (inv[A->col[q]] <= c)
-        column.emplace_back(inv[A->col[q]], q);
-    std::sort(column.begin(), column.end());
-    for (const auto &e : column) {
-      inner.push_back(e.first);
+  w.outer[0] = 0;
+  for (int c = 0; c < w.size; c++) {
+    w.column.clear();
+    if (c >= n)
+      w.column.emplace_back(c, -1);
+    else
+      for (int q = A->row_ptr[perm[c]]; q < A->row_ptr[perm[c] + 1]; q++)
+        if (inv[A->col[q]] <= c)
+          w.column.emplace_back(inv[A->col[q]], q);
+    std::sort(w.column.begin(), w.column.end());
+    for (const auto &e : w.column) {
+      w.inner.push_back(e.first);
       w.src.push_back(e.second);
     }
-    outer[c + 1] = (int)inner.size();
+    w.outer[c + 1] = (int)w.inner.size();
   }
-  w.upper.resize(n, n);
-  w.upper.resizeNonZeros(outer[n]);
-  std::copy(outer.begin(), outer.end(), w.upper.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), w.upper.innerIndexPtr());
-  std::fill(w.upper.valuePtr(), w.upper.valuePtr() + outer[n], 0.0);
-  w.ldlt.analyzePattern(w.upper);
-  w.dep.resize(n);
-  w.adiag.resize(n);
-  w.scale.resize(n);
-  w.rhs.resize(n);
+  const int nnz = w.outer[w.size];
+  w.upper.resize(w.size, w.size);
+  if (w.upper.data().allocatedSize() < nnz)
+    w.upper.data().reserve(2 * nnz); // doubling, as mr_grow does
+  w.upper.resizeNonZeros(nnz);
+  std::copy(w.outer.begin(), w.outer.begin() + w.size + 1, w.upper.outerIndexPtr());
+  std::copy(w.inner.begin(), w.inner.end(), w.upper.innerIndexPtr());
+  std::fill(w.upper.valuePtr(), w.upper.valuePtr() + nnz, 1.0); // the identity beyond n
+  w.ldlt.analyse(w.upper);
 }
 
 // A's numbers into the upper triangle: a dependent row and column become
 // the identity's; with scaled, the others are D^-½ A D^-½'s.
 void load(EigenWorkspace &w, const mr_csr *A, bool scaled)
 {
-  const int *outer = w.upper.outerIndexPtr(), *inner = w.upper.innerIndexPtr();
+  const int *outer = w.upper.outerIndexPtr(), *inner = w.upper.innerIndexPtr(), *perm = w.perm();
   double *val = w.upper.valuePtr();
   for (int c = 0; c < A->n; c++) {
-    const int oc = w.perm[c];
+    const int oc = perm[c];
     for (int t = outer[c]; t < outer[c + 1]; t++) {
-      const int orow = w.perm[inner[t]];
+      const int orow = perm[inner[t]];
       if (w.dep[orow] || w.dep[oc])
         val[t] = inner[t] == c ? 1.0 : 0.0;
       else if (scaled)
@@ -121,11 +159,11 @@ void load(EigenWorkspace &w, const mr_csr *A, bool scaled)
 // The old index of the first row in elimination order whose pivot fails
 // the test d ≤ tol · diag, or -1. Only the first is trusted: Eigen goes on
 // dividing by the tiny pivot, which spoils every pivot after it.
-int first_small_pivot(const EigenWorkspace &w, double tol, bool unit_diag)
+int first_small_pivot(const EigenWorkspace &w, int n, double tol, bool unit_diag)
 {
   const Eigen::VectorXd &d = w.ldlt.pivots();
-  for (int t = 0; t < d.size(); t++) {
-    const int old = w.perm[t];
+  for (int t = 0; t < n; t++) {
+    const int old = w.perm()[t];
     if (!w.dep[old] && !(d[t] > tol * (unit_diag ? 1.0 : w.adiag[old])))
       return old;
   }
@@ -142,13 +180,14 @@ int find_zero_pivot(EigenWorkspace &w, const mr_csr *A, double pivot_tol)
 {
   const double shift = std::max(1e-3 * pivot_tol, 8.0 * DBL_EPSILON);
   const double threshold = std::max(pivot_tol, 16.0 * shift);
-  w.scale = w.adiag.cwiseSqrt().cwiseInverse();
+  for (int i = 0; i < A->n; i++)
+    w.scale[i] = 1.0 / std::sqrt(w.adiag[i]);
   load(w, A, true);
   w.ldlt.setShift(shift, 1.0);
   w.ldlt.refactor(w.upper);
   if (w.ldlt.info() != Eigen::Success)
     return -1;
-  return first_small_pivot(w, threshold, true);
+  return first_small_pivot(w, A->n, threshold, true);
 }
 
 int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
@@ -170,7 +209,7 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
     w.ldlt.setShift(0.0, 1.0);
     w.ldlt.refactor(w.upper);
     const bool factored = w.ldlt.info() == Eigen::Success;
-    int bad = factored ? first_small_pivot(w, o->pivot_tol, false)
+    int bad = factored ? first_small_pivot(w, n, o->pivot_tol, false)
                        : find_zero_pivot(w, A, o->pivot_tol);
     if (!factored && bad < 0)
       return MR_SOLVE_NOT_CONVERGED;
@@ -178,11 +217,12 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
       w.dep[bad] = 1;
       continue;
     }
-    for (int t = 0; t < n; t++)
-      w.rhs[t] = w.dep[w.perm[t]] ? 0.0 : b[w.perm[t]];
+    const int *perm = w.perm();
+    for (int t = 0; t < w.size; t++)
+      w.rhs[t] = t < n && !w.dep[perm[t]] ? b[perm[t]] : 0.0;
     w.ldlt.solve_in_place(w.rhs);
     for (int t = 0; t < n; t++)
-      x[w.perm[t]] = w.rhs[t];
+      x[perm[t]] = w.rhs[t];
     break;
   }
   int count = 0;

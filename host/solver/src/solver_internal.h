@@ -95,6 +95,9 @@ int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
 int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
                   mr_solve_result *r);
 void mr_ldlt_free(mr_ldlt *f);
+/* The fill-reducing ordering the LDLᵀ uses, into f->perm (new → old) and
+ * f->iperm; uses only f's ordering scratch. 0 or MR_SOLVE_ENOMEM. */
+int mr_ldlt_order(mr_ldlt *f, const mr_csr *A);
 
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
  * 2n ints. */
