@@ -245,6 +245,43 @@ static void integrator_and_method_come_from_the_libraries_tables(void **state) {
   mr_scene_free(&s);
 }
 
+/* Every applied-force kind of the physics that has elements (all but
+ * gravity and drag) has a section in scene files, named as the physics
+ * names the kind: a kind added to MR_FORCE_KINDS without a scene reader
+ * fails here. */
+static void every_physics_force_kind_has_a_scene_section(void **state) {
+  (void)state;
+  static const struct {
+    uint32_t bit;
+    const char *name;
+  } kinds[] = {
+#define X(id, stem, name) {MR_EFFECT_##id, name},
+      MR_FORCE_KINDS(X)
+#undef X
+  };
+  int sections = 0;
+  for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
+    if (kinds[i].bit == MR_EFFECT_GRAVITY || kinds[i].bit == MR_EFFECT_DRAG)
+      continue;
+    char key[64], text[512];
+    snprintf(key, sizeof key, "%s", kinds[i].name);
+    for (char *c = key; *c; c++)
+      *c = *c == '-' ? '_' : *c;
+    snprintf(text, sizeof text,
+             "physics:\n  effects: [%s]\n  particles: [{name: a, position: [0, 1, 0], "
+             "mass: 1}]\n  %s: []\n",
+             kinds[i].name, key);
+    mr_scene s;
+    mr_scene_error e;
+    mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), &s, &e);
+    if (st != MR_SCENE_OK)
+      fail_msg("force kind '%s': %s", kinds[i].name, e.text);
+    mr_scene_free(&s);
+    sections++;
+  }
+  assert_true(sections >= 5); /* springs, strings, antigravity, triggered, sine springs */
+}
+
 static void unknown_alias_is_refused(void **state) {
   (void)state;
   expect_error(BASE "    - *nope\n", MR_SCENE_ERR_SYNTAX,
@@ -398,6 +435,7 @@ int main(void) {
       cmocka_unit_test(unknown_names_and_shapes),
       cmocka_unit_test(duplicate_keys_are_refused),
       cmocka_unit_test(unknown_alias_is_refused),
+      cmocka_unit_test(every_physics_force_kind_has_a_scene_section),
       cmocka_unit_test(integrator_and_method_come_from_the_libraries_tables),
       cmocka_unit_test(degenerate_groups_are_refused),
       cmocka_unit_test(part_friction_is_read_and_checked),
