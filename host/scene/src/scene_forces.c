@@ -14,7 +14,7 @@
 
 #define FIELD(type, field) offsetof(type, field)
 
-/* `acted` must be a particle; `name` must differ from `other`. */
+/* The point a force acts on: a particle, never a control point. */
 static int read_acted(mr_reader *r, const mr_ynode *it, const char *what, int *id) {
   const mr_ynode *v = mr_scene_read_need(r, it, "acted", what);
   if (v == NULL || mr_scene_read_point(r, v, id) != 0)
@@ -25,6 +25,7 @@ static int read_acted(mr_reader *r, const mr_ynode *it, const char *what, int *i
   return 0;
 }
 
+/* The point under `key`, which must differ from `other` (`label` names it). */
 static int read_other(mr_reader *r, const mr_ynode *it, const char *key, const char *what,
                       int other, const char *label, int *id) {
   const mr_ynode *v = mr_scene_read_need(r, it, key, what);
