@@ -56,15 +56,16 @@ static void format_md_sample_is_what_sim_prints(void **state) {
   assert_int_equal(chdir(MR_SOURCE_DIR), 0);
   char *doc = slurp("host/scenes/FORMAT.md");
   char *sample = sample_of(doc);
-  char *argv[] = {marionette, "sim", "host/scenes/puppet.yaml", NULL};
+  char *argv[] = { marionette, "sim", "host/scenes/puppet.yaml", NULL };
   scene_proc p;
   assert_int_equal(scene_proc_run(argv, &p), 0);
   assert_int_equal(p.status, 0);
   drop_wall(sample);
   drop_wall(p.out);
   if (strcmp(sample, p.out) != 0)
-    fprintf(stderr, "FORMAT.md shows:\n%s\nsim prints:\n%s\n(host/scenes/pin-hashes.sh "
-                    "regenerates the sample)\n",
+    fprintf(stderr,
+            "FORMAT.md shows:\n%s\nsim prints:\n%s\n(host/scenes/pin-hashes.sh "
+            "regenerates the sample)\n",
             sample, p.out);
   assert_string_equal(sample, p.out);
   scene_proc_free(&p);
@@ -79,7 +80,7 @@ int main(int argc, char **argv) {
   }
   marionette = argv[1];
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(format_md_sample_is_what_sim_prints),
+    cmocka_unit_test(format_md_sample_is_what_sim_prints),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
