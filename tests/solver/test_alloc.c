@@ -165,6 +165,46 @@ static void no_method_allocates_when_a_contact_comes_and_goes(void **state)
   }
 }
 
+/* With room reserved for the largest system, not even the first
+ * evaluation allocates, under any method, while contacts come and go: what
+ * a world needs to allocate nothing after it is made. */
+static void reserving_room_makes_even_the_first_evaluation_allocation_free(void **state)
+{
+  (void)state;
+  const int rows = N + 20, entries = 2 * rows;
+  for (int m = 0; m < MR_SOLVE_METHOD_COUNT; m++) {
+    rig r;
+    rig_init(&r);
+    assert_int_equal(mr_jac_reserve(&r.J, rows, entries), MR_SOLVE_OK);
+    assert_int_equal(mr_csr_reserve(&r.A, rows, N, entries), MR_SOLVE_OK);
+    assert_int_equal(mr_solver_reserve(r.solver, rows), MR_SOLVE_OK);
+    mr_solve_def def = mr_default_solve_def();
+    def.method = (mr_solve_method)m;
+    def.max_iter = 50;
+    allocations = 0;
+    counting = 1;
+    for (int it = 0; it < 100; it++)
+      evaluate(&r, &def, 0.01 * it, (it / 10) % 2);
+    counting = 0;
+    rig_free(&r);
+    if (allocations != 0)
+      fail_msg("%s: %ld allocations after reserving", mr_solve_method_name(m), allocations);
+  }
+}
+
+static void reserving_refuses_negative_sizes(void **state)
+{
+  (void)state;
+  mr_jac J = {0};
+  mr_csr A = {0};
+  mr_solver *s = mr_solver_create();
+  assert_int_equal(mr_jac_reserve(&J, -1, 0), MR_SOLVE_BAD_ARG);
+  assert_int_equal(mr_csr_reserve(&A, 1, -1, 0), MR_SOLVE_BAD_ARG);
+  assert_int_equal(mr_solver_reserve(s, -1), MR_SOLVE_BAD_ARG);
+  assert_int_equal(mr_solver_reserve(NULL, 1), MR_SOLVE_BAD_ARG);
+  mr_solver_destroy(s);
+}
+
 /* The counter itself works: a cold start allocates. */
 static void a_cold_start_is_counted(void **state)
 {
@@ -187,6 +227,8 @@ int main(void)
       cmocka_unit_test(a_cold_start_is_counted),
       cmocka_unit_test(every_method_allocates_nothing_once_warm),
       cmocka_unit_test(no_method_allocates_when_a_contact_comes_and_goes),
+      cmocka_unit_test(reserving_room_makes_even_the_first_evaluation_allocation_free),
+      cmocka_unit_test(reserving_refuses_negative_sizes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

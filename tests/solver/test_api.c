@@ -154,6 +154,31 @@ static void iteration_cap_reports_not_converged(void **state)
     test_system_free(&s);
 }
 
+/* The list for "expected one of" messages is the same table: every
+ * method's name once, then NULL; and every status has words. */
+static void name_list_and_status_names_come_from_the_tables(void **state)
+{
+    (void)state;
+    const char *const *list = mr_solve_method_names();
+    int count = 0;
+    for (; list[count]; count++) {
+        mr_solve_method m;
+        assert_int_equal(mr_solve_method_parse(list[count], &m), 0);
+        assert_int_equal(m, count);
+        assert_string_equal(mr_solve_method_name(m), list[count]);
+    }
+    assert_int_equal(count, MR_SOLVE_METHOD_COUNT);
+    const mr_solve_status all[] = { MR_SOLVE_OK, MR_SOLVE_NOT_CONVERGED, MR_SOLVE_DEPENDENT, MR_SOLVE_ENOMEM,
+                                    MR_SOLVE_NONFINITE, MR_SOLVE_UNAVAILABLE, MR_SOLVE_BAD_ARG };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
+        assert_string_not_equal(mr_solve_status_name(all[i]), "unknown");
+        for (size_t j = 0; j < i; j++)
+            assert_string_not_equal(mr_solve_status_name(all[i]), mr_solve_status_name(all[j]));
+    }
+    assert_string_equal(mr_solve_status_name((mr_solve_status)99), "unknown");
+    assert_string_equal(mr_solve_status_name(MR_SOLVE_ENOMEM), "out of memory");
+}
+
 static void names_parse_and_defaults(void **state)
 {
     (void)state;
@@ -260,6 +285,7 @@ int main(void)
         cmocka_unit_test(empty_and_zero_systems),
         cmocka_unit_test(iteration_cap_reports_not_converged),
         cmocka_unit_test(names_parse_and_defaults),
+        cmocka_unit_test(name_list_and_status_names_come_from_the_tables),
         cmocka_unit_test(workspace_reuse_matches_a_fresh_solver),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -180,6 +180,17 @@ static int dynamic(const mr_world *w, int p)
   return w->inv_mass[p] > 0.0;
 }
 
+/* A pin or a curve holds one particle, which must exist and not ride on a
+ * control frame. */
+static mr_status check_moving(mr_world *w, int p, const char *what)
+{
+  if (mr_check_particle(w, p, what) != 0)
+    return MR_ERR_ID;
+  if (!dynamic(w, p))
+    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, p);
+  return MR_OK;
+}
+
 int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id)
 {
   mr_distance d = {a, b, length};
@@ -220,12 +231,10 @@ mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id)
 {
   const char *what = "mr_world_add_pin";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
+  if (s == MR_OK)
+    s = check_moving(w, def->particle, what);
   if (s != MR_OK)
     return s;
-  if (mr_check_particle(w, def->particle, what) != 0)
-    return MR_ERR_ID;
-  if (!dynamic(w, def->particle))
-    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, def->particle);
   if (!def->at_current && !mr_finite3(def->point))
     return mr_fail(w, MR_ERR_NONFINITE, "%s: point is NaN or Inf", what);
   mr_pin p;
@@ -254,12 +263,10 @@ mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id)
 {
   const char *what = "mr_world_add_curve";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
+  if (s == MR_OK)
+    s = check_moving(w, def->particle, what);
   if (s != MR_OK)
     return s;
-  if (mr_check_particle(w, def->particle, what) != 0)
-    return MR_ERR_ID;
-  if (!dynamic(w, def->particle))
-    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, def->particle);
   if ((unsigned)def->interp > MR_CURVE_LINEAR)
     return mr_fail(w, MR_ERR_ARG, "%s: unknown interpolation %d", what, (int)def->interp);
   mr_curve c = {def->particle, 0, NULL, NULL, def->interp, def->fn, def->user};

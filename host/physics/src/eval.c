@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int mr_solve_reserve(mr_world *w, int rows)
+int mr_rows_reserve(mr_world *w, int rows)
 {
   if (rows <= w->cap_rows)
     return 0;
@@ -102,7 +102,7 @@ static void accelerations(const mr_world *w, const double *f, double *a)
 int mr_rows_build(mr_world *w, double t, const double *x, const double *v)
 {
   int nc = mr_constraint_row_count(w);
-  if (mr_solve_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0)
+  if (mr_rows_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0)
     return -1;
   int r = 0;
   if (nc > 0) {

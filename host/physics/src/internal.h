@@ -230,7 +230,7 @@ int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list 
 /* eval.c: accelerations for a state, eq. 1 and eq. 8, during a step of
  * length h (static friction aims to stop sliding within h/2). */
 int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a);
-int mr_solve_reserve(mr_world *w, int rows);
+int mr_rows_reserve(mr_world *w, int rows);
 /* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda. */
 int mr_solve_rows(mr_world *w, int assemble);
 

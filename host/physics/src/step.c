@@ -103,22 +103,40 @@ static int contact_capacity(mr_world *w, int need)
 
 /* Room for every contact the world can have (each dynamic particle on each
  * plane, each pair of leaf spheres), up to a cap that keeps a large world's
- * reservation modest; past it the lists still grow, amortised. Reserved
- * here, the step itself need not allocate. */
+ * reservation modest; past it the lists still grow, amortised. */
 #define MR_CONTACT_RESERVE_MAX 16384
+/* The solver's reservation is dense (rows² entries for J M⁻¹ Jᵀ, rows²/2 for
+ * its factor): up to this many rows, about 3 MB, it is made; a larger
+ * system grows the solver's arrays when it first meets a bigger size. */
+#define MR_SOLVE_RESERVE_MAX_ROWS 512
 
 static int reserve_contacts(mr_world *w)
 {
   long dynamic = 0;
   for (int i = 0; i < w->n; i++)
     dynamic += w->inv_mass[i] > 0.0;
-  long most = (long)w->planes.n * dynamic + (long)w->leaves.n * (w->leaves.n - 1) / 2;
+  long plane_pairs = (long)w->planes.n * dynamic;
+  long sphere_pairs = (long)w->leaves.n * (w->leaves.n - 1) / 2;
+  long most = plane_pairs + sphere_pairs;
   int cap = most < MR_CONTACT_RESERVE_MAX ? (int)most : MR_CONTACT_RESERVE_MAX;
-  if (cap == 0)
+  if (cap > 0 &&
+      (mr_grow((void **)&w->contacts.c, &w->contacts.cap, cap, sizeof(mr_contact)) != 0 ||
+       mr_grow((void **)&w->probe.c, &w->probe.cap, cap, sizeof(mr_contact)) != 0 ||
+       contact_capacity(w, cap) != 0))
+    return -1;
+  /* Rows and J entries: a distance has two particles, a pin or curve row
+   * one, a plane contact one, a sphere contact up to four. */
+  int rows = mr_constraint_row_count(w) + cap;
+  long plane_rows = plane_pairs < cap ? plane_pairs : cap;
+  long entries = 2L * w->distances.n + 3L * (w->pins.n + w->curves.n) + plane_rows +
+                 4L * (cap - plane_rows);
+  if (mr_rows_reserve(w, rows) != 0)
+    return -1;
+  if (rows == 0 || rows > MR_SOLVE_RESERVE_MAX_ROWS)
     return 0;
-  if (mr_grow((void **)&w->contacts.c, &w->contacts.cap, cap, sizeof(mr_contact)) != 0 ||
-      mr_grow((void **)&w->probe.c, &w->probe.cap, cap, sizeof(mr_contact)) != 0 ||
-      contact_capacity(w, cap) != 0 || mr_solve_reserve(w, mr_constraint_row_count(w) + cap) != 0)
+  if (mr_jac_reserve(&w->J, rows, (int)entries) != MR_SOLVE_OK ||
+      mr_csr_reserve(&w->A, rows, w->n, (int)entries) != MR_SOLVE_OK ||
+      mr_solver_reserve(w->solver, rows) != MR_SOLVE_OK)
     return -1;
   return 0;
 }

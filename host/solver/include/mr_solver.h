@@ -45,6 +45,9 @@ typedef struct mr_jac {
   size_t cap_rows, cap_entries; /* private: the arrays' capacities */
 } mr_jac;
 mr_solve_status mr_jac_reset(mr_jac *J, int n_particles); /* keeps capacity */
+/* Room for rows rows and entries entries in all, so that building J up to
+ * that size allocates nothing. */
+mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries);
 int mr_jac_begin_row(mr_jac *J);                          /* the new row's index, or -1 */
 /* Into the current row; a particle named twice in a row is summed once. */
 mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]);
@@ -68,6 +71,10 @@ typedef struct mr_csr {
  * the set of pinned particles stay as in the last call, only the numbers
  * are recomputed. MR_SOLVE_UNAVAILABLE for a NULL A, J, or inv_mass. */
 mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass);
+/* Room for any J of up to rows rows, particles particles and entries
+ * entries (A dense: rows² entries), so that no assembly up to that size
+ * allocates, whatever its pattern. */
+mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries);
 void mr_csr_free(mr_csr *A);
 
 /* ------------------------------------------------------------- solving */
@@ -92,6 +99,10 @@ typedef struct mr_solve_result {
 
 typedef struct mr_solver mr_solver; /* the workspace of every method */
 mr_solver *mr_solver_create(void);
+/* Room for any system of up to rows rows under every method (L dense:
+ * rows²/2 entries), so that no solve up to that size allocates, whatever
+ * its pattern. Without it each object grows to the sizes it meets. */
+mr_solve_status mr_solver_reserve(mr_solver *s, int rows);
 void mr_solver_destroy(mr_solver *s);
 /* x is the warm start of the iterative methods and the result. Returns
  * r->status (r may be NULL; def NULL means the defaults). On

@@ -55,13 +55,30 @@ static int same_source(const struct mr_csr_plan *pl, const mr_jac *J, const doub
   return 1;
 }
 
-static int keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
+/* The plan's arrays for k rows, np particles and ne entries of J. */
+static int plan_reserve(struct mr_csr_plan *pl, size_t k, size_t np, size_t ne)
+{
+  if (mr_buf_reserve(&pl->rp, k + 1, sizeof(int)) || mr_buf_reserve(&pl->jrp, k + 1, sizeof(int)) ||
+      mr_buf_reserve(&pl->jpart, ne, sizeof(int)) || mr_buf_reserve(&pl->pinned, np, 1) ||
+      mr_buf_reserve(&pl->pstart, np + 1, sizeof(int)) || mr_buf_reserve(&pl->prow, ne, sizeof(int)) ||
+      mr_buf_reserve(&pl->pent, ne, sizeof(int)) || mr_buf_reserve(&pl->mark, k, sizeof(int)) ||
+      mr_buf_reserve(&pl->cursor, k + 1, sizeof(int)) || mr_buf_reserve(&pl->work, k, sizeof(double)))
+    return MR_SOLVE_ENOMEM;
+  return 0;
+}
+
+/* A's entries: nnz columns and values, and the unsorted columns. */
+static int plan_reserve_entries(struct mr_csr_plan *pl, size_t nnz)
+{
+  if (mr_buf_reserve(&pl->ucol, nnz, sizeof(int)) || mr_buf_reserve(&pl->col, nnz, sizeof(int)) ||
+      mr_buf_reserve(&pl->val, nnz, sizeof(double)))
+    return MR_SOLVE_ENOMEM;
+  return 0;
+}
+
+static void keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
 {
   const int k = J->rows, np = J->n_particles;
-  if (mr_buf_reserve(&pl->jrp, (size_t)k + 1, sizeof(int)) ||
-      mr_buf_reserve(&pl->jpart, (size_t)ne, sizeof(int)) ||
-      mr_buf_reserve(&pl->pinned, (size_t)np, 1))
-    return MR_SOLVE_ENOMEM;
   if (k > 0)
     memcpy(pl->jrp.p, J->row_ptr, ((size_t)k + 1) * sizeof(int));
   if (ne > 0)
@@ -72,7 +89,6 @@ static int keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *in
   pl->rows = k;
   pl->np = np;
   pl->ne = ne;
-  return 0;
 }
 
 /* Particle → (row, entry) lists by a counting sort over J's entries; a
@@ -139,9 +155,7 @@ static int build_pattern(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J)
   int nnz = 0;
   for (int i = 0; i < k; i++)
     nnz += row_columns(pl, J, i, mark, NULL);
-  if (mr_buf_reserve(&pl->ucol, (size_t)nnz, sizeof(int)) ||
-      mr_buf_reserve(&pl->col, (size_t)nnz, sizeof(int)) ||
-      mr_buf_reserve(&pl->val, (size_t)nnz, sizeof(double)))
+  if (plan_reserve_entries(pl, (size_t)nnz) != 0)
     return MR_SOLVE_ENOMEM;
   int *ucol = INTS(pl->ucol), *rp = INTS(pl->rp), *col = INTS(pl->col);
   memset(cnt, 0, ((size_t)k + 1) * sizeof *cnt);
@@ -167,23 +181,13 @@ static int build_pattern(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J)
   return 0;
 }
 
-static int plan_reserve(struct mr_csr_plan *pl, const mr_jac *J, int ne)
-{
-  const size_t k = (size_t)J->rows, np = (size_t)J->n_particles, sne = (size_t)ne;
-  if (mr_buf_reserve(&pl->rp, k + 1, sizeof(int)) || mr_buf_reserve(&pl->pstart, np + 1, sizeof(int)) ||
-      mr_buf_reserve(&pl->prow, sne, sizeof(int)) || mr_buf_reserve(&pl->pent, sne, sizeof(int)) ||
-      mr_buf_reserve(&pl->mark, k, sizeof(int)) || mr_buf_reserve(&pl->cursor, k + 1, sizeof(int)) ||
-      mr_buf_reserve(&pl->work, k, sizeof(double)))
-    return MR_SOLVE_ENOMEM;
-  memset(pl->work.p, 0, k * sizeof(double));
-  return 0;
-}
-
 static int replan(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne)
 {
   pl->valid = 0;
-  if (plan_reserve(pl, J, ne) != 0 || keep_source(pl, J, inv_mass, ne) != 0)
+  if (plan_reserve(pl, (size_t)J->rows, (size_t)J->n_particles, (size_t)ne) != 0)
     return MR_SOLVE_ENOMEM;
+  memset(pl->work.p, 0, (size_t)J->rows * sizeof(double));
+  keep_source(pl, J, inv_mass, ne);
   particle_lists(pl, J, inv_mass, ne);
   if (build_pattern(A, pl, J) != 0)
     return MR_SOLVE_ENOMEM;
@@ -204,17 +208,19 @@ static double dot3(const double a[3], const double b[3])
 static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass)
 {
   const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
-  double *work = pl->work.p;
+  const int *jrp = J->row_ptr, *part = J->particle, *rp = A->row_ptr, *col = A->col;
+  const double(*d)[3] = (const double(*)[3])J->d;
+  double *work = pl->work.p, *val = A->val;
   for (int i = 0; i < J->rows; i++) {
-    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-      int p = J->particle[e];
-      double w = inv_mass[p]; /* a pinned particle's list is empty */
-      for (int q = pstart[p]; q < pstart[p + 1] && prow[q] <= i; q++)
-        work[prow[q]] += w * dot3(J->d[e], J->d[pent[q]]);
+    for (int e = jrp[i], e_end = jrp[i + 1]; e < e_end; e++) {
+      const int p = part[e];
+      const double w = inv_mass[p]; /* a pinned particle's list is empty */
+      for (int q = pstart[p], q_end = pstart[p + 1]; q < q_end && prow[q] <= i; q++)
+        work[prow[q]] += w * dot3(d[e], d[pent[q]]);
     }
-    for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1] && A->col[q] <= i; q++) {
-      A->val[q] = work[A->col[q]];
-      work[A->col[q]] = 0.0;
+    for (int q = rp[i], q_end = rp[i + 1]; q < q_end && col[q] <= i; q++) {
+      val[q] = work[col[q]];
+      work[col[q]] = 0.0;
     }
   }
 }
@@ -239,6 +245,24 @@ static void symmetrise(mr_csr *A, int *cursor)
   }
 }
 
+static int plan_of(mr_csr *A)
+{
+  if (!A->plan && !(A->plan = calloc(1, sizeof *A->plan)))
+    return MR_SOLVE_ENOMEM;
+  return 0;
+}
+
+mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries)
+{
+  if (!A || rows < 0 || particles < 0 || entries < 0)
+    return MR_SOLVE_BAD_ARG;
+  const size_t k = (size_t)rows;
+  if (plan_of(A) != 0 || plan_reserve(A->plan, k, (size_t)particles, (size_t)entries) != 0 ||
+      plan_reserve_entries(A->plan, k * k) != 0)
+    return MR_SOLVE_ENOMEM;
+  return MR_SOLVE_OK;
+}
+
 mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass)
 {
   if (!J || !A)
@@ -246,7 +270,7 @@ mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_ma
   const int ne = J->rows > 0 ? J->row_ptr[J->rows] : 0;
   if (ne > 0 && !inv_mass)
     return MR_SOLVE_UNAVAILABLE;
-  if (!A->plan && !(A->plan = calloc(1, sizeof *A->plan)))
+  if (plan_of(A) != 0)
     return MR_SOLVE_ENOMEM;
   struct mr_csr_plan *pl = A->plan;
   if (!same_source(pl, J, inv_mass, ne) && replan(A, pl, J, inv_mass, ne) != 0)

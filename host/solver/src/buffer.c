@@ -44,12 +44,19 @@ int mr_pattern_same(const mr_pattern *pat, const mr_csr *A)
          memcmp(pat->col.p, A->col, (size_t)pat->nnz * sizeof(int)) == 0;
 }
 
+int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz)
+{
+  if (mr_buf_reserve(&pat->rp, n + 1, sizeof(int)) != 0 ||
+      mr_buf_reserve(&pat->col, nnz, sizeof(int)) != 0)
+    return MR_SOLVE_ENOMEM;
+  return 0;
+}
+
 int mr_pattern_keep(mr_pattern *pat, const mr_csr *A)
 {
   const int nnz = A->row_ptr[A->n];
   pat->valid = 0;
-  if (mr_buf_reserve(&pat->rp, (size_t)A->n + 1, sizeof(int)) != 0 ||
-      mr_buf_reserve(&pat->col, (size_t)nnz, sizeof(int)) != 0)
+  if (mr_pattern_reserve(pat, (size_t)A->n, (size_t)nnz) != 0)
     return MR_SOLVE_ENOMEM;
   memcpy(pat->rp.p, A->row_ptr, ((size_t)A->n + 1) * sizeof(int));
   memcpy(pat->col.p, A->col, (size_t)nnz * sizeof(int));

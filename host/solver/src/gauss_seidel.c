@@ -13,10 +13,8 @@
 int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
 {
     const int n = A->n;
-    int screened = mr_screen_for_iteration(s, A, o->pivot_tol, x);
-    if (screened < 0)
-        return screened;
-    r->dependent = screened;
+    if (mr_screen_for_iteration(s, A, o->pivot_tol, x, r) != 0)
+        return MR_SOLVE_ENOMEM;
     const unsigned char *dep = s->dep.p;
     const double *inv_diag = s->inv_diag.p;
 

@@ -37,6 +37,15 @@ mr_solve_status mr_jac_reset(mr_jac *J, int n_particles)
     return MR_SOLVE_OK;
 }
 
+mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries)
+{
+    if (!J || rows < 0 || entries < 0)
+        return MR_SOLVE_BAD_ARG;
+    if (grow_rows(J, rows) != 0 || grow_entries(J, entries) != 0)
+        return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_OK;
+}
+
 int mr_jac_begin_row(mr_jac *J)
 {
     if (!J || !J->row_ptr)
@@ -66,7 +75,7 @@ mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3])
             return MR_SOLVE_OK;
         }
     }
-    if (grow_entries(J, end + 1) != 0)
+    if ((size_t)end + 1 > J->cap_entries && grow_entries(J, end + 1) != 0)
         return MR_SOLVE_ENOMEM;
     J->particle[end] = particle;
     memcpy(J->d[end], d, sizeof J->d[end]);

@@ -57,13 +57,41 @@ static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *
     return total;
 }
 
-int mr_ldlt_order(mr_ldlt *f, const mr_csr *A)
+static int reserve_order(mr_ldlt *f, size_t n)
+{
+    const size_t si = sizeof(int);
+    if (mr_buf_reserve(&f->perm, n, si) || mr_buf_reserve(&f->iperm, n, si) || mr_buf_reserve(&f->cand, n, si)
+        || mr_buf_reserve(&f->parent, n, si) || mr_buf_reserve(&f->lnz, n, si)
+        || mr_buf_reserve(&f->flag, n, si) || mr_buf_reserve(&f->stack, 2 * n, si)
+        || (n <= MR_MIN_DEGREE_MAX_N && mr_buf_reserve(&f->bits, n * ((n + 63) / 64), sizeof(uint64_t))))
+        return MR_SOLVE_ENOMEM;
+    return 0;
+}
+
+static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l)
+{
+    if (mr_buf_reserve(&f->lp, n + 1, sizeof(int)) || mr_buf_reserve(&f->dropped, n, 1)
+        || mr_buf_reserve(&f->diag, n, sizeof(double)) || mr_buf_reserve(&f->y, n, sizeof(double))
+        || mr_buf_reserve(&f->z, n, sizeof(double)) || mr_buf_reserve(&f->skip, n, 1)
+        || mr_buf_reserve(&f->res, n, sizeof(double)) || mr_buf_reserve(&f->dx, n, sizeof(double))
+        || mr_buf_reserve(&f->li, nnz_l, sizeof(int)) || mr_buf_reserve(&f->lx, nnz_l, sizeof(double)))
+        return MR_SOLVE_ENOMEM;
+    return 0;
+}
+
+int mr_ldlt_reserve(mr_ldlt *f, int rows)
+{
+    const size_t n = (size_t)rows;
+    if (reserve_order(f, n) || reserve_factor(f, n, n * (n > 0 ? n - 1 : 0) / 2)
+        || mr_pattern_reserve(&f->pattern, n, n * n))
+        return MR_SOLVE_ENOMEM;
+    return 0;
+}
+
+int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l)
 {
     const int n = A->n;
-    const size_t dn = (size_t)n, si = sizeof(int);
-    if (mr_buf_reserve(&f->perm, dn, si) || mr_buf_reserve(&f->iperm, dn, si) || mr_buf_reserve(&f->cand, dn, si)
-        || mr_buf_reserve(&f->parent, dn, si) || mr_buf_reserve(&f->lnz, dn, si)
-        || mr_buf_reserve(&f->flag, dn, si) || mr_buf_reserve(&f->stack, 2 * dn, si))
+    if (reserve_order(f, (size_t)n))
         return MR_SOLVE_ENOMEM;
     int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *cand = BUF(f, cand, int);
     int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
@@ -80,9 +108,6 @@ int mr_ldlt_order(mr_ldlt *f, const mr_csr *A)
         } else if (way == 1) {
             if (n > MR_MIN_DEGREE_MAX_N)
                 continue;
-            size_t words = ((size_t)n + 63) / 64;
-            if (mr_buf_reserve(&f->bits, (size_t)n * words, sizeof(uint64_t)))
-                return MR_SOLVE_ENOMEM;
             mr_order_min_degree(A, cand, f->bits.p, lnz);
         } else {
             mr_order_rcm(A, cand, BUF(f, stack, int));
@@ -92,29 +117,24 @@ int mr_ldlt_order(mr_ldlt *f, const mr_csr *A)
         size_t fill = symbolic(A, cand, iperm, parent, lnz, flag);
         if (way == 0 || fill < best) {
             best = fill;
-            memcpy(perm, cand, dn * si);
+            memcpy(perm, cand, (size_t)n * sizeof *perm);
         }
     }
     for (int i = 0; i < n; i++)
         iperm[perm[i]] = i;
+    *nnz_l = best;
     return 0;
 }
 
 static int analyse(mr_ldlt *f, const mr_csr *A)
 {
     const int n = A->n;
-    const size_t dn = (size_t)n;
     f->pattern.valid = 0;
-    if (mr_buf_reserve(&f->lp, dn + 1, sizeof(int)) || mr_buf_reserve(&f->dropped, dn, 1)
-        || mr_buf_reserve(&f->diag, dn, sizeof(double)) || mr_buf_reserve(&f->y, dn, sizeof(double))
-        || mr_buf_reserve(&f->z, dn, sizeof(double)) || mr_buf_reserve(&f->skip, dn, 1)
-        || mr_buf_reserve(&f->res, dn, sizeof(double)) || mr_buf_reserve(&f->dx, dn, sizeof(double))
-        || mr_ldlt_order(f, A) != 0)
+    if (mr_ldlt_order(f, A, &f->nnz_l) != 0 || reserve_factor(f, (size_t)n, f->nnz_l) != 0)
         return MR_SOLVE_ENOMEM;
+    /* The lnz of the ordering kept, not of the last one tried. */
     int *lnz = BUF(f, lnz, int);
-    f->nnz_l = symbolic(A, BUF(f, perm, int), BUF(f, iperm, int), BUF(f, parent, int), lnz, BUF(f, flag, int));
-    if (mr_buf_reserve(&f->li, f->nnz_l, sizeof(int)) || mr_buf_reserve(&f->lx, f->nnz_l, sizeof(double)))
-        return MR_SOLVE_ENOMEM;
+    symbolic(A, BUF(f, perm, int), BUF(f, iperm, int), BUF(f, parent, int), lnz, BUF(f, flag, int));
     int *lp = BUF(f, lp, int);
     lp[0] = 0;
     for (int k = 0; k < n; k++)

@@ -66,6 +66,19 @@ mr_solver *mr_solver_create(void)
     return calloc(1, sizeof(mr_solver));
 }
 
+mr_solve_status mr_solver_reserve(mr_solver *s, int rows)
+{
+    if (!s || rows < 0)
+        return MR_SOLVE_BAD_ARG;
+    mr_buf *const doubles[] = { &s->x, &s->r, &s->z, &s->p, &s->q, &s->inv_diag };
+    for (size_t i = 0; i < sizeof doubles / sizeof doubles[0]; i++)
+        if (mr_buf_reserve(doubles[i], (size_t)rows, sizeof(double)) != 0)
+            return MR_SOLVE_ENOMEM;
+    if (mr_buf_reserve(&s->dep, (size_t)rows, 1) != 0 || mr_ldlt_reserve(&s->ldlt, rows) != 0)
+        return MR_SOLVE_ENOMEM;
+    return (mr_solve_status)mr_eigen_reserve(&s->eigen, rows);
+}
+
 void mr_solver_destroy(mr_solver *s)
 {
     if (!s)
@@ -156,14 +169,15 @@ int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, doubl
     return count;
 }
 
-int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x)
+int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x,
+                            mr_solve_result *r)
 {
     if (mr_buf_reserve(&s->dep, (size_t)A->n, 1) != 0
         || mr_buf_reserve(&s->inv_diag, (size_t)A->n, sizeof(double)) != 0)
         return MR_SOLVE_ENOMEM;
     unsigned char *dep = s->dep.p;
     double *inv_diag = s->inv_diag.p;
-    int count = mr_screen_pairs(A, pivot_tol, dep, inv_diag);
+    r->dependent = mr_screen_pairs(A, pivot_tol, dep, inv_diag);
     for (int i = 0; i < A->n; i++) {
         if (dep[i]) {
             x[i] = 0.0;
@@ -172,7 +186,7 @@ int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, dou
             inv_diag[i] = 1.0 / inv_diag[i];
         }
     }
-    return count;
+    return 0;
 }
 
 static int all_finite(size_t n, const double *v)

@@ -43,12 +43,18 @@ using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 // factors the kept matrix directly.
 class KeptLDLT : public Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> {
 public:
-  // Eigen sizes L's storage exactly; room for twice the nonzeros makes a
-  // pattern that fills a little more than the last one free.
-  void analyse(const SpMat &upper)
+  // Eigen sizes L's storage exactly; it grows here instead, by doubling,
+  // to nnz_l (known from the ordering), so that Eigen finds room.
+  void reserve_l(Eigen::Index nnz_l)
   {
+    auto &data = this->m_matrix.data();
+    if (data.allocatedSize() < nnz_l)
+      data.reserve(std::max(nnz_l, 2 * data.allocatedSize()) - data.size());
+  }
+  void analyse(const SpMat &upper, Eigen::Index nnz_l)
+  {
+    reserve_l(nnz_l);
     this->analyzePattern_preordered(upper, true);
-    this->m_matrix.data().reserve(this->m_matrix.nonZeros());
   }
   void refactor(const SpMat &upper) { this->template factorize_preordered<true>(upper); }
   const Eigen::VectorXd &pivots() const { return this->m_diag; }
@@ -101,7 +107,8 @@ void grow(EigenWorkspace &w, int n)
 void analyse(EigenWorkspace &w, const mr_csr *A)
 {
   const int n = A->n;
-  if (mr_ldlt_order(&w.order, A) != 0)
+  size_t nnz_l = 0;
+  if (mr_ldlt_order(&w.order, A, &nnz_l) != 0)
     throw std::bad_alloc();
   grow(w, n);
   const int *perm = w.perm(), *inv = static_cast<const int *>(w.order.iperm.p);
@@ -133,7 +140,35 @@ void analyse(EigenWorkspace &w, const mr_csr *A)
   std::copy(w.outer.begin(), w.outer.begin() + w.size + 1, w.upper.outerIndexPtr());
   std::copy(w.inner.begin(), w.inner.end(), w.upper.innerIndexPtr());
   std::fill(w.upper.valuePtr(), w.upper.valuePtr() + nnz, 1.0); // the identity beyond n
-  w.ldlt.analyse(w.upper);
+  w.ldlt.analyse(w.upper, (Eigen::Index)nnz_l);
+}
+
+// Room for any pattern of up to rows rows: the ordering's scratch, the
+// kept matrices at their size, the upper triangle and L dense, and Eigen's
+// own arrays, made by analysing and factoring the identity once.
+void reserve(EigenWorkspace &w, int rows)
+{
+  const size_t n = (size_t)rows;
+  if (mr_ldlt_reserve(&w.order, rows) != 0 || mr_pattern_reserve(&w.pattern, n, n * n) != 0)
+    throw std::bad_alloc();
+  grow(w, rows);
+  const int size = w.size;
+  const size_t dense = n * (n + 1) / 2 + (size_t)size - n;
+  w.src.reserve(dense);
+  w.inner.reserve(dense);
+  w.column.reserve((size_t)size);
+  w.pattern.valid = 0; // the identity below is no pattern of A's
+  w.upper.resize(size, size);
+  w.upper.data().reserve((Eigen::Index)dense);
+  w.upper.resizeNonZeros(size);
+  for (int c = 0; c < size; c++) {
+    w.upper.outerIndexPtr()[c] = c;
+    w.upper.innerIndexPtr()[c] = c;
+    w.upper.valuePtr()[c] = 1.0;
+  }
+  w.upper.outerIndexPtr()[size] = size;
+  w.ldlt.analyse(w.upper, (Eigen::Index)(n * (n > 0 ? n - 1 : 0) / 2));
+  w.ldlt.refactor(w.upper);
 }
 
 // A's numbers into the upper triangle: a dependent row and column become
@@ -245,6 +280,20 @@ extern "C" int mr_eigen_solve(void **ws, const mr_solve_def *o, const mr_csr *A,
     if (!*ws)
       *ws = new EigenWorkspace();
     return solve(*static_cast<EigenWorkspace *>(*ws), o, A, b, x, r);
+  } catch (const std::bad_alloc &) {
+    return MR_SOLVE_ENOMEM;
+  } catch (...) {
+    return MR_SOLVE_UNAVAILABLE;
+  }
+}
+
+extern "C" int mr_eigen_reserve(void **ws, int rows)
+{
+  try {
+    if (!*ws)
+      *ws = new EigenWorkspace();
+    reserve(*static_cast<EigenWorkspace *>(*ws), rows);
+    return MR_SOLVE_OK;
   } catch (const std::bad_alloc &) {
     return MR_SOLVE_ENOMEM;
   } catch (...) {

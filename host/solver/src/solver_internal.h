@@ -43,6 +43,7 @@ typedef struct mr_pattern {
 } mr_pattern;
 int mr_pattern_same(const mr_pattern *pat, const mr_csr *A);
 int mr_pattern_keep(mr_pattern *pat, const mr_csr *A); /* 0 or MR_SOLVE_ENOMEM */
+int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz);
 void mr_pattern_free(mr_pattern *pat);
 
 /* How many times mr_csr_assemble has rebuilt A's pattern (not only its
@@ -85,9 +86,10 @@ void mr_csr_diagonal(const mr_csr *A, double *diag);
 int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, double *diag);
 /* mr_screen_pairs as the iterative methods start, into s->dep and
  * s->inv_diag: the flagged rows' x set to 0 and their inverse diagonal to
- * 0 (they take no part), the others' inverse diagonal. Returns the count
- * of flagged rows, or MR_SOLVE_ENOMEM. */
-int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x);
+ * 0 (they take no part), the others' inverse diagonal; their count in
+ * r->dependent. 0 or MR_SOLVE_ENOMEM. */
+int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x,
+                            mr_solve_result *r);
 int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
                     double *x, mr_solve_result *r);
 int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
@@ -96,8 +98,12 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const doub
                   mr_solve_result *r);
 void mr_ldlt_free(mr_ldlt *f);
 /* The fill-reducing ordering the LDLᵀ uses, into f->perm (new → old) and
- * f->iperm; uses only f's ordering scratch. 0 or MR_SOLVE_ENOMEM. */
-int mr_ldlt_order(mr_ldlt *f, const mr_csr *A);
+ * f->iperm, and the nonzeros of L below the diagonal it gives; uses only
+ * f's ordering scratch. 0 or MR_SOLVE_ENOMEM. */
+int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l);
+/* Room for any pattern of up to rows rows: L dense, A's pattern full.
+ * 0 or MR_SOLVE_ENOMEM. */
+int mr_ldlt_reserve(mr_ldlt *f, int rows);
 
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
  * 2n ints. */
@@ -113,6 +119,8 @@ void mr_order_min_degree(const mr_csr *A, int *perm, uint64_t *bits, int *deg);
 int mr_eigen_solve(void **ws, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
                    mr_solve_result *r);
 void mr_eigen_free(void *ws);
+/* mr_solver_reserve's share for the Eigen method. */
+int mr_eigen_reserve(void **ws, int rows);
 
 #ifdef __cplusplus
 }
