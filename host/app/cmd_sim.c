@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,9 +33,12 @@ void mr_cmd_sim_usage(void) {
          "  --csv FILE          write a per-step trace to FILE ('-' for stdout):\n"
          "                      t,dt,error,accepted,rejected,reset,max_speed\n"
          "  --check             verify the scene's expect: section (finite state,\n"
-         "                      deviation bound, resets, creep and jitter, or the\n"
-         "                      expected load error); exit 1 with one line on\n"
-         "                      stderr when an expectation is not met\n"
+         "                      deviation bound, resets, creep and jitter, the\n"
+         "                      state hash, or the expected load error); exit 1\n"
+         "                      with one line on stderr when an expectation is\n"
+         "                      not met\n"
+         "  --print-hash        print only the final state hash, as the line an\n"
+         "                      expect: section pins it with (state_hash: 0x...)\n"
          "  -q, --quiet         print nothing but errors and the check result\n"
          "  -h, --help          show this help\n"
          "\n"
@@ -117,103 +121,142 @@ static int parse_seconds(const char *s, double *out) {
   return 0;
 }
 
-int mr_cmd_sim(int argc, char **argv) {
-  const char *path = NULL, *csv_path = NULL;
-  double duration = 0;
-  int check = 0, quiet = 0;
+typedef struct sim_args {
+  const char *path, *csv_path;
+  double duration;
+  int check, quiet, print_hash;
+} sim_args;
+
+/* Returns -1 when the arguments are good, else the exit status. */
+static int parse_args(int argc, char **argv, sim_args *a) {
+  memset(a, 0, sizeof *a);
   for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+    const char *s = argv[i];
+    if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
       mr_cmd_sim_usage();
       return MR_EXIT_OK;
-    } else if (strcmp(a, "-t") == 0 || strcmp(a, "--time") == 0) {
-      if (i + 1 >= argc || parse_seconds(argv[i + 1], &duration) != 0) {
-        fprintf(stderr, "marionette: sim: %s expects a positive number of seconds\n", a);
+    } else if (strcmp(s, "-t") == 0 || strcmp(s, "--time") == 0) {
+      if (i + 1 >= argc || parse_seconds(argv[i + 1], &a->duration) != 0) {
+        fprintf(stderr, "marionette: sim: %s expects a positive number of seconds\n", s);
         return MR_EXIT_USAGE;
       }
       i++;
-    } else if (strcmp(a, "--csv") == 0) {
+    } else if (strcmp(s, "--csv") == 0) {
       if (i + 1 >= argc) {
         fprintf(stderr, "marionette: sim: --csv expects a file name\n");
         return MR_EXIT_USAGE;
       }
-      csv_path = argv[++i];
-    } else if (strcmp(a, "--check") == 0) {
-      check = 1;
-    } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
-      quiet = 1;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      fprintf(stderr, "marionette: sim: unknown option '%s' (see marionette sim --help)\n", a);
+      a->csv_path = argv[++i];
+    } else if (strcmp(s, "--check") == 0) {
+      a->check = 1;
+    } else if (strcmp(s, "--print-hash") == 0) {
+      a->print_hash = 1;
+    } else if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
+      a->quiet = 1;
+    } else if (s[0] == '-' && s[1] != '\0') {
+      fprintf(stderr, "marionette: sim: unknown option '%s' (see marionette sim --help)\n", s);
       return MR_EXIT_USAGE;
-    } else if (path == NULL) {
-      path = a;
+    } else if (a->path == NULL) {
+      a->path = s;
     } else {
-      fprintf(stderr, "marionette: sim: expected one scene file, got '%s' too\n", a);
+      fprintf(stderr, "marionette: sim: expected one scene file, got '%s' too\n", s);
       return MR_EXIT_USAGE;
     }
   }
-  if (path == NULL) {
+  if (a->path == NULL) {
     fprintf(stderr, "marionette: sim: expected a scene file (see marionette sim --help)\n");
     return MR_EXIT_USAGE;
   }
+  return -1;
+}
 
+/* Opens the trace and writes its header; -1 when it cannot be written. */
+static int csv_open(const char *csv_path, csv_sink *sink) {
+  sink->f = NULL;
+  sink->failed = 0;
+  if (csv_path == NULL)
+    return 0;
+  sink->f = strcmp(csv_path, "-") == 0 ? stdout : fopen(csv_path, "w");
+  if (sink->f == NULL) {
+    fprintf(stderr, "marionette: %s: cannot write the trace: %s\n", csv_path, strerror(errno));
+    return -1;
+  }
+  fprintf(sink->f, "t,dt,error,accepted,rejected,reset,max_speed\n");
+  return 0;
+}
+
+/* Closes the trace; MR_EXIT_FAIL when any of it failed to reach the file. */
+static int csv_close(const char *csv_path, csv_sink *sink) {
+  if (sink->f != NULL && sink->f != stdout && fclose(sink->f) != 0)
+    sink->failed = 1;
+  if (!sink->failed)
+    return MR_EXIT_OK;
+  fprintf(stderr, "marionette: %s: writing the trace failed\n", csv_path);
+  return MR_EXIT_FAIL;
+}
+
+/* The run failed: a pass only when the scene expects exactly this refusal
+ * (refused when the world was built is as good as refused on load). */
+static int run_failed(const sim_args *a, const mr_scene *scene, const mr_scene_error *err) {
+  if (a->check && scene->expect.has_load_error &&
+      strstr(err->text, scene->expect.load_error) != NULL) {
+    printf("check: passed (%s refused as expected: %s)\n", a->path, err->text);
+    return MR_EXIT_OK;
+  }
+  fprintf(stderr, "marionette: %s\n", err->text);
+  return MR_EXIT_FAIL;
+}
+
+/* What a finished run prints, and the check's verdict. */
+static int report(const sim_args *a, const mr_scene *scene, const mr_scene_run_result *r,
+                  double wall) {
+  bool csv_on_stdout = a->csv_path != NULL && strcmp(a->csv_path, "-") == 0;
+  if (a->print_hash)
+    printf("state_hash: 0x%016" PRIx64 "\n", r->hash);
+  else if (!a->quiet && !csv_on_stdout)
+    print_summary(scene, r, wall);
+  if (!a->check)
+    return MR_EXIT_OK;
+  char why[512];
+  if (mr_scene_check(scene, r, why, sizeof why) != 0) {
+    fprintf(stderr, "marionette: %s: check failed: %s\n", a->path, why);
+    return MR_EXIT_FAIL;
+  }
+  printf("check: passed\n");
+  return MR_EXIT_OK;
+}
+
+static int run_scene(const sim_args *a, mr_scene *scene) {
+  csv_sink sink;
+  if (csv_open(a->csv_path, &sink) != 0)
+    return MR_EXIT_FAIL;
+  mr_scene_run_opts opts = {a->duration, a->csv_path ? on_step : NULL, &sink};
+  mr_scene_run_result result;
+  mr_scene_error err;
+  double t0 = wall_seconds();
+  mr_scene_status st = mr_scene_run(scene, &opts, &result, &err);
+  double wall = wall_seconds() - t0;
+  int rc = csv_close(a->csv_path, &sink);
+  if (st != MR_SCENE_OK)
+    return run_failed(a, scene, &err);
+  int rc2 = report(a, scene, &result, wall);
+  return rc != MR_EXIT_OK ? rc : rc2;
+}
+
+int mr_cmd_sim(int argc, char **argv) {
+  sim_args a;
+  int rc = parse_args(argc, argv, &a);
+  if (rc >= 0)
+    return rc;
   mr_scene scene;
   mr_scene_error err;
-  if (mr_scene_load(path, &scene, &err) != MR_SCENE_OK) {
-    if (check) {
-      int rc = check_load_error(path, &err, quiet);
-      if (rc >= 0)
-        return rc;
-    }
+  if (mr_scene_load(a.path, &scene, &err) != MR_SCENE_OK) {
+    if (a.check && (rc = check_load_error(a.path, &err, a.quiet)) >= 0)
+      return rc;
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;
   }
-
-  csv_sink sink = {NULL, 0};
-  if (csv_path != NULL) {
-    sink.f = strcmp(csv_path, "-") == 0 ? stdout : fopen(csv_path, "w");
-    if (sink.f == NULL) {
-      fprintf(stderr, "marionette: %s: cannot write the trace: %s\n", csv_path, strerror(errno));
-      mr_scene_free(&scene);
-      return MR_EXIT_FAIL;
-    }
-    fprintf(sink.f, "t,dt,error,accepted,rejected,reset,max_speed\n");
-  }
-  mr_scene_run_opts opts = {duration, csv_path ? on_step : NULL, &sink};
-  mr_scene_run_result result;
-  double t0 = wall_seconds();
-  mr_scene_status st = mr_scene_run(&scene, &opts, &result, &err);
-  double wall = wall_seconds() - t0;
-  int rc = MR_EXIT_OK;
-  if (sink.f != NULL && sink.f != stdout && fclose(sink.f) != 0)
-    sink.failed = 1;
-  if (sink.failed) {
-    fprintf(stderr, "marionette: %s: writing the trace failed\n", csv_path);
-    rc = MR_EXIT_FAIL;
-  }
-  if (st != MR_SCENE_OK) {
-    if (check && scene.expect.has_load_error &&
-        strstr(err.text, scene.expect.load_error) != NULL) {
-      /* Refused when the world was built: as good as refused on load. */
-      printf("check: passed (%s refused as expected: %s)\n", path, err.text);
-      mr_scene_free(&scene);
-      return MR_EXIT_OK;
-    }
-    fprintf(stderr, "marionette: %s\n", err.text);
-    mr_scene_free(&scene);
-    return MR_EXIT_FAIL;
-  }
-  if (!quiet && !(csv_path != NULL && strcmp(csv_path, "-") == 0))
-    print_summary(&scene, &result, wall);
-  if (check) {
-    char why[512];
-    if (mr_scene_check(&scene, &result, why, sizeof why) != 0) {
-      fprintf(stderr, "marionette: %s: check failed: %s\n", path, why);
-      rc = MR_EXIT_FAIL;
-    } else {
-      printf("check: passed\n");
-    }
-  }
+  rc = run_scene(&a, &scene);
   mr_scene_free(&scene);
   return rc;
 }

@@ -179,13 +179,13 @@ static void energy_drift_bounded_over_ten_thousand_steps(void **state)
   d.b = bob;
   assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
   double e0 = pendulum_energy(w, bob), worst = 0;
-  mr_world_stats st;
+  mr_stats st;
   int frames = 0;
   do {
     frames++;
     assert_int_equal(mr_world_step_to(w, frames / 30.0, NULL), MR_OK);
     worst = fmax(worst, fabs(pendulum_energy(w, bob) - e0));
-    mr_world_get_stats(w, &st);
+    mr_world_stats(w, &st);
   } while (st.steps < 10000);
   printf("energy drift: max |E - E0| = %.3g J/kg (m g L = 9.81) over %llu steps, %.1f s\n", worst,
          (unsigned long long)st.steps, mr_world_time(w));
@@ -219,12 +219,12 @@ static void constraint_drift_bounded_over_hundred_thousand_steps(void **state)
     d.b = p[i + 1];
     assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
   }
-  mr_world_stats st;
+  mr_stats st;
   double worst_long = 0;
   int at_floor = 0;
   for (int i = 0; i < 100000; i++) {
     assert_int_equal(mr_world_step(w, NULL), MR_OK);
-    mr_world_get_stats(w, &st);
+    mr_world_stats(w, &st);
     if (st.last_dt > 0.01)
       worst_long = fmax(worst_long, st.last_error);
     else if (st.last_error > 1e-2)
@@ -277,8 +277,8 @@ static void integrators_rank_by_accuracy_and_cost(void **state)
     mr_world_particle_state(w, m, x, v);
     double e = 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * 100.0 * (x[0] - 1) * (x[0] - 1);
     err[i] = fabs(e - e0) / e0;
-    mr_world_stats st;
-    mr_world_get_stats(w, &st);
+    mr_stats st;
+    mr_world_stats(w, &st);
     double per_step = (double)mr_world_pass_calls(w, MR_PASS_SPRINGS) / (double)st.steps;
     printf("%-20s energy error %.3e, %.0f force evaluations per step, %llu steps\n",
            mr_integrator_name(kinds[i]), err[i], per_step, (unsigned long long)st.steps);

@@ -72,8 +72,8 @@ static void ball_bounces_to_restitution_height(void **state)
     if (bounced)
       apex = fmax(apex, x[1] - r);
   }
-  mr_world_stats st;
-  mr_world_get_stats(w, &st);
+  mr_stats st;
+  mr_world_stats(w, &st);
   printf("bounce: apex %.6f m, predicted %.6f m, lowest %.3g m, collisions %llu\n", apex, e * e * h0,
          lowest, (unsigned long long)st.collisions);
   assert_true(bounced);
@@ -106,8 +106,8 @@ static void resting_contact_holds_without_sinking_or_jitter(void **state)
   }
   double xb[3], vb[3];
   mr_world_particle_state(w, ball, xb, vb);
-  mr_world_stats st;
-  mr_world_get_stats(w, &st);
+  mr_stats st;
+  mr_world_stats(w, &st);
   printf("resting: |y - r| <= %.3g m, |v| <= %.3g m/s; ball settles at %.3g m above rest, "
          "|v| = %.3g, %llu collisions\n", worst_y, worst_v, xb[1] - r, fabs(vb[1]),
          (unsigned long long)st.collisions);
@@ -386,8 +386,8 @@ static void sphere_tree_puppets_do_not_interpenetrate(void **state)
   double va[3], vb[3];
   mr_world_particle_state(w, a[0], NULL, va);
   mr_world_particle_state(w, b[0], NULL, vb);
-  mr_world_stats st;
-  mr_world_get_stats(w, &st);
+  mr_stats st;
+  mr_world_stats(w, &st);
   printf("sphere trees: smallest gap %.3g m, collisions %llu, vx %.3f / %.3f, deviation %.3g\n", worst,
          (unsigned long long)st.collisions, va[0], vb[0], mr_world_deviation(w));
   assert_true(st.collisions >= 1);
@@ -428,8 +428,8 @@ static void rigid_body_settles_on_floor_without_chatter(void **state)
         late_speed = fmax(late_speed, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
     }
   }
-  mr_world_stats st;
-  mr_world_get_stats(w, &st);
+  mr_stats st;
+  mr_world_stats(w, &st);
   printf("tetrahedron on the floor: speed over the last 2 s <= %.3g m/s, lowest %.3g m, %llu "
          "collisions, %d resting contacts, deviation %.3g\n", late_speed, lowest,
          (unsigned long long)st.collisions, st.resting_contacts, mr_world_deviation(w));
@@ -487,8 +487,8 @@ static void non_adjacent_parts_of_one_puppet_collide(void **state)
   }
   double va[3];
   mr_world_particle_state(w, a, NULL, va);
-  mr_world_stats st;
-  mr_world_get_stats(w, &st);
+  mr_stats st;
+  mr_world_stats(w, &st);
   printf("self-collision: smallest gap %.3g m, collisions %llu, hand A now moving (%.3f, %.3f)\n", worst,
          (unsigned long long)st.collisions, va[0], va[1]);
   assert_int_equal((int)st.collisions, 1);

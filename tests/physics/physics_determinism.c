@@ -1,6 +1,7 @@
-/* Requirement 9: the same world and the same inputs give bit-identical
- * states after N steps (the library reads no clock), shown by the state
- * hash; a perturbation of one input by one part in 10¹² changes it. */
+/* Determinism (host/physics/README.md): the same world and the same inputs
+ * give bit-identical states after N steps (the library reads no clock),
+ * shown by the state hash; a perturbation of one input by one part in 10¹²
+ * changes it. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -119,8 +120,8 @@ static void same_inputs_give_identical_hash(void **state)
   mr_world *a = build(0.5), *b = build(0.5), *c = build(0.5 * (1 + 1e-12));
   uint64_t h0 = mr_world_state_hash(a);
   uint64_t ha = run(a), hb = run(b), hc = run(c);
-  mr_world_stats st;
-  mr_world_get_stats(a, &st);
+  mr_stats st;
+  mr_world_stats(a, &st);
   printf("hash after %llu steps: %016llx (twin %016llx, perturbed %016llx), collisions %llu\n",
          (unsigned long long)st.steps, (unsigned long long)ha, (unsigned long long)hb,
          (unsigned long long)hc, (unsigned long long)st.collisions);

@@ -1,7 +1,8 @@
-/* Requirement 8: only declared effects exist in a world. The per-pass
- * counters show that an undeclared pass never runs (not even a test per
- * particle: its counter stays 0), that declared passes do, and that an
- * element of an undeclared effect is refused when added. */
+/* Only declared effects exist in a world (host/physics/README.md, "Only
+ * declared effects exist"). The per-pass counters show that an undeclared
+ * pass never runs (not even a test per particle: its counter stays 0), that
+ * declared passes do, and that an element of an undeclared effect is
+ * refused when added. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -187,8 +187,8 @@ static void random_worlds_stay_finite_and_reproducible(void **state)
     mr_world *b = random_world(seed, &fb);
     uint64_t hb = run(b, fb, seed, &resets);
     assert_true(ha == hb);
-    mr_world_stats st;
-    mr_world_get_stats(a, &st);
+    mr_stats st;
+    mr_world_stats(a, &st);
     steps += st.steps;
     mr_world_destroy(a);
     mr_world_destroy(b);

@@ -97,8 +97,8 @@ static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state)
     if (mr_world_time(w) > 0.6 && fabs(x[0] - 0.3) > 1e-3)
       moved = 1;
   }
-  mr_world_stats st;
-  mr_world_get_stats(w, &st);
+  mr_stats st;
+  mr_world_stats(w, &st);
   printf("divergence: %d resets (stats %llu), deviation at 2 s %.3g\n", resets,
          (unsigned long long)st.divergences, mr_world_deviation(w));
   assert_true(resets >= 1 && resets <= 5);
@@ -143,13 +143,13 @@ static void dependent_rows_reported_and_forces_bounded(void **state)
         assert_non_null(strstr(mr_world_last_error(w), "dependent"));
         reported = 1;
       }
-      mr_world_stats st;
-      mr_world_get_stats(w, &st);
+      mr_stats st;
+      mr_world_stats(w, &st);
       worst = fmax(worst, st.max_multiplier);
       assert_true(isfinite(st.max_multiplier));
     }
-    mr_world_stats st;
-    mr_world_get_stats(w, &st);
+    mr_stats st;
+    mr_world_stats(w, &st);
     printf("%-12s dependent reported: %s, max |lambda| %.3g, deviation %.3g, divergences %llu\n",
            mr_solve_method_name(methods[m]), reported ? "yes" : "no", worst, mr_world_deviation(w),
            (unsigned long long)st.divergences);
@@ -194,8 +194,8 @@ static void every_solver_moves_a_chain_alike(void **state)
     assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
     double x[3 * N];
     assert_int_equal(mr_world_positions(w, x, N), N);
-    mr_world_stats st;
-    mr_world_get_stats(w, &st);
+    mr_stats st;
+    mr_world_stats(w, &st);
     double diff = 0;
     if (m == 0)
       memcpy(ref, x, sizeof ref);
@@ -248,8 +248,8 @@ static void divergence_is_retried_at_the_lower_bound_before_a_reset(void **state
   assert_int_equal(mr_world_add_spring(w, &sp, NULL), MR_OK);
   mr_step_report rep;
   assert_int_equal(mr_world_step_to(w, 2.0, &rep), MR_OK);
-  mr_world_stats st;
-  mr_world_get_stats(w, &st);
+  mr_stats st;
+  mr_world_stats(w, &st);
   double x[3];
   mr_world_particle_state(w, bob, x, NULL);
   printf("stiff spring: %llu steps, %llu rejected, %llu resets, dt %.3f..%.3f s, deviation %.3g\n",

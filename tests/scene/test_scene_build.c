@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -19,25 +20,46 @@ static void load(const char *text, mr_scene *s) {
     fail_msg("%s", e.text);
 }
 
+/* Every word a scene file may list in physics.effects declares its own
+ * physics bit: the physics' name table, and the file's words for two. */
 static void every_scene_effect_maps_to_its_own_physics_bit(void **state) {
   (void)state;
+  static const char *const words[] = {
+      "gravity", "drag",           "springs",          "strings",           "antigravity",
+      "triggered", "sine_springs", "constraints",      "floor",             "self_collision",
+      "puppet_collision", "string_correction", "control"};
   uint32_t seen = 0;
-  for (unsigned i = 0; i < MR_SCENE_FX_COUNT; i++) {
-    uint32_t b = mr_scene_physics_effects(1u << i);
+  for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
+    char text[256];
+    snprintf(text, sizeof text,
+             "physics:\n  effects: [%s]\n%s  particles: [{name: a, position: [0, 1, 0], "
+             "mass: 1}]\n",
+             words[i], strcmp(words[i], "drag") == 0 ? "  drag: 0.1\n" : "");
+    mr_scene s;
+    load(text, &s);
+    uint32_t b = s.world.effects;
     assert_int_equal(b & (b - 1), 0); /* one bit */
     assert_int_not_equal(b, 0);
     assert_int_equal(seen & b, 0);    /* not shared */
     seen |= b;
+    mr_scene_free(&s);
   }
-  assert_int_equal(mr_scene_physics_effects(MR_SCENE_FX_DRAG), MR_EFFECT_DRAG);
-  assert_int_equal(mr_scene_physics_effects(MR_SCENE_FX_FLOOR), MR_EFFECT_PLANES);
-  assert_int_equal(mr_scene_physics_effects(MR_SCENE_FX_CONTROL), MR_EFFECT_FRAMES);
-  assert_int_equal(mr_scene_physics_effects(0), 0);
+  assert_int_equal(seen, MR_EFFECT_ALL);
+  const char *text = "physics:\n  effects: [drag, floor, control]\n  drag: 0.1\n"
+                     "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+  mr_scene s;
+  load(text, &s);
+  assert_int_equal(s.world.effects, MR_EFFECT_DRAG | MR_EFFECT_PLANES | MR_EFFECT_FRAMES);
+  mr_scene_free(&s);
+  load("physics:\n  effects: []\n  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n",
+       &s);
+  assert_int_equal(s.world.effects, 0);
+  mr_scene_free(&s);
 }
 
-/* The physics places control points from the frame's quaternion; the scene
- * computes them from Euler angles. Both must agree, or strings would start
- * stretched. */
+/* The physics places control points from the frame's pose; the scene
+ * computes them from the pose it read. Both must agree, or strings would
+ * start stretched. */
 static void control_points_sit_where_the_scene_says(void **state) {
   (void)state;
   const char *text = "physics:\n"
@@ -139,7 +161,7 @@ static void run_reports_every_step_to_the_callback(void **state) {
 }
 
 /* A scene that sets nothing runs with the paper's settings (§7): the
- * loader leaves them unset and the physics' defaults apply. */
+ * loader starts from the physics' default world and changes nothing. */
 static void unset_settings_are_the_papers(void **state) {
   (void)state;
   const char *text = "physics:\n"
@@ -147,10 +169,11 @@ static void unset_settings_are_the_papers(void **state) {
                      "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
   mr_scene s;
   load(text, &s);
-  assert_true(isnan(s.settings.dt_min) && isnan(s.settings.dt_max));
-  assert_true(isnan(s.settings.threshold_min) && isnan(s.settings.threshold_max));
-  assert_string_equal(s.settings.integrator, "");
   mr_world_def d = mr_default_world_def();
+  assert_true(s.world.dt_min == d.dt_min && s.world.dt_max == d.dt_max);
+  assert_true(s.world.deviation_low == d.deviation_low &&
+              s.world.deviation_high == d.deviation_high);
+  assert_int_equal(s.world.integrator, d.integrator);
   assert_true(d.dt_min == 0.01 && d.dt_max == 0.05);
   assert_true(d.deviation_low == 1e-4 && d.deviation_high == 1e-2);
   assert_int_equal(d.integrator, MR_INTEGRATOR_RK4);

@@ -106,7 +106,7 @@ static void bad_usage_exits_2(void **state) {
   tt_output_free(&p);
 }
 
-/* Requirement 11: the same scene twice gives the same state, bit for bit,
+/* DESIGN.md, Determinism: the same scene twice gives the same state, bit for bit,
  * and the program prints the hash the library computes in-process. */
 static void same_scene_same_state_hash(void **state) {
   (void)state;
@@ -262,6 +262,54 @@ static void string_stretch_is_measured_and_checked(void **state) {
   tt_output_free(&p);
 }
 
+/* A pinned hash is checked: --print-hash gives the line that pins the run,
+ * that line passes --check, and one changed digit fails it with both
+ * hashes named. Under --time the run is another length and the pin does
+ * not apply. */
+static void pinned_state_hash_is_checked(void **state) {
+  (void)state;
+  const char base[] = "sim: {duration: 1}\n"
+                      "physics:\n"
+                      "  effects: [gravity, constraints]\n"
+                      "  particles:\n"
+                      "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
+                      "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
+                      "  constraints: [{between: [a, b]}]\n";
+  const char *path = scene_tmp_file("sim_hash.yaml", base, sizeof base - 1);
+  tt_output p;
+  run(&p, "sim", "--print-hash", path, NULL);
+  assert_int_equal(p.status, 0);
+  char pin[64];
+  assert_int_equal(tt_field(p.out, "state_hash", pin, sizeof pin), 0);
+  assert_int_equal(strlen(pin), 18);
+  assert_memory_equal(pin, "0x", 2);
+  tt_output_free(&p);
+
+  char text[1024];
+  snprintf(text, sizeof text, "%sexpect:\n  state_hash: %s\n", base, pin);
+  path = scene_tmp_file("sim_hash.yaml", text, strlen(text));
+  run(&p, "sim", "--check", "-q", path, NULL);
+  assert_int_equal(p.status, 0);
+  assert_string_equal(p.out, "check: passed\n");
+  tt_output_free(&p);
+
+  char wrong[64];
+  snprintf(wrong, sizeof wrong, "%s", pin);
+  wrong[17] = wrong[17] == '0' ? '1' : '0';
+  snprintf(text, sizeof text, "%sexpect:\n  state_hash: %s\n", base, wrong);
+  path = scene_tmp_file("sim_hash.yaml", text, strlen(text));
+  run(&p, "sim", "--check", "-q", path, NULL);
+  assert_int_equal(p.status, 1);
+  char want[4400];
+  snprintf(want, sizeof want, "marionette: %s: check failed: expected state hash %s, got %s\n",
+           path, wrong, pin);
+  assert_string_equal(p.err, want);
+  tt_output_free(&p);
+  run(&p, "sim", "--check", "-q", "--time", "0.5", path, NULL);
+  assert_int_equal(p.status, 0);
+  tt_output_free(&p);
+}
+
 static void example_puppet_runs_cleanly(void **state) {
   (void)state;
   tt_output p;
@@ -290,6 +338,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(csv_has_one_row_per_step_call),
       cmocka_unit_test(check_fails_with_a_clear_line),
       cmocka_unit_test(string_stretch_is_measured_and_checked),
+      cmocka_unit_test(pinned_state_hash_is_checked),
       cmocka_unit_test(example_puppet_runs_cleanly),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

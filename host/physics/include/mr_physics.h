@@ -9,6 +9,13 @@
  * Manners:
  *  - Things are made from definition structs filled by a default maker
  *    (mr_default_world_def(), ...), so a new field never breaks a caller.
+ *    The maker stamps a cookie that every create/add call checks, so a
+ *    struct zeroed by hand (mr_spring_def d = {0}) is refused with
+ *    MR_ERR_ARG instead of making a spring of zero length and stiffness.
+ *  - Names: mr_default_x_def() makes a definition, mr_world_add_x() adds it,
+ *    mr_x_verb() does the rest. A read of the world is mr_world_<noun>(): a
+ *    scalar is returned; anything larger goes to an out pointer and the call
+ *    returns an mr_status.
  *  - Ids are small non-negative ints, in creation order, one range per kind.
  *  - Every function that can fail returns an mr_status; the world keeps a
  *    message naming what and where (mr_world_last_error). Nothing prints,
@@ -27,6 +34,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_pose.h"
 #include "mr_solve_method.h"
 
 #ifdef __cplusplus
@@ -58,66 +66,117 @@ typedef enum mr_status {
 
 const char *mr_status_name(mr_status s);   /* "ok", "diverged", ... */
 
+/* ---------------------------------------------------------- definitions */
+
+/* Every mr_default_x_def() sets .cookie to this; every create/add call
+ * refuses a definition without it. Never set it by hand. */
+#define MR_DEF_COOKIE 0x6d724466u
+
+/* ---------------------------------------------------------- force kinds */
+
+/* The applied-force kinds (§5.1, §6.2), in the order their passes run. Each
+ * line X(ID, stem, name) makes the effect bit MR_EFFECT_ID, the pass
+ * MR_PASS_ID, the name both go by in files and reports, and the world's
+ * storage for the kind's elements; `stem` names the kind's pass function
+ * (stem_pass) in src/forces.c.
+ *
+ * To add a force kind, touch three places:
+ *   1. a line here;
+ *   2. its definition struct, mr_default_x_def() and mr_world_add_x() in
+ *      the "forces" section below, and its evaluation in src/forces.c (its
+ *      element struct, stem_pass, the maker and the add call);
+ *   3. its reader in the scene library, which fills the definition from
+ *      mr_default_x_def() and calls mr_world_add_x().
+ * Nothing else lists the kinds: names, passes, counters and storage follow. */
+#define MR_FORCE_KINDS(X)                                                                          \
+  X(GRAVITY, gravity, "gravity")                /* m g on every dynamic particle */               \
+  X(DRAG, drag, "drag")                         /* viscous friction −drag·v */                    \
+  X(SPRINGS, springs, "springs")                /* springs and dampers */                         \
+  X(STRINGS, strings, "strings")                /* frame → puppet strings (§6.2) */               \
+  X(ANTIGRAVITY, antigravity, "antigravity")    /* §6.2 antigravity forces */                     \
+  X(TRIGGERED, triggered, "triggered")          /* §6.2 triggered action forces */                \
+  X(SINE_SPRINGS, sine_springs, "sine-springs") /* §6.2 capped sine-shaped springs */
+
+/* The effects that are not applied forces, X(ID, stem, name) alike. */
+#define MR_OTHER_EFFECTS(X)                                                                        \
+  X(CONSTRAINTS, constraints, "constraints")    /* distance, pin, curve, rigid groups */          \
+  X(PLANES, planes, "planes")                   /* floor and other planes (§4.4) */               \
+  X(SELF_COLLISION, self_collision, "self-collision")       /* sphere trees in one puppet */      \
+  X(PUPPET_COLLISION, puppet_collision, "puppet-collision") /* sphere trees between puppets */    \
+  X(STRING_CORRECTION, string_correction, "string-correction") /* §6.2 / [19] */                  \
+  X(FRAMES, frames, "frames")                   /* kinematic control frames */
+
+#define MR_EFFECTS(X) MR_FORCE_KINDS(X) MR_OTHER_EFFECTS(X)
+
 /* --------------------------------------------------------------- effects */
 
-/* What a world simulates (mr_world_def.effects, OR of these). A pass whose
- * effect is not declared is not in the world's pass list at all. */
+/* What a world simulates (mr_world_def.effects, OR of MR_EFFECT_* bits). A
+ * pass whose effect is not declared is not in the world's pass list at all. */
+enum mr_effect_bit {
+#define MR_X_(id, stem, name) MR_EFFECT_BIT_##id,
+  MR_EFFECTS(MR_X_)
+#undef MR_X_
+  MR_EFFECT_COUNT
+};
 enum {
-  MR_EFFECT_GRAVITY           = 1u << 0,  /* m g on every dynamic particle */
-  MR_EFFECT_DRAG              = 1u << 1,  /* viscous friction −drag·v */
-  MR_EFFECT_SPRINGS           = 1u << 2,  /* springs and dampers */
-  MR_EFFECT_STRINGS           = 1u << 3,  /* frame → puppet strings (§6.2) */
-  MR_EFFECT_ANTIGRAVITY       = 1u << 4,  /* §6.2 antigravity forces */
-  MR_EFFECT_TRIGGERED         = 1u << 5,  /* §6.2 triggered action forces */
-  MR_EFFECT_SINE_SPRINGS      = 1u << 6,  /* §6.2 capped sine-shaped springs */
-  MR_EFFECT_CONSTRAINTS       = 1u << 7,  /* distance, pin, curve, rigid groups */
-  MR_EFFECT_PLANES            = 1u << 8,  /* floor and other planes (§4.4) */
-  MR_EFFECT_SELF_COLLISION    = 1u << 9,  /* sphere trees, non-adjacent parts
-                                             of one puppet */
-  MR_EFFECT_PUPPET_COLLISION  = 1u << 10, /* sphere trees between puppets */
-  MR_EFFECT_STRING_CORRECTION = 1u << 11, /* §6.2 / [19] iterative string
-                                             length correction */
-  MR_EFFECT_FRAMES            = 1u << 12  /* kinematic control frames */
+#define MR_X_(id, stem, name) MR_EFFECT_##id = 1u << MR_EFFECT_BIT_##id,
+  MR_EFFECTS(MR_X_)
+#undef MR_X_
+  MR_EFFECT_ALL = (1u << MR_EFFECT_COUNT) - 1u
 };
 
-/* The passes a step can run; mr_world_pass_calls counts each one. */
+/* The name of one effect bit ("gravity", "sine-springs", ...), or "unknown"
+ * for anything that is not exactly one known bit. */
+const char *mr_effect_name(uint32_t effect);
+/* Returns 0 and the bit, or -1 for an unknown name. '_' reads as '-', so
+ * "sine_springs" and "sine-springs" are the same name. */
+int mr_effect_parse(const char *name, uint32_t *out);
+
+/* ---------------------------------------------------------------- passes */
+
+/* The passes a step can run, in the order they run; mr_world_pass_calls
+ * counts each one. */
 typedef enum mr_pass {
-  MR_PASS_FRAMES,            /* place control-frame particles at time t */
-  MR_PASS_GRAVITY,
-  MR_PASS_DRAG,
-  MR_PASS_SPRINGS,
-  MR_PASS_STRINGS,
-  MR_PASS_ANTIGRAVITY,
-  MR_PASS_TRIGGERED,
-  MR_PASS_SINE_SPRINGS,
-  MR_PASS_CONSTRAINTS,       /* rows of C, J, J̇q̇ for the solve */
-  MR_PASS_SOLVE,             /* J M⁻¹ Jᵀ λ = b, eq. 8 (and eq. 9) */
-  MR_PASS_PLANES,            /* particle–plane detection and contacts */
-  MR_PASS_SELF_COLLISION,    /* sphere-tree traversal within puppets */
-  MR_PASS_PUPPET_COLLISION,  /* sphere-tree traversal between puppets */
+  MR_PASS_FRAMES, /* place control-frame particles at time t */
+#define MR_X_(id, stem, name) MR_PASS_##id,
+  MR_FORCE_KINDS(MR_X_)
+#undef MR_X_
+  MR_PASS_CONSTRAINTS,      /* rows of C, J, J̇q̇ for the solve */
+  MR_PASS_SOLVE,            /* J M⁻¹ Jᵀ λ = b, eq. 8 (and eq. 9) */
+  MR_PASS_PLANES,           /* particle–plane detection and contacts */
+  MR_PASS_SELF_COLLISION,   /* sphere-tree traversal within puppets */
+  MR_PASS_PUPPET_COLLISION, /* sphere-tree traversal between puppets */
   MR_PASS_STRING_CORRECTION,
   MR_PASS_COUNT
 } mr_pass;
 
-const char *mr_pass_name(mr_pass p);        /* "gravity", "solve", ... */
+const char *mr_pass_name(mr_pass p); /* "gravity", "solve", ...; "unknown" */
+int mr_pass_parse(const char *name, mr_pass *out); /* 0, or -1 if unknown */
+
+/* ----------------------------------------------------------- integrators */
+
+#define MR_INTEGRATORS(X)                                                                          \
+  X(RK4, "rk4")                                 /* default, §4.2 */                               \
+  X(EULER, "euler")                             /* explicit Euler */                              \
+  X(SEMI_IMPLICIT_EULER, "semi-implicit-euler") /* velocity first, then position */               \
+  X(MIDPOINT, "midpoint")
 
 typedef enum mr_integrator {
-  MR_INTEGRATOR_RK4 = 0,           /* default, §4.2 */
-  MR_INTEGRATOR_EULER,             /* explicit Euler */
-  MR_INTEGRATOR_SEMI_IMPLICIT_EULER,
-  MR_INTEGRATOR_MIDPOINT
+#define MR_X_(id, name) MR_INTEGRATOR_##id,
+  MR_INTEGRATORS(MR_X_)
+#undef MR_X_
+  MR_INTEGRATOR_COUNT
 } mr_integrator;
 
-const char *mr_integrator_name(mr_integrator i);  /* "rk4", "euler", ... */
-/* Returns 0, or -1 for an unknown name ("rk4", "euler", "semi-implicit-euler",
- * "midpoint"). */
-int mr_integrator_parse(const char *name, mr_integrator *out);
+const char *mr_integrator_name(mr_integrator i); /* "rk4", ...; "unknown" */
+int mr_integrator_parse(const char *name, mr_integrator *out); /* 0, or -1 if unknown */
 
 /* ----------------------------------------------------------------- world */
 
 typedef struct mr_world mr_world;   /* opaque */
 
 typedef struct mr_world_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_world_def() */
   double gravity[3];          /* m/s²; default (0, −9.81, 0): y is up */
   uint32_t effects;           /* MR_EFFECT_* bits; default GRAVITY|CONSTRAINTS */
   mr_integrator integrator;   /* default RK4 */
@@ -167,6 +226,7 @@ const char *mr_world_last_error(const mr_world *w);
 /* ------------------------------------------------------------- particles */
 
 typedef struct mr_particle_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_particle_def() */
   double mass;          /* kg, > 0 (ignored for frame particles); default 1 */
   double position[3];   /* m, world coordinates */
   double velocity[3];   /* m/s */
@@ -191,14 +251,10 @@ mr_status mr_world_set_particle_state(mr_world *w, int id, const double pos[3], 
 
 /* --------------------------------------------------------- control frame */
 
-typedef struct mr_pose {
-  double position[3];
-  double orientation[4];   /* unit quaternion (w, x, y, z) */
-} mr_pose;
-
-mr_pose mr_pose_identity(void);
+/* Poses are mr_pose (mr_pose.h): a position and a unit quaternion. */
 
 typedef struct mr_frame_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_frame_def() */
   mr_pose pose;            /* initial pose; default identity */
 } mr_frame_def;
 
@@ -219,6 +275,7 @@ mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out);
  * damping): F_a = −(stiffness (d − rest) + damping ḋ) û, F_b = −F_a.
  * A damper is a spring with stiffness 0. Needs MR_EFFECT_SPRINGS. */
 typedef struct mr_spring_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_spring_def() */
   int a, b;
   double rest_length;   /* m; < 0 (default) = the current distance */
   double stiffness;     /* N/m; default 100 */
@@ -231,6 +288,7 @@ mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id
  * a spring/damper that only pulls (slack when shorter than rest_length).
  * Needs MR_EFFECT_STRINGS; corrected by MR_EFFECT_STRING_CORRECTION. */
 typedef struct mr_string_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_string_def() */
   int frame_particle, puppet_particle;
   double rest_length;   /* < 0 (default) = current distance */
   double stiffness;     /* default 500 */
@@ -244,6 +302,7 @@ mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id
  *   F = −g · fraction · M_puppet · min(d/d0, max_scale),
  * d = |x_trigger − x_acted|, d0 = d when added. Needs MR_EFFECT_ANTIGRAVITY. */
 typedef struct mr_antigravity_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_antigravity_def() */
   int acted, trigger;
   double fraction;      /* default 0.5 */
   double max_scale;     /* default 2 */
@@ -256,6 +315,7 @@ mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, i
  *   F = clamp(gain · M_puppet · (d − d0), ±max_force) · û(acted → control),
  * d = |x_control − x_trigger|. Needs MR_EFFECT_TRIGGERED. */
 typedef struct mr_triggered_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_triggered_def() */
   int acted, control, trigger;
   double gain;          /* N/(kg·m); default 10 */
   double max_force;     /* N; default 100 */
@@ -268,6 +328,7 @@ mr_status mr_world_add_triggered(mr_world *w, const mr_triggered_def *def, int *
  *   |F| = max_force · sin(π/2 · min(|d − rest|/reach, 1)), plus damping ḋ,
  * along the line, restoring. Needs MR_EFFECT_SINE_SPRINGS. */
 typedef struct mr_sine_spring_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_sine_spring_def() */
   int a, b;
   double rest_length;   /* < 0 (default) = current distance */
   double max_force;     /* N; default 50 */
@@ -282,6 +343,7 @@ mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, i
 
 /* C = |x_a − x_b| − length. */
 typedef struct mr_distance_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_distance_def() */
   int a, b;
   double length;        /* > 0; < 0 (default) = current distance */
 } mr_distance_def;
@@ -290,6 +352,7 @@ mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *ou
 
 /* C = x − point (3 rows). */
 typedef struct mr_pin_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_pin_def() */
   int particle;
   double point[3];
   int at_current;       /* nonzero (default): point = current position */
@@ -308,6 +371,7 @@ typedef enum mr_curve_interp {
 } mr_curve_interp;
 typedef void (*mr_curve_fn)(void *user, double t, double pos[3], double vel[3], double acc[3]);
 typedef struct mr_curve_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_curve_def() */
   int particle;
   int key_count;            /* ≥ 1 when fn is NULL */
   const double *times;      /* key_count */
@@ -325,6 +389,7 @@ mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id);
  * nearest such), so no constraint is dependent. Two or three particles give
  * a link or a triangle. */
 typedef struct mr_rigid_group_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_rigid_group_def() */
   const int *particles;
   int count;                /* ≥ 2 */
 } mr_rigid_group_def;
@@ -339,6 +404,7 @@ int mr_world_constraint_rows(const mr_world *w);
 /* Plane n·x = offset (n normalised on entry); particles stay on the side n
  * points to, at distance ≥ their radius. Needs MR_EFFECT_PLANES. */
 typedef struct mr_plane_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_plane_def() */
   double normal[3];     /* default (0, 1, 0): the floor */
   double offset;        /* default 0 */
   double restitution;   /* 0..1; default 0.5 */
@@ -355,6 +421,7 @@ mr_status mr_world_add_plane(mr_world *w, const mr_plane_def *def, int *out_id);
  * adjacent and never tested against each other. Needs
  * MR_EFFECT_SELF_COLLISION or MR_EFFECT_PUPPET_COLLISION. */
 typedef struct mr_part_def {
+  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_part_def() */
   const int *particles;
   int count;                /* ≥ 1 */
   double radius;            /* m; default 0 */
@@ -390,7 +457,7 @@ mr_status mr_world_step(mr_world *w, mr_step_report *report);
 double mr_world_time(const mr_world *w);
 double mr_world_next_dt(const mr_world *w);   /* Δt the ATS will try next */
 
-typedef struct mr_world_stats {
+typedef struct mr_stats {
   uint64_t steps, rejected, collisions, divergences;
   uint64_t solves, solver_failures, solver_iterations;
   int dependent_rows;         /* of the latest solve */
@@ -399,8 +466,9 @@ typedef struct mr_world_stats {
   double last_error, max_error;     /* relative deviation after a step */
   double max_multiplier;      /* largest |λ| of the latest force solve: the
                                  bound on constraint forces */
-} mr_world_stats;
-void mr_world_get_stats(const mr_world *w, mr_world_stats *out);
+} mr_stats;
+/* The counters so far. MR_ERR_ARG for a NULL argument. */
+mr_status mr_world_stats(const mr_world *w, mr_stats *out);
 /* How many times pass p ran (0 forever if the world did not declare it). */
 uint64_t mr_world_pass_calls(const mr_world *w, mr_pass p);
 /* The largest relative constraint deviation of the current state (§4.5). */

@@ -17,6 +17,15 @@
 
 #include <math.h>
 
+/* x^¼ as two square roots: IEEE 754 requires sqrt to be correctly
+ * rounded, so this gives the same bits under every libm, compiler and
+ * optimisation level; pow carries no such promise and would put the pinned
+ * state hashes at the mercy of the C library. */
+static double fourth_root(double x)
+{
+  return sqrt(sqrt(x));
+}
+
 static double clamp(double v, double lo, double hi)
 {
   return v < lo ? lo : (v > hi ? hi : v);
@@ -35,9 +44,9 @@ mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error)
       return d;
     }
     d.accept = 0;
-    d.dt_next = (error == error) ? dt_old * fmin(pow(p->high / error, 0.25), 0.5) : p->dt_min;
+    d.dt_next = (error == error) ? dt_old * fmin(fourth_root(p->high / error), 0.5) : p->dt_min;
   } else if (error < p->low) {
-    d.dt_next = error > 0 ? dt_old * pow(p->low / error, 0.25) : p->dt_max;
+    d.dt_next = error > 0 ? dt_old * fourth_root(p->low / error) : p->dt_max;
   }
   d.dt_next = clamp(d.dt_next, p->dt_min, p->dt_max);
   return d;

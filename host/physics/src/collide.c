@@ -16,17 +16,16 @@
 
 mr_plane_def mr_default_plane_def(void)
 {
-  mr_plane_def d = {{0.0, 1.0, 0.0}, 0.0, 0.5, 0.3};
-  return d;
+  return (mr_plane_def){.cookie = MR_DEF_COOKIE, .normal = {0.0, 1.0, 0.0}, .offset = 0.0,
+                        .restitution = 0.5, .friction = 0.3};
 }
 
 mr_status mr_world_add_plane(mr_world *w, const mr_plane_def *def, int *out_id)
 {
   const char *what = "mr_world_add_plane";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_PLANES, what) != 0)
-    return MR_ERR_NOT_DECLARED;
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_PLANES, what);
+  if (s != MR_OK)
+    return s;
   if (!mr_finite3(def->normal) || !isfinite(def->offset) || !isfinite(def->restitution) ||
       !isfinite(def->friction))
     return mr_fail(w, MR_ERR_NONFINITE, "%s: NaN or Inf in the plane", what);
@@ -36,30 +35,19 @@ mr_status mr_world_add_plane(mr_world *w, const mr_plane_def *def, int *out_id)
     return mr_fail(w, MR_ERR_DEGENERATE, "%s: normal is zero", what);
   if (def->restitution < 0 || def->restitution > 1 || def->friction < 0)
     return mr_fail(w, MR_ERR_ARG, "%s: need 0 <= restitution <= 1 and friction >= 0", what);
-  if (MR_GROW(w, w->planes, w->npl, w->cap_pl) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  mr_plane *p = &w->planes[w->npl];
+  mr_plane p;
   for (int k = 0; k < 3; k++)
-    p->n[k] = def->normal[k] / len;
-  p->offset = def->offset;
-  p->restitution = def->restitution;
-  p->friction = def->friction;
-  if (out_id)
-    *out_id = w->npl;
-  w->npl++;
-  return MR_OK;
+    p.n[k] = def->normal[k] / len;
+  p.offset = def->offset;
+  p.restitution = def->restitution;
+  p.friction = def->friction;
+  return mr_add_push(w, &w->planes, &p, sizeof p, out_id, what);
 }
 
 int mr_contact_push(mr_contact_list *l, mr_contact_kind kind, int a, int b, double e, double mu)
 {
-  if (l->n + 1 > l->cap) {
-    int cap = l->cap ? 2 * l->cap : 16;
-    mr_contact *c = realloc(l->c, (size_t)cap * sizeof *c);
-    if (!c)
-      return -1;
-    l->c = c;
-    l->cap = cap;
-  }
+  if (mr_grow((void **)&l->c, &l->cap, l->n + 1, sizeof *l->c) != 0)
+    return -1;
   l->c[l->n++] = (mr_contact){kind, a, b, e, mu};
   return 0;
 }
@@ -81,8 +69,8 @@ static double plane_gap(const mr_world *w, int p, const mr_plane *pl, const doub
 static int detect_planes(mr_world *w, const double *x, double gap, mr_contact_list *out)
 {
   w->pass_calls[MR_PASS_PLANES]++;
-  for (int j = 0; j < w->npl; j++) {
-    const mr_plane *pl = &w->planes[j];
+  for (int j = 0; j < w->planes.n; j++) {
+    const mr_plane *pl = &MR_AT(w->planes, mr_plane, j);
     for (int i = 0; i < w->n; i++) {
       if (w->inv_mass[i] == 0.0)
         continue;
@@ -131,8 +119,8 @@ static void sphere_geometry(const mr_world *w, const mr_contact *c, const double
                             double *len)
 {
   double ca[3], cb[3];
-  mr_leaf_center(w, &w->leaves[c->a], x, ca);
-  mr_leaf_center(w, &w->leaves[c->b], x, cb);
+  mr_leaf_center(w, &MR_AT(w->leaves, mr_leaf, c->a), x, ca);
+  mr_leaf_center(w, &MR_AT(w->leaves, mr_leaf, c->b), x, cb);
   for (int k = 0; k < 3; k++)
     d[k] = cb[k] - ca[k];
   *len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -141,10 +129,10 @@ static void sphere_geometry(const mr_world *w, const mr_contact *c, const double
 double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x)
 {
   if (c->kind == MR_CONTACT_PLANE)
-    return plane_gap(w, c->a, &w->planes[c->b], x);
+    return plane_gap(w, c->a, &MR_AT(w->planes, mr_plane, c->b), x);
   double d[3], len;
   sphere_geometry(w, c, x, d, &len);
-  return len - w->leaves[c->a].r - w->leaves[c->b].r;
+  return len - MR_AT(w->leaves, mr_leaf, c->a).r - MR_AT(w->leaves, mr_leaf, c->b).r;
 }
 
 static void leaf_velocity(const mr_leaf *l, const double *v, double out[3])
@@ -171,15 +159,15 @@ static int leaf_jac(mr_world *w, const mr_leaf *l, const double n[3], double s)
 double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v)
 {
   if (c->kind == MR_CONTACT_PLANE) {
-    const double *n = w->planes[c->b].n, *q = &v[3 * c->a];
+    const double *n = MR_AT(w->planes, mr_plane, c->b).n, *q = &v[3 * c->a];
     return n[0] * q[0] + n[1] * q[1] + n[2] * q[2];
   }
   double d[3], len, va[3], vb[3];
   sphere_geometry(w, c, x, d, &len);
   if (!(len > 1e-12))
     return 0.0;
-  leaf_velocity(&w->leaves[c->a], v, va);
-  leaf_velocity(&w->leaves[c->b], v, vb);
+  leaf_velocity(&MR_AT(w->leaves, mr_leaf, c->a), v, va);
+  leaf_velocity(&MR_AT(w->leaves, mr_leaf, c->b), v, vb);
   return (d[0] * (vb[0] - va[0]) + d[1] * (vb[1] - va[1]) + d[2] * (vb[2] - va[2])) / len;
 }
 
@@ -189,7 +177,7 @@ int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const doub
   if (mr_jac_begin_row(&w->J) < 0)
     return -1;
   if (c->kind == MR_CONTACT_PLANE) {
-    const mr_plane *pl = &w->planes[c->b];
+    const mr_plane *pl = &MR_AT(w->planes, mr_plane, c->b);
     if (mr_jac_add(&w->J, c->a, pl->n) != 0)
       return -1;
     const double *q = &v[3 * c->a];
@@ -198,7 +186,7 @@ int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const doub
     *chi = plane_gap(w, c->a, pl, x);
     return 0;
   }
-  const mr_leaf *la = &w->leaves[c->a], *lb = &w->leaves[c->b];
+  const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, c->a), *lb = &MR_AT(w->leaves, mr_leaf, c->b);
   double d[3], len;
   sphere_geometry(w, c, x, d, &len);
   double n[3] = {0, 0, 0};
@@ -229,7 +217,7 @@ static int carriers(const mr_world *w, const mr_contact *c, int p[4], double wt[
     return 1;
   }
   int n = 0;
-  const mr_leaf *side[2] = {&w->leaves[c->a], &w->leaves[c->b]};
+  const mr_leaf *side[2] = {&MR_AT(w->leaves, mr_leaf, c->a), &MR_AT(w->leaves, mr_leaf, c->b)};
   for (int k = 0; k < 2; k++) {
     double sign = k == 0 ? -1.0 : 1.0;
     p[n] = side[k]->p0;
@@ -246,7 +234,7 @@ static void contact_normal(const mr_world *w, const mr_contact *c, const double 
 {
   if (c->kind == MR_CONTACT_PLANE) {
     for (int k = 0; k < 3; k++)
-      n[k] = w->planes[c->b].n[k];
+      n[k] = MR_AT(w->planes, mr_plane, c->b).n[k];
     return;
   }
   double d[3], len;

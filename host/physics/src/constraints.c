@@ -20,8 +20,8 @@ static int distance_rows(mr_world *w, const double *x, const double *v, double *
                          double *bias)
 {
   int r = 0;
-  for (int i = 0; i < w->nd; i++, r++) {
-    const mr_distance *d = &w->distances[i];
+  for (int i = 0; i < w->distances.n; i++, r++) {
+    const mr_distance *d = &MR_AT(w->distances, mr_distance, i);
     double dx[3], dv[3], u[3], nu[3];
     for (int k = 0; k < 3; k++) {
       dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
@@ -53,8 +53,8 @@ static int pin_rows(mr_world *w, const double *x, const double *v, double *c, do
                     double *bias)
 {
   int r = 0;
-  for (int i = 0; i < w->np; i++) {
-    const mr_pin *p = &w->pins[i];
+  for (int i = 0; i < w->pins.n; i++) {
+    const mr_pin *p = &MR_AT(w->pins, mr_pin, i);
     for (int k = 0; k < 3; k++, r++) {
       if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, p->particle, unit[k]) != 0)
         return -1;
@@ -72,8 +72,8 @@ static int curve_rows(mr_world *w, double t, const double *x, const double *v, d
                       double *cdot, double *bias)
 {
   int r = 0;
-  for (int i = 0; i < w->nc; i++) {
-    const mr_curve *cv = &w->curves[i];
+  for (int i = 0; i < w->curves.n; i++) {
+    const mr_curve *cv = &MR_AT(w->curves, mr_curve, i);
     double p[3], pv[3], pa[3];
     mr_curve_eval(cv, t, p, pv, pa);
     for (int k = 0; k < 3; k++, r++) {
@@ -89,7 +89,7 @@ static int curve_rows(mr_world *w, double t, const double *x, const double *v, d
 
 int mr_constraint_row_count(const mr_world *w)
 {
-  return w->nd + 3 * w->np + 3 * w->nc;
+  return w->distances.n + 3 * w->pins.n + 3 * w->curves.n;
 }
 
 int mr_world_constraint_rows(const mr_world *w)
@@ -123,24 +123,24 @@ static double worse(double e, double d)
 double mr_constraints_deviation(const mr_world *w, double t, const double *x)
 {
   double e = 0.0;
-  for (int i = 0; i < w->nd; i++) {
-    const mr_distance *d = &w->distances[i];
+  for (int i = 0; i < w->distances.n; i++) {
+    const mr_distance *d = &MR_AT(w->distances, mr_distance, i);
     double dx[3];
     for (int k = 0; k < 3; k++)
       dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
     double len = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
     e = worse(e, fabs(len - d->length) / d->length);
   }
-  for (int i = 0; i < w->np; i++) {
-    const mr_pin *p = &w->pins[i];
+  for (int i = 0; i < w->pins.n; i++) {
+    const mr_pin *p = &MR_AT(w->pins, mr_pin, i);
     const double *q = &x[3 * p->particle];
     double dd = sqrt((q[0] - p->point[0]) * (q[0] - p->point[0]) +
                      (q[1] - p->point[1]) * (q[1] - p->point[1]) +
                      (q[2] - p->point[2]) * (q[2] - p->point[2]));
     e = worse(e, dd / w->def.deviation_length);
   }
-  for (int i = 0; i < w->nc; i++) {
-    const mr_curve *cv = &w->curves[i];
+  for (int i = 0; i < w->curves.n; i++) {
+    const mr_curve *cv = &MR_AT(w->curves, mr_curve, i);
     double p[3], pv[3], pa[3];
     mr_curve_eval(cv, t, p, pv, pa);
     const double *q = &x[3 * cv->particle];
@@ -160,24 +160,17 @@ double mr_world_deviation(const mr_world *w)
 
 mr_distance_def mr_default_distance_def(void)
 {
-  mr_distance_def d = {0, 0, -1.0};
-  return d;
+  return (mr_distance_def){.cookie = MR_DEF_COOKIE, .length = -1.0};
 }
 
 mr_pin_def mr_default_pin_def(void)
 {
-  mr_pin_def d;
-  memset(&d, 0, sizeof d);
-  d.at_current = 1;
-  return d;
+  return (mr_pin_def){.cookie = MR_DEF_COOKIE, .at_current = 1};
 }
 
 mr_curve_def mr_default_curve_def(void)
 {
-  mr_curve_def d;
-  memset(&d, 0, sizeof d);
-  d.interp = MR_CURVE_CATMULL_ROM;
-  return d;
+  return (mr_curve_def){.cookie = MR_DEF_COOKIE, .interp = MR_CURVE_CATMULL_ROM};
 }
 
 /* A constraint must move something: a row on frame particles only has no
@@ -187,25 +180,29 @@ static int dynamic(const mr_world *w, int p)
   return w->inv_mass[p] > 0.0;
 }
 
+/* A pin or a curve holds one particle, which must exist and not ride on a
+ * control frame. */
+static mr_status check_moving(mr_world *w, int p, const char *what)
+{
+  if (mr_check_particle(w, p, what) != 0)
+    return MR_ERR_ID;
+  if (!dynamic(w, p))
+    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, p);
+  return MR_OK;
+}
+
 int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id)
 {
-  if (MR_GROW(w, w->distances, w->nd, w->cap_d) != 0)
-    return -1;
-  w->distances[w->nd] = (mr_distance){a, b, length};
-  if (out_id)
-    *out_id = w->nd;
-  w->nd++;
-  w->dirty = 1;
-  return 0;
+  mr_distance d = {a, b, length};
+  return mr_add_push(w, &w->distances, &d, sizeof d, out_id, "distance") == MR_OK ? 0 : -1;
 }
 
 mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *out_id)
 {
   const char *what = "mr_world_add_distance";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
+  if (s != MR_OK)
+    return s;
   if (mr_check_particle(w, def->a, what) != 0 || mr_check_particle(w, def->b, what) != 0)
     return MR_ERR_ID;
   if (def->a == def->b)
@@ -226,66 +223,57 @@ mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *ou
   if (!(len > 1e-9))
     return mr_fail(w, MR_ERR_DEGENERATE, "%s: zero length between particles %d and %d", what,
                    def->a, def->b);
-  if (mr_distance_add_internal(w, def->a, def->b, len, out_id) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  return MR_OK;
+  mr_distance d = {def->a, def->b, len};
+  return mr_add_push(w, &w->distances, &d, sizeof d, out_id, what);
 }
 
 mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id)
 {
   const char *what = "mr_world_add_pin";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
-  if (mr_check_particle(w, def->particle, what) != 0)
-    return MR_ERR_ID;
-  if (!dynamic(w, def->particle))
-    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, def->particle);
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
+  if (s == MR_OK)
+    s = check_moving(w, def->particle, what);
+  if (s != MR_OK)
+    return s;
   if (!def->at_current && !mr_finite3(def->point))
     return mr_fail(w, MR_ERR_NONFINITE, "%s: point is NaN or Inf", what);
-  if (MR_GROW(w, w->pins, w->np, w->cap_p) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  mr_pin *p = &w->pins[w->np];
-  p->particle = def->particle;
-  memcpy(p->point, def->at_current ? &w->x[3 * def->particle] : def->point, sizeof p->point);
-  if (out_id)
-    *out_id = w->np;
-  w->np++;
-  w->dirty = 1;
+  mr_pin p;
+  p.particle = def->particle;
+  memcpy(p.point, def->at_current ? &w->x[3 * def->particle] : def->point, sizeof p.point);
+  return mr_add_push(w, &w->pins, &p, sizeof p, out_id, what);
+}
+
+/* Keys in order and finite; 0 or the failure. */
+static mr_status check_keys(mr_world *w, const mr_curve_def *def, const char *what)
+{
+  int n = def->key_count;
+  if (n < 1 || !def->times || !def->points)
+    return mr_fail(w, MR_ERR_ARG, "%s: needs a callback or at least one key", what);
+  for (int i = 0; i < n; i++) {
+    if (!isfinite(def->times[i]) || !mr_finite3(&def->points[3 * i]))
+      return mr_fail(w, MR_ERR_NONFINITE, "%s: key %d is NaN or Inf", what, i);
+    if (i > 0 && !(def->times[i] > def->times[i - 1]))
+      return mr_fail(w, MR_ERR_ARG, "%s: key %d: times must increase (%g after %g)", what, i,
+                     def->times[i], def->times[i - 1]);
+  }
   return MR_OK;
 }
 
 mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id)
 {
   const char *what = "mr_world_add_curve";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
-  if (mr_check_particle(w, def->particle, what) != 0)
-    return MR_ERR_ID;
-  if (!dynamic(w, def->particle))
-    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, def->particle);
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
+  if (s == MR_OK)
+    s = check_moving(w, def->particle, what);
+  if (s != MR_OK)
+    return s;
   if ((unsigned)def->interp > MR_CURVE_LINEAR)
     return mr_fail(w, MR_ERR_ARG, "%s: unknown interpolation %d", what, (int)def->interp);
-  mr_curve c;
-  memset(&c, 0, sizeof c);
-  c.particle = def->particle;
-  c.interp = def->interp;
-  c.fn = def->fn;
-  c.user = def->user;
+  mr_curve c = {def->particle, 0, NULL, NULL, def->interp, def->fn, def->user};
   if (!def->fn) {
+    if ((s = check_keys(w, def, what)) != MR_OK)
+      return s;
     int n = def->key_count;
-    if (n < 1 || !def->times || !def->points)
-      return mr_fail(w, MR_ERR_ARG, "%s: needs a callback or at least one key", what);
-    for (int i = 0; i < n; i++) {
-      if (!isfinite(def->times[i]) || !mr_finite3(&def->points[3 * i]))
-        return mr_fail(w, MR_ERR_NONFINITE, "%s: key %d is NaN or Inf", what, i);
-      if (i > 0 && !(def->times[i] > def->times[i - 1]))
-        return mr_fail(w, MR_ERR_ARG, "%s: key %d: times must increase (%g after %g)", what, i,
-                       def->times[i], def->times[i - 1]);
-    }
     c.key_count = n;
     c.times = malloc((size_t)n * sizeof *c.times);
     c.points = malloc((size_t)n * 3 * sizeof *c.points);
@@ -297,15 +285,10 @@ mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id)
     memcpy(c.times, def->times, (size_t)n * sizeof *c.times);
     memcpy(c.points, def->points, (size_t)n * 3 * sizeof *c.points);
   }
-  if (MR_GROW(w, w->curves, w->nc, w->cap_c) != 0) {
+  s = mr_add_push(w, &w->curves, &c, sizeof c, out_id, what);
+  if (s != MR_OK) {
     free(c.times);
     free(c.points);
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   }
-  w->curves[w->nc] = c;
-  if (out_id)
-    *out_id = w->nc;
-  w->nc++;
-  w->dirty = 1;
-  return MR_OK;
+  return s;
 }

@@ -1,30 +1,31 @@
-/* One evaluation of the equations of motion (§4.2, §5.2): the passes of
- * applied forces, then the constraint forces from eq. 8, then q̈ = M⁻¹ F.
- * Every integrator stage calls this once. */
+/* One evaluation of the equations of motion (§4.1 Fig. 4, §4.2, §5.2),
+ * called once per integrator stage. Its stages, in order:
+ *   1. place the control frames at time t;
+ *   2. applied forces F_a (the world's force passes), q̈ = M⁻¹ F_a;
+ *   3. constraint rows: C, J, Ċ and J̇q̇ of the constraints and of the
+ *      touching contacts;
+ *   4. the solve of eq. 8 for λ (contacts that would pull are released and
+ *      the system solved again; friction rounds at resting contacts), and
+ *      q̈ += M⁻¹ Jᵀ λ. */
 #include "internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-int mr_solve_reserve(mr_world *w, int rows)
+int mr_rows_reserve(mr_world *w, int rows)
 {
   if (rows <= w->cap_rows)
     return 0;
-  int cap = w->cap_rows ? w->cap_rows : 16;
-  while (cap < rows)
-    cap *= 2;
   double **arr[] = {&w->rhs, &w->lambda, &w->row_c, &w->row_cdot, &w->row_bias, &w->row_jv};
   for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
-    double *p = realloc(*arr[i], (size_t)cap * sizeof *p);
-    if (!p)
+    int cap = w->cap_rows;
+    if (mr_grow((void **)arr[i], &cap, rows, sizeof(double)) != 0)
       return -1;
-    *arr[i] = p;
   }
-  int *rc = realloc(w->row_contact, (size_t)cap * sizeof *rc);
-  if (!rc)
+  int cap = w->cap_rows;
+  if (mr_grow((void **)&w->row_contact, &cap, rows, sizeof(int)) != 0)
     return -1;
-  w->row_contact = rc;
   w->cap_rows = cap;
   return 0;
 }
@@ -101,7 +102,7 @@ static void accelerations(const mr_world *w, const double *f, double *a)
 int mr_rows_build(mr_world *w, double t, const double *x, const double *v)
 {
   int nc = mr_constraint_row_count(w);
-  if (mr_solve_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0)
+  if (mr_rows_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0)
     return -1;
   int r = 0;
   if (nc > 0) {
@@ -146,13 +147,39 @@ static void rhs_eq8(mr_world *w, int rows, const double *a_free)
  * If |f_stop| ≤ μN the contact sticks and f_stop is the friction: static
  * friction, so a body on a slope its friction can hold stays put instead of
  * creeping at about g sinθ h/2. Otherwise it slides, and friction is μN
- * against the sliding velocity. fr holds each contact's friction (3 per
- * contact); each change is added to f, and to acc so that the next contact
- * on the same particle sees it. Returns the largest change, N. */
-static double friction(mr_world *w, int rows, const double *x, const double *v, double *acc, double *fr,
-                       double *f)
+ * against the sliding velocity. Returns 0, or −1 when nothing can move
+ * along the contact (it is then left alone). */
+static int contact_friction(const mr_world *w, const mr_contact *ct, double nforce, double tau,
+                             const double *x, const double *v, const double *acc,
+                             const double fc[3], double next[3])
 {
-  const double tau = 0.5 * w->h_step;
+  next[0] = next[1] = next[2] = 0.0;
+  if (!(nforce > 0))
+    return 0;
+  double vt[3], at[3];
+  double inv = mr_contact_slip(w, ct, x, v, vt);
+  mr_contact_slip(w, ct, x, acc, at);
+  if (!(inv > 0))
+    return -1;
+  for (int k = 0; k < 3; k++)
+    next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
+  double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
+  double need = sqrt(next[0] * next[0] + next[1] * next[1] + next[2] * next[2]);
+  double limit = ct->friction * nforce;
+  if (need > limit)
+    for (int k = 0; k < 3; k++)
+      next[k] = speed > 0 ? -limit * vt[k] / speed : limit * next[k] / need;
+  return 0;
+}
+
+/* One round of friction over the resting contacts of the solve. fr holds
+ * each contact's friction (3 per contact); each change is added to f, and
+ * to acc so that the next contact on the same particle sees it. Returns the
+ * largest change, N. */
+static double friction(mr_world *w, double h, int rows, const double *x, const double *v,
+                       double *acc, double *fr, double *f)
+{
+  const double tau = 0.5 * h;
   double change = 0.0;
   for (int r = 0; r < rows; r++) {
     int c = w->row_contact[r];
@@ -161,24 +188,9 @@ static double friction(mr_world *w, int rows, const double *x, const double *v, 
     const mr_contact *ct = &w->contacts.c[c];
     if (ct->friction <= 0)
       continue;
-    double *fc = &fr[3 * c], next[3] = {0, 0, 0};
-    double nforce = w->lambda[r];
-    if (nforce > 0) {
-      double vt[3], at[3];
-      double inv = mr_contact_slip(w, ct, x, v, vt);
-      mr_contact_slip(w, ct, x, acc, at);
-      if (!(inv > 0))
-        continue;
-      for (int k = 0; k < 3; k++)
-        next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
-      double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-      double need = sqrt(next[0] * next[0] + next[1] * next[1] + next[2] * next[2]);
-      double limit = ct->friction * nforce;
-      if (need > limit)
-        for (int k = 0; k < 3; k++)
-          next[k] = speed > 0 ? -limit * vt[k] / speed : limit * next[k] / need;
-    }
-    double d[3];
+    double *fc = &fr[3 * c], next[3], d[3];
+    if (contact_friction(w, ct, w->lambda[r], tau, x, v, acc, fc, next) != 0)
+      continue;
     for (int k = 0; k < 3; k++) {
       d[k] = next[k] - fc[k];
       change = fmax(change, fabs(d[k]));
@@ -190,40 +202,45 @@ static double friction(mr_world *w, int rows, const double *x, const double *v, 
   return change;
 }
 
-int mr_eval(mr_world *w, double t, double *x, double *v, double *a)
+/* Stage 2: F = F_a from the world's force passes, a = M⁻¹ F. */
+static void applied_forces(mr_world *w, double t, const double *x, const double *v, double *a)
 {
-  int n3 = 3 * w->n;
-  double *f = w->f;
-  mr_frames_place(w, t, x, v);
-  memset(f, 0, (size_t)n3 * sizeof *f);
+  double *f = w->scratch.force;
+  memset(f, 0, (size_t)(3 * w->n) * sizeof *f);
   for (int p = 0; p < w->n_force_passes; p++) {
     w->pass_calls[w->force_pass_ids[p]]++;
     w->force_passes[p](w, t, x, v, f);
   }
   accelerations(w, f, a);
-  if (!w->has_solve)
-    return 0;
-  /* §5.4: a touching contact takes part unless it is apart and clearly
-   * separating (χ ≥ 0, χ̇ > rest_speed/10): holding that one back would do
-   * work on it (a ball would bounce higher than it fell). The margin keeps
-   * a body at rest, whose contact points move by rounding, from switching
-   * its contacts off and on between the stages of one step, which made a
-   * lying puppet jitter at 0.1 m/s. */
+}
+
+/* §5.4: a touching contact takes part unless it is apart and clearly
+ * separating (χ ≥ 0, χ̇ > rest_speed/10): holding that one back would do
+ * work on it (a ball would bounce higher than it fell). The margin keeps a
+ * body at rest, whose contact points move by rounding, from switching its
+ * contacts off and on between the stages of one step, which made a lying
+ * puppet jitter at 0.1 m/s. */
+static void select_resting_contacts(mr_world *w, const double *x, const double *v)
+{
   const double separating = 0.1 * w->def.rest_speed;
   for (int c = 0; c < w->contacts.n; c++) {
     const mr_contact *ct = &w->contacts.c[c];
     w->contact_active[c] =
       !(mr_contact_gap(w, ct, x) >= 0.0 && mr_contact_rate(w, ct, x, v) > separating);
   }
+}
+
+/* Stages 3 and 4: rows and the solve of eq. 8. Resting contacts push and
+ * never pull (§5.4, eq. 13b): a contact whose multiplier comes out negative
+ * is released and the system solved again. Returns the number of rows (0:
+ * nothing to solve), or −1. */
+static int solve_eq8(mr_world *w, double t, const double *x, const double *v, const double *a)
+{
   int rows = 0;
-  /* Resting contacts push and never pull (§5.4, eq. 13b): a contact whose
-   * multiplier comes out negative is released and the system solved again. */
   for (int round = 0; round <= w->contacts.n; round++) {
     rows = mr_rows_build(w, t, x, v);
-    if (rows < 0)
-      return -1;
-    if (rows == 0)
-      return 0;
+    if (rows <= 0)
+      return rows;
     rhs_eq8(w, rows, a);
     if (mr_solve_rows(w, 1) != 0)
       return -1;
@@ -238,36 +255,51 @@ int mr_eval(mr_world *w, double t, double *x, double *v, double *a)
     if (!released)
       break;
   }
-  int has_friction = 0;
-  for (int r = 0; r < rows && !has_friction; r++)
-    has_friction = w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 &&
-                   w->lambda[r] > 0;
-  if (has_friction) {
-    /* Friction is an applied force the constraints must carry too: add it
-     * and solve again with the same J M⁻¹ Jᵀ. The constraints then share
-     * it out differently, which changes what each contact must hold, so
-     * repeat a few rounds (a rigid body on a slope sticks only when its
-     * contacts agree). Each round needs a + M⁻¹ Jᵀ λ, put in pa (free
-     * during a step). */
-    memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
-    double scale = 0;
-    for (int r = 0; r < rows; r++)
-      scale = fmax(scale, fabs(w->lambda[r]));
-    for (int round = 0; round < 32; round++) {
-      mr_jac_tmul(&w->J, w->lambda, w->pa);
-      for (int i = 0; i < n3; i++)
-        w->pa[i] = a[i] + w->pa[i] * w->inv_mass[i / 3];
-      double change = friction(w, rows, x, v, w->pa, w->fric, f);
-      if (round > 0 && !(change > 1e-9 * scale))
-        break;
-      accelerations(w, f, a);
-      rhs_eq8(w, rows, a);
-      if (mr_solve_rows(w, 0) != 0)
-        return -1;
-    }
+  return rows;
+}
+
+static int has_friction(const mr_world *w, int rows)
+{
+  for (int r = 0; r < rows; r++)
+    if (w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 &&
+        w->lambda[r] > 0)
+      return 1;
+  return 0;
+}
+
+/* Friction is an applied force the constraints must carry too: add it and
+ * solve again with the same J M⁻¹ Jᵀ. The constraints then share it out
+ * differently, which changes what each contact must hold, so repeat a few
+ * rounds (a rigid body on a slope sticks only when its contacts agree). */
+static int friction_rounds(mr_world *w, double h, int rows, const double *x, const double *v,
+                           double *a)
+{
+  int n3 = 3 * w->n;
+  double *acc = w->scratch.acc_try;
+  memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
+  double scale = 0;
+  for (int r = 0; r < rows; r++)
+    scale = fmax(scale, fabs(w->lambda[r]));
+  for (int round = 0; round < 32; round++) {
+    mr_jac_tmul(&w->J, w->lambda, acc);
+    for (int i = 0; i < n3; i++)
+      acc[i] = a[i] + acc[i] * w->inv_mass[i / 3];
+    double change = friction(w, h, rows, x, v, acc, w->fric, w->scratch.force);
+    if (round > 0 && !(change > 1e-9 * scale))
+      break;
+    accelerations(w, w->scratch.force, a);
+    rhs_eq8(w, rows, a);
+    if (mr_solve_rows(w, 0) != 0)
+      return -1;
   }
-  /* §5.2, eq. 5: F_c = Jᵀ λ. */
-  mr_jac_tmul(&w->J, w->lambda, w->tmp3n);
+  return 0;
+}
+
+/* §5.2, eq. 5: F_c = Jᵀ λ, and a += M⁻¹ F_c. */
+static void add_constraint_forces(mr_world *w, int rows, double *a)
+{
+  double *fc = w->scratch.constraint_force;
+  mr_jac_tmul(&w->J, w->lambda, fc);
   double big = 0;
   for (int r = 0; r < rows; r++) {
     double l = fabs(w->lambda[r]);
@@ -275,7 +307,22 @@ int mr_eval(mr_world *w, double t, double *x, double *v, double *a)
       big = l;
   }
   w->stats.max_multiplier = big;
-  for (int i = 0; i < n3; i++)
-    a[i] += w->tmp3n[i] * w->inv_mass[i / 3];
+  for (int i = 0; i < 3 * w->n; i++)
+    a[i] += fc[i] * w->inv_mass[i / 3];
+}
+
+int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a)
+{
+  mr_frames_place(w, t, x, v);      /* 1 */
+  applied_forces(w, t, x, v, a);    /* 2 */
+  if (!w->has_solve)
+    return 0;
+  select_resting_contacts(w, x, v);
+  int rows = solve_eq8(w, t, x, v, a); /* 3, 4 */
+  if (rows <= 0)
+    return rows;
+  if (has_friction(w, rows) && friction_rounds(w, h, rows, x, v, a) != 0)
+    return -1;
+  add_constraint_forces(w, rows, a);
   return 0;
 }

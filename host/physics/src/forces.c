@@ -1,10 +1,20 @@
 /* Applied forces F_a (§5.1, §6.2). Each kind is one pass; a world's pass
- * list holds only the kinds it declared (requirement: an undeclared effect
- * does not exist in the world, it is not skipped by a test per particle). */
+ * list holds only the kinds it declared, so an undeclared effect does not
+ * exist in the world rather than being skipped by a test per particle.
+ *
+ * A kind is: a line in MR_FORCE_KINDS (mr_physics.h), its element struct,
+ * its pass (stem_pass), its default maker and its add call, all here. */
 #include "internal.h"
 
 #include <math.h>
 #include <string.h>
+
+/* ------------------------------------------------------------- elements */
+
+typedef struct mr_spring { int a, b; double rest, ks, kd; } mr_spring;
+typedef struct mr_antigravity { int acted, trigger; double d0, fraction, max_scale; } mr_antigravity;
+typedef struct mr_triggered { int acted, control, trigger; double d0, gain, max_force; } mr_triggered;
+typedef struct mr_sine_spring { int a, b; double rest, max_force, reach, kd; } mr_sine_spring;
 
 /* ---------------------------------------------------------------- passes */
 
@@ -66,8 +76,9 @@ static void push_pair(double *f, int a, int b, const double u[3], double s)
 static void springs_pass(mr_world *w, double t, const double *x, const double *v, double *f)
 {
   (void)t;
-  for (int i = 0; i < w->ns; i++) {
-    const mr_spring *s = &w->springs[i];
+  const mr_list *l = MR_FORCES(w, SPRINGS);
+  for (int i = 0; i < l->n; i++) {
+    const mr_spring *s = &MR_AT(*l, mr_spring, i);
     double u[3], rate;
     double len = line(x, v, s->a, s->b, u, &rate);
     push_pair(f, s->a, s->b, u, -(s->ks * (len - s->rest) + s->kd * rate));
@@ -78,8 +89,9 @@ static void springs_pass(mr_world *w, double t, const double *x, const double *v
 static void strings_pass(mr_world *w, double t, const double *x, const double *v, double *f)
 {
   (void)t;
-  for (int i = 0; i < w->nstr; i++) {
-    const mr_string *s = &w->strings[i];
+  const mr_list *l = MR_FORCES(w, STRINGS);
+  for (int i = 0; i < l->n; i++) {
+    const mr_string *s = &MR_AT(*l, mr_string, i);
     double u[3], rate;
     double len = line(x, v, s->puppet_particle, s->frame_particle, u, &rate);
     if (len <= s->rest)
@@ -101,8 +113,9 @@ static void antigravity_pass(mr_world *w, double t, const double *x, const doubl
 {
   (void)t, (void)v;
   const double *g = w->def.gravity;
-  for (int i = 0; i < w->nag; i++) {
-    const mr_antigravity *a = &w->antigravity[i];
+  const mr_list *l = MR_FORCES(w, ANTIGRAVITY);
+  for (int i = 0; i < l->n; i++) {
+    const mr_antigravity *a = &MR_AT(*l, mr_antigravity, i);
     double scale = dist(x, a->trigger, a->acted) / a->d0;
     if (scale > a->max_scale)
       scale = a->max_scale;
@@ -117,8 +130,9 @@ static void antigravity_pass(mr_world *w, double t, const double *x, const doubl
 static void triggered_pass(mr_world *w, double t, const double *x, const double *v, double *f)
 {
   (void)t, (void)v;
-  for (int i = 0; i < w->ntr; i++) {
-    const mr_triggered *a = &w->triggered[i];
+  const mr_list *list = MR_FORCES(w, TRIGGERED);
+  for (int i = 0; i < list->n; i++) {
+    const mr_triggered *a = &MR_AT(*list, mr_triggered, i);
     double s = a->gain * w->puppet_mass[w->puppet[a->acted]] *
                (dist(x, a->control, a->trigger) - a->d0);
     if (s > a->max_force)
@@ -139,8 +153,9 @@ static void sine_springs_pass(mr_world *w, double t, const double *x, const doub
 {
   (void)t;
   const double half_pi = 1.57079632679489661923;
-  for (int i = 0; i < w->nsin; i++) {
-    const mr_sine_spring *s = &w->sine_springs[i];
+  const mr_list *l = MR_FORCES(w, SINE_SPRINGS);
+  for (int i = 0; i < l->n; i++) {
+    const mr_sine_spring *s = &MR_AT(*l, mr_sine_spring, i);
     double u[3], rate;
     double delta = line(x, v, s->a, s->b, u, &rate) - s->rest;
     double r = fabs(delta) / s->reach;
@@ -151,19 +166,13 @@ static void sine_springs_pass(mr_world *w, double t, const double *x, const doub
 
 int mr_forces_build_passes(mr_world *w)
 {
+#define MR_ROW_(id, stem, name) {MR_EFFECT_##id, MR_PASS_##id, stem##_pass},
   static const struct {
     uint32_t effect;
     mr_pass pass;
     mr_force_pass fn;
-  } table[] = {
-    {MR_EFFECT_GRAVITY, MR_PASS_GRAVITY, gravity_pass},
-    {MR_EFFECT_DRAG, MR_PASS_DRAG, drag_pass},
-    {MR_EFFECT_SPRINGS, MR_PASS_SPRINGS, springs_pass},
-    {MR_EFFECT_STRINGS, MR_PASS_STRINGS, strings_pass},
-    {MR_EFFECT_ANTIGRAVITY, MR_PASS_ANTIGRAVITY, antigravity_pass},
-    {MR_EFFECT_TRIGGERED, MR_PASS_TRIGGERED, triggered_pass},
-    {MR_EFFECT_SINE_SPRINGS, MR_PASS_SINE_SPRINGS, sine_springs_pass},
-  };
+  } table[] = {MR_FORCE_KINDS(MR_ROW_)};
+#undef MR_ROW_
   w->n_force_passes = 0;
   for (size_t i = 0; i < sizeof table / sizeof table[0]; i++) {
     if (!(w->def.effects & table[i].effect))
@@ -177,37 +186,7 @@ int mr_forces_build_passes(mr_world *w)
   return 0;
 }
 
-/* ------------------------------------------------------------ definitions */
-
-mr_spring_def mr_default_spring_def(void)
-{
-  mr_spring_def d = {0, 0, -1.0, 100.0, 1.0};
-  return d;
-}
-
-mr_string_def mr_default_string_def(void)
-{
-  mr_string_def d = {0, 0, -1.0, 500.0, 5.0};
-  return d;
-}
-
-mr_antigravity_def mr_default_antigravity_def(void)
-{
-  mr_antigravity_def d = {0, 0, 0.5, 2.0};
-  return d;
-}
-
-mr_triggered_def mr_default_triggered_def(void)
-{
-  mr_triggered_def d = {0, 0, 0, 10.0, 100.0};
-  return d;
-}
-
-mr_sine_spring_def mr_default_sine_spring_def(void)
-{
-  mr_sine_spring_def d = {0, 0, -1.0, 50.0, 0.1, 1.0};
-  return d;
-}
+/* ---------------------------------------------------------- add helpers */
 
 /* Two distinct existing particles; fills *len with their distance. */
 static mr_status check_pair(mr_world *w, int a, int b, const char *what, double *len)
@@ -237,39 +216,44 @@ static mr_status check_gains(mr_world *w, const char *what, double a, double b)
   return MR_OK;
 }
 
+/* ----------------------------------------------------------------- kinds */
+
+mr_spring_def mr_default_spring_def(void)
+{
+  return (mr_spring_def){.cookie = MR_DEF_COOKIE, .rest_length = -1.0, .stiffness = 100.0,
+                         .damping = 1.0};
+}
+
 mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id)
 {
   const char *what = "mr_world_add_spring";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_SPRINGS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
   double len = 0.0, rest = 0.0;
-  mr_status s = check_pair(w, def->a, def->b, what, &len);
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_SPRINGS, what);
+  if (s == MR_OK)
+    s = check_pair(w, def->a, def->b, what, &len);
   if (s == MR_OK)
     s = check_rest(w, what, def->rest_length, len, &rest);
   if (s == MR_OK)
     s = check_gains(w, what, def->stiffness, def->damping);
   if (s != MR_OK)
     return s;
-  if (MR_GROW(w, w->springs, w->ns, w->cap_s) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  w->springs[w->ns] = (mr_spring){def->a, def->b, rest, def->stiffness, def->damping};
-  if (out_id)
-    *out_id = w->ns;
-  w->ns++;
-  return MR_OK;
+  mr_spring e = {def->a, def->b, rest, def->stiffness, def->damping};
+  return mr_add_push(w, MR_FORCES(w, SPRINGS), &e, sizeof e, out_id, what);
+}
+
+mr_string_def mr_default_string_def(void)
+{
+  return (mr_string_def){.cookie = MR_DEF_COOKIE, .rest_length = -1.0, .stiffness = 500.0,
+                         .damping = 5.0};
 }
 
 mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id)
 {
   const char *what = "mr_world_add_string";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_STRINGS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
   double len = 0.0, rest = 0.0;
-  mr_status s = check_pair(w, def->frame_particle, def->puppet_particle, what, &len);
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_STRINGS, what);
+  if (s == MR_OK)
+    s = check_pair(w, def->frame_particle, def->puppet_particle, what, &len);
   if (s != MR_OK)
     return s;
   if (w->frame[def->frame_particle] < 0)
@@ -282,25 +266,22 @@ mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id
     s = check_gains(w, what, def->stiffness, def->damping);
   if (s != MR_OK)
     return s;
-  if (MR_GROW(w, w->strings, w->nstr, w->cap_str) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  w->strings[w->nstr] =
-    (mr_string){def->frame_particle, def->puppet_particle, rest, def->stiffness, def->damping};
-  if (out_id)
-    *out_id = w->nstr;
-  w->nstr++;
-  return MR_OK;
+  mr_string e = {def->frame_particle, def->puppet_particle, rest, def->stiffness, def->damping};
+  return mr_add_push(w, MR_FORCES(w, STRINGS), &e, sizeof e, out_id, what);
+}
+
+mr_antigravity_def mr_default_antigravity_def(void)
+{
+  return (mr_antigravity_def){.cookie = MR_DEF_COOKIE, .fraction = 0.5, .max_scale = 2.0};
 }
 
 mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, int *out_id)
 {
   const char *what = "mr_world_add_antigravity";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_ANTIGRAVITY, what) != 0)
-    return MR_ERR_NOT_DECLARED;
-  double d0;
-  mr_status s = check_pair(w, def->acted, def->trigger, what, &d0);
+  double d0 = 0.0;
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_ANTIGRAVITY, what);
+  if (s == MR_OK)
+    s = check_pair(w, def->acted, def->trigger, what, &d0);
   if (s == MR_OK)
     s = check_gains(w, what, def->fraction, def->max_scale);
   if (s != MR_OK)
@@ -308,51 +289,45 @@ mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, i
   if (!(d0 > 1e-9))
     return mr_fail(w, MR_ERR_DEGENERATE, "%s: acted %d and trigger %d coincide", what, def->acted,
                    def->trigger);
-  if (MR_GROW(w, w->antigravity, w->nag, w->cap_ag) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  w->antigravity[w->nag] = (mr_antigravity){def->acted, def->trigger, d0, def->fraction, def->max_scale};
-  if (out_id)
-    *out_id = w->nag;
-  w->nag++;
-  w->dirty = 1;
-  return MR_OK;
+  mr_antigravity e = {def->acted, def->trigger, d0, def->fraction, def->max_scale};
+  return mr_add_push(w, MR_FORCES(w, ANTIGRAVITY), &e, sizeof e, out_id, what);
+}
+
+mr_triggered_def mr_default_triggered_def(void)
+{
+  return (mr_triggered_def){.cookie = MR_DEF_COOKIE, .gain = 10.0, .max_force = 100.0};
 }
 
 mr_status mr_world_add_triggered(mr_world *w, const mr_triggered_def *def, int *out_id)
 {
   const char *what = "mr_world_add_triggered";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_TRIGGERED, what) != 0)
-    return MR_ERR_NOT_DECLARED;
-  double d0, dummy;
-  mr_status s = check_pair(w, def->control, def->trigger, what, &d0);
+  double d0 = 0.0, unused = 0.0;
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_TRIGGERED, what);
   if (s == MR_OK)
-    s = check_pair(w, def->acted, def->control, what, &dummy);
+    s = check_pair(w, def->control, def->trigger, what, &d0);
+  if (s == MR_OK)
+    s = check_pair(w, def->acted, def->control, what, &unused);
   if (s == MR_OK)
     s = check_gains(w, what, def->gain, def->max_force);
   if (s != MR_OK)
     return s;
-  if (MR_GROW(w, w->triggered, w->ntr, w->cap_tr) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  w->triggered[w->ntr] =
-    (mr_triggered){def->acted, def->control, def->trigger, d0, def->gain, def->max_force};
-  if (out_id)
-    *out_id = w->ntr;
-  w->ntr++;
-  w->dirty = 1;
-  return MR_OK;
+  mr_triggered e = {def->acted, def->control, def->trigger, d0, def->gain, def->max_force};
+  return mr_add_push(w, MR_FORCES(w, TRIGGERED), &e, sizeof e, out_id, what);
+}
+
+mr_sine_spring_def mr_default_sine_spring_def(void)
+{
+  return (mr_sine_spring_def){.cookie = MR_DEF_COOKIE, .rest_length = -1.0, .max_force = 50.0,
+                              .reach = 0.1, .damping = 1.0};
 }
 
 mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, int *out_id)
 {
   const char *what = "mr_world_add_sine_spring";
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_SINE_SPRINGS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
   double len = 0.0, rest = 0.0;
-  mr_status s = check_pair(w, def->a, def->b, what, &len);
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_SINE_SPRINGS, what);
+  if (s == MR_OK)
+    s = check_pair(w, def->a, def->b, what, &len);
   if (s == MR_OK)
     s = check_rest(w, what, def->rest_length, len, &rest);
   if (s == MR_OK)
@@ -361,12 +336,6 @@ mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, i
     return s;
   if (!isfinite(def->reach) || !(def->reach > 0))
     return mr_fail(w, MR_ERR_ARG, "%s: reach must be > 0 (got %g)", what, def->reach);
-  if (MR_GROW(w, w->sine_springs, w->nsin, w->cap_sin) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  w->sine_springs[w->nsin] =
-    (mr_sine_spring){def->a, def->b, rest, def->max_force, def->reach, def->damping};
-  if (out_id)
-    *out_id = w->nsin;
-  w->nsin++;
-  return MR_OK;
+  mr_sine_spring e = {def->a, def->b, rest, def->max_force, def->reach, def->damping};
+  return mr_add_push(w, MR_FORCES(w, SINE_SPRINGS), &e, sizeof e, out_id, what);
 }

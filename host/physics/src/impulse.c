@@ -17,95 +17,129 @@
 #include <math.h>
 #include <string.h>
 
-int mr_impulses_apply(mr_world *w, double t, int *collided)
+/* Normal velocities χ̇⁻ before the impulse; the approaching contacts start
+ * in the system. Returns whether any contact approaches; *collided when one
+ * is faster than rest_speed. */
+static int approach_rates(mr_world *w, const double *x, const double *v, int *collided)
 {
-  *collided = 0;
-  int nct = w->contacts.n;
-  if (nct == 0)
-    return 0;
-  const double *x = w->x;
-  double *v = w->v;
-  double *pa = w->pa;
-  int n3 = 3 * w->n;
-  unsigned char *active = w->contact_active;
-  /* Normal velocities χ̇⁻ before the impulse. */
-  double *pre = w->contact_pre;
   int any = 0;
-  for (int c = 0; c < nct; c++) {
-    pre[c] = mr_contact_rate(w, &w->contacts.c[c], x, v);
-    active[c] = pre[c] < 0;
-    any |= active[c];
-    if (pre[c] < -w->def.rest_speed)
+  for (int c = 0; c < w->contacts.n; c++) {
+    w->contact_pre[c] = mr_contact_rate(w, &w->contacts.c[c], x, v);
+    w->contact_active[c] = w->contact_pre[c] < 0;
+    any |= w->contact_active[c];
+    if (w->contact_pre[c] < -w->def.rest_speed)
       *collided = 1;
   }
-  if (!any)
-    return 0;
-  /* Coulomb friction at impact as applied momentum, on the relative
-   * tangential motion of the contact's two sides (a particle and a plane, or
-   * two spheres): at most μ times the normal impulse (1 + e)·(−χ̇⁻)·m_eff the
-   * contact would take on its own, and no more than stops the sliding. */
-  memset(pa, 0, (size_t)n3 * sizeof *pa);
-  for (int c = 0; c < nct; c++) {
+  return any;
+}
+
+/* Coulomb friction at impact as applied momentum L_a, on the relative
+ * tangential motion of the contact's two sides (a particle and a plane, or
+ * two spheres): at most μ times the normal impulse (1 + e)·(−χ̇⁻)·m_eff the
+ * contact would take on its own, and no more than stops the sliding. Also
+ * M⁻¹ L_a. */
+static void impact_friction(mr_world *w, const double *x, const double *v)
+{
+  double *la = w->scratch.impact_momentum, *dv = w->scratch.impact_dv;
+  int n3 = 3 * w->n;
+  memset(la, 0, (size_t)n3 * sizeof *la);
+  for (int c = 0; c < w->contacts.n; c++) {
     const mr_contact *ct = &w->contacts.c[c];
-    if (ct->friction <= 0 || !(pre[c] < -w->def.rest_speed))
+    const double pre = w->contact_pre[c];
+    if (ct->friction <= 0 || !(pre < -w->def.rest_speed))
       continue;
     double vt[3];
     double inv = mr_contact_slip(w, ct, x, v, vt);
     double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
     if (!(speed > 0) || !(inv > 0))
       continue;
-    double pn = (1.0 + ct->restitution) * -pre[c] / inv;
+    double pn = (1.0 + ct->restitution) * -pre / inv;
     double mag = fmin(ct->friction * pn, speed / inv);
-    mr_contact_spread(w, ct, vt, -mag / speed, 0, pa);
+    mr_contact_spread(w, ct, vt, -mag / speed, 0, la);
   }
   for (int i = 0; i < n3; i++)
-    w->tmp3n[i] = pa[i] * w->inv_mass[i / 3];
-  for (int round = 0; round <= nct + 1; round++) {
+    dv[i] = la[i] * w->inv_mass[i / 3];
+}
+
+/* The right-hand side of eq. 9 for the rows built: −J M⁻¹ L_a plus the
+ * change of J q̇ each row asks for. */
+static void rhs_eq9(mr_world *w, int rows)
+{
+  mr_jac_mul(&w->J, w->scratch.impact_dv, w->row_jv);
+  for (int r = 0; r < rows; r++) {
+    int c = w->row_contact[r];
+    double target = 0.0;
+    if (c >= 0 && w->contact_pre[c] < -w->def.rest_speed)
+      target = -w->contacts.c[c].restitution * w->contact_pre[c];
+    w->rhs[r] = (c >= 0 ? target - w->row_cdot[r] : 0.0) - w->row_jv[r];
+  }
+}
+
+/* After a trial impulse, a contact with a negative multiplier leaves the
+ * system; if none does, a contact the impulse drives inwards joins it.
+ * Returns whether the set changed. */
+static int update_contact_set(mr_world *w, int rows, const double *x)
+{
+  int changed = 0;
+  for (int r = 0; r < rows; r++) {
+    int c = w->row_contact[r];
+    if (c >= 0 && w->lambda[r] < 0) {
+      w->contact_active[c] = 0;
+      changed = 1;
+    }
+  }
+  if (changed)
+    return 1;
+  for (int c = 0; c < w->contacts.n; c++) {
+    if (w->contact_active[c])
+      continue;
+    if (mr_contact_rate(w, &w->contacts.c[c], x, w->scratch.v_try) < -1e-9) {
+      w->contact_active[c] = 1;
+      changed = 1;
+    }
+  }
+  return changed;
+}
+
+/* Solves eq. 9 until the contact set settles; the velocities q̇⁺ are left in
+ * scratch.v_try. */
+static int solve_eq9(mr_world *w, double t, const double *x, const double *v)
+{
+  int n3 = 3 * w->n;
+  double *vt = w->scratch.v_try;
+  const double *la = w->scratch.impact_momentum;
+  for (int round = 0; round <= w->contacts.n + 1; round++) {
     int rows = mr_rows_build(w, t, x, v);
     if (rows < 0)
       return -1;
     if (rows == 0) {
       for (int i = 0; i < n3; i++)
-        w->f[i] = v[i] + w->tmp3n[i];
-      break;
+        vt[i] = v[i] + w->scratch.impact_dv[i];
+      return 0;
     }
-    mr_jac_mul(&w->J, w->tmp3n, w->row_jv);
-    for (int r = 0; r < rows; r++) {
-      int c = w->row_contact[r];
-      double target = 0.0;
-      if (c >= 0 && pre[c] < -w->def.rest_speed)
-        target = -w->contacts.c[c].restitution * pre[c];
-      w->rhs[r] = (c >= 0 ? target - w->row_cdot[r] : 0.0) - w->row_jv[r];
-    }
+    rhs_eq9(w, rows);
     if (mr_solve_rows(w, 1) != 0)
       return -1;
-    /* Trial velocities q̇⁺ into w->f. */
-    mr_jac_tmul(&w->J, w->lambda, w->f);
+    mr_jac_tmul(&w->J, w->lambda, vt);
     for (int i = 0; i < n3; i++)
-      w->f[i] = v[i] + (pa[i] + w->f[i]) * w->inv_mass[i / 3];
-    int changed = 0;
-    for (int r = 0; r < rows; r++) {
-      int c = w->row_contact[r];
-      if (c >= 0 && w->lambda[r] < 0) {
-        active[c] = 0;
-        changed = 1;
-      }
-    }
-    if (!changed) {
-      /* A contact the impulse pushes inwards joins the system. */
-      for (int c = 0; c < nct; c++) {
-        if (active[c])
-          continue;
-        if (mr_contact_rate(w, &w->contacts.c[c], x, w->f) < -1e-9) {
-          active[c] = 1;
-          changed = 1;
-        }
-      }
-    }
-    if (!changed)
-      break;
+      vt[i] = v[i] + (la[i] + vt[i]) * w->inv_mass[i / 3];
+    if (!update_contact_set(w, rows, x))
+      return 0;
   }
-  memcpy(v, w->f, (size_t)n3 * sizeof *v);
+  return 0;
+}
+
+int mr_impulses_apply(mr_world *w, double t, int *collided)
+{
+  *collided = 0;
+  if (w->contacts.n == 0)
+    return 0;
+  if (!approach_rates(w, w->x, w->v, collided))
+    return 0;
+  impact_friction(w, w->x, w->v);
+  if (solve_eq9(w, t, w->x, w->v) != 0)
+    return -1;
+  memcpy(w->v, w->scratch.v_try, (size_t)(3 * w->n) * sizeof *w->v);
   if (*collided)
     w->stats.collisions++;
   return 0;

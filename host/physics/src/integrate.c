@@ -16,14 +16,13 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
 {
   int n3 = 3 * w->n;
   size_t bytes = (size_t)n3 * sizeof(double);
-  double *xs = w->xs, *vs = w->vs;
-  double *k = w->k; /* kv1 ka1 kv2 ka2 kv3 ka3 kv4 ka4 */
+  double *xs = w->scratch.xs, *vs = w->scratch.vs;
+  double *k = w->scratch.k; /* kv1 ka1 kv2 ka2 kv3 ka3 kv4 ka4 */
   double *kv1 = k, *ka1 = k + n3, *kv2 = k + 2 * n3, *ka2 = k + 3 * n3;
   double *kv3 = k + 4 * n3, *ka3 = k + 5 * n3, *kv4 = k + 6 * n3, *ka4 = k + 7 * n3;
-  w->h_step = h;
   memcpy(kv1, v0, bytes);
   memcpy(xs, x0, bytes);
-  if (mr_eval(w, t, xs, kv1, ka1) != 0)
+  if (mr_eval(w, t, h, xs, kv1, ka1) != 0)
     return -1;
   switch (w->def.integrator) {
   case MR_INTEGRATOR_EULER:
@@ -37,7 +36,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
   case MR_INTEGRATOR_MIDPOINT:
     axpy(n3, vs, kv1, 0.5 * h, ka1);
     axpy(n3, x1, xs, 0.5 * h, kv1);
-    if (mr_eval(w, t + 0.5 * h, x1, vs, ka2) != 0)
+    if (mr_eval(w, t + 0.5 * h, h, x1, vs, ka2) != 0)
       return -1;
     axpy(n3, x1, xs, h, vs);
     axpy(n3, v1, kv1, h, ka2);
@@ -47,15 +46,15 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
     double *xa = x1; /* stage positions; x1 is written last */
     axpy(n3, xa, xs, 0.5 * h, kv1);
     axpy(n3, kv2, kv1, 0.5 * h, ka1);
-    if (mr_eval(w, t + 0.5 * h, xa, kv2, ka2) != 0)
+    if (mr_eval(w, t + 0.5 * h, h, xa, kv2, ka2) != 0)
       return -1;
     axpy(n3, xa, xs, 0.5 * h, kv2);
     axpy(n3, kv3, kv1, 0.5 * h, ka2);
-    if (mr_eval(w, t + 0.5 * h, xa, kv3, ka3) != 0)
+    if (mr_eval(w, t + 0.5 * h, h, xa, kv3, ka3) != 0)
       return -1;
     axpy(n3, xa, xs, h, kv3);
     axpy(n3, kv4, kv1, h, ka3);
-    if (mr_eval(w, t + h, xa, kv4, ka4) != 0)
+    if (mr_eval(w, t + h, h, xa, kv4, ka4) != 0)
       return -1;
     const double h6 = h / 6.0;
     for (int i = 0; i < n3; i++) {

@@ -16,11 +16,9 @@ typedef struct mr_frame {
   double t0, t1;
 } mr_frame;
 
-typedef struct mr_spring { int a, b; double rest, ks, kd; } mr_spring;
+
+/* A string's element: forces.c pulls with it, string_correction.c shortens it. */
 typedef struct mr_string { int frame_particle, puppet_particle; double rest, ks, kd; } mr_string;
-typedef struct mr_antigravity { int acted, trigger; double d0, fraction, max_scale; } mr_antigravity;
-typedef struct mr_triggered { int acted, control, trigger; double d0, gain, max_force; } mr_triggered;
-typedef struct mr_sine_spring { int a, b; double rest, max_force, reach, kd; } mr_sine_spring;
 
 typedef struct mr_distance { int a, b; double length; } mr_distance;
 typedef struct mr_pin { int particle; double point[3]; } mr_pin;
@@ -32,7 +30,6 @@ typedef struct mr_curve {
   mr_curve_fn fn;
   void *user;
 } mr_curve;
-typedef struct mr_rigid_group { int first_distance, distance_count; } mr_rigid_group;
 
 typedef struct mr_plane { double n[3], offset, restitution, friction; } mr_plane;
 
@@ -57,8 +54,18 @@ typedef int (*mr_detect_pass)(mr_world *w, const double *x, double gap, mr_conta
 
 #define MR_MAX_PASSES 16
 
-#define MR_GROW(w, arr, count, cap)                                            \
-  mr_grow_array((w), (void **)&(arr), sizeof *(arr), (count) + 1, &(cap))
+/* One growable list of elements. Every array of the world grows through
+ * mr_grow, the one growth helper. */
+typedef struct mr_list { void *data; int n, cap; } mr_list;
+#define MR_AT(list, type, i) (((type *)(list).data)[i])
+
+/* The force kinds, numbered as their effect bits (they come first). */
+enum {
+#define MR_X_(id, stem, name) +1
+  MR_FORCE_KIND_COUNT = 0 MR_FORCE_KINDS(MR_X_)
+#undef MR_X_
+};
+#define MR_FORCES(w, id) (&(w)->forces[MR_EFFECT_BIT_##id])
 
 /* --------------------------------------------------------------- world */
 
@@ -77,31 +84,28 @@ struct mr_world {
   double *local;                 /* 3n offsets in the particle's frame */
   int *puppet, *frame;
 
-  int nf, cap_f;       mr_frame *frames;
-  int cap_fs;          double *frame_state;   /* per frame: p, q, ṗ, ω (13) */
-  int nkin, cap_kin;   int *kin;              /* particles carried by frames */
-  int ns, cap_s;       mr_spring *springs;
-  int nstr, cap_str;   mr_string *strings;
-  int nag, cap_ag;     mr_antigravity *antigravity;
-  int ntr, cap_tr;     mr_triggered *triggered;
-  int nsin, cap_sin;   mr_sine_spring *sine_springs;
-  int nd, cap_d;       mr_distance *distances;
-  int np, cap_p;       mr_pin *pins;
-  int nc, cap_c;       mr_curve *curves;
-  int ng, cap_g;       mr_rigid_group *groups;
-  int npl, cap_pl;     mr_plane *planes;
-  int nparts, cap_parts; mr_part *parts;
-  int nleaves, cap_leaves; mr_leaf *leaves;
+  mr_list frames;                 /* mr_frame */
+  double *frame_state;            /* per frame: p, q, ṗ, ω (13) */
+  mr_list kin;                    /* int: particles carried by frames */
+  mr_list forces[MR_FORCE_KIND_COUNT]; /* per force kind, its elements */
+  mr_list distances;              /* mr_distance */
+  mr_list pins;                   /* mr_pin */
+  mr_list curves;                 /* mr_curve */
+  int n_groups;                   /* rigid groups added (ids) */
+  mr_list planes;                 /* mr_plane */
+  mr_list parts;                  /* mr_part */
+  mr_list leaves;                 /* mr_leaf */
 
   /* derived at finalize */
-  int npuppets;
+  int npuppets, cap_puppets;
   double *puppet_mass;
   unsigned char *part_adjacent;  /* nparts × nparts */
   int ntrees; mr_tree *trees;
   int nnodes; mr_tree_node *nodes;
   double *leaf_c;                /* 3 per leaf, refitted per detection */
+  int *tree_stack, cap_tree_stack; /* node pairs of a traversal */
 
-  /* the passes this world runs, built at creation (requirement 8) */
+  /* the passes this world runs, built at creation from its effects */
   int n_force_passes; mr_force_pass force_passes[MR_MAX_PASSES]; mr_pass force_pass_ids[MR_MAX_PASSES];
   int n_detect_passes; mr_detect_pass detect_passes[4]; mr_pass detect_pass_ids[4];
   int has_frames, has_solve, has_string_correction;
@@ -110,12 +114,13 @@ struct mr_world {
   /* contacts: found before a step and held during it (resting set), and a
    * probe list for the end-of-step penetration test */
   mr_contact_list contacts, probe;
-  int cap_active; unsigned char *contact_active; double *contact_pre;
+  int cap_contact;               /* what the four per-contact arrays hold */
+  unsigned char *contact_active; /* in the system being solved (eq. 9 or 8) */
+  double *contact_pre;           /* χ̇⁻ before an impulse */
   double *fric;                  /* 3 per contact: resting-contact friction */
-  int cap_valid; unsigned char *probe_valid;  /* offenders being located */
-  double h_step;                 /* the step being integrated (friction) */
+  unsigned char *probe_valid;    /* per probe contact: being located in time */
 
-  /* solve workspace */
+  /* solve workspace: rows of eq. 8 / eq. 9 */
   mr_jac J;
   mr_csr A;
   mr_solver *solver;
@@ -123,23 +128,51 @@ struct mr_world {
   int cap_rows;
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
   int *row_contact;              /* −1 constraint row, else contact index */
-  int cap_scratch;               /* particles the 3n scratch below holds */
-  double *f, *tmp3n, *pa;        /* 3n scratch */
 
-  /* integrator scratch: state copies and stage derivatives */
-  double *x0, *v0, *x1, *v1, *xs, *vs, *k;  /* k: 8 × 3n for RK4 */
+  /* The end state of a step, traded with x and v when it is accepted. */
+  double *x1, *v1;
+
+  /* Per-step scratch, 3n each unless said (mr_world_ensure_ready sizes
+   * them). Each buffer has one meaning throughout a step. */
+  int cap_scratch;               /* particles the scratch holds */
+  struct {
+    double *x0, *v0;             /* the state at the start of the step */
+    double *xs, *vs;             /* integrator stage state */
+    double *k;                   /* stage derivatives, 8 × 3n (RK4) */
+    double *force;               /* F of the evaluation under way */
+    double *constraint_force;    /* Jᵀ λ of the evaluation under way */
+    double *acc_try;             /* a + M⁻¹ Jᵀ λ within friction rounds */
+    double *impact_momentum;     /* L_a, friction at an impact (eq. 9) */
+    double *impact_dv;           /* M⁻¹ L_a */
+    double *v_try;               /* q̇⁺ of a trial impulse */
+  } scratch;
 
   /* ATS */
   double dt_next;
   int recovering;                /* after a collision Δt doubles (§4.5) */
 
-  mr_world_stats stats;
+  mr_stats stats;
   int last_dependent;
   mr_status fail;                /* why an inner stage returned −1 (0: memory) */
 };
 
 /* world.c */
-int mr_grow_array(mr_world *w, void **arr, size_t elem, int need, int *cap);
+/* The one growth helper: *data holds at least `need` elements of `elem`
+ * bytes afterwards (capacity doubling from 16, in *cap); new bytes are
+ * zeroed so none uninitialised can reach the state hash. 0, or -1 when out
+ * of memory (then *data and *cap are unchanged). */
+int mr_grow(void **data, int *cap, int need, size_t elem);
+/* The start of every add call: world and definition not NULL, the
+ * definition made by its default maker, the effect declared. MR_OK or the
+ * failure (the world's message set). */
+mr_status mr_add_check(mr_world *w, const void *def, uint32_t cookie, uint32_t effect,
+                       const char *what);
+#define MR_ADD_CHECK(w, def, effect, what)                                                         \
+  mr_add_check((w), (def), (def) ? (def)->cookie : 0u, (effect), (what))
+/* The end of every add call: appends the element to its list, returns its
+ * id in *out_id (may be NULL) and marks the derived data stale. */
+mr_status mr_add_push(mr_world *w, mr_list *list, const void *elem, size_t size, int *out_id,
+                      const char *what);
 mr_status mr_fail(mr_world *w, mr_status s, const char *fmt, ...);
 int mr_world_ensure_ready(mr_world *w);
 int mr_check_particle(mr_world *w, int id, const char *what);
@@ -147,9 +180,7 @@ int mr_finite3(const double v[3]);
 int mr_require(mr_world *w, uint32_t effect, const char *what);
 
 /* frame.c */
-void mr_frame_eval(const mr_frame *fr, double t, double pos[3], double q[4],
-                   double vel[3], double omega[3]);
-void mr_quat_rotate(const double q[4], const double v[3], double out[3]);
+void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]);
 void mr_frames_place(mr_world *w, double t, double *x, double *v);
 
 /* curve.c */
@@ -196,9 +227,10 @@ void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double
 int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out);
 int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out);
 
-/* eval.c: accelerations for a state, eq. 1 and eq. 8 */
-int mr_eval(mr_world *w, double t, double *x, double *v, double *a);
-int mr_solve_reserve(mr_world *w, int rows);
+/* eval.c: accelerations for a state, eq. 1 and eq. 8, during a step of
+ * length h (static friction aims to stop sliding within h/2). */
+int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a);
+int mr_rows_reserve(mr_world *w, int rows);
 /* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda. */
 int mr_solve_rows(mr_world *w, int assemble);
 

@@ -60,12 +60,11 @@ static int link(mr_world *w, int a, int b, int *n)
   return 0;
 }
 
-mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n)
+/* The particles must exist, be distinct and apart, and the first three (or
+ * four) span a triangle (tetrahedron). */
+static mr_status check_shape(mr_world *w, const int *ids, int count, const char *what)
 {
-  const char *what = "mr_world_add_rigid_group";
   const double *x = w->x;
-  *first = w->nd;
-  *n = 0;
   for (int i = 0; i < count; i++) {
     if (mr_check_particle(w, ids[i], what) != 0)
       return MR_ERR_ID;
@@ -86,6 +85,40 @@ mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *firs
                      "%s: the first four particles (%d, %d, %d, %d) are coplanar; a rigid group "
                      "starts with a tetrahedron", what, ids[0], ids[1], ids[2], ids[3]);
   }
+  return MR_OK;
+}
+
+/* Particle i's three partners among ids[0..i): the nearest triple not
+ * coplanar with it (short links stay well conditioned). 0, or -1 if every
+ * triple is coplanar with it. */
+static int choose_partners(const double *x, const int *ids, int i, int best[3])
+{
+  double best_len = INFINITY;
+  best[0] = best[1] = best[2] = -1;
+  for (int a = 0; a < i; a++)
+    for (int b = a + 1; b < i; b++)
+      for (int c = b + 1; c < i; c++) {
+        if (flatness(x, ids[i], ids[a], ids[b], ids[c]) < min_shape)
+          continue;
+        double len = dist(x, ids[i], ids[a]) + dist(x, ids[i], ids[b]) + dist(x, ids[i], ids[c]);
+        if (len < best_len) {
+          best_len = len;
+          best[0] = ids[a];
+          best[1] = ids[b];
+          best[2] = ids[c];
+        }
+      }
+  return best[0] < 0 ? -1 : 0;
+}
+
+mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n)
+{
+  const char *what = "mr_world_add_rigid_group";
+  *first = w->distances.n;
+  *n = 0;
+  mr_status s = check_shape(w, ids, count, what);
+  if (s != MR_OK)
+    return s;
   /* Choose every later particle's three partners before adding anything, so
    * a failure leaves the world unchanged. */
   int (*partners)[3] = NULL;
@@ -93,32 +126,12 @@ mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *firs
     partners = malloc((size_t)count * sizeof *partners);
     if (!partners)
       return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-    for (int i = 4; i < count; i++) {
-      /* Nearest triples first: the links stay short and well conditioned. */
-      int best[3] = {-1, -1, -1};
-      double best_len = INFINITY;
-      for (int a = 0; a < i; a++)
-        for (int b = a + 1; b < i; b++)
-          for (int c = b + 1; c < i; c++) {
-            if (flatness(x, ids[i], ids[a], ids[b], ids[c]) < min_shape)
-              continue;
-            double len = dist(x, ids[i], ids[a]) + dist(x, ids[i], ids[b]) + dist(x, ids[i], ids[c]);
-            if (len < best_len) {
-              best_len = len;
-              best[0] = ids[a];
-              best[1] = ids[b];
-              best[2] = ids[c];
-            }
-          }
-      if (best[0] < 0) {
+    for (int i = 4; i < count; i++)
+      if (choose_partners(w->x, ids, i, partners[i]) != 0) {
         free(partners);
         return mr_fail(w, MR_ERR_DEGENERATE,
                        "%s: particle %d is coplanar with every triple before it", what, ids[i]);
       }
-      partners[i][0] = best[0];
-      partners[i][1] = best[1];
-      partners[i][2] = best[2];
-    }
   }
   int clique = count < 4 ? count : 4;
   int ok = 0;
@@ -136,30 +149,27 @@ mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *firs
 
 mr_rigid_group_def mr_default_rigid_group_def(void)
 {
-  mr_rigid_group_def d = {NULL, 0};
-  return d;
+  return (mr_rigid_group_def){.cookie = MR_DEF_COOKIE};
 }
 
 mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, int *out_id)
 {
   const char *what = "mr_world_add_rigid_group";
-  if (!w || !def || (!def->particles && def->count > 0))
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
-  if (mr_require(w, MR_EFFECT_CONSTRAINTS, what) != 0)
-    return MR_ERR_NOT_DECLARED;
+  mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
+  if (s != MR_OK)
+    return s;
+  if (!def->particles && def->count > 0)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL particles", what);
   if (def->count < 2)
     return mr_fail(w, MR_ERR_ARG, "%s: needs at least 2 particles (got %d)", what, def->count);
-  if (MR_GROW(w, w->groups, w->ng, w->cap_g) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   int first, n;
-  mr_status s = mr_rigid_group_build(w, def->particles, def->count, &first, &n);
+  s = mr_rigid_group_build(w, def->particles, def->count, &first, &n);
   if (s != MR_OK) {
-    w->nd = first; /* drop links added before an allocation failure */
+    w->distances.n = first; /* drop links added before an allocation failure */
     return s;
   }
-  w->groups[w->ng] = (mr_rigid_group){first, n};
   if (out_id)
-    *out_id = w->ng;
-  w->ng++;
+    *out_id = w->n_groups;
+  w->n_groups++;
   return MR_OK;
 }

@@ -14,8 +14,7 @@
 
 mr_part_def mr_default_part_def(void)
 {
-  mr_part_def d = {NULL, 0, 0.0, 0, 0.5, 0.3};
-  return d;
+  return (mr_part_def){.cookie = MR_DEF_COOKIE, .restitution = 0.5, .friction = 0.3};
 }
 
 void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3])
@@ -27,17 +26,18 @@ void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double
 
 static int push_leaf(mr_world *w, int p0, int p1, double s, double r, int part, int puppet)
 {
-  if (MR_GROW(w, w->leaves, w->nleaves, w->cap_leaves) != 0)
-    return -1;
-  w->leaves[w->nleaves++] = (mr_leaf){p0, p1, s, r, part, puppet};
-  return 0;
+  mr_leaf l = {p0, p1, s, r, part, puppet};
+  return mr_add_push(w, &w->leaves, &l, sizeof l, NULL, "mr_world_add_part") == MR_OK ? 0 : -1;
 }
 
 mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
 {
   const char *what = "mr_world_add_part";
-  if (!w || !def || (!def->particles && def->count > 0))
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  mr_status st = MR_ADD_CHECK(w, def, 0, what);
+  if (st != MR_OK)
+    return st;
+  if (!def->particles && def->count > 0)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL particles", what);
   if (!(w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION)))
     return mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world declares no sphere-tree collisions", what);
   if (def->count < 1)
@@ -63,9 +63,7 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
                      p, w->puppet[p], puppet);
     puppet = w->puppet[p];
   }
-  if (MR_GROW(w, w->parts, w->nparts, w->cap_parts) != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
-  int id = w->nparts, first = w->nleaves;
+  int id = w->parts.n, first = w->leaves.n;
   int ok = 0;
   for (int i = 0; i < def->count && ok == 0; i++) {
     int p = def->particles[i];
@@ -78,15 +76,14 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
     ok = push_leaf(w, a, b, (double)j / (def->segment_spheres + 1), r, id, puppet);
   }
   if (ok != 0) {
-    w->nleaves = first;
+    w->leaves.n = first;
     return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   }
-  w->parts[id] = (mr_part){first, w->nleaves - first, puppet, def->restitution, def->friction};
-  w->nparts++;
-  w->dirty = 1;
-  if (out_id)
-    *out_id = id;
-  return MR_OK;
+  mr_part part = {first, w->leaves.n - first, puppet, def->restitution, def->friction};
+  st = mr_add_push(w, &w->parts, &part, sizeof part, out_id, what);
+  if (st != MR_OK)
+    w->leaves.n = first;
+  return st;
 }
 
 /* ------------------------------------------------------------------ build */
@@ -138,13 +135,13 @@ static int build(mr_world *w, int *idx, int n)
 
 static int parts_touch(const mr_world *w, int i, int j)
 {
-  const mr_part *a = &w->parts[i], *b = &w->parts[j];
+  const mr_part *a = &MR_AT(w->parts, mr_part, i), *b = &MR_AT(w->parts, mr_part, j);
   for (int u = 0; u < a->leaf_count; u++) {
-    const mr_leaf *la = &w->leaves[a->first_leaf + u];
+    const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, a->first_leaf + u);
     if (la->s != 0.0)
       continue;
     for (int v = 0; v < b->leaf_count; v++) {
-      const mr_leaf *lb = &w->leaves[b->first_leaf + v];
+      const mr_leaf *lb = &MR_AT(w->leaves, mr_leaf, b->first_leaf + v);
       if (lb->s == 0.0 && lb->p0 == la->p0)
         return 1;
     }
@@ -154,9 +151,9 @@ static int parts_touch(const mr_world *w, int i, int j)
 
 static int part_has(const mr_world *w, int part, int p)
 {
-  const mr_part *a = &w->parts[part];
+  const mr_part *a = &MR_AT(w->parts, mr_part, part);
   for (int u = 0; u < a->leaf_count; u++) {
-    const mr_leaf *l = &w->leaves[a->first_leaf + u];
+    const mr_leaf *l = &MR_AT(w->leaves, mr_leaf, a->first_leaf + u);
     if (l->s == 0.0 && l->p0 == p)
       return 1;
   }
@@ -174,30 +171,30 @@ int mr_trees_build(mr_world *w)
   w->leaf_c = NULL;
   w->part_adjacent = NULL;
   w->nnodes = w->ntrees = 0;
-  if (w->nleaves == 0)
+  if (w->leaves.n == 0)
     return 0;
-  int np = w->nparts;
-  w->leaf_c = malloc((size_t)w->nleaves * 3 * sizeof *w->leaf_c);
-  w->nodes = malloc((size_t)(2 * w->nleaves) * sizeof *w->nodes);
-  w->trees = malloc((size_t)w->nleaves * sizeof *w->trees);
+  int np = w->parts.n;
+  w->leaf_c = malloc((size_t)w->leaves.n * 3 * sizeof *w->leaf_c);
+  w->nodes = malloc((size_t)(2 * w->leaves.n) * sizeof *w->nodes);
+  w->trees = malloc((size_t)w->leaves.n * sizeof *w->trees);
   w->part_adjacent = calloc((size_t)np * (size_t)np, 1);
-  int *idx = malloc((size_t)w->nleaves * sizeof *idx);
+  int *idx = malloc((size_t)w->leaves.n * sizeof *idx);
   if (!w->leaf_c || !w->nodes || !w->trees || !w->part_adjacent || !idx) {
     free(idx);
     return -1;
   }
-  for (int i = 0; i < w->nleaves; i++)
-    mr_leaf_center(w, &w->leaves[i], w->x, &w->leaf_c[3 * i]);
+  for (int i = 0; i < w->leaves.n; i++)
+    mr_leaf_center(w, &MR_AT(w->leaves, mr_leaf, i), w->x, &w->leaf_c[3 * i]);
   /* One tree per puppet, in order of first appearance. */
-  for (int i = 0; i < w->nleaves; i++) {
-    int puppet = w->leaves[i].puppet, seen = 0;
+  for (int i = 0; i < w->leaves.n; i++) {
+    int puppet = MR_AT(w->leaves, mr_leaf, i).puppet, seen = 0;
     for (int t = 0; t < w->ntrees && !seen; t++)
       seen = w->trees[t].puppet == puppet;
     if (seen)
       continue;
     int n = 0;
-    for (int j = i; j < w->nleaves; j++)
-      if (w->leaves[j].puppet == puppet)
+    for (int j = i; j < w->leaves.n; j++)
+      if (MR_AT(w->leaves, mr_leaf, j).puppet == puppet)
         idx[n++] = j;
     int first = w->nnodes;
     int root = build(w, idx, n);
@@ -210,11 +207,11 @@ int mr_trees_build(mr_world *w)
     for (int j = 0; j < np; j++)
       if (i == j || parts_touch(w, i, j))
         w->part_adjacent[i * np + j] = 1;
-  for (int d = 0; d < w->nd; d++)
+  for (int d = 0; d < w->distances.n; d++)
     for (int i = 0; i < np; i++)
-      if (part_has(w, i, w->distances[d].a))
+      if (part_has(w, i, MR_AT(w->distances, mr_distance, d).a))
         for (int j = 0; j < np; j++)
-          if (part_has(w, j, w->distances[d].b))
+          if (part_has(w, j, MR_AT(w->distances, mr_distance, d).b))
             w->part_adjacent[i * np + j] = w->part_adjacent[j * np + i] = 1;
   return 0;
 }
@@ -226,8 +223,8 @@ static void refit(mr_world *w, const mr_tree *t, const double *x)
   for (int i = t->first_node; i < t->first_node + t->node_count; i++) {
     mr_tree_node *nd = &w->nodes[i];
     if (nd->leaf >= 0) {
-      mr_leaf_center(w, &w->leaves[nd->leaf], x, nd->c);
-      nd->r = w->leaves[nd->leaf].r;
+      mr_leaf_center(w, &MR_AT(w->leaves, mr_leaf, nd->leaf), x, nd->c);
+      nd->r = MR_AT(w->leaves, mr_leaf, nd->leaf).r;
       continue;
     }
     const mr_tree_node *a = &w->nodes[nd->left], *b = &w->nodes[nd->right];
@@ -257,69 +254,73 @@ static double node_gap(const mr_tree_node *a, const mr_tree_node *b)
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - a->r - b->r;
 }
 
+/* Two leaves within the gap: a contact, unless their parts are adjacent. */
+static int leaf_pair(mr_world *w, int leaf_a, int leaf_b, mr_contact_list *out)
+{
+  const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, leaf_a), *lb = &MR_AT(w->leaves, mr_leaf, leaf_b);
+  if (w->part_adjacent[la->part * w->parts.n + lb->part])
+    return 0;
+  const mr_part *pa = &MR_AT(w->parts, mr_part, la->part), *pb = &MR_AT(w->parts, mr_part, lb->part);
+  double e = 0.5 * (pa->restitution + pb->restitution);
+  double mu = 0.5 * (pa->friction + pb->friction);
+  return mr_contact_push(out, MR_CONTACT_SPHERES, leaf_a, leaf_b, e, mu);
+}
+
+/* The child pairs of the node pair (a, b) to test next: (n, n) of one tree
+ * expands to its three distinct pairs, otherwise the larger node (or the
+ * one that is not a leaf) is split. */
+static int expand(const mr_world *w, int a, int b, int same, int pairs[3][2])
+{
+  const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
+  if (a == b && same) {
+    pairs[0][0] = na->left, pairs[0][1] = na->left;
+    pairs[1][0] = na->right, pairs[1][1] = na->right;
+    pairs[2][0] = na->left, pairs[2][1] = na->right;
+    return 3;
+  }
+  if (nb->leaf >= 0 || (na->leaf < 0 && na->r >= nb->r)) {
+    pairs[0][0] = na->left, pairs[0][1] = b;
+    pairs[1][0] = na->right, pairs[1][1] = b;
+  } else {
+    pairs[0][0] = a, pairs[0][1] = nb->left;
+    pairs[1][0] = a, pairs[1][1] = nb->right;
+  }
+  return 2;
+}
+
 /* Depth-first traversal of the node pair (a, b); same = a and b are the
- * same tree, so (n, n) expands to its three distinct child pairs. */
+ * same tree. */
 static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contact_list *out)
 {
-  int cap = 64, top = 0;
-  int stack_small[128];
-  int *stack = stack_small;
-  int *heap = NULL;
-  int rc = 0;
+  int top = 0;
+  if (mr_grow((void **)&w->tree_stack, &w->cap_tree_stack, 2, sizeof(int)) != 0)
+    return -1;
+  int *stack = w->tree_stack;
   stack[top++] = ra;
   stack[top++] = rb;
-  while (top > 0 && rc == 0) {
+  while (top > 0) {
     int b = stack[--top], a = stack[--top];
     const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
     if (!(a == b && same) && !(node_gap(na, nb) <= gap))
       continue;
-    int pairs[3][2];
-    int np = 0;
     if (na->leaf >= 0 && nb->leaf >= 0) {
-      if (a == b)
-        continue;
-      const mr_leaf *la = &w->leaves[na->leaf], *lb = &w->leaves[nb->leaf];
-      if (w->part_adjacent[la->part * w->nparts + lb->part])
-        continue;
-      double e = 0.5 * (w->parts[la->part].restitution + w->parts[lb->part].restitution);
-      double mu = 0.5 * (w->parts[la->part].friction + w->parts[lb->part].friction);
-      if (mr_contact_push(out, MR_CONTACT_SPHERES, na->leaf, nb->leaf, e, mu) != 0)
-        rc = -1;
+      if (a != b && leaf_pair(w, na->leaf, nb->leaf, out) != 0)
+        return -1;
       continue;
     }
-    if (a == b && same) {
-      pairs[0][0] = na->left, pairs[0][1] = na->left;
-      pairs[1][0] = na->right, pairs[1][1] = na->right;
-      pairs[2][0] = na->left, pairs[2][1] = na->right;
-      np = 3;
-    } else if (nb->leaf >= 0 || (na->leaf < 0 && na->r >= nb->r)) {
-      pairs[0][0] = na->left, pairs[0][1] = b;
-      pairs[1][0] = na->right, pairs[1][1] = b;
-      np = 2;
-    } else {
-      pairs[0][0] = a, pairs[0][1] = nb->left;
-      pairs[1][0] = a, pairs[1][1] = nb->right;
-      np = 2;
-    }
-    if (top + 2 * np > cap * 2) {
-      int ncap = cap * 2;
-      int *p = realloc(heap, (size_t)ncap * 2 * sizeof *p);
-      if (!p) {
-        rc = -1;
-        break;
-      }
-      if (!heap)
-        memcpy(p, stack_small, (size_t)top * sizeof *p);
-      heap = stack = p;
-      cap = ncap;
-    }
+    int pairs[3][2];
+    int np = expand(w, a, b, same, pairs);
+    /* The stack is the world's, kept between calls: it grows to the
+     * deepest traversal once and then the step allocates nothing. */
+    if (mr_grow((void **)&w->tree_stack, &w->cap_tree_stack, top + 2 * np, sizeof(int)) != 0)
+      return -1;
+    stack = w->tree_stack;
     for (int i = 0; i < np; i++) {
       stack[top++] = pairs[i][0];
       stack[top++] = pairs[i][1];
     }
   }
-  free(heap);
-  return rc;
+  return 0;
 }
 
 int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out)

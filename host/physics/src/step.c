@@ -1,82 +1,164 @@
-/* The step, as a list of stages:
- *   1. contacts at the start state: impulses for collisions (eq. 9, 13a),
- *      the rest kept as resting contacts for the force solve (eq. 13b);
- *   2. integrate over Δt (RK4 by default), every stage running the world's
- *      passes and the constraint solve of eq. 8;
- *   3. divergence test (§7): NaN/Inf or a deviation past the hard bound
- *      retries once at the lower bound, then restores the start state;
- *   4. the ATS rule (§4.5) on the largest relative deviation: reject and
- *      retry, or accept and choose the next Δt;
- *   5. penetration test at the end state: if a contact went through, the
- *      state is restored and stepped only to the contact time (§4.5), and
- *      Δt then doubles each step until the ATS rule governs again;
- *   6. post-step passes (string-length correction).
- * mr_world_step_to repeats this and shortens the last step to land exactly
- * on the requested time (§4.6). */
+/* The step (§4.1, Fig. 4), as its stages. Each evaluation of the
+ * equations of motion inside the integrator runs stages 1–4 (eval.c):
+ *   1. place the frames;  2. applied forces;  3. constraint rows;
+ *   4. the solve (eq. 8).
+ * A step around them, here:
+ *   6a. contacts at the start state: detect, impulses by eq. 9 (§5.3) for
+ *       the colliding ones, the rest held as resting contacts (eq. 13b);
+ *   5.  integrate over Δt (RK4 by default, integrate.c);
+ *   8.  the divergence check (§7): NaN/Inf or a deviation past the hard
+ *       bound retries once at the lower bound, then restores the start;
+ *   7.  the ATS decision (§4.5) on the largest relative deviation: reject
+ *       and retry shorter, or accept;
+ *   6b. collisions at the end state: detect a contact gone through, locate
+ *       its time, roll back and step only to it (§4.5, §5.4);
+ *   then accept, the string-length correction (§6.2), and the next Δt (7):
+ *   doubled after a located contact until the ATS rule governs again.
+ * mr_world_step takes one step; mr_world_step_to repeats it and shortens
+ * the last step to land exactly on the requested time (§4.6). The per-step
+ * state lives in an mr_step_ctx; the world keeps only state. */
 #include "internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int realloc_d(double **p, size_t n)
-{
-  double *q = realloc(*p, n * sizeof *q);
-  if (!q)
-    return -1;
-  *p = q;
-  return 0;
-}
+/* One step's (or one call's) bookkeeping. */
+typedef struct mr_step_ctx {
+  /* the call */
+  int to_target;         /* 1: mr_world_step_to (land on t_target) */
+  double t_target;
+  mr_step_report rep;    /* summed over the call */
+  mr_status result;      /* MR_OK, or MR_DIVERGED once a reset happened */
+  /* the step under way */
+  double t;              /* world time at its start */
+  double planned;        /* Δt the ATS chose after the previous step */
+  double h;              /* Δt being tried, then taken */
+  int landing;           /* h ends exactly on t_target */
+  int shortened;         /* landing cut h below the planned Δt */
+  int rejected_any;      /* a try of this step was rejected */
+  int located;           /* h was cut to a contact time (§4.5) */
+  double error;          /* relative deviation of the end state (§4.5) */
+  mr_ats_decision dec;   /* the ATS rule on the accepted try */
+} mr_step_ctx;
 
-static int ensure_contact_capacity(mr_world *w, const mr_contact_list *l)
-{
-  if (l->n <= w->cap_active)
-    return 0;
-  int cap = l->cap;
-  unsigned char *a = realloc(w->contact_active, (size_t)cap);
-  if (!a)
-    return -1;
-  w->contact_active = a;
-  if (realloc_d(&w->contact_pre, (size_t)cap) != 0 || realloc_d(&w->fric, 3 * (size_t)cap) != 0)
-    return -1;
-  w->cap_active = cap;
-  return 0;
-}
+/* ------------------------------------------------------- derived data */
 
-/* Derived data: scratch sized to the particles, puppet masses (for the §6.2
- * forces), sphere trees. Rebuilt when elements were added. */
-int mr_world_ensure_ready(mr_world *w)
+/* 3n scratch, and the integrator's 8 × 3n, for the particles there are. */
+static int size_scratch(mr_world *w)
 {
-  if (!w->dirty && w->cap_scratch >= w->n)
-    return 0;
-  size_t n3 = (size_t)(w->n > 0 ? w->n : 1) * 3;
-  double **arr[] = {&w->f, &w->tmp3n, &w->pa, &w->x0, &w->v0, &w->xs, &w->vs};
-  for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
-    if (realloc_d(arr[i], n3) != 0)
+  double **arr[] = {&w->scratch.x0,    &w->scratch.v0,    &w->scratch.xs,
+                    &w->scratch.vs,    &w->scratch.force, &w->scratch.constraint_force,
+                    &w->scratch.acc_try, &w->scratch.impact_momentum, &w->scratch.impact_dv,
+                    &w->scratch.v_try};
+  int need = w->n > 0 ? w->n : 1, cap = w->cap_scratch;
+  for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
+    cap = w->cap_scratch;
+    if (mr_grow((void **)arr[i], &cap, need, 3 * sizeof(double)) != 0)
       return -1;
-  if (realloc_d(&w->k, 8 * n3) != 0)
+  }
+  cap = w->cap_scratch;
+  if (mr_grow((void **)&w->scratch.k, &cap, need, 24 * sizeof(double)) != 0)
     return -1;
-  /* x1/v1 trade places with x/v on every accepted step: size them alike. */
-  if (realloc_d(&w->x1, (size_t)w->cap_n * 3 + 3) != 0 || realloc_d(&w->v1, (size_t)w->cap_n * 3 + 3) != 0)
-    return -1;
-  w->cap_scratch = w->n;
+  w->cap_scratch = cap;
+  return 0;
+}
+
+/* The whole mass of each puppet, for the §6.2 forces. */
+static int puppet_masses(mr_world *w)
+{
   int np = 0;
   for (int i = 0; i < w->n; i++)
     if (w->puppet[i] + 1 > np)
       np = w->puppet[i] + 1;
-  free(w->puppet_mass);
-  w->puppet_mass = calloc((size_t)(np > 0 ? np : 1), sizeof *w->puppet_mass);
-  if (!w->puppet_mass)
+  if (mr_grow((void **)&w->puppet_mass, &w->cap_puppets, np > 0 ? np : 1, sizeof(double)) != 0)
     return -1;
+  memset(w->puppet_mass, 0, (size_t)w->cap_puppets * sizeof *w->puppet_mass);
   w->npuppets = np;
   for (int i = 0; i < w->n; i++)
     w->puppet_mass[w->puppet[i]] += w->mass[i];
+  return 0;
+}
+
+/* The per-contact arrays hold at least the contacts of both lists. */
+static int contact_capacity(mr_world *w, int need)
+{
+  if (need <= w->cap_contact)
+    return 0;
+  int cap = w->cap_contact;
+  if (mr_grow((void **)&w->contact_active, &cap, need, 1) != 0)
+    return -1;
+  cap = w->cap_contact;
+  if (mr_grow((void **)&w->probe_valid, &cap, need, 1) != 0)
+    return -1;
+  cap = w->cap_contact;
+  if (mr_grow((void **)&w->contact_pre, &cap, need, sizeof(double)) != 0)
+    return -1;
+  cap = w->cap_contact;
+  if (mr_grow((void **)&w->fric, &cap, need, 3 * sizeof(double)) != 0)
+    return -1;
+  w->cap_contact = cap;
+  return 0;
+}
+
+/* Room for every contact the world can have (each dynamic particle on each
+ * plane, each pair of leaf spheres), up to a cap that keeps a large world's
+ * reservation modest; past it the lists still grow, amortised. */
+#define MR_CONTACT_RESERVE_MAX 16384
+/* The solver's reservation is dense (rows² entries for J M⁻¹ Jᵀ, rows²/2 for
+ * its factor): up to this many rows, about 3 MB, it is made; a larger
+ * system grows the solver's arrays when it first meets a bigger size. */
+#define MR_SOLVE_RESERVE_MAX_ROWS 512
+
+static int reserve_contacts(mr_world *w)
+{
+  long dynamic = 0;
+  for (int i = 0; i < w->n; i++)
+    dynamic += w->inv_mass[i] > 0.0;
+  long plane_pairs = (long)w->planes.n * dynamic;
+  long sphere_pairs = (long)w->leaves.n * (w->leaves.n - 1) / 2;
+  long most = plane_pairs + sphere_pairs;
+  int cap = most < MR_CONTACT_RESERVE_MAX ? (int)most : MR_CONTACT_RESERVE_MAX;
+  if (cap > 0 &&
+      (mr_grow((void **)&w->contacts.c, &w->contacts.cap, cap, sizeof(mr_contact)) != 0 ||
+       mr_grow((void **)&w->probe.c, &w->probe.cap, cap, sizeof(mr_contact)) != 0 ||
+       contact_capacity(w, cap) != 0))
+    return -1;
+  /* Rows and J entries: a distance has two particles, a pin or curve row
+   * one, a plane contact one, a sphere contact up to four. */
+  int rows = mr_constraint_row_count(w) + cap;
+  long plane_rows = plane_pairs < cap ? plane_pairs : cap;
+  long entries = 2L * w->distances.n + 3L * (w->pins.n + w->curves.n) + plane_rows +
+                 4L * (cap - plane_rows);
+  if (mr_rows_reserve(w, rows) != 0)
+    return -1;
+  if (rows == 0 || rows > MR_SOLVE_RESERVE_MAX_ROWS)
+    return 0;
+  if (mr_jac_reserve(&w->J, rows, (int)entries) != MR_SOLVE_OK ||
+      mr_csr_reserve(&w->A, rows, w->n, (int)entries) != MR_SOLVE_OK ||
+      mr_solver_reserve(w->solver, rows) != MR_SOLVE_OK)
+    return -1;
+  return 0;
+}
+
+/* Derived data: scratch sized to the particles, puppet masses, sphere trees
+ * and contact room. Rebuilt when elements were added. */
+int mr_world_ensure_ready(mr_world *w)
+{
+  if (!w->dirty && w->cap_scratch >= w->n)
+    return 0;
+  if (size_scratch(w) != 0 || puppet_masses(w) != 0)
+    return -1;
   if (w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION))
     if (mr_trees_build(w) != 0)
       return -1;
+  if (reserve_contacts(w) != 0)
+    return -1;
   w->dirty = 0;
   return 0;
 }
+
+/* ------------------------------------------------------------- helpers */
 
 static int all_finite(const double *a, int n)
 {
@@ -108,6 +190,25 @@ static void reset_to_start(mr_world *w, double e)
             w->t);
 }
 
+/* An inner stage failed: keep the solver's own message, or name memory. */
+static mr_status inner_failure(mr_world *w, const char *what)
+{
+  mr_status s = w->fail;
+  w->fail = MR_OK;
+  if (s != MR_OK)
+    return s;
+  return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (%s)", what);
+}
+
+static void count_rejection(mr_world *w, mr_step_ctx *c)
+{
+  w->stats.rejected++;
+  c->rep.rejected++;
+  c->rejected_any = 1;
+}
+
+/* ------------------------------------------------------- locating (6b) */
+
 static double offenders_gap(mr_world *w, const double *x, const unsigned char *valid)
 {
   double g = INFINITY;
@@ -120,6 +221,25 @@ static double offenders_gap(mr_world *w, const double *x, const unsigned char *v
   return g;
 }
 
+/* Contacts touching at the start are in the force system (eq. 13b), which
+ * pushes them back out; only contacts that were apart can be located in
+ * time. Rolling back for a touching one would cut the step to nothing.
+ * Marks those in probe_valid (its own flags: every trial integration
+ * rewrites contact_active) and returns the smallest start gap of them, or
+ * INFINITY if there is none. */
+static double mark_offenders(mr_world *w)
+{
+  const double slop = w->def.contact_slop;
+  double g0 = INFINITY;
+  for (int i = 0; i < w->probe.n; i++) {
+    double c0 = mr_contact_gap(w, &w->probe.c[i], w->scratch.x0);
+    w->probe_valid[i] = c0 > slop;
+    if (w->probe_valid[i] && c0 < g0)
+      g0 = c0;
+  }
+  return g0;
+}
+
 /* A contact went through during [t, t + h]. Find the contact time h* by
  * regula falsi (Illinois) on the smallest gap of the offending contacts,
  * aiming at −slop/2, each trial a full integration from the start state, and
@@ -127,31 +247,10 @@ static double offenders_gap(mr_world *w, const double *x, const unsigned char *v
 static double locate_contact(mr_world *w, double t, double h, int *err)
 {
   const double slop = w->def.contact_slop, aim = -0.5 * slop;
-  /* Its own flags: every trial integration rewrites contact_active. */
-  if (w->probe.n > w->cap_valid) {
-    unsigned char *p = realloc(w->probe_valid, (size_t)w->probe.cap);
-    if (!p) {
-      *err = 1;
-      return h;
-    }
-    w->probe_valid = p;
-    w->cap_valid = w->probe.cap;
-  }
-  unsigned char *valid = w->probe_valid;
-  int any = 0;
-  double g0 = INFINITY;
-  for (int i = 0; i < w->probe.n; i++) {
-    double c0 = mr_contact_gap(w, &w->probe.c[i], w->x0);
-    /* Contacts touching at the start are in the force system (eq. 13b),
-     * which pushes them back out; only contacts that were apart can be
-     * located in time. Rolling back for a touching one would cut the step
-     * to nothing. */
-    valid[i] = c0 > slop;
-    any |= valid[i];
-    if (valid[i] && c0 < g0)
-      g0 = c0;
-  }
-  if (!any)
+  const double *x0 = w->scratch.x0, *v0 = w->scratch.v0;
+  const unsigned char *valid = w->probe_valid;
+  double g0 = mark_offenders(w);
+  if (g0 == INFINITY)
     return h;
   double lo = 0.0, flo = g0 - aim, hi = h, fhi = offenders_gap(w, w->x1, valid) - aim;
   int side = 0;
@@ -159,7 +258,7 @@ static double locate_contact(mr_world *w, double t, double h, int *err)
     double hm = hi - fhi * (hi - lo) / (fhi - flo);
     if (!(hm > lo && hm < hi))
       hm = 0.5 * (lo + hi);
-    if (mr_integrate(w, t, hm, w->x0, w->v0, w->x1, w->v1) != 0) {
+    if (mr_integrate(w, t, hm, x0, v0, w->x1, w->v1) != 0) {
       *err = 1;
       return h;
     }
@@ -182,14 +281,130 @@ static double locate_contact(mr_world *w, double t, double h, int *err)
   }
   /* Not within the slop after all trials: stop just before the contact. */
   double hs = lo > 0 ? lo : hi;
-  if (mr_integrate(w, t, hs, w->x0, w->v0, w->x1, w->v1) != 0)
+  if (mr_integrate(w, t, hs, x0, v0, w->x1, w->v1) != 0)
     *err = 1;
   return hs;
 }
 
+/* ---------------------------------------------------------- the stages */
+
+/* Δt for this step: the planned one, or exactly what is left to t_target
+ * (never leaving a sliver of a step behind it). */
+static void plan(mr_world *w, mr_step_ctx *c)
+{
+  c->t = w->t;
+  c->planned = w->dt_next;
+  c->h = c->planned;
+  c->landing = 0;
+  if (c->to_target) {
+    double rem = c->t_target - c->t;
+    if (c->h >= rem || rem - c->h < 1e-3 * c->h) {
+      c->h = rem;
+      c->landing = 1;
+    }
+  }
+  /* Rounding in t + Δt must not count as a shortened step. */
+  c->shortened = c->landing && c->h < c->planned * (1.0 - 1e-9);
+  c->rejected_any = 0;
+  c->located = 0;
+  c->error = 0.0;
+  c->dec = (mr_ats_decision){1, c->planned};
+}
+
+/* 6a: contacts at the start state; impulses for the colliding ones. */
+static mr_status impacts(mr_world *w, mr_step_ctx *c)
+{
+  if (mr_contacts_detect(w, w->x, w->def.contact_slop, &w->contacts) != 0 ||
+      contact_capacity(w, w->contacts.n) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
+  int collided = 0;
+  if (mr_impulses_apply(w, c->t, &collided) != 0)
+    return inner_failure(w, "impulses");
+  c->rep.collisions += collided;
+  w->stats.resting_contacts = w->contacts.n;
+  return MR_OK;
+}
+
+enum verdict { TRY_ACCEPT, TRY_AGAIN, TRY_DIVERGED };
+
+/* 8: NaN/Inf or a deviation past the bound. Retried once at the lower
+ * bound; diverged if it happens there. */
+static enum verdict divergence_check(mr_world *w, mr_step_ctx *c)
+{
+  const int n3 = 3 * w->n;
+  if (all_finite(w->x1, n3) && all_finite(w->v1, n3) && c->error <= w->def.divergence_bound)
+    return TRY_ACCEPT;
+  if (c->h > w->def.dt_min) {
+    c->h = w->def.dt_min;
+    c->landing = 0;
+    count_rejection(w, c);
+    return TRY_AGAIN;
+  }
+  c->rep.divergences++;
+  c->result = MR_DIVERGED;
+  return TRY_DIVERGED;
+}
+
+/* 7: the §4.5 rule; a rejected try is retried with the Δt it gives. */
+static enum verdict ats_decision(mr_world *w, mr_step_ctx *c)
+{
+  const mr_ats_params ats = {w->def.dt_min, w->def.dt_max, w->def.deviation_low,
+                             w->def.deviation_high};
+  c->dec = mr_ats_next(&ats, c->h, c->error);
+  if (c->dec.accept)
+    return TRY_ACCEPT;
+  count_rejection(w, c);
+  c->h = c->dec.dt_next;
+  c->landing = c->to_target && c->h >= c->t_target - c->t;
+  if (c->landing)
+    c->h = c->t_target - c->t;
+  return TRY_AGAIN;
+}
+
+/* 5, 8, 7: integrate from the start state until a try is accepted or the
+ * world diverged. MR_OK, or the failure of an inner stage. */
+static mr_status integrate_until_accepted(mr_world *w, mr_step_ctx *c, enum verdict *v)
+{
+  for (;;) {
+    if (mr_integrate(w, c->t, c->h, w->scratch.x0, w->scratch.v0, w->x1, w->v1) != 0)
+      return inner_failure(w, "solve");
+    c->error = mr_constraints_deviation(w, c->t + c->h, w->x1);
+    *v = divergence_check(w, c);
+    if (*v == TRY_AGAIN)
+      continue;
+    if (*v == TRY_DIVERGED)
+      return MR_OK;
+    *v = ats_decision(w, c);
+    if (*v == TRY_ACCEPT)
+      return MR_OK;
+  }
+}
+
+/* 6b: a contact gone through by the end state: roll back and step only to
+ * its time. */
+static mr_status penetration(mr_world *w, mr_step_ctx *c)
+{
+  if (mr_contacts_detect(w, w->x1, -w->def.contact_slop, &w->probe) != 0 ||
+      contact_capacity(w, w->probe.n) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
+  if (w->probe.n == 0)
+    return MR_OK;
+  int err = 0;
+  double hc = locate_contact(w, c->t, c->h, &err);
+  if (err)
+    return inner_failure(w, "contact time");
+  if (hc < c->h) {
+    c->located = 1;
+    c->h = hc;
+    c->landing = 0;
+    c->error = mr_constraints_deviation(w, c->t + c->h, w->x1);
+  }
+  return MR_OK;
+}
+
 static void record_step(mr_world *w, double h, double e)
 {
-  mr_world_stats *s = &w->stats;
+  mr_stats *s = &w->stats;
   s->steps++;
   s->last_dt = h;
   if (h < s->min_dt)
@@ -201,176 +416,100 @@ static void record_step(mr_world *w, double h, double e)
     s->max_error = e;
 }
 
-/* An inner stage failed: keep the solver's own message, or name memory. */
-static mr_status inner_failure(mr_world *w, const char *what)
+/* The end state becomes the state. */
+static void accept(mr_world *w, mr_step_ctx *c)
 {
-  mr_status s = w->fail;
-  w->fail = MR_OK;
-  if (s != MR_OK)
-    return s;
-  return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (%s)", what);
+  double *tx = w->x, *tv = w->v;
+  w->x = w->x1;
+  w->v = w->v1;
+  w->x1 = tx;
+  w->v1 = tv;
+  w->t = c->landing ? c->t_target : c->t + c->h;
+  c->rep.steps++;
+  record_step(w, c->h, c->error);
 }
 
-/* Takes steps until t_target (INFINITY: exactly one planned step). */
-static mr_status advance(mr_world *w, double t_target, mr_step_report *report)
+/* 7, second half: the Δt the next step will try. After a located contact
+ * it doubles each step until the rule's own choice is smaller (§4.5). A
+ * step shortened only to land on the target keeps the plan. */
+static void next_dt(mr_world *w, const mr_step_ctx *c)
 {
-  mr_step_report rep;
-  memset(&rep, 0, sizeof rep);
-  if (report)
-    *report = rep;
+  if (c->located) {
+    w->dt_next = fmin(fmax(2.0 * c->h, 1e-3 * w->def.dt_min), w->def.dt_max);
+    w->recovering = 1;
+  } else if (w->recovering) {
+    double twice = 2.0 * c->planned;
+    if (twice < c->dec.dt_next) {
+      w->dt_next = twice;
+    } else {
+      w->dt_next = c->dec.dt_next;
+      w->recovering = 0;
+    }
+  } else if (!c->shortened || c->rejected_any) {
+    w->dt_next = c->dec.dt_next;
+  }
+}
+
+/* One step, every stage. MR_OK (also after a divergence reset, which
+ * c->result records), or a failure. */
+static mr_status step_once(mr_world *w, mr_step_ctx *c)
+{
+  const int colliders = mr_colliders(w);
+  const size_t bytes = (size_t)(3 * w->n) * sizeof(double);
+  mr_status st;
+  plan(w, c);
+  if (colliders && (st = impacts(w, c)) != MR_OK)
+    return st;
+  if (bytes > 0) { /* an empty world has no arrays yet */
+    memcpy(w->scratch.x0, w->x, bytes);
+    memcpy(w->scratch.v0, w->v, bytes);
+  }
+  enum verdict v;
+  if ((st = integrate_until_accepted(w, c, &v)) != MR_OK)
+    return st;
+  if (v == TRY_DIVERGED) {
+    /* The failed step's time passes and the world starts again at its
+     * end (frames where the hand is then), so a cause tied to a moment
+     * (a curve gone NaN) is left behind. The puppet returns to its start
+     * configuration itself, not carried along by the frame: measured on
+     * the no-friction extreme case, carrying it under a frame swinging at
+     * 11 m/s diverged again more often (21 resets against 13). */
+    w->t = c->landing ? c->t_target : c->t + c->h;
+    reset_to_start(w, c->error);
+    return MR_OK;
+  }
+  if (colliders && (st = penetration(w, c)) != MR_OK)
+    return st;
+  accept(w, c);
+  if (w->has_string_correction)
+    mr_strings_correct(w);
+  next_dt(w, c);
+  return MR_OK;
+}
+
+/* ------------------------------------------------------------ the calls */
+
+static mr_status begin(mr_world *w, mr_step_ctx *c)
+{
+  memset(c, 0, sizeof *c);
   if (mr_world_ensure_ready(w) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory");
   w->started = 1;
   w->last_dependent = 0;
-  const mr_ats_params ats = {w->def.dt_min, w->def.dt_max, w->def.deviation_low, w->def.deviation_high};
-  const int colliders = mr_colliders(w);
-  const int n3 = 3 * w->n;
-  const size_t bytes = (size_t)n3 * sizeof(double);
-  const int single = isinf(t_target);
-  mr_status result = MR_OK;
-  int calls = 0;
+  return MR_OK;
+}
 
-  while (single ? calls == 0 : w->t < t_target) {
-    if (calls++ >= w->def.max_steps_per_call) {
-      if (report)
-        *report = rep;
-      return mr_fail(w, MR_ERR_LIMIT, "mr_world_step_to: %d steps did not reach t=%.9g s (at %.9g s)",
-                     w->def.max_steps_per_call, t_target, w->t);
-    }
-    const double t = w->t, rem = t_target - t, planned = w->dt_next;
-    double h = planned;
-    int landing = 0;
-    /* Land on the target; never leave a sliver of a step behind it. */
-    if (!single && (h >= rem || rem - h < 1e-3 * h)) {
-      h = rem;
-      landing = 1;
-    }
-    /* Rounding in t + Δt must not count as a shortened step. */
-    int shortened = landing && h < planned * (1.0 - 1e-9);
-
-    /* 1. Contacts at the start state. */
-    if (colliders) {
-      if (mr_contacts_detect(w, w->x, w->def.contact_slop, &w->contacts) != 0 ||
-          ensure_contact_capacity(w, &w->contacts) != 0)
-        return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
-      int collided = 0;
-      if (mr_impulses_apply(w, t, &collided) != 0)
-        return inner_failure(w, "impulses");
-      rep.collisions += collided;
-      w->stats.resting_contacts = w->contacts.n;
-    }
-    if (bytes > 0) { /* an empty world has no arrays yet */
-      memcpy(w->x0, w->x, bytes);
-      memcpy(w->v0, w->v, bytes);
-    }
-
-    double e = 0.0;
-    mr_ats_decision dec = {1, planned};
-    int diverged = 0, rejected_any = 0;
-    for (;;) {
-      /* 2. Integrate. */
-      if (mr_integrate(w, t, h, w->x0, w->v0, w->x1, w->v1) != 0)
-        return inner_failure(w, "solve");
-      e = mr_constraints_deviation(w, t + h, w->x1);
-      /* 3. Divergence. */
-      if (!all_finite(w->x1, n3) || !all_finite(w->v1, n3) || !(e <= w->def.divergence_bound)) {
-        if (h > w->def.dt_min) {
-          h = w->def.dt_min;
-          landing = 0;
-          w->stats.rejected++;
-          rep.rejected++;
-          rejected_any = 1;
-          continue;
-        }
-        rep.divergences++;
-        result = MR_DIVERGED;
-        diverged = 1;
-        break;
-      }
-      /* 4. The ATS rule. */
-      dec = mr_ats_next(&ats, h, e);
-      if (!dec.accept) {
-        w->stats.rejected++;
-        rep.rejected++;
-        rejected_any = 1;
-        h = dec.dt_next;
-        landing = !single && h >= t_target - t;
-        if (landing)
-          h = t_target - t;
-        continue;
-      }
-      break;
-    }
-    if (diverged) {
-      /* The failed step's time passes and the world starts again at its
-       * end (frames where the hand is then), so a cause tied to a moment
-       * (a curve gone NaN) is left behind. The puppet returns to its start
-       * configuration itself, not carried along by the frame: measured on
-       * the no-friction extreme case, carrying it under a frame swinging at
-       * 11 m/s diverged again more often (21 resets against 13). */
-      w->t = landing ? t_target : t + h;
-      reset_to_start(w, e);
-      continue;
-    }
-
-    /* 5. Penetration at the end state. */
-    int located = 0;
-    if (colliders) {
-      if (mr_contacts_detect(w, w->x1, -w->def.contact_slop, &w->probe) != 0)
-        return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
-      if (w->probe.n > 0) {
-        int err = 0;
-        double hc = locate_contact(w, t, h, &err);
-        if (err)
-          return inner_failure(w, "contact time");
-        if (hc < h) {
-          located = 1;
-          h = hc;
-          landing = 0;
-          e = mr_constraints_deviation(w, t + h, w->x1);
-        }
-      }
-    }
-
-    /* Accept: the end state becomes the state. */
-    double *tx = w->x, *tv = w->v;
-    w->x = w->x1;
-    w->v = w->v1;
-    w->x1 = tx;
-    w->v1 = tv;
-    w->t = landing ? t_target : t + h;
-    rep.steps++;
-    record_step(w, h, e);
-
-    /* 6. Post-step passes. */
-    if (w->has_string_correction)
-      mr_strings_correct(w);
-
-    /* Next Δt. */
-    if (located) {
-      w->dt_next = fmin(fmax(2.0 * h, 1e-3 * w->def.dt_min), w->def.dt_max);
-      w->recovering = 1;
-    } else if (w->recovering) {
-      double twice = 2.0 * planned;
-      if (twice < dec.dt_next) {
-        w->dt_next = twice;
-      } else {
-        w->dt_next = dec.dt_next;
-        w->recovering = 0;
-      }
-    } else if (!shortened || rejected_any) {
-      w->dt_next = dec.dt_next;
-    }
-  }
-  rep.dependent = w->last_dependent;
+static mr_status finish(mr_world *w, mr_step_ctx *c, mr_step_report *report)
+{
+  c->rep.dependent = w->last_dependent;
   if (report)
-    *report = rep;
-  if (result == MR_OK && w->last_dependent > 0) {
+    *report = c->rep;
+  if (c->result == MR_OK && w->last_dependent > 0) {
     mr_fail(w, MR_DEPENDENT, "%d dependent constraint rows found; their multipliers were set to 0",
             w->last_dependent);
     return MR_DEPENDENT;
   }
-  return result;
+  return c->result;
 }
 
 mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
@@ -384,7 +523,23 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
   if (t_target < w->t)
     return mr_fail(w, MR_ERR_TIME, "mr_world_step_to: target %.9g s is before the world time %.9g s",
                    t_target, w->t);
-  return advance(w, t_target, report);
+  mr_step_ctx c;
+  mr_status st = begin(w, &c);
+  if (st != MR_OK)
+    return st;
+  c.to_target = 1;
+  c.t_target = t_target;
+  for (int calls = 0; w->t < t_target; calls++) {
+    if (calls >= w->def.max_steps_per_call) {
+      if (report)
+        *report = c.rep;
+      return mr_fail(w, MR_ERR_LIMIT, "mr_world_step_to: %d steps did not reach t=%.9g s (at %.9g s)",
+                     w->def.max_steps_per_call, t_target, w->t);
+    }
+    if ((st = step_once(w, &c)) != MR_OK)
+      return st;
+  }
+  return finish(w, &c, report);
 }
 
 mr_status mr_world_step(mr_world *w, mr_step_report *report)
@@ -393,5 +548,9 @@ mr_status mr_world_step(mr_world *w, mr_step_report *report)
     memset(report, 0, sizeof *report);
   if (!w)
     return MR_ERR_ARG;
-  return advance(w, INFINITY, report);
+  mr_step_ctx c;
+  mr_status st = begin(w, &c);
+  if (st == MR_OK)
+    st = step_once(w, &c);
+  return st == MR_OK ? finish(w, &c, report) : st;
 }

@@ -19,8 +19,9 @@
 static int shorten_strings(mr_world *w, double limit)
 {
   int moved = 0;
-  for (int i = 0; i < w->nstr; i++) {
-    const mr_string *s = &w->strings[i];
+  const mr_list *l = MR_FORCES(w, STRINGS);
+  for (int i = 0; i < l->n; i++) {
+    const mr_string *s = &MR_AT(*l, mr_string, i);
     double *xp = &w->x[3 * s->puppet_particle], *vp = &w->v[3 * s->puppet_particle];
     const double *xf = &w->x[3 * s->frame_particle], *vf = &w->v[3 * s->frame_particle];
     double d[3] = {xp[0] - xf[0], xp[1] - xf[1], xp[2] - xf[2]};
@@ -48,8 +49,8 @@ static int shorten_strings(mr_world *w, double limit)
 static void project_constraints(mr_world *w)
 {
   double *x = w->x;
-  for (int i = 0; i < w->nd; i++) {
-    const mr_distance *c = &w->distances[i];
+  for (int i = 0; i < w->distances.n; i++) {
+    const mr_distance *c = &MR_AT(w->distances, mr_distance, i);
     double wa = w->inv_mass[c->a], wb = w->inv_mass[c->b];
     double d[3], len = 0;
     for (int k = 0; k < 3; k++) {
@@ -65,14 +66,14 @@ static void project_constraints(mr_world *w)
       x[3 * c->b + k] += wb * s * d[k];
     }
   }
-  for (int i = 0; i < w->np; i++)
+  for (int i = 0; i < w->pins.n; i++)
     for (int k = 0; k < 3; k++)
-      x[3 * w->pins[i].particle + k] = w->pins[i].point[k];
-  for (int i = 0; i < w->nc; i++) {
+      x[3 * MR_AT(w->pins, mr_pin, i).particle + k] = MR_AT(w->pins, mr_pin, i).point[k];
+  for (int i = 0; i < w->curves.n; i++) {
     double p[3], pv[3], pa[3];
-    mr_curve_eval(&w->curves[i], w->t, p, pv, pa);
+    mr_curve_eval(&MR_AT(w->curves, mr_curve, i), w->t, p, pv, pa);
     for (int k = 0; k < 3; k++)
-      x[3 * w->curves[i].particle + k] = p[k];
+      x[3 * MR_AT(w->curves, mr_curve, i).particle + k] = p[k];
   }
 }
 
@@ -80,7 +81,7 @@ void mr_strings_correct(mr_world *w)
 {
   w->pass_calls[MR_PASS_STRING_CORRECTION]++;
   const double limit = 1.0 + w->def.string_max_stretch;
-  const int constrained = w->nd + w->np + w->nc > 0;
+  const int constrained = w->distances.n + w->pins.n + w->curves.n > 0;
   for (int it = 0; it < w->def.string_correction_iterations; it++) {
     if (!shorten_strings(w, limit))
       break;

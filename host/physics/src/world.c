@@ -26,39 +26,85 @@ const char *mr_status_name(mr_status s)
   return "unknown status";
 }
 
-const char *mr_pass_name(mr_pass p)
+/* ------------------------------------------------------------ name tables */
+
+#define MR_NAME_(id, stem, name) name,
+static const char *const effect_names[MR_EFFECT_COUNT] = {MR_EFFECTS(MR_NAME_)};
+static const char *const pass_names[MR_PASS_COUNT] = {
+  "frames", MR_FORCE_KINDS(MR_NAME_) "constraints", "solve", "planes", "self-collision",
+  "puppet-collision", "string-correction"};
+#undef MR_NAME_
+#define MR_NAME_(id, name) name,
+static const char *const integrator_names[MR_INTEGRATOR_COUNT] = {MR_INTEGRATORS(MR_NAME_)};
+#undef MR_NAME_
+
+/* Index of name in names[0..n), '_' matching '-'; -1 if absent. */
+static int find_name(const char *const *names, int n, const char *name)
 {
-  static const char *const names[MR_PASS_COUNT] = {
-    "frames", "gravity", "drag", "springs", "strings", "antigravity",
-    "triggered", "sine-springs", "constraints", "solve", "planes",
-    "self-collision", "puppet-collision", "string-correction"};
-  return (unsigned)p < MR_PASS_COUNT ? names[p] : "unknown";
+  if (!name)
+    return -1;
+  for (int i = 0; i < n; i++) {
+    const char *a = names[i], *b = name;
+    while (*a && (*a == *b || (*a == '-' && *b == '_'))) {
+      a++;
+      b++;
+    }
+    if (*a == '\0' && *b == '\0')
+      return i;
+  }
+  return -1;
 }
 
-static const char *const integrator_names[] = {"rk4", "euler", "semi-implicit-euler", "midpoint"};
+const char *mr_effect_name(uint32_t effect)
+{
+  for (int i = 0; i < MR_EFFECT_COUNT; i++)
+    if (effect == 1u << i)
+      return effect_names[i];
+  return "unknown";
+}
+
+int mr_effect_parse(const char *name, uint32_t *out)
+{
+  int i = find_name(effect_names, MR_EFFECT_COUNT, name);
+  if (i < 0 || !out)
+    return -1;
+  *out = 1u << i;
+  return 0;
+}
+
+const char *mr_pass_name(mr_pass p)
+{
+  return (unsigned)p < MR_PASS_COUNT ? pass_names[p] : "unknown";
+}
+
+int mr_pass_parse(const char *name, mr_pass *out)
+{
+  int i = find_name(pass_names, MR_PASS_COUNT, name);
+  if (i < 0 || !out)
+    return -1;
+  *out = (mr_pass)i;
+  return 0;
+}
 
 const char *mr_integrator_name(mr_integrator i)
 {
-  return (unsigned)i < 4 ? integrator_names[i] : "unknown";
+  return (unsigned)i < MR_INTEGRATOR_COUNT ? integrator_names[i] : "unknown";
 }
 
 int mr_integrator_parse(const char *name, mr_integrator *out)
 {
-  if (!name || !out)
+  int i = find_name(integrator_names, MR_INTEGRATOR_COUNT, name);
+  if (i < 0 || !out)
     return -1;
-  for (int i = 0; i < 4; i++) {
-    if (strcmp(name, integrator_names[i]) == 0) {
-      *out = (mr_integrator)i;
-      return 0;
-    }
-  }
-  return -1;
+  *out = (mr_integrator)i;
+  return 0;
 }
 
 mr_world_def mr_default_world_def(void)
 {
   mr_world_def d;
   memset(&d, 0, sizeof d);
+  d.cookie = MR_DEF_COOKIE;
   d.gravity[1] = -9.81;
   d.effects = MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS;
   d.integrator = MR_INTEGRATOR_RK4;
@@ -90,6 +136,7 @@ mr_particle_def mr_default_particle_def(void)
 {
   mr_particle_def d;
   memset(&d, 0, sizeof d);
+  d.cookie = MR_DEF_COOKIE;
   d.mass = 1.0;
   d.frame = -1;
   return d;
@@ -111,37 +158,59 @@ mr_status mr_fail(mr_world *w, mr_status s, const char *fmt, ...)
   return s;
 }
 
-int mr_grow_array(mr_world *w, void **arr, size_t elem, int need, int *cap)
+int mr_grow(void **data, int *cap, int need, size_t elem)
 {
-  (void)w;
   if (need <= *cap)
     return 0;
-  int c = *cap ? *cap : 8;
+  int c = *cap ? *cap : 16;
   while (c < need)
     c *= 2;
-  void *p = realloc(*arr, (size_t)c * elem);
+  void *p = realloc(*data, (size_t)c * elem);
   if (!p)
     return -1;
-  /* Zero the new tail so no uninitialised byte can reach the state hash. */
   memset((char *)p + (size_t)*cap * elem, 0, (size_t)(c - *cap) * elem);
-  *arr = p;
+  *data = p;
   *cap = c;
   return 0;
+}
+
+static mr_status bad_cookie(mr_world *w, const char *what)
+{
+  return mr_fail(w, MR_ERR_ARG,
+                 "%s: the definition was not made by its mr_default_..._def() maker (start from "
+                 "the maker and change fields, never from {0})",
+                 what);
+}
+
+mr_status mr_add_check(mr_world *w, const void *def, uint32_t cookie, uint32_t effect,
+                       const char *what)
+{
+  if (!w || !def)
+    return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  if (cookie != MR_DEF_COOKIE)
+    return bad_cookie(w, what);
+  if (effect && !(w->def.effects & effect))
+    return mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world does not declare this effect", what);
+  return MR_OK;
+}
+
+mr_status mr_add_push(mr_world *w, mr_list *list, const void *elem, size_t size, int *out_id,
+                      const char *what)
+{
+  if (mr_grow(&list->data, &list->cap, list->n + 1, size) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  memcpy((char *)list->data + (size_t)list->n * size, elem, size);
+  if (out_id)
+    *out_id = list->n;
+  list->n++;
+  w->dirty = 1;
+  return MR_OK;
 }
 
 int mr_check_particle(mr_world *w, int id, const char *what)
 {
   if (id < 0 || id >= w->n) {
     mr_fail(w, MR_ERR_ID, "%s: particle %d does not exist (world has %d)", what, id, w->n);
-    return -1;
-  }
-  return 0;
-}
-
-int mr_require(mr_world *w, uint32_t effect, const char *what)
-{
-  if (!(w->def.effects & effect)) {
-    mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world does not declare this effect", what);
     return -1;
   }
   return 0;
@@ -154,12 +223,9 @@ static mr_status def_error(char *msg, size_t msg_size, mr_status s, const char *
   return s;
 }
 
-mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *msg, size_t msg_size)
+/* Every field of a world definition in range. MR_OK or the first failure. */
+static mr_status check_world_def(const mr_world_def *def, char *msg, size_t msg_size)
 {
-  if (out_world)
-    *out_world = NULL;
-  if (!def || !out_world)
-    return def_error(msg, msg_size, MR_ERR_ARG, "def and out_world must not be NULL");
   const double scalars[] = {def->dt_initial, def->dt_min, def->dt_max, def->deviation_low,
                             def->deviation_high, def->deviation_length, def->divergence_bound,
                             def->solver_tolerance, def->ks, def->kd, def->drag,
@@ -187,12 +253,27 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
       def->string_correction_iterations < 0)
     return def_error(msg, msg_size, MR_ERR_ARG,
                      "max_steps_per_call and solver_max_iterations must be >= 1");
-  if ((unsigned)def->integrator > MR_INTEGRATOR_MIDPOINT)
+  if ((unsigned)def->integrator >= MR_INTEGRATOR_COUNT)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown integrator");
-  if ((unsigned)def->solver > MR_SOLVE_EIGEN)
+  if ((unsigned)def->solver >= MR_SOLVE_METHOD_COUNT)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown solver method");
-  if (def->effects >> 13)
+  if (def->effects & ~(uint32_t)MR_EFFECT_ALL)
     return def_error(msg, msg_size, MR_ERR_ARG, "unknown effect bits");
+  return MR_OK;
+}
+
+mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *msg, size_t msg_size)
+{
+  if (out_world)
+    *out_world = NULL;
+  if (!def || !out_world)
+    return def_error(msg, msg_size, MR_ERR_ARG, "def and out_world must not be NULL");
+  if (def->cookie != MR_DEF_COOKIE)
+    return def_error(msg, msg_size, MR_ERR_ARG,
+                     "not made by mr_default_world_def() (start from the maker, never from {0})");
+  mr_status st = check_world_def(def, msg, msg_size);
+  if (st != MR_OK)
+    return st;
 
   mr_world *w = calloc(1, sizeof *w);
   if (!w)
@@ -228,18 +309,25 @@ void mr_world_destroy(mr_world *w)
   if (!w)
     return;
   void *arrays[] = {w->x, w->v, w->mass, w->inv_mass, w->radius, w->x_start, w->v_start,
-                    w->local, w->puppet, w->frame, w->frames, w->frame_state, w->kin, w->springs, w->strings,
-                    w->antigravity, w->triggered, w->sine_springs, w->distances, w->pins,
-                    w->groups, w->planes, w->parts, w->leaves, w->puppet_mass,
-                    w->part_adjacent, w->trees, w->nodes, w->leaf_c, w->contact_active, w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot, w->row_bias, w->row_jv, w->row_contact,
-                    w->f, w->tmp3n, w->pa, w->fric, w->x0, w->v0, w->x1, w->v1, w->xs, w->vs, w->k};
+                    w->local, w->puppet, w->frame, w->frame_state, w->puppet_mass,
+                    w->part_adjacent, w->tree_stack, w->trees, w->nodes, w->leaf_c, w->contact_active,
+                    w->contact_pre, w->probe_valid, w->rhs, w->lambda, w->row_c, w->row_cdot,
+                    w->row_bias, w->row_jv, w->row_contact, w->fric, w->x1, w->v1,
+                    w->scratch.x0, w->scratch.v0, w->scratch.xs, w->scratch.vs, w->scratch.k,
+                    w->scratch.force, w->scratch.constraint_force, w->scratch.acc_try,
+                    w->scratch.impact_momentum, w->scratch.impact_dv, w->scratch.v_try};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++)
     free(arrays[i]);
-  for (int i = 0; i < w->nc; i++) {
-    free(w->curves[i].times);
-    free(w->curves[i].points);
+  for (int i = 0; i < w->curves.n; i++) {
+    free(MR_AT(w->curves, mr_curve, i).times);
+    free(MR_AT(w->curves, mr_curve, i).points);
   }
-  free(w->curves);
+  mr_list *lists[] = {&w->frames, &w->kin, &w->distances, &w->pins, &w->curves,
+                      &w->planes, &w->parts, &w->leaves};
+  for (size_t i = 0; i < sizeof lists / sizeof lists[0]; i++)
+    free(lists[i]->data);
+  for (int i = 0; i < MR_FORCE_KIND_COUNT; i++)
+    free(w->forces[i].data);
   mr_contact_list_free(&w->contacts);
   mr_contact_list_free(&w->probe);
   mr_jac_free(&w->J);
@@ -253,32 +341,22 @@ const char *mr_world_last_error(const mr_world *w)
   return w ? w->err : "no world";
 }
 
-/* Grows every per-particle array to hold n + 1 particles. */
+/* Grows every per-particle array to hold n + 1 particles. x1 and v1 trade
+ * places with x and v on every accepted step, so they grow with them. */
 static int grow_particles(mr_world *w)
 {
-  if (w->n + 1 <= w->cap_n)
-    return 0;
-  int cap = w->cap_n ? 2 * w->cap_n : 16;
-  double **d3[] = {&w->x, &w->v, &w->x_start, &w->v_start, &w->local};
-  double **d1[] = {&w->mass, &w->inv_mass, &w->radius};
-  int **i1[] = {&w->puppet, &w->frame};
-  for (size_t i = 0; i < sizeof d3 / sizeof d3[0]; i++) {
-    double *p = realloc(*d3[i], (size_t)cap * 3 * sizeof *p);
-    if (!p)
+  struct { void **p; size_t size; } arr[] = {
+    {(void **)&w->x, 3 * sizeof(double)},       {(void **)&w->v, 3 * sizeof(double)},
+    {(void **)&w->x1, 3 * sizeof(double)},      {(void **)&w->v1, 3 * sizeof(double)},
+    {(void **)&w->x_start, 3 * sizeof(double)}, {(void **)&w->v_start, 3 * sizeof(double)},
+    {(void **)&w->local, 3 * sizeof(double)},   {(void **)&w->mass, sizeof(double)},
+    {(void **)&w->inv_mass, sizeof(double)},    {(void **)&w->radius, sizeof(double)},
+    {(void **)&w->puppet, sizeof(int)},         {(void **)&w->frame, sizeof(int)}};
+  int cap = w->cap_n;
+  for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
+    cap = w->cap_n;
+    if (mr_grow(arr[i].p, &cap, w->n + 1, arr[i].size) != 0)
       return -1;
-    *d3[i] = p;
-  }
-  for (size_t i = 0; i < sizeof d1 / sizeof d1[0]; i++) {
-    double *p = realloc(*d1[i], (size_t)cap * sizeof *p);
-    if (!p)
-      return -1;
-    *d1[i] = p;
-  }
-  for (size_t i = 0; i < sizeof i1 / sizeof i1[0]; i++) {
-    int *p = realloc(*i1[i], (size_t)cap * sizeof *p);
-    if (!p)
-      return -1;
-    *i1[i] = p;
   }
   w->cap_n = cap;
   return 0;
@@ -286,8 +364,9 @@ static int grow_particles(mr_world *w)
 
 mr_status mr_world_add_particle(mr_world *w, const mr_particle_def *def, int *out_id)
 {
-  if (!w || !def)
-    return mr_fail(w, MR_ERR_ARG, "mr_world_add_particle: NULL argument");
+  mr_status st = MR_ADD_CHECK(w, def, 0, "mr_world_add_particle");
+  if (st != MR_OK)
+    return st;
   int id = w->n;
   if (!mr_finite3(def->position) || !mr_finite3(def->velocity) || !isfinite(def->radius) ||
       !isfinite(def->mass))
@@ -297,14 +376,15 @@ mr_status mr_world_add_particle(mr_world *w, const mr_particle_def *def, int *ou
   if (def->puppet < 0)
     return mr_fail(w, MR_ERR_ARG, "particle %d: puppet id %d is negative", id, def->puppet);
   if (def->frame >= 0) {
-    if (def->frame >= w->nf)
+    if (def->frame >= w->frames.n)
       return mr_fail(w, MR_ERR_ID, "particle %d: frame %d does not exist", id, def->frame);
   } else if (def->frame != -1) {
     return mr_fail(w, MR_ERR_ID, "particle %d: frame %d is neither -1 nor a frame id", id, def->frame);
   } else if (!(def->mass > 0)) {
     return mr_fail(w, MR_ERR_ARG, "particle %d: mass %g must be > 0", id, def->mass);
   }
-  if (grow_particles(w) != 0 || (def->frame >= 0 && MR_GROW(w, w->kin, w->nkin, w->cap_kin) != 0))
+  if (grow_particles(w) != 0 ||
+      (def->frame >= 0 && mr_grow(&w->kin.data, &w->kin.cap, w->kin.n + 1, sizeof(int)) != 0))
     return mr_fail(w, MR_ERR_NOMEM, "particle %d: out of memory", id);
   int kin = def->frame >= 0;
   for (int k = 0; k < 3; k++) {
@@ -319,16 +399,13 @@ mr_status mr_world_add_particle(mr_world *w, const mr_particle_def *def, int *ou
   w->frame[id] = def->frame;
   if (kin) {
     /* local = R(q)ᵀ (x − p) for the frame's pose at the world's time. */
-    double p[3], q[4], vel[3], om[3], d[3], qc[4];
-    mr_frame_eval(&w->frames[def->frame], w->t, p, q, vel, om);
+    mr_pose pose;
+    double vel[3], om[3], d[3];
+    mr_frame_eval(&MR_AT(w->frames, mr_frame, def->frame), w->t, &pose, vel, om);
     for (int k = 0; k < 3; k++)
-      d[k] = def->position[k] - p[k];
-    qc[0] = q[0];
-    qc[1] = -q[1];
-    qc[2] = -q[2];
-    qc[3] = -q[3];
-    mr_quat_rotate(qc, d, &w->local[3 * id]);
-    w->kin[w->nkin++] = id;
+      d[k] = def->position[k] - pose.position[k];
+    mr_pose_unrotate(pose.orientation, d, &w->local[3 * id]);
+    MR_AT(w->kin, int, w->kin.n++) = id;
     w->n = id + 1;
     mr_frames_place(w, w->t, w->x, w->v);
   }
@@ -400,13 +477,14 @@ double mr_world_next_dt(const mr_world *w)
   return w ? w->dt_next : 0.0;
 }
 
-void mr_world_get_stats(const mr_world *w, mr_world_stats *out)
+mr_status mr_world_stats(const mr_world *w, mr_stats *out)
 {
   if (!w || !out)
-    return;
+    return MR_ERR_ARG;
   *out = w->stats;
   if (w->stats.steps == 0)
     out->min_dt = 0.0;
+  return MR_OK;
 }
 
 uint64_t mr_world_pass_calls(const mr_world *w, mr_pass p)

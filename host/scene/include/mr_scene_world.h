@@ -8,7 +8,6 @@
 #ifndef MR_SCENE_WORLD_H
 #define MR_SCENE_WORLD_H
 
-#include "mr_physics.h"
 #include "mr_scene.h"
 
 #ifdef __cplusplus
@@ -18,20 +17,14 @@ extern "C" {
 typedef struct mr_scene_world {
   mr_world *world;
   int frame;         /* control frame id, -1 without one */
-  int *particle_ids; /* scene particle i -> world particle id */
-  int *control_ids;  /* control point i -> world particle id */
+  int *particle_ids; /* scene particle i -> world particle id (i) */
+  int *control_ids;  /* control point j -> world particle id (n_particles + j) */
   size_t n_particles, n_control;
 } mr_scene_world;
-
-/* The physics bits for a scene's effect bits. */
-uint32_t mr_scene_physics_effects(unsigned scene_effects);
 
 mr_scene_status mr_scene_build(const mr_scene *scene, mr_scene_world *out,
                                mr_scene_error *err);
 void mr_scene_world_free(mr_scene_world *sw);
-
-/* A scene pose (Euler degrees) as a physics pose (unit quaternion). */
-mr_pose mr_scene_pose_to_physics(const mr_scene_pose *pose);
 
 /* One row of the per-step trace. */
 typedef struct mr_scene_step {

@@ -2,6 +2,7 @@
 #include "scene_read.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -51,118 +52,105 @@ static double tetra_quality(const double p[3], const double a[3], const double b
  * with it, so a group's constraints are independent. The physics library
  * picks the three; here the file is checked so that a degenerate group is
  * reported at its line. */
-static int check_member(mr_reader *r, const mr_scene_group *g, size_t k, const mr_ynode *at) {
-  const mr_scene *s = r->scene;
-  const size_t *m = g->members;
-  const double *pk = s->particles[m[k]].position;
-  if (k == 2 && triangle_quality(s->particles[m[0]].position,
-                                 s->particles[m[1]].position, pk) < GENERAL_POSITION_MIN)
-    return rd_fail(r, at, MR_SCENE_ERR_VALUE,
-                   "group '%s': '%s', '%s' and '%s' are collinear; expected members in "
-                   "general position (§5.1)",
-                   g->name, s->particles[m[0]].name, s->particles[m[1]].name,
-                   s->particles[m[2]].name);
+static int check_member(mr_reader *r, const mr_scene_group *g, int k, const mr_ynode *at) {
+  const mr_scene_particle *p = r->scene->particles;
+  const int *m = g->def.particles;
+  const double *pk = p[m[k]].def.position;
+  if (k == 2 && triangle_quality(p[m[0]].def.position, p[m[1]].def.position, pk) <
+                    GENERAL_POSITION_MIN)
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
+                              "group '%s': '%s', '%s' and '%s' are collinear; expected members "
+                              "in general position (§5.1)",
+                              g->name, p[m[0]].name, p[m[1]].name, p[m[2]].name);
   if (k < 3)
     return 0;
   double best = 0;
-  for (size_t i = 0; i < k; i++)
-    for (size_t j = i + 1; j < k; j++)
-      for (size_t l = j + 1; l < k; l++)
-        best = fmax(best, tetra_quality(pk, s->particles[m[i]].position,
-                                        s->particles[m[j]].position,
-                                        s->particles[m[l]].position));
+  for (int i = 0; i < k; i++)
+    for (int j = i + 1; j < k; j++)
+      for (int l = j + 1; l < k; l++)
+        best = fmax(best, tetra_quality(pk, p[m[i]].def.position, p[m[j]].def.position,
+                                        p[m[l]].def.position));
   if (best < GENERAL_POSITION_MIN)
-    return rd_fail(r, at, MR_SCENE_ERR_VALUE,
-                   "group '%s': '%s' is coplanar with every three earlier members; "
-                   "expected members in general position (§5.1)",
-                   g->name, s->particles[m[k]].name);
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
+                              "group '%s': '%s' is coplanar with every three earlier members; "
+                              "expected members in general position (§5.1)",
+                              g->name, p[m[k]].name);
+  return 0;
+}
+
+/* The members of a group or part: a list of particles, as an owned array
+ * of world ids. */
+static const mr_ynode *read_members(mr_reader *r, const mr_ynode *it, const char *what,
+                                    const int **ids, int *count) {
+  int *m = NULL;
+  const mr_ynode *v = mr_scene_read_need(r, it, "particles", what);
+  int rc = v != NULL ? mr_scene_read_particle_list(r, v, what, &m, count) : -1;
+  *ids = m;
+  return rc == 0 ? v : NULL;
+}
+
+static int read_group(mr_reader *r, const mr_ynode *it, void *slot) {
+  static const char *const keys[] = {"name", "particles", NULL};
+  const mr_scene *s = r->scene;
+  mr_scene_group *g = slot;
+  const mr_ynode *v;
+  g->def = mr_default_rigid_group_def();
+  if ((v = mr_scene_read_named(r, it, "a group", keys, "group name", g->name)) == NULL)
+    return -1;
+  for (size_t j = 0; j + 1 < s->n_groups; j++)
+    if (strcmp(s->groups[j].name, g->name) == 0)
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                                "expected a unique group name, '%s' is already declared",
+                                g->name);
+  g->pos = mr_scene_read_pos(it);
+  if ((v = read_members(r, it, "a group", &g->def.particles, &g->def.count)) == NULL)
+    return -1;
+  if (v->count < 2 || v->count > GROUP_MAX)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected 2 to %d particles in group '%s', got %zu", GROUP_MAX,
+                              g->name, v->count);
+  for (int k = 0; k < g->def.count; k++)
+    if (check_member(r, g, k, v->items[k]) != 0)
+      return -1;
   return 0;
 }
 
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"name", "particles", NULL};
   mr_scene *s = r->scene;
-  if (rd_seq(r, n, "physics.groups") != 0)
+  return mr_scene_read_items(r, n, "physics.groups", MR_EFFECT_CONSTRAINTS, "rigid groups are",
+                             sizeof *s->groups, (void **)&s->groups, &s->n_groups, read_group);
+}
+
+static int read_part(mr_reader *r, const mr_ynode *it, void *slot) {
+  static const char *const keys[] = {"particles", "radius", "segment_spheres", "restitution",
+                                     "friction", NULL};
+  static const mr_scene_field fields[] = {
+      {"radius", MR_SCENE_FIELD_NONNEG, offsetof(mr_part_def, radius), 0, 0},
+      {"restitution", MR_SCENE_FIELD_UNIT, offsetof(mr_part_def, restitution), 0, 0},
+      {"friction", MR_SCENE_FIELD_NONNEG, offsetof(mr_part_def, friction), 0, 0},
+      {"segment_spheres", MR_SCENE_FIELD_INT, offsetof(mr_part_def, segment_spheres), 0, 64}};
+  mr_scene_part *p = slot;
+  const mr_ynode *v;
+  p->def = mr_default_part_def();
+  if (mr_scene_read_map(r, it, "a part", keys) != 0)
     return -1;
-  if (n->count > 0 && rd_need_effect(r, n, MR_SCENE_FX_CONSTRAINTS, "rigid groups are") != 0)
+  p->pos = mr_scene_read_pos(it);
+  if ((v = read_members(r, it, "a part", &p->def.particles, &p->def.count)) == NULL)
     return -1;
-  s->groups = calloc(n->count ? n->count : 1, sizeof *s->groups);
-  if (s->groups == NULL)
-    return rd_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
-  for (size_t gi = 0; gi < n->count; gi++) {
-    const mr_ynode *it = n->items[gi];
-    mr_scene_group *g = &s->groups[gi];
-    s->n_groups = gi + 1;
-    const mr_ynode *v;
-    if (rd_map(r, it, "a group", keys) != 0)
-      return -1;
-    if ((v = rd_need(r, it, "name", "a group")) == NULL ||
-        rd_name(r, v, "group name", g->name) != 0)
-      return -1;
-    for (size_t j = 0; j < gi; j++)
-      if (strcmp(s->groups[j].name, g->name) == 0)
-        return rd_fail(r, v, MR_SCENE_ERR_VALUE,
-                       "expected a unique group name, '%s' is already declared", g->name);
-    g->pos = rd_pos(it);
-    if ((v = rd_need(r, it, "particles", "a group")) == NULL ||
-        rd_particle_list(r, v, "a group", &g->members, &g->count) != 0)
-      return -1;
-    if (v->count < 2 || v->count > GROUP_MAX)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
-                     "expected 2 to %d particles in group '%s', got %zu", GROUP_MAX, g->name,
-                     v->count);
-    for (size_t k = 0; k < g->count; k++)
-      if (check_member(r, g, k, v->items[k]) != 0)
-        return -1;
-  }
+  if (p->def.count == 0)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected at least one particle in a part");
+  if (mr_scene_read_fields(r, it, fields, 4, &p->def) != 0)
+    return -1;
+  if (p->def.segment_spheres > 0 && p->def.count != 2)
+    return mr_scene_read_fail(r, mr_scene_yaml_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
+                              "segment spheres need a part of exactly two particles");
   return 0;
 }
 
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"particles", "radius", "segment_spheres", "restitution",
-                                     "friction", NULL};
   mr_scene *s = r->scene;
-  if (rd_seq(r, n, "physics.parts") != 0)
-    return -1;
-  if (n->count > 0 &&
-      rd_need_effect(r, n, MR_SCENE_FX_SELF_COLLISION, "collision parts are") != 0)
-    return -1;
-  s->parts = calloc(n->count ? n->count : 1, sizeof *s->parts);
-  if (s->parts == NULL)
-    return rd_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
-  for (size_t i = 0; i < n->count; i++) {
-    const mr_ynode *it = n->items[i];
-    mr_scene_part *p = &s->parts[i];
-    s->n_parts = i + 1;
-    const mr_ynode *v;
-    if (rd_map(r, it, "a part", keys) != 0)
-      return -1;
-    p->pos = rd_pos(it);
-    if ((v = rd_need(r, it, "particles", "a part")) == NULL ||
-        rd_particle_list(r, v, "a part", &p->members, &p->count) != 0)
-      return -1;
-    if (p->count == 0)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected at least one particle in a part");
-    p->radius = p->restitution = p->friction = NAN;
-    p->segment_spheres = -1;
-    double seg = -1;
-    if (rd_nonneg_key(r, it, "radius", &p->radius) != 0 ||
-        rd_nonneg_key(r, it, "restitution", &p->restitution) != 0 ||
-        rd_nonneg_key(r, it, "friction", &p->friction) != 0 ||
-        rd_nonneg_key(r, it, "segment_spheres", &seg) != 0)
-      return -1;
-    if (!isnan(p->restitution) && p->restitution > 1)
-      return rd_fail(r, mr_ynode_get(it, "restitution"), MR_SCENE_ERR_VALUE,
-                     "expected restitution between 0 and 1, got %g", p->restitution);
-    if (seg >= 0) {
-      if (seg != floor(seg) || seg > 64)
-        return rd_fail(r, mr_ynode_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
-                       "expected a whole number of segment spheres from 0 to 64");
-      if (seg > 0 && p->count != 2)
-        return rd_fail(r, mr_ynode_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
-                       "segment spheres need a part of exactly two particles");
-      p->segment_spheres = (int)seg;
-    }
-  }
-  return 0;
+  return mr_scene_read_items(r, n, "physics.parts", MR_EFFECT_SELF_COLLISION,
+                             "collision parts are", sizeof *s->parts, (void **)&s->parts,
+                             &s->n_parts, read_part);
 }

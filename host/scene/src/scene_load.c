@@ -3,17 +3,10 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static const char *const effect_names[MR_SCENE_FX_COUNT] = {
-    "gravity",     "drag",  "springs",        "strings",           "antigravity", "triggered",
-    "sine_springs", "constraints", "floor", "self_collision", "string_correction", "control"};
-
-const char *mr_scene_effect_name(unsigned bit_index) {
-  return bit_index < MR_SCENE_FX_COUNT ? effect_names[bit_index] : "?";
-}
 
 /* Sections the theater will add to the same files; refusing them now keeps a
  * newer file from being half-understood by this version. */
@@ -23,79 +16,73 @@ static const char *const theater_sections[] = {"models", "lights", "camera", "st
 
 static void defaults(mr_scene *s) {
   memset(s, 0, sizeof *s);
-  s->gravity[1] = -9.81;
-  mr_scene_settings *st = &s->settings;
-  st->ks = st->kd = st->tolerance = NAN;
-  st->dt_initial = st->dt_min = st->dt_max = NAN;
-  st->threshold_min = st->threshold_max = st->divergence = st->deviation_length = NAN;
-  st->contact_slop = st->rest_speed = st->string_max_stretch = NAN;
+  s->world = mr_default_world_def();
+  s->floor.def = mr_default_plane_def();
+  s->control_pose = mr_pose_identity();
+  memcpy(s->track.turn, s->control_pose.orientation, sizeof s->track.turn);
   s->duration = 10.0;
   s->fps = 0.0;
-  s->expect.finite = true;
-  s->expect.max_deviation = NAN;
-  s->expect.resets_min = -1;
-  s->expect.resets_max = -1;
-  s->expect.min_mean_dt = NAN;
-  s->expect.min_string_stretch = NAN;
-  s->expect.settle = NAN;
-  s->expect.creep = NAN;
-  s->expect.jitter = NAN;
+  mr_scene_expect *e = &s->expect;
+  e->finite = true;
+  e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
+  e->settle = e->creep = e->jitter = NAN;
+  e->resets_min = e->resets_max = -1;
 }
 
 static int read_sim(mr_reader *r, const mr_ynode *sim) {
   static const char *const keys[] = {"duration", "fps", NULL};
-  if (rd_map(r, sim, "sim", keys) != 0)
+  static const mr_scene_field fields[] = {
+      {"duration", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, duration), 0, 0},
+      {"fps", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, fps), 0, 0}};
+  if (mr_scene_read_map(r, sim, "sim", keys) != 0)
     return -1;
-  if (rd_positive_key(r, sim, "duration", &r->scene->duration) != 0 ||
-      rd_positive_key(r, sim, "fps", &r->scene->fps) != 0)
-    return -1;
-  return 0;
+  return mr_scene_read_fields(r, sim, fields, 2, r->scene);
 }
 
 static int read_root(mr_reader *r, const mr_ynode *root) {
   mr_scene *s = r->scene;
   if (root == NULL)
-    return rd_fail_at(r, 1, 1, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail_at(r, 1, 1, MR_SCENE_ERR_SCHEMA,
                       "expected a mapping with a 'physics' section, the file is empty");
   if (root->kind != MR_YNODE_MAP)
-    return rd_fail(r, root, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail(r, root, MR_SCENE_ERR_SCHEMA,
                    "expected a mapping with a 'physics' section at the top level, got a %s",
-                   mr_ynode_kind_name(root->kind));
+                   mr_scene_yaml_kind_name(root->kind));
   for (size_t i = 0; i < root->count; i++) {
     const mr_ynode *key = root->items[2 * i];
     for (const char *const *t = theater_sections; *t; t++)
       if (strcmp(key->text, *t) == 0)
-        return rd_fail(r, key, MR_SCENE_ERR_SCHEMA,
+        return mr_scene_read_fail(r, key, MR_SCENE_ERR_SCHEMA,
                        "section '%s' is reserved for the theater and not supported "
                        "by this version; expected one of: format, name, sim, physics, expect",
                        key->text);
   }
   static const char *const keys[] = {"format", "name", "sim", "physics", "expect", NULL};
-  if (rd_map(r, root, "the scene", keys) != 0)
+  if (mr_scene_read_map(r, root, "the scene", keys) != 0)
     return -1;
-  const mr_ynode *v = mr_ynode_get(root, "format");
+  const mr_ynode *v = mr_scene_yaml_get(root, "format");
   if (v != NULL) {
     long format = 0;
-    if (rd_long(r, v, "format", &format) != 0)
+    if (mr_scene_read_long(r, v, "format", &format) != 0)
       return -1;
     if (format != 1)
-      return rd_fail(r, v, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                      "expected format: 1 (the only version this program reads), got %ld",
                      format);
   }
-  if ((v = mr_ynode_get(root, "name")) != NULL) {
+  if ((v = mr_scene_yaml_get(root, "name")) != NULL) {
     if (v->kind != MR_YNODE_SCALAR)
-      return rd_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected a text for name");
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected a text for name");
     snprintf(s->name, sizeof s->name, "%s", v->text);
   }
-  if ((v = mr_ynode_get(root, "sim")) != NULL && read_sim(r, v) != 0)
+  if ((v = mr_scene_yaml_get(root, "sim")) != NULL && read_sim(r, v) != 0)
     return -1;
-  const mr_ynode *physics = rd_need(r, root, "physics", "the scene");
+  const mr_ynode *physics = mr_scene_read_need(r, root, "physics", "the scene");
   if (physics == NULL)
     return -1;
   if (mr_scene_read_physics(r, physics) != 0)
     return -1;
-  if ((v = mr_ynode_get(root, "expect")) != NULL && mr_scene_read_expect(r, v) != 0)
+  if ((v = mr_scene_yaml_get(root, "expect")) != NULL && mr_scene_read_expect(r, v) != 0)
     return -1;
   return 0;
 }
@@ -107,7 +94,7 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
   mr_reader r = {name, err, scene};
   scene->path = malloc(strlen(name) + 1);
   if (scene->path == NULL) {
-    rd_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+    mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
     return err->status;
   }
   strcpy(scene->path, name);
@@ -116,13 +103,13 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
 
   mr_ydoc doc;
   mr_yerror yerr;
-  if (mr_ydoc_parse(text, len, &doc, &yerr) != 0) {
-    rd_fail_at(&r, yerr.line, yerr.column, MR_SCENE_ERR_SYNTAX, "%s", yerr.message);
+  if (mr_scene_yaml_parse(text, len, &doc, &yerr) != 0) {
+    mr_scene_read_fail_at(&r, yerr.line, yerr.column, MR_SCENE_ERR_SYNTAX, "%s", yerr.message);
     mr_scene_free(scene);
     return err->status;
   }
   int rc = read_root(&r, doc.root);
-  mr_ydoc_free(&doc);
+  mr_scene_yaml_free(&doc);
   if (rc != 0) {
     mr_scene_free(scene);
     return err->status ? err->status : MR_SCENE_ERR_SCHEMA;
@@ -136,7 +123,7 @@ mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error 
   mr_reader r = {path, err, scene};
   FILE *f = fopen(path, "rb");
   if (f == NULL) {
-    rd_fail_at(&r, 0, 0, MR_SCENE_ERR_IO, "expected a readable scene file: %s",
+    mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_IO, "expected a readable scene file: %s",
                strerror(errno));
     return err->status;
   }
@@ -163,13 +150,13 @@ mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error 
   }
   fclose(f);
   if (buf == NULL) {
-    rd_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM,
+    mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM,
                "expected a scene file under 64 MiB that fits in memory");
     return err->status;
   }
   if (io_error != 0) {
     free(buf);
-    rd_fail_at(&r, 0, 0, MR_SCENE_ERR_IO, "expected a readable scene file: %s",
+    mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_IO, "expected a readable scene file: %s",
                strerror(io_error));
     return err->status;
   }
@@ -183,16 +170,12 @@ void mr_scene_free(mr_scene *s) {
   free(s->particles);
   free(s->distances);
   for (size_t i = 0; i < s->n_groups; i++)
-    free(s->groups[i].members);
+    free((int *)s->groups[i].def.particles);
   free(s->groups);
   for (size_t i = 0; i < s->n_parts; i++)
-    free(s->parts[i].members);
+    free((int *)s->parts[i].def.particles);
   free(s->parts);
-  free(s->springs);
-  free(s->strings);
-  free(s->sine_springs);
-  free(s->antigravities);
-  free(s->triggered);
+  free(s->forces);
   free(s->control_points);
   free(s->track.keys);
   free(s->expect.watch);

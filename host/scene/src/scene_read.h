@@ -1,5 +1,6 @@
 /* Helpers that read typed values out of the YAML tree, each failing with
- * the node's position and what was expected there. */
+ * the node's position and what was expected there. Private to mr_scene,
+ * yet prefixed: a static library exports every non-static name. */
 #ifndef MR_SCENE_READ_H
 #define MR_SCENE_READ_H
 
@@ -18,43 +19,94 @@ typedef struct mr_reader {
 #define MR_PRINTF(a, b)
 #endif
 
-/* Fills the error; returns -1 so callers can `return rd_fail(...)`. */
-int rd_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
-               const char *fmt, ...) MR_PRINTF(5, 6);
-int rd_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
-            const char *fmt, ...) MR_PRINTF(4, 5);
+/* Fills the error; returns -1 so callers can `return mr_scene_read_fail(...)`. */
+int mr_scene_read_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
+                          const char *fmt, ...) MR_PRINTF(5, 6);
+int mr_scene_read_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
+                       const char *fmt, ...) MR_PRINTF(4, 5);
+mr_scene_pos mr_scene_read_pos(const mr_ynode *node);
 
 /* node must be a mapping whose keys are all in allowed (NULL-terminated). */
-int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
-           const char *const *allowed);
-int rd_seq(mr_reader *r, const mr_ynode *node, const char *what);
-int rd_number(mr_reader *r, const mr_ynode *node, const char *what, double *out);
-/* Optional key of map: *out is left alone when the key is absent. */
-int rd_number_key(mr_reader *r, const mr_ynode *map, const char *key,
-                  double *out);
-int rd_positive_key(mr_reader *r, const mr_ynode *map, const char *key,
-                    double *out);
-int rd_nonneg_key(mr_reader *r, const mr_ynode *map, const char *key,
-                  double *out);
-int rd_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]);
-int rd_vec3_key(mr_reader *r, const mr_ynode *map, const char *key, double out[3]);
-int rd_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out);
-int rd_long(mr_reader *r, const mr_ynode *node, const char *what, long *out);
-int rd_name(mr_reader *r, const mr_ynode *node, const char *what,
-            char out[MR_SCENE_NAME_MAX]);
+int mr_scene_read_map(mr_reader *r, const mr_ynode *node, const char *what,
+                      const char *const *allowed);
+int mr_scene_read_seq(mr_reader *r, const mr_ynode *node, const char *what);
+int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, double *out);
+int mr_scene_read_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]);
+int mr_scene_read_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out);
+int mr_scene_read_long(mr_reader *r, const mr_ynode *node, const char *what, long *out);
+int mr_scene_read_name(mr_reader *r, const mr_ynode *node, const char *what,
+                       char out[MR_SCENE_NAME_MAX]);
+/* An item that is a mapping of `keys` with a required name: the name's
+ * node, or NULL after an error. `label` names the name ("group name"). */
+const mr_ynode *mr_scene_read_named(mr_reader *r, const mr_ynode *item, const char *what,
+                                    const char *const *keys, const char *label,
+                                    char name[MR_SCENE_NAME_MAX]);
 /* A required key; fails naming the mapping when absent. */
-const mr_ynode *rd_need(mr_reader *r, const mr_ynode *map, const char *key,
-                        const char *what);
-/* Name of a particle or control point, resolved to its index. */
-int rd_particle_ref(mr_reader *r, const mr_ynode *node, size_t *out);
-int rd_control_ref(mr_reader *r, const mr_ynode *node, size_t *out);
-/* Either of the two. */
-int rd_point_ref(mr_reader *r, const mr_ynode *node, mr_scene_ref *out);
-/* A sequence of particle names, resolved, each at most once. */
-int rd_particle_list(mr_reader *r, const mr_ynode *node, const char *what,
-                     size_t **out, size_t *count);
+const mr_ynode *mr_scene_read_need(mr_reader *r, const mr_ynode *map, const char *key,
+                                   const char *what);
 
-mr_scene_pos rd_pos(const mr_ynode *node);
+/* Optional keys of a mapping, read into a definition struct at the given
+ * offsets; a key the file leaves out keeps what the default maker put
+ * there. One table per struct replaces a reader per field. */
+typedef enum mr_scene_field_kind {
+  MR_SCENE_FIELD_NUMBER,   /* any finite double */
+  MR_SCENE_FIELD_POSITIVE, /* double > 0 */
+  MR_SCENE_FIELD_NONNEG,   /* double >= 0 */
+  MR_SCENE_FIELD_UNIT,     /* double in [0, 1] (restitution) */
+  MR_SCENE_FIELD_INT,      /* int in [lo, hi] */
+  MR_SCENE_FIELD_VEC3      /* double[3] */
+} mr_scene_field_kind;
+
+typedef struct mr_scene_field {
+  const char *key;
+  mr_scene_field_kind kind;
+  size_t offset;
+  long lo, hi; /* MR_SCENE_FIELD_INT */
+} mr_scene_field;
+
+int mr_scene_read_fields(mr_reader *r, const mr_ynode *map, const mr_scene_field *fields,
+                         size_t n, void *def);
+/* The same for one field. */
+int mr_scene_read_field(mr_reader *r, const mr_ynode *map, const mr_scene_field *field,
+                        void *def);
+
+/* A word from an enum's own name table: parse() it with the defining
+ * library's parser; on failure list name(i) for every i the table has. */
+typedef int (*mr_scene_parse_fn)(const char *word, int *out);
+typedef const char *(*mr_scene_name_fn)(int i);
+int mr_scene_read_choice(mr_reader *r, const mr_ynode *map, const char *key,
+                         mr_scene_parse_fn parse, mr_scene_name_fn name, int *out);
+/* "a, b, c": name(i) from i = 0 until the table answers "unknown". */
+void mr_scene_list_names(char *out, size_t size, mr_scene_name_fn name);
+
+/* A sequence of items, each a mapping read by `read` into its slot of a
+ * fresh array of `size`-byte items (zeroed). The items need `effect` among
+ * the scene's effects when there are any; `declared` completes "... declared
+ * but effect ... is not listed" ("springs are"). *count grows before each
+ * item is read, so a half-read item is still freed. */
+typedef int (*mr_scene_item_fn)(mr_reader *r, const mr_ynode *item, void *slot);
+int mr_scene_read_items(mr_reader *r, const mr_ynode *seq, const char *what, uint32_t effect,
+                        const char *declared, size_t size, void **items, size_t *count,
+                        mr_scene_item_fn read);
+
+/* Names of particles and control points, as world ids. */
+int mr_scene_read_particle(mr_reader *r, const mr_ynode *node, int *id);
+int mr_scene_read_control_point(mr_reader *r, const mr_ynode *node, int *id);
+int mr_scene_read_point(mr_reader *r, const mr_ynode *node, int *id); /* either */
+bool mr_scene_is_control_id(const mr_scene *scene, int id);
+const char *mr_scene_point_name(const mr_scene *scene, int id);
+/* A sequence of particle names, each at most once, as world ids. */
+int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *what,
+                                int **out, int *count);
+/* [a, b] under `between`: two distinct points, not both control points. */
+int mr_scene_read_between(mr_reader *r, const mr_ynode *item, const char *what, int *a, int *b);
+
+/* Fails unless the scene declared one of the effect bits; `what` names the
+ * item ("springs are"). */
+int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, uint32_t effect,
+                              const char *what);
+/* The name a scene file uses for one effect bit. */
+const char *mr_scene_effect_name(uint32_t effect_bit);
 
 /* Sections, one file each. */
 int mr_scene_read_physics(mr_reader *r, const mr_ynode *physics);
@@ -63,7 +115,10 @@ int mr_scene_read_expect(mr_reader *r, const mr_ynode *expect);
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *groups);
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *parts);
 int mr_scene_read_forces(mr_reader *r, const mr_ynode *physics);
-/* Fails unless the scene declared effect fx; `what` names the item. */
-int rd_need_effect(mr_reader *r, const mr_ynode *at, unsigned fx, const char *what);
+/* Adds one force to a world with its kind's add call; *what names the item
+ * for a refusal ("the spring"). */
+mr_status mr_scene_force_add(mr_world *w, const mr_scene_force *f, int *id, const char **what);
+/* The keys under physics: that the force table reads, in table order. */
+size_t mr_scene_force_keys(const char **out, size_t max);
 
 #endif

@@ -3,6 +3,7 @@
  * numbers `marionette sim` prints gathered on the way. */
 #include "mr_scene_world.h"
 
+#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,16 +35,16 @@ static double max_speed(const mr_scene_world *sw) {
  * strings whose file states a rest length above 0 have a ratio. */
 static double string_stretch(const mr_scene *s, const mr_scene_world *sw) {
   double m = 0;
-  for (size_t i = 0; i < s->n_strings; i++) {
-    const mr_scene_string *str = &s->strings[i];
+  for (size_t i = 0; i < s->n_forces; i++) {
+    const mr_string_def *str = &s->forces[i].def.string;
     double a[3], b[3];
-    if (!(str->rest > 0))
+    if (s->forces[i].kind != MR_EFFECT_STRINGS || !(str->rest_length > 0))
       continue;
-    if (mr_world_particle_state(sw->world, sw->control_ids[str->control], a, NULL) != MR_OK ||
-        mr_world_particle_state(sw->world, sw->particle_ids[str->particle], b, NULL) != MR_OK)
+    if (mr_world_particle_state(sw->world, str->frame_particle, a, NULL) != MR_OK ||
+        mr_world_particle_state(sw->world, str->puppet_particle, b, NULL) != MR_OK)
       continue;
     double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    m = fmax(m, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / str->rest);
+    m = fmax(m, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / str->rest_length);
   }
   return m;
 }
@@ -61,7 +62,7 @@ static void watch(watcher *w, double t, mr_scene_run_result *r) {
     return;
   for (size_t k = 0; k < e->n_watch; k++) {
     double p[3], v[3];
-    mr_world_particle_state(w->sw->world, w->sw->particle_ids[e->watch[k]], p, v);
+    mr_world_particle_state(w->sw->world, e->watch[k], p, v);
     if (!w->anchored) {
       memcpy(&w->anchor[3 * k], p, sizeof p);
       continue;
@@ -76,9 +77,8 @@ static void watch(watcher *w, double t, mr_scene_run_result *r) {
 
 /* The frame heads for the track's pose at time t, reached at t (§6.2). */
 static void place_frame(const mr_scene *s, mr_scene_world *sw, double t) {
-  mr_scene_pose pose;
-  mr_scene_control_pose_at(s, t, &pose);
-  mr_pose goal = mr_scene_pose_to_physics(&pose);
+  mr_pose goal;
+  mr_scene_control_pose_at(s, t, &goal);
   mr_world_set_frame_target(sw->world, sw->frame, &goal, t);
 }
 
@@ -90,119 +90,166 @@ static mr_scene_status run_fail(const mr_scene *s, mr_scene_error *err, mr_scene
   return st;
 }
 
+/* One run in progress: the world, where the result gathers, and the
+ * running sums the means are made from at the end. */
+typedef struct run {
+  const mr_scene *s;
+  const mr_scene_run_opts *opts;
+  mr_scene_run_result *r;
+  mr_scene_world sw;
+  double duration, fps, dt_max;
+  double *xyz; /* positions, to check every state is finite */
+  int n;
+  watcher w;
+  double sum_dt, sum_err2;
+  uint64_t at_upper;
+  long frame_k;   /* frame times are k/fps, not a running sum, so long runs land exactly */
+  double t_frame; /* the frame time the steps head for */
+} run;
+
+static mr_scene_status run_open(run *u, mr_scene_error *err) {
+  const mr_scene *s = u->s;
+  mr_scene_status rc = mr_scene_build(s, &u->sw, err);
+  if (rc != MR_SCENE_OK)
+    return rc;
+  u->duration = u->opts && u->opts->duration > 0 ? u->opts->duration : s->duration;
+  u->fps = s->fps;
+  u->dt_max = s->world.dt_max;
+  u->n = mr_world_particle_count(u->sw.world);
+  u->xyz = malloc((size_t)(u->n > 0 ? u->n : 1) * 3 * sizeof *u->xyz);
+  double *anchor = calloc(s->expect.n_watch ? 3 * s->expect.n_watch : 1, sizeof *anchor);
+  u->w = (watcher){&s->expect, &u->sw, anchor, false};
+  u->t_frame = -1.0;
+  if (u->xyz == NULL || anchor == NULL)
+    return run_fail(s, err, MR_SCENE_ERR_NOMEM, "out of memory", 0);
+  return MR_SCENE_OK;
+}
+
+static void run_close(run *u) {
+  free(u->xyz);
+  free(u->w.anchor);
+  mr_scene_world_free(&u->sw);
+}
+
+/* The time the next step heads for, and whether it must land there
+ * exactly. Without a frame rate the track is sampled at the end of every
+ * step, so the ATS alone chooses Δt (§4.5). With one, steps land on the
+ * frame times k/fps (§4.6) and the frame moves linearly between samples,
+ * as in the theater. */
+static double next_target(run *u, double t, bool *land) {
+  double target = t + mr_world_next_dt(u->sw.world);
+  double end = u->duration;
+  if (u->fps > 0) {
+    if (!(u->t_frame > t + LAND_S)) {
+      u->frame_k++;
+      u->t_frame = fmin((double)u->frame_k / u->fps, u->duration);
+      if (u->sw.frame >= 0)
+        place_frame(u->s, &u->sw, u->t_frame);
+    }
+    end = u->t_frame;
+  }
+  /* One ATS step at a time, so the trace sees each; the step that would
+   * pass a frame time or the end lands on it instead. */
+  *land = target > end - LAND_S;
+  if (*land)
+    target = end;
+  if (u->fps <= 0 && u->sw.frame >= 0)
+    place_frame(u->s, &u->sw, target);
+  return target;
+}
+
+/* Folds one step call into the result and returns its trace row. */
+static mr_scene_step record(run *u, const mr_step_report *rep) {
+  mr_scene_run_result *r = u->r;
+  mr_stats stats;
+  mr_world_stats(u->sw.world, &stats);
+  mr_scene_step row = {mr_world_time(u->sw.world), stats.last_dt, stats.last_error, rep->steps,
+                       rep->rejected, rep->divergences > 0, max_speed(&u->sw)};
+  mr_world_positions(u->sw.world, u->xyz, u->n);
+  if (!state_finite(u->xyz, u->n) || !isfinite(row.error) || !isfinite(row.max_speed))
+    r->finite = false;
+  r->string_stretch = fmax(r->string_stretch, string_stretch(u->s, &u->sw));
+  r->steps += (uint64_t)rep->steps;
+  r->rejected += (uint64_t)rep->rejected;
+  if (rep->divergences > 0 && r->resets == 0)
+    snprintf(r->first_reset, sizeof r->first_reset, "%s", mr_world_last_error(u->sw.world));
+  r->resets += (uint64_t)rep->divergences;
+  r->collisions += (uint64_t)rep->collisions;
+  if (rep->dependent > r->dependent_rows)
+    r->dependent_rows = rep->dependent;
+  if (rep->steps > 0 && isfinite(row.dt)) {
+    u->sum_dt += row.dt * rep->steps;
+    r->dt_min = fmin(r->dt_min, row.dt);
+    r->dt_max = fmax(r->dt_max, row.dt);
+    if (row.dt >= u->dt_max * (1 - 1e-9))
+      u->at_upper += (uint64_t)rep->steps;
+  }
+  if (isfinite(row.error)) {
+    r->max_deviation = fmax(r->max_deviation, row.error);
+    u->sum_err2 += row.error * row.error * rep->steps;
+  }
+  return row;
+}
+
+/* One step call; fails only when the physics stopped outright. */
+static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
+  bool land;
+  double target = next_target(u, *t, &land);
+  mr_step_report rep;
+  memset(&rep, 0, sizeof rep);
+  mr_status st = land ? mr_world_step_to(u->sw.world, target, &rep)
+                      : mr_world_step(u->sw.world, &rep);
+  u->r->last_status = st;
+  if (st < 0) {
+    char msg[400];
+    snprintf(msg, sizeof msg, "the physics stopped (%s): %s", mr_status_name(st),
+             mr_world_last_error(u->sw.world));
+    return run_fail(u->s, err, MR_SCENE_ERR_BUILD, msg, *t);
+  }
+  mr_scene_step row = record(u, &rep);
+  *t = row.t;
+  watch(&u->w, *t, u->r);
+  if (u->opts && u->opts->on_step)
+    u->opts->on_step(u->opts->user, &row);
+  return MR_SCENE_OK;
+}
+
+static void run_finish(run *u, double t) {
+  mr_scene_run_result *r = u->r;
+  r->sim_time = t;
+  if (r->steps > 0) {
+    r->dt_mean = u->sum_dt / (double)r->steps;
+    r->rms_deviation = sqrt(u->sum_err2 / (double)r->steps);
+    r->at_upper_fraction = (double)u->at_upper / (double)r->steps;
+  } else {
+    r->dt_min = 0;
+  }
+  for (int p = 0; p < MR_PASS_COUNT; p++)
+    r->pass_calls[p] = mr_world_pass_calls(u->sw.world, (mr_pass)p);
+  r->hash = mr_world_state_hash(u->sw.world);
+}
+
 mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
                              mr_scene_run_result *r, mr_scene_error *err) {
   memset(r, 0, sizeof *r);
   r->finite = true;
   r->dt_min = INFINITY;
-  mr_scene_world sw;
-  mr_scene_status rc = mr_scene_build(s, &sw, err);
-  if (rc != MR_SCENE_OK)
+  run u;
+  memset(&u, 0, sizeof u);
+  u.s = s;
+  u.opts = opts;
+  u.r = r;
+  mr_scene_status rc = run_open(&u, err);
+  if (rc != MR_SCENE_OK) {
+    run_close(&u);
     return rc;
-  double duration = opts && opts->duration > 0 ? opts->duration : s->duration;
-  double fps = s->fps;
-  mr_world_def def = mr_default_world_def();
-  double dt_max = isnan(s->settings.dt_max) ? def.dt_max : s->settings.dt_max;
-  int n = mr_world_particle_count(sw.world);
-  double *xyz = malloc((size_t)(n > 0 ? n : 1) * 3 * sizeof *xyz);
-  double *anchor = calloc(s->expect.n_watch ? 3 * s->expect.n_watch : 1, sizeof *anchor);
-  if (xyz == NULL || anchor == NULL) {
-    free(xyz);
-    free(anchor);
-    mr_scene_world_free(&sw);
-    return run_fail(s, err, MR_SCENE_ERR_NOMEM, "out of memory", 0);
   }
-  watcher w = {&s->expect, &sw, anchor, false};
-  double sum_dt = 0, sum_err2 = 0;
-  uint64_t at_upper = 0;
-  double t = mr_world_time(sw.world);
-  watch(&w, t, r);
-  /* Without a frame rate the track is sampled at the end of every step, so
-   * the ATS alone chooses Δt (§4.5). With one, steps land on the frame
-   * times k/fps (§4.6) and the frame moves linearly between samples, as in
-   * the theater. Frame times are k/fps, not a running sum, so long runs land
-   * exactly. */
-  long frame_k = 0;
-  double t_frame = -1.0;
-  while (t < duration - LAND_S && rc == MR_SCENE_OK) {
-    double target = t + mr_world_next_dt(sw.world);
-    double end = duration;
-    if (fps > 0) {
-      if (!(t_frame > t + LAND_S)) {
-        frame_k++;
-        t_frame = fmin((double)frame_k / fps, duration);
-        if (sw.frame >= 0)
-          place_frame(s, &sw, t_frame);
-      }
-      end = t_frame;
-    }
-    /* One ATS step at a time, so the trace sees each; the step that would
-     * pass a frame time or the end lands on it instead. */
-    bool land = target > end - LAND_S;
-    if (land)
-      target = end;
-    if (fps <= 0 && sw.frame >= 0)
-      place_frame(s, &sw, target);
-    mr_step_report rep;
-    memset(&rep, 0, sizeof rep);
-    mr_status st = land ? mr_world_step_to(sw.world, target, &rep) : mr_world_step(sw.world, &rep);
-    r->last_status = st;
-    if (st < 0) {
-      char msg[400];
-      snprintf(msg, sizeof msg, "the physics stopped (%s): %s", mr_status_name(st),
-               mr_world_last_error(sw.world));
-      rc = run_fail(s, err, MR_SCENE_ERR_BUILD, msg, t);
-      break;
-    }
-    t = mr_world_time(sw.world);
-    mr_world_stats stats;
-    mr_world_get_stats(sw.world, &stats);
-    mr_scene_step row = {t, stats.last_dt, stats.last_error, rep.steps, rep.rejected,
-                         rep.divergences > 0, 0};
-    mr_world_positions(sw.world, xyz, n);
-    if (!state_finite(xyz, n) || !isfinite(row.error))
-      r->finite = false;
-    row.max_speed = max_speed(&sw);
-    r->string_stretch = fmax(r->string_stretch, string_stretch(s, &sw));
-    if (!isfinite(row.max_speed))
-      r->finite = false;
-    r->steps += (uint64_t)rep.steps;
-    r->rejected += (uint64_t)rep.rejected;
-    if (rep.divergences > 0 && r->resets == 0)
-      snprintf(r->first_reset, sizeof r->first_reset, "%s", mr_world_last_error(sw.world));
-    r->resets += (uint64_t)rep.divergences;
-    r->collisions += (uint64_t)rep.collisions;
-    if (rep.dependent > r->dependent_rows)
-      r->dependent_rows = rep.dependent;
-    if (rep.steps > 0 && isfinite(row.dt)) {
-      sum_dt += row.dt * rep.steps;
-      r->dt_min = fmin(r->dt_min, row.dt);
-      r->dt_max = fmax(r->dt_max, row.dt);
-      if (row.dt >= dt_max * (1 - 1e-9))
-        at_upper += (uint64_t)rep.steps;
-    }
-    if (isfinite(row.error)) {
-      r->max_deviation = fmax(r->max_deviation, row.error);
-      sum_err2 += row.error * row.error * rep.steps;
-    }
-    watch(&w, t, r);
-    if (opts && opts->on_step)
-      opts->on_step(opts->user, &row);
-  }
-  r->sim_time = t;
-  if (r->steps > 0) {
-    r->dt_mean = sum_dt / (double)r->steps;
-    r->rms_deviation = sqrt(sum_err2 / (double)r->steps);
-    r->at_upper_fraction = (double)at_upper / (double)r->steps;
-  } else {
-    r->dt_min = 0;
-  }
-  for (int p = 0; p < MR_PASS_COUNT; p++)
-    r->pass_calls[p] = mr_world_pass_calls(sw.world, (mr_pass)p);
-  r->hash = mr_world_state_hash(sw.world);
-  free(xyz);
-  free(anchor);
-  mr_scene_world_free(&sw);
+  double t = mr_world_time(u.sw.world);
+  watch(&u.w, t, r);
+  while (t < u.duration - LAND_S && rc == MR_SCENE_OK)
+    rc = advance(&u, &t, err);
+  run_finish(&u, t);
+  run_close(&u);
   return rc;
 }
 
@@ -249,6 +296,12 @@ int mr_scene_check(const mr_scene *s, const mr_scene_run_result *r, char *why, s
   if (!isnan(e->jitter) && !(r->jitter <= e->jitter)) {
     snprintf(why, size, "expected speeds <= %g m/s after %g s (no jitter), got %g m/s",
              e->jitter, e->settle, r->jitter);
+    return -1;
+  }
+  /* The pin holds for a run of the scene's own length only. */
+  if (e->has_state_hash && r->sim_time == s->duration && r->hash != e->state_hash) {
+    snprintf(why, size, "expected state hash 0x%016" PRIx64 ", got 0x%016" PRIx64,
+             e->state_hash, r->hash);
     return -1;
   }
   if (size > 0)

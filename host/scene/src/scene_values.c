@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <stddef.h>
 
 static void set_text(mr_scene_error *e, const char *file) {
   if (e->line > 0)
@@ -28,7 +29,7 @@ static int vfail(mr_reader *r, int line, int column, mr_scene_status status,
   return -1;
 }
 
-int rd_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
+int mr_scene_read_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
                const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
@@ -37,7 +38,7 @@ int rd_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
   return -1;
 }
 
-int rd_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
+int mr_scene_read_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
             const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
@@ -46,7 +47,7 @@ int rd_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
   return -1;
 }
 
-mr_scene_pos rd_pos(const mr_ynode *node) {
+mr_scene_pos mr_scene_read_pos(const mr_ynode *node) {
   mr_scene_pos p = {node ? node->line : 0, node ? node->column : 0};
   return p;
 }
@@ -54,7 +55,7 @@ mr_scene_pos rd_pos(const mr_ynode *node) {
 /* Quotes a scalar for a message, shortened so one line stays one line. */
 static const char *shown(const mr_ynode *n, char *buf, size_t size) {
   if (n->kind != MR_YNODE_SCALAR) {
-    snprintf(buf, size, "a %s", mr_ynode_kind_name(n->kind));
+    snprintf(buf, size, "a %s", mr_scene_yaml_kind_name(n->kind));
     return buf;
   }
   char tmp[40];
@@ -66,11 +67,11 @@ static const char *shown(const mr_ynode *n, char *buf, size_t size) {
   return buf;
 }
 
-int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
+int mr_scene_read_map(mr_reader *r, const mr_ynode *node, const char *what,
            const char *const *allowed) {
   char b[64];
   if (node->kind != MR_YNODE_MAP)
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a mapping for %s, got %s",
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a mapping for %s, got %s",
                    what, shown(node, b, sizeof b));
   for (size_t i = 0; i < node->count; i++) {
     const mr_ynode *key = node->items[2 * i];
@@ -84,7 +85,7 @@ int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
       for (const char *const *a = allowed; *a != NULL && used < sizeof list; a++)
         used += (size_t)snprintf(list + used, sizeof list - used, "%s%s",
                                  a == allowed ? "" : ", ", *a);
-      return rd_fail(r, key, MR_SCENE_ERR_SCHEMA,
+      return mr_scene_read_fail(r, key, MR_SCENE_ERR_SCHEMA,
                      "unknown key '%s' in %s; expected one of: %s", key->text,
                      what, list);
     }
@@ -92,10 +93,10 @@ int rd_map(mr_reader *r, const mr_ynode *node, const char *what,
   return 0;
 }
 
-int rd_seq(mr_reader *r, const mr_ynode *node, const char *what) {
+int mr_scene_read_seq(mr_reader *r, const mr_ynode *node, const char *what) {
   char b[64];
   if (node->kind != MR_YNODE_SEQ)
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA,
                    "expected a sequence (- item or [a, b]) for %s, got %s", what,
                    shown(node, b, sizeof b));
   return 0;
@@ -111,73 +112,39 @@ static bool is_nan_or_inf(const char *s) {
          strcasecmp(t, "infinity") == 0;
 }
 
-int rd_number(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
+int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
   char b[64];
   if (node->kind != MR_YNODE_SCALAR || node->quoted || node->text[0] == '\0')
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
                    what, shown(node, b, sizeof b));
   if (is_nan_or_inf(node->text))
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected a finite number for %s, got %s", what,
                    shown(node, b, sizeof b));
   const char *s = node->text;
   /* Decimal only: strtod would also take hex floats and "nan(...)". */
   for (const char *p = s; *p; p++)
     if (!(isdigit((unsigned char)*p) || strchr("+-.eE", *p)))
-      return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
+      return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
                      what, shown(node, b, sizeof b));
   char *end = NULL;
   errno = 0;
   double v = strtod(s, &end);
   if (end == s || *end != '\0')
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
                    what, shown(node, b, sizeof b));
   if (!isfinite(v) || errno == ERANGE)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected a finite number for %s, got %s", what,
                    shown(node, b, sizeof b));
   *out = v;
   return 0;
 }
 
-int rd_number_key(mr_reader *r, const mr_ynode *map, const char *key, double *out) {
-  const mr_ynode *v = mr_ynode_get(map, key);
-  return v ? rd_number(r, v, key, out) : 0;
-}
-
-int rd_positive_key(mr_reader *r, const mr_ynode *map, const char *key,
-                    double *out) {
-  const mr_ynode *v = mr_ynode_get(map, key);
-  if (v == NULL)
-    return 0;
-  double x;
-  if (rd_number(r, v, key, &x) != 0)
-    return -1;
-  if (!(x > 0))
-    return rd_fail(r, v, MR_SCENE_ERR_VALUE, "expected a positive number for %s, got %g",
-                   key, x);
-  *out = x;
-  return 0;
-}
-
-int rd_nonneg_key(mr_reader *r, const mr_ynode *map, const char *key, double *out) {
-  const mr_ynode *v = mr_ynode_get(map, key);
-  if (v == NULL)
-    return 0;
-  double x;
-  if (rd_number(r, v, key, &x) != 0)
-    return -1;
-  if (x < 0)
-    return rd_fail(r, v, MR_SCENE_ERR_VALUE,
-                   "expected a number >= 0 for %s, got %g", key, x);
-  *out = x;
-  return 0;
-}
-
-int rd_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]) {
+int mr_scene_read_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]) {
   char b[64];
   if (node->kind != MR_YNODE_SEQ || node->count != 3)
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA,
                    "expected [x, y, z] (three numbers) for %s, got %s%s", what,
                    node->kind == MR_YNODE_SEQ ? "a sequence of " : "",
                    node->kind == MR_YNODE_SEQ
@@ -185,18 +152,13 @@ int rd_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3])
                        : shown(node, b, sizeof b));
   double v[3];
   for (int i = 0; i < 3; i++)
-    if (rd_number(r, node->items[i], what, &v[i]) != 0)
+    if (mr_scene_read_number(r, node->items[i], what, &v[i]) != 0)
       return -1;
   memcpy(out, v, sizeof v);
   return 0;
 }
 
-int rd_vec3_key(mr_reader *r, const mr_ynode *map, const char *key, double out[3]) {
-  const mr_ynode *v = mr_ynode_get(map, key);
-  return v ? rd_vec3(r, v, key, out) : 0;
-}
-
-int rd_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out) {
+int mr_scene_read_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out) {
   char b[64];
   if (node->kind == MR_YNODE_SCALAR && !node->quoted) {
     if (strcmp(node->text, "true") == 0) {
@@ -208,11 +170,11 @@ int rd_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out) {
       return 0;
     }
   }
-  return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected true or false for %s, got %s",
+  return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected true or false for %s, got %s",
                  what, shown(node, b, sizeof b));
 }
 
-int rd_long(mr_reader *r, const mr_ynode *node, const char *what, long *out) {
+int mr_scene_read_long(mr_reader *r, const mr_ynode *node, const char *what, long *out) {
   char b[64];
   if (node->kind == MR_YNODE_SCALAR && !node->quoted && node->text[0] != '\0') {
     char *end = NULL;
@@ -223,113 +185,232 @@ int rd_long(mr_reader *r, const mr_ynode *node, const char *what, long *out) {
       return 0;
     }
   }
-  return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected an integer for %s, got %s",
+  return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected an integer for %s, got %s",
                  what, shown(node, b, sizeof b));
 }
 
-int rd_name(mr_reader *r, const mr_ynode *node, const char *what,
+int mr_scene_read_name(mr_reader *r, const mr_ynode *node, const char *what,
             char out[MR_SCENE_NAME_MAX]) {
   char b[64];
   if (node->kind != MR_YNODE_SCALAR || node->text[0] == '\0')
-    return rd_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a name for %s, got %s", what,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a name for %s, got %s", what,
                    shown(node, b, sizeof b));
   size_t n = strlen(node->text);
   if (n >= MR_SCENE_NAME_MAX)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                    "expected a name of at most %d characters for %s",
                    MR_SCENE_NAME_MAX - 1, what);
   for (const char *p = node->text; *p; p++)
     if (!(isalnum((unsigned char)*p) || *p == '_' || *p == '-' || *p == '.'))
-      return rd_fail(r, node, MR_SCENE_ERR_VALUE,
+      return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE,
                      "expected a name of letters, digits, '_', '-' or '.' for %s, got %s",
                      what, shown(node, b, sizeof b));
   memcpy(out, node->text, n + 1);
   return 0;
 }
 
-const mr_ynode *rd_need(mr_reader *r, const mr_ynode *map, const char *key,
-                        const char *what) {
-  const mr_ynode *v = mr_ynode_get(map, key);
-  if (v == NULL)
-    rd_fail(r, map, MR_SCENE_ERR_SCHEMA, "expected key '%s' in %s", key, what);
+const mr_ynode *mr_scene_read_named(mr_reader *r, const mr_ynode *item, const char *what,
+                                    const char *const *keys, const char *label,
+                                    char name[MR_SCENE_NAME_MAX]) {
+  const mr_ynode *v;
+  if (mr_scene_read_map(r, item, what, keys) != 0 ||
+      (v = mr_scene_read_need(r, item, "name", what)) == NULL ||
+      mr_scene_read_name(r, v, label, name) != 0)
+    return NULL;
   return v;
 }
 
-int rd_particle_ref(mr_reader *r, const mr_ynode *node, size_t *out) {
-  char name[MR_SCENE_NAME_MAX];
-  if (rd_name(r, node, "a particle", name) != 0)
-    return -1;
-  size_t i = mr_scene_find_particle(r->scene, name);
-  if (i == (size_t)-1)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
-                   "expected the name of a particle declared under particles, got '%s'",
-                   name);
-  *out = i;
+const mr_ynode *mr_scene_read_need(mr_reader *r, const mr_ynode *map, const char *key,
+                        const char *what) {
+  const mr_ynode *v = mr_scene_yaml_get(map, key);
+  if (v == NULL)
+    mr_scene_read_fail(r, map, MR_SCENE_ERR_SCHEMA, "expected key '%s' in %s", key, what);
+  return v;
+}
+
+
+static double *field_double(void *def, const mr_scene_field *f) {
+  return (double *)((char *)def + f->offset);
+}
+
+/* The range checks of the non-negative kinds, after the number is read. */
+static int check_range(mr_reader *r, const mr_ynode *v, const mr_scene_field *f, double x) {
+  if (f->kind == MR_SCENE_FIELD_POSITIVE && !(x > 0))
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected a positive number for %s, got %g", f->key, x);
+  if ((f->kind == MR_SCENE_FIELD_NONNEG || f->kind == MR_SCENE_FIELD_UNIT) && x < 0)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected a number >= 0 for %s, got %g",
+                              f->key, x);
+  if (f->kind == MR_SCENE_FIELD_UNIT && x > 1)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected %s between 0 and 1, got %g",
+                              f->key, x);
   return 0;
 }
 
-int rd_control_ref(mr_reader *r, const mr_ynode *node, size_t *out) {
-  char name[MR_SCENE_NAME_MAX];
-  if (rd_name(r, node, "a control point", name) != 0)
+int mr_scene_read_field(mr_reader *r, const mr_ynode *map, const mr_scene_field *f, void *def) {
+  const mr_ynode *v = mr_scene_yaml_get(map, f->key);
+  if (v == NULL)
+    return 0;
+  if (f->kind == MR_SCENE_FIELD_VEC3)
+    return mr_scene_read_vec3(r, v, f->key, field_double(def, f));
+  if (f->kind == MR_SCENE_FIELD_INT) {
+    long x;
+    if (mr_scene_read_long(r, v, f->key, &x) != 0)
+      return -1;
+    if (x < f->lo || x > f->hi)
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                                "expected %s between %ld and %ld, got %ld", f->key, f->lo, f->hi,
+                                x);
+    *(int *)((char *)def + f->offset) = (int)x;
+    return 0;
+  }
+  double x;
+  if (mr_scene_read_number(r, v, f->key, &x) != 0 || check_range(r, v, f, x) != 0)
     return -1;
-  size_t i = mr_scene_find_control_point(r->scene, name);
-  if (i == (size_t)-1)
-    return rd_fail(r, node, MR_SCENE_ERR_VALUE,
-                   "expected the name of a control point declared under control.points, got '%s'",
-                   name);
-  *out = i;
+  *field_double(def, f) = x;
   return 0;
 }
 
-int rd_point_ref(mr_reader *r, const mr_ynode *node, mr_scene_ref *out) {
-  char name[MR_SCENE_NAME_MAX];
-  if (rd_name(r, node, "a point", name) != 0)
-    return -1;
-  size_t i = mr_scene_find_particle(r->scene, name);
-  if (i != (size_t)-1) {
-    out->control = false;
-    out->index = i;
-    return 0;
-  }
-  i = mr_scene_find_control_point(r->scene, name);
-  if (i != (size_t)-1) {
-    out->control = true;
-    out->index = i;
-    return 0;
-  }
-  return rd_fail(r, node, MR_SCENE_ERR_VALUE,
-                 "expected the name of a particle or control point, got '%s'", name);
+int mr_scene_read_fields(mr_reader *r, const mr_ynode *map, const mr_scene_field *fields,
+                         size_t n, void *def) {
+  for (size_t i = 0; i < n; i++)
+    if (mr_scene_read_field(r, map, &fields[i], def) != 0)
+      return -1;
+  return 0;
 }
 
-int rd_particle_list(mr_reader *r, const mr_ynode *node, const char *what, size_t **out,
-                     size_t *count) {
-  if (rd_seq(r, node, what) != 0)
+void mr_scene_list_names(char *out, size_t size, mr_scene_name_fn name) {
+  size_t used = 0;
+  out[0] = '\0';
+  for (int i = 0; used < size && strcmp(name(i), "unknown") != 0; i++)
+    used += (size_t)snprintf(out + used, size - used, "%s%s", i ? ", " : "", name(i));
+}
+
+int mr_scene_read_choice(mr_reader *r, const mr_ynode *map, const char *key,
+                         mr_scene_parse_fn parse, mr_scene_name_fn name, int *out) {
+  const mr_ynode *v = mr_scene_yaml_get(map, key);
+  if (v == NULL || (v->kind == MR_YNODE_SCALAR && parse(v->text, out) == 0))
+    return 0;
+  char list[256];
+  mr_scene_list_names(list, sizeof list, name);
+  return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected %s to be one of: %s, got '%s'",
+                            key, list, v->kind == MR_YNODE_SCALAR ? v->text : "?");
+}
+
+int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, uint32_t effect,
+                              const char *what) {
+  if (r->scene->world.effects & effect)
+    return 0;
+  uint32_t bit = effect & (~effect + 1u); /* the lowest: the one a message names */
+  return mr_scene_read_fail(r, at, MR_SCENE_ERR_SCHEMA,
+                            "%s declared but effect '%s' is not listed in physics.effects", what,
+                            mr_scene_effect_name(bit));
+}
+
+int mr_scene_read_items(mr_reader *r, const mr_ynode *seq, const char *what, uint32_t effect,
+                        const char *declared, size_t size, void **items, size_t *count,
+                        mr_scene_item_fn read) {
+  if (mr_scene_read_seq(r, seq, what) != 0)
     return -1;
-  size_t *m = calloc(node->count ? node->count : 1, sizeof *m);
+  if (seq->count > 0 && effect != 0 &&
+      mr_scene_read_need_effect(r, seq, effect, declared) != 0)
+    return -1;
+  unsigned char *a = calloc(seq->count ? seq->count : 1, size);
+  if (a == NULL)
+    return mr_scene_read_fail(r, seq, MR_SCENE_ERR_NOMEM, "out of memory");
+  *items = a;
+  *count = 0;
+  for (size_t i = 0; i < seq->count; i++) {
+    *count = i + 1;
+    if (read(r, seq->items[i], a + i * size) != 0)
+      return -1;
+  }
+  return 0;
+}
+
+bool mr_scene_is_control_id(const mr_scene *s, int id) {
+  return id >= 0 && (size_t)id >= s->n_particles;
+}
+
+const char *mr_scene_point_name(const mr_scene *s, int id) {
+  if (id < 0)
+    return "?";
+  if (!mr_scene_is_control_id(s, id))
+    return s->particles[id].name;
+  size_t j = (size_t)id - s->n_particles;
+  return j < s->n_control_points ? s->control_points[j].name : "?";
+}
+
+/* A name resolved to a world id among the particles, the control points,
+ * or both; `expected` completes "expected the name of ...". */
+static int resolve(mr_reader *r, const mr_ynode *node, const char *what, bool particles,
+                   bool controls, const char *expected, int *id) {
+  char name[MR_SCENE_NAME_MAX];
+  const mr_scene *s = r->scene;
+  if (mr_scene_read_name(r, node, what, name) != 0)
+    return -1;
+  size_t i = particles ? mr_scene_find_particle(s, name) : (size_t)-1;
+  if (i == (size_t)-1 && controls && (i = mr_scene_find_control_point(s, name)) != (size_t)-1)
+    i += s->n_particles;
+  if (i == (size_t)-1)
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE, "expected the name of %s, got '%s'",
+                              expected, name);
+  *id = (int)i;
+  return 0;
+}
+
+int mr_scene_read_particle(mr_reader *r, const mr_ynode *node, int *id) {
+  return resolve(r, node, "a particle", true, false,
+                 "a particle declared under particles", id);
+}
+
+int mr_scene_read_control_point(mr_reader *r, const mr_ynode *node, int *id) {
+  return resolve(r, node, "a control point", false, true,
+                 "a control point declared under control.points", id);
+}
+
+int mr_scene_read_point(mr_reader *r, const mr_ynode *node, int *id) {
+  return resolve(r, node, "a point", true, true, "a particle or control point", id);
+}
+
+int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *what, int **out,
+                                int *count) {
+  if (mr_scene_read_seq(r, node, what) != 0)
+    return -1;
+  int *m = calloc(node->count ? node->count : 1, sizeof *m);
   if (m == NULL)
-    return rd_fail(r, node, MR_SCENE_ERR_NOMEM, "out of memory");
+    return mr_scene_read_fail(r, node, MR_SCENE_ERR_NOMEM, "out of memory");
   *out = m;
   *count = 0;
   for (size_t k = 0; k < node->count; k++) {
-    if (rd_particle_ref(r, node->items[k], &m[k]) != 0)
+    if (mr_scene_read_particle(r, node->items[k], &m[k]) != 0)
       return -1;
     for (size_t j = 0; j < k; j++)
       if (m[j] == m[k])
-        return rd_fail(r, node->items[k], MR_SCENE_ERR_VALUE,
-                       "particle '%s' is listed twice in %s",
-                       r->scene->particles[m[k]].name, what);
-    *count = k + 1;
+        return mr_scene_read_fail(r, node->items[k], MR_SCENE_ERR_VALUE,
+                                  "particle '%s' is listed twice in %s",
+                                  r->scene->particles[m[k]].name, what);
+    *count = (int)k + 1;
   }
   return 0;
 }
 
-int rd_need_effect(mr_reader *r, const mr_ynode *at, unsigned fx, const char *what) {
-  if (r->scene->effects & fx)
-    return 0;
-  unsigned bit = 0;
-  while (!(fx & (1u << bit)))
-    bit++;
-  return rd_fail(r, at, MR_SCENE_ERR_SCHEMA,
-                 "%s declared but effect '%s' is not listed in physics.effects", what,
-                 mr_scene_effect_name(bit));
+int mr_scene_read_between(mr_reader *r, const mr_ynode *it, const char *what, int *a, int *b) {
+  const mr_ynode *v = mr_scene_read_need(r, it, "between", what);
+  if (v == NULL)
+    return -1;
+  if (v->kind != MR_YNODE_SEQ || v->count != 2)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA,
+                              "expected [point, point] for between in %s", what);
+  if (mr_scene_read_point(r, v->items[0], a) != 0 || mr_scene_read_point(r, v->items[1], b) != 0)
+    return -1;
+  if (*a == *b)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "zero-length %s: both ends are the same point; expected two points",
+                              what);
+  if (mr_scene_is_control_id(r->scene, *a) && mr_scene_is_control_id(r->scene, *b))
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "%s between two control points moves nothing; expected a particle",
+                              what);
+  return 0;
 }

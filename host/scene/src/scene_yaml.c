@@ -149,7 +149,7 @@ static int attach(builder *b, mr_ynode *node) {
     if (node->kind != MR_YNODE_SCALAR)
       return fail(b->err, node->line, node->column,
                   "expected a plain key, got a %s as a mapping key",
-                  mr_ynode_kind_name(node->kind));
+                  mr_scene_yaml_kind_name(node->kind));
     for (size_t i = 0; i < f->n; i += 2)
       if (same_scalar(f->tmp[i], node))
         return fail(b->err, node->line, node->column,
@@ -295,83 +295,94 @@ static bool find_nul(const char *text, size_t len, int *line, int *column) {
   return true;
 }
 
-int mr_ydoc_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
-  memset(doc, 0, sizeof *doc);
-  memset(err, 0, sizeof *err);
-  int nl, nc;
-  if (find_nul(text, len, &nl, &nc))
-    return fail(err, nl, nc, "expected a YAML text file, found a NUL byte");
-
+/* A quiet parser over text whose errors gather in *diag, or NULL. */
+static struct fy_parser *open_parser(const char *text, size_t len, struct fy_diag **diag) {
   struct fy_diag_cfg dcfg;
   fy_diag_cfg_default(&dcfg);
   dcfg.fp = NULL;
   dcfg.colorize = false;
-  struct fy_diag *diag = fy_diag_create(&dcfg);
-  if (diag == NULL)
-    return fail(err, 0, 0, "out of memory");
-  fy_diag_set_collect_errors(diag, true);
-
+  *diag = fy_diag_create(&dcfg);
+  if (*diag == NULL)
+    return NULL;
+  fy_diag_set_collect_errors(*diag, true);
   struct fy_parse_cfg cfg;
   memset(&cfg, 0, sizeof cfg);
   cfg.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG;
-  cfg.diag = diag;
+  cfg.diag = *diag;
   struct fy_parser *fyp = fy_parser_create(&cfg);
-  if (fyp == NULL || fy_parser_set_string(fyp, text, len) != 0) {
-    if (fyp != NULL)
-      fy_parser_destroy(fyp);
-    fy_diag_destroy(diag);
-    return fail(err, 0, 0, "out of memory");
-  }
+  if (fyp != NULL && fy_parser_set_string(fyp, text, len) == 0)
+    return fyp;
+  if (fyp != NULL)
+    fy_parser_destroy(fyp);
+  fy_diag_destroy(*diag);
+  return NULL;
+}
 
-  builder b;
-  memset(&b, 0, sizeof b);
-  b.doc = doc;
-  b.err = err;
+/* Feeds every event to the builder; on a stream error, names the place
+ * libfyaml gives, else the last event's. */
+static int build_tree(builder *b, struct fy_parser *fyp, struct fy_diag *diag) {
   int rc = 0;
   int last_line = 1, last_column = 1;
   struct fy_event *e;
-  while ((e = fy_parser_parse(fyp)) != NULL) {
+  while (rc == 0 && (e = fy_parser_parse(fyp)) != NULL) {
     const struct fy_mark *m = fy_event_start_mark(e);
     if (m != NULL) {
       last_line = m->line + 1;
       last_column = m->column + 1;
     }
-    rc = on_event(&b, e);
+    rc = on_event(b, e);
     fy_parser_event_free(fyp, e);
-    if (rc != 0)
-      break;
   }
-  if (rc == 0 && fy_parser_get_stream_error(fyp)) {
-    void *it = NULL;
-    struct fy_diag_error *de = fy_diag_errors_iterate(diag, &it);
-    if (de != NULL)
-      /* libfyaml's collected diagnostics are already 1-based. */
-      rc = fail(err, de->line, de->column, "expected valid YAML: %s", de->msg);
-    else
-      rc = fail(err, last_line, last_column, "expected valid YAML");
+  if (rc != 0 || !fy_parser_get_stream_error(fyp))
+    return rc;
+  void *it = NULL;
+  struct fy_diag_error *de = fy_diag_errors_iterate(diag, &it);
+  if (de != NULL) /* libfyaml's collected diagnostics are already 1-based */
+    return fail(b->err, de->line, de->column, "expected valid YAML: %s", de->msg);
+  return fail(b->err, last_line, last_column, "expected valid YAML");
+}
+
+static void builder_free(builder *b) {
+  for (size_t i = 0; i < b->depth; i++) {
+    free(b->stack[i].tmp);
+    free(b->stack[i].anchor);
   }
-  for (size_t i = 0; i < b.depth; i++) {
-    free(b.stack[i].tmp);
-    free(b.stack[i].anchor);
-  }
-  free(b.stack);
-  for (size_t i = 0; i < b.n_anchors; i++)
-    free(b.anchors[i].name);
-  free(b.anchors);
+  free(b->stack);
+  for (size_t i = 0; i < b->n_anchors; i++)
+    free(b->anchors[i].name);
+  free(b->anchors);
+}
+
+int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
+  memset(doc, 0, sizeof *doc);
+  memset(err, 0, sizeof *err);
+  int nl, nc;
+  if (find_nul(text, len, &nl, &nc))
+    return fail(err, nl, nc, "expected a YAML text file, found a NUL byte");
+  struct fy_diag *diag;
+  struct fy_parser *fyp = open_parser(text, len, &diag);
+  if (fyp == NULL)
+    return fail(err, 0, 0, "out of memory");
+  builder b;
+  memset(&b, 0, sizeof b);
+  b.doc = doc;
+  b.err = err;
+  int rc = build_tree(&b, fyp, diag);
+  builder_free(&b);
   fy_parser_destroy(fyp);
   fy_diag_destroy(diag);
   if (rc != 0)
-    mr_ydoc_free(doc);
+    mr_scene_yaml_free(doc);
   return rc;
 }
 
-void mr_ydoc_free(mr_ydoc *doc) {
+void mr_scene_yaml_free(mr_ydoc *doc) {
   arena_free(doc->arena);
   doc->arena = NULL;
   doc->root = NULL;
 }
 
-const mr_ynode *mr_ynode_get(const mr_ynode *map, const char *key) {
+const mr_ynode *mr_scene_yaml_get(const mr_ynode *map, const char *key) {
   if (map == NULL || map->kind != MR_YNODE_MAP)
     return NULL;
   for (size_t i = 0; i < map->count; i++)
@@ -380,7 +391,7 @@ const mr_ynode *mr_ynode_get(const mr_ynode *map, const char *key) {
   return NULL;
 }
 
-const char *mr_ynode_kind_name(mr_ynode_kind kind) {
+const char *mr_scene_yaml_kind_name(mr_ynode_kind kind) {
   switch (kind) {
   case MR_YNODE_SCALAR:
     return "scalar";

@@ -44,11 +44,11 @@ typedef struct mr_yerror {
 /* Parses exactly one YAML document from text[0..len). Returns 0 on success,
  * -1 with *err filled on a syntax error, a NUL byte, an unknown alias, a
  * duplicate mapping key, a non-scalar key or a second document. */
-int mr_ydoc_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err);
-void mr_ydoc_free(mr_ydoc *doc);
+int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err);
+void mr_scene_yaml_free(mr_ydoc *doc);
 
 /* The value of key in a mapping, or NULL. */
-const mr_ynode *mr_ynode_get(const mr_ynode *map, const char *key);
-const char *mr_ynode_kind_name(mr_ynode_kind kind);
+const mr_ynode *mr_scene_yaml_get(const mr_ynode *map, const char *key);
+const char *mr_scene_yaml_kind_name(mr_ynode_kind kind);
 
 #endif

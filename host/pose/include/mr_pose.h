@@ -1,0 +1,60 @@
+/* mr_pose: where a rigid thing is and which way it faces.
+ *
+ * A pose is a position (m) and an orientation as a unit quaternion
+ * (w, x, y, z). Physics, control and render all use this one type; Euler
+ * angles exist only where a file is read (mr_pose_from_euler_deg), once.
+ *
+ * A quaternion q turns a vector v into q v q*. Composition reads like
+ * matrices: mr_pose_compose(a, b) applies b first, then a.
+ */
+#ifndef MR_POSE_H
+#define MR_POSE_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mr_pose {
+  double position[3];    /* m */
+  double orientation[4]; /* unit quaternion (w, x, y, z) */
+} mr_pose;
+
+/* At the origin, facing the identity (1, 0, 0, 0). */
+mr_pose mr_pose_identity(void);
+
+/* Scales the orientation to unit length. Returns 0, or -1 (pose untouched)
+ * when a component is NaN or Inf or the quaternion is (nearly) zero. */
+int mr_pose_normalize(mr_pose *pose);
+
+/* out = q v q* for a unit quaternion q (out may alias v). */
+void mr_pose_rotate(const double q[4], const double v[3], double out[3]);
+
+/* out = q* v q: the inverse turn (out may alias v). */
+void mr_pose_unrotate(const double q[4], const double v[3], double out[3]);
+
+/* A point given in the pose's frame, in world coordinates. */
+void mr_pose_apply(const mr_pose *pose, const double local[3], double world[3]);
+
+/* b first, then a: position a.p + R(a) b.p, orientation a.q b.q. */
+mr_pose mr_pose_compose(const mr_pose *a, const mr_pose *b);
+
+/* The pose a fraction s (0..1) of the way from a to b: position linear,
+ * orientation by slerp the short way round (so q and −q give the same
+ * path). Both orientations must be unit. */
+mr_pose mr_pose_interpolate(const mr_pose *a, const mr_pose *b, double s);
+
+/* The turn from unit quaternion q0 to q1, the short way: returns its angle
+ * (radians, 0..π) and writes its unit axis (zero when there is no turn). A
+ * slerp over a time span T turns at the constant rate angle/T about it. */
+double mr_pose_turn(const double q0[4], const double q1[4], double axis[3]);
+
+/* A pose from a file's position and x-y-z Euler angles in degrees: x is
+ * applied first, then y, then z (q = qz qy qx, v' = Rz Ry Rx v), as the
+ * scene files have always meant them. */
+mr_pose mr_pose_from_euler_deg(const double position[3], const double rotation_deg[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MR_POSE_H */

@@ -1,0 +1,28 @@
+# Fails when the static library LIB defines a global symbol without PREFIX:
+# a client linking it with its own helpers must never meet a clash.
+# Arguments (-D): NM, LIB, PREFIX.
+execute_process(COMMAND ${NM} -g --defined-only ${LIB}
+                OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${NM} failed on ${LIB}")
+endif()
+string(REPLACE "\n" ";" lines "${out}")
+set(count 0)
+set(bad "")
+foreach(line IN LISTS lines)
+  if(line MATCHES "^[0-9a-fA-F]+ [A-Z] (.+)$")
+    set(name "${CMAKE_MATCH_1}")
+    math(EXPR count "${count} + 1")
+    string(FIND "${name}" "${PREFIX}" at)
+    if(NOT at EQUAL 0)
+      list(APPEND bad "${name}")
+    endif()
+  endif()
+endforeach()
+if(count EQUAL 0)
+  message(FATAL_ERROR "no global symbols found in ${LIB}")
+endif()
+if(bad)
+  message(FATAL_ERROR "symbols without the prefix ${PREFIX}: ${bad}")
+endif()
+message(STATUS "${count} global symbols, all prefixed ${PREFIX}")
