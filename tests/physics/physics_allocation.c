@@ -31,47 +31,38 @@ static int counting;
 static unsigned long allocations;
 
 #if !defined(__SANITIZE_ADDRESS__)
-static void count(void)
-{
-  if (counting)
-    allocations++;
+static void count(void) {
+  if (counting) allocations++;
 }
 
-void *malloc(size_t size)
-{
+void *malloc(size_t size) {
   count();
   return __libc_malloc(size);
 }
 
-void *calloc(size_t n, size_t size)
-{
+void *calloc(size_t n, size_t size) {
   count();
   return __libc_calloc(n, size);
 }
 
-void *realloc(void *p, size_t size)
-{
+void *realloc(void *p, size_t size) {
   count();
   return __libc_realloc(p, size);
 }
 
-void free(void *p)
-{
+void free(void *p) {
   __libc_free(p);
 }
 
-void *aligned_alloc(size_t align, size_t size)
-{
+void *aligned_alloc(size_t align, size_t size) {
   count();
   return __libc_memalign(align, size);
 }
 
-int posix_memalign(void **out, size_t align, size_t size)
-{
+int posix_memalign(void **out, size_t align, size_t size) {
   count();
   void *p = __libc_memalign(align, size);
-  if (!p)
-    return 12; /* ENOMEM */
+  if (!p) return 12; /* ENOMEM */
   *out = p;
   return 0;
 }
@@ -93,12 +84,10 @@ typedef struct watch {
 } watch;
 
 /* Counting starts once the first step is done and stops after 1 000 more. */
-static void on_step(void *user, const mr_scene_step *row)
-{
+static void on_step(void *user, const mr_scene_step *row) {
   watch *w = user;
   w->steps += (uint64_t)row->accepted;
-  if (counting)
-    w->watched += (uint64_t)row->accepted;
+  if (counting) w->watched += (uint64_t)row->accepted;
   if (counting && w->watched >= WATCHED_STEPS) {
     counting = 0;
     w->after_first = allocations;
@@ -109,8 +98,7 @@ static void on_step(void *user, const mr_scene_step *row)
   }
 }
 
-static char *read_file(const char *path, size_t *len)
-{
+static char *read_file(const char *path, size_t *len) {
   FILE *f = fopen(path, "rb");
   assert_non_null(f);
   char *text = calloc(1, 1 << 16);
@@ -121,8 +109,7 @@ static char *read_file(const char *path, size_t *len)
 }
 
 /* puppet.yaml with `method: <method>` added to its solver settings. */
-static char *puppet_with_method(const char *method, size_t *len)
-{
+static char *puppet_with_method(const char *method, size_t *len) {
   size_t n;
   char *text = read_file(MR_SOURCE_DIR "/host/scenes/puppet.yaml", &n);
   const char *key = "solver: {integrator: rk4";
@@ -139,24 +126,21 @@ static char *puppet_with_method(const char *method, size_t *len)
   return out;
 }
 
-static void run_method(const char *method)
-{
-  if (!COUNTING_BUILT_IN)
-    skip();
+static void run_method(const char *method) {
+  if (!COUNTING_BUILT_IN) skip();
   size_t len;
   char *text = puppet_with_method(method, &len);
   mr_scene scene;
   mr_scene_error err;
   if (mr_scene_load_text("puppet.yaml", text, len, &scene, &err) != MR_SCENE_OK)
     fail_msg("%s", err.text);
-  watch w = {0, 0, 0};
+  watch w = { 0, 0, 0 };
   /* Long enough for 1 001 steps at the upper bound of 0.05 s. */
-  mr_scene_run_opts opts = {60.0, on_step, &w};
+  mr_scene_run_opts opts = { 60.0, on_step, &w };
   mr_scene_run_result r;
   allocations = 0;
   counting = 0;
-  if (mr_scene_run(&scene, &opts, &r, &err) != MR_SCENE_OK)
-    fail_msg("%s", err.text);
+  if (mr_scene_run(&scene, &opts, &r, &err) != MR_SCENE_OK) fail_msg("%s", err.text);
   counting = 0;
   printf("%s: %llu steps, %llu watched, %lu allocations after the first step, %llu collisions\n",
          method, (unsigned long long)w.steps, (unsigned long long)w.watched, w.after_first,
@@ -168,32 +152,27 @@ static void run_method(const char *method)
   free(text);
 }
 
-static void gauss_seidel_steps_allocate_nothing_after_the_first(void **state)
-{
+static void gauss_seidel_steps_allocate_nothing_after_the_first(void **state) {
   (void)state;
   run_method("gauss-seidel");
 }
 
-static void cg_steps_allocate_nothing_after_the_first(void **state)
-{
+static void cg_steps_allocate_nothing_after_the_first(void **state) {
   (void)state;
   run_method("cg");
 }
 
-static void ldlt_steps_allocate_nothing_after_the_first(void **state)
-{
+static void ldlt_steps_allocate_nothing_after_the_first(void **state) {
   (void)state;
   run_method("ldlt");
 }
 
-static void eigen_steps_allocate_nothing_after_the_first(void **state)
-{
+static void eigen_steps_allocate_nothing_after_the_first(void **state) {
   (void)state;
   run_method("eigen");
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(gauss_seidel_steps_allocate_nothing_after_the_first),
     cmocka_unit_test(cg_steps_allocate_nothing_after_the_first),

@@ -13,8 +13,7 @@
 
 /* A world declaring every effect, with two free particles (0, 1) and one on
  * a control frame (2), so each add call gets as far as its cookie check. */
-static mr_world *full_world(void)
-{
+static mr_world *full_world(void) {
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_ALL;
   mr_world *w = NULL;
@@ -31,8 +30,7 @@ static mr_world *full_world(void)
 }
 
 /* The refusal names the call and tells how to make the struct. */
-static void assert_refused(mr_world *w, mr_status s, const char *call)
-{
+static void assert_refused(mr_world *w, mr_status s, const char *call) {
   assert_int_equal(s, MR_ERR_ARG);
   const char *msg = mr_world_last_error(w);
   assert_non_null(strstr(msg, call));
@@ -41,27 +39,26 @@ static void assert_refused(mr_world *w, mr_status s, const char *call)
 
 /* One test per add call: a zeroed definition is refused with MR_ERR_ARG,
  * and the one from the maker (same particles) is accepted. */
-#define ZEROED_IS_REFUSED(kind, setup)                                                             \
-  static void zeroed_##kind##_def_is_refused_and_the_maker_s_is_accepted(void **state)            \
-  {                                                                                                \
-    (void)state;                                                                                   \
-    mr_world *w = full_world();                                                                    \
-    mr_##kind##_def d;                                                                             \
-    memset(&d, 0, sizeof d);                                                                       \
-    setup;                                                                                         \
-    int before = mr_world_particle_count(w);                                                       \
-    assert_refused(w, mr_world_add_##kind(w, &d, NULL), "mr_world_add_" #kind);                  \
-    assert_int_equal(mr_world_particle_count(w), before);                                         \
-    mr_##kind##_def good = mr_default_##kind##_def();                                              \
-    d = good;                                                                                      \
-    setup;                                                                                         \
-    assert_int_equal(mr_world_add_##kind(w, &d, NULL), MR_OK);                                    \
-    mr_world_destroy(w);                                                                           \
+#define ZEROED_IS_REFUSED(kind, setup)                                                   \
+  static void zeroed_##kind##_def_is_refused_and_the_maker_s_is_accepted(void **state) { \
+    (void)state;                                                                         \
+    mr_world *w = full_world();                                                          \
+    mr_##kind##_def d;                                                                   \
+    memset(&d, 0, sizeof d);                                                             \
+    setup;                                                                               \
+    int before = mr_world_particle_count(w);                                             \
+    assert_refused(w, mr_world_add_##kind(w, &d, NULL), "mr_world_add_" #kind);          \
+    assert_int_equal(mr_world_particle_count(w), before);                                \
+    mr_##kind##_def good = mr_default_##kind##_def();                                    \
+    d = good;                                                                            \
+    setup;                                                                               \
+    assert_int_equal(mr_world_add_##kind(w, &d, NULL), MR_OK);                           \
+    mr_world_destroy(w);                                                                 \
   }
 
-static const int group_ids[] = {0, 1};
-static const double key_time[] = {0.0};
-static const double key_point[] = {0.0, 0.0, 0.0};
+static const int group_ids[] = { 0, 1 };
+static const double key_time[] = { 0.0 };
+static const double key_point[] = { 0.0, 0.0, 0.0 };
 
 ZEROED_IS_REFUSED(particle, d.mass = 1.0)
 ZEROED_IS_REFUSED(frame, d.pose = mr_pose_identity())
@@ -72,13 +69,13 @@ ZEROED_IS_REFUSED(triggered, (d.acted = 0, d.control = 2, d.trigger = 1))
 ZEROED_IS_REFUSED(sine_spring, (d.a = 0, d.b = 1, d.rest_length = -1, d.reach = 0.1))
 ZEROED_IS_REFUSED(distance, (d.a = 0, d.b = 1, d.length = -1))
 ZEROED_IS_REFUSED(pin, (d.particle = 0, d.at_current = 1))
-ZEROED_IS_REFUSED(curve, (d.particle = 1, d.key_count = 1, d.times = key_time, d.points = key_point))
+ZEROED_IS_REFUSED(curve,
+                  (d.particle = 1, d.key_count = 1, d.times = key_time, d.points = key_point))
 ZEROED_IS_REFUSED(rigid_group, (d.particles = group_ids, d.count = 2))
 ZEROED_IS_REFUSED(plane, d.normal[1] = 1)
 ZEROED_IS_REFUSED(part, (d.particles = group_ids, d.count = 2))
 
-static void zeroed_world_def_is_refused_with_a_message(void **state)
-{
+static void zeroed_world_def_is_refused_with_a_message(void **state) {
   (void)state;
   mr_world_def d;
   memset(&d, 0, sizeof d);
@@ -92,8 +89,7 @@ static void zeroed_world_def_is_refused_with_a_message(void **state)
   mr_world_destroy(w);
 }
 
-static void every_effect_name_parses_back_to_its_bit(void **state)
-{
+static void every_effect_name_parses_back_to_its_bit(void **state) {
   (void)state;
   uint32_t seen = 0;
   for (int i = 0; i < MR_EFFECT_COUNT; i++) {
@@ -115,8 +111,7 @@ static void every_effect_name_parses_back_to_its_bit(void **state)
   assert_string_equal(mr_effect_name(0), "unknown");
 }
 
-static void every_pass_and_integrator_name_parses_back(void **state)
-{
+static void every_pass_and_integrator_name_parses_back(void **state) {
   (void)state;
   for (int p = 0; p < MR_PASS_COUNT; p++) {
     mr_pass back = MR_PASS_COUNT;
@@ -138,22 +133,20 @@ static void every_pass_and_integrator_name_parses_back(void **state)
 
 /* The force-kind table makes an effect and a pass of the same name for
  * each kind, and the passes run in the table's order. */
-static void each_force_kind_has_an_effect_and_a_pass_of_one_name(void **state)
-{
+static void each_force_kind_has_an_effect_and_a_pass_of_one_name(void **state) {
   (void)state;
   int next = MR_PASS_FRAMES + 1, bit = 0;
-#define CHECK_KIND(id, stem, name)                                                                 \
-  assert_string_equal(mr_effect_name(MR_EFFECT_##id), name);                                       \
-  assert_string_equal(mr_pass_name(MR_PASS_##id), name);                                           \
-  assert_int_equal(MR_PASS_##id, next++);                                                          \
+#define CHECK_KIND(id, stem, name)                           \
+  assert_string_equal(mr_effect_name(MR_EFFECT_##id), name); \
+  assert_string_equal(mr_pass_name(MR_PASS_##id), name);     \
+  assert_int_equal(MR_PASS_##id, next++);                    \
   assert_int_equal(MR_EFFECT_##id, 1u << bit++);
   MR_FORCE_KINDS(CHECK_KIND)
 #undef CHECK_KIND
   assert_int_equal(MR_PASS_CONSTRAINTS, next);
 }
 
-static void unknown_effect_bits_are_refused(void **state)
-{
+static void unknown_effect_bits_are_refused(void **state) {
   (void)state;
   mr_world_def d = mr_default_world_def();
   d.effects = MR_EFFECT_ALL + 1u;
@@ -168,11 +161,21 @@ static void unknown_effect_bits_are_refused(void **state)
 
 #define T(kind) cmocka_unit_test(zeroed_##kind##_def_is_refused_and_the_maker_s_is_accepted)
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
-    T(particle), T(frame), T(spring), T(string), T(antigravity), T(triggered), T(sine_spring),
-    T(distance), T(pin), T(curve), T(rigid_group), T(plane), T(part),
+    T(particle),
+    T(frame),
+    T(spring),
+    T(string),
+    T(antigravity),
+    T(triggered),
+    T(sine_spring),
+    T(distance),
+    T(pin),
+    T(curve),
+    T(rigid_group),
+    T(plane),
+    T(part),
     cmocka_unit_test(zeroed_world_def_is_refused_with_a_message),
     cmocka_unit_test(every_effect_name_parses_back_to_its_bit),
     cmocka_unit_test(every_pass_and_integrator_name_parses_back),

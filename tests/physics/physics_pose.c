@@ -13,16 +13,14 @@
 
 static const double pi = 3.14159265358979323846;
 
-static void assert_vec(const double a[3], double x, double y, double z, double tol)
-{
+static void assert_vec(const double a[3], double x, double y, double z, double tol) {
   if (fabs(a[0] - x) > tol || fabs(a[1] - y) > tol || fabs(a[2] - z) > tol)
     fail_msg("(%.12g, %.12g, %.12g) != (%.12g, %.12g, %.12g)", a[0], a[1], a[2], x, y, z);
 }
 
 /* v' = Rz Ry Rx v written as matrices, the way scene files always meant
  * their rotation: [rx, ry, rz] degrees, x turned first. */
-static void euler_by_matrices(const double deg[3], const double v[3], double out[3])
-{
+static void euler_by_matrices(const double deg[3], const double v[3], double out[3]) {
   double ax = deg[0] * pi / 180, ay = deg[1] * pi / 180, az = deg[2] * pi / 180;
   double x = v[0], y = v[1], z = v[2];
   double y1 = y * cos(ax) - z * sin(ax), z1 = y * sin(ax) + z * cos(ax);
@@ -32,11 +30,12 @@ static void euler_by_matrices(const double deg[3], const double v[3], double out
   out[2] = z2;
 }
 
-static void euler_degrees_turn_x_first_then_y_then_z(void **state)
-{
+static void euler_degrees_turn_x_first_then_y_then_z(void **state) {
   (void)state;
-  const double angles[][3] = {{30, -50, 70}, {90, 0, 0}, {0, 90, 0}, {0, 0, 90}, {-120, 45, 200}};
-  const double v[3] = {0.3, -0.7, 1.1}, pos[3] = {1, 2, 3};
+  const double angles[][3] = {
+    { 30, -50, 70 }, { 90, 0, 0 }, { 0, 90, 0 }, { 0, 0, 90 }, { -120, 45, 200 }
+  };
+  const double v[3] = { 0.3, -0.7, 1.1 }, pos[3] = { 1, 2, 3 };
   for (size_t i = 0; i < sizeof angles / sizeof angles[0]; i++) {
     mr_pose p = mr_pose_from_euler_deg(pos, angles[i]);
     double want[3], got[3];
@@ -45,17 +44,16 @@ static void euler_degrees_turn_x_first_then_y_then_z(void **state)
     assert_vec(got, want[0] + 1, want[1] + 2, want[2] + 3, 1e-12);
   }
   /* A quarter turn about z takes x to y. */
-  const double z90[3] = {0, 0, 90}, origin[3] = {0, 0, 0}, x[3] = {1, 0, 0};
+  const double z90[3] = { 0, 0, 90 }, origin[3] = { 0, 0, 0 }, x[3] = { 1, 0, 0 };
   mr_pose q = mr_pose_from_euler_deg(origin, z90);
   double r[3];
   mr_pose_rotate(q.orientation, x, r);
   assert_vec(r, 0, 1, 0, 1e-15);
 }
 
-static void unrotate_undoes_rotate_and_identity_moves_nothing(void **state)
-{
+static void unrotate_undoes_rotate_and_identity_moves_nothing(void **state) {
   (void)state;
-  const double deg[3] = {10, 20, 30}, pos[3] = {0, 0, 0}, v[3] = {1, -2, 0.5};
+  const double deg[3] = { 10, 20, 30 }, pos[3] = { 0, 0, 0 }, v[3] = { 1, -2, 0.5 };
   mr_pose p = mr_pose_from_euler_deg(pos, deg);
   double r[3], back[3];
   mr_pose_rotate(p.orientation, v, r);
@@ -66,13 +64,12 @@ static void unrotate_undoes_rotate_and_identity_moves_nothing(void **state)
   assert_vec(r, v[0], v[1], v[2], 0);
 }
 
-static void compose_applies_the_second_pose_first(void **state)
-{
+static void compose_applies_the_second_pose_first(void **state) {
   (void)state;
-  const double da[3] = {0, 0, 90}, pa[3] = {1, 0, 0}, db[3] = {90, 0, 0}, pb[3] = {0, 2, 0};
+  const double da[3] = { 0, 0, 90 }, pa[3] = { 1, 0, 0 }, db[3] = { 90, 0, 0 }, pb[3] = { 0, 2, 0 };
   mr_pose a = mr_pose_from_euler_deg(pa, da), b = mr_pose_from_euler_deg(pb, db);
   mr_pose ab = mr_pose_compose(&a, &b);
-  const double v[3] = {0.1, 0.2, 0.3};
+  const double v[3] = { 0.1, 0.2, 0.3 };
   double once[3], twice[3], both[3];
   mr_pose_apply(&b, v, once);
   mr_pose_apply(&a, once, twice);
@@ -80,21 +77,19 @@ static void compose_applies_the_second_pose_first(void **state)
   assert_vec(both, twice[0], twice[1], twice[2], 1e-14);
 }
 
-static void interpolate_slerps_the_short_way_at_a_constant_rate(void **state)
-{
+static void interpolate_slerps_the_short_way_at_a_constant_rate(void **state) {
   (void)state;
-  const double o[3] = {0, 0, 0}, end[3] = {2, 0, 0}, z90[3] = {0, 0, 90};
+  const double o[3] = { 0, 0, 0 }, end[3] = { 2, 0, 0 }, z90[3] = { 0, 0, 90 };
   mr_pose a = mr_pose_from_euler_deg(o, o), b = mr_pose_from_euler_deg(end, z90);
   mr_pose half = mr_pose_interpolate(&a, &b, 0.5);
   assert_vec(half.position, 1, 0, 0, 0);
-  const double x[3] = {1, 0, 0};
+  const double x[3] = { 1, 0, 0 };
   double r[3];
   mr_pose_rotate(half.orientation, x, r);
   assert_vec(r, cos(pi / 4), sin(pi / 4), 0, 1e-15);
   /* −q is the same orientation: the path must not go the long way. */
   mr_pose nb = b;
-  for (int k = 0; k < 4; k++)
-    nb.orientation[k] = -nb.orientation[k];
+  for (int k = 0; k < 4; k++) nb.orientation[k] = -nb.orientation[k];
   mr_pose nhalf = mr_pose_interpolate(&a, &nb, 0.5);
   mr_pose_rotate(nhalf.orientation, x, r);
   assert_vec(r, cos(pi / 4), sin(pi / 4), 0, 1e-15);
@@ -106,8 +101,7 @@ static void interpolate_slerps_the_short_way_at_a_constant_rate(void **state)
   assert_vec(axis, 0, 0, 0, 0);
 }
 
-static void normalize_refuses_zero_and_non_finite_quaternions(void **state)
-{
+static void normalize_refuses_zero_and_non_finite_quaternions(void **state) {
   (void)state;
   mr_pose p = mr_pose_identity();
   p.orientation[0] = 2;
@@ -122,8 +116,7 @@ static void normalize_refuses_zero_and_non_finite_quaternions(void **state)
   assert_int_equal(mr_pose_normalize(&p), -1);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(euler_degrees_turn_x_first_then_y_then_z),
     cmocka_unit_test(unrotate_undoes_rotate_and_identity_moves_nothing),

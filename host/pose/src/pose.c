@@ -15,48 +15,45 @@ mr_pose mr_pose_identity(void) {
 
 int mr_pose_normalize(mr_pose *p) {
   double q2 = 0;
-  for (int k = 0; k < 4; k++)
-    q2 += p->orientation[k] * p->orientation[k];
+  for (int k = 0; k < 4; k++) q2 += p->orientation[k] * p->orientation[k];
   if (!isfinite(p->position[0]) || !isfinite(p->position[1]) || !isfinite(p->position[2]) ||
       !isfinite(q2) || !(q2 > 1e-12))
     return -1;
   double s = 1.0 / sqrt(q2);
-  for (int k = 0; k < 4; k++)
-    p->orientation[k] *= s;
+  for (int k = 0; k < 4; k++) p->orientation[k] *= s;
   return 0;
 }
 
 /* q v q*, expanded: v + 2w (u × v) + 2 u × (u × v), u = (x, y, z). */
 void mr_pose_rotate(const double q[4], const double v[3], double out[3]) {
   const double *u = &q[1];
-  double t[3] = {2 * (u[1] * v[2] - u[2] * v[1]), 2 * (u[2] * v[0] - u[0] * v[2]),
-                 2 * (u[0] * v[1] - u[1] * v[0])};
-  double r[3] = {v[0] + q[0] * t[0] + (u[1] * t[2] - u[2] * t[1]),
-                 v[1] + q[0] * t[1] + (u[2] * t[0] - u[0] * t[2]),
-                 v[2] + q[0] * t[2] + (u[0] * t[1] - u[1] * t[0])};
+  double t[3] = { 2 * (u[1] * v[2] - u[2] * v[1]), 2 * (u[2] * v[0] - u[0] * v[2]),
+                  2 * (u[0] * v[1] - u[1] * v[0]) };
+  double r[3] = { v[0] + q[0] * t[0] + (u[1] * t[2] - u[2] * t[1]),
+                  v[1] + q[0] * t[1] + (u[2] * t[0] - u[0] * t[2]),
+                  v[2] + q[0] * t[2] + (u[0] * t[1] - u[1] * t[0]) };
   out[0] = r[0];
   out[1] = r[1];
   out[2] = r[2];
 }
 
 void mr_pose_unrotate(const double q[4], const double v[3], double out[3]) {
-  const double qc[4] = {q[0], -q[1], -q[2], -q[3]};
+  const double qc[4] = { q[0], -q[1], -q[2], -q[3] };
   mr_pose_rotate(qc, v, out);
 }
 
 void mr_pose_apply(const mr_pose *p, const double local[3], double world[3]) {
   double r[3];
   mr_pose_rotate(p->orientation, local, r);
-  for (int k = 0; k < 3; k++)
-    world[k] = p->position[k] + r[k];
+  for (int k = 0; k < 3; k++) world[k] = p->position[k] + r[k];
 }
 
 /* Hamilton product a b. */
 static void quat_mul(const double a[4], const double b[4], double out[4]) {
-  double r[4] = {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-                 a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-                 a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-                 a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+  double r[4] = { a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                  a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                  a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                  a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0] };
   memcpy(out, r, sizeof r);
 }
 
@@ -73,12 +70,10 @@ static double short_way(const double q0[4], const double q1_in[4], double q1[4])
   memcpy(q1, q1_in, 4 * sizeof *q1);
   double dot = q0[0] * q1[0] + q0[1] * q1[1] + q0[2] * q1[2] + q0[3] * q1[3];
   if (dot < 0) {
-    for (int k = 0; k < 4; k++)
-      q1[k] = -q1[k];
+    for (int k = 0; k < 4; k++) q1[k] = -q1[k];
     dot = -dot;
   }
-  if (dot > 1)
-    dot = 1;
+  if (dot > 1) dot = 1;
   return acos(dot);
 }
 
@@ -103,10 +98,8 @@ mr_pose mr_pose_interpolate(const mr_pose *from, const mr_pose *to, double s) {
     o.orientation[k] = a * q0[k] + b * q1[k];
     n2 += o.orientation[k] * o.orientation[k];
   }
-  for (int k = 0; k < 4; k++)
-    o.orientation[k] /= sqrt(n2);
-  for (int k = 0; k < 3; k++)
-    o.position[k] = (1 - s) * from->position[k] + s * to->position[k];
+  for (int k = 0; k < 4; k++) o.orientation[k] /= sqrt(n2);
+  for (int k = 0; k < 3; k++) o.position[k] = (1 - s) * from->position[k] + s * to->position[k];
   return o;
 }
 
@@ -116,15 +109,13 @@ double mr_pose_turn(const double q0[4], const double q1_in[4], double axis[3]) {
   double q1[4];
   double theta = short_way(q0, q1_in, q1);
   axis[0] = axis[1] = axis[2] = 0.0;
-  if (theta < 1e-9)
-    return 0.0;
-  double r[3] = {-q1[0] * q0[1] + q1[1] * q0[0] - q1[2] * q0[3] + q1[3] * q0[2],
-                 -q1[0] * q0[2] + q1[1] * q0[3] + q1[2] * q0[0] - q1[3] * q0[1],
-                 -q1[0] * q0[3] - q1[1] * q0[2] + q1[2] * q0[1] + q1[3] * q0[0]};
+  if (theta < 1e-9) return 0.0;
+  double r[3] = { -q1[0] * q0[1] + q1[1] * q0[0] - q1[2] * q0[3] + q1[3] * q0[2],
+                  -q1[0] * q0[2] + q1[1] * q0[3] + q1[2] * q0[0] - q1[3] * q0[1],
+                  -q1[0] * q0[3] - q1[1] * q0[2] + q1[2] * q0[1] + q1[3] * q0[0] };
   double vn = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
   if (vn > 0)
-    for (int k = 0; k < 3; k++)
-      axis[k] = r[k] / vn;
+    for (int k = 0; k < 3; k++) axis[k] = r[k] / vn;
   return 2 * theta;
 }
 
