@@ -42,6 +42,10 @@ with tempfile.TemporaryDirectory() as tmp:
     a, b = open(h1).read(), open(h2).read()
     check("#define GP_SAMPLE_LEN 14u" in a and "#define GP_SAMPLE_LEN 17u" in b,
           "the generated header follows the definition (SAMPLE 14 -> 17 bytes)")
+    check("#define GP_SAMPLE_CH_COUNT 5u" in a and "#define GP_SAMPLE_CH_BITS 12u" in a
+          and "#define GP_SAMPLE_CH_MAX 0xFFFu" in a and "#define GP_SAMPLE_CH_BITS 16u" in b
+          and "#define GP_SAMPLE_CH_MAX 0xFFFFu" in b,
+          "the channel count and ADC width come from the definition's SAMPLE.ch")
     renamed = variant("renamed.def", text.replace("  adc_bits       u8", "  adc_resolution u8", 1))
     check(run(renamed, "--hash").stdout.strip() != base, "renaming a field changes the hash")
     value = variant("value.def", text.replace("BAD_STATE       4", "BAD_STATE       6", 1))

@@ -37,7 +37,7 @@ static size_t put_info(const gg_stream *s, uint32_t announced, uint8_t *out) {
   memcpy(m.u.info.uid, s->cfg.uid, sizeof m.u.info.uid);
   m.u.info.hand = s->cfg.hand;
   m.u.info.n_channels = GG_CHANNELS;
-  m.u.info.adc_bits = 12;
+  m.u.info.adc_bits = GP_SAMPLE_CH_BITS;
   m.u.info.frame_rate_hz = s->cfg.rate_hz >= 65535 ? 65535 : (uint16_t)lround(s->cfg.rate_hz);
   m.u.info.sample_rate_hz = m.u.info.frame_rate_hz;
   m.u.info.baud = s->cfg.baud;
@@ -51,9 +51,10 @@ static size_t put_info(const gg_stream *s, uint32_t announced, uint8_t *out) {
 
 static void truth_line(gg_stream *s, const gp_sample *x) {
   s->samples_intact++;
-  if (s->truth)
-    fprintf(s->truth, "sample %u %u %u %u %u %u %u\n", x->seq, x->t_us, x->ch[0], x->ch[1],
-            x->ch[2], x->ch[3], x->ch[4]);
+  if (!s->truth) return;
+  fprintf(s->truth, "sample %u %u", x->seq, x->t_us);
+  for (int i = 0; i < GG_CHANNELS; i++) fprintf(s->truth, " %u", x->ch[i]);
+  fputc('\n', s->truth);
 }
 
 /* An intact, in-order SAMPLE: the decoder now counts every loss before it. */
