@@ -22,6 +22,7 @@ void fw_core_init(fw_core *c) {
   c->frame_phase = 0;
   c->info_phase = 0;
   c->seq = 0;
+  c->seq_started = 0;
   for (unsigned i = 0; i < FW_N_CH; i++) c->ch[i] = 0;
   c->pending_flags = 0;
   c->button = 0;
@@ -96,6 +97,10 @@ static void send_sample(fw_core *c) {
   uint8_t flags = c->pending_flags;
   if (c->cal.state == GP_CAL_VALID) flags |= GP_SAMPLE_F_CALIBRATED;
   if (c->button) flags |= GP_SAMPLE_F_BUTTON;
+  /* The host tells a reset from loss or reordering by this flag, whatever
+   * number the old sequence had reached (SPEC.md, "Sequence check"). */
+  if (!c->seq_started) flags |= GP_SAMPLE_F_START;
+  c->seq_started = 1;
   uint8_t wire[GP_MAX_WIRE];
   /* The device timestamp is the sampling tick's, not the time the main loop
    * got to it: loop latency never shows as jitter. */

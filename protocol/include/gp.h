@@ -103,11 +103,16 @@ typedef struct gp_decoder {
   uint8_t peer_known;
   uint8_t have_seq;
   uint8_t overflow;       /* discarding until the next delimiter */
+  uint8_t in_step;        /* a 0x00 has been seen: frames start where they should */
+  uint8_t seq_high_start; /* the frame at seq_high carried GP_SAMPLE_F_START */
   uint16_t seq_high;      /* highest SAMPLE sequence number seen */
+  uint32_t seq_high_t_us; /* and its device time */
   uint64_t seq_seen;      /* bit i: seq_high - i was seen */
   size_t len;
   uint8_t buf[GP_MAX_WIRE];
-  uint8_t raw[GP_MAX_FRAME];
+  /* GP_MAX_WIRE bytes without a delimiter decode to at most one byte more
+   * than GP_MAX_FRAME: room for a frame from another definition. */
+  uint8_t raw[GP_MAX_WIRE - 1u];
   gp_counters c;
 } gp_decoder;
 

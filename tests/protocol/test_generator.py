@@ -33,15 +33,15 @@ with tempfile.TemporaryDirectory() as tmp:
         return p
 
     widened = variant("widened.def", text.replace("ch         u12[5]", "ch         u16[5]", 1)
-                      .replace("flags      u4 ", "flags      u8 ", 1))
+                      .replace("flags      u12", "flags      u16", 1))
     r = run(widened, "--hash")
     check(r.returncode == 0 and r.stdout.strip() != base, "widening a SAMPLE field changes the hash")
     h1, h2 = os.path.join(tmp, "a.h"), os.path.join(tmp, "b.h")
     run(definition, "--header", h1)
     run(widened, "--header", h2)
     a, b = open(h1).read(), open(h2).read()
-    check("#define GP_SAMPLE_LEN 14u" in a and "#define GP_SAMPLE_LEN 17u" in b,
-          "the generated header follows the definition (SAMPLE 14 -> 17 bytes)")
+    check("#define GP_SAMPLE_LEN 15u" in a and "#define GP_SAMPLE_LEN 18u" in b,
+          "the generated header follows the definition (SAMPLE 15 -> 18 bytes)")
     check("#define GP_SAMPLE_CH_COUNT 5u" in a and "#define GP_SAMPLE_CH_BITS 12u" in a
           and "#define GP_SAMPLE_CH_MAX 0xFFFu" in a and "#define GP_SAMPLE_CH_BITS 16u" in b
           and "#define GP_SAMPLE_CH_MAX 0xFFFFu" in b,
@@ -52,7 +52,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check(run(value, "--hash").stdout.strip() != base, "changing a named value changes the hash")
     comment = variant("comment.def", "# an added comment\n" + text)
     check(run(comment, "--hash").stdout.strip() == base, "comments do not change the hash")
-    odd = variant("odd.def", text.replace("flags      u4 ", "flags      u3 ", 1))
+    odd = variant("odd.def", text.replace("flags      u12", "flags      u11", 1))
     r = run(odd, "--hash")
     check(r.returncode != 0 and "not whole bytes" in r.stderr and "odd.def:" in r.stderr,
           "a message that is not whole bytes is refused with file:line")

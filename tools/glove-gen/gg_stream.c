@@ -170,6 +170,8 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
   for (int i = 0; i < GG_CHANNELS; i++)
     if (m.u.sample.ch[i] == 0 || m.u.sample.ch[i] == GG_ADC_MAX)
       m.u.sample.flags |= GP_SAMPLE_F_CLIPPED;
+  /* Like the firmware, the first SAMPLE says the glove has just started. */
+  if (s->slot == 0) m.u.sample.flags |= GP_SAMPLE_F_START;
 
   if (s->stall_left) {
     s->stall_left--;
