@@ -15,9 +15,13 @@ static fw_rx_result frame_end(fw_rx *rx, fw_rx_frame *out) {
   /* A foreign spec hash fails here too: its CRC was seeded differently. */
   if (crc != gp_frame_crc(GP_SPEC_HASH, raw, body)) return FW_RX_CORRUPT;
   out->cmd = raw[0];
-  out->tag = body > 1 ? raw[1] : 0; /* every command starts with its tag */
+  /* Every command starts with its tag; one sent without a payload has none,
+   * and SPEC.md says its NACK carries 0. */
+  out->tag = body > 1 ? raw[1] : 0;
   const gp_msg_desc *d = gp_msg_find(raw[0]);
-  if (d != 0 && d->dir == GP_DIR_DEVICE) return FW_RX_ECHO;
+  /* The glove-to-host range, defined or not, is never answered: it is our
+   * own output looped back, or another glove's (SPEC.md, section 9). */
+  if ((d != 0 && d->dir == GP_DIR_DEVICE) || raw[0] < FW_RX_FIRST_HOST_TYPE) return FW_RX_ECHO;
   if (d == 0) {
     out->reason = GP_NACK_UNKNOWN_COMMAND;
     return FW_RX_NACK;
