@@ -138,16 +138,18 @@ static int info_due(const gg_stream *s) {
 }
 
 /* Faults stay off the first slot (the decoder has no sequence yet) and the
- * last two (a loss is only counted when a later frame arrives; a reorder
- * needs the next one). */
+ * last two (a loss is only counted when a later frame arrives). A reorder
+ * also stays off the slot before them: its frame would go out after the
+ * second-to-last one, faulting that slot too. */
 static int pick_fault(gg_stream *s) {
   double u, acc = 0;
+  int last = s->cfg.count != UINT64_MAX;
   if (s->force_intact || s->slot == 0) return -1;
-  if (s->cfg.count != UINT64_MAX && s->slot + 2 >= s->cfg.count) return -1;
+  if (last && s->slot + 2 >= s->cfg.count) return -1;
   u = gg_rng_unit(&s->rng);
   for (int f = 0; f < GG_F_COUNT; f++) {
     acc += s->cfg.rates[f];
-    if (u < acc) return f;
+    if (u < acc) return f == GG_F_REORDER && last && s->slot + 3 >= s->cfg.count ? -1 : f;
   }
   return -1;
 }
