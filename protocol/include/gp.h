@@ -97,6 +97,20 @@ typedef struct gp_counters {
  * from a duplicate. */
 #define GP_SEQ_WINDOW 64u
 
+/* A run longer than GP_MAX_WIRE that may still be a frame from another
+ * definition (SPEC.md, "Receiver rules" 2): decoded as it arrives, keeping
+ * only what rules 4 and 5 need, so memory stays bounded at any length. */
+typedef struct gp_long_frame {
+  uint8_t active;
+  uint8_t left;           /* data bytes left in the current COBS group */
+  uint8_t zero_due;       /* a zero goes before the next group */
+  uint8_t head[6];        /* type, proto_major, spec_hash */
+  uint8_t tail[4];        /* the newest four raw bytes, by raw index mod 4 */
+  uint64_t n;             /* raw bytes so far */
+  uint32_t crc_unseeded;  /* CRC-32C of the raw bytes before the newest four */
+  uint32_t crc_peer;      /* the same, seeded with the peer's hash */
+} gp_long_frame;
+
 typedef struct gp_decoder {
   uint32_t spec_hash;     /* the host's */
   uint32_t peer_hash;     /* the hash a foreign INFO announced */
@@ -113,6 +127,7 @@ typedef struct gp_decoder {
   /* GP_MAX_WIRE bytes without a delimiter decode to at most one byte more
    * than GP_MAX_FRAME: room for a frame from another definition. */
   uint8_t raw[GP_MAX_WIRE - 1u];
+  gp_long_frame lf;
   gp_counters c;
 } gp_decoder;
 

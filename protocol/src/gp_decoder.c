@@ -50,6 +50,16 @@ static int crc_ok(uint32_t hash, const uint8_t *raw, size_t len) {
  * (SPEC.md, "Receiver rules" 4 and 5). INFO is read whatever spec the sender
  * was built from: its CRC does not cover the spec hash, and its first two
  * fields never move (SPEC.md, "Versioning"). */
+static void announce_peer(gp_decoder *d, uint8_t proto_major, uint32_t announced, gp_msg *out) {
+  d->peer_hash = announced;
+  d->peer_known = 1;
+  gp_msg zero = {0};
+  *out = zero;
+  out->type = GP_INFO;
+  out->u.info.proto_major = proto_major;
+  out->u.info.spec_hash = announced;
+}
+
 static int foreign_info(gp_decoder *d, const uint8_t *raw, size_t len, gp_msg *out) {
   const size_t frozen = 1u + 1u + 4u + GP_CRC_LEN;
   if (raw[0] != GP_UNSEEDED_TYPE || len < frozen || !crc_ok(0, raw, len))
@@ -57,19 +67,78 @@ static int foreign_info(gp_decoder *d, const uint8_t *raw, size_t len, gp_msg *o
   uint32_t announced = load_le32(raw + 2);
   if (announced == d->spec_hash)
     return 0;
-  d->peer_hash = announced;
-  d->peer_known = 1;
-  gp_msg zero = {0};
-  *out = zero;
-  if (len == 1u + GP_INFO_LEN + GP_CRC_LEN) {
+  /* Another layout: only the frozen prefix means anything, unless it has
+   * our INFO's length. */
+  announce_peer(d, raw[1], announced, out);
+  if (len == 1u + GP_INFO_LEN + GP_CRC_LEN)
     gp_payload_unpack(raw[0], raw + 1, GP_INFO_LEN, out);
-  } else {
-    /* Another layout: only the frozen prefix means anything. */
-    out->type = GP_INFO;
-    out->u.info.proto_major = raw[1];
-    out->u.info.spec_hash = announced;
-  }
   return 1;
+}
+
+/* --- runs past GP_MAX_WIRE (rule 2) --------------------------------------- */
+
+static void long_raw(gp_long_frame *l, uint8_t x) {
+  if (l->n < sizeof l->head)
+    l->head[l->n] = x;
+  uint8_t *slot = &l->tail[l->n % GP_CRC_LEN];
+  if (l->n >= GP_CRC_LEN) {
+    /* The byte four back leaves the tail: it is not part of the CRC. */
+    l->crc_unseeded = gp_crc32c(l->crc_unseeded, slot, 1);
+    l->crc_peer = gp_crc32c(l->crc_peer, slot, 1);
+  }
+  *slot = x;
+  l->n++;
+}
+
+static void long_byte(gp_long_frame *l, uint8_t b) {
+  if (l->left == 0) { /* a COBS code byte */
+    if (l->zero_due)
+      long_raw(l, 0);
+    l->left = (uint8_t)(b - 1u);
+    l->zero_due = b != 0xFFu;
+    return;
+  }
+  long_raw(l, b);
+  l->left--;
+}
+
+/* Called when the buffer is full and one more byte came: follow the run if
+ * it may still be an INFO or, once a peer is known, any frame of the peer's;
+ * anything else is oversize at once. */
+static int long_start(gp_decoder *d) {
+  int info = d->buf[0] >= 2u && d->buf[1] == GP_UNSEEDED_TYPE;
+  if (!info && !d->peer_known)
+    return 0;
+  gp_long_frame zero = {0};
+  d->lf = zero;
+  d->lf.active = 1;
+  uint8_t seed[4] = {(uint8_t)d->peer_hash, (uint8_t)(d->peer_hash >> 8),
+                     (uint8_t)(d->peer_hash >> 16), (uint8_t)(d->peer_hash >> 24)};
+  d->lf.crc_peer = gp_crc32c(0, seed, sizeof seed);
+  for (size_t i = 0; i < d->len; i++)
+    long_byte(&d->lf, d->buf[i]);
+  d->len = 0;
+  return 1;
+}
+
+static gp_event long_end(gp_decoder *d, gp_msg *out) {
+  gp_long_frame *l = &d->lf;
+  l->active = 0;
+  if (l->left != 0)
+    return GP_EV_OVERSIZE; /* a code byte ran past the end */
+  uint32_t got = 0;
+  for (unsigned k = 0; k < GP_CRC_LEN; k++)
+    got |= (uint32_t)l->tail[(l->n + k) % GP_CRC_LEN] << (8u * k);
+  if (l->head[0] == GP_UNSEEDED_TYPE) {
+    uint32_t announced = load_le32(l->head + 2);
+    if (l->crc_unseeded == got && announced != d->spec_hash) {
+      announce_peer(d, l->head[1], announced, out);
+      return GP_EV_SPEC_MISMATCH;
+    }
+  } else if (d->peer_known && l->crc_peer == got) {
+    return GP_EV_SPEC_MISMATCH;
+  }
+  return GP_EV_OVERSIZE;
 }
 
 /* Sequence accounting over a window of GP_SEQ_WINDOW numbers behind the
@@ -181,9 +250,17 @@ size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out
     uint8_t b = data[i];
     d->c.bytes++;
     if (b != 0) {
+      if (d->lf.active) {
+        long_byte(&d->lf, b);
+        continue;
+      }
       if (d->overflow)
         continue;
       if (d->len == sizeof d->buf) {
+        if (long_start(d)) {
+          long_byte(&d->lf, b);
+          continue;
+        }
         /* Report an oversize frame once, as soon as it is certain, then
          * drop its bytes up to the next delimiter. */
         d->overflow = 1;
@@ -194,6 +271,12 @@ size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out
       }
       d->buf[d->len++] = b;
       continue;
+    }
+    if (d->lf.active) {
+      *ev = long_end(d, out);
+      d->in_step = 1;
+      count(d, *ev);
+      return i + 1;
     }
     if (d->overflow) {
       d->overflow = 0;

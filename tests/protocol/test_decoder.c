@@ -293,11 +293,16 @@ static void every_byte_is_counted_and_nothing_read_out_of_bounds(void **state) {
   assert_int_equal(t.ev[GP_EV_FRAME], 3);
 }
 
+/* Payload lengths the foreign-frame tests reach: far past GP_MAX_WIRE, and
+ * past COBS's 254-byte groups. */
+#define LONGEST 700u
+
 /* A raw frame of any type and payload, CRC'd with hash (0: unseeded), framed
  * after a delimiter so the decoder is in step. */
 static size_t raw_wire(uint8_t type, const uint8_t *payload, size_t plen, uint32_t hash,
                        uint8_t *w, size_t cap) {
-  uint8_t raw[300];
+  uint8_t raw[LONGEST + 8];
+  assert_true(plen <= LONGEST);
   raw[0] = type;
   memcpy(raw + 1, payload, plen);
   uint32_t crc = hash ? gp_frame_crc(hash, raw, 1 + plen) : gp_crc32c(0, raw, 1 + plen);
@@ -326,13 +331,14 @@ static gp_event one_frame(gp_decoder *d, const uint8_t *w, size_t n, gp_msg *out
 static void a_foreign_info_of_every_length_is_a_spec_mismatch(void **state) {
   (void)state;
   const uint32_t foreign = 0xDEADBEEFu;
-  /* Payloads from the frozen prefix (5 bytes) up to the longest a receiver
-   * decodes: 58 raw bytes, one more than any frame of our definition. */
-  for (size_t plen = 5; 1 + plen + 4 <= GP_MAX_WIRE - 1u; plen++) {
-    uint8_t p[64] = {GP_PROTO_MAJOR, 0xEF, 0xBE, 0xAD, 0xDE};
+  /* Payloads from the frozen prefix (5 bytes) through the 58 raw bytes a
+   * receiver decodes whole, and on past the wire limit, where it follows the
+   * run with bounded memory. Every 7th byte is 0, so COBS groups vary. */
+  for (size_t plen = 5; plen <= LONGEST; plen++) {
+    uint8_t p[LONGEST] = {GP_PROTO_MAJOR, 0xEF, 0xBE, 0xAD, 0xDE};
     for (size_t i = 5; i < plen; i++)
-      p[i] = (uint8_t)(i * 37u + 1u);
-    uint8_t w[GP_MAX_WIRE + 8];
+      p[i] = i % 7u == 0 ? 0 : (uint8_t)(i * 37u + 1u);
+    uint8_t w[2 * LONGEST];
     size_t n = raw_wire(GP_INFO, p, plen, 0, w, sizeof w);
     gp_decoder d;
     gp_decoder_init(&d, GP_SPEC_HASH);
@@ -348,17 +354,17 @@ static void a_foreign_info_of_every_length_is_a_spec_mismatch(void **state) {
 static void a_foreign_sample_of_every_length_is_a_spec_mismatch(void **state) {
   (void)state;
   const uint32_t foreign = 0xDEADBEEFu;
-  uint8_t w[GP_MAX_WIRE + 8];
+  uint8_t w[2 * LONGEST];
   uint8_t p[64] = {GP_PROTO_MAJOR, 0xEF, 0xBE, 0xAD, 0xDE};
-  for (size_t plen = 0; 1 + plen + 4 <= GP_MAX_WIRE - 1u; plen++) {
+  for (size_t plen = 0; plen <= LONGEST; plen++) {
     gp_decoder d;
     gp_decoder_init(&d, GP_SPEC_HASH);
     gp_msg out;
     assert_int_equal(one_frame(&d, w, raw_wire(GP_INFO, p, 5, 0, w, sizeof w), &out),
                      GP_EV_SPEC_MISMATCH);
-    uint8_t q[64];
+    uint8_t q[LONGEST];
     for (size_t i = 0; i < plen; i++)
-      q[i] = (uint8_t)(i * 11u + 3u);
+      q[i] = i % 5u == 0 ? 0 : (uint8_t)(i * 11u + 3u);
     assert_int_equal(one_frame(&d, w, raw_wire(GP_SAMPLE, q, plen, foreign, w, sizeof w), &out),
                      GP_EV_SPEC_MISMATCH);
     assert_int_equal(d.c.spec_mismatch, 2);
@@ -387,13 +393,46 @@ static void a_58_byte_raw_frame_is_judged_as_the_spec_says(void **state) {
     assert_int_equal(one_frame(&d, w, n, &out), GP_EV_FRAMING_ERROR);
     assert_int_equal(d.c.oversize + d.c.unknown_type + d.c.frames, 0);
   }
-  /* One byte more on the wire is oversize. */
+  /* One byte more on the wire is oversize, for our own INFO too, and for a
+   * run past the limit whose CRC is good under nobody's hash. */
   uint8_t w[GP_MAX_WIRE + 8];
-  size_t n = raw_wire(0x7E, p, plen + 1, GP_SPEC_HASH, w, sizeof w);
+  gp_decoder d;
+  gp_msg out;
+  const uint8_t longer[] = {0x7E, GP_INFO};
+  for (size_t k = 0; k < sizeof longer; k++) {
+    size_t n = raw_wire(longer[k], p, plen + 1, GP_SPEC_HASH, w, sizeof w);
+    gp_decoder_init(&d, GP_SPEC_HASH);
+    assert_int_equal(one_frame(&d, w, n, &out), GP_EV_OVERSIZE);
+    assert_int_equal(d.c.oversize, 1);
+    assert_int_equal(d.c.spec_mismatch, 0);
+  }
+}
+
+static void a_long_run_that_is_no_foreign_frame_is_one_oversize(void **state) {
+  (void)state;
+  /* Starts like an INFO, a peer is known, and the bytes run on for 500:
+   * followed to the delimiter, then one oversize, and the stream goes on. */
+  uint8_t w[GP_MAX_WIRE + 8];
+  uint8_t p[8] = {GP_PROTO_MAJOR, 0xEF, 0xBE, 0xAD, 0xDE};
   gp_decoder d;
   gp_decoder_init(&d, GP_SPEC_HASH);
   gp_msg out;
-  assert_int_equal(one_frame(&d, w, n, &out), GP_EV_OVERSIZE);
+  size_t n_info = raw_wire(GP_INFO, p, 5, 0, w, sizeof w);
+  assert_int_equal(one_frame(&d, w, n_info, &out), GP_EV_SPEC_MISMATCH);
+  uint8_t junk[502];
+  memset(junk, 0x37, sizeof junk);
+  junk[0] = 0xFF;
+  junk[1] = GP_INFO;
+  junk[sizeof junk - 1] = 0;
+  tally t = {0};
+  feed(&d, junk, sizeof junk, &t);
+  assert_int_equal(d.c.oversize, 1);
+  assert_int_equal(d.c.spec_mismatch, 1);
+  uint16_t seqs[] = {1, 2};
+  send_samples(&d, &t, seqs, 2);
+  assert_int_equal(t.ev[GP_EV_FRAME], 2);
+  uint8_t one[GP_MAX_WIRE];
+  assert_int_equal(d.c.bytes, n_info + sizeof junk + 2 * sample(1, GP_SPEC_HASH, one));
 }
 
 static void a_sample_one_byte_long_with_a_valid_crc_is_a_framing_error(void **state) {
@@ -525,6 +564,7 @@ int main(void) {
       cmocka_unit_test(a_foreign_info_of_every_length_is_a_spec_mismatch),
       cmocka_unit_test(a_foreign_sample_of_every_length_is_a_spec_mismatch),
       cmocka_unit_test(a_58_byte_raw_frame_is_judged_as_the_spec_says),
+      cmocka_unit_test(a_long_run_that_is_no_foreign_frame_is_one_oversize),
       cmocka_unit_test(a_sample_one_byte_long_with_a_valid_crc_is_a_framing_error),
       cmocka_unit_test(a_four_byte_frame_of_unknown_type_is_a_framing_error),
       cmocka_unit_test(a_cut_off_info_is_a_framing_error_not_a_crc_error),

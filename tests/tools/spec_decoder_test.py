@@ -100,6 +100,7 @@ class Decoder:
         self.seen = set()  # sequence numbers seen, high and the 63 below it
         self.buf = bytearray()
         self.discarding = False
+        self.following = False  # rule 2's exception: a long run that may be foreign
         self.in_step = False  # a 0x00 has been seen (rule 1)
         self.high_start = None  # (t_us) of the frame at high, if it carried START
         self.c = dict.fromkeys(("frames crc_errors framing_errors oversize unknown_type "
@@ -113,7 +114,11 @@ class Decoder:
             if b:
                 if self.discarding:
                     continue
-                if len(self.buf) == MAX_WIRE:  # rule 2
+                if len(self.buf) == MAX_WIRE and not self.following:  # rule 2
+                    if (self.buf[0] >= 2 and self.buf[1] in UNSEEDED) or self.peer is not None:
+                        self.following = True
+                        self.buf.append(b)
+                        continue
                     self.discarding, self.buf = True, bytearray()
                     self.c["oversize"] += 1
                     events.append(("oversize", None))
@@ -122,6 +127,14 @@ class Decoder:
                 continue
             if self.discarding:
                 self.discarding = False
+            elif self.following:
+                self.following = False
+                ev = self.frame(bytes(self.buf))
+                if ev[0] != "spec_mismatch":
+                    self.c[ev[0]] -= 1
+                    ev = self.count("oversize")
+                events.append(ev)
+                self.buf = bytearray()
             elif self.buf:  # rule 1: empty frames are ignored
                 ev = self.frame(bytes(self.buf))
                 if not self.in_step and ev[0] in ("framing_errors", "crc_errors"):
@@ -260,6 +273,36 @@ with tempfile.TemporaryDirectory() as tmp:
     check(got == d.c and d.c["seq_restarts"] >= 8 and d.c["reordered"] >= 5
           and d.c["duplicates"] >= 3,
           f"sequence edge cases count as the page says: {d.c}")
+
+# --- another definition's frames of any length, past the wire limit too -----
+
+
+def foreign_frame(t, payload, seed_hash):
+    body = bytes([t]) + payload
+    seed = b"" if t in UNSEEDED else seed_hash.to_bytes(4, "little")
+    return cobs_encode(body + crc32c(seed + body).to_bytes(4, "little"))
+
+
+FOREIGN = 0x0BADF00D
+prefix = bytes([1]) + FOREIGN.to_bytes(4, "little")
+stream = b"\0" + b"".join(
+    foreign_frame(names["INFO"], prefix + bytes(range(n % 256)) * (1 + n // 256), FOREIGN)
+    for n in (5, 53, 54, 300, 700))
+stream += b"".join(foreign_frame(names["SAMPLE"], bytes([7]) * n, FOREIGN) for n in (0, 15, 60, 400))
+stream += b"\xff" + bytes([names["INFO"]]) + b"\x37" * 300 + b"\0"  # long, foreign to nobody
+stream += sample(5) + sample(6)
+with tempfile.TemporaryDirectory() as tmp:
+    path, counters = os.path.join(tmp, "long.bin"), os.path.join(tmp, "long.c")
+    with open(path, "wb") as f:
+        f.write(stream)
+    r = subprocess.run([glove_dump, "-q", "--keep-going", "--counters", counters, path],
+                       capture_output=True)
+    got = {k: int(v) for k, v in re.findall(r"^(\w+)=(\d+)$", open(counters).read(), re.M)}
+    d = Decoder(HASH)
+    d.feed(stream)
+    check(got == d.c and d.c["spec_mismatch"] == 9 and d.c["oversize"] == 1
+          and d.c["frames"] == 2 and d.c["framing_errors"] + d.c["crc_errors"] == 0,
+          f"another definition's INFO and SAMPLE of any length are spec mismatches: {d.c}")
 
 # --- fault streams: the page's decoder, the C decoder and the truth agree ---
 with tempfile.TemporaryDirectory() as tmp:
