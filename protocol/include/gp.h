@@ -79,17 +79,20 @@ typedef enum gp_event {
   GP_EV_SPEC_MISMATCH,  /* a frame from a device built from another spec (INFO: *out filled) */
 } gp_event;
 
+/* SPEC.md, "Receiver rules", names each counter and which frames count where.
+ * Empty frames, and a receiver's tail before its first 0x00, count only in
+ * bytes. */
 typedef struct gp_counters {
-  uint32_t frames;         /* valid frames delivered (GP_EV_FRAME + GP_EV_FRAME_LATE) */
+  uint32_t frames;         /* delivered: GP_EV_FRAME + GP_EV_FRAME_LATE (restarts included) */
   uint32_t crc_errors;
   uint32_t framing_errors;
   uint32_t oversize;
   uint32_t unknown_type;
   uint32_t spec_mismatch;
   uint32_t lost;           /* SAMPLE sequence numbers skipped and never seen */
-  uint32_t duplicates;
+  uint32_t duplicates;     /* SAMPLEs already seen; not in frames */
   uint32_t reordered;      /* late SAMPLEs (each was first counted as lost, then taken back) */
-  uint32_t seq_restarts;   /* jumps too large to be loss or reordering (device reset) */
+  uint32_t seq_restarts;   /* SAMPLEs that start a new sequence (START, or a jump too far back) */
   uint64_t bytes;          /* every byte fed */
 } gp_counters;
 

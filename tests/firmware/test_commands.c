@@ -377,6 +377,28 @@ static void firmware_commands_cmd_errors_counts_each_refused_frame_once(void **s
   assert_int_equal(core.cmd_errors - before, 6);
 }
 
+static void firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost(void **state) {
+  (void)state;
+  /* About 25 frames: without the START flag, the new 0 would look like a
+   * frame from 25 back, a duplicate. */
+  fake_run(&core, 100);
+  fake_decode();
+  size_t first = fake_find(0, GP_SAMPLE);
+  assert_true(first < frames.n);
+  assert_true(frames.msg[first].u.sample.flags & GP_SAMPLE_F_START);
+  for (size_t i = first + 1; i < frames.n; i++)
+    if (frames.msg[i].type == GP_SAMPLE)
+      assert_int_equal(frames.msg[i].u.sample.flags & GP_SAMPLE_F_START, 0);
+  assert_int_equal(frames.c.duplicates + frames.c.seq_restarts, 0);
+  /* A reset: the core starts again, the line and the host stay. */
+  fw_core_init(&core);
+  fake_run(&core, 100);
+  fake_decode();
+  assert_int_equal(frames.c.seq_restarts, 1);
+  assert_int_equal(frames.c.lost, 0);
+  assert_int_equal(frames.c.reordered + frames.c.duplicates, 0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(firmware_commands_ping_and_info, setup),
@@ -390,6 +412,7 @@ int main(void) {
       cmocka_unit_test_setup(firmware_commands_set_rate_keeping_the_baud_is_followed_by_info, setup),
       cmocka_unit_test_setup(firmware_commands_cal_start_save_and_clear_send_info_at_once, setup),
       cmocka_unit_test_setup(firmware_commands_cmd_errors_counts_each_refused_frame_once, setup),
+      cmocka_unit_test_setup(firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -282,6 +282,7 @@ typedef struct run_result {
   gp_decoder dec;
   uint16_t seqs[512]; /* SAMPLEs delivered, in order */
   size_t n_seqs;
+  unsigned start_flags; /* SAMPLEs delivered with GP_SAMPLE_F_START */
   gg_stream s;
 } run_result;
 
@@ -290,8 +291,10 @@ static void decode_into(run_result *r, const uint8_t *p, size_t n) {
     gp_msg m;
     gp_event ev;
     size_t used = gp_decoder_feed(&r->dec, p, n, &m, &ev);
-    if ((ev == GP_EV_FRAME || ev == GP_EV_FRAME_LATE) && m.type == GP_SAMPLE && r->n_seqs < 512)
+    if ((ev == GP_EV_FRAME || ev == GP_EV_FRAME_LATE) && m.type == GP_SAMPLE && r->n_seqs < 512) {
+      if (m.u.sample.flags & GP_SAMPLE_F_START) r->start_flags |= 1u << (r->n_seqs ? 1 : 0);
       r->seqs[r->n_seqs++] = m.u.sample.seq;
+    }
     p += used;
     n -= used;
   }
@@ -370,6 +373,8 @@ static void tools_stream_never_faults_the_first_or_the_last_two_slots(void **sta
      * intact and in order, as tools/README.md says. */
     assert_true(r->n_seqs >= 3);
     assert_int_equal(r->seqs[0], 0);
+    /* Like a glove that has just booted: START on the first SAMPLE only. */
+    assert_int_equal(r->start_flags, 1);
     assert_int_equal(r->seqs[r->n_seqs - 2], count - 2);
     assert_int_equal(r->seqs[r->n_seqs - 1], count - 1);
     assert_true(r->s.injected[f] > 0);
