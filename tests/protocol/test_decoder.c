@@ -37,7 +37,7 @@ static size_t sample(uint16_t seq, uint32_t hash, uint8_t *wire) {
   m.type = GP_SAMPLE;
   m.u.sample.seq = seq;
   m.u.sample.t_us = 4000u * seq;
-  for (int i = 0; i < 5; i++)
+  for (unsigned i = 0; i < GP_SAMPLE_CH_COUNT; i++)
     m.u.sample.ch[i] = (uint16_t)(seq * 7 + i);
   return gp_encode(&m, hash, wire, GP_MAX_WIRE);
 }
@@ -548,6 +548,38 @@ static void a_copy_of_the_start_frame_is_a_duplicate_not_a_restart(void **state)
   assert_int_equal(d.c.frames, 2);
 }
 
+static void joining_a_stream_mid_way_costs_no_error_and_empty_frames_count_nowhere(void **state) {
+  (void)state;
+  uint8_t stream[8 * GP_MAX_WIRE];
+  size_t n = 0;
+  for (uint16_t s = 0; s < 4; s++)
+    n += sample(s, GP_SPEC_HASH, stream + n);
+  size_t first = n / 4;
+  /* Joined at every byte of the first frame: its tail is no error, and the
+   * next three frames arrive. */
+  for (size_t k = 1; k < first; k++) {
+    gp_decoder d;
+    gp_decoder_init(&d, GP_SPEC_HASH);
+    tally t = {0};
+    feed(&d, stream + k, n - k, &t);
+    assert_int_equal(d.c.framing_errors + d.c.crc_errors + d.c.oversize, 0);
+    assert_int_equal(d.c.frames, 3);
+    assert_int_equal(d.c.bytes, n - k);
+  }
+  /* Empty frames between and around frames: only bytes counts them. */
+  gp_decoder d;
+  gp_decoder_init(&d, GP_SPEC_HASH);
+  tally t = {0};
+  const uint8_t zeros[5] = {0};
+  feed(&d, zeros, sizeof zeros, &t);
+  feed(&d, stream, n, &t);
+  feed(&d, zeros, sizeof zeros, &t);
+  gp_counters want = {0};
+  want.frames = 4;
+  want.bytes = n + 2 * sizeof zeros;
+  assert_memory_equal(&d.c, &want, sizeof want);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(byte_at_a_time_equals_whole_buffer),
@@ -571,6 +603,7 @@ int main(void) {
       cmocka_unit_test(a_jump_of_exactly_the_window_then_a_late_frame_inside_it_is_reordered),
       cmocka_unit_test(a_restart_from_any_number_is_a_restart_with_nothing_lost),
       cmocka_unit_test(a_copy_of_the_start_frame_is_a_duplicate_not_a_restart),
+      cmocka_unit_test(joining_a_stream_mid_way_costs_no_error_and_empty_frames_count_nowhere),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -143,7 +143,7 @@ static void tools_motion_csv_track_interpolates(void **state) {
   assert_int_equal(ch[0], 500);
   assert_int_equal(ch[1], 100);
   assert_int_equal(ch[3], 500);
-  assert_int_equal(ch[4], (400 + 4095) / 2 + 1); /* 2247.5 rounds up */
+  assert_int_equal(ch[4], (400 + GG_ADC_MAX) / 2 + 1); /* 2247.5 rounds up */
   gg_motion_eval(&m, 5, ch);
   assert_int_equal(ch[0], 1000);
   gg_motion_free(&m);
@@ -397,6 +397,14 @@ static void tools_stream_a_stall_never_swallows_the_last_slots(void **state) {
   assert_int_equal(r->seqs[2], 29);
   assert_int_equal(r->dec.c.lost, 27);
   assert_int_equal(r->s.slot, 30);
+  assert_truth_is_what_the_decoder_counted(r);
+  /* Stopped inside a stall: it swallowed only the slots that were reached,
+   * and the decoder, seeing no later frame, counts none of them lost. */
+  run_stream(r, GG_F_STALL, UINT64_MAX, 10, 100);
+  assert_int_equal(r->s.injected[GG_F_STALL], 1);
+  assert_int_equal(r->s.stall_frames, 10 - 1);
+  assert_int_equal(r->s.slot, 10);
+  assert_int_equal(r->n_seqs, 1);
   assert_truth_is_what_the_decoder_counted(r);
   free(r);
 }

@@ -280,8 +280,11 @@ size_t gg_stream_finish(gg_stream *s, uint8_t *out) {
     s->force_intact = 0;
     s->expect.bytes += n;
   }
-  /* Losses with no later frame to reveal them are never counted. */
+  /* Losses with no later frame to reveal them are never counted, and slots
+   * a stall had yet to swallow never happened. */
   s->lost_pending = 0;
+  s->stall_frames -= s->stall_left;
+  s->stall_left = 0;
   return n;
 }
 
