@@ -3,6 +3,7 @@
 void fw_rx_init(fw_rx *rx) {
   rx->len = 0;
   rx->overflow = 0;
+  rx->in_step = 0;
 }
 
 static fw_rx_result frame_end(fw_rx *rx, fw_rx_frame *out) {
@@ -48,6 +49,10 @@ fw_rx_result fw_rx_byte(fw_rx *rx, uint8_t byte, fw_rx_frame *out) {
     r = FW_RX_NONE; /* an idle delimiter: the host resynchronising */
   else
     r = frame_end(rx, out);
+  /* Before the first 0x00 the glove may have woken in the middle of a
+   * frame: a tail that is no frame is not an error (SPEC.md, rule 1). */
+  if (!rx->in_step && r == FW_RX_CORRUPT && !rx->overflow) r = FW_RX_NONE;
+  rx->in_step = 1;
   rx->len = 0;
   rx->overflow = 0;
   return r;

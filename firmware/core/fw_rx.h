@@ -39,6 +39,7 @@ typedef struct fw_rx_frame {
 typedef struct fw_rx {
   size_t len;
   uint8_t overflow;
+  uint8_t in_step; /* a 0x00 has been seen: frames start where they should */
   uint8_t buf[GP_MAX_WIRE];
 } fw_rx;
 

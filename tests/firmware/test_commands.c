@@ -399,6 +399,20 @@ static void firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost(voi
   assert_int_equal(frames.c.reordered + frames.c.duplicates, 0);
 }
 
+static void firmware_commands_a_tail_before_the_first_delimiter_is_no_error(void **state) {
+  (void)state;
+  /* The tail of a command the glove woke in the middle of. */
+  const uint8_t tail[] = {0x37, 0x42, 0x99, 0x05, 0x00};
+  uint32_t before = core.cmd_errors;
+  fake_rx(tail, sizeof tail);
+  expect_ack(GP_PING, 0x51, NULL);
+  assert_int_equal(core.cmd_errors, before);
+  /* The same bytes once the glove is in step are a corrupt frame. */
+  fake_rx(tail, sizeof tail);
+  fake_run(&core, 20);
+  assert_int_equal(core.cmd_errors, before + 1);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(firmware_commands_ping_and_info, setup),
@@ -413,6 +427,7 @@ int main(void) {
       cmocka_unit_test_setup(firmware_commands_cal_start_save_and_clear_send_info_at_once, setup),
       cmocka_unit_test_setup(firmware_commands_cmd_errors_counts_each_refused_frame_once, setup),
       cmocka_unit_test_setup(firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost, setup),
+      cmocka_unit_test_setup(firmware_commands_a_tail_before_the_first_delimiter_is_no_error, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
