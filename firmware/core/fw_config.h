@@ -16,10 +16,12 @@
 /* Which hand the glove is worn on: GP_HAND_LEFT (0) or GP_HAND_RIGHT (1). */
 #define FW_HAND 1
 
-/* Five strings, thumb .. little finger, 12-bit ADC. */
-#define FW_N_CH 5
-#define FW_ADC_BITS 12
-#define FW_ADC_MAX ((1u << FW_ADC_BITS) - 1u)
+/* Five strings, thumb .. little finger, 12-bit ADC: the width and count of
+ * SAMPLE's ch field in protocol/messages.def, not a choice made here. */
+#include "gp_messages.h"
+#define FW_N_CH GP_SAMPLE_CH_COUNT
+#define FW_ADC_BITS GP_SAMPLE_CH_BITS
+#define FW_ADC_MAX GP_SAMPLE_CH_MAX
 
 /* The sampling tick: every channel gets one filtered sample per tick. */
 #define FW_TICK_HZ 1000u

@@ -22,6 +22,7 @@ void fw_core_init(fw_core *c) {
   c->frame_phase = 0;
   c->info_phase = 0;
   c->seq = 0;
+  c->seq_started = 0;
   for (unsigned i = 0; i < FW_N_CH; i++) c->ch[i] = 0;
   c->pending_flags = 0;
   c->button = 0;
@@ -96,6 +97,10 @@ static void send_sample(fw_core *c) {
   uint8_t flags = c->pending_flags;
   if (c->cal.state == GP_CAL_VALID) flags |= GP_SAMPLE_F_CALIBRATED;
   if (c->button) flags |= GP_SAMPLE_F_BUTTON;
+  /* The host tells a reset from loss or reordering by this flag, whatever
+   * number the old sequence had reached (SPEC.md, "Sequence check"). */
+  if (!c->seq_started) flags |= GP_SAMPLE_F_START;
+  c->seq_started = 1;
   uint8_t wire[GP_MAX_WIRE];
   /* The device timestamp is the sampling tick's, not the time the main loop
    * got to it: loop latency never shows as jitter. */
@@ -107,10 +112,15 @@ static void send_sample(fw_core *c) {
   send(c, wire, n);
 }
 
-/* The reply to a calibration command, from what the calibration did. */
+/* The reply to a calibration command, from what the calibration did. A
+ * change of calibration is announced at once by an INFO, as the button's is
+ * (SPEC.md, CAL_START to CAL_CLEAR); a refusal changed nothing. */
 static void reply_cal(fw_core *c, uint8_t tag, uint8_t cmd, fw_cal_result r) {
   switch (r) {
-  case FW_CAL_OK: send_ack(c, tag, cmd); break;
+  case FW_CAL_OK:
+    send_ack(c, tag, cmd);
+    send_info(c);
+    break;
   case FW_CAL_ERR_STATE: send_nack(c, tag, cmd, GP_NACK_BAD_STATE); break;
   case FW_CAL_ERR_SPAN: send_nack(c, tag, cmd, GP_NACK_BAD_ARGUMENT); break;
   default: send_nack(c, tag, cmd, GP_NACK_FLASH_ERROR); break;
@@ -125,7 +135,12 @@ static void set_rate(fw_core *c, const gp_set_rate *r) {
   }
   send_ack(c, r->tag, GP_SET_RATE);
   c->frame_rate_hz = r->frame_rate_hz;
-  if (baud != c->baud) c->pending_baud = baud;
+  /* INFO follows every accepted SET_RATE: at once when the baud stays, as
+   * the first frame at the new speed otherwise (fw_core_poll). */
+  if (baud != c->baud)
+    c->pending_baud = baud;
+  else
+    send_info(c);
 }
 
 static void command(fw_core *c, const gp_msg *m) {
@@ -153,7 +168,7 @@ static void command(fw_core *c, const gp_msg *m) {
     break;
   case GP_CAL_START:
     fw_cal_start(&c->cal);
-    send_ack(c, tag, GP_CAL_START);
+    reply_cal(c, tag, GP_CAL_START, FW_CAL_OK);
     break;
   case GP_CAL_SAVE:
     reply_cal(c, tag, GP_CAL_SAVE, fw_cal_save(&c->cal));

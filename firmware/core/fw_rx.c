@@ -3,6 +3,7 @@
 void fw_rx_init(fw_rx *rx) {
   rx->len = 0;
   rx->overflow = 0;
+  rx->in_step = 0;
 }
 
 static fw_rx_result frame_end(fw_rx *rx, fw_rx_frame *out) {
@@ -15,9 +16,13 @@ static fw_rx_result frame_end(fw_rx *rx, fw_rx_frame *out) {
   /* A foreign spec hash fails here too: its CRC was seeded differently. */
   if (crc != gp_frame_crc(GP_SPEC_HASH, raw, body)) return FW_RX_CORRUPT;
   out->cmd = raw[0];
-  out->tag = body > 1 ? raw[1] : 0; /* every command starts with its tag */
+  /* Every command starts with its tag; one sent without a payload has none,
+   * and SPEC.md says its NACK carries 0. */
+  out->tag = body > 1 ? raw[1] : 0;
   const gp_msg_desc *d = gp_msg_find(raw[0]);
-  if (d != 0 && d->dir == GP_DIR_DEVICE) return FW_RX_ECHO;
+  /* The glove-to-host range, defined or not, is never answered: it is our
+   * own output looped back, or another glove's (SPEC.md, section 9). */
+  if ((d != 0 && d->dir == GP_DIR_DEVICE) || raw[0] < FW_RX_FIRST_HOST_TYPE) return FW_RX_ECHO;
   if (d == 0) {
     out->reason = GP_NACK_UNKNOWN_COMMAND;
     return FW_RX_NACK;
@@ -44,6 +49,10 @@ fw_rx_result fw_rx_byte(fw_rx *rx, uint8_t byte, fw_rx_frame *out) {
     r = FW_RX_NONE; /* an idle delimiter: the host resynchronising */
   else
     r = frame_end(rx, out);
+  /* Before the first 0x00 the glove may have woken in the middle of a
+   * frame: a tail that is no frame is not an error (SPEC.md, rule 1). */
+  if (!rx->in_step && r == FW_RX_CORRUPT && !rx->overflow) r = FW_RX_NONE;
+  rx->in_step = 1;
   rx->len = 0;
   rx->overflow = 0;
   return r;

@@ -15,14 +15,18 @@
 
 #include "gp.h"
 
+/* Type ids below this are glove to host (SPEC.md, "Messages"). */
+#define FW_RX_FIRST_HOST_TYPE 0x10u
+
 typedef enum fw_rx_result {
   FW_RX_NONE = 0,    /* byte consumed, no frame ended */
   FW_RX_COMMAND,     /* a valid command: msg filled */
   FW_RX_NACK,        /* a frame with a good CRC to refuse: tag, cmd, reason filled */
   FW_RX_CORRUPT,     /* a frame to drop silently (bad CRC, framing, oversize) */
-  FW_RX_ECHO,        /* a glove-to-host frame, such as our own output looped
-                      * back to RX: dropped silently, since a NACK would be
-                      * echoed too and feed itself */
+  FW_RX_ECHO,        /* a frame of a glove-to-host type (0x01..0x0F, defined
+                      * or not), such as our own output looped back to RX:
+                      * dropped silently, since a NACK would be echoed too
+                      * and feed itself */
 } fw_rx_result;
 
 typedef struct fw_rx_frame {
@@ -35,6 +39,7 @@ typedef struct fw_rx_frame {
 typedef struct fw_rx {
   size_t len;
   uint8_t overflow;
+  uint8_t in_step; /* a 0x00 has been seen: frames start where they should */
   uint8_t buf[GP_MAX_WIRE];
 } fw_rx;
 

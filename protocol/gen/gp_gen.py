@@ -128,6 +128,16 @@ def generate(proto, messages, enums, spec_hash, src_name):
     for m in messages:
         h.append(f"#define GP_{m['name']}_LEN {m['bytes']}u /* payload bytes */")
     h.append("")
+    # Widths and counts as constants, so that code sized by a field (the
+    # SAMPLE's channel count and ADC width) follows the definition.
+    for m in messages:
+        for f in m["fields"]:
+            base = f"GP_{m['name']}_{f['name'].upper()}"
+            h.append(f"#define {base}_BITS {f['bits']}u")
+            if f["array"]:
+                h.append(f"#define {base}_COUNT {f['count']}u")
+            h.append(f"#define {base}_MAX 0x{(1 << f['bits']) - 1:X}u")
+    h.append("")
     for m in messages:
         h.append(f"typedef struct gp_{m['name'].lower()} {{")
         for f in m["fields"]:

@@ -79,17 +79,20 @@ typedef enum gp_event {
   GP_EV_SPEC_MISMATCH,  /* a frame from a device built from another spec (INFO: *out filled) */
 } gp_event;
 
+/* SPEC.md, "Receiver rules", names each counter and which frames count where.
+ * Empty frames, and a receiver's tail before its first 0x00, count only in
+ * bytes. */
 typedef struct gp_counters {
-  uint32_t frames;         /* valid frames delivered (GP_EV_FRAME + GP_EV_FRAME_LATE) */
+  uint32_t frames;         /* delivered: GP_EV_FRAME + GP_EV_FRAME_LATE (restarts included) */
   uint32_t crc_errors;
   uint32_t framing_errors;
   uint32_t oversize;
   uint32_t unknown_type;
   uint32_t spec_mismatch;
   uint32_t lost;           /* SAMPLE sequence numbers skipped and never seen */
-  uint32_t duplicates;
+  uint32_t duplicates;     /* SAMPLEs already seen; not in frames */
   uint32_t reordered;      /* late SAMPLEs (each was first counted as lost, then taken back) */
-  uint32_t seq_restarts;   /* jumps too large to be loss or reordering (device reset) */
+  uint32_t seq_restarts;   /* SAMPLEs that start a new sequence (START, or a jump too far back) */
   uint64_t bytes;          /* every byte fed */
 } gp_counters;
 
@@ -97,17 +100,37 @@ typedef struct gp_counters {
  * from a duplicate. */
 #define GP_SEQ_WINDOW 64u
 
+/* A run longer than GP_MAX_WIRE that may still be a frame from another
+ * definition (SPEC.md, "Receiver rules" 2): decoded as it arrives, keeping
+ * only what rules 4 and 5 need, so memory stays bounded at any length. */
+typedef struct gp_long_frame {
+  uint8_t active;
+  uint8_t left;           /* data bytes left in the current COBS group */
+  uint8_t zero_due;       /* a zero goes before the next group */
+  uint8_t head[6];        /* type, proto_major, spec_hash */
+  uint8_t tail[4];        /* the newest four raw bytes, by raw index mod 4 */
+  uint64_t n;             /* raw bytes so far */
+  uint32_t crc_unseeded;  /* CRC-32C of the raw bytes before the newest four */
+  uint32_t crc_peer;      /* the same, seeded with the peer's hash */
+} gp_long_frame;
+
 typedef struct gp_decoder {
   uint32_t spec_hash;     /* the host's */
   uint32_t peer_hash;     /* the hash a foreign INFO announced */
   uint8_t peer_known;
   uint8_t have_seq;
   uint8_t overflow;       /* discarding until the next delimiter */
+  uint8_t in_step;        /* a 0x00 has been seen: frames start where they should */
+  uint8_t seq_high_start; /* the frame at seq_high carried GP_SAMPLE_F_START */
   uint16_t seq_high;      /* highest SAMPLE sequence number seen */
+  uint32_t seq_high_t_us; /* and its device time */
   uint64_t seq_seen;      /* bit i: seq_high - i was seen */
   size_t len;
   uint8_t buf[GP_MAX_WIRE];
-  uint8_t raw[GP_MAX_FRAME];
+  /* GP_MAX_WIRE bytes without a delimiter decode to at most one byte more
+   * than GP_MAX_FRAME: room for a frame from another definition. */
+  uint8_t raw[GP_MAX_WIRE - 1u];
+  gp_long_frame lf;
   gp_counters c;
 } gp_decoder;
 

@@ -61,7 +61,8 @@ def main():
     vectors = [
         ("sample_basic", "SAMPLE", spec, dict(seq=1, t_us=4000, ch=[100, 200, 300, 400, 500], flags=1)),
         ("sample_zeros", "SAMPLE", spec, dict(seq=0, t_us=0, ch=[0, 0, 0, 0, 0], flags=0)),
-        ("sample_full_scale", "SAMPLE", spec, dict(seq=65535, t_us=0xFFFFFFFF, ch=[4095] * 5, flags=15)),
+        ("sample_start", "SAMPLE", spec, dict(seq=0, t_us=1000, ch=[2048] * 5, flags=0x10)),
+        ("sample_full_scale", "SAMPLE", spec, dict(seq=65535, t_us=0xFFFFFFFF, ch=[4095] * 5, flags=31)),
         ("sample_mid", "SAMPLE", spec, dict(seq=4660, t_us=123456789, ch=[2048, 1, 4094, 3000, 17], flags=2)),
         ("info_right_calibrated", "INFO", spec, info),
         ("status_counters", "STATUS", spec, dict(t_us=1000000, frames_sent=250, overruns=1,

@@ -286,6 +286,133 @@ static void firmware_commands_own_output_looped_back_is_ignored(void **state) {
   assert_int_equal(frames.c.lost + frames.c.crc_errors + frames.c.framing_errors, 0);
 }
 
+/* The INFO sent after wire offset from, or frames.n. */
+static size_t info_after(size_t from_wire) { return reply_after(from_wire, GP_INFO); }
+
+static void firmware_commands_a_command_without_payload_is_nacked_with_tag_0(void **state) {
+  (void)state;
+  uint8_t w[80];
+  const uint8_t none[1] = {0};
+  expect_nack_raw(w, raw_frame(GP_PING, none, 0, GP_SPEC_HASH, w), 0, GP_PING,
+                  GP_NACK_BAD_LENGTH);
+  expect_nack_raw(w, raw_frame(0x7F, none, 0, GP_SPEC_HASH, w), 0, 0x7F,
+                  GP_NACK_UNKNOWN_COMMAND);
+}
+
+static void firmware_commands_an_undefined_glove_to_host_type_gets_silence(void **state) {
+  (void)state;
+  uint8_t w[80];
+  const uint8_t p[1] = {0x42};
+  uint32_t errors = core.cmd_errors;
+  size_t from = fake.wire_len;
+  /* 0x06..0x0F are glove to host, though undefined: never a NACK. */
+  for (uint8_t type = GP_NACK + 1u; type < 0x10u; type++) fake_rx(w, raw_frame(type, p, 1, GP_SPEC_HASH, w));
+  fake_run(&core, 40);
+  size_t stray = reply_after(from, GP_NACK);
+  if (stray < frames.n)
+    fail_msg("NACK for type 0x%02x", frames.msg[stray].u.nack.cmd);
+  assert_int_equal(reply_after(from, GP_ACK), frames.n);
+  assert_int_equal(core.cmd_errors - errors, 0x10u - (GP_NACK + 1u));
+}
+
+static void firmware_commands_set_rate_keeping_the_baud_is_followed_by_info(void **state) {
+  (void)state;
+  const uint32_t bauds[] = {0, FW_BAUD};
+  for (size_t k = 0; k < 2; k++) {
+    size_t from = fake.wire_len;
+    set_rate((uint8_t)(20 + k), (uint16_t)(k ? 100 : 125), bauds[k]);
+    fake_run(&core, 20); /* well before the periodic INFO */
+    size_t ack = reply_after(from, GP_ACK), info = info_after(from);
+    assert_true(ack < frames.n);
+    assert_true(info < frames.n);
+    assert_true(info > ack);
+    assert_int_equal(frames.msg[info].u.info.frame_rate_hz, k ? 100 : 125);
+    assert_int_equal(frames.msg[info].u.info.baud, FW_BAUD);
+    assert_int_equal(fake.baud_changes, 0);
+  }
+}
+
+static void firmware_commands_cal_start_save_and_clear_send_info_at_once(void **state) {
+  (void)state;
+  const struct {
+    uint8_t cmd, state;
+  } steps[] = {{GP_CAL_START, GP_CAL_RUNNING}, {GP_CAL_CLEAR, GP_CAL_DEFAULTS}};
+  for (size_t k = 0; k < 2; k++) {
+    size_t from = fake.wire_len;
+    send_cmd(steps[k].cmd, (uint8_t)(30 + k));
+    fake_run(&core, 20);
+    size_t ack = reply_after(from, GP_ACK), info = info_after(from);
+    assert_true(ack < frames.n);
+    assert_int_equal(frames.msg[ack].u.ack.cmd, steps[k].cmd);
+    assert_true(info < frames.n && info > ack);
+    assert_int_equal(frames.msg[info].u.info.cal_state, steps[k].state);
+  }
+  /* A refused CAL_SAVE (no capture running) changed nothing: no INFO. */
+  size_t from = fake.wire_len;
+  send_cmd(GP_CAL_SAVE, 40);
+  fake_run(&core, 3);
+  assert_true(reply_after(from, GP_NACK) < frames.n);
+  assert_int_equal(info_after(from), frames.n);
+}
+
+static void firmware_commands_cmd_errors_counts_each_refused_frame_once(void **state) {
+  (void)state;
+  uint8_t w[600];
+  const uint8_t p[GP_MAX_PAYLOAD] = {0x42};
+  uint32_t before = core.cmd_errors;
+  fake_rx(w, raw_frame(0x7F, p, 1, GP_SPEC_HASH, w));       /* NACK unknown */
+  fake_rx(w, raw_frame(GP_PING, p, 2, GP_SPEC_HASH, w));    /* NACK length */
+  fake_rx(w, raw_frame(GP_PING, p, 1, 0xDEADBEEFu, w));     /* foreign spec */
+  fake_rx(w, raw_frame(GP_SAMPLE, p, GP_SAMPLE_LEN, GP_SPEC_HASH, w)); /* echo */
+  size_t n = raw_frame(GP_PING, p, 1, GP_SPEC_HASH, w);
+  w[2] ^= 0x10;
+  fake_rx(w, n); /* bad CRC */
+  memset(w, 0xAB, 500);
+  w[500] = 0;
+  fake_rx(w, 501); /* oversize */
+  const uint8_t zeros[] = {0, 0, 0};
+  fake_rx(zeros, sizeof zeros); /* empty frames: not counted */
+  fake_rx(w, raw_frame(GP_PING, p, 1, GP_SPEC_HASH, w)); /* carried out */
+  fake_run(&core, 80);
+  assert_int_equal(core.cmd_errors - before, 6);
+}
+
+static void firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost(void **state) {
+  (void)state;
+  /* About 25 frames: without the START flag, the new 0 would look like a
+   * frame from 25 back, a duplicate. */
+  fake_run(&core, 100);
+  fake_decode();
+  size_t first = fake_find(0, GP_SAMPLE);
+  assert_true(first < frames.n);
+  assert_true(frames.msg[first].u.sample.flags & GP_SAMPLE_F_START);
+  for (size_t i = first + 1; i < frames.n; i++)
+    if (frames.msg[i].type == GP_SAMPLE)
+      assert_int_equal(frames.msg[i].u.sample.flags & GP_SAMPLE_F_START, 0);
+  assert_int_equal(frames.c.duplicates + frames.c.seq_restarts, 0);
+  /* A reset: the core starts again, the line and the host stay. */
+  fw_core_init(&core);
+  fake_run(&core, 100);
+  fake_decode();
+  assert_int_equal(frames.c.seq_restarts, 1);
+  assert_int_equal(frames.c.lost, 0);
+  assert_int_equal(frames.c.reordered + frames.c.duplicates, 0);
+}
+
+static void firmware_commands_a_tail_before_the_first_delimiter_is_no_error(void **state) {
+  (void)state;
+  /* The tail of a command the glove woke in the middle of. */
+  const uint8_t tail[] = {0x37, 0x42, 0x99, 0x05, 0x00};
+  uint32_t before = core.cmd_errors;
+  fake_rx(tail, sizeof tail);
+  expect_ack(GP_PING, 0x51, NULL);
+  assert_int_equal(core.cmd_errors, before);
+  /* The same bytes once the glove is in step are a corrupt frame. */
+  fake_rx(tail, sizeof tail);
+  fake_run(&core, 20);
+  assert_int_equal(core.cmd_errors, before + 1);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(firmware_commands_ping_and_info, setup),
@@ -294,6 +421,13 @@ int main(void) {
       cmocka_unit_test_setup(firmware_commands_stream_off_and_on, setup),
       cmocka_unit_test_setup(firmware_commands_get_status_counts, setup),
       cmocka_unit_test_setup(firmware_commands_bad_input_keeps_streaming, setup),
+      cmocka_unit_test_setup(firmware_commands_a_command_without_payload_is_nacked_with_tag_0, setup),
+      cmocka_unit_test_setup(firmware_commands_an_undefined_glove_to_host_type_gets_silence, setup),
+      cmocka_unit_test_setup(firmware_commands_set_rate_keeping_the_baud_is_followed_by_info, setup),
+      cmocka_unit_test_setup(firmware_commands_cal_start_save_and_clear_send_info_at_once, setup),
+      cmocka_unit_test_setup(firmware_commands_cmd_errors_counts_each_refused_frame_once, setup),
+      cmocka_unit_test_setup(firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost, setup),
+      cmocka_unit_test_setup(firmware_commands_a_tail_before_the_first_delimiter_is_no_error, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

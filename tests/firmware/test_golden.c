@@ -56,7 +56,7 @@ static size_t build(const char *type, uint8_t *w, size_t cap) {
   if (strcmp(type, "SAMPLE") == 0) {
     uint16_t ch[FW_N_CH];
     const unsigned long *c = get("ch", FW_N_CH);
-    for (int i = 0; i < FW_N_CH; i++) ch[i] = (uint16_t)c[i];
+    for (unsigned i = 0; i < FW_N_CH; i++) ch[i] = (uint16_t)c[i];
     return fw_frame_sample((uint16_t)get("seq", 1)[0], (uint32_t)get("t_us", 1)[0], ch,
                            (uint8_t)get("flags", 1)[0], w, cap);
   }
@@ -78,7 +78,7 @@ static size_t build(const char *type, uint8_t *w, size_t cap) {
     s.baud = (uint32_t)get("baud", 1)[0];
     s.cal_state = (uint8_t)get("cal_state", 1)[0];
     const unsigned long *lo = get("cal_min", FW_N_CH), *hi = get("cal_max", FW_N_CH);
-    for (int i = 0; i < FW_N_CH; i++) {
+    for (unsigned i = 0; i < FW_N_CH; i++) {
       s.cal_min[i] = (uint16_t)lo[i];
       s.cal_max[i] = (uint16_t)hi[i];
     }

@@ -110,14 +110,14 @@ static void every_message_type_round_trips_through_the_decoder(void **state) {
   }
 }
 
-static void sample_is_21_bytes_on_the_wire_and_fits_half_the_link(void **state) {
+static void sample_is_22_bytes_on_the_wire_and_fits_half_the_link(void **state) {
   (void)state;
   gp_msg m;
   memset(&m, 0xFF, sizeof m); /* worst case: no zero bytes to stuff */
   m.type = GP_SAMPLE;
   uint8_t wire[GP_MAX_WIRE];
   size_t n = gp_encode(&m, GP_SPEC_HASH, wire, sizeof wire);
-  assert_int_equal(n, 21);
+  assert_int_equal(n, 22);
   /* 8N1: 10 bits a byte. 250 Hz on 115200 and 1000 Hz on 921600. */
   assert_true(n * 10u * 250u * 2u <= 115200u);
   assert_true(n * 10u * 1000u * 2u <= 921600u);
@@ -129,15 +129,15 @@ static void values_wider_than_their_field_are_truncated_not_spilled(void **state
   memset(&m, 0, sizeof m);
   m.type = GP_SAMPLE;
   m.u.sample.ch[0] = 0xFFFF; /* 12-bit field */
-  m.u.sample.flags = 0xFF;   /* 4-bit field */
+  m.u.sample.flags = 0xFFFF; /* 12-bit field */
   uint8_t raw[GP_MAX_FRAME];
   size_t n = gp_frame_pack(&m, GP_SPEC_HASH, raw, sizeof raw);
-  assert_int_equal(n, 19);
+  assert_int_equal(n, 20);
   memset(&out, 0, sizeof out);
   assert_int_equal(gp_payload_unpack(GP_SAMPLE, raw + 1, GP_SAMPLE_LEN, &out), 0);
   assert_int_equal(out.u.sample.ch[0], 0xFFF);
   assert_int_equal(out.u.sample.ch[1], 0);
-  assert_int_equal(out.u.sample.flags, 0xF);
+  assert_int_equal(out.u.sample.flags, 0xFFF);
 }
 
 static void unknown_types_and_small_buffers_are_refused(void **state) {
@@ -149,8 +149,8 @@ static void unknown_types_and_small_buffers_are_refused(void **state) {
   assert_int_equal(gp_encode(&m, GP_SPEC_HASH, buf, sizeof buf), 0);
   assert_int_equal(gp_payload_unpack(0x7F, buf, 1, &m), -1);
   m.type = GP_SAMPLE;
-  assert_int_equal(gp_encode(&m, GP_SPEC_HASH, buf, 20), 0);
-  assert_int_equal(gp_encode(&m, GP_SPEC_HASH, buf, 21), 21);
+  assert_int_equal(gp_encode(&m, GP_SPEC_HASH, buf, 21), 0);
+  assert_int_equal(gp_encode(&m, GP_SPEC_HASH, buf, 22), 22);
   assert_int_equal(gp_payload_unpack(GP_SAMPLE, buf, GP_SAMPLE_LEN - 1, &m), -1);
   assert_null(gp_msg_find(0x7F));
   assert_non_null(gp_msg_find(GP_INFO));
@@ -162,7 +162,7 @@ int main(void) {
       cmocka_unit_test(cobs_round_trips_every_length_and_zero_pattern),
       cmocka_unit_test(cobs_rejects_malformed_blocks_and_small_buffers),
       cmocka_unit_test(every_message_type_round_trips_through_the_decoder),
-      cmocka_unit_test(sample_is_21_bytes_on_the_wire_and_fits_half_the_link),
+      cmocka_unit_test(sample_is_22_bytes_on_the_wire_and_fits_half_the_link),
       cmocka_unit_test(values_wider_than_their_field_are_truncated_not_spilled),
       cmocka_unit_test(unknown_types_and_small_buffers_are_refused),
   };

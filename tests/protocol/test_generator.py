@@ -17,7 +17,12 @@ def run(path, *args):
     return subprocess.run([sys.executable, gen, path, *args], capture_output=True, text=True)
 
 
+checks = 0
+
+
 def check(cond, what):
+    global checks
+    checks += 1
     print(("ok   " if cond else "FAIL ") + what)
     if not cond:
         failures.append(what)
@@ -33,22 +38,26 @@ with tempfile.TemporaryDirectory() as tmp:
         return p
 
     widened = variant("widened.def", text.replace("ch         u12[5]", "ch         u16[5]", 1)
-                      .replace("flags      u4 ", "flags      u8 ", 1))
+                      .replace("flags      u12", "flags      u16", 1))
     r = run(widened, "--hash")
     check(r.returncode == 0 and r.stdout.strip() != base, "widening a SAMPLE field changes the hash")
     h1, h2 = os.path.join(tmp, "a.h"), os.path.join(tmp, "b.h")
     run(definition, "--header", h1)
     run(widened, "--header", h2)
     a, b = open(h1).read(), open(h2).read()
-    check("#define GP_SAMPLE_LEN 14u" in a and "#define GP_SAMPLE_LEN 17u" in b,
-          "the generated header follows the definition (SAMPLE 14 -> 17 bytes)")
+    check("#define GP_SAMPLE_LEN 15u" in a and "#define GP_SAMPLE_LEN 18u" in b,
+          "the generated header follows the definition (SAMPLE 15 -> 18 bytes)")
+    check("#define GP_SAMPLE_CH_COUNT 5u" in a and "#define GP_SAMPLE_CH_BITS 12u" in a
+          and "#define GP_SAMPLE_CH_MAX 0xFFFu" in a and "#define GP_SAMPLE_CH_BITS 16u" in b
+          and "#define GP_SAMPLE_CH_MAX 0xFFFFu" in b,
+          "the channel count and ADC width come from the definition's SAMPLE.ch")
     renamed = variant("renamed.def", text.replace("  adc_bits       u8", "  adc_resolution u8", 1))
     check(run(renamed, "--hash").stdout.strip() != base, "renaming a field changes the hash")
     value = variant("value.def", text.replace("BAD_STATE       4", "BAD_STATE       6", 1))
     check(run(value, "--hash").stdout.strip() != base, "changing a named value changes the hash")
     comment = variant("comment.def", "# an added comment\n" + text)
     check(run(comment, "--hash").stdout.strip() == base, "comments do not change the hash")
-    odd = variant("odd.def", text.replace("flags      u4 ", "flags      u3 ", 1))
+    odd = variant("odd.def", text.replace("flags      u12", "flags      u11", 1))
     r = run(odd, "--hash")
     check(r.returncode != 0 and "not whole bytes" in r.stderr and "odd.def:" in r.stderr,
           "a message that is not whole bytes is refused with file:line")
@@ -92,5 +101,5 @@ for line in (sample.group(1).splitlines() if sample else []):
 check(in_order,
       "SPEC.md's sample of the canonical text matches the generator")
 
-print(f"{10 - len(failures)} passed, {len(failures)} failed")
+print(f"{checks - len(failures)} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -40,6 +40,8 @@ for block in re.split(r"^### ", spec, flags=re.M)[1:]:
     MESSAGES[int(head.group(2), 16)] = (head.group(1), int(head.group(4)),
                                         "unseeded" in head.group(3), fields)
 UNSEEDED = [t for t, m in MESSAGES.items() if m[2]]
+MAX_FRAME = int(re.search(r"\*\*(\d+) bytes\*\* \(`GP_MAX_FRAME`\)", spec).group(1))
+START = int(re.search(r"^\| GP_SAMPLE_F_START \| 0x([0-9A-Fa-f]+) \|", spec, flags=re.M).group(1), 16)
 check(len(MESSAGES) >= 14 and UNSEEDED == [0x02], "SPEC.md lists the messages, INFO unseeded")
 
 TABLE = []
@@ -98,6 +100,9 @@ class Decoder:
         self.seen = set()  # sequence numbers seen, high and the 63 below it
         self.buf = bytearray()
         self.discarding = False
+        self.following = False  # rule 2's exception: a long run that may be foreign
+        self.in_step = False  # a 0x00 has been seen (rule 1)
+        self.high_start = None  # (t_us) of the frame at high, if it carried START
         self.c = dict.fromkeys(("frames crc_errors framing_errors oversize unknown_type "
                                 "spec_mismatch lost duplicates reordered seq_restarts "
                                 "bytes").split(), 0)
@@ -109,7 +114,11 @@ class Decoder:
             if b:
                 if self.discarding:
                     continue
-                if len(self.buf) == MAX_WIRE:  # rule 2
+                if len(self.buf) == MAX_WIRE and not self.following:  # rule 2
+                    if (self.buf[0] >= 2 and self.buf[1] in UNSEEDED) or self.peer is not None:
+                        self.following = True
+                        self.buf.append(b)
+                        continue
                     self.discarding, self.buf = True, bytearray()
                     self.c["oversize"] += 1
                     events.append(("oversize", None))
@@ -118,9 +127,22 @@ class Decoder:
                 continue
             if self.discarding:
                 self.discarding = False
-            elif self.buf:  # rule 1: empty frames are ignored
-                events.append(self.frame(bytes(self.buf)))
+            elif self.following:
+                self.following = False
+                ev = self.frame(bytes(self.buf))
+                if ev[0] != "spec_mismatch":
+                    self.c[ev[0]] -= 1
+                    ev = self.count("oversize")
+                events.append(ev)
                 self.buf = bytearray()
+            elif self.buf:  # rule 1: empty frames are ignored
+                ev = self.frame(bytes(self.buf))
+                if not self.in_step and ev[0] in ("framing_errors", "crc_errors"):
+                    self.c[ev[0]] -= 1  # rule 1: the tail of a frame joined mid-way
+                else:
+                    events.append(ev)
+                self.buf = bytearray()
+            self.in_step = True
         return events
 
     def count(self, what, msg=None):
@@ -133,24 +155,19 @@ class Decoder:
             return self.count("framing_errors")
         t, body, crc = raw[0], raw[:-4], le(raw[-4:])
         known = MESSAGES.get(t)
-        if t in UNSEEDED:
-            good = crc32c(body) == crc
-            announced = le(raw[2:6]) if len(raw) >= 10 else None
-            if good and announced is not None and announced != self.hash:  # rules 4, 5
-                self.peer = announced
-                return self.count("spec_mismatch")
-            if len(raw) != 1 + known[1] + 4:  # rule 4
-                return self.count("framing_errors")
-            if not good:  # rule 6 (an INFO is never seeded with a peer hash)
-                return self.count("crc_errors")
-            return self.count("frames", (t, unpack(t, raw[1:-4])))
-        if known and len(raw) != 1 + known[1] + 4:  # rule 4
+        unseeded = t in UNSEEDED
+        ours = crc32c((b"" if unseeded else self.hash.to_bytes(4, "little")) + body) == crc
+        if unseeded and len(raw) >= 10 and ours and le(raw[2:6]) != self.hash:  # rule 4
+            self.peer = le(raw[2:6])
+            return self.count("spec_mismatch")
+        if not ours and not unseeded and self.peer is not None and \
+                crc32c(self.peer.to_bytes(4, "little") + body) == crc:  # rule 5
+            return self.count("spec_mismatch")
+        if len(raw) > MAX_FRAME or (known and len(raw) != 1 + known[1] + 4):  # rule 6
             return self.count("framing_errors")
-        if crc32c(self.hash.to_bytes(4, "little") + body) != crc:  # rule 6
-            if self.peer is not None and crc32c(self.peer.to_bytes(4, "little") + body) == crc:
-                return self.count("spec_mismatch")
+        if not ours:  # rule 7
             return self.count("crc_errors")
-        if not known:  # rule 5
+        if not known:  # rule 8
             return self.count("unknown_type")
         msg = (t, unpack(t, raw[1:-4]))
         if known[0] == "SAMPLE":
@@ -158,12 +175,18 @@ class Decoder:
         return self.count("frames", msg)
 
     def sequence(self, msg):
-        seq = msg[1]["seq"]
+        seq, start = msg[1]["seq"], msg[1]["flags"] & START
         d = None
         if self.high is not None:
             d = (seq - self.high) & 0xFFFF
             d = d - 0x10000 if d >= 0x8000 else d
-        if d is None or d > 0:
+        if d is not None and start:
+            if d == 0 and self.high_start == msg[1]["t_us"]:
+                return self.count("duplicates", msg)
+            self.c["seq_restarts"] += 1
+            self.high = seq
+            self.seen = set()
+        elif d is None or d > 0:
             if d is not None:
                 self.c["lost"] += d - 1
             self.high = seq
@@ -178,6 +201,7 @@ class Decoder:
             self.c["seq_restarts"] += 1
             self.high = seq
             self.seen = set()
+        self.high_start = msg[1]["t_us"] if start else None
         self.seen.add(seq)
         self.seen = {s for s in self.seen if (self.high - s) & 0xFFFF < 64}
         return self.count("frames", msg)
@@ -225,29 +249,60 @@ def cobs_encode(raw):
     return bytes(out + bytes([len(run) + 1]) + run + b"\0")
 
 
-def sample(seq):
+def sample(seq, flags=0, t_us=0):
     t = names["SAMPLE"]
     bits = 0
     for name, lo, width, count in MESSAGES[t][3]:
-        if name == "seq":
-            bits |= seq << lo
+        bits |= {"seq": seq, "flags": flags, "t_us": t_us}.get(name, 0) << lo
     body = bytes([t]) + bits.to_bytes(MESSAGES[t][1], "little")
     return cobs_encode(body + crc32c(HASH.to_bytes(4, "little") + body).to_bytes(4, "little"))
 
 
 seqs = [9, 8, 10, 11, 13, 12, 12, 11, 100, 37, 36, 200, 137, 138, 136, 65534, 65535, 1, 0,
-        0, 2, 65535, 400, 401, 336, 337, 402, 500, 436, 437, 3, 4, 2, 60, 5, 4, 6]
+        0, 2, 65535, 400, 401, 336, 337, 402, 500, 436, 437, 3, 4, 2, 60, 5, 4, 6,
+        (0, 7), (0, 7), 1, 2, 30, (0, 8), 1, 100, (0, 9), 40000, (0, 10), 65535, (0, 11), 1]
 with tempfile.TemporaryDirectory() as tmp:
     path, counters = os.path.join(tmp, "seq.bin"), os.path.join(tmp, "seq.c")
     with open(path, "wb") as f:
-        f.write(b"".join(sample(q) for q in seqs))
+        f.write(b"".join(sample(q[0], START, q[1]) if isinstance(q, tuple) else sample(q)
+                         for q in seqs))
     subprocess.run([glove_dump, "-q", "--counters", counters, path], capture_output=True)
     got = {k: int(v) for k, v in re.findall(r"^(\w+)=(\d+)$", open(counters).read(), re.M)}
     d = Decoder(HASH)
     d.feed(open(path, "rb").read())
-    check(got == d.c and d.c["seq_restarts"] >= 3 and d.c["reordered"] >= 5
+    check(got == d.c and d.c["seq_restarts"] >= 8 and d.c["reordered"] >= 5
           and d.c["duplicates"] >= 3,
           f"sequence edge cases count as the page says: {d.c}")
+
+# --- another definition's frames of any length, past the wire limit too -----
+
+
+def foreign_frame(t, payload, seed_hash):
+    body = bytes([t]) + payload
+    seed = b"" if t in UNSEEDED else seed_hash.to_bytes(4, "little")
+    return cobs_encode(body + crc32c(seed + body).to_bytes(4, "little"))
+
+
+FOREIGN = 0x0BADF00D
+prefix = bytes([1]) + FOREIGN.to_bytes(4, "little")
+stream = b"\0" + b"".join(
+    foreign_frame(names["INFO"], prefix + bytes(range(n % 256)) * (1 + n // 256), FOREIGN)
+    for n in (5, 53, 54, 300, 700))
+stream += b"".join(foreign_frame(names["SAMPLE"], bytes([7]) * n, FOREIGN) for n in (0, 15, 60, 400))
+stream += b"\xff" + bytes([names["INFO"]]) + b"\x37" * 300 + b"\0"  # long, foreign to nobody
+stream += sample(5) + sample(6)
+with tempfile.TemporaryDirectory() as tmp:
+    path, counters = os.path.join(tmp, "long.bin"), os.path.join(tmp, "long.c")
+    with open(path, "wb") as f:
+        f.write(stream)
+    r = subprocess.run([glove_dump, "-q", "--keep-going", "--counters", counters, path],
+                       capture_output=True)
+    got = {k: int(v) for k, v in re.findall(r"^(\w+)=(\d+)$", open(counters).read(), re.M)}
+    d = Decoder(HASH)
+    d.feed(stream)
+    check(got == d.c and d.c["spec_mismatch"] == 9 and d.c["oversize"] == 1
+          and d.c["frames"] == 2 and d.c["framing_errors"] + d.c["crc_errors"] == 0,
+          f"another definition's INFO and SAMPLE of any length are spec mismatches: {d.c}")
 
 # --- fault streams: the page's decoder, the C decoder and the truth agree ---
 with tempfile.TemporaryDirectory() as tmp:

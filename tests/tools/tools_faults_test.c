@@ -81,7 +81,7 @@ static void tools_faults_every_counter_equals_what_was_injected(void **state) {
       assert_true(n_got < n_truth);
       got[n_got].seq = m.u.sample.seq;
       got[n_got].t_us = m.u.sample.t_us;
-      for (int c = 0; c < 5; c++) got[n_got].ch[c] = m.u.sample.ch[c];
+      for (unsigned c = 0; c < GP_SAMPLE_CH_COUNT; c++) got[n_got].ch[c] = m.u.sample.ch[c];
       n_got++;
     } else if (ev == GP_EV_FRAME && m.type == GP_INFO) {
       infos++;

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "gg_motion.h"
+#include "gg_stream.h"
 #include "gp.h"
 #include "mr_io.h"
 #include "tools_proc.h"
@@ -142,7 +143,7 @@ static void tools_motion_csv_track_interpolates(void **state) {
   assert_int_equal(ch[0], 500);
   assert_int_equal(ch[1], 100);
   assert_int_equal(ch[3], 500);
-  assert_int_equal(ch[4], (400 + 4095) / 2 + 1); /* 2247.5 rounds up */
+  assert_int_equal(ch[4], (400 + GG_ADC_MAX) / 2 + 1); /* 2247.5 rounds up */
   gg_motion_eval(&m, 5, ch);
   assert_int_equal(ch[0], 1000);
   gg_motion_free(&m);
@@ -275,6 +276,139 @@ static void tools_motion_default_stays_in_range_and_moves(void **state) {
   gg_motion_free(&m);
 }
 
+/* --- gg_stream's truth: what it says the decoder counts is what it counts -- */
+
+typedef struct run_result {
+  gp_decoder dec;
+  uint16_t seqs[512]; /* SAMPLEs delivered, in order */
+  size_t n_seqs;
+  unsigned start_flags; /* SAMPLEs delivered with GP_SAMPLE_F_START */
+  gg_stream s;
+} run_result;
+
+static void decode_into(run_result *r, const uint8_t *p, size_t n) {
+  while (n) {
+    gp_msg m;
+    gp_event ev;
+    size_t used = gp_decoder_feed(&r->dec, p, n, &m, &ev);
+    if ((ev == GP_EV_FRAME || ev == GP_EV_FRAME_LATE) && m.type == GP_SAMPLE && r->n_seqs < 512) {
+      if (m.u.sample.flags & GP_SAMPLE_F_START) r->start_flags |= 1u << (r->n_seqs ? 1 : 0);
+      r->seqs[r->n_seqs++] = m.u.sample.seq;
+    }
+    p += used;
+    n -= used;
+  }
+}
+
+/* Runs up to stop_after slots of a stream (count slots, or no end), then
+ * finishes it as an interrupted or completed run does. */
+static void run_stream(run_result *r, int fault, uint64_t count, uint64_t stop_after,
+                       uint32_t stall_frames) {
+  static uint8_t buf[GG_SLOT_MAX];
+  gg_motion motion;
+  gg_stream_config cfg;
+  memset(&cfg, 0, sizeof cfg);
+  cfg.rate_hz = 250;
+  cfg.count = count;
+  cfg.spec_hash = GP_SPEC_HASH;
+  cfg.baud = 115200;
+  cfg.rates[fault] = 1.0;
+  cfg.stall_min = cfg.stall_max = stall_frames;
+  cfg.seed = 7;
+  gg_motion_default(&motion, 7);
+  memset(r, 0, sizeof *r);
+  gp_decoder_init(&r->dec, GP_SPEC_HASH);
+  gg_stream_init(&r->s, &cfg, &motion, NULL);
+  for (uint64_t k = 0; k < stop_after; k++) {
+    int done;
+    size_t n = gg_stream_next(&r->s, buf, &done);
+    if (done) break;
+    decode_into(r, buf, n);
+  }
+  decode_into(r, buf, gg_stream_finish(&r->s, buf));
+  gg_motion_free(&motion);
+}
+
+static void assert_truth_is_what_the_decoder_counted(const run_result *r) {
+  const gg_expect *e = &r->s.expect;
+  const gp_counters *c = &r->dec.c;
+  assert_int_equal(e->frames, c->frames);
+  assert_int_equal(e->crc_errors, c->crc_errors);
+  assert_int_equal(e->framing_errors, c->framing_errors);
+  assert_int_equal(e->oversize, c->oversize);
+  assert_int_equal(e->unknown_type, c->unknown_type);
+  assert_int_equal(e->spec_mismatch, c->spec_mismatch);
+  assert_int_equal(e->lost, c->lost);
+  assert_int_equal(e->duplicates, c->duplicates);
+  assert_int_equal(e->reordered, c->reordered);
+  assert_int_equal(e->seq_restarts, c->seq_restarts);
+  assert_int_equal(e->bytes, c->bytes);
+}
+
+static void tools_stream_stopped_while_a_reorder_is_held_counts_no_reorder(void **state) {
+  (void)state;
+  run_result *r = malloc(sizeof *r);
+  assert_non_null(r);
+  /* Slot 0 is never faulted; slot 1 is reordered and held; stop there. */
+  run_stream(r, GG_F_REORDER, UINT64_MAX, 2, 1);
+  assert_int_equal(r->s.injected[GG_F_REORDER], 0);
+  assert_int_equal(r->s.expect.reordered, 0);
+  assert_int_equal(r->n_seqs, 2);
+  assert_truth_is_what_the_decoder_counted(r);
+  /* Stopped one slot later, the swap did happen and is counted once. */
+  run_stream(r, GG_F_REORDER, UINT64_MAX, 3, 1);
+  assert_int_equal(r->s.expect.reordered, 1);
+  assert_truth_is_what_the_decoder_counted(r);
+  free(r);
+}
+
+static void tools_stream_never_faults_the_first_or_the_last_two_slots(void **state) {
+  (void)state;
+  run_result *r = malloc(sizeof *r);
+  assert_non_null(r);
+  const uint64_t count = 40;
+  for (int f = 0; f < GG_F_COUNT; f++) {
+    run_stream(r, f, count, count, 5);
+    /* Every fault at rate 1: still the first slot and the last two arrive
+     * intact and in order, as tools/README.md says. */
+    assert_true(r->n_seqs >= 3);
+    assert_int_equal(r->seqs[0], 0);
+    /* Like a glove that has just booted: START on the first SAMPLE only. */
+    assert_int_equal(r->start_flags, 1);
+    assert_int_equal(r->seqs[r->n_seqs - 2], count - 2);
+    assert_int_equal(r->seqs[r->n_seqs - 1], count - 1);
+    assert_true(r->s.injected[f] > 0);
+    assert_truth_is_what_the_decoder_counted(r);
+  }
+  free(r);
+}
+
+static void tools_stream_a_stall_never_swallows_the_last_slots(void **state) {
+  (void)state;
+  run_result *r = malloc(sizeof *r);
+  assert_non_null(r);
+  /* A stall longer than the stream is cut so that the last two slots still
+   * go out, and every frame it swallowed is counted lost. */
+  run_stream(r, GG_F_STALL, 30, 30, 100);
+  assert_int_equal(r->s.injected[GG_F_STALL], 1);
+  assert_int_equal(r->s.stall_frames, 30 - 3);
+  assert_int_equal(r->n_seqs, 3);
+  assert_int_equal(r->seqs[1], 28);
+  assert_int_equal(r->seqs[2], 29);
+  assert_int_equal(r->dec.c.lost, 27);
+  assert_int_equal(r->s.slot, 30);
+  assert_truth_is_what_the_decoder_counted(r);
+  /* Stopped inside a stall: it swallowed only the slots that were reached,
+   * and the decoder, seeing no later frame, counts none of them lost. */
+  run_stream(r, GG_F_STALL, UINT64_MAX, 10, 100);
+  assert_int_equal(r->s.injected[GG_F_STALL], 1);
+  assert_int_equal(r->s.stall_frames, 10 - 1);
+  assert_int_equal(r->s.slot, 10);
+  assert_int_equal(r->n_seqs, 1);
+  assert_truth_is_what_the_decoder_counted(r);
+  free(r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(tools_motion_shapes_follow_their_formulas),
@@ -285,6 +419,9 @@ int main(void) {
       cmocka_unit_test(tools_motion_mrec_track_cut_short_keeps_what_came_before),
       cmocka_unit_test(tools_motion_errors_name_file_line_and_column),
       cmocka_unit_test(tools_motion_default_stays_in_range_and_moves),
+      cmocka_unit_test(tools_stream_stopped_while_a_reorder_is_held_counts_no_reorder),
+      cmocka_unit_test(tools_stream_never_faults_the_first_or_the_last_two_slots),
+      cmocka_unit_test(tools_stream_a_stall_never_swallows_the_last_slots),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

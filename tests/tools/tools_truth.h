@@ -8,8 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gp_messages.h"
+
 typedef struct tt_sample {
-  uint32_t seq, t_us, ch[5];
+  uint32_t seq, t_us, ch[GP_SAMPLE_CH_COUNT];
 } tt_sample;
 
 /* The counter keys, in gp_counters order. */
@@ -41,9 +43,10 @@ static inline tt_sample *tt_truth_samples(const char *text, size_t *n) {
   *n = 0;
   for (const char *p = text; v && p && *p; p = strchr(p, '\n'), p = p ? p + 1 : NULL) {
     tt_sample s;
-    unsigned u[7];
+    enum { N = 2 + GP_SAMPLE_CH_COUNT };
+    unsigned u[N];
     if (strncmp(p, "sample ", 7) != 0) continue;
-    if (tt_parse_uints(p + 7, ' ', u, 7) != 7) continue;
+    if (tt_parse_uints(p + 7, ' ', u, N) != N) continue;
     s.seq = u[0];
     s.t_us = u[1];
     memcpy(s.ch, u + 2, sizeof s.ch);

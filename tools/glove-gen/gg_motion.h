@@ -7,9 +7,11 @@
 #include <stdint.h>
 
 #include "gg_rng.h"
+#include "gp_messages.h"
 
-#define GG_CHANNELS 5
-#define GG_ADC_MAX 4095
+/* The channel count and full scale of SAMPLE's ch field (protocol/messages.def). */
+#define GG_CHANNELS ((int)GP_SAMPLE_CH_COUNT)
+#define GG_ADC_MAX ((int)GP_SAMPLE_CH_MAX)
 
 typedef enum gg_shape {
   GG_CONST,
@@ -62,7 +64,7 @@ void gg_motion_default(gg_motion *m, uint64_t seed);
 /* Loads a script. 0, or -1 with "FILE:LINE:COL: what" in err. */
 int gg_motion_load(gg_motion *m, const char *path, uint64_t seed, char *err, size_t errcap);
 
-/* The five channels at stream time t_s (seconds), in ADC counts 0..4095.
+/* The channels at stream time t_s (seconds), in ADC counts 0..GG_ADC_MAX.
  * Call with non-decreasing t: the random walk steps from the last call. */
 void gg_motion_eval(gg_motion *m, double t_s, uint16_t out[GG_CHANNELS]);
 

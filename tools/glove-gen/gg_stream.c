@@ -37,7 +37,7 @@ static size_t put_info(const gg_stream *s, uint32_t announced, uint8_t *out) {
   memcpy(m.u.info.uid, s->cfg.uid, sizeof m.u.info.uid);
   m.u.info.hand = s->cfg.hand;
   m.u.info.n_channels = GG_CHANNELS;
-  m.u.info.adc_bits = 12;
+  m.u.info.adc_bits = GP_SAMPLE_CH_BITS;
   m.u.info.frame_rate_hz = s->cfg.rate_hz >= 65535 ? 65535 : (uint16_t)lround(s->cfg.rate_hz);
   m.u.info.sample_rate_hz = m.u.info.frame_rate_hz;
   m.u.info.baud = s->cfg.baud;
@@ -51,9 +51,10 @@ static size_t put_info(const gg_stream *s, uint32_t announced, uint8_t *out) {
 
 static void truth_line(gg_stream *s, const gp_sample *x) {
   s->samples_intact++;
-  if (s->truth)
-    fprintf(s->truth, "sample %u %u %u %u %u %u %u\n", x->seq, x->t_us, x->ch[0], x->ch[1],
-            x->ch[2], x->ch[3], x->ch[4]);
+  if (!s->truth) return;
+  fprintf(s->truth, "sample %u %u", x->seq, x->t_us);
+  for (int i = 0; i < GG_CHANNELS; i++) fprintf(s->truth, " %u", x->ch[i]);
+  fputc('\n', s->truth);
 }
 
 /* An intact, in-order SAMPLE: the decoder now counts every loss before it. */
@@ -137,16 +138,18 @@ static int info_due(const gg_stream *s) {
 }
 
 /* Faults stay off the first slot (the decoder has no sequence yet) and the
- * last two (a loss is only counted when a later frame arrives; a reorder
- * needs the next one). */
+ * last two (a loss is only counted when a later frame arrives). A reorder
+ * also stays off the slot before them: its frame would go out after the
+ * second-to-last one, faulting that slot too. */
 static int pick_fault(gg_stream *s) {
   double u, acc = 0;
+  int last = s->cfg.count != UINT64_MAX;
   if (s->force_intact || s->slot == 0) return -1;
-  if (s->cfg.count != UINT64_MAX && s->slot + 2 >= s->cfg.count) return -1;
+  if (last && s->slot + 2 >= s->cfg.count) return -1;
   u = gg_rng_unit(&s->rng);
   for (int f = 0; f < GG_F_COUNT; f++) {
     acc += s->cfg.rates[f];
-    if (u < acc) return f;
+    if (u < acc) return f == GG_F_REORDER && last && s->slot + 3 >= s->cfg.count ? -1 : f;
   }
   return -1;
 }
@@ -169,6 +172,8 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
   for (int i = 0; i < GG_CHANNELS; i++)
     if (m.u.sample.ch[i] == 0 || m.u.sample.ch[i] == GG_ADC_MAX)
       m.u.sample.flags |= GP_SAMPLE_F_CLIPPED;
+  /* Like the firmware, the first SAMPLE says the glove has just started. */
+  if (s->slot == 0) m.u.sample.flags |= GP_SAMPLE_F_START;
 
   if (s->stall_left) {
     s->stall_left--;
@@ -275,8 +280,11 @@ size_t gg_stream_finish(gg_stream *s, uint8_t *out) {
     s->force_intact = 0;
     s->expect.bytes += n;
   }
-  /* Losses with no later frame to reveal them are never counted. */
+  /* Losses with no later frame to reveal them are never counted, and slots
+   * a stall had yet to swallow never happened. */
   s->lost_pending = 0;
+  s->stall_frames -= s->stall_left;
+  s->stall_left = 0;
   return n;
 }
 

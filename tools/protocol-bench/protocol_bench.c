@@ -63,7 +63,7 @@ int main(int argc, char **argv) {
     m.type = GP_SAMPLE;
     m.u.sample.seq = (uint16_t)i;
     m.u.sample.t_us = (uint32_t)(i * 4000);
-    for (int c = 0; c < 5; c++) {
+    for (unsigned c = 0; c < GP_SAMPLE_CH_COUNT; c++) {
       r = r * 1664525u + 1013904223u;
       m.u.sample.ch[c] = (uint16_t)(r >> 20);
     }
