@@ -275,7 +275,7 @@ static void pinned_state_hash_is_checked(void **state) {
                       "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
                       "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
                       "  constraints: [{between: [a, b]}]\n";
-  const char *path = scene_tmp_file("sim_hash.yaml", base, sizeof base - 1);
+  const char *path = tt_tmp_file("sim_hash.yaml", base, sizeof base - 1);
   tt_output p;
   run(&p, "sim", "--print-hash", path, NULL);
   assert_int_equal(p.status, 0);
@@ -287,7 +287,7 @@ static void pinned_state_hash_is_checked(void **state) {
 
   char text[1024];
   snprintf(text, sizeof text, "%sexpect:\n  state_hash: %s\n", base, pin);
-  path = scene_tmp_file("sim_hash.yaml", text, strlen(text));
+  path = tt_tmp_file("sim_hash.yaml", text, strlen(text));
   run(&p, "sim", "--check", "-q", path, NULL);
   assert_int_equal(p.status, 0);
   assert_string_equal(p.out, "check: passed\n");
@@ -297,7 +297,7 @@ static void pinned_state_hash_is_checked(void **state) {
   snprintf(wrong, sizeof wrong, "%s", pin);
   wrong[17] = wrong[17] == '0' ? '1' : '0';
   snprintf(text, sizeof text, "%sexpect:\n  state_hash: %s\n", base, wrong);
-  path = scene_tmp_file("sim_hash.yaml", text, strlen(text));
+  path = tt_tmp_file("sim_hash.yaml", text, strlen(text));
   run(&p, "sim", "--check", "-q", path, NULL);
   assert_int_equal(p.status, 1);
   char want[4400];
