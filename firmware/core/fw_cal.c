@@ -12,11 +12,12 @@ static void put32(uint8_t *p, uint32_t v) {
   for (unsigned i = 0; i < 4; i++) p[i] = (uint8_t)(v >> (8u * i));
 }
 
-static uint16_t get16(const uint8_t *p) { return (uint16_t)(p[0] | (p[1] << 8)); }
+static uint16_t get16(const uint8_t *p) {
+  return (uint16_t)(p[0] | (p[1] << 8));
+}
 
 static uint32_t get32(const uint8_t *p) {
-  return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
-         ((uint32_t)p[3] << 24);
+  return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
 }
 
 static void set_defaults(fw_cal *cal) {
@@ -43,8 +44,7 @@ uint8_t fw_cal_record_read(const uint8_t rec[FW_CAL_RECORD_LEN], uint16_t min[FW
   unsigned erased = 1;
   for (unsigned i = 0; i < FW_CAL_RECORD_LEN; i++) erased &= rec[i] == 0xFFu;
   if (erased) return GP_CAL_DEFAULTS;
-  if (get32(rec) != FW_CAL_MAGIC || get16(rec + 4) != FW_CAL_VERSION ||
-      get16(rec + 6) != FW_N_CH ||
+  if (get32(rec) != FW_CAL_MAGIC || get16(rec + 4) != FW_CAL_VERSION || get16(rec + 6) != FW_N_CH ||
       get32(rec + FW_CAL_RECORD_LEN - 4) != gp_crc32c(0, rec, FW_CAL_RECORD_LEN - 4))
     return GP_CAL_CORRUPT;
   uint16_t lo[FW_N_CH], hi[FW_N_CH];
@@ -100,8 +100,7 @@ fw_cal_result fw_cal_save(fw_cal *cal) {
   /* Trust only what reads back. */
   uint8_t back[FW_CAL_RECORD_LEN];
   uint16_t lo[FW_N_CH], hi[FW_N_CH];
-  if (fw_hal_flash_read(back, sizeof back) != 0 ||
-      fw_cal_record_read(back, lo, hi) != GP_CAL_VALID)
+  if (fw_hal_flash_read(back, sizeof back) != 0 || fw_cal_record_read(back, lo, hi) != GP_CAL_VALID)
     return FW_CAL_ERR_FLASH;
   for (unsigned c = 0; c < FW_N_CH; c++) {
     cal->min[c] = lo[c];

@@ -16,8 +16,8 @@
 
 #include "fw_config.h"
 
-#define FW_CAL_MAGIC 0x4C434D52u /* "MRCL" in memory order */
-#define FW_CAL_VERSION 1u
+#define FW_CAL_MAGIC      0x4C434D52u /* "MRCL" in memory order */
+#define FW_CAL_VERSION    1u
 #define FW_CAL_RECORD_LEN (4u + 2u + 2u + 4u * FW_N_CH + 4u)
 
 typedef struct fw_cal {
@@ -30,9 +30,9 @@ typedef struct fw_cal {
 
 typedef enum fw_cal_result {
   FW_CAL_OK = 0,
-  FW_CAL_ERR_STATE,   /* CAL_SAVE without CAL_START */
-  FW_CAL_ERR_SPAN,    /* a string moved less than FW_CAL_MIN_SPAN */
-  FW_CAL_ERR_FLASH,   /* the page could not be written or erased */
+  FW_CAL_ERR_STATE, /* CAL_SAVE without CAL_START */
+  FW_CAL_ERR_SPAN,  /* a string moved less than FW_CAL_MIN_SPAN */
+  FW_CAL_ERR_FLASH, /* the page could not be written or erased */
 } fw_cal_result;
 
 /* Loads the record from flash: VALID, DEFAULTS or CORRUPT. */

@@ -19,9 +19,9 @@
 /* Five strings, thumb .. little finger, 12-bit ADC: the width and count of
  * SAMPLE's ch field in protocol/messages.def, not a choice made here. */
 #include "gp_messages.h"
-#define FW_N_CH GP_SAMPLE_CH_COUNT
+#define FW_N_CH     GP_SAMPLE_CH_COUNT
 #define FW_ADC_BITS GP_SAMPLE_CH_BITS
-#define FW_ADC_MAX GP_SAMPLE_CH_MAX
+#define FW_ADC_MAX  GP_SAMPLE_CH_MAX
 
 /* The sampling tick: every channel gets one filtered sample per tick. */
 #define FW_TICK_HZ 1000u
@@ -47,10 +47,11 @@
 #define FW_BAUD 115200u
 /* Baud rates SET_RATE accepts (SPEC.md lists them). The Black Pill's build
  * checks that its USART1 reaches each within 0.2 %. */
-#define FW_BAUD_LIST(X) X(9600u) X(19200u) X(38400u) X(57600u) X(115200u) X(230400u) \
-  X(460800u) X(921600u)
+#define FW_BAUD_LIST(X) \
+  X(9600u) X(19200u) X(38400u) X(57600u) X(115200u) X(230400u) X(460800u) X(921600u)
 #define FW_BAUD_ITEM(b) b,
-#define FW_BAUDS {FW_BAUD_LIST(FW_BAUD_ITEM)}
+#define FW_BAUDS \
+  { FW_BAUD_LIST(FW_BAUD_ITEM) }
 /* SET_RATE refuses a SAMPLE stream that would fill more than this share of
  * the link, leaving room for INFO, replies and clock error. */
 #define FW_LINK_MAX_PERCENT 50u

@@ -71,12 +71,12 @@ static void send_info(fw_core *c) {
 
 static void send_status(fw_core *c) {
   fw_status_state s = {
-      .t_us = c->last_tick * FW_TICK_US,
-      .frames_sent = c->frames_sent,
-      .overruns = c->overruns,
-      .dropped_frames = c->dropped_frames,
-      .cmd_errors = c->cmd_errors,
-      .adc_timeouts = fw_hal_adc_timeouts(),
+    .t_us = c->last_tick * FW_TICK_US,
+    .frames_sent = c->frames_sent,
+    .overruns = c->overruns,
+    .dropped_frames = c->dropped_frames,
+    .cmd_errors = c->cmd_errors,
+    .adc_timeouts = fw_hal_adc_timeouts(),
   };
   uint8_t wire[GP_MAX_WIRE];
   send(c, wire, fw_frame_status(&s, wire, sizeof wire));
@@ -121,9 +121,15 @@ static void reply_cal(fw_core *c, uint8_t tag, uint8_t cmd, fw_cal_result r) {
     send_ack(c, tag, cmd);
     send_info(c);
     break;
-  case FW_CAL_ERR_STATE: send_nack(c, tag, cmd, GP_NACK_BAD_STATE); break;
-  case FW_CAL_ERR_SPAN: send_nack(c, tag, cmd, GP_NACK_BAD_ARGUMENT); break;
-  default: send_nack(c, tag, cmd, GP_NACK_FLASH_ERROR); break;
+  case FW_CAL_ERR_STATE:
+    send_nack(c, tag, cmd, GP_NACK_BAD_STATE);
+    break;
+  case FW_CAL_ERR_SPAN:
+    send_nack(c, tag, cmd, GP_NACK_BAD_ARGUMENT);
+    break;
+  default:
+    send_nack(c, tag, cmd, GP_NACK_FLASH_ERROR);
+    break;
   }
 }
 

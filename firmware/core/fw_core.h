@@ -33,8 +33,8 @@ typedef struct fw_core {
   uint32_t frame_phase; /* ticks since the last SAMPLE boundary */
   uint32_t info_phase;
   uint16_t seq;
-  uint8_t seq_started;  /* the first SAMPLE since boot (GP_SAMPLE_F_START) is out */
-  uint16_t ch[FW_N_CH]; /* newest filtered counts */
+  uint8_t seq_started;   /* the first SAMPLE since boot (GP_SAMPLE_F_START) is out */
+  uint16_t ch[FW_N_CH];  /* newest filtered counts */
   uint8_t pending_flags; /* CLIPPED / OVERRUN since the last SAMPLE */
 
   /* button (debounced) */

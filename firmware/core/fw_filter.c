@@ -5,8 +5,7 @@ void fw_filter_init(fw_filter *f) {
   f->primed = 0;
 }
 
-int fw_filter_block(fw_filter *f, const uint16_t block[FW_BLOCK_LEN],
-                    uint16_t out[FW_N_CH]) {
+int fw_filter_block(fw_filter *f, const uint16_t block[FW_BLOCK_LEN], uint16_t out[FW_N_CH]) {
   int clipped = 0;
   for (unsigned c = 0; c < FW_N_CH; c++) {
     uint32_t sum = 0;

@@ -30,7 +30,6 @@ typedef struct fw_filter {
 void fw_filter_init(fw_filter *f);
 /* Feeds one tick's block. Writes the filtered counts to out and returns 1 if
  * any conversion sat at 0 or full scale (the CLIPPED flag). */
-int fw_filter_block(fw_filter *f, const uint16_t block[FW_BLOCK_LEN],
-                    uint16_t out[FW_N_CH]);
+int fw_filter_block(fw_filter *f, const uint16_t block[FW_BLOCK_LEN], uint16_t out[FW_N_CH]);
 
 #endif

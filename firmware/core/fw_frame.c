@@ -2,7 +2,7 @@
 
 size_t fw_frame_sample(uint16_t seq, uint32_t t_us, const uint16_t ch[FW_N_CH], uint8_t flags,
                        uint8_t *wire, size_t cap) {
-  gp_msg m = {.type = GP_SAMPLE};
+  gp_msg m = { .type = GP_SAMPLE };
   m.u.sample.seq = seq;
   m.u.sample.t_us = t_us;
   for (unsigned c = 0; c < FW_N_CH; c++) m.u.sample.ch[c] = ch[c];
@@ -11,7 +11,7 @@ size_t fw_frame_sample(uint16_t seq, uint32_t t_us, const uint16_t ch[FW_N_CH], 
 }
 
 size_t fw_frame_info(const fw_info_state *s, uint8_t *wire, size_t cap) {
-  gp_msg m = {.type = GP_INFO};
+  gp_msg m = { .type = GP_INFO };
   gp_info *i = &m.u.info;
   i->proto_major = GP_PROTO_MAJOR;
   i->spec_hash = GP_SPEC_HASH;
@@ -34,7 +34,7 @@ size_t fw_frame_info(const fw_info_state *s, uint8_t *wire, size_t cap) {
 }
 
 size_t fw_frame_status(const fw_status_state *s, uint8_t *wire, size_t cap) {
-  gp_msg m = {.type = GP_STATUS};
+  gp_msg m = { .type = GP_STATUS };
   m.u.status.t_us = s->t_us;
   m.u.status.frames_sent = s->frames_sent;
   m.u.status.overruns = s->overruns;
@@ -45,14 +45,14 @@ size_t fw_frame_status(const fw_status_state *s, uint8_t *wire, size_t cap) {
 }
 
 size_t fw_frame_ack(uint8_t tag, uint8_t cmd, uint8_t *wire, size_t cap) {
-  gp_msg m = {.type = GP_ACK};
+  gp_msg m = { .type = GP_ACK };
   m.u.ack.tag = tag;
   m.u.ack.cmd = cmd;
   return gp_encode(&m, GP_SPEC_HASH, wire, cap);
 }
 
 size_t fw_frame_nack(uint8_t tag, uint8_t cmd, uint8_t reason, uint8_t *wire, size_t cap) {
-  gp_msg m = {.type = GP_NACK};
+  gp_msg m = { .type = GP_NACK };
   m.u.nack.tag = tag;
   m.u.nack.cmd = cmd;
   m.u.nack.reason = reason;

@@ -17,8 +17,7 @@ uint32_t fw_link_load_permille(uint32_t frame_rate_hz, uint32_t baud) {
 }
 
 int fw_link_rate_ok(uint32_t frame_rate_hz, uint32_t baud) {
-  if (frame_rate_hz == 0 || frame_rate_hz > FW_TICK_HZ || FW_TICK_HZ % frame_rate_hz != 0)
-    return 0;
+  if (frame_rate_hz == 0 || frame_rate_hz > FW_TICK_HZ || FW_TICK_HZ % frame_rate_hz != 0) return 0;
   uint64_t bits = (uint64_t)FW_SAMPLE_WIRE_BYTES * FW_BITS_PER_BYTE * frame_rate_hz;
   return bits * 100u <= (uint64_t)baud * FW_LINK_MAX_PERCENT;
 }

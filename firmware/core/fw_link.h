@@ -16,7 +16,7 @@
 /* Bytes a SAMPLE takes on the wire: COBS adds one code byte per 254 data
  * bytes (one here), then the 0x00 delimiter. */
 #define FW_SAMPLE_WIRE_BYTES (1u + GP_SAMPLE_LEN + GP_CRC_LEN + 1u + 1u)
-#define FW_BITS_PER_BYTE 10u /* 8N1: start, 8 data, stop */
+#define FW_BITS_PER_BYTE     10u /* 8N1: start, 8 data, stop */
 
 /* 1 if baud is one the board supports (FW_BAUDS). */
 int fw_link_baud_ok(uint32_t baud);

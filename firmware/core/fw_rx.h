@@ -19,11 +19,11 @@
 #define FW_RX_FIRST_HOST_TYPE 0x10u
 
 typedef enum fw_rx_result {
-  FW_RX_NONE = 0,    /* byte consumed, no frame ended */
-  FW_RX_COMMAND,     /* a valid command: msg filled */
-  FW_RX_NACK,        /* a frame with a good CRC to refuse: tag, cmd, reason filled */
-  FW_RX_CORRUPT,     /* a frame to drop silently (bad CRC, framing, oversize) */
-  FW_RX_ECHO,        /* a frame of a glove-to-host type (0x01..0x0F, defined
+  FW_RX_NONE = 0, /* byte consumed, no frame ended */
+  FW_RX_COMMAND,  /* a valid command: msg filled */
+  FW_RX_NACK,     /* a frame with a good CRC to refuse: tag, cmd, reason filled */
+  FW_RX_CORRUPT,  /* a frame to drop silently (bad CRC, framing, oversize) */
+  FW_RX_ECHO,     /* a frame of a glove-to-host type (0x01..0x0F, defined
                       * or not), such as our own output looped back to RX:
                       * dropped silently, since a NACK would be echoed too
                       * and feed itself */

@@ -6,8 +6,8 @@
 /* Exit statuses shared by every subcommand. */
 enum {
   MR_EXIT_OK = 0,
-  MR_EXIT_FAIL = 1,  /* the scene failed to load, to run, or its check */
-  MR_EXIT_USAGE = 2  /* bad command line */
+  MR_EXIT_FAIL = 1, /* the scene failed to load, to run, or its check */
+  MR_EXIT_USAGE = 2 /* bad command line */
 };
 
 int mr_cmd_sim(int argc, char **argv);

@@ -78,8 +78,7 @@ static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, d
   printf("deviation max: %.3e\n", r->max_deviation);
   printf("deviation rms: %.3e\n", r->rms_deviation);
   printf("resets: %" PRIu64 "\n", r->resets);
-  if (r->resets > 0)
-    printf("first reset: %s\n", r->first_reset);
+  if (r->resets > 0) printf("first reset: %s\n", r->first_reset);
   printf("collisions: %" PRIu64 "\n", r->collisions);
   printf("dependent rows: %d\n", r->dependent_rows);
   printf("finite: %s\n", r->finite ? "yes" : "no");
@@ -98,15 +97,14 @@ static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, d
  * must fail, and with what. */
 static int check_load_error(const char *path, const mr_scene_error *err, int quiet) {
   char expected[256];
-  if (mr_scene_expected_load_error(path, expected, sizeof expected) != 0)
-    return -1;
+  if (mr_scene_expected_load_error(path, expected, sizeof expected) != 0) return -1;
   if (strstr(err->text, expected) == NULL) {
-    fprintf(stderr, "marionette: %s: check failed: expected a load error containing \"%s\", got: %s\n",
+    fprintf(stderr,
+            "marionette: %s: check failed: expected a load error containing \"%s\", got: %s\n",
             path, expected, err->text);
     return MR_EXIT_FAIL;
   }
-  if (!quiet)
-    printf("load error: %s\n", err->text);
+  if (!quiet) printf("load error: %s\n", err->text);
   printf("check: passed (%s failed to load as expected)\n", path);
   return MR_EXIT_OK;
 }
@@ -115,8 +113,7 @@ static int parse_seconds(const char *s, double *out) {
   char *end = NULL;
   errno = 0;
   double v = strtod(s, &end);
-  if (end == s || *end != '\0' || errno != 0 || !isfinite(v) || v <= 0 || v > 1e7)
-    return -1;
+  if (end == s || *end != '\0' || errno != 0 || !isfinite(v) || v <= 0 || v > 1e7) return -1;
   *out = v;
   return 0;
 }
@@ -174,8 +171,7 @@ static int parse_args(int argc, char **argv, sim_args *a) {
 static int csv_open(const char *csv_path, csv_sink *sink) {
   sink->f = NULL;
   sink->failed = 0;
-  if (csv_path == NULL)
-    return 0;
+  if (csv_path == NULL) return 0;
   sink->f = strcmp(csv_path, "-") == 0 ? stdout : fopen(csv_path, "w");
   if (sink->f == NULL) {
     fprintf(stderr, "marionette: %s: cannot write the trace: %s\n", csv_path, strerror(errno));
@@ -187,10 +183,8 @@ static int csv_open(const char *csv_path, csv_sink *sink) {
 
 /* Closes the trace; MR_EXIT_FAIL when any of it failed to reach the file. */
 static int csv_close(const char *csv_path, csv_sink *sink) {
-  if (sink->f != NULL && sink->f != stdout && fclose(sink->f) != 0)
-    sink->failed = 1;
-  if (!sink->failed)
-    return MR_EXIT_OK;
+  if (sink->f != NULL && sink->f != stdout && fclose(sink->f) != 0) sink->failed = 1;
+  if (!sink->failed) return MR_EXIT_OK;
   fprintf(stderr, "marionette: %s: writing the trace failed\n", csv_path);
   return MR_EXIT_FAIL;
 }
@@ -215,8 +209,7 @@ static int report(const sim_args *a, const mr_scene *scene, const mr_scene_run_r
     printf("state_hash: 0x%016" PRIx64 "\n", r->hash);
   else if (!a->quiet && !csv_on_stdout)
     print_summary(scene, r, wall);
-  if (!a->check)
-    return MR_EXIT_OK;
+  if (!a->check) return MR_EXIT_OK;
   char why[512];
   if (mr_scene_check(scene, r, why, sizeof why) != 0) {
     fprintf(stderr, "marionette: %s: check failed: %s\n", a->path, why);
@@ -228,17 +221,15 @@ static int report(const sim_args *a, const mr_scene *scene, const mr_scene_run_r
 
 static int run_scene(const sim_args *a, mr_scene *scene) {
   csv_sink sink;
-  if (csv_open(a->csv_path, &sink) != 0)
-    return MR_EXIT_FAIL;
-  mr_scene_run_opts opts = {a->duration, a->csv_path ? on_step : NULL, &sink};
+  if (csv_open(a->csv_path, &sink) != 0) return MR_EXIT_FAIL;
+  mr_scene_run_opts opts = { a->duration, a->csv_path ? on_step : NULL, &sink };
   mr_scene_run_result result;
   mr_scene_error err;
   double t0 = wall_seconds();
   mr_scene_status st = mr_scene_run(scene, &opts, &result, &err);
   double wall = wall_seconds() - t0;
   int rc = csv_close(a->csv_path, &sink);
-  if (st != MR_SCENE_OK)
-    return run_failed(a, scene, &err);
+  if (st != MR_SCENE_OK) return run_failed(a, scene, &err);
   int rc2 = report(a, scene, &result, wall);
   return rc != MR_EXIT_OK ? rc : rc2;
 }
@@ -246,13 +237,11 @@ static int run_scene(const sim_args *a, mr_scene *scene) {
 int mr_cmd_sim(int argc, char **argv) {
   sim_args a;
   int rc = parse_args(argc, argv, &a);
-  if (rc >= 0)
-    return rc;
+  if (rc >= 0) return rc;
   mr_scene scene;
   mr_scene_error err;
   if (mr_scene_load(a.path, &scene, &err) != MR_SCENE_OK) {
-    if (a.check && (rc = check_load_error(a.path, &err, a.quiet)) >= 0)
-      return rc;
+    if (a.check && (rc = check_load_error(a.path, &err, a.quiet)) >= 0) return rc;
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;
   }

@@ -6,18 +6,17 @@
 #include "app.h"
 
 static void usage(FILE *f) {
-  fprintf(f,
-          "usage: marionette COMMAND [ARGS]\n"
-          "\n"
-          "A real-time virtual marionette theater.\n"
-          "\n"
-          "commands:\n"
-          "  sim SCENE   run a scene without rendering, as fast as possible, and\n"
-          "              print a summary (steps, time steps, deviations, resets,\n"
-          "              pass counters, state hash); see `marionette sim --help`\n"
-          "\n"
-          "options:\n"
-          "  -h, --help  show this help\n");
+  fprintf(f, "usage: marionette COMMAND [ARGS]\n"
+             "\n"
+             "A real-time virtual marionette theater.\n"
+             "\n"
+             "commands:\n"
+             "  sim SCENE   run a scene without rendering, as fast as possible, and\n"
+             "              print a summary (steps, time steps, deviations, resets,\n"
+             "              pass counters, state hash); see `marionette sim --help`\n"
+             "\n"
+             "options:\n"
+             "  -h, --help  show this help\n");
 }
 
 int main(int argc, char **argv) {
@@ -31,8 +30,7 @@ int main(int argc, char **argv) {
     usage(stdout);
     return MR_EXIT_OK;
   }
-  if (strcmp(cmd, "sim") == 0)
-    return mr_cmd_sim(argc - 1, argv + 1);
+  if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);
   fprintf(stderr, "marionette: unknown command '%s'; expected one of: sim (see --help)\n", cmd);
   return MR_EXIT_USAGE;
 }

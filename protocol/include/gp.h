@@ -22,7 +22,7 @@
 /* Largest raw frame (type + payload + CRC) and largest wire frame (COBS adds
  * one byte per 254 plus one; then the delimiter). */
 #define GP_MAX_FRAME (1u + GP_MAX_PAYLOAD + GP_CRC_LEN)
-#define GP_MAX_WIRE (GP_MAX_FRAME + GP_MAX_FRAME / 254u + 1u + 1u)
+#define GP_MAX_WIRE  (GP_MAX_FRAME + GP_MAX_FRAME / 254u + 1u + 1u)
 
 /* --- CRC-32C (catalogue name CRC-32/ISCSI, check value 0xE3069283) ------- */
 
@@ -68,32 +68,32 @@ uint32_t gp_frame_crc(uint32_t spec_hash, const uint8_t *raw, size_t len_without
 /* What one call to gp_decoder_feed ended on. Every byte of a stream belongs to
  * exactly one event; SPEC.md, "Receiver rules", says what each means. */
 typedef enum gp_event {
-  GP_EV_NONE = 0,       /* input consumed, no frame ended */
-  GP_EV_FRAME,          /* a valid frame: *out is filled */
-  GP_EV_FRAME_LATE,     /* a valid SAMPLE that arrived after a newer one: *out filled */
-  GP_EV_DUPLICATE,      /* a SAMPLE whose sequence number was already seen: *out filled */
-  GP_EV_CRC_ERROR,      /* right length, CRC fails under the host's and any announced hash */
-  GP_EV_FRAMING_ERROR,  /* malformed COBS, too short, or wrong length for its type */
-  GP_EV_OVERSIZE,       /* more than GP_MAX_WIRE bytes without a delimiter */
-  GP_EV_UNKNOWN_TYPE,   /* CRC good, type not in this spec */
-  GP_EV_SPEC_MISMATCH,  /* a frame from a device built from another spec (INFO: *out filled) */
+  GP_EV_NONE = 0,      /* input consumed, no frame ended */
+  GP_EV_FRAME,         /* a valid frame: *out is filled */
+  GP_EV_FRAME_LATE,    /* a valid SAMPLE that arrived after a newer one: *out filled */
+  GP_EV_DUPLICATE,     /* a SAMPLE whose sequence number was already seen: *out filled */
+  GP_EV_CRC_ERROR,     /* right length, CRC fails under the host's and any announced hash */
+  GP_EV_FRAMING_ERROR, /* malformed COBS, too short, or wrong length for its type */
+  GP_EV_OVERSIZE,      /* more than GP_MAX_WIRE bytes without a delimiter */
+  GP_EV_UNKNOWN_TYPE,  /* CRC good, type not in this spec */
+  GP_EV_SPEC_MISMATCH, /* a frame from a device built from another spec (INFO: *out filled) */
 } gp_event;
 
 /* SPEC.md, "Receiver rules", names each counter and which frames count where.
  * Empty frames, and a receiver's tail before its first 0x00, count only in
  * bytes. */
 typedef struct gp_counters {
-  uint32_t frames;         /* delivered: GP_EV_FRAME + GP_EV_FRAME_LATE (restarts included) */
+  uint32_t frames; /* delivered: GP_EV_FRAME + GP_EV_FRAME_LATE (restarts included) */
   uint32_t crc_errors;
   uint32_t framing_errors;
   uint32_t oversize;
   uint32_t unknown_type;
   uint32_t spec_mismatch;
-  uint32_t lost;           /* SAMPLE sequence numbers skipped and never seen */
-  uint32_t duplicates;     /* SAMPLEs already seen; not in frames */
-  uint32_t reordered;      /* late SAMPLEs (each was first counted as lost, then taken back) */
-  uint32_t seq_restarts;   /* SAMPLEs that start a new sequence (START, or a jump too far back) */
-  uint64_t bytes;          /* every byte fed */
+  uint32_t lost;         /* SAMPLE sequence numbers skipped and never seen */
+  uint32_t duplicates;   /* SAMPLEs already seen; not in frames */
+  uint32_t reordered;    /* late SAMPLEs (each was first counted as lost, then taken back) */
+  uint32_t seq_restarts; /* SAMPLEs that start a new sequence (START, or a jump too far back) */
+  uint64_t bytes;        /* every byte fed */
 } gp_counters;
 
 /* How far back the decoder remembers sequence numbers to tell a late frame
@@ -105,18 +105,18 @@ typedef struct gp_counters {
  * only what rules 4 and 5 need, so memory stays bounded at any length. */
 typedef struct gp_long_frame {
   uint8_t active;
-  uint8_t left;           /* data bytes left in the current COBS group */
-  uint8_t zero_due;       /* a zero goes before the next group */
-  uint8_t head[6];        /* type, proto_major, spec_hash */
-  uint8_t tail[4];        /* the newest four raw bytes, by raw index mod 4 */
-  uint64_t n;             /* raw bytes so far */
-  uint32_t crc_unseeded;  /* CRC-32C of the raw bytes before the newest four */
-  uint32_t crc_peer;      /* the same, seeded with the peer's hash */
+  uint8_t left;          /* data bytes left in the current COBS group */
+  uint8_t zero_due;      /* a zero goes before the next group */
+  uint8_t head[6];       /* type, proto_major, spec_hash */
+  uint8_t tail[4];       /* the newest four raw bytes, by raw index mod 4 */
+  uint64_t n;            /* raw bytes so far */
+  uint32_t crc_unseeded; /* CRC-32C of the raw bytes before the newest four */
+  uint32_t crc_peer;     /* the same, seeded with the peer's hash */
 } gp_long_frame;
 
 typedef struct gp_decoder {
-  uint32_t spec_hash;     /* the host's */
-  uint32_t peer_hash;     /* the hash a foreign INFO announced */
+  uint32_t spec_hash; /* the host's */
+  uint32_t peer_hash; /* the hash a foreign INFO announced */
   uint8_t peer_known;
   uint8_t have_seq;
   uint8_t overflow;       /* discarding until the next delimiter */
@@ -140,8 +140,7 @@ void gp_decoder_init(gp_decoder *d, uint32_t spec_hash);
  * Returns how many bytes it consumed and stores what the frame was in *ev;
  * *out is written only for the events that say so. Call again with the rest.
  * Never reads past data + n, never fails, never allocates. */
-size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out,
-                       gp_event *ev);
+size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out, gp_event *ev);
 
 /* The one-line name of an event, for logs ("crc error", ...). */
 const char *gp_event_name(gp_event ev);

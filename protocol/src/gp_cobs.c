@@ -7,16 +7,14 @@
 size_t gp_cobs_encode(const uint8_t *in, size_t len, uint8_t *out, size_t cap) {
   size_t code_at = 0, o = 1;
   uint8_t code = 1;
-  if (cap == 0)
-    return 0;
+  if (cap == 0) return 0;
   for (size_t i = 0; i < len; i++) {
     if (in[i] == 0) {
       out[code_at] = code;
       code_at = o++;
       code = 1;
     } else {
-      if (o >= cap)
-        return 0;
+      if (o >= cap) return 0;
       out[o++] = in[i];
       if (++code == 0xFF) {
         out[code_at] = code;
@@ -24,11 +22,9 @@ size_t gp_cobs_encode(const uint8_t *in, size_t len, uint8_t *out, size_t cap) {
         code = 1;
       }
     }
-    if (o > cap)
-      return 0;
+    if (o > cap) return 0;
   }
-  if (code_at >= cap)
-    return 0;
+  if (code_at >= cap) return 0;
   out[code_at] = code;
   return o;
 }
@@ -37,16 +33,13 @@ int gp_cobs_decode(const uint8_t *in, size_t len, uint8_t *out, size_t cap) {
   size_t i = 0, o = 0;
   while (i < len) {
     uint8_t code = in[i++];
-    if (code == 0)
-      return -1;
+    if (code == 0) return -1;
     for (uint8_t k = 1; k < code; k++) {
-      if (i >= len || in[i] == 0 || o >= cap)
-        return -1;
+      if (i >= len || in[i] == 0 || o >= cap) return -1;
       out[o++] = in[i++];
     }
     if (code != 0xFF && i < len) {
-      if (o >= cap)
-        return -1;
+      if (o >= cap) return -1;
       out[o++] = 0;
     }
   }

@@ -8,7 +8,7 @@
 #include "gp.h"
 
 void gp_decoder_init(gp_decoder *d, uint32_t spec_hash) {
-  gp_decoder zero = {0};
+  gp_decoder zero = { 0 };
   *d = zero;
   d->spec_hash = spec_hash;
 }
@@ -53,7 +53,7 @@ static int crc_ok(uint32_t hash, const uint8_t *raw, size_t len) {
 static void announce_peer(gp_decoder *d, uint8_t proto_major, uint32_t announced, gp_msg *out) {
   d->peer_hash = announced;
   d->peer_known = 1;
-  gp_msg zero = {0};
+  gp_msg zero = { 0 };
   *out = zero;
   out->type = GP_INFO;
   out->u.info.proto_major = proto_major;
@@ -62,24 +62,20 @@ static void announce_peer(gp_decoder *d, uint8_t proto_major, uint32_t announced
 
 static int foreign_info(gp_decoder *d, const uint8_t *raw, size_t len, gp_msg *out) {
   const size_t frozen = 1u + 1u + 4u + GP_CRC_LEN;
-  if (raw[0] != GP_UNSEEDED_TYPE || len < frozen || !crc_ok(0, raw, len))
-    return 0;
+  if (raw[0] != GP_UNSEEDED_TYPE || len < frozen || !crc_ok(0, raw, len)) return 0;
   uint32_t announced = load_le32(raw + 2);
-  if (announced == d->spec_hash)
-    return 0;
+  if (announced == d->spec_hash) return 0;
   /* Another layout: only the frozen prefix means anything, unless it has
    * our INFO's length. */
   announce_peer(d, raw[1], announced, out);
-  if (len == 1u + GP_INFO_LEN + GP_CRC_LEN)
-    gp_payload_unpack(raw[0], raw + 1, GP_INFO_LEN, out);
+  if (len == 1u + GP_INFO_LEN + GP_CRC_LEN) gp_payload_unpack(raw[0], raw + 1, GP_INFO_LEN, out);
   return 1;
 }
 
 /* --- runs past GP_MAX_WIRE (rule 2) --------------------------------------- */
 
 static void long_raw(gp_long_frame *l, uint8_t x) {
-  if (l->n < sizeof l->head)
-    l->head[l->n] = x;
+  if (l->n < sizeof l->head) l->head[l->n] = x;
   uint8_t *slot = &l->tail[l->n % GP_CRC_LEN];
   if (l->n >= GP_CRC_LEN) {
     /* The byte four back leaves the tail: it is not part of the CRC. */
@@ -92,8 +88,7 @@ static void long_raw(gp_long_frame *l, uint8_t x) {
 
 static void long_byte(gp_long_frame *l, uint8_t b) {
   if (l->left == 0) { /* a COBS code byte */
-    if (l->zero_due)
-      long_raw(l, 0);
+    if (l->zero_due) long_raw(l, 0);
     l->left = (uint8_t)(b - 1u);
     l->zero_due = b != 0xFFu;
     return;
@@ -107,16 +102,14 @@ static void long_byte(gp_long_frame *l, uint8_t b) {
  * anything else is oversize at once. */
 static int long_start(gp_decoder *d) {
   int info = d->buf[0] >= 2u && d->buf[1] == GP_UNSEEDED_TYPE;
-  if (!info && !d->peer_known)
-    return 0;
-  gp_long_frame zero = {0};
+  if (!info && !d->peer_known) return 0;
+  gp_long_frame zero = { 0 };
   d->lf = zero;
   d->lf.active = 1;
-  uint8_t seed[4] = {(uint8_t)d->peer_hash, (uint8_t)(d->peer_hash >> 8),
-                     (uint8_t)(d->peer_hash >> 16), (uint8_t)(d->peer_hash >> 24)};
+  uint8_t seed[4] = { (uint8_t)d->peer_hash, (uint8_t)(d->peer_hash >> 8),
+                      (uint8_t)(d->peer_hash >> 16), (uint8_t)(d->peer_hash >> 24) };
   d->lf.crc_peer = gp_crc32c(0, seed, sizeof seed);
-  for (size_t i = 0; i < d->len; i++)
-    long_byte(&d->lf, d->buf[i]);
+  for (size_t i = 0; i < d->len; i++) long_byte(&d->lf, d->buf[i]);
   d->len = 0;
   return 1;
 }
@@ -124,8 +117,7 @@ static int long_start(gp_decoder *d) {
 static gp_event long_end(gp_decoder *d, gp_msg *out) {
   gp_long_frame *l = &d->lf;
   l->active = 0;
-  if (l->left != 0)
-    return GP_EV_OVERSIZE; /* a code byte ran past the end */
+  if (l->left != 0) return GP_EV_OVERSIZE; /* a code byte ran past the end */
   uint32_t got = 0;
   for (unsigned k = 0; k < GP_CRC_LEN; k++)
     got |= (uint32_t)l->tail[(l->n + k) % GP_CRC_LEN] << (8u * k);
@@ -175,8 +167,7 @@ static gp_event sample_seq(gp_decoder *d, const gp_sample *s) {
       }
       d->seq_seen |= bit;
       d->c.reordered++;
-      if (d->c.lost)
-        d->c.lost--; /* it was counted lost when the gap opened */
+      if (d->c.lost) d->c.lost--; /* it was counted lost when the gap opened */
       return GP_EV_FRAME_LATE;
     }
     /* Too far back for reordering, without the start flag (its frame was
@@ -194,25 +185,19 @@ static gp_event sample_seq(gp_decoder *d, const gp_sample *s) {
 /* SPEC.md, "Receiver rules", 3 to 7 in order. */
 static gp_event frame_end(gp_decoder *d, gp_msg *out) {
   int n = gp_cobs_decode(d->buf, d->len, d->raw, sizeof d->raw);
-  if (n < (int)(1u + GP_CRC_LEN))
-    return GP_EV_FRAMING_ERROR;
+  if (n < (int)(1u + GP_CRC_LEN)) return GP_EV_FRAMING_ERROR;
   size_t len = (size_t)n;
   const uint8_t *raw = d->raw;
-  if (foreign_info(d, raw, len, out))
-    return GP_EV_SPEC_MISMATCH;
+  if (foreign_info(d, raw, len, out)) return GP_EV_SPEC_MISMATCH;
   int ours = crc_ok(d->spec_hash, raw, len);
-  if (!ours && d->peer_known && crc_ok(d->peer_hash, raw, len))
-    return GP_EV_SPEC_MISMATCH;
+  if (!ours && d->peer_known && crc_ok(d->peer_hash, raw, len)) return GP_EV_SPEC_MISMATCH;
   const gp_msg_desc *desc = gp_msg_find(raw[0]);
   if (len > GP_MAX_FRAME || (desc && len != 1u + desc->len + GP_CRC_LEN))
     return GP_EV_FRAMING_ERROR;
-  if (!ours)
-    return GP_EV_CRC_ERROR;
-  if (!desc)
-    return GP_EV_UNKNOWN_TYPE;
+  if (!ours) return GP_EV_CRC_ERROR;
+  if (!desc) return GP_EV_UNKNOWN_TYPE;
   gp_payload_unpack(raw[0], raw + 1, desc->len, out);
-  if (raw[0] == GP_SAMPLE)
-    return sample_seq(d, &out->u.sample);
+  if (raw[0] == GP_SAMPLE) return sample_seq(d, &out->u.sample);
   return GP_EV_FRAME;
 }
 
@@ -243,8 +228,7 @@ static void count(gp_decoder *d, gp_event ev) {
   }
 }
 
-size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out,
-                       gp_event *ev) {
+size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out, gp_event *ev) {
   *ev = GP_EV_NONE;
   for (size_t i = 0; i < n; i++) {
     uint8_t b = data[i];
@@ -254,8 +238,7 @@ size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out
         long_byte(&d->lf, b);
         continue;
       }
-      if (d->overflow)
-        continue;
+      if (d->overflow) continue;
       if (d->len == sizeof d->buf) {
         if (long_start(d)) {
           long_byte(&d->lf, b);
@@ -293,8 +276,7 @@ size_t gp_decoder_feed(gp_decoder *d, const uint8_t *data, size_t n, gp_msg *out
       d->in_step = 1;
       /* Before its first 0x00 a receiver may have joined a frame mid-way:
        * a tail that is no frame is not an error (SPEC.md, rule 1). */
-      if (*ev == GP_EV_FRAMING_ERROR || *ev == GP_EV_CRC_ERROR)
-        *ev = GP_EV_NONE;
+      if (*ev == GP_EV_FRAMING_ERROR || *ev == GP_EV_CRC_ERROR) *ev = GP_EV_NONE;
     }
     count(d, *ev);
     return i + 1;

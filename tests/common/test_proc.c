@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 static void sleep_ms(int ms) {
-  struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
+  struct timespec ts = { ms / 1000, (long)(ms % 1000) * 1000000L };
   nanosleep(&ts, NULL);
 }
 
@@ -52,8 +52,7 @@ int tt_wait(pid_t pid, int timeout_s) {
   return -1;
 }
 
-int tt_run(const char *const argv[], const char *out_path, const char *err_path,
-           int timeout_s) {
+int tt_run(const char *const argv[], const char *out_path, const char *err_path, int timeout_s) {
   pid_t pid = tt_spawn(argv, out_path, err_path);
   return pid < 0 ? -1 : tt_wait(pid, timeout_s);
 }
@@ -82,7 +81,7 @@ static int append(buf *b, const char *src, size_t n) {
 /* Reads both pipes until both close, so a chatty child never blocks on a
  * full pipe while we wait on the other. */
 static void drain_pipes(int out_fd, int err_fd, buf *bo, buf *be) {
-  struct pollfd fds[2] = {{out_fd, POLLIN, 0}, {err_fd, POLLIN, 0}};
+  struct pollfd fds[2] = { { out_fd, POLLIN, 0 }, { err_fd, POLLIN, 0 } };
   int open_fds = 2;
   while (open_fds > 0) {
     if (poll(fds, 2, -1) < 0) {
@@ -107,7 +106,7 @@ static void drain_pipes(int out_fd, int err_fd, buf *bo, buf *be) {
 
 int tt_capture(char *const argv[], tt_output *o) {
   int out[2], err[2], status = 0;
-  buf bo = {0}, be = {0};
+  buf bo = { 0 }, be = { 0 };
   pid_t pid;
   memset(o, 0, sizeof *o);
   if (pipe(out) != 0) return -1;

@@ -18,8 +18,7 @@ pid_t tt_spawn(const char *const argv[], const char *out_path, const char *err_p
 int tt_wait(pid_t pid, int timeout_s);
 
 /* spawn + wait. */
-int tt_run(const char *const argv[], const char *out_path, const char *err_path,
-           int timeout_s);
+int tt_run(const char *const argv[], const char *out_path, const char *err_path, int timeout_s);
 
 /* A finished child's status and everything it printed. */
 typedef struct tt_output {

@@ -23,7 +23,7 @@ static double now_s(void) {
 
 static void common_await_file_stops_when_the_child_exits_and_keeps_its_status(void **state) {
   char *dir = tt_tmpdir();
-  const char *argv[] = {"/bin/sh", "-c", "echo 'no pty here' >&2; exit 3", NULL};
+  const char *argv[] = { "/bin/sh", "-c", "echo 'no pty here' >&2; exit 3", NULL };
   char never[1100], err_path[1100];
   double t0;
   pid_t pid;
@@ -46,7 +46,7 @@ static void common_await_file_stops_when_the_child_exits_and_keeps_its_status(vo
 static void common_await_file_returns_once_the_child_wrote_it(void **state) {
   char *dir = tt_tmpdir();
   char cmd[1200];
-  const char *argv[] = {"/bin/sh", "-c", cmd, NULL};
+  const char *argv[] = { "/bin/sh", "-c", cmd, NULL };
   pid_t pid;
   (void)state;
   assert_non_null(dir);
@@ -60,7 +60,7 @@ static void common_await_file_returns_once_the_child_wrote_it(void **state) {
 }
 
 static void common_capture_keeps_stdout_stderr_and_status_apart(void **state) {
-  char *argv[] = {"/bin/sh", "-c", "echo out; echo err >&2; exit 5", NULL};
+  char *argv[] = { "/bin/sh", "-c", "echo out; echo err >&2; exit 5", NULL };
   tt_output o;
   char v[32];
   (void)state;
@@ -75,9 +75,9 @@ static void common_capture_keeps_stdout_stderr_and_status_apart(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(common_await_file_stops_when_the_child_exits_and_keeps_its_status),
-      cmocka_unit_test(common_await_file_returns_once_the_child_wrote_it),
-      cmocka_unit_test(common_capture_keeps_stdout_stderr_and_status_apart),
+    cmocka_unit_test(common_await_file_stops_when_the_child_exits_and_keeps_its_status),
+    cmocka_unit_test(common_await_file_returns_once_the_child_wrote_it),
+    cmocka_unit_test(common_capture_keeps_stdout_stderr_and_status_apart),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

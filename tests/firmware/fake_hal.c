@@ -115,9 +115,13 @@ int fw_hal_adc_take(uint16_t block[FW_BLOCK_LEN], uint32_t *tick) {
   return fw_blockq_take(&fake.q, block, tick);
 }
 
-uint32_t fw_hal_adc_timeouts(void) { return fake.adc_timeouts; }
+uint32_t fw_hal_adc_timeouts(void) {
+  return fake.adc_timeouts;
+}
 
-size_t fw_hal_uart_tx_free(void) { return FW_TXQ_BYTES - fake.txq_len; }
+size_t fw_hal_uart_tx_free(void) {
+  return FW_TXQ_BYTES - fake.txq_len;
+}
 
 void fw_hal_uart_write(const uint8_t *data, size_t n) {
   /* The core promised to respect tx_free; overflowing here is a core bug. */
@@ -129,7 +133,9 @@ void fw_hal_uart_write(const uint8_t *data, size_t n) {
   fake.txq_len += n;
 }
 
-int fw_hal_uart_tx_idle(void) { return fake.txq_len == 0; }
+int fw_hal_uart_tx_idle(void) {
+  return fake.txq_len == 0;
+}
 
 int fw_hal_uart_read(uint8_t *byte) {
   if (fake.rx_pos >= fake.rx_len) return 0;
@@ -163,7 +169,13 @@ int fw_hal_flash_erase(void) {
   return 0;
 }
 
-void fw_hal_led(int on) { fake.led = on; }
-int fw_hal_button(void) { return fake.button; }
+void fw_hal_led(int on) {
+  fake.led = on;
+}
+int fw_hal_button(void) {
+  return fake.button;
+}
 void fw_hal_watchdog_kick(void) {}
-void fw_hal_uid(uint32_t uid[3]) { memcpy(uid, fake.uid, sizeof fake.uid); }
+void fw_hal_uid(uint32_t uid[3]) {
+  memcpy(uid, fake.uid, sizeof fake.uid);
+}

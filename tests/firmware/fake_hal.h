@@ -19,14 +19,14 @@ typedef struct fake_hal {
   uint32_t tick;           /* next tick the timer will sample */
   uint16_t level[FW_N_CH]; /* what the ADC converts, per channel */
   uint32_t adc_timeouts;
-  uint32_t blocks_lost;    /* blocks that found the queue full */
+  uint32_t blocks_lost; /* blocks that found the queue full */
 
   /* transmit queue (FW_TXQ_BYTES) and the line behind it */
   uint8_t txq[FW_TXQ_BYTES];
   size_t txq_len;
-  int tx_overflow;         /* the core wrote more than tx_free allowed */
+  int tx_overflow; /* the core wrote more than tx_free allowed */
   uint32_t baud;
-  uint64_t line_bits;      /* bit times owed to the line, x1000 */
+  uint64_t line_bits;          /* bit times owed to the line, x1000 */
   uint8_t wire[FAKE_WIRE_CAP]; /* every byte that left the line */
   size_t wire_len;
   uint32_t baud_changes;
@@ -37,7 +37,7 @@ typedef struct fake_hal {
 
   /* flash page */
   uint8_t flash[FW_CAL_RECORD_LEN];
-  int flash_absent;        /* board without storage */
+  int flash_absent; /* board without storage */
   int flash_fail_write;
   uint32_t flash_writes;
 

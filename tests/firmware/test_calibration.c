@@ -54,8 +54,10 @@ static const gp_info *last_info(void) {
 /* Holds every string at lo, moves it to hi, holds it there, and back. */
 static void sweep(uint16_t lo, uint16_t hi) {
   for (unsigned t = 0; t < 800; t++) {
-    unsigned v = t < 100 ? lo : t < 300 ? lo + (hi - lo) * (t - 100) / 199u : t < 500 ? hi
-                 : hi - (hi - lo) * (t - 500) / 299u;
+    unsigned v = t < 100   ? lo
+                 : t < 300 ? lo + (hi - lo) * (t - 100) / 199u
+                 : t < 500 ? hi
+                           : hi - (hi - lo) * (t - 500) / 299u;
     for (unsigned c = 0; c < FW_N_CH; c++) fake.level[c] = (uint16_t)(v + 10 * c);
     fake_run(&core, 1);
   }
@@ -99,7 +101,8 @@ static void firmware_calibration_save_survives_reset(void **state) {
 
 static void firmware_calibration_corrupt_record_falls_back(void **state) {
   (void)state;
-  uint16_t lo[FW_N_CH] = {300, 310, 320, 330, 340}, hi[FW_N_CH] = {3000, 3010, 3020, 3030, 3040};
+  uint16_t lo[FW_N_CH] = { 300, 310, 320, 330, 340 },
+           hi[FW_N_CH] = { 3000, 3010, 3020, 3030, 3040 };
   uint8_t rec[FW_CAL_RECORD_LEN], copy[FW_CAL_RECORD_LEN];
   uint16_t a[FW_N_CH], b[FW_N_CH];
   fw_cal_record_write(lo, hi, rec);
@@ -116,7 +119,7 @@ static void firmware_calibration_corrupt_record_falls_back(void **state) {
   memset(copy, 0xFF, sizeof copy);
   assert_int_equal(fw_cal_record_read(copy, a, b), GP_CAL_DEFAULTS);
   /* A good CRC over an impossible range is still refused. */
-  uint16_t bad_hi[FW_N_CH] = {3000, 3010, 320, 3030, 3040};
+  uint16_t bad_hi[FW_N_CH] = { 3000, 3010, 320, 3030, 3040 };
   fw_cal_record_write(lo, bad_hi, copy);
   assert_int_equal(fw_cal_record_read(copy, a, b), GP_CAL_CORRUPT);
 
@@ -317,14 +320,14 @@ static void firmware_calibration_accepts_a_span_of_exactly_the_minimum(void **st
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_setup(firmware_calibration_save_survives_reset, setup),
-      cmocka_unit_test_setup(firmware_calibration_corrupt_record_falls_back, setup),
-      cmocka_unit_test_setup(firmware_calibration_refusals, setup),
-      cmocka_unit_test_setup(firmware_calibration_failed_clear_keeps_the_calibration, setup),
-      cmocka_unit_test_setup(firmware_calibration_board_without_storage, setup),
-      cmocka_unit_test_setup(firmware_calibration_by_button, setup),
-      cmocka_unit_test_setup(firmware_calibration_button_debounce_is_20_ticks, setup),
-      cmocka_unit_test_setup(firmware_calibration_accepts_a_span_of_exactly_the_minimum, setup),
+    cmocka_unit_test_setup(firmware_calibration_save_survives_reset, setup),
+    cmocka_unit_test_setup(firmware_calibration_corrupt_record_falls_back, setup),
+    cmocka_unit_test_setup(firmware_calibration_refusals, setup),
+    cmocka_unit_test_setup(firmware_calibration_failed_clear_keeps_the_calibration, setup),
+    cmocka_unit_test_setup(firmware_calibration_board_without_storage, setup),
+    cmocka_unit_test_setup(firmware_calibration_by_button, setup),
+    cmocka_unit_test_setup(firmware_calibration_button_debounce_is_20_ticks, setup),
+    cmocka_unit_test_setup(firmware_calibration_accepts_a_span_of_exactly_the_minimum, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -51,7 +51,8 @@ static void expect_ack(uint8_t type, uint8_t tag, size_t *idx) {
   if (idx) *idx = i;
 }
 
-static void expect_nack_raw(const uint8_t *wire, size_t n, uint8_t tag, uint8_t cmd, uint8_t reason) {
+static void expect_nack_raw(const uint8_t *wire, size_t n, uint8_t tag, uint8_t cmd,
+                            uint8_t reason) {
   size_t from = fake.wire_len;
   fake_rx(wire, n);
   fake_run(&core, 20);
@@ -125,8 +126,12 @@ static void firmware_commands_set_rate(void **state) {
   gp_msg m;
   memset(&m, 0, sizeof m);
   m.type = GP_SET_RATE;
-  const struct { uint16_t rate; uint32_t baud; } bad[] = {
-      {3, 0}, {0, 0}, {2000, 921600}, {1000, 0}, {500, 115200}, {250, 12345}, {250, 57600},
+  const struct {
+    uint16_t rate;
+    uint32_t baud;
+  } bad[] = {
+    { 3, 0 },        { 0, 0 },       { 2000, 921600 }, { 1000, 0 },
+    { 500, 115200 }, { 250, 12345 }, { 250, 57600 },
   };
   for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
     m.u.set_rate.tag = (uint8_t)(30 + k);
@@ -152,7 +157,7 @@ static void firmware_commands_stream_off_and_on(void **state) {
     infos += frames.msg[i].type == GP_INFO;
   }
   assert_int_equal(samples, 0);
-  assert_int_equal(infos, 2); /* INFO keeps its 1 Hz */
+  assert_int_equal(infos, 2);    /* INFO keeps its 1 Hz */
   assert_int_equal(fake.led, 1); /* steady on while not streaming */
   size_t ack;
   expect_ack(GP_STREAM_ON, 4, &ack);
@@ -171,7 +176,7 @@ static void firmware_commands_get_status_counts(void **state) {
   (void)state;
   uint8_t w[80];
   /* The leading 0x00 puts the glove in step: a tail before it is no error. */
-  const uint8_t junk[] = {0x00, 0x55, 0x66, 0x77, 0x00};
+  const uint8_t junk[] = { 0x00, 0x55, 0x66, 0x77, 0x00 };
   fake_rx(junk, sizeof junk); /* one corrupt frame */
   uint8_t tag = 5;
   size_t n = raw_frame(0x7E, &tag, 1, GP_SPEC_HASH, w); /* one NACK */
@@ -195,7 +200,7 @@ static void firmware_commands_bad_input_keeps_streaming(void **state) {
   (void)state;
   uint8_t w[600];
   size_t n;
-  uint8_t p[GP_MAX_PAYLOAD] = {0x42};
+  uint8_t p[GP_MAX_PAYLOAD] = { 0x42 };
 
   /* Answered with NACK: a valid frame of an unknown type, and a known
    * command of the wrong length. */
@@ -230,7 +235,7 @@ static void firmware_commands_bad_input_keeps_streaming(void **state) {
   n = raw_frame(GP_GET_INFO, p, 1, GP_SPEC_HASH, w);
   w[n - 3] = 0;
   fake_rx(w, n - 2);
-  const uint8_t zeros[] = {0, 0, 0};
+  const uint8_t zeros[] = { 0, 0, 0 };
   fake_rx(zeros, sizeof zeros);
   fake_run(&core, 60);
   size_t stray = reply_after(from, GP_NACK);
@@ -288,37 +293,37 @@ static void firmware_commands_own_output_looped_back_is_ignored(void **state) {
 }
 
 /* The INFO sent after wire offset from, or frames.n. */
-static size_t info_after(size_t from_wire) { return reply_after(from_wire, GP_INFO); }
+static size_t info_after(size_t from_wire) {
+  return reply_after(from_wire, GP_INFO);
+}
 
 static void firmware_commands_a_command_without_payload_is_nacked_with_tag_0(void **state) {
   (void)state;
   uint8_t w[80];
-  const uint8_t none[1] = {0};
-  expect_nack_raw(w, raw_frame(GP_PING, none, 0, GP_SPEC_HASH, w), 0, GP_PING,
-                  GP_NACK_BAD_LENGTH);
-  expect_nack_raw(w, raw_frame(0x7F, none, 0, GP_SPEC_HASH, w), 0, 0x7F,
-                  GP_NACK_UNKNOWN_COMMAND);
+  const uint8_t none[1] = { 0 };
+  expect_nack_raw(w, raw_frame(GP_PING, none, 0, GP_SPEC_HASH, w), 0, GP_PING, GP_NACK_BAD_LENGTH);
+  expect_nack_raw(w, raw_frame(0x7F, none, 0, GP_SPEC_HASH, w), 0, 0x7F, GP_NACK_UNKNOWN_COMMAND);
 }
 
 static void firmware_commands_an_undefined_glove_to_host_type_gets_silence(void **state) {
   (void)state;
   uint8_t w[80];
-  const uint8_t p[1] = {0x42};
+  const uint8_t p[1] = { 0x42 };
   uint32_t errors = core.cmd_errors;
   size_t from = fake.wire_len;
   /* 0x06..0x0F are glove to host, though undefined: never a NACK. */
-  for (uint8_t type = GP_NACK + 1u; type < 0x10u; type++) fake_rx(w, raw_frame(type, p, 1, GP_SPEC_HASH, w));
+  for (uint8_t type = GP_NACK + 1u; type < 0x10u; type++)
+    fake_rx(w, raw_frame(type, p, 1, GP_SPEC_HASH, w));
   fake_run(&core, 40);
   size_t stray = reply_after(from, GP_NACK);
-  if (stray < frames.n)
-    fail_msg("NACK for type 0x%02x", frames.msg[stray].u.nack.cmd);
+  if (stray < frames.n) fail_msg("NACK for type 0x%02x", frames.msg[stray].u.nack.cmd);
   assert_int_equal(reply_after(from, GP_ACK), frames.n);
   assert_int_equal(core.cmd_errors - errors, 0x10u - (GP_NACK + 1u));
 }
 
 static void firmware_commands_set_rate_keeping_the_baud_is_followed_by_info(void **state) {
   (void)state;
-  const uint32_t bauds[] = {0, FW_BAUD};
+  const uint32_t bauds[] = { 0, FW_BAUD };
   for (size_t k = 0; k < 2; k++) {
     size_t from = fake.wire_len;
     set_rate((uint8_t)(20 + k), (uint16_t)(k ? 100 : 125), bauds[k]);
@@ -337,7 +342,7 @@ static void firmware_commands_cal_start_save_and_clear_send_info_at_once(void **
   (void)state;
   const struct {
     uint8_t cmd, state;
-  } steps[] = {{GP_CAL_START, GP_CAL_RUNNING}, {GP_CAL_CLEAR, GP_CAL_DEFAULTS}};
+  } steps[] = { { GP_CAL_START, GP_CAL_RUNNING }, { GP_CAL_CLEAR, GP_CAL_DEFAULTS } };
   for (size_t k = 0; k < 2; k++) {
     size_t from = fake.wire_len;
     send_cmd(steps[k].cmd, (uint8_t)(30 + k));
@@ -359,11 +364,11 @@ static void firmware_commands_cal_start_save_and_clear_send_info_at_once(void **
 static void firmware_commands_cmd_errors_counts_each_refused_frame_once(void **state) {
   (void)state;
   uint8_t w[600];
-  const uint8_t p[GP_MAX_PAYLOAD] = {0x42};
+  const uint8_t p[GP_MAX_PAYLOAD] = { 0x42 };
   uint32_t before = core.cmd_errors;
-  fake_rx(w, raw_frame(0x7F, p, 1, GP_SPEC_HASH, w));       /* NACK unknown */
-  fake_rx(w, raw_frame(GP_PING, p, 2, GP_SPEC_HASH, w));    /* NACK length */
-  fake_rx(w, raw_frame(GP_PING, p, 1, 0xDEADBEEFu, w));     /* foreign spec */
+  fake_rx(w, raw_frame(0x7F, p, 1, GP_SPEC_HASH, w));                  /* NACK unknown */
+  fake_rx(w, raw_frame(GP_PING, p, 2, GP_SPEC_HASH, w));               /* NACK length */
+  fake_rx(w, raw_frame(GP_PING, p, 1, 0xDEADBEEFu, w));                /* foreign spec */
   fake_rx(w, raw_frame(GP_SAMPLE, p, GP_SAMPLE_LEN, GP_SPEC_HASH, w)); /* echo */
   size_t n = raw_frame(GP_PING, p, 1, GP_SPEC_HASH, w);
   w[2] ^= 0x10;
@@ -371,8 +376,8 @@ static void firmware_commands_cmd_errors_counts_each_refused_frame_once(void **s
   memset(w, 0xAB, 500);
   w[500] = 0;
   fake_rx(w, 501); /* oversize */
-  const uint8_t zeros[] = {0, 0, 0};
-  fake_rx(zeros, sizeof zeros); /* empty frames: not counted */
+  const uint8_t zeros[] = { 0, 0, 0 };
+  fake_rx(zeros, sizeof zeros);                          /* empty frames: not counted */
   fake_rx(w, raw_frame(GP_PING, p, 1, GP_SPEC_HASH, w)); /* carried out */
   fake_run(&core, 80);
   assert_int_equal(core.cmd_errors - before, 6);
@@ -403,7 +408,7 @@ static void firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost(voi
 static void firmware_commands_a_tail_before_the_first_delimiter_is_no_error(void **state) {
   (void)state;
   /* The tail of a command the glove woke in the middle of. */
-  const uint8_t tail[] = {0x37, 0x42, 0x99, 0x05, 0x00};
+  const uint8_t tail[] = { 0x37, 0x42, 0x99, 0x05, 0x00 };
   uint32_t before = core.cmd_errors;
   fake_rx(tail, sizeof tail);
   expect_ack(GP_PING, 0x51, NULL);
@@ -416,19 +421,19 @@ static void firmware_commands_a_tail_before_the_first_delimiter_is_no_error(void
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_setup(firmware_commands_ping_and_info, setup),
-      cmocka_unit_test_setup(firmware_commands_own_output_looped_back_is_ignored, setup),
-      cmocka_unit_test_setup(firmware_commands_set_rate, setup),
-      cmocka_unit_test_setup(firmware_commands_stream_off_and_on, setup),
-      cmocka_unit_test_setup(firmware_commands_get_status_counts, setup),
-      cmocka_unit_test_setup(firmware_commands_bad_input_keeps_streaming, setup),
-      cmocka_unit_test_setup(firmware_commands_a_command_without_payload_is_nacked_with_tag_0, setup),
-      cmocka_unit_test_setup(firmware_commands_an_undefined_glove_to_host_type_gets_silence, setup),
-      cmocka_unit_test_setup(firmware_commands_set_rate_keeping_the_baud_is_followed_by_info, setup),
-      cmocka_unit_test_setup(firmware_commands_cal_start_save_and_clear_send_info_at_once, setup),
-      cmocka_unit_test_setup(firmware_commands_cmd_errors_counts_each_refused_frame_once, setup),
-      cmocka_unit_test_setup(firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost, setup),
-      cmocka_unit_test_setup(firmware_commands_a_tail_before_the_first_delimiter_is_no_error, setup),
+    cmocka_unit_test_setup(firmware_commands_ping_and_info, setup),
+    cmocka_unit_test_setup(firmware_commands_own_output_looped_back_is_ignored, setup),
+    cmocka_unit_test_setup(firmware_commands_set_rate, setup),
+    cmocka_unit_test_setup(firmware_commands_stream_off_and_on, setup),
+    cmocka_unit_test_setup(firmware_commands_get_status_counts, setup),
+    cmocka_unit_test_setup(firmware_commands_bad_input_keeps_streaming, setup),
+    cmocka_unit_test_setup(firmware_commands_a_command_without_payload_is_nacked_with_tag_0, setup),
+    cmocka_unit_test_setup(firmware_commands_an_undefined_glove_to_host_type_gets_silence, setup),
+    cmocka_unit_test_setup(firmware_commands_set_rate_keeping_the_baud_is_followed_by_info, setup),
+    cmocka_unit_test_setup(firmware_commands_cal_start_save_and_clear_send_info_at_once, setup),
+    cmocka_unit_test_setup(firmware_commands_cmd_errors_counts_each_refused_frame_once, setup),
+    cmocka_unit_test_setup(firmware_commands_a_reset_glove_is_one_restart_with_nothing_lost, setup),
+    cmocka_unit_test_setup(firmware_commands_a_tail_before_the_first_delimiter_is_no_error, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

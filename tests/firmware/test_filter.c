@@ -60,7 +60,7 @@ static void step_curve(uint16_t lo, uint16_t hi, uint16_t out[CURVE_TICKS]) {
  * fixed-point state lands exactly half-way between two counts. */
 static void firmware_filter_falling_step_mirrors_rising(void **state) {
   (void)state;
-  static const uint16_t lows[] = {0, 1, 1000, 2047};
+  static const uint16_t lows[] = { 0, 1, 1000, 2047 };
   uint16_t rise[CURVE_TICKS], fall[CURVE_TICKS];
   for (unsigned l = 0; l < sizeof lows / sizeof lows[0]; l++) {
     for (unsigned d = 1; d <= 2048; d++) {
@@ -87,7 +87,7 @@ static void firmware_filter_falling_step_mirrors_rising(void **state) {
  * filter comes to it from below or from above. */
 static void firmware_filter_settles_a_half_count_level_on_the_upper_count(void **state) {
   (void)state;
-  static const uint16_t starts[] = {0, 99, 100, 101, 102, 4095};
+  static const uint16_t starts[] = { 0, 99, 100, 101, 102, 4095 };
   for (unsigned k = 0; k < sizeof starts / sizeof starts[0]; k++) {
     fw_filter f;
     uint16_t block[FW_BLOCK_LEN], out[FW_N_CH];
@@ -162,13 +162,13 @@ static void firmware_filter_flags_clipping(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(firmware_filter_step_settles_as_documented),
-      cmocka_unit_test(firmware_filter_falling_step_mirrors_rising),
-      cmocka_unit_test(firmware_filter_settles_a_half_count_level_on_the_upper_count),
-      cmocka_unit_test(firmware_filter_lags_a_ramp_by_seven_ticks),
-      cmocka_unit_test(firmware_filter_reaches_the_exact_level),
-      cmocka_unit_test(firmware_filter_averages_the_oversamples),
-      cmocka_unit_test(firmware_filter_flags_clipping),
+    cmocka_unit_test(firmware_filter_step_settles_as_documented),
+    cmocka_unit_test(firmware_filter_falling_step_mirrors_rising),
+    cmocka_unit_test(firmware_filter_settles_a_half_count_level_on_the_upper_count),
+    cmocka_unit_test(firmware_filter_lags_a_ramp_by_seven_ticks),
+    cmocka_unit_test(firmware_filter_reaches_the_exact_level),
+    cmocka_unit_test(firmware_filter_averages_the_oversamples),
+    cmocka_unit_test(firmware_filter_flags_clipping),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -86,12 +86,12 @@ static size_t build(const char *type, uint8_t *w, size_t cap) {
   }
   if (strcmp(type, "STATUS") == 0) {
     fw_status_state s = {
-        .t_us = (uint32_t)get("t_us", 1)[0],
-        .frames_sent = (uint32_t)get("frames_sent", 1)[0],
-        .overruns = (uint32_t)get("overruns", 1)[0],
-        .dropped_frames = (uint32_t)get("dropped_frames", 1)[0],
-        .cmd_errors = (uint32_t)get("cmd_errors", 1)[0],
-        .adc_timeouts = (uint32_t)get("adc_timeouts", 1)[0],
+      .t_us = (uint32_t)get("t_us", 1)[0],
+      .frames_sent = (uint32_t)get("frames_sent", 1)[0],
+      .overruns = (uint32_t)get("overruns", 1)[0],
+      .dropped_frames = (uint32_t)get("dropped_frames", 1)[0],
+      .cmd_errors = (uint32_t)get("cmd_errors", 1)[0],
+      .adc_timeouts = (uint32_t)get("adc_timeouts", 1)[0],
     };
     return fw_frame_status(&s, w, cap);
   }
@@ -110,7 +110,7 @@ static void firmware_golden_vectors_match_bit_for_bit(void **state) {
   if (f == NULL) fail_msg("cannot open %s", path);
   char line[2048];
   int lineno = 0, built = 0, seen_types = 0;
-  const char *types[] = {"SAMPLE", "INFO", "STATUS", "ACK", "NACK"};
+  const char *types[] = { "SAMPLE", "INFO", "STATUS", "ACK", "NACK" };
   while (fgets(line, sizeof line, f)) {
     lineno++;
     char name[64], type[32], hash[32], hex[512];
@@ -140,7 +140,7 @@ static void firmware_golden_vectors_match_bit_for_bit(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(firmware_golden_vectors_match_bit_for_bit),
+    cmocka_unit_test(firmware_golden_vectors_match_bit_for_bit),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

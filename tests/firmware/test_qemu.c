@@ -22,7 +22,7 @@
 
 #include "gp.h"
 
-#define IMAGE MR_FIRMWARE_OUT "/qemu_netduinoplus2/fw.elf"
+#define IMAGE      MR_FIRMWARE_OUT "/qemu_netduinoplus2/fw.elf"
 #define MAX_FRAMES 20000
 
 static pid_t qemu = -1;
@@ -49,8 +49,8 @@ static void start_qemu(void) {
     dup2(out[1], 1);
     close(in[1]);
     close(out[0]);
-    execlp("qemu-system-arm", "qemu-system-arm", "-M", "netduinoplus2", "-nographic",
-           "-monitor", "none", "-serial", "stdio", "-kernel", IMAGE, (char *)NULL);
+    execlp("qemu-system-arm", "qemu-system-arm", "-M", "netduinoplus2", "-nographic", "-monitor",
+           "none", "-serial", "stdio", "-kernel", IMAGE, (char *)NULL);
     _exit(127);
   }
   close(in[0]);
@@ -71,7 +71,7 @@ static void stop_qemu(void) {
         waitpid(qemu, &status, 0);
         break;
       }
-      nanosleep(&(struct timespec){.tv_sec = 0, .tv_nsec = 10000000}, NULL);
+      nanosleep(&(struct timespec){ .tv_sec = 0, .tv_nsec = 10000000 }, NULL);
     }
     qemu = -1;
   }
@@ -93,7 +93,7 @@ static int pump(double seconds, int (*done)(void)) {
   while (!done()) {
     double left = until - now_s();
     if (left <= 0) return 0;
-    struct pollfd p = {.fd = from_qemu, .events = POLLIN};
+    struct pollfd p = { .fd = from_qemu, .events = POLLIN };
     int r = poll(&p, 1, (int)(left * 1000) + 1);
     if (r <= 0) continue;
     ssize_t n = read(from_qemu, buf, sizeof buf);
@@ -120,8 +120,12 @@ static void send_msg(const gp_msg *m) {
 
 static size_t mark;
 static uint8_t want_tag;
-static int first_sample(void) { return n_samples > 0; }
-static int enough_samples(void) { return n_samples >= 600; }
+static int first_sample(void) {
+  return n_samples > 0;
+}
+static int enough_samples(void) {
+  return n_samples >= 600;
+}
 static size_t find_after(size_t from, uint8_t type) {
   for (size_t i = from; i < n_msgs; i++)
     if (msgs[i].type == type) return i;
@@ -136,14 +140,20 @@ static int ack_then(uint8_t type) {
   size_t a = find_ack(mark, want_tag);
   return a < n_msgs && find_after(a + 1, type) < n_msgs;
 }
-static int ack_info(void) { return ack_then(GP_INFO); }
+static int ack_info(void) {
+  return ack_then(GP_INFO);
+}
 static size_t find_nack(size_t from, uint8_t tag) {
   for (size_t i = from; i < n_msgs; i++)
     if (msgs[i].type == GP_NACK && msgs[i].u.nack.tag == tag) return i;
   return n_msgs;
 }
-static int nacked(void) { return find_nack(mark, want_tag) < n_msgs; }
-static int ack_status(void) { return ack_then(GP_STATUS); }
+static int nacked(void) {
+  return find_nack(mark, want_tag) < n_msgs;
+}
+static int ack_status(void) {
+  return ack_then(GP_STATUS);
+}
 static int ack_and_60_samples(void) {
   size_t a = find_ack(mark, want_tag), n = 0;
   for (size_t i = a; i < n_msgs; i++) n += msgs[i].type == GP_SAMPLE;
@@ -245,16 +255,16 @@ static void firmware_qemu_streams_and_answers(void **state) {
   send_msg(&m);
   assert_true(pump(10.0, ack_status));
   size_t st_i = find_after(find_ack(mark, 0x33), GP_STATUS);
-  assert_true(msgs[st_i].u.status.cmd_errors >= 2);   /* the garbage, the refused rate */
+  assert_true(msgs[st_i].u.status.cmd_errors >= 2);  /* the garbage, the refused rate */
   assert_true(msgs[st_i].u.status.adc_timeouts > 0); /* QEMU never sets EOC */
   stop_qemu();
 
   /* The whole stream: valid CRCs, no decoder errors, sequence numbers and
    * device timestamps strictly increasing, the spec announced. */
   assert_true(n_samples >= 500);
-  assert_int_equal(dec.c.crc_errors + dec.c.framing_errors + dec.c.oversize +
-                       dec.c.unknown_type + dec.c.spec_mismatch + dec.c.duplicates +
-                       dec.c.reordered + dec.c.seq_restarts + dec.c.lost,
+  assert_int_equal(dec.c.crc_errors + dec.c.framing_errors + dec.c.oversize + dec.c.unknown_type +
+                       dec.c.spec_mismatch + dec.c.duplicates + dec.c.reordered +
+                       dec.c.seq_restarts + dec.c.lost,
                    0);
   int seen = 0, infos = 0;
   uint16_t seq = 0;
@@ -279,7 +289,7 @@ static void firmware_qemu_streams_and_answers(void **state) {
 int main(void) {
   signal(SIGPIPE, SIG_IGN);
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_teardown(firmware_qemu_streams_and_answers, teardown),
+    cmocka_unit_test_teardown(firmware_qemu_streams_and_answers, teardown),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -46,7 +46,7 @@ static size_t busiest_second(unsigned seconds, size_t *samples_last) {
 static void firmware_rates_sample_wire_size(void **state) {
   (void)state;
   uint8_t w[GP_MAX_WIRE];
-  uint16_t ch[FW_N_CH] = {1, 2, 3, 4, 5};
+  uint16_t ch[FW_N_CH] = { 1, 2, 3, 4, 5 };
   assert_int_equal(FW_SAMPLE_WIRE_BYTES, 22);
   assert_int_equal(fw_frame_sample(1, 4000, ch, 0, w, sizeof w), 22);
   assert_int_equal(fw_link_load_permille(250, 115200), 477);
@@ -139,11 +139,11 @@ static void firmware_rates_full_queue_drops_and_counts(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_setup(firmware_rates_sample_wire_size, setup),
-      cmocka_unit_test_setup(firmware_rates_250hz_at_115200_under_half, setup),
-      cmocka_unit_test_setup(firmware_rates_1000hz_at_921600, setup),
-      cmocka_unit_test_setup(firmware_rates_1000hz_refused_at_115200, setup),
-      cmocka_unit_test_setup(firmware_rates_full_queue_drops_and_counts, setup),
+    cmocka_unit_test_setup(firmware_rates_sample_wire_size, setup),
+    cmocka_unit_test_setup(firmware_rates_250hz_at_115200_under_half, setup),
+    cmocka_unit_test_setup(firmware_rates_1000hz_at_921600, setup),
+    cmocka_unit_test_setup(firmware_rates_1000hz_refused_at_115200, setup),
+    cmocka_unit_test_setup(firmware_rates_full_queue_drops_and_counts, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

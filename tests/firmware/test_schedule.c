@@ -24,7 +24,7 @@ static void firmware_schedule_timestamps_follow_the_timer(void **state) {
   (void)state;
   /* Polls per tick cycle through "late" patterns: the loop sometimes skips
    * up to three ticks (the block queue holds four) and then catches up. */
-  static const unsigned polls[] = {1, 0, 0, 1, 2, 0, 0, 0, 1, 1, 3, 0, 1};
+  static const unsigned polls[] = { 1, 0, 0, 1, 2, 0, 0, 0, 1, 1, 3, 0, 1 };
   for (unsigned t = 0; t < 4000; t++) fake_step(&core, 0, polls[t % 13]);
   fake_step(&core, 0, 1);
   fake_run(&core, 100); /* drain the line */
@@ -179,12 +179,11 @@ static void firmware_schedule_blocks_the_queue_cannot_hold_count_as_overruns(voi
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_setup(firmware_schedule_timestamps_follow_the_timer, setup),
-      cmocka_unit_test_setup(firmware_schedule_missed_ticks_cost_at_most_one_tick, setup),
-      cmocka_unit_test_setup(firmware_schedule_info_goes_out_every_1000_ticks, setup),
-      cmocka_unit_test_setup(firmware_schedule_a_repeated_tick_is_processed_once, setup),
-      cmocka_unit_test_setup(firmware_schedule_blocks_the_queue_cannot_hold_count_as_overruns,
-                             setup),
+    cmocka_unit_test_setup(firmware_schedule_timestamps_follow_the_timer, setup),
+    cmocka_unit_test_setup(firmware_schedule_missed_ticks_cost_at_most_one_tick, setup),
+    cmocka_unit_test_setup(firmware_schedule_info_goes_out_every_1000_ticks, setup),
+    cmocka_unit_test_setup(firmware_schedule_a_repeated_tick_is_processed_once, setup),
+    cmocka_unit_test_setup(firmware_schedule_blocks_the_queue_cannot_hold_count_as_overruns, setup),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

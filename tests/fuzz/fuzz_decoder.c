@@ -12,16 +12,15 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 static void check(int cond) {
-  if (!cond)
-    abort();
+  if (!cond) abort();
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   gp_decoder d;
   gp_decoder_init(&d, GP_SPEC_HASH);
   size_t split = size ? data[0] % (size + 1) : 0;
-  const uint8_t *parts[2] = {data, data + split};
-  size_t lens[2] = {split, size - split};
+  const uint8_t *parts[2] = { data, data + split };
+  size_t lens[2] = { split, size - split };
   uint32_t events = 0;
   for (int k = 0; k < 2; k++) {
     const uint8_t *p = parts[k];
@@ -43,8 +42,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         check(gp_decoder_feed(&again, wire, w, &back, &ev2) == w);
         check(ev2 == GP_EV_FRAME);
       }
-      if (ev != GP_EV_NONE)
-        events++;
+      if (ev != GP_EV_NONE) events++;
       p += used;
       n -= used;
     }

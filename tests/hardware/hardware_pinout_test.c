@@ -15,7 +15,7 @@
 #include "hwpin.h"
 
 #define HEADER_PATH MR_SOURCE_DIR "/firmware/boards/blackpill_f411/board_pins.h"
-#define CSV_PATH MR_SOURCE_DIR "/hardware/pinout.csv"
+#define CSV_PATH    MR_SOURCE_DIR "/hardware/pinout.csv"
 
 typedef struct {
   char *header_text, *csv_text;
@@ -49,8 +49,7 @@ static char *read_text(const char *path) {
 }
 
 /* text with [from, from+len) replaced by repl; caller frees. */
-static char *splice(const char *text, size_t from, size_t len,
-                    const char *repl) {
+static char *splice(const char *text, size_t from, size_t len, const char *repl) {
   size_t n = strlen(text), r = strlen(repl);
   char *out = malloc(n - len + r + 1);
   assert_non_null(out);
@@ -77,8 +76,7 @@ static const char *find_define(const char *text, const char *name) {
 }
 
 /* A copy of board_pins.h with NAME's BOARD_PIN(...) set to port/num. */
-static char *header_move_pin(const char *text, const char *name, char port,
-                             int num) {
+static char *header_move_pin(const char *text, const char *name, char port, int num) {
   const char *def = find_define(text, name);
   const char *open = strstr(def, "BOARD_PIN(");
   assert_non_null(open);
@@ -114,8 +112,7 @@ static const char *csv_row(const char *text, const char *signal) {
 }
 
 /* A copy of pinout.csv with signal's pin field set to pin. */
-static char *csv_move_pin(const char *text, const char *signal,
-                          const char *pin) {
+static char *csv_move_pin(const char *text, const char *signal, const char *pin) {
   const char *field = csv_row(text, signal) + strlen(signal) + 1;
   size_t len = strcspn(field, ",\n");
   return splice(text, (size_t)(field - text), len, pin);
@@ -148,18 +145,15 @@ static int teardown(void **state) {
 
 /* Parses both texts (either may be an altered copy) and compares them. */
 static int check(fixture *fx, const char *header_text, const char *csv_text) {
-  int rc = hwpin_parse_header(header_text, "board_pins.h", &fx->header,
-                              fx->err, sizeof fx->err);
+  int rc = hwpin_parse_header(header_text, "board_pins.h", &fx->header, fx->err, sizeof fx->err);
   if (rc != 0) fail_msg("%s", fx->err);
-  rc = hwpin_parse_csv(csv_text, "pinout.csv", &fx->csv, fx->err,
-                       sizeof fx->err);
+  rc = hwpin_parse_csv(csv_text, "pinout.csv", &fx->csv, fx->err, sizeof fx->err);
   if (rc != 0) fail_msg("%s", fx->err);
   return hwpin_compare(&fx->header, &fx->csv, fx->report, sizeof fx->report);
 }
 
 static void expect_in_report(const fixture *fx, const char *needle) {
-  if (!strstr(fx->report, needle))
-    fail_msg("report lacks \"%s\":\n%s", needle, fx->report);
+  if (!strstr(fx->report, needle)) fail_msg("report lacks \"%s\":\n%s", needle, fx->report);
 }
 
 static void hardware_pinout_files_agree(void **state) {
@@ -266,15 +260,13 @@ static void hardware_pinout_csv_errors_name_line_and_column(void **state) {
 
   const char *unterminated = "signal,pin,adc_signal,adc_channel\n"
                              "PIN_LED,\"PC13,,\n";
-  rc = hwpin_parse_csv(unterminated, "pinout.csv", &fx->csv, fx->err,
-                       sizeof fx->err);
+  rc = hwpin_parse_csv(unterminated, "pinout.csv", &fx->csv, fx->err, sizeof fx->err);
   assert_int_equal(rc, -1);
   if (!strstr(fx->err, "pinout.csv:2:16: malformed field"))
     fail_msg("unexpected message: %s", fx->err);
 
   const char *no_column = "signal,pin,adc_channel\nPIN_LED,PC13,\n";
-  rc = hwpin_parse_csv(no_column, "pinout.csv", &fx->csv, fx->err,
-                       sizeof fx->err);
+  rc = hwpin_parse_csv(no_column, "pinout.csv", &fx->csv, fx->err, sizeof fx->err);
   assert_int_equal(rc, -1);
   if (!strstr(fx->err, "lacks the column 'adc_signal'"))
     fail_msg("unexpected message: %s", fx->err);
@@ -284,8 +276,7 @@ static void hardware_pinout_header_errors_name_line_and_column(void **state) {
   fixture *fx = *state;
   const char *bad = "/* pins */\n#define PIN_LED BOARD_PIN('C', 13)\n"
                     "#define PIN_BUTTON PA0\n";
-  int rc = hwpin_parse_header(bad, "board_pins.h", &fx->header, fx->err,
-                              sizeof fx->err);
+  int rc = hwpin_parse_header(bad, "board_pins.h", &fx->header, fx->err, sizeof fx->err);
   assert_int_equal(rc, -1);
   if (!strstr(fx->err, "board_pins.h:3:20: PIN_BUTTON: expected BOARD_PIN("))
     fail_msg("unexpected message: %s", fx->err);
@@ -293,8 +284,7 @@ static void hardware_pinout_header_errors_name_line_and_column(void **state) {
   /* a define inside a comment is not a pin */
   const char *commented = "/* #define PIN_LED BOARD_PIN('C', 13)\n*/\n"
                           "#define ADC_CH_THUMB 1 // thumb\n";
-  rc = hwpin_parse_header(commented, "board_pins.h", &fx->header, fx->err,
-                          sizeof fx->err);
+  rc = hwpin_parse_header(commented, "board_pins.h", &fx->header, fx->err, sizeof fx->err);
   assert_int_equal(rc, 0);
   assert_int_equal(fx->header.n_pins, 0);
   assert_int_equal(fx->header.n_adcs, 1);
@@ -303,16 +293,16 @@ static void hardware_pinout_header_errors_name_line_and_column(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(hardware_pinout_files_agree),
-      cmocka_unit_test(hardware_pinout_catches_pin_moved_in_header),
-      cmocka_unit_test(hardware_pinout_catches_pin_moved_in_csv),
-      cmocka_unit_test(hardware_pinout_catches_adc_channel_change),
-      cmocka_unit_test(hardware_pinout_rejects_usb_pins),
-      cmocka_unit_test(hardware_pinout_rejects_swd_pins),
-      cmocka_unit_test(hardware_pinout_rejects_pin_used_twice),
-      cmocka_unit_test(hardware_pinout_catches_missing_row),
-      cmocka_unit_test(hardware_pinout_csv_errors_name_line_and_column),
-      cmocka_unit_test(hardware_pinout_header_errors_name_line_and_column),
+    cmocka_unit_test(hardware_pinout_files_agree),
+    cmocka_unit_test(hardware_pinout_catches_pin_moved_in_header),
+    cmocka_unit_test(hardware_pinout_catches_pin_moved_in_csv),
+    cmocka_unit_test(hardware_pinout_catches_adc_channel_change),
+    cmocka_unit_test(hardware_pinout_rejects_usb_pins),
+    cmocka_unit_test(hardware_pinout_rejects_swd_pins),
+    cmocka_unit_test(hardware_pinout_rejects_pin_used_twice),
+    cmocka_unit_test(hardware_pinout_catches_missing_row),
+    cmocka_unit_test(hardware_pinout_csv_errors_name_line_and_column),
+    cmocka_unit_test(hardware_pinout_header_errors_name_line_and_column),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -13,10 +13,10 @@ static const struct {
   int port, num;
   const char *what;
 } reserved[] = {
-    {0, 11, "USB D- (OTG_FS_DM, DFU bootloader)"},
-    {0, 12, "USB D+ (OTG_FS_DP, DFU bootloader)"},
-    {0, 13, "SWDIO (debug probe)"},
-    {0, 14, "SWCLK (debug probe)"},
+  { 0, 11, "USB D- (OTG_FS_DM, DFU bootloader)" },
+  { 0, 12, "USB D+ (OTG_FS_DP, DFU bootloader)" },
+  { 0, 13, "SWDIO (debug probe)" },
+  { 0, 14, "SWCLK (debug probe)" },
 };
 
 void hwpin_format(int port, int num, char *buf, size_t len) {
@@ -70,7 +70,9 @@ static const char *skip_blank(const char *p) {
   return p;
 }
 
-static int is_ident(int c) { return isalnum(c) || c == '_'; }
+static int is_ident(int c) {
+  return isalnum(c) || c == '_';
+}
 
 /* Parses "BOARD_PIN('A', 1)" at p; returns the end or NULL. */
 static const char *parse_board_pin(const char *p, int *port, int *num) {
@@ -94,8 +96,8 @@ static const char *parse_board_pin(const char *p, int *port, int *num) {
   return p;
 }
 
-int hwpin_parse_header(const char *text, const char *path, hwpin_map *out,
-                       char *err, size_t err_len) {
+int hwpin_parse_header(const char *text, const char *path, hwpin_map *out, char *err,
+                       size_t err_len) {
   memset(out, 0, sizeof *out);
   out->path = path;
   char *s = strip_comments(text);
@@ -118,8 +120,8 @@ int hwpin_parse_header(const char *text, const char *path, hwpin_map *out,
       /* function-like macros (BOARD_PIN(port, n), ...) are not signals */
       if (*p != '(' && (is_pin || is_adc)) {
         if (name_len >= HWPIN_NAME_MAX) {
-          set_err(err, err_len, "%s:%d:%d: name longer than %d characters",
-                  path, line, (int)(name - ln) + 1, HWPIN_NAME_MAX - 1);
+          set_err(err, err_len, "%s:%d:%d: name longer than %d characters", path, line,
+                  (int)(name - ln) + 1, HWPIN_NAME_MAX - 1);
           rc = -1;
           break;
         }
@@ -129,15 +131,13 @@ int hwpin_parse_header(const char *text, const char *path, hwpin_map *out,
           int port = 0, num = 0;
           const char *end = parse_board_pin(val, &port, &num);
           if (!end || *skip_blank(end) != '\0') {
-            set_err(err, err_len,
-                    "%s:%d:%d: %.*s: expected BOARD_PIN('<A..H>', <0..15>)",
-                    path, line, col, (int)name_len, name);
+            set_err(err, err_len, "%s:%d:%d: %.*s: expected BOARD_PIN('<A..H>', <0..15>)", path,
+                    line, col, (int)name_len, name);
             rc = -1;
             break;
           }
           if (out->n_pins == HWPIN_MAX) {
-            set_err(err, err_len, "%s:%d: more than %d pins", path, line,
-                    HWPIN_MAX);
+            set_err(err, err_len, "%s:%d: more than %d pins", path, line, HWPIN_MAX);
             rc = -1;
             break;
           }
@@ -149,17 +149,14 @@ int hwpin_parse_header(const char *text, const char *path, hwpin_map *out,
         } else {
           char *end;
           long v = strtol(val, &end, 10);
-          if (!isdigit((unsigned char)*val) || *skip_blank(end) != '\0' ||
-              v < 0 || v > 18) {
-            set_err(err, err_len,
-                    "%s:%d:%d: %.*s: expected an ADC channel number 0..18",
-                    path, line, col, (int)name_len, name);
+          if (!isdigit((unsigned char)*val) || *skip_blank(end) != '\0' || v < 0 || v > 18) {
+            set_err(err, err_len, "%s:%d:%d: %.*s: expected an ADC channel number 0..18", path,
+                    line, col, (int)name_len, name);
             rc = -1;
             break;
           }
           if (out->n_adcs == HWPIN_MAX) {
-            set_err(err, err_len, "%s:%d: more than %d ADC channels", path,
-                    line, HWPIN_MAX);
+            set_err(err, err_len, "%s:%d: more than %d ADC channels", path, line, HWPIN_MAX);
             rc = -1;
             break;
           }
@@ -179,7 +176,7 @@ int hwpin_parse_header(const char *text, const char *path, hwpin_map *out,
 /* ---- pinout.csv -------------------------------------------------------- */
 
 #define CSV_MAX_FIELDS 16
-#define CSV_FIELD_MAX 256
+#define CSV_FIELD_MAX  256
 
 typedef struct {
   char text[CSV_FIELD_MAX];
@@ -188,8 +185,8 @@ typedef struct {
 
 /* Splits one record (RFC 4180 quoting, no embedded newlines) starting at
  * *pp; advances *pp past the line end. Returns the field count or -1. */
-static int csv_record(const char **pp, const char *line_start, csv_field *f,
-                      int max, int *bad_col) {
+static int csv_record(const char **pp, const char *line_start, csv_field *f, int max,
+                      int *bad_col) {
   const char *p = *pp;
   int n = 0;
   for (;;) {
@@ -254,8 +251,7 @@ static int find_column(const csv_field *hdr, int n, const char *name) {
 
 /* "PA1" -> port 0, pin 1. */
 static int parse_pin_name(const char *s, int *port, int *num) {
-  if (s[0] != 'P' || s[1] < 'A' || s[1] > 'H' || !isdigit((unsigned char)s[2]))
-    return -1;
+  if (s[0] != 'P' || s[1] < 'A' || s[1] > 'H' || !isdigit((unsigned char)s[2])) return -1;
   char *end;
   long v = strtol(s + 2, &end, 10);
   if (*end != '\0' || v > 15 || (s[2] == '0' && s[3] != '\0')) return -1;
@@ -264,10 +260,8 @@ static int parse_pin_name(const char *s, int *port, int *num) {
   return 0;
 }
 
-int hwpin_parse_csv(const char *text, const char *path, hwpin_map *out,
-                    char *err, size_t err_len) {
-  static const char *const required[] = {"signal", "pin", "adc_signal",
-                                         "adc_channel"};
+int hwpin_parse_csv(const char *text, const char *path, hwpin_map *out, char *err, size_t err_len) {
+  static const char *const required[] = { "signal", "pin", "adc_signal", "adc_channel" };
   memset(out, 0, sizeof *out);
   out->path = path;
   csv_field *hdr = calloc(CSV_MAX_FIELDS, sizeof *hdr);
@@ -288,8 +282,7 @@ int hwpin_parse_csv(const char *text, const char *path, hwpin_map *out,
   for (int i = 0; i < 4; i++) {
     col[i] = find_column(hdr, n_hdr, required[i]);
     if (col[i] < 0) {
-      set_err(err, err_len, "%s:1:1: header row lacks the column '%s'", path,
-              required[i]);
+      set_err(err, err_len, "%s:1:1: header row lacks the column '%s'", path, required[i]);
       goto done;
     }
   }
@@ -306,16 +299,14 @@ int hwpin_parse_csv(const char *text, const char *path, hwpin_map *out,
       goto done;
     }
     if (n != n_hdr) {
-      set_err(err, err_len, "%s:%d:1: %d fields, the header has %d", path,
-              line, n, n_hdr);
+      set_err(err, err_len, "%s:%d:1: %d fields, the header has %d", path, line, n, n_hdr);
       goto done;
     }
     const csv_field *sig = &f[col[0]], *pin = &f[col[1]];
     const csv_field *asig = &f[col[2]], *ach = &f[col[3]];
-    if (strncmp(sig->text, "PIN_", 4) != 0 ||
-        strlen(sig->text) >= HWPIN_NAME_MAX) {
-      set_err(err, err_len, "%s:%d:%d: expected a PIN_* signal name, got '%s'",
-              path, line, sig->col, sig->text);
+    if (strncmp(sig->text, "PIN_", 4) != 0 || strlen(sig->text) >= HWPIN_NAME_MAX) {
+      set_err(err, err_len, "%s:%d:%d: expected a PIN_* signal name, got '%s'", path, line,
+              sig->col, sig->text);
       goto done;
     }
     int port, num;
@@ -345,16 +336,14 @@ int hwpin_parse_csv(const char *text, const char *path, hwpin_map *out,
     if (asig->text[0] != '\0') {
       char *end;
       long v = strtol(ach->text, &end, 10);
-      if (strncmp(asig->text, "ADC_CH_", 7) != 0 ||
-          strlen(asig->text) >= HWPIN_NAME_MAX) {
-        set_err(err, err_len, "%s:%d:%d: expected an ADC_CH_* name, got '%s'",
-                path, line, asig->col, asig->text);
+      if (strncmp(asig->text, "ADC_CH_", 7) != 0 || strlen(asig->text) >= HWPIN_NAME_MAX) {
+        set_err(err, err_len, "%s:%d:%d: expected an ADC_CH_* name, got '%s'", path, line,
+                asig->col, asig->text);
         goto done;
       }
       if (!isdigit((unsigned char)ach->text[0]) || *end != '\0' || v > 18) {
-        set_err(err, err_len,
-                "%s:%d:%d: %s: expected an ADC channel number 0..18, got '%s'",
-                path, line, ach->col, asig->text, ach->text);
+        set_err(err, err_len, "%s:%d:%d: %s: expected an ADC channel number 0..18, got '%s'", path,
+                line, ach->col, asig->text, ach->text);
         goto done;
       }
       hwpin_adc *a = &out->adcs[out->n_adcs++];
@@ -417,16 +406,15 @@ static void check_alone(const hwpin_map *m, report *r) {
     for (int j = i + 1; j < m->n_pins; j++) {
       const hwpin_pin *q = &m->pins[j];
       if (q->port == p->port && q->num == p->num)
-        problem(r, "%s: %s used twice: %s (line %d) and %s (line %d)", m->path,
-                a, p->name, p->line, q->name, q->line);
+        problem(r, "%s: %s used twice: %s (line %d) and %s (line %d)", m->path, a, p->name, p->line,
+                q->name, q->line);
       if (strcmp(q->name, p->name) == 0)
-        problem(r, "%s: %s defined twice (lines %d and %d)", m->path, p->name,
-                p->line, q->line);
+        problem(r, "%s: %s defined twice (lines %d and %d)", m->path, p->name, p->line, q->line);
     }
     for (size_t k = 0; k < sizeof reserved / sizeof reserved[0]; k++)
       if (reserved[k].port == p->port && reserved[k].num == p->num)
-        problem(r, "%s:%d: %s on %s collides with %s", m->path, p->line,
-                p->name, a, reserved[k].what);
+        problem(r, "%s:%d: %s on %s collides with %s", m->path, p->line, p->name, a,
+                reserved[k].what);
     if (strncmp(p->name, "PIN_CH_", 7) == 0) {
       char adc_name[HWPIN_NAME_MAX + 8];
       snprintf(adc_name, sizeof adc_name, "ADC_CH_%s", p->name + 7);
@@ -435,28 +423,26 @@ static void check_alone(const hwpin_map *m, report *r) {
       if (!adc)
         problem(r, "%s:%d: %s has no %s", m->path, p->line, p->name, adc_name);
       else if (input < 0)
-        problem(r, "%s:%d: %s is on %s, which has no ADC1 input", m->path,
-                p->line, p->name, a);
+        problem(r, "%s:%d: %s is on %s, which has no ADC1 input", m->path, p->line, p->name, a);
       else if (input != adc->channel)
-        problem(r, "%s:%d: %s is on %s, which is ADC1_IN%d, but %s is %d",
-                m->path, adc->line, p->name, a, input, adc_name, adc->channel);
+        problem(r, "%s:%d: %s is on %s, which is ADC1_IN%d, but %s is %d", m->path, adc->line,
+                p->name, a, input, adc_name, adc->channel);
     }
   }
   for (int i = 0; i < m->n_adcs; i++)
     for (int j = i + 1; j < m->n_adcs; j++) {
       if (m->adcs[i].channel == m->adcs[j].channel)
-        problem(r, "%s: ADC channel %d used twice: %s (line %d) and %s (line %d)",
-                m->path, m->adcs[i].channel, m->adcs[i].name, m->adcs[i].line,
-                m->adcs[j].name, m->adcs[j].line);
+        problem(r, "%s: ADC channel %d used twice: %s (line %d) and %s (line %d)", m->path,
+                m->adcs[i].channel, m->adcs[i].name, m->adcs[i].line, m->adcs[j].name,
+                m->adcs[j].line);
       if (strcmp(m->adcs[i].name, m->adcs[j].name) == 0)
-        problem(r, "%s: %s defined twice (lines %d and %d)", m->path,
-                m->adcs[i].name, m->adcs[i].line, m->adcs[j].line);
+        problem(r, "%s: %s defined twice (lines %d and %d)", m->path, m->adcs[i].name,
+                m->adcs[i].line, m->adcs[j].line);
     }
 }
 
-int hwpin_compare(const hwpin_map *h, const hwpin_map *c, char *buf,
-                  size_t len) {
-  report r = {buf, len, 0, 0};
+int hwpin_compare(const hwpin_map *h, const hwpin_map *c, char *buf, size_t len) {
+  report r = { buf, len, 0, 0 };
   if (len) buf[0] = '\0';
   char a[8], b[8];
   for (int i = 0; i < h->n_pins; i++) {
@@ -464,34 +450,34 @@ int hwpin_compare(const hwpin_map *h, const hwpin_map *c, char *buf,
     const hwpin_pin *cp = find_pin(c, hp->name);
     hwpin_format(hp->port, hp->num, a, sizeof a);
     if (!cp) {
-      problem(&r, "%s: %s:%d says %s, %s does not list it", hp->name, h->path,
-              hp->line, a, c->path);
+      problem(&r, "%s: %s:%d says %s, %s does not list it", hp->name, h->path, hp->line, a,
+              c->path);
     } else if (cp->port != hp->port || cp->num != hp->num) {
       hwpin_format(cp->port, cp->num, b, sizeof b);
-      problem(&r, "%s: %s:%d says %s, %s:%d says %s", hp->name, h->path,
-              hp->line, a, c->path, cp->line, b);
+      problem(&r, "%s: %s:%d says %s, %s:%d says %s", hp->name, h->path, hp->line, a, c->path,
+              cp->line, b);
     }
   }
   for (int i = 0; i < c->n_pins; i++)
     if (!find_pin(h, c->pins[i].name)) {
       hwpin_format(c->pins[i].port, c->pins[i].num, a, sizeof a);
-      problem(&r, "%s: %s:%d says %s, %s does not define it", c->pins[i].name,
-              c->path, c->pins[i].line, a, h->path);
+      problem(&r, "%s: %s:%d says %s, %s does not define it", c->pins[i].name, c->path,
+              c->pins[i].line, a, h->path);
     }
   for (int i = 0; i < h->n_adcs; i++) {
     const hwpin_adc *ha = &h->adcs[i];
     const hwpin_adc *ca = find_adc(c, ha->name);
     if (!ca)
-      problem(&r, "%s: %s:%d says %d, %s does not list it", ha->name, h->path,
-              ha->line, ha->channel, c->path);
+      problem(&r, "%s: %s:%d says %d, %s does not list it", ha->name, h->path, ha->line,
+              ha->channel, c->path);
     else if (ca->channel != ha->channel)
-      problem(&r, "%s: %s:%d says %d, %s:%d says %d", ha->name, h->path,
-              ha->line, ha->channel, c->path, ca->line, ca->channel);
+      problem(&r, "%s: %s:%d says %d, %s:%d says %d", ha->name, h->path, ha->line, ha->channel,
+              c->path, ca->line, ca->channel);
   }
   for (int i = 0; i < c->n_adcs; i++)
     if (!find_adc(h, c->adcs[i].name))
-      problem(&r, "%s: %s:%d says %d, %s does not define it", c->adcs[i].name,
-              c->path, c->adcs[i].line, c->adcs[i].channel, h->path);
+      problem(&r, "%s: %s:%d says %d, %s does not define it", c->adcs[i].name, c->path,
+              c->adcs[i].line, c->adcs[i].channel, h->path);
   check_alone(h, &r);
   check_alone(c, &r);
   return r.count;

@@ -10,7 +10,7 @@
 
 #include <stddef.h>
 
-#define HWPIN_MAX 32
+#define HWPIN_MAX      32
 #define HWPIN_NAME_MAX 48
 
 /* One named pin: PIN_CH_THUMB -> port 'A' (0), pin 1. */
@@ -37,12 +37,10 @@ typedef struct {
   int n_adcs;
 } hwpin_map;
 
-int hwpin_parse_header(const char *text, const char *path, hwpin_map *out,
-                       char *err, size_t err_len);
-int hwpin_parse_csv(const char *text, const char *path, hwpin_map *out,
-                    char *err, size_t err_len);
-int hwpin_compare(const hwpin_map *header, const hwpin_map *csv,
-                  char *report, size_t report_len);
+int hwpin_parse_header(const char *text, const char *path, hwpin_map *out, char *err,
+                       size_t err_len);
+int hwpin_parse_csv(const char *text, const char *path, hwpin_map *out, char *err, size_t err_len);
+int hwpin_compare(const hwpin_map *header, const hwpin_map *csv, char *report, size_t report_len);
 
 /* "PA1" for port 0, pin 1; buf needs 5 bytes. */
 void hwpin_format(int port, int num, char *buf, size_t len);

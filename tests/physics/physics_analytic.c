@@ -14,8 +14,7 @@
 
 static const double pi = 3.14159265358979323846;
 
-static mr_world *make_world(uint32_t effects)
-{
+static mr_world *make_world(uint32_t effects) {
   mr_world_def def = mr_default_world_def();
   def.effects = effects;
   mr_world *w = NULL;
@@ -24,8 +23,7 @@ static mr_world *make_world(uint32_t effects)
   return w;
 }
 
-static int add(mr_world *w, double x, double y, double z, double mass)
-{
+static int add(mr_world *w, double x, double y, double z, double mass) {
   mr_particle_def p = mr_default_particle_def();
   p.position[0] = x;
   p.position[1] = y;
@@ -38,12 +36,11 @@ static int add(mr_world *w, double x, double y, double z, double mass)
 
 /* RK4 integrates a constant acceleration exactly: x(t) = x0 + v0 t + ½ g t².
  * Only rounding separates the two, whatever steps the ATS takes. */
-static void free_fall_is_exact_under_rk4(void **state)
-{
+static void free_fall_is_exact_under_rk4(void **state) {
   (void)state;
   mr_world *w = make_world(MR_EFFECT_GRAVITY);
   int p = add(w, 0.0, 100.0, 0.0, 2.0);
-  double v0[3] = {1.5, 4.0, -0.5}, x0[3] = {0.0, 100.0, 0.0};
+  double v0[3] = { 1.5, 4.0, -0.5 }, x0[3] = { 0.0, 100.0, 0.0 };
   assert_int_equal(mr_world_set_particle_state(w, p, x0, v0), MR_OK);
   double worst = 0.0;
   for (int f = 1; f <= 120; f++) {
@@ -52,9 +49,8 @@ static void free_fall_is_exact_under_rk4(void **state)
     assert_true(mr_world_time(w) == t);
     double x[3], v[3];
     mr_world_particle_state(w, p, x, v);
-    double ex[3] = {x0[0] + v0[0] * t, x0[1] + v0[1] * t - 0.5 * 9.81 * t * t, x0[2] + v0[2] * t};
-    for (int k = 0; k < 3; k++)
-      worst = fmax(worst, fabs(x[k] - ex[k]));
+    double ex[3] = { x0[0] + v0[0] * t, x0[1] + v0[1] * t - 0.5 * 9.81 * t * t, x0[2] + v0[2] * t };
+    for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(x[k] - ex[k]));
     assert_true(fabs(v[1] - (v0[1] - 9.81 * t)) < 1e-12);
   }
   printf("free fall: worst position error over 2 s = %.3g m\n", worst);
@@ -64,19 +60,17 @@ static void free_fall_is_exact_under_rk4(void **state)
 
 /* Period from upward zero crossings of coordinate k of particle p, sampled
  * every `dt` and interpolated linearly between samples. */
-static double measure_period(mr_world *w, int p, int k, double dt, double t_end)
-{
+static double measure_period(mr_world *w, int p, int k, double dt, double t_end) {
   double prev = 0, t_prev = 0, first = -1, last = -1;
   int crossings = 0;
-  mr_world_particle_state(w, p, (double[3]){0}, NULL);
+  mr_world_particle_state(w, p, (double[3]){ 0 }, NULL);
   for (double t = dt; t <= t_end + 1e-12; t += dt) {
     assert_true(mr_world_step_to(w, t, NULL) >= MR_OK);
     double x[3];
     mr_world_particle_state(w, p, x, NULL);
     if (t > dt && prev < 0 && x[k] >= 0) {
       double tc = t_prev + (t - t_prev) * (-prev) / (x[k] - prev);
-      if (first < 0)
-        first = tc;
+      if (first < 0) first = tc;
       last = tc;
       crossings++;
     }
@@ -89,8 +83,7 @@ static double measure_period(mr_world *w, int p, int k, double dt, double t_end)
 
 /* A bob on a distance constraint to a pinned particle: T = 2π√(L/g), with
  * the finite-amplitude factor (1 + θ₀²/16) for θ₀ = 0.05 rad (1.6e-4). */
-static void small_angle_pendulum_period_within_half_percent(void **state)
-{
+static void small_angle_pendulum_period_within_half_percent(void **state) {
   (void)state;
   mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS);
   const double L = 1.0, th = 0.05;
@@ -112,8 +105,7 @@ static void small_angle_pendulum_period_within_half_percent(void **state)
 }
 
 /* A mass on a spring to a pinned particle: T = 2π√(m/k). */
-static void spring_mass_period_within_half_percent(void **state)
-{
+static void spring_mass_period_within_half_percent(void **state) {
   (void)state;
   mr_world *w = make_world(MR_EFFECT_SPRINGS | MR_EFFECT_CONSTRAINTS);
   int anchor = add(w, 0, 0, 0, 1.0);
@@ -139,8 +131,7 @@ static void spring_mass_period_within_half_percent(void **state)
     double u = x[0] - 1.0;
     if (t > 0.01 && prev < 0 && u >= 0) {
       double tc = t_prev + (t - t_prev) * (-prev) / (u - prev);
-      if (first < 0)
-        first = tc;
+      if (first < 0) first = tc;
       last = tc;
       crossings++;
     }
@@ -155,8 +146,7 @@ static void spring_mass_period_within_half_percent(void **state)
   mr_world_destroy(w);
 }
 
-static double pendulum_energy(mr_world *w, int bob)
-{
+static double pendulum_energy(mr_world *w, int bob) {
   double x[3], v[3];
   mr_world_particle_state(w, bob, x, v);
   return 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 9.81 * x[1];
@@ -165,8 +155,7 @@ static double pendulum_energy(mr_world *w, int bob)
 /* Without friction the pendulum's energy may only drift by the integrator's
  * and the constraint correction's error: over 10⁴ steps at θ₀ = 0.5 rad
  * we allow 1 % of m g L. */
-static void energy_drift_bounded_over_ten_thousand_steps(void **state)
-{
+static void energy_drift_bounded_over_ten_thousand_steps(void **state) {
   (void)state;
   mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS);
   int pivot = add(w, 0, 0, 0, 1.0);
@@ -203,13 +192,11 @@ static void energy_drift_bounded_over_ten_thousand_steps(void **state)
  *    steps: we allow 5 %, a tenth of the 50 % divergence bound;
  *  - the deviation does not accumulate: under 0.1 % at the end;
  *  - the world never diverges. */
-static void constraint_drift_bounded_over_hundred_thousand_steps(void **state)
-{
+static void constraint_drift_bounded_over_hundred_thousand_steps(void **state) {
   (void)state;
   mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS);
   int p[4];
-  for (int i = 0; i < 4; i++)
-    p[i] = add(w, 0.5 * i, 0, 0.1 * i, 1.0);
+  for (int i = 0; i < 4; i++) p[i] = add(w, 0.5 * i, 0, 0.1 * i, 1.0);
   mr_pin_def pin = mr_default_pin_def();
   pin.particle = p[0];
   assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
@@ -233,7 +220,8 @@ static void constraint_drift_bounded_over_hundred_thousand_steps(void **state)
   printf("constraint drift: %llu steps, %.0f s, max deviation %.3g (%.3g on steps above 0.01 s; %d "
          "floor steps over 1 %%), final %.3g, rejected %llu, mean dt %.4f s\n",
          (unsigned long long)st.steps, mr_world_time(w), st.max_error, worst_long, at_floor,
-         mr_world_deviation(w), (unsigned long long)st.rejected, mr_world_time(w) / (double)st.steps);
+         mr_world_deviation(w), (unsigned long long)st.rejected,
+         mr_world_time(w) / (double)st.steps);
   assert_true(worst_long <= 1e-2);
   assert_true(st.max_error < 5e-2);
   assert_true(mr_world_deviation(w) < 1e-3);
@@ -247,12 +235,11 @@ static void constraint_drift_bounded_over_hundred_thousand_steps(void **state)
  * by at least 1 + ω²Δt² per step; semi-implicit Euler stays bounded at O(ωΔt); midpoint
  * grows by O((ωΔt)⁴); RK4 loses O((ωΔt)⁶)), and the cost is their number of
  * force evaluations per step: 1, 1, 2, 4. */
-static void integrators_rank_by_accuracy_and_cost(void **state)
-{
+static void integrators_rank_by_accuracy_and_cost(void **state) {
   (void)state;
-  const mr_integrator kinds[4] = {MR_INTEGRATOR_EULER, MR_INTEGRATOR_SEMI_IMPLICIT_EULER,
-                                  MR_INTEGRATOR_MIDPOINT, MR_INTEGRATOR_RK4};
-  const int evals[4] = {1, 1, 2, 4};
+  const mr_integrator kinds[4] = { MR_INTEGRATOR_EULER, MR_INTEGRATOR_SEMI_IMPLICIT_EULER,
+                                   MR_INTEGRATOR_MIDPOINT, MR_INTEGRATOR_RK4 };
+  const int evals[4] = { 1, 1, 2, 4 };
   double err[4];
   for (int i = 0; i < 4; i++) {
     mr_world_def def = mr_default_world_def();
@@ -275,7 +262,8 @@ static void integrators_rank_by_accuracy_and_cost(void **state)
     assert_int_equal(mr_world_step_to(w, 5.0, NULL), MR_OK);
     double x[3], v[3];
     mr_world_particle_state(w, m, x, v);
-    double e = 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * 100.0 * (x[0] - 1) * (x[0] - 1);
+    double e =
+        0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + 0.5 * 100.0 * (x[0] - 1) * (x[0] - 1);
     err[i] = fabs(e - e0) / e0;
     mr_stats st;
     mr_world_stats(w, &st);
@@ -298,8 +286,7 @@ static void integrators_rank_by_accuracy_and_cost(void **state)
  * wrong time breaks the order. Halving Δt (0.01 → 0.005 → 0.0025 s, fixed)
  * divides the state error at t = 1 s, √(e_x² + (e_v/ω)²), by 2^p: p = 1, 1,
  * 2, 4. */
-static double driven_error(mr_integrator kind, double dt)
-{
+static double driven_error(mr_integrator kind, double dt) {
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_SPRINGS | MR_EFFECT_FRAMES;
   def.integrator = kind;
@@ -335,25 +322,23 @@ static double driven_error(mr_integrator kind, double dt)
   return sqrt(ex * ex + ev * ev / (omega * omega));
 }
 
-static void integrators_converge_at_their_order(void **state)
-{
+static void integrators_converge_at_their_order(void **state) {
   (void)state;
-  const mr_integrator kinds[4] = {MR_INTEGRATOR_EULER, MR_INTEGRATOR_SEMI_IMPLICIT_EULER,
-                                  MR_INTEGRATOR_MIDPOINT, MR_INTEGRATOR_RK4};
-  const double order[4] = {1, 1, 2, 4};
+  const mr_integrator kinds[4] = { MR_INTEGRATOR_EULER, MR_INTEGRATOR_SEMI_IMPLICIT_EULER,
+                                   MR_INTEGRATOR_MIDPOINT, MR_INTEGRATOR_RK4 };
+  const double order[4] = { 1, 1, 2, 4 };
   for (int i = 0; i < 4; i++) {
     double e1 = driven_error(kinds[i], 0.01), e2 = driven_error(kinds[i], 0.005),
            e3 = driven_error(kinds[i], 0.0025);
     double p1 = log2(e1 / e2), p2 = log2(e2 / e3);
-    printf("%-20s error at 1 s: %.3e, %.3e, %.3e; observed order %.3f, %.3f\n", mr_integrator_name(kinds[i]),
-           e1, e2, e3, p1, p2);
+    printf("%-20s error at 1 s: %.3e, %.3e, %.3e; observed order %.3f, %.3f\n",
+           mr_integrator_name(kinds[i]), e1, e2, e3, p1, p2);
     assert_true(fabs(p2 - order[i]) < 0.15);
     assert_true(fabs(p1 - order[i]) < 0.3);
   }
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(free_fall_is_exact_under_rk4),
     cmocka_unit_test(small_angle_pendulum_period_within_half_percent),

@@ -12,17 +12,15 @@
 
 #include "mr_physics.h"
 
-static const mr_ats_params paper = {0.01, 0.05, 1e-4, 1e-2}; /* §7 */
+static const mr_ats_params paper = { 0.01, 0.05, 1e-4, 1e-2 }; /* §7 */
 
-static void near(double a, double b)
-{
+static void near(double a, double b) {
   assert_true(fabs(a - b) <= 1e-15 * fabs(b));
 }
 
 /* Each scripted error against Δt_new = Δt_old·(threshold/error)^¼, with the
  * dead band between the thresholds and the clamps of §7. */
-static void ats_follows_fourth_root_rule_on_scripted_errors(void **state)
-{
+static void ats_follows_fourth_root_rule_on_scripted_errors(void **state) {
   (void)state;
   double dt = 0.02;
   mr_ats_decision d;
@@ -74,8 +72,7 @@ static void ats_follows_fourth_root_rule_on_scripted_errors(void **state)
 /* 10⁴ pseudo-random errors over 1e-10..1: Δt never leaves [0.01, 0.05] and
  * a step is rejected exactly when its error passes 1 % above the lower
  * bound. */
-static void ats_stays_within_bounds(void **state)
-{
+static void ats_stays_within_bounds(void **state) {
   (void)state;
   uint64_t s = 12345;
   double dt = 0.02;
@@ -93,8 +90,7 @@ static void ats_stays_within_bounds(void **state)
   assert_true(rejects > 0);
 }
 
-static mr_world *pendulum(double high, double low, int *bob)
-{
+static mr_world *pendulum(double high, double low, int *bob) {
   mr_world_def def = mr_default_world_def();
   def.deviation_high = high;
   def.deviation_low = low;
@@ -120,13 +116,12 @@ static mr_world *pendulum(double high, double low, int *bob)
  * upper threshold are rejected and retried, so every accepted step above the
  * lower bound has its deviation under the threshold, and each accepted step
  * sets the next Δt exactly as mr_ats_next says. */
-static void world_rejects_and_follows_rule_step_by_step(void **state)
-{
+static void world_rejects_and_follows_rule_step_by_step(void **state) {
   (void)state;
   const double high = 2e-6, low = 2e-8;
   int bob;
   mr_world *w = pendulum(high, low, &bob);
-  const mr_ats_params p = {0.01, 0.05, low, high};
+  const mr_ats_params p = { 0.01, 0.05, low, high };
   mr_stats st;
   int checked = 0;
   uint64_t rejected_before = 0;
@@ -134,8 +129,7 @@ static void world_rejects_and_follows_rule_step_by_step(void **state)
     assert_int_equal(mr_world_step(w, NULL), MR_OK);
     mr_world_stats(w, &st);
     assert_true(st.last_dt >= 0.01 && st.last_dt <= 0.05);
-    if (st.last_dt > 0.01)
-      assert_true(st.last_error <= high);
+    if (st.last_dt > 0.01) assert_true(st.last_error <= high);
     if (st.rejected == rejected_before) {
       /* No retry: the step was the planned one and the rule chose the next. */
       mr_ats_decision d = mr_ats_next(&p, st.last_dt, st.last_error);
@@ -145,7 +139,8 @@ static void world_rejects_and_follows_rule_step_by_step(void **state)
     rejected_before = st.rejected;
   }
   printf("ats: %llu steps, %llu rejected, dt %.4f..%.4f s, %d steps checked against the rule\n",
-         (unsigned long long)st.steps, (unsigned long long)st.rejected, st.min_dt, st.max_dt, checked);
+         (unsigned long long)st.steps, (unsigned long long)st.rejected, st.min_dt, st.max_dt,
+         checked);
   assert_true(st.rejected > 0);
   assert_true(checked > 100);
   assert_true(st.min_dt < st.max_dt);
@@ -155,13 +150,12 @@ static void world_rejects_and_follows_rule_step_by_step(void **state)
 /* §4.5: a ball falls onto the floor; the step is cut to the contact time,
  * then Δt doubles each step (h, 2h, 4h, ...) until the rule's value (the
  * upper bound here: no constraints) takes over again. */
-static void dt_doubles_back_after_floor_impact(void **state)
-{
+static void dt_doubles_back_after_floor_impact(void **state) {
   (void)state;
   /* Drop heights chosen so that the step cut at the contact is short in
    * some runs and over half the upper bound in others, where doubling it
    * would overshoot the bound. */
-  const double heights[] = {1.0, 1.3, 0.77, 2.2, 3.05};
+  const double heights[] = { 1.0, 1.3, 0.77, 2.2, 3.05 };
   for (size_t hi = 0; hi < sizeof heights / sizeof heights[0]; hi++) {
     mr_world_def def = mr_default_world_def();
     def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_PLANES;
@@ -209,17 +203,15 @@ static void dt_doubles_back_after_floor_impact(void **state)
 /* The fourth root is two square roots, correctly rounded each under IEEE
  * 754, so the pinned hashes do not depend on a libm's pow. Errors are
  * chosen where pow(x, 0.25) and sqrt(sqrt(x)) differ in the last bit. */
-static void ats_growth_is_two_square_roots_to_the_bit(void **state)
-{
+static void ats_growth_is_two_square_roots_to_the_bit(void **state) {
   (void)state;
-  const mr_ats_params p = {0.01, 0.05, 1e-4, 1e-2};
+  const mr_ats_params p = { 0.01, 0.05, 1e-4, 1e-2 };
   int differing = 0;
   for (int i = 1; i <= 2000; i++) {
     double error = p.low / (1.0 + i * 1e-4);
     double ratio = p.low / error;
     volatile double by_pow = pow(ratio, 0.25), by_sqrt = sqrt(sqrt(ratio));
-    if (by_pow == by_sqrt)
-      continue;
+    if (by_pow == by_sqrt) continue;
     differing++;
     mr_ats_decision d = mr_ats_next(&p, 0.02, error);
     assert_true(d.accept);
@@ -229,8 +221,7 @@ static void ats_growth_is_two_square_roots_to_the_bit(void **state)
   assert_true(differing > 10);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(ats_follows_fourth_root_rule_on_scripted_errors),
     cmocka_unit_test(ats_stays_within_bounds),

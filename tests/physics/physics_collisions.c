@@ -12,8 +12,7 @@
 
 #include "mr_physics.h"
 
-static mr_world *make_world(uint32_t effects, mr_world_def *override)
-{
+static mr_world *make_world(uint32_t effects, mr_world_def *override) {
   mr_world_def def = override ? *override : mr_default_world_def();
   def.effects = effects;
   mr_world *w = NULL;
@@ -22,8 +21,7 @@ static mr_world *make_world(uint32_t effects, mr_world_def *override)
   return w;
 }
 
-static int add(mr_world *w, const double x[3], const double v[3], double r, int puppet)
-{
+static int add(mr_world *w, const double x[3], const double v[3], double r, int puppet) {
   mr_particle_def p = mr_default_particle_def();
   for (int k = 0; k < 3; k++) {
     p.position[k] = x[k];
@@ -36,8 +34,7 @@ static int add(mr_world *w, const double x[3], const double v[3], double r, int 
   return id;
 }
 
-static int floor_plane(mr_world *w, double e, double mu)
-{
+static int floor_plane(mr_world *w, double e, double mu) {
   mr_plane_def pl = mr_default_plane_def();
   pl.restitution = e;
   pl.friction = mu;
@@ -51,14 +48,13 @@ static int floor_plane(mr_world *w, double e, double mu)
  * 0.64 m. RK4 is exact for free flight, the contact time is located to
  * within the 1e-4 m contact slop and the apex is sampled every 1 ms
  * (height error g·dt²/8 ≈ 1e-6 m), so we allow 1 mm. */
-static void ball_bounces_to_restitution_height(void **state)
-{
+static void ball_bounces_to_restitution_height(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.drag = 0;
   mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES, &def);
   const double r = 0.1, h0 = 1.0, e = 0.8;
-  int b = add(w, (double[3]){0, h0 + r, 0}, NULL, r, 0);
+  int b = add(w, (double[3]){ 0, h0 + r, 0 }, NULL, r, 0);
   floor_plane(w, e, 0.0);
   double apex = 0, lowest = INFINITY;
   int bounced = 0;
@@ -67,15 +63,13 @@ static void ball_bounces_to_restitution_height(void **state)
     double x[3], v[3];
     mr_world_particle_state(w, b, x, v);
     lowest = fmin(lowest, x[1] - r);
-    if (v[1] > 0)
-      bounced = 1;
-    if (bounced)
-      apex = fmax(apex, x[1] - r);
+    if (v[1] > 0) bounced = 1;
+    if (bounced) apex = fmax(apex, x[1] - r);
   }
   mr_stats st;
   mr_world_stats(w, &st);
-  printf("bounce: apex %.6f m, predicted %.6f m, lowest %.3g m, collisions %llu\n", apex, e * e * h0,
-         lowest, (unsigned long long)st.collisions);
+  printf("bounce: apex %.6f m, predicted %.6f m, lowest %.3g m, collisions %llu\n", apex,
+         e * e * h0, lowest, (unsigned long long)st.collisions);
   assert_true(bounced);
   assert_int_equal((int)st.collisions, 1);
   assert_true(fabs(apex - e * e * h0) < 1e-3);
@@ -88,13 +82,12 @@ static void ball_bounces_to_restitution_height(void **state)
  * chattering. Contact rows carry a compliance of 1e-6 of their diagonal
  * (eval.c), so a resting particle sags until K_s·χ makes up 1e-6 g:
  * χ = −1e-6·g/K_s ≈ −1e-7 m. We allow twice that, and 1e-6 m/s. */
-static void resting_contact_holds_without_sinking_or_jitter(void **state)
-{
+static void resting_contact_holds_without_sinking_or_jitter(void **state) {
   (void)state;
   mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_DRAG, NULL);
   const double r = 0.05;
-  int still = add(w, (double[3]){0, r, 0}, NULL, r, 0);
-  int ball = add(w, (double[3]){1, 0.5 + r, 0}, NULL, r, 1);
+  int still = add(w, (double[3]){ 0, r, 0 }, NULL, r, 0);
+  int ball = add(w, (double[3]){ 1, 0.5 + r, 0 }, NULL, r, 1);
   floor_plane(w, 0.5, 0.3);
   double worst_y = 0, worst_v = 0;
   for (int f = 1; f <= 600; f++) {
@@ -109,8 +102,8 @@ static void resting_contact_holds_without_sinking_or_jitter(void **state)
   mr_stats st;
   mr_world_stats(w, &st);
   printf("resting: |y - r| <= %.3g m, |v| <= %.3g m/s; ball settles at %.3g m above rest, "
-         "|v| = %.3g, %llu collisions\n", worst_y, worst_v, xb[1] - r, fabs(vb[1]),
-         (unsigned long long)st.collisions);
+         "|v| = %.3g, %llu collisions\n",
+         worst_y, worst_v, xb[1] - r, fabs(vb[1]), (unsigned long long)st.collisions);
   assert_true(worst_y < 2e-6 * 9.81 / 100.0);
   assert_true(worst_v < 1e-6);
   assert_true(fabs(xb[1] - r) < 1e-4);
@@ -125,17 +118,15 @@ static void resting_contact_holds_without_sinking_or_jitter(void **state)
  * slides h·v/2 instead of v²/(2μg), at most μ g Δt²/8 = 1.5 mm at the
  * 0.05 s step, plus the step in which the limit takes over mid-way: we
  * assert twice the tail bound, μ g Δt²/4 = 3.1 mm (0.33 %). */
-static void friction_stops_slide_at_mu_g_distance(void **state)
-{
+static void friction_stops_slide_at_mu_g_distance(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.drag = 0;
   mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES, &def);
   const double r = 0.05, v0 = 3.0, mu = 0.5;
-  int p = add(w, (double[3]){0, r, 0}, (double[3]){v0, 0, 0}, r, 0);
+  int p = add(w, (double[3]){ 0, r, 0 }, (double[3]){ v0, 0, 0 }, r, 0);
   floor_plane(w, 0.0, mu);
-  for (int f = 1; f <= 30; f++)
-    assert_int_equal(mr_world_step_to(w, f * 0.1, NULL), MR_OK);
+  for (int f = 1; f <= 30; f++) assert_int_equal(mr_world_step_to(w, f * 0.1, NULL), MR_OK);
   double x[3], v[3];
   mr_world_particle_state(w, p, x, v);
   double expect = v0 * v0 / (2 * mu * 9.81);
@@ -147,11 +138,11 @@ static void friction_stops_slide_at_mu_g_distance(void **state)
   mr_world_destroy(w);
 }
 
-static void tetra(mr_world *w, const double c[3], const double v[3], double r, int puppet, int ids[4])
-{
-  const double off[4][3] = {{0.2, 0, 0}, {-0.1, 0.17, 0}, {-0.1, -0.17, 0}, {0, 0, 0.2}};
+static void tetra(mr_world *w, const double c[3], const double v[3], double r, int puppet,
+                  int ids[4]) {
+  const double off[4][3] = { { 0.2, 0, 0 }, { -0.1, 0.17, 0 }, { -0.1, -0.17, 0 }, { 0, 0, 0.2 } };
   for (int i = 0; i < 4; i++) {
-    double x[3] = {c[0] + off[i][0], c[1] + off[i][1], c[2] + off[i][2]};
+    double x[3] = { c[0] + off[i][0], c[1] + off[i][1], c[2] + off[i][2] };
     ids[i] = add(w, x, v, r, puppet);
   }
   mr_rigid_group_def g = mr_default_rigid_group_def();
@@ -172,10 +163,10 @@ static void tetra(mr_world *w, const double c[3], const double v[3], double r, i
  * limited by it, friction let this particle creep 0.28 m in 10 s). With μ
  * below tan 20° they slide 10 s with
  * s = ½ g (sinθ − μ cosθ) t². */
-static double slope_run(int body, double mu)
-{
+static double slope_run(int body, double mu) {
   const double th = 20.0 * 3.14159265358979323846 / 180.0;
-  const double n[3] = {-sin(th), cos(th), 0}, along[3] = {cos(th), sin(th), 0}, side[3] = {0, 0, 1};
+  const double n[3] = { -sin(th), cos(th), 0 }, along[3] = { cos(th), sin(th), 0 },
+               side[3] = { 0, 0, 1 };
   mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_CONSTRAINTS, NULL);
   mr_plane_def pl = mr_default_plane_def();
   pl.normal[0] = n[0];
@@ -184,7 +175,9 @@ static double slope_run(int body, double mu)
   pl.friction = mu;
   assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
   /* In slope coordinates (along, normal, side); radius 0.02 m. */
-  const double pts[4][3] = {{0, 0.02, 0}, {0.3, 0.02, 0}, {0.15, 0.02, 0.25}, {0.15, 0.25, 0.08}};
+  const double pts[4][3] = {
+    { 0, 0.02, 0 }, { 0.3, 0.02, 0 }, { 0.15, 0.02, 0.25 }, { 0.15, 0.25, 0.08 }
+  };
   int count = body ? 4 : 1, ids[4];
   for (int i = 0; i < count; i++) {
     double x[3];
@@ -200,20 +193,16 @@ static double slope_run(int body, double mu)
   }
   double x0[3], x[3];
   mr_world_particle_state(w, ids[0], x0, NULL);
-  for (int f = 1; f <= 600; f++)
-    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+  for (int f = 1; f <= 600; f++) assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
   mr_world_particle_state(w, ids[0], x, NULL);
   double s = 0;
-  for (int k = 0; k < 3; k++)
-    s += (x0[k] - x[k]) * along[k]; /* downhill is −along */
-  if (body)
-    assert_true(mr_world_deviation(w) < 1e-6);
+  for (int k = 0; k < 3; k++) s += (x0[k] - x[k]) * along[k]; /* downhill is −along */
+  if (body) assert_true(mr_world_deviation(w) < 1e-6);
   mr_world_destroy(w);
   return s;
 }
 
-static void friction_holds_on_a_slope_and_slides_below_tan_theta(void **state)
-{
+static void friction_holds_on_a_slope_and_slides_below_tan_theta(void **state) {
   (void)state;
   const double th = 20.0 * 3.14159265358979323846 / 180.0, g = 9.81;
   for (int body = 0; body < 2; body++) {
@@ -232,12 +221,12 @@ static void friction_holds_on_a_slope_and_slides_below_tan_theta(void **state)
  * 20° off its top, which is locally a 20° slope. With μ = 0.5 it stays; with
  * μ = 0.2 and μ = 0 it slides 1 s down with s ≈ ½ g (sinθ − μ cosθ) t²
  * (within 2 %: the slope steepens by 0.4° over the slide). */
-static double ball_on_sphere(double mu, double t_end)
-{
+static double ball_on_sphere(double mu, double t_end) {
   const double th = 20.0 * 3.14159265358979323846 / 180.0, R = 100.0, r = 0.05;
-  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION, NULL);
-  int big = add(w, (double[3]){0, 0, 0}, NULL, R, 0);
-  int ball = add(w, (double[3]){(R + r) * sin(th), (R + r) * cos(th), 0}, NULL, r, 1);
+  mr_world *w =
+      make_world(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION, NULL);
+  int big = add(w, (double[3]){ 0, 0, 0 }, NULL, R, 0);
+  int ball = add(w, (double[3]){ (R + r) * sin(th), (R + r) * cos(th), 0 }, NULL, r, 1);
   mr_pin_def pin = mr_default_pin_def();
   pin.particle = big;
   assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
@@ -257,17 +246,17 @@ static double ball_on_sphere(double mu, double t_end)
   double gap = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - R - r;
   assert_true(fabs(gap) < 1e-3); /* it stays on the surface */
   mr_world_destroy(w);
-  return sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) + (x[2] - x0[2]) * (x[2] - x0[2]));
+  return sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) +
+              (x[2] - x0[2]) * (x[2] - x0[2]));
 }
 
-static void friction_between_sphere_tree_spheres(void **state)
-{
+static void friction_between_sphere_tree_spheres(void **state) {
   (void)state;
   const double th = 20.0 * 3.14159265358979323846 / 180.0, g = 9.81;
   double held = ball_on_sphere(0.5, 2.0);
   printf("ball on a sphere, mu 0.5: moved %.3g m in 2 s\n", held);
   assert_true(held < 1e-4);
-  const double mus[2] = {0.2, 0.0};
+  const double mus[2] = { 0.2, 0.0 };
   for (int i = 0; i < 2; i++) {
     double slid = ball_on_sphere(mus[i], 1.0), expect = 0.5 * g * (sin(th) - mus[i] * cos(th));
     printf("ball on a sphere, mu %.1f: slid %.4f m in 1 s (plane: %.4f m)\n", mus[i], slid, expect);
@@ -282,15 +271,15 @@ static void friction_between_sphere_tree_spheres(void **state)
  * centripetal term v²/d = 30 m/s² the contact would hold the wrong
  * acceleration and the gap would settle near −30/K_s = −0.3 m. No gravity,
  * no friction: the ball keeps its speed and stays on the surface. */
-static void ball_orbits_a_sphere_on_a_resting_contact(void **state)
-{
+static void ball_orbits_a_sphere_on_a_resting_contact(void **state) {
   (void)state;
   const double R = 0.25, r = 0.05, d = R + r, speed = 3.0;
   mr_world_def def = mr_default_world_def();
   def.gravity[1] = 0.0;
-  mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_SPRINGS | MR_EFFECT_PUPPET_COLLISION, &def);
-  int centre = add(w, (double[3]){0, 0, 0}, NULL, R, 0);
-  int ball = add(w, (double[3]){d, 0, 0}, (double[3]){0, 0, speed}, r, 1);
+  mr_world *w =
+      make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_SPRINGS | MR_EFFECT_PUPPET_COLLISION, &def);
+  int centre = add(w, (double[3]){ 0, 0, 0 }, NULL, R, 0);
+  int ball = add(w, (double[3]){ d, 0, 0 }, (double[3]){ 0, 0, speed }, r, 1);
   mr_pin_def pin = mr_default_pin_def();
   pin.particle = centre;
   assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
@@ -316,8 +305,8 @@ static void ball_orbits_a_sphere_on_a_resting_contact(void **state)
     worst_gap = fmax(worst_gap, fabs(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - d));
     worst_speed = fmax(worst_speed, fabs(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - speed));
   }
-  printf("orbit on a sphere contact: |gap| <= %.3g m, |speed - 3| <= %.3g m/s over 2 s\n", worst_gap,
-         worst_speed);
+  printf("orbit on a sphere contact: |gap| <= %.3g m, |speed - 3| <= %.3g m/s over 2 s\n",
+         worst_gap, worst_speed);
   assert_true(worst_gap < 1e-3);
   assert_true(worst_speed < 0.03);
   mr_world_destroy(w);
@@ -326,13 +315,12 @@ static void ball_orbits_a_sphere_on_a_resting_contact(void **state)
 /* Planes other than the floor: a wall x ≤ 1 (normal (−1, 0, 0), offset −1)
  * with restitution 1 sends a particle sliding at 2 m/s back at 2 m/s, its
  * surface stopping at the wall. The normal is normalised on entry. */
-static void wall_plane_reflects_particle(void **state)
-{
+static void wall_plane_reflects_particle(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.drag = 0;
   mr_world *w = make_world(MR_EFFECT_PLANES, &def);
-  int p = add(w, (double[3]){0, 0, 0}, (double[3]){2, 0, 0}, 0.1, 0);
+  int p = add(w, (double[3]){ 0, 0, 0 }, (double[3]){ 2, 0, 0 }, 0.1, 0);
   mr_plane_def wall = mr_default_plane_def();
   wall.normal[0] = -3.0; /* not unit on purpose */
   wall.normal[1] = 0.0;
@@ -351,7 +339,8 @@ static void wall_plane_reflects_particle(void **state)
   mr_world_particle_state(w, p, x, v);
   printf("wall: farthest surface point %.6f m (wall at 1), v = %.6f m/s after\n", far, v[0]);
   assert_true(far < 1.0 + 2e-4);
-  assert_true(fabs(v[0] + 2.0) < 1e-5); /* the contact's 1e-6 compliance costs 2e-6 of the rebound */
+  assert_true(fabs(v[0] + 2.0) <
+              1e-5); /* the contact's 1e-6 compliance costs 2e-6 of the rebound */
   assert_true(fabs(x[0] - (0.9 - 2.0 * (1.0 - 0.45))) < 1e-3);
   mr_world_destroy(w);
 }
@@ -360,16 +349,15 @@ static void wall_plane_reflects_particle(void **state)
  * thrown at each other at 2 m/s each: sampled every 2 ms, no leaf sphere of
  * one ever overlaps one of the other by more than twice the contact slop,
  * and they leave the impact moving apart. */
-static void sphere_tree_puppets_do_not_interpenetrate(void **state)
-{
+static void sphere_tree_puppets_do_not_interpenetrate(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.drag = 0;
   mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION, &def);
   const double r = 0.12;
   int a[4], b[4];
-  tetra(w, (double[3]){-1, 0, 0}, (double[3]){2, 0, 0}, r, 0, a);
-  tetra(w, (double[3]){1, 0.05, 0.03}, (double[3]){-2, 0, 0}, r, 1, b);
+  tetra(w, (double[3]){ -1, 0, 0 }, (double[3]){ 2, 0, 0 }, r, 0, a);
+  tetra(w, (double[3]){ 1, 0.05, 0.03 }, (double[3]){ -2, 0, 0 }, r, 1, b);
   double worst = INFINITY;
   for (int f = 1; f <= 500; f++) {
     assert_int_equal(mr_world_step_to(w, f * 0.002, NULL), MR_OK);
@@ -388,8 +376,8 @@ static void sphere_tree_puppets_do_not_interpenetrate(void **state)
   mr_world_particle_state(w, b[0], NULL, vb);
   mr_stats st;
   mr_world_stats(w, &st);
-  printf("sphere trees: smallest gap %.3g m, collisions %llu, vx %.3f / %.3f, deviation %.3g\n", worst,
-         (unsigned long long)st.collisions, va[0], vb[0], mr_world_deviation(w));
+  printf("sphere trees: smallest gap %.3g m, collisions %llu, vx %.3f / %.3f, deviation %.3g\n",
+         worst, (unsigned long long)st.collisions, va[0], vb[0], mr_world_deviation(w));
   assert_true(st.collisions >= 1);
   assert_true(worst > -2e-4);
   assert_true(va[0] < 0 && vb[0] > 0);
@@ -402,16 +390,16 @@ static void sphere_tree_puppets_do_not_interpenetrate(void **state)
  * the group's links. It must come to rest (speed under 1 mm/s over the last
  * 2 s of 6 s, no particle below the floor by more than the slop) instead of
  * chattering on its contacts. */
-static void rigid_body_settles_on_floor_without_chatter(void **state)
-{
+static void rigid_body_settles_on_floor_without_chatter(void **state) {
   (void)state;
-  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_DRAG | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES,
-                           NULL);
+  mr_world *w = make_world(
+      MR_EFFECT_GRAVITY | MR_EFFECT_DRAG | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES, NULL);
   const double r = 0.04;
-  const double pts[4][3] = {{0, 0.5, 0}, {0.3, 0.55, 0}, {0.1, 0.45, 0.3}, {0.12, 0.75, 0.1}};
+  const double pts[4][3] = {
+    { 0, 0.5, 0 }, { 0.3, 0.55, 0 }, { 0.1, 0.45, 0.3 }, { 0.12, 0.75, 0.1 }
+  };
   int ids[4];
-  for (int i = 0; i < 4; i++)
-    ids[i] = add(w, pts[i], (double[3]){0.3, 0, 0}, r, 0);
+  for (int i = 0; i < 4; i++) ids[i] = add(w, pts[i], (double[3]){ 0.3, 0, 0 }, r, 0);
   mr_rigid_group_def g = mr_default_rigid_group_def();
   g.particles = ids;
   g.count = 4;
@@ -424,15 +412,15 @@ static void rigid_body_settles_on_floor_without_chatter(void **state)
       double x[3], v[3];
       mr_world_particle_state(w, ids[i], x, v);
       lowest = fmin(lowest, x[1] - r);
-      if (f > 240)
-        late_speed = fmax(late_speed, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+      if (f > 240) late_speed = fmax(late_speed, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
     }
   }
   mr_stats st;
   mr_world_stats(w, &st);
   printf("tetrahedron on the floor: speed over the last 2 s <= %.3g m/s, lowest %.3g m, %llu "
-         "collisions, %d resting contacts, deviation %.3g\n", late_speed, lowest,
-         (unsigned long long)st.collisions, st.resting_contacts, mr_world_deviation(w));
+         "collisions, %d resting contacts, deviation %.3g\n",
+         late_speed, lowest, (unsigned long long)st.collisions, st.resting_contacts,
+         mr_world_deviation(w));
   assert_true(late_speed < 1e-3);
   assert_true(lowest > -2e-4);
   assert_true(st.resting_contacts >= 3);
@@ -446,16 +434,15 @@ static void rigid_body_settles_on_floor_without_chatter(void **state)
  * {C}) collide and bounce; the shoulder's big sphere (part {B}) overlaps
  * both hands from the start but is adjacent to them (joined by the arms'
  * distance constraints) and so is never tested. */
-static void non_adjacent_parts_of_one_puppet_collide(void **state)
-{
+static void non_adjacent_parts_of_one_puppet_collide(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.drag = 0;
   mr_world *w = make_world(MR_EFFECT_CONSTRAINTS | MR_EFFECT_SELF_COLLISION, &def);
   const double r = 0.1;
-  int b = add(w, (double[3]){0, 0, 0}, NULL, 0.0, 0);
-  int a = add(w, (double[3]){1, 0, 0}, (double[3]){0, 1, 0}, r, 0);
-  int c = add(w, (double[3]){0, 1, 0}, (double[3]){1, 0, 0}, r, 0);
+  int b = add(w, (double[3]){ 0, 0, 0 }, NULL, 0.0, 0);
+  int a = add(w, (double[3]){ 1, 0, 0 }, (double[3]){ 0, 1, 0 }, r, 0);
+  int c = add(w, (double[3]){ 0, 1, 0 }, (double[3]){ 1, 0, 0 }, r, 0);
   mr_pin_def pin = mr_default_pin_def();
   pin.particle = b;
   assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
@@ -489,8 +476,8 @@ static void non_adjacent_parts_of_one_puppet_collide(void **state)
   mr_world_particle_state(w, a, NULL, va);
   mr_stats st;
   mr_world_stats(w, &st);
-  printf("self-collision: smallest gap %.3g m, collisions %llu, hand A now moving (%.3f, %.3f)\n", worst,
-         (unsigned long long)st.collisions, va[0], va[1]);
+  printf("self-collision: smallest gap %.3g m, collisions %llu, hand A now moving (%.3f, %.3f)\n",
+         worst, (unsigned long long)st.collisions, va[0], va[1]);
   assert_int_equal((int)st.collisions, 1);
   /* B overlaps A and C all along; as adjacent parts they never make a
    * contact, so once the hands are apart no contact is left. */
@@ -501,8 +488,7 @@ static void non_adjacent_parts_of_one_puppet_collide(void **state)
   mr_world_destroy(w);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(ball_bounces_to_restitution_height),
     cmocka_unit_test(resting_contact_holds_without_sinking_or_jitter),

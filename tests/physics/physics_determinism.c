@@ -16,8 +16,7 @@
 /* A marionette in miniature with every kind of work in it: a frame driven
  * through a pose sequence, strings, a rigid torso, a swinging limb, floor
  * contact, self- and puppet collision, the §6.2 forces. */
-static mr_world *build(double kick)
-{
+static mr_world *build(double kick) {
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_DRAG | MR_EFFECT_SPRINGS | MR_EFFECT_STRINGS |
                 MR_EFFECT_ANTIGRAVITY | MR_EFFECT_TRIGGERED | MR_EFFECT_SINE_SPRINGS |
@@ -31,21 +30,19 @@ static mr_world *build(double kick)
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
   mr_particle_def p = mr_default_particle_def();
   p.frame = frame;
-  const double fx[3][3] = {{-0.3, 2.0, 0}, {0.3, 2.0, 0}, {0, 2.0, 0.3}};
+  const double fx[3][3] = { { -0.3, 2.0, 0 }, { 0.3, 2.0, 0 }, { 0, 2.0, 0.3 } };
   int f[3];
   for (int i = 0; i < 3; i++) {
-    for (int k = 0; k < 3; k++)
-      p.position[k] = fx[i][k];
+    for (int k = 0; k < 3; k++) p.position[k] = fx[i][k];
     assert_int_equal(mr_world_add_particle(w, &p, &f[i]), MR_OK);
   }
-  const double bx[6][3] = {{-0.2, 1.2, 0}, {0.2, 1.2, 0}, {0, 1.2, 0.2}, {0, 0.9, 0.05},
-                           {-0.2, 0.6, 0}, {0.2, 0.6, 0}};
+  const double bx[6][3] = { { -0.2, 1.2, 0 }, { 0.2, 1.2, 0 },  { 0, 1.2, 0.2 },
+                            { 0, 0.9, 0.05 }, { -0.2, 0.6, 0 }, { 0.2, 0.6, 0 } };
   int b[6];
   p = mr_default_particle_def();
   p.radius = 0.06;
   for (int i = 0; i < 6; i++) {
-    for (int k = 0; k < 3; k++)
-      p.position[k] = bx[i][k];
+    for (int k = 0; k < 3; k++) p.position[k] = bx[i][k];
     p.velocity[0] = i == 4 ? kick : 0.0;
     assert_int_equal(mr_world_add_particle(w, &p, &b[i]), MR_OK);
   }
@@ -97,8 +94,7 @@ static mr_world *build(double kick)
 }
 
 /* The puppeteer's hand: 240 frames at 60 fps of a swaying, dipping pose. */
-static uint64_t run(mr_world *w)
-{
+static uint64_t run(mr_world *w) {
   int frame = 0;
   for (int i = 1; i <= 240; i++) {
     double t = i / 60.0;
@@ -114,8 +110,7 @@ static uint64_t run(mr_world *w)
   return mr_world_state_hash(w);
 }
 
-static void same_inputs_give_identical_hash(void **state)
-{
+static void same_inputs_give_identical_hash(void **state) {
   (void)state;
   mr_world *a = build(0.5), *b = build(0.5), *c = build(0.5 * (1 + 1e-12));
   uint64_t h0 = mr_world_state_hash(a);
@@ -139,8 +134,7 @@ static void same_inputs_give_identical_hash(void **state)
 
 /* The hash covers time, positions and velocities: changing any one byte of
  * them changes it. */
-static void hash_sees_time_position_and_velocity(void **state)
-{
+static void hash_sees_time_position_and_velocity(void **state) {
   (void)state;
   mr_world *w = build(0.0);
   uint64_t h0 = mr_world_state_hash(w);
@@ -159,8 +153,7 @@ static void hash_sees_time_position_and_velocity(void **state)
   mr_world_destroy(w);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(same_inputs_give_identical_hash),
     cmocka_unit_test(hash_sees_time_position_and_velocity),

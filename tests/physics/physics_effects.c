@@ -14,8 +14,7 @@
 
 #include "mr_physics.h"
 
-static mr_world *make(uint32_t effects)
-{
+static mr_world *make(uint32_t effects) {
   mr_world_def def = mr_default_world_def();
   def.effects = effects;
   mr_world *w = NULL;
@@ -23,8 +22,7 @@ static mr_world *make(uint32_t effects)
   return w;
 }
 
-static int add(mr_world *w, double x, double y, double z, int frame)
-{
+static int add(mr_world *w, double x, double y, double z, int frame) {
   mr_particle_def p = mr_default_particle_def();
   p.position[0] = x;
   p.position[1] = y;
@@ -36,8 +34,7 @@ static int add(mr_world *w, double x, double y, double z, int frame)
   return id;
 }
 
-static void gravity_only_world_runs_no_other_pass(void **state)
-{
+static void gravity_only_world_runs_no_other_pass(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY);
   add(w, 0, 1, 0, -1);
@@ -45,14 +42,12 @@ static void gravity_only_world_runs_no_other_pass(void **state)
   assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
   assert_true(mr_world_pass_calls(w, MR_PASS_GRAVITY) > 0);
   for (int p = 0; p < MR_PASS_COUNT; p++)
-    if (p != MR_PASS_GRAVITY)
-      assert_int_equal(mr_world_pass_calls(w, (mr_pass)p), 0);
+    if (p != MR_PASS_GRAVITY) assert_int_equal(mr_world_pass_calls(w, (mr_pass)p), 0);
   mr_world_destroy(w);
 }
 
 /* Constraints but no colliders: zero collision work, however many steps. */
-static void world_without_colliders_does_no_collision_work(void **state)
-{
+static void world_without_colliders_does_no_collision_work(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_DRAG);
   int a = add(w, 0, 0, 0, -1), b = add(w, 1, 0, 0, -1);
@@ -75,8 +70,7 @@ static void world_without_colliders_does_no_collision_work(void **state)
   mr_world_destroy(w);
 }
 
-static void undeclared_elements_are_refused(void **state)
-{
+static void undeclared_elements_are_refused(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY);
   int a = add(w, 0, 0, 0, -1), b = add(w, 1, 0, 0, -1);
@@ -90,7 +84,7 @@ static void undeclared_elements_are_refused(void **state)
   assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_ERR_NOT_DECLARED);
   mr_plane_def pl = mr_default_plane_def();
   assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_ERR_NOT_DECLARED);
-  int ids[2] = {a, b};
+  int ids[2] = { a, b };
   mr_part_def part = mr_default_part_def();
   part.particles = ids;
   part.count = 2;
@@ -115,8 +109,7 @@ static void undeclared_elements_are_refused(void **state)
 }
 
 /* Every effect declared and present: every pass runs. */
-static void every_declared_pass_runs(void **state)
-{
+static void every_declared_pass_runs(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_DRAG | MR_EFFECT_SPRINGS | MR_EFFECT_STRINGS |
                      MR_EFFECT_ANTIGRAVITY | MR_EFFECT_TRIGGERED | MR_EFFECT_SINE_SPRINGS |
@@ -128,7 +121,7 @@ static void every_declared_pass_runs(void **state)
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
   int c = add(w, 0, 3, 0, frame);
   int a = add(w, 0, 2, 0, -1), b = add(w, 0.3, 2, 0, -1), e = add(w, 0, 1.5, 0.3, -1);
-  int ids[2] = {a, b};
+  int ids[2] = { a, b };
   mr_distance_def d = mr_default_distance_def();
   d.a = a;
   d.b = b;
@@ -172,8 +165,7 @@ static void every_declared_pass_runs(void **state)
   mr_world_destroy(w);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(gravity_only_world_runs_no_other_pass),
     cmocka_unit_test(world_without_colliders_does_no_collision_work),

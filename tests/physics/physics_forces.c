@@ -13,8 +13,7 @@
 
 static const double g = 9.81, half_pi = 1.57079632679489661923;
 
-static mr_world *make(uint32_t effects, double drag)
-{
+static mr_world *make(uint32_t effects, double drag) {
   mr_world_def def = mr_default_world_def();
   def.effects = effects;
   def.drag = drag;
@@ -23,8 +22,7 @@ static mr_world *make(uint32_t effects, double drag)
   return w;
 }
 
-static int add(mr_world *w, double x, double y, double z, double mass, int frame)
-{
+static int add(mr_world *w, double x, double y, double z, double mass, int frame) {
   mr_particle_def p = mr_default_particle_def();
   p.position[0] = x;
   p.position[1] = y;
@@ -38,22 +36,19 @@ static int add(mr_world *w, double x, double y, double z, double mass, int frame
 
 /* Velocity gained over a short interval, divided by it: the acceleration at
  * the start to O(dt). */
-static void accel(mr_world *w, int p, double dt, double a[3])
-{
+static void accel(mr_world *w, int p, double dt, double a[3]) {
   double v0[3], v1[3];
   mr_world_particle_state(w, p, NULL, v0);
   assert_true(mr_world_step_to(w, mr_world_time(w) + dt, NULL) >= MR_OK);
   mr_world_particle_state(w, p, NULL, v1);
-  for (int k = 0; k < 3; k++)
-    a[k] = (v1[k] - v0[k]) / dt;
+  for (int k = 0; k < 3; k++) a[k] = (v1[k] - v0[k]) / dt;
 }
 
 /* Antigravity: F = −g·fraction·M_puppet·(d/d0) on the acted particle. With
  * M_puppet = 3 kg, fraction 0.5 and d = d0 the 2 kg particle feels
  * g·(1 − 0.75) downwards; with the trigger moved to 2·d0 (max_scale 2) the
  * force doubles and it accelerates up at 0.5 g. */
-static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **state)
-{
+static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_ANTIGRAVITY, 0.0);
   int acted = add(w, 0, 0, 0, 2.0, -1), trig = add(w, 0, -0.5, 0, 1.0, -1);
@@ -66,16 +61,16 @@ static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **stat
   double a[3];
   accel(w, acted, 1e-4, a);
   assert_true(fabs(a[1] + 0.25 * g) < 1e-3);
-  double x[3] = {0, -1.0 - mr_world_time(w), 0}, v[3];
+  double x[3] = { 0, -1.0 - mr_world_time(w), 0 }, v[3];
   mr_world_particle_state(w, acted, x, v);
-  double xt[3] = {x[0], x[1] - 1.0, x[2]}, vt[3] = {0, v[1], 0};
+  double xt[3] = { x[0], x[1] - 1.0, x[2] }, vt[3] = { 0, v[1], 0 };
   assert_int_equal(mr_world_set_particle_state(w, trig, xt, vt), MR_OK);
   accel(w, acted, 1e-4, a);
   printf("antigravity: a = %.4f m/s² at 2·d0 (expected %.4f)\n", a[1], 0.5 * g);
   assert_true(fabs(a[1] - 0.5 * g) < 1e-2);
   /* At 3·d0 the scale stays capped at max_scale = 2. */
   mr_world_particle_state(w, acted, x, v);
-  double xt3[3] = {x[0], x[1] - 1.5, x[2]}, vt3[3] = {0, v[1], 0};
+  double xt3[3] = { x[0], x[1] - 1.5, x[2] }, vt3[3] = { 0, v[1], 0 };
   assert_int_equal(mr_world_set_particle_state(w, trig, xt3, vt3), MR_OK);
   accel(w, acted, 1e-4, a);
   assert_true(fabs(a[1] - 0.5 * g) < 1e-2);
@@ -84,11 +79,11 @@ static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **stat
 
 /* Triggered action: pulling the control 0.1 m further from the trigger
  * pushes the acted particle towards the control with gain·M·Δd. */
-static void triggered_force_follows_control_trigger_distance(void **state)
-{
+static void triggered_force_follows_control_trigger_distance(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_TRIGGERED, 0.0);
-  int acted = add(w, 0, 0, 0, 1.0, -1), control = add(w, 0, 1, 0, 1.0, -1), trig = add(w, 1, 0, 0, 1.0, -1);
+  int acted = add(w, 0, 0, 0, 1.0, -1), control = add(w, 0, 1, 0, 1.0, -1),
+      trig = add(w, 1, 0, 0, 1.0, -1);
   mr_triggered_def tr = mr_default_triggered_def();
   tr.acted = acted;
   tr.control = control;
@@ -101,7 +96,7 @@ static void triggered_force_follows_control_trigger_distance(void **state)
   assert_true(fabs(a[0]) + fabs(a[1]) + fabs(a[2]) < 1e-9); /* d = d0: no force */
   /* Move the control along the line away from the trigger by 0.1 m. */
   double d0 = sqrt(2.0), s = (d0 + 0.1) / d0;
-  double xc[3] = {1 - s, s, 0}, zero[3] = {0, 0, 0};
+  double xc[3] = { 1 - s, s, 0 }, zero[3] = { 0, 0, 0 };
   assert_int_equal(mr_world_set_particle_state(w, control, xc, zero), MR_OK);
   accel(w, acted, 1e-5, a);
   double expect = 2.0 * 3.0 * 0.1, ux = xc[0] / sqrt(xc[0] * xc[0] + xc[1] * xc[1]);
@@ -111,10 +106,9 @@ static void triggered_force_follows_control_trigger_distance(void **state)
 }
 
 /* Capped sine spring: |F| = max·sin(π/2·δ/reach) below reach, max beyond. */
-static void sine_spring_rises_as_sine_and_caps(void **state)
-{
+static void sine_spring_rises_as_sine_and_caps(void **state) {
   (void)state;
-  const double stretches[3] = {0.025, 0.05, 0.3};
+  const double stretches[3] = { 0.025, 0.05, 0.3 };
   for (int i = 0; i < 3; i++) {
     mr_world *w = make(MR_EFFECT_SINE_SPRINGS, 0.0);
     int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
@@ -125,13 +119,14 @@ static void sine_spring_rises_as_sine_and_caps(void **state)
     s.reach = 0.1;
     s.damping = 0.0;
     assert_int_equal(mr_world_add_sine_spring(w, &s, NULL), MR_OK);
-    double x[3] = {1 + stretches[i], 0, 0}, zero[3] = {0, 0, 0};
+    double x[3] = { 1 + stretches[i], 0, 0 }, zero[3] = { 0, 0, 0 };
     assert_int_equal(mr_world_set_particle_state(w, b, x, zero), MR_OK);
     double acc[3];
     accel(w, b, 1e-6, acc);
     double r = stretches[i] / 0.1;
     double expect = -20.0 * sin(half_pi * (r < 1 ? r : 1));
-    printf("sine spring: stretch %.3f m, F = %.4f N (expected %.4f)\n", stretches[i], acc[0], expect);
+    printf("sine spring: stretch %.3f m, F = %.4f N (expected %.4f)\n", stretches[i], acc[0],
+           expect);
     assert_true(fabs(acc[0] - expect) < 1e-3);
     mr_world_destroy(w);
   }
@@ -144,7 +139,7 @@ static void sine_spring_rises_as_sine_and_caps(void **state)
   s.b = b;
   s.damping = 3.0;
   assert_int_equal(mr_world_add_sine_spring(w, &s, NULL), MR_OK);
-  double x[3] = {1, 0, 0}, v[3] = {2, 0.5, 0}, acc[3];
+  double x[3] = { 1, 0, 0 }, v[3] = { 2, 0.5, 0 }, acc[3];
   assert_int_equal(mr_world_set_particle_state(w, b, x, v), MR_OK);
   accel(w, b, 1e-6, acc);
   assert_true(fabs(acc[0] + 6.0) < 1e-2); /* the sine part adds only 50·sin(π/2·2e-5) */
@@ -154,8 +149,7 @@ static void sine_spring_rises_as_sine_and_caps(void **state)
 
 /* Drag F = −c v: a 2 kg particle falling with c = 4 N·s/m approaches the
  * terminal speed m g / c = 4.905 m/s as v(t) = v_T (1 − e^(−c t/m)). */
-static void drag_gives_terminal_velocity(void **state)
-{
+static void drag_gives_terminal_velocity(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_DRAG, 4.0);
   int p = add(w, 0, 100, 0, 2.0, -1);
@@ -169,8 +163,7 @@ static void drag_gives_terminal_velocity(void **state)
 }
 
 /* A damper (spring of stiffness 0) only opposes the relative velocity. */
-static void damper_opposes_relative_velocity(void **state)
-{
+static void damper_opposes_relative_velocity(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_SPRINGS, 0.0);
   int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
@@ -180,7 +173,7 @@ static void damper_opposes_relative_velocity(void **state)
   s.stiffness = 0.0;
   s.damping = 3.0;
   assert_int_equal(mr_world_add_spring(w, &s, NULL), MR_OK);
-  double x[3] = {1, 0, 0}, v[3] = {2, 0.5, 0};
+  double x[3] = { 1, 0, 0 }, v[3] = { 2, 0.5, 0 };
   assert_int_equal(mr_world_set_particle_state(w, b, x, v), MR_OK);
   double acc[3];
   accel(w, b, 1e-6, acc);
@@ -189,8 +182,7 @@ static void damper_opposes_relative_velocity(void **state)
   mr_world_destroy(w);
 }
 
-static mr_world *hanging_string(uint32_t extra, double stiffness, int *bob)
-{
+static mr_world *hanging_string(uint32_t extra, double stiffness, int *bob) {
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_STRINGS | MR_EFFECT_FRAMES | MR_EFFECT_DRAG | extra;
   def.drag = 2.0;
@@ -214,8 +206,7 @@ static mr_world *hanging_string(uint32_t extra, double stiffness, int *bob)
 /* A string holds a 1 kg bob at rest length + m g / k; the §6.2 correction
  * keeps a soft string within 10 % over length. Pushed up, the string goes
  * slack and the bob falls freely. */
-static void string_hangs_at_static_stretch_and_correction_limits_it(void **state)
-{
+static void string_hangs_at_static_stretch_and_correction_limits_it(void **state) {
   (void)state;
   int bob;
   mr_world *w = hanging_string(0, 200.0, &bob);
@@ -225,7 +216,7 @@ static void string_hangs_at_static_stretch_and_correction_limits_it(void **state
   double stretch = (2 - x[1]) - 1.0;
   printf("string: stretch %.5f m (expected %.5f)\n", stretch, g / 200.0);
   assert_true(fabs(stretch - g / 200.0) < 1e-4);
-  double up[3] = {0, 1.5, 0}, zero[3] = {0, 0, 0}, a[3];
+  double up[3] = { 0, 1.5, 0 }, zero[3] = { 0, 0, 0 }, a[3];
   assert_int_equal(mr_world_set_particle_state(w, bob, up, zero), MR_OK);
   accel(w, bob, 1e-4, a);
   assert_true(fabs(a[1] + g) < 1e-2); /* slack: gravity alone (and drag, 2 kg/s · g·dt) */
@@ -252,8 +243,8 @@ static void string_hangs_at_static_stretch_and_correction_limits_it(void **state
     }
   }
   assert_true(at_limit > 100);
-  printf("string correction: length %.4f m uncorrected, at most %.4f m corrected (limit 1.1)\n", sag,
-         worst);
+  printf("string correction: length %.4f m uncorrected, at most %.4f m corrected (limit 1.1)\n",
+         sag, worst);
   assert_true(sag > 1.4);
   assert_true(worst <= 1.1 + 1e-12);
   assert_true(mr_world_pass_calls(w, MR_PASS_STRING_CORRECTION) > 0);
@@ -264,8 +255,7 @@ static void string_hangs_at_static_stretch_and_correction_limits_it(void **state
  * soft strings (they would sag 35 %) is lifted as one piece, its links stay
  * within 0.1 % and its strings within the 10 % limit (to the 1e-3 left
  * between a projection sweep and the next string sweep). */
-static void string_correction_keeps_rigid_groups_whole(void **state)
-{
+static void string_correction_keeps_rigid_groups_whole(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_STRINGS | MR_EFFECT_FRAMES | MR_EFFECT_DRAG |
@@ -276,13 +266,11 @@ static void string_correction_keeps_rigid_groups_whole(void **state)
   mr_frame_def fd = mr_default_frame_def();
   int frame;
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
-  const double top[3][3] = {{-0.2, 2, 0}, {0.2, 2, 0}, {0, 2, 0.3}};
-  const double body[4][3] = {{-0.2, 1, 0}, {0.2, 1, 0}, {0, 1, 0.3}, {0, 0.7, 0.1}};
+  const double top[3][3] = { { -0.2, 2, 0 }, { 0.2, 2, 0 }, { 0, 2, 0.3 } };
+  const double body[4][3] = { { -0.2, 1, 0 }, { 0.2, 1, 0 }, { 0, 1, 0.3 }, { 0, 0.7, 0.1 } };
   int f[3], b[4];
-  for (int i = 0; i < 3; i++)
-    f[i] = add(w, top[i][0], top[i][1], top[i][2], 1.0, frame);
-  for (int i = 0; i < 4; i++)
-    b[i] = add(w, body[i][0], body[i][1], body[i][2], 1.0, -1);
+  for (int i = 0; i < 3; i++) f[i] = add(w, top[i][0], top[i][1], top[i][2], 1.0, frame);
+  for (int i = 0; i < 4; i++) b[i] = add(w, body[i][0], body[i][1], body[i][2], 1.0, -1);
   mr_rigid_group_def grp = mr_default_rigid_group_def();
   grp.particles = b;
   grp.count = 4;
@@ -303,12 +291,14 @@ static void string_correction_keeps_rigid_groups_whole(void **state)
       double xb[3], xf[3];
       mr_world_particle_state(w, b[i], xb, NULL);
       mr_world_particle_state(w, f[i], xf, NULL);
-      worst_len = fmax(worst_len, sqrt((xb[0] - xf[0]) * (xb[0] - xf[0]) + (xb[1] - xf[1]) * (xb[1] - xf[1]) +
-                                       (xb[2] - xf[2]) * (xb[2] - xf[2])));
+      worst_len = fmax(worst_len,
+                       sqrt((xb[0] - xf[0]) * (xb[0] - xf[0]) + (xb[1] - xf[1]) * (xb[1] - xf[1]) +
+                            (xb[2] - xf[2]) * (xb[2] - xf[2])));
     }
   }
-  printf("string correction on a rigid group: longest string %.4f m (limit 1.1), deviation <= %.3g\n",
-         worst_len, worst_dev);
+  printf(
+      "string correction on a rigid group: longest string %.4f m (limit 1.1), deviation <= %.3g\n",
+      worst_len, worst_dev);
   assert_true(worst_len < 1.1 * (1 + 1e-3));
   assert_true(worst_dev < 1e-3);
   mr_world_destroy(w);
@@ -316,8 +306,7 @@ static void string_correction_keeps_rigid_groups_whole(void **state)
 
 /* Frame particles follow the pose exactly: here a 0.5 m shift and a 90°
  * turn about y, reached at t = 1 s and held. */
-static void frame_particles_follow_target_pose(void **state)
-{
+static void frame_particles_follow_target_pose(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_FRAMES | MR_EFFECT_GRAVITY, 0.1);
   mr_frame_def fd = mr_default_frame_def();
@@ -349,10 +338,10 @@ static void frame_particles_follow_target_pose(void **state)
  * 1 s: the link keeps its length to the ATS band, and after 9 s of drag
  * (time constant m/c = 1 s) the particle hangs under the frame's new
  * position to within 1 cm. */
-static void frame_particle_drags_puppet_through_distance_constraint(void **state)
-{
+static void frame_particle_drags_puppet_through_distance_constraint(void **state) {
   (void)state;
-  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_FRAMES | MR_EFFECT_DRAG, 1.0);
+  mr_world *w =
+      make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_FRAMES | MR_EFFECT_DRAG, 1.0);
   mr_frame_def fd = mr_default_frame_def();
   int frame;
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
@@ -378,8 +367,7 @@ static void frame_particle_drags_puppet_through_distance_constraint(void **state
 }
 
 /* An empty world steps (time passes, nothing else happens). */
-static void empty_world_steps(void **state)
-{
+static void empty_world_steps(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES, 0.1);
   assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
@@ -392,14 +380,13 @@ static void empty_world_steps(void **state)
  * hanging from it, stays on it and moves with it: within 0.1 % on the
  * smooth cubic, within the correction's response to each corner on a
  * polyline. */
-static void particle_follows_time_dependent_curve(void **state)
-{
+static void particle_follows_time_dependent_curve(void **state) {
   (void)state;
   for (int interp = 0; interp < 2; interp++) {
     mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS, 0.1);
     int p = add(w, 0, 1, 0, 1.0, -1), q = add(w, 0, 0.5, 0, 1.0, -1);
-    const double times[4] = {0, 1, 2, 3};
-    const double pts[12] = {0, 1, 0, 0.5, 1.2, 0, 1.0, 1, 0.3, 1.2, 0.8, 0};
+    const double times[4] = { 0, 1, 2, 3 };
+    const double pts[12] = { 0, 1, 0, 0.5, 1.2, 0, 1.0, 1, 0.3, 1.2, 0.8, 0 };
     mr_curve_def c = mr_default_curve_def();
     c.particle = p;
     c.key_count = 4;
@@ -414,8 +401,8 @@ static void particle_follows_time_dependent_curve(void **state)
     /* Start with the curve's own velocity (the cubic starts at rest, the
      * polyline at (P1 − P0)/(t1 − t0)), the hanging particle alike, so the
      * deviation measures the tracking, not a start-up jolt. */
-    double v0[3] = {interp ? 0.5 : 0.0, interp ? 0.2 : 0.0, 0};
-    double x0[3] = {0, 1, 0}, xq[3] = {0, 0.5, 0};
+    double v0[3] = { interp ? 0.5 : 0.0, interp ? 0.2 : 0.0, 0 };
+    double x0[3] = { 0, 1, 0 }, xq[3] = { 0, 0.5, 0 };
     assert_int_equal(mr_world_set_particle_state(w, p, x0, v0), MR_OK);
     assert_int_equal(mr_world_set_particle_state(w, q, xq, v0), MR_OK);
     double worst = 0;
@@ -425,8 +412,8 @@ static void particle_follows_time_dependent_curve(void **state)
     }
     double x[3];
     mr_world_particle_state(w, p, x, NULL);
-    printf("curve (%s): worst deviation %.3g, end (%.4f %.4f %.4f)\n", interp ? "polyline" : "cubic",
-           worst, x[0], x[1], x[2]);
+    printf("curve (%s): worst deviation %.3g, end (%.4f %.4f %.4f)\n",
+           interp ? "polyline" : "cubic", worst, x[0], x[1], x[2]);
     if (interp == 0) {
       assert_true(worst < 1e-3);
     } else {
@@ -444,15 +431,14 @@ static void particle_follows_time_dependent_curve(void **state)
 /* §5.1: seven particles become a tetrahedron plus three links per further
  * particle (6 + 3·3 = 15 rows), and tumbling under gravity from a pin keeps
  * every pairwise distance, linked or not: the group is rigid. */
-static void rigid_group_of_seven_stays_rigid(void **state)
-{
+static void rigid_group_of_seven_stays_rigid(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS, 0.0);
-  const double pts[7][3] = {{0, 0, 0},     {0.4, 0, 0},  {0.1, 0.4, 0}, {0.1, 0.1, 0.4},
-                            {0.5, 0.5, 0.2}, {-0.2, 0.3, 0.3}, {0.3, -0.2, 0.1}};
+  const double pts[7][3] = { { 0, 0, 0 },       { 0.4, 0, 0 },     { 0.1, 0.4, 0 },
+                             { 0.1, 0.1, 0.4 }, { 0.5, 0.5, 0.2 }, { -0.2, 0.3, 0.3 },
+                             { 0.3, -0.2, 0.1 } };
   int ids[7];
-  for (int i = 0; i < 7; i++)
-    ids[i] = add(w, pts[i][0], pts[i][1], pts[i][2], 1.0, -1);
+  for (int i = 0; i < 7; i++) ids[i] = add(w, pts[i][0], pts[i][1], pts[i][2], 1.0, -1);
   mr_rigid_group_def gd = mr_default_rigid_group_def();
   gd.particles = ids;
   gd.count = 7;
@@ -484,8 +470,7 @@ static void rigid_group_of_seven_stays_rigid(void **state)
   mr_world_destroy(w);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(antigravity_scales_with_puppet_mass_and_trigger_distance),
     cmocka_unit_test(triggered_force_follows_control_trigger_distance),

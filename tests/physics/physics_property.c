@@ -17,18 +17,15 @@
 #include "mr_physics.h"
 
 static uint64_t rng;
-static double uni(void)
-{
+static double uni(void) {
   rng = rng * 6364136223846793005ull + 1442695040888963407ull;
   return (double)(rng >> 11) / 9007199254740992.0;
 }
-static int pick(int n)
-{
+static int pick(int n) {
   return (int)(uni() * n) % n;
 }
 
-static mr_world *random_world(uint64_t seed, int *frame_out)
-{
+static mr_world *random_world(uint64_t seed, int *frame_out) {
   rng = seed;
   mr_world_def def = mr_default_world_def();
   def.effects = (uint32_t)(uni() * 8192.0) & 0x1fffu;
@@ -114,8 +111,7 @@ static mr_world *random_world(uint64_t seed, int *frame_out)
     case 6: {
       int ids[5];
       int cnt = 2 + pick(4);
-      for (int i = 0; i < cnt; i++)
-        ids[i] = nf + pick(n);
+      for (int i = 0; i < cnt; i++) ids[i] = nf + pick(n);
       mr_rigid_group_def d = mr_default_rigid_group_def();
       d.particles = ids;
       d.count = cnt;
@@ -123,7 +119,7 @@ static mr_world *random_world(uint64_t seed, int *frame_out)
       break;
     }
     case 7: {
-      int ids[2] = {a, nf + pick(n)};
+      int ids[2] = { a, nf + pick(n) };
       mr_part_def d = mr_default_part_def();
       d.particles = ids;
       d.count = 1 + pick(2);
@@ -140,14 +136,12 @@ static mr_world *random_world(uint64_t seed, int *frame_out)
     }
     }
     assert_true(s == MR_OK || s < 0);
-    if (s < 0)
-      assert_true(mr_world_last_error(w)[0] != '\0');
+    if (s < 0) assert_true(mr_world_last_error(w)[0] != '\0');
   }
   return w;
 }
 
-static uint64_t run(mr_world *w, int frame, uint64_t seed, int *resets)
-{
+static uint64_t run(mr_world *w, int frame, uint64_t seed, int *resets) {
   rng = seed ^ 0x9e3779b97f4a7c15ull;
   for (int f = 1; f <= 60; f++) {
     double t = f / 30.0;
@@ -167,15 +161,13 @@ static uint64_t run(mr_world *w, int frame, uint64_t seed, int *resets)
     for (int i = 0; i < n; i++) {
       double x[3], v[3];
       mr_world_particle_state(w, i, x, v);
-      for (int k = 0; k < 3; k++)
-        assert_true(isfinite(x[k]) && isfinite(v[k]));
+      for (int k = 0; k < 3; k++) assert_true(isfinite(x[k]) && isfinite(v[k]));
     }
   }
   return mr_world_state_hash(w);
 }
 
-static void random_worlds_stay_finite_and_reproducible(void **state)
-{
+static void random_worlds_stay_finite_and_reproducible(void **state) {
   (void)state;
   int resets = 0, worlds = 60;
   uint64_t steps = 0;
@@ -197,8 +189,7 @@ static void random_worlds_stay_finite_and_reproducible(void **state)
          (unsigned long long)steps, resets);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(random_worlds_stay_finite_and_reproducible),
   };

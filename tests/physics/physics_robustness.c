@@ -13,8 +13,7 @@
 
 #include "mr_physics.h"
 
-static mr_world *make(uint32_t effects, mr_solve_method solver)
-{
+static mr_world *make(uint32_t effects, mr_solve_method solver) {
   mr_world_def def = mr_default_world_def();
   def.effects = effects;
   def.solver = solver;
@@ -24,8 +23,7 @@ static mr_world *make(uint32_t effects, mr_solve_method solver)
   return w;
 }
 
-static int add(mr_world *w, double x, double y, double z)
-{
+static int add(mr_world *w, double x, double y, double z) {
   mr_particle_def p = mr_default_particle_def();
   p.position[0] = x;
   p.position[1] = y;
@@ -36,8 +34,7 @@ static int add(mr_world *w, double x, double y, double z)
 }
 
 /* A hand-driven point that goes NaN for 30 ms (a broken input device). */
-static void nan_curve(void *user, double t, double pos[3], double vel[3], double acc[3])
-{
+static void nan_curve(void *user, double t, double pos[3], double vel[3], double acc[3]) {
   (void)user;
   double bad = (t >= 0.5 && t < 0.53) ? NAN : 0.0;
   pos[0] = 0.2 * sin(4 * t) + bad;
@@ -49,8 +46,7 @@ static void nan_curve(void *user, double t, double pos[3], double vel[3], double
   acc[1] = acc[2] = 0.0;
 }
 
-static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state)
-{
+static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state) {
   (void)state;
   /* A floor too, so the NaN state also passes through contact detection. */
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_DRAG | MR_EFFECT_PLANES,
@@ -94,8 +90,7 @@ static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state)
     double x[3];
     mr_world_particle_state(w, bob, x, NULL);
     assert_true(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]));
-    if (mr_world_time(w) > 0.6 && fabs(x[0] - 0.3) > 1e-3)
-      moved = 1;
+    if (mr_world_time(w) > 0.6 && fabs(x[0] - 0.3) > 1e-3) moved = 1;
   }
   mr_stats st;
   mr_world_stats(w, &st);
@@ -113,13 +108,14 @@ static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state)
  * by their pivots, Gauss–Seidel and CG by their screen for parallel pairs)
  * and stays bounded; the multipliers (constraint forces per unit
  * length) stay under 100 N, the order of the tetrahedron's weight × a few. */
-static void dependent_rows_reported_and_forces_bounded(void **state)
-{
+static void dependent_rows_reported_and_forces_bounded(void **state) {
   (void)state;
-  const mr_solve_method methods[] = {MR_SOLVE_LDLT, MR_SOLVE_EIGEN, MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG};
+  const mr_solve_method methods[] = { MR_SOLVE_LDLT, MR_SOLVE_EIGEN, MR_SOLVE_GAUSS_SEIDEL,
+                                      MR_SOLVE_CG };
   for (int m = 0; m < 4; m++) {
     mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_DRAG, methods[m]);
-    int ids[4] = {add(w, 0, 0, 0), add(w, 0.4, 0, 0), add(w, 0.2, 0, 0.35), add(w, 0.2, 0.3, 0.1)};
+    int ids[4] = { add(w, 0, 0, 0), add(w, 0.4, 0, 0), add(w, 0.2, 0, 0.35),
+                   add(w, 0.2, 0.3, 0.1) };
     mr_rigid_group_def g = mr_default_rigid_group_def();
     g.particles = ids;
     g.count = 4;
@@ -166,10 +162,10 @@ static void dependent_rows_reported_and_forces_bounded(void **state)
  * horizontal for 1 s at a fixed 0.01 s step (so every method takes the same
  * steps); Gauss–Seidel, CG and Eigen end within 1e-6 m of the sparse LDLᵀ
  * default, none fails to converge, and the chain keeps its links. */
-static void every_solver_moves_a_chain_alike(void **state)
-{
+static void every_solver_moves_a_chain_alike(void **state) {
   (void)state;
-  const mr_solve_method methods[] = {MR_SOLVE_LDLT, MR_SOLVE_EIGEN, MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG};
+  const mr_solve_method methods[] = { MR_SOLVE_LDLT, MR_SOLVE_EIGEN, MR_SOLVE_GAUSS_SEIDEL,
+                                      MR_SOLVE_CG };
   enum { N = 11 };
   double ref[3 * N];
   for (int m = 0; m < 4; m++) {
@@ -180,8 +176,7 @@ static void every_solver_moves_a_chain_alike(void **state)
     mr_world *w = NULL;
     assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
     int ids[N];
-    for (int i = 0; i < N; i++)
-      ids[i] = add(w, 0.1 * i, 1, 0.01 * (i % 2));
+    for (int i = 0; i < N; i++) ids[i] = add(w, 0.1 * i, 1, 0.01 * (i % 2));
     mr_pin_def pin = mr_default_pin_def();
     pin.particle = ids[0];
     assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
@@ -197,11 +192,10 @@ static void every_solver_moves_a_chain_alike(void **state)
     mr_stats st;
     mr_world_stats(w, &st);
     double diff = 0;
-    if (m == 0)
-      memcpy(ref, x, sizeof ref);
-    for (int i = 0; i < 3 * N; i++)
-      diff = fmax(diff, fabs(x[i] - ref[i]));
-    printf("%-12s %llu solves, %llu iterations, %llu failures, |x - x_ldlt| %.3g m, tip (%.4f, %.4f) m, "
+    if (m == 0) memcpy(ref, x, sizeof ref);
+    for (int i = 0; i < 3 * N; i++) diff = fmax(diff, fabs(x[i] - ref[i]));
+    printf("%-12s %llu solves, %llu iterations, %llu failures, |x - x_ldlt| %.3g m, tip (%.4f, "
+           "%.4f) m, "
            "deviation %.3g\n",
            mr_solve_method_name(methods[m]), (unsigned long long)st.solves,
            (unsigned long long)st.solver_iterations, (unsigned long long)st.solver_failures, diff,
@@ -221,8 +215,7 @@ static void every_solver_moves_a_chain_alike(void **state)
  * (ω Δt = 7) and is fine at 0.01 s (ω Δt = 1.4): every divergence is
  * caught by the retry, none resets, and the run ends finite and within
  * the hard cases' 5 % (steps at dt_min are accepted over 1 %). */
-static void divergence_is_retried_at_the_lower_bound_before_a_reset(void **state)
-{
+static void divergence_is_retried_at_the_lower_bound_before_a_reset(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_SPRINGS;
@@ -253,8 +246,8 @@ static void divergence_is_retried_at_the_lower_bound_before_a_reset(void **state
   double x[3];
   mr_world_particle_state(w, bob, x, NULL);
   printf("stiff spring: %llu steps, %llu rejected, %llu resets, dt %.3f..%.3f s, deviation %.3g\n",
-         (unsigned long long)st.steps, (unsigned long long)st.rejected, (unsigned long long)st.divergences,
-         st.min_dt, st.max_dt, mr_world_deviation(w));
+         (unsigned long long)st.steps, (unsigned long long)st.rejected,
+         (unsigned long long)st.divergences, st.min_dt, st.max_dt, mr_world_deviation(w));
   assert_int_equal((int)st.divergences, 0);
   assert_true(st.rejected > 0);
   assert_true(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]));
@@ -262,8 +255,7 @@ static void divergence_is_retried_at_the_lower_bound_before_a_reset(void **state
   mr_world_destroy(w);
 }
 
-static void bad_input_is_refused_with_a_message(void **state)
-{
+static void bad_input_is_refused_with_a_message(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS, MR_SOLVE_LDLT);
   int a = add(w, 0, 0, 0), b = add(w, 0, 0, 0), c = add(w, 1, 0, 0), e = add(w, 0, 1, 0);
@@ -300,19 +292,19 @@ static void bad_input_is_refused_with_a_message(void **state)
   assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_ERR_NONFINITE);
   assert_int_equal(mr_world_particle_count(w), n);
 
-  int flat[4] = {a, c, e, add(w, 1, 1, 0)}; /* all in z = 0 */
+  int flat[4] = { a, c, e, add(w, 1, 1, 0) }; /* all in z = 0 */
   mr_rigid_group_def g = mr_default_rigid_group_def();
   g.particles = flat;
   g.count = 4;
   assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_ERR_DEGENERATE);
   assert_non_null(strstr(mr_world_last_error(w), "coplanar"));
-  int same[3] = {a, b, c};
+  int same[3] = { a, b, c };
   g.particles = same;
   g.count = 3;
   assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_ERR_DEGENERATE);
   assert_int_equal(mr_world_constraint_rows(w), rows); /* nothing half-added */
 
-  double nan3[3] = {NAN, 0, 0}, zero3[3] = {0, 0, 0};
+  double nan3[3] = { NAN, 0, 0 }, zero3[3] = { 0, 0, 0 };
   assert_int_equal(mr_world_set_particle_state(w, a, nan3, zero3), MR_ERR_NONFINITE);
   assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
   assert_int_equal(mr_world_step_to(w, 0.5, NULL), MR_ERR_TIME);
@@ -333,8 +325,7 @@ static void bad_input_is_refused_with_a_message(void **state)
 
 /* The step guard: a world asked for far more steps than it may take in one
  * call stops with MR_ERR_LIMIT instead of running away. */
-static void step_limit_stops_runaway_calls(void **state)
-{
+static void step_limit_stops_runaway_calls(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
   def.max_steps_per_call = 50;
@@ -346,8 +337,7 @@ static void step_limit_stops_runaway_calls(void **state)
   mr_world_destroy(w);
 }
 
-int main(void)
-{
+int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(nan_world_resets_to_start_counts_and_keeps_stepping),
     cmocka_unit_test(dependent_rows_reported_and_forces_bounded),

@@ -8,14 +8,12 @@
 static int set_field(gp_msg *m, const gp_msg_desc *d, const char *name, const char *vals) {
   for (unsigned f = 0; f < d->n_fields; f++) {
     const gp_field_desc *fd = &d->fields[f];
-    if (strcmp(fd->name, name) != 0)
-      continue;
+    if (strcmp(fd->name, name) != 0) continue;
     const char *p = vals;
     for (unsigned e = 0; e < fd->count; e++) {
       char *end;
       unsigned long v = strtoul(p, &end, 10);
-      if (end == p || (e + 1 < fd->count ? *end != ',' : *end != '\0'))
-        return -1;
+      if (end == p || (e + 1 < fd->count ? *end != ',' : *end != '\0')) return -1;
       p = end + 1;
       uint8_t *dst = (uint8_t *)&m->u + fd->offset + e * fd->elem_size;
       if (fd->elem_size == 1)
@@ -44,8 +42,7 @@ int golden_load(const char *path, golden_vec *out, int cap, char *err, size_t er
   while (fgets(line, sizeof line, f)) {
     lineno++;
     line[strcspn(line, "\r\n")] = 0;
-    if (line[0] == '#' || line[0] == 0)
-      continue;
+    if (line[0] == '#' || line[0] == 0) continue;
     if (n == cap) {
       snprintf(err, errlen, "%s:%d: more than %d vectors", path, lineno, cap);
       fclose(f);
@@ -65,8 +62,7 @@ int golden_load(const char *path, golden_vec *out, int cap, char *err, size_t er
     snprintf(v->name, sizeof v->name, "%s", tok[0]);
     const gp_msg_desc *d = NULL;
     for (size_t i = 0; i < gp_msg_desc_count; i++)
-      if (strcmp(gp_msg_descs[i].name, tok[1]) == 0)
-        d = &gp_msg_descs[i];
+      if (strcmp(gp_msg_descs[i].name, tok[1]) == 0) d = &gp_msg_descs[i];
     size_t hexlen = strlen(tok[3]);
     if (!d || hexlen % 2 || hexlen / 2 > sizeof v->wire) {
       snprintf(err, errlen, "%s:%d: unknown type or bad wire hex", path, lineno);

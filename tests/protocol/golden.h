@@ -9,10 +9,10 @@
 
 typedef struct golden_vec {
   char name[64];
-  uint32_t hash;                 /* the spec hash the frame was encoded with */
+  uint32_t hash; /* the spec hash the frame was encoded with */
   uint8_t wire[2 * GP_MAX_WIRE];
   size_t wire_len;
-  gp_msg msg;                    /* the decoded meaning */
+  gp_msg msg; /* the decoded meaning */
 } golden_vec;
 
 /* Loads up to cap vectors. Returns the count, or -1 with a message naming

@@ -33,8 +33,10 @@ static void cobs_round_trips_every_length_and_zero_pattern(void **state) {
   for (size_t len = 0; len <= 600; len++) {
     for (int pattern = 0; pattern < 4; pattern++) {
       for (size_t i = 0; i < len; i++)
-        in[i] = pattern == 0 ? 0 : pattern == 1 ? 0xAB : pattern == 2 ? (uint8_t)(i % 256)
-                                                                      : (uint8_t)next_rand();
+        in[i] = pattern == 0   ? 0
+                : pattern == 1 ? 0xAB
+                : pattern == 2 ? (uint8_t)(i % 256)
+                               : (uint8_t)next_rand();
       size_t n = gp_cobs_encode(in, len, enc, sizeof enc);
       assert_true(n >= len + 1 && n <= len + 1 + len / 254 + 1);
       assert_null(memchr(enc, 0, n));
@@ -48,16 +50,16 @@ static void cobs_round_trips_every_length_and_zero_pattern(void **state) {
 static void cobs_rejects_malformed_blocks_and_small_buffers(void **state) {
   (void)state;
   uint8_t out[16];
-  const uint8_t past_end[] = {0x05, 1, 2};
-  const uint8_t has_zero[] = {0x03, 1, 0};
-  const uint8_t zero_code[] = {0x00};
+  const uint8_t past_end[] = { 0x05, 1, 2 };
+  const uint8_t has_zero[] = { 0x03, 1, 0 };
+  const uint8_t zero_code[] = { 0x00 };
   assert_int_equal(gp_cobs_decode(past_end, sizeof past_end, out, sizeof out), -1);
   assert_int_equal(gp_cobs_decode(has_zero, sizeof has_zero, out, sizeof out), -1);
   assert_int_equal(gp_cobs_decode(zero_code, 1, out, sizeof out), -1);
-  const uint8_t ok[] = {0x03, 1, 2, 0x02, 3};
+  const uint8_t ok[] = { 0x03, 1, 2, 0x02, 3 };
   assert_int_equal(gp_cobs_decode(ok, sizeof ok, out, 4), 4);
   assert_int_equal(gp_cobs_decode(ok, sizeof ok, out, 3), -1);
-  const uint8_t data[] = {1, 2, 0, 3};
+  const uint8_t data[] = { 1, 2, 0, 3 };
   assert_int_equal(gp_cobs_encode(data, sizeof data, out, 4), 0);
   assert_int_equal(gp_cobs_encode(data, sizeof data, out, 5), 5);
 }
@@ -70,8 +72,7 @@ static void random_msg(const gp_msg_desc *d, gp_msg *m) {
     const gp_field_desc *fd = &d->fields[f];
     for (unsigned e = 0; e < fd->count; e++) {
       uint32_t v = next_rand();
-      if (fd->bits < 32)
-        v &= (1u << fd->bits) - 1u;
+      if (fd->bits < 32) v &= (1u << fd->bits) - 1u;
       uint8_t *p = (uint8_t *)&m->u + fd->offset + e * fd->elem_size;
       if (fd->elem_size == 1)
         *p = (uint8_t)v;
@@ -91,10 +92,8 @@ static void every_message_type_round_trips_through_the_decoder(void **state) {
     for (int trial = 0; trial < 200; trial++) {
       gp_msg m, out;
       random_msg(d, &m);
-      if (d->type == GP_INFO)
-        m.u.info.spec_hash = GP_SPEC_HASH;
-      if (d->type == GP_SAMPLE)
-        m.u.sample.seq = (uint16_t)trial;
+      if (d->type == GP_INFO) m.u.info.spec_hash = GP_SPEC_HASH;
+      if (d->type == GP_SAMPLE) m.u.sample.seq = (uint16_t)trial;
       uint8_t wire[GP_MAX_WIRE];
       size_t n = gp_encode(&m, GP_SPEC_HASH, wire, sizeof wire);
       assert_true(n >= 1u + d->len + 4u + 2u && n <= GP_MAX_WIRE);
@@ -158,13 +157,13 @@ static void unknown_types_and_small_buffers_are_refused(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(crc32c_matches_catalogue_check_value),
-      cmocka_unit_test(cobs_round_trips_every_length_and_zero_pattern),
-      cmocka_unit_test(cobs_rejects_malformed_blocks_and_small_buffers),
-      cmocka_unit_test(every_message_type_round_trips_through_the_decoder),
-      cmocka_unit_test(sample_is_22_bytes_on_the_wire_and_fits_half_the_link),
-      cmocka_unit_test(values_wider_than_their_field_are_truncated_not_spilled),
-      cmocka_unit_test(unknown_types_and_small_buffers_are_refused),
+    cmocka_unit_test(crc32c_matches_catalogue_check_value),
+    cmocka_unit_test(cobs_round_trips_every_length_and_zero_pattern),
+    cmocka_unit_test(cobs_rejects_malformed_blocks_and_small_buffers),
+    cmocka_unit_test(every_message_type_round_trips_through_the_decoder),
+    cmocka_unit_test(sample_is_22_bytes_on_the_wire_and_fits_half_the_link),
+    cmocka_unit_test(values_wider_than_their_field_are_truncated_not_spilled),
+    cmocka_unit_test(unknown_types_and_small_buffers_are_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -19,8 +19,8 @@ static int n_vecs;
 static int load(void **state) {
   (void)state;
   char err[256];
-  n_vecs = golden_load(MR_SOURCE_DIR "/protocol/vectors/golden.txt", vecs, MAX_VECTORS, err,
-                       sizeof err);
+  n_vecs =
+      golden_load(MR_SOURCE_DIR "/protocol/vectors/golden.txt", vecs, MAX_VECTORS, err, sizeof err);
   if (n_vecs < 0) {
     fprintf(stderr, "%s\n", err);
     return -1;
@@ -70,8 +70,7 @@ static void decoder_reads_every_golden_vector_as_its_meaning(void **state) {
     assert_int_equal(used, vecs[i].wire_len);
     if (mismatch) {
       assert_int_equal(ev, GP_EV_SPEC_MISMATCH);
-      if (vecs[i].msg.type == GP_INFO)
-        assert_memory_equal(&out, &vecs[i].msg, sizeof out);
+      if (vecs[i].msg.type == GP_INFO) assert_memory_equal(&out, &vecs[i].msg, sizeof out);
     } else {
       assert_int_equal(ev, GP_EV_FRAME);
       assert_memory_equal(&out, &vecs[i].msg, sizeof out);
@@ -90,8 +89,7 @@ static int accepted(const uint8_t *wire, size_t n, gp_decoder *d) {
     size_t left = pass ? 1 : n;
     while (left) {
       size_t used = gp_decoder_feed(d, p, left, &out, &ev);
-      if (ev == GP_EV_FRAME || ev == GP_EV_FRAME_LATE || ev == GP_EV_DUPLICATE)
-        return 1;
+      if (ev == GP_EV_FRAME || ev == GP_EV_FRAME_LATE || ev == GP_EV_DUPLICATE) return 1;
       p += used;
       left -= used;
     }
@@ -118,14 +116,11 @@ static void every_one_two_and_three_bit_error_in_every_golden_frame_is_detected(
       for (size_t b = a; b < bits; b++) {
         for (size_t c = b; c < bits; c++) {
           /* a == b == c: one bit; b == c: two bits (a, b); else three. */
-          if ((a == b) != (b == c) && a == b)
-            continue;
+          if ((a == b) != (b == c) && a == b) continue;
           memcpy(w, vecs[v].wire, n);
           w[a / 8] ^= (uint8_t)(1u << (a % 8));
-          if (b != a)
-            w[b / 8] ^= (uint8_t)(1u << (b % 8));
-          if (c != b)
-            w[c / 8] ^= (uint8_t)(1u << (c % 8));
+          if (b != a) w[b / 8] ^= (uint8_t)(1u << (b % 8));
+          if (c != b) w[c / 8] ^= (uint8_t)(1u << (c % 8));
           gp_decoder d = base;
           if (accepted(w, n, &d))
             fail_msg("%s: bits %zu %zu %zu flipped, frame accepted", vecs[v].name, a, b, c);
@@ -140,10 +135,10 @@ static void every_one_two_and_three_bit_error_in_every_golden_frame_is_detected(
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(golden_vectors_cover_every_message_type),
-      cmocka_unit_test(encoder_produces_every_golden_vector_bit_for_bit),
-      cmocka_unit_test(decoder_reads_every_golden_vector_as_its_meaning),
-      cmocka_unit_test(every_one_two_and_three_bit_error_in_every_golden_frame_is_detected),
+    cmocka_unit_test(golden_vectors_cover_every_message_type),
+    cmocka_unit_test(encoder_produces_every_golden_vector_bit_for_bit),
+    cmocka_unit_test(decoder_reads_every_golden_vector_as_its_meaning),
+    cmocka_unit_test(every_one_two_and_three_bit_error_in_every_golden_frame_is_detected),
   };
   return cmocka_run_group_tests(tests, load, NULL);
 }

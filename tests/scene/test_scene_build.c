@@ -16,8 +16,7 @@
 static void load(const char *text, mr_scene *s) {
   mr_scene_error e;
   mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), s, &e);
-  if (st != MR_SCENE_OK)
-    fail_msg("%s", e.text);
+  if (st != MR_SCENE_OK) fail_msg("%s", e.text);
 }
 
 /* Every word a scene file may list in physics.effects declares its own
@@ -25,9 +24,11 @@ static void load(const char *text, mr_scene *s) {
 static void every_scene_effect_maps_to_its_own_physics_bit(void **state) {
   (void)state;
   static const char *const words[] = {
-      "gravity", "drag",           "springs",          "strings",           "antigravity",
-      "triggered", "sine_springs", "constraints",      "floor",             "self_collision",
-      "puppet_collision", "string_correction", "control"};
+    "gravity",     "drag",           "springs",          "strings",
+    "antigravity", "triggered",      "sine_springs",     "constraints",
+    "floor",       "self_collision", "puppet_collision", "string_correction",
+    "control"
+  };
   uint32_t seen = 0;
   for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
     char text[256];
@@ -40,7 +41,7 @@ static void every_scene_effect_maps_to_its_own_physics_bit(void **state) {
     uint32_t b = s.world.effects;
     assert_int_equal(b & (b - 1), 0); /* one bit */
     assert_int_not_equal(b, 0);
-    assert_int_equal(seen & b, 0);    /* not shared */
+    assert_int_equal(seen & b, 0); /* not shared */
     seen |= b;
     mr_scene_free(&s);
   }
@@ -51,8 +52,7 @@ static void every_scene_effect_maps_to_its_own_physics_bit(void **state) {
   load(text, &s);
   assert_int_equal(s.world.effects, MR_EFFECT_DRAG | MR_EFFECT_PLANES | MR_EFFECT_FRAMES);
   mr_scene_free(&s);
-  load("physics:\n  effects: []\n  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n",
-       &s);
+  load("physics:\n  effects: []\n  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n", &s);
   assert_int_equal(s.world.effects, 0);
   mr_scene_free(&s);
 }
@@ -80,8 +80,7 @@ static void control_points_sit_where_the_scene_says(void **state) {
     double want[3], got[3];
     mr_scene_control_point_world(&s, i, &s.control_pose, want);
     assert_int_equal(mr_world_particle_state(sw.world, sw.control_ids[i], got, NULL), MR_OK);
-    for (int k = 0; k < 3; k++)
-      assert_true(fabs(got[k] - want[k]) < 1e-12);
+    for (int k = 0; k < 3; k++) assert_true(fabs(got[k] - want[k]) < 1e-12);
   }
   mr_scene_world_free(&sw);
   mr_scene_free(&s);
@@ -128,8 +127,7 @@ static void count_step(void *user, const mr_scene_step *step) {
   tally *t = user;
   t->accepted += (uint64_t)step->accepted;
   t->dt_sum += step->dt * step->accepted;
-  if (!(step->t > t->last_t))
-    t->ordered = 0;
+  if (!(step->t > t->last_t)) t->ordered = 0;
   t->last_t = step->t;
 }
 
@@ -144,8 +142,8 @@ static void run_reports_every_step_to_the_callback(void **state) {
                      "  constraints: [{between: [a, b]}]\n";
   mr_scene s;
   load(text, &s);
-  tally t = {0, 0, 0, 1};
-  mr_scene_run_opts o = {0, count_step, &t};
+  tally t = { 0, 0, 0, 1 };
+  mr_scene_run_opts o = { 0, count_step, &t };
   mr_scene_run_result r;
   mr_scene_error e;
   assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
@@ -178,7 +176,7 @@ static void unset_settings_are_the_papers(void **state) {
   assert_true(d.deviation_low == 1e-4 && d.deviation_high == 1e-2);
   assert_int_equal(d.integrator, MR_INTEGRATOR_RK4);
   /* The run's steps stay inside those bounds. */
-  mr_scene_run_opts o = {1.0, NULL, NULL};
+  mr_scene_run_opts o = { 1.0, NULL, NULL };
   mr_scene_run_result r;
   mr_scene_error e;
   assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
@@ -198,8 +196,7 @@ static void check_frame_landing(void *user, const mr_scene_step *step) {
   /* No frame time k/fps lies strictly inside a step. */
   double k_prev = floor(f->last_t * f->fps + 1e-9);
   double k_now = ceil(step->t * f->fps - 1e-9);
-  if (k_now - k_prev > 1)
-    f->crossed = 1;
+  if (k_now - k_prev > 1) f->crossed = 1;
   f->last_t = step->t;
   f->rows++;
 }
@@ -221,8 +218,8 @@ static void steps_land_on_frame_times_with_fps(void **state) {
                      "  strings: [{from: bar, to: a, stiffness: 50, damping: 1}]\n";
   mr_scene s;
   load(text, &s);
-  frames f = {30.0, 0.0, 0, 0};
-  mr_scene_run_opts o = {0, check_frame_landing, &f};
+  frames f = { 30.0, 0.0, 0, 0 };
+  mr_scene_run_opts o = { 0, check_frame_landing, &f };
   mr_scene_run_result r;
   mr_scene_error e;
   assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
@@ -235,12 +232,12 @@ static void steps_land_on_frame_times_with_fps(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(every_scene_effect_maps_to_its_own_physics_bit),
-      cmocka_unit_test(control_points_sit_where_the_scene_says),
-      cmocka_unit_test(pinned_particle_stays_and_free_one_falls),
-      cmocka_unit_test(run_reports_every_step_to_the_callback),
-      cmocka_unit_test(steps_land_on_frame_times_with_fps),
-      cmocka_unit_test(unset_settings_are_the_papers),
+    cmocka_unit_test(every_scene_effect_maps_to_its_own_physics_bit),
+    cmocka_unit_test(control_points_sit_where_the_scene_says),
+    cmocka_unit_test(pinned_particle_stays_and_free_one_falls),
+    cmocka_unit_test(run_reports_every_step_to_the_callback),
+    cmocka_unit_test(steps_land_on_frame_times_with_fps),
+    cmocka_unit_test(unset_settings_are_the_papers),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -41,7 +41,7 @@ static tt_output run;
 
 static int run_once(void **state) {
   (void)state;
-  char *argv[] = {marionette, "sim", "--check", scene_path, NULL};
+  char *argv[] = { marionette, "sim", "--check", scene_path, NULL };
   return tt_capture(argv, &run);
 }
 
@@ -53,8 +53,7 @@ static int run_free(void **state) {
 
 static void sim_check_passes(void **state) {
   (void)state;
-  if (run.status != 0)
-    fprintf(stderr, "%s", run.err);
+  if (run.status != 0) fprintf(stderr, "%s", run.err);
   assert_int_equal(run.status, 0);
   assert_string_equal(run.err, "");
   assert_non_null(strstr(run.out, "check: passed"));
@@ -64,16 +63,15 @@ static void sim_check_passes(void **state) {
  * printed (host/scenes/pin-hashes.sh writes the rows). */
 static void readme_row_is_this_run(void **state) {
   (void)state;
-  static const char *const keys[] = {"simulated",      "steps",         "rejected", "dt mean",
-                                     "at upper bound", "deviation max", "resets"};
+  static const char *const keys[] = { "simulated",      "steps",         "rejected", "dt mean",
+                                      "at upper bound", "deviation max", "resets" };
   if (strstr(run.out, "state hash: ") == NULL)
     return; /* a case refused at load has no run to show */
   const char *base = strrchr(scene_path, '/');
   char row[512], v[64], stem[128];
   snprintf(stem, sizeof stem, "%s", base ? base + 1 : scene_path);
   char *dot = strrchr(stem, '.');
-  if (dot != NULL)
-    *dot = '\0';
+  if (dot != NULL) *dot = '\0';
   size_t n = (size_t)snprintf(row, sizeof row, "| `%s` |", stem);
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
     assert_int_equal(tt_field(run.out, keys[i], v, sizeof v), 0);
@@ -86,8 +84,9 @@ static void readme_row_is_this_run(void **state) {
   fclose(f);
   doc[len] = '\0';
   if (strstr(doc, row) == NULL)
-    fprintf(stderr, "hard/README.md lacks the row of this run:\n%s\n(host/scenes/pin-hashes.sh "
-                    "rewrites the table)\n",
+    fprintf(stderr,
+            "hard/README.md lacks the row of this run:\n%s\n(host/scenes/pin-hashes.sh "
+            "rewrites the table)\n",
             row);
   assert_non_null(strstr(doc, row));
 }
@@ -100,9 +99,9 @@ int main(int argc, char **argv) {
   marionette = argv[1];
   scene_path = argv[2];
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(scene_declares_an_outcome),
-      cmocka_unit_test(sim_check_passes),
-      cmocka_unit_test(readme_row_is_this_run),
+    cmocka_unit_test(scene_declares_an_outcome),
+    cmocka_unit_test(sim_check_passes),
+    cmocka_unit_test(readme_row_is_this_run),
   };
   return cmocka_run_group_tests(tests, run_once, run_free);
 }

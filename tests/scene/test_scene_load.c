@@ -13,11 +13,11 @@
 #include "mr_scene.h"
 #include "test_proc.h"
 
-#define BASE                                                                                  \
-  "physics:\n"                                                                                \
-  "  effects: [gravity, constraints]\n"                                                       \
-  "  particles:\n"                                                                            \
-  "    - {name: a, position: [0, 1, 0], mass: 1}\n"                                          \
+#define BASE                                        \
+  "physics:\n"                                      \
+  "  effects: [gravity, constraints]\n"             \
+  "  particles:\n"                                  \
+  "    - {name: a, position: [0, 1, 0], mass: 1}\n" \
   "    - {name: b, position: [1, 1, 0], mass: 2}\n"
 
 /* Loads text as "t.yaml" and expects a failure whose text is exactly
@@ -26,8 +26,7 @@ static void expect_error(const char *text, mr_scene_status status, const char *e
   mr_scene s;
   mr_scene_error e;
   mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), &s, &e);
-  if (st == MR_SCENE_OK)
-    mr_scene_free(&s);
+  if (st == MR_SCENE_OK) mr_scene_free(&s);
   assert_int_equal(st, status);
   assert_string_equal(e.text, expected);
 }
@@ -117,7 +116,7 @@ static void keyframes_ease_and_hold(void **state) {
   mr_scene_control_pose_at(&s, 1.5, &p); /* smoothstep(0.25) = 0.15625 */
   assert_true(fabs(p.position[0] - 2 * 0.15625) < 1e-12);
   mr_scene_control_pose_at(&s, 10.0, &p);
-  static const double zero[3] = {0, 0, 0}, z90[3] = {0, 0, 90};
+  static const double zero[3] = { 0, 0, 0 }, z90[3] = { 0, 0, 90 };
   mr_pose want = mr_pose_from_euler_deg(zero, z90);
   assert_true(p.position[0] == 2.0 &&
               memcmp(p.orientation, want.orientation, sizeof want.orientation) == 0);
@@ -216,8 +215,8 @@ static void unknown_names_and_shapes(void **state) {
   expect_error(BASE "    - {name: c, position: [2, 1], mass: 1}\n", MR_SCENE_ERR_SCHEMA,
                "t.yaml:6:27: expected [x, y, z] (three numbers) for position, got a sequence "
                "of 2 items");
-  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: \"heavy\"}\n",
-               MR_SCENE_ERR_SCHEMA, "t.yaml:6:44: expected a number for mass, got 'heavy'");
+  expect_error(BASE "    - {name: c, position: [2, 1, 0], mass: \"heavy\"}\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:6:44: expected a number for mass, got 'heavy'");
   expect_error(BASE "  effects2: []\n", MR_SCENE_ERR_SCHEMA,
                "t.yaml:6:3: unknown key 'effects2' in physics; expected one of: effects, "
                "gravity, drag, ats, solver, contact, particles, control, constraints, groups, "
@@ -255,18 +254,16 @@ static void every_physics_force_kind_has_a_scene_section(void **state) {
     uint32_t bit;
     const char *name;
   } kinds[] = {
-#define X(id, stem, name) {MR_EFFECT_##id, name},
-      MR_FORCE_KINDS(X)
+#define X(id, stem, name) { MR_EFFECT_##id, name },
+    MR_FORCE_KINDS(X)
 #undef X
   };
   int sections = 0;
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
-    if (kinds[i].bit == MR_EFFECT_GRAVITY || kinds[i].bit == MR_EFFECT_DRAG)
-      continue;
+    if (kinds[i].bit == MR_EFFECT_GRAVITY || kinds[i].bit == MR_EFFECT_DRAG) continue;
     char key[64], text[512];
     snprintf(key, sizeof key, "%s", kinds[i].name);
-    for (char *c = key; *c; c++)
-      *c = *c == '-' ? '_' : *c;
+    for (char *c = key; *c; c++) *c = *c == '-' ? '_' : *c;
     snprintf(text, sizeof text,
              "physics:\n  effects: [%s]\n  particles: [{name: a, position: [0, 1, 0], "
              "mass: 1}]\n  %s: []\n",
@@ -274,8 +271,7 @@ static void every_physics_force_kind_has_a_scene_section(void **state) {
     mr_scene s;
     mr_scene_error e;
     mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), &s, &e);
-    if (st != MR_SCENE_OK)
-      fail_msg("force kind '%s': %s", kinds[i].name, e.text);
+    if (st != MR_SCENE_OK) fail_msg("force kind '%s': %s", kinds[i].name, e.text);
     mr_scene_free(&s);
     sections++;
   }
@@ -314,8 +310,10 @@ static void part_friction_is_read_and_checked(void **state) {
                    "    - {name: b, position: [1, 1, 0], mass: 2}\n"
                    "  parts:\n";
   char text[512];
-  snprintf(text, sizeof text, "%s    - {particles: [a], restitution: 0.2, friction: 0.7}\n"
-                              "    - {particles: [b]}\n", fx);
+  snprintf(text, sizeof text,
+           "%s    - {particles: [a], restitution: 0.2, friction: 0.7}\n"
+           "    - {particles: [b]}\n",
+           fx);
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
@@ -326,8 +324,7 @@ static void part_friction_is_read_and_checked(void **state) {
   mr_scene_free(&s);
   snprintf(text, sizeof text, "%s    - {particles: [a], friction: -0.1}\n", fx);
   mr_scene_status st = mr_scene_load_text("t.yaml", text, strlen(text), &s, &e);
-  if (st == MR_SCENE_OK)
-    mr_scene_free(&s);
+  if (st == MR_SCENE_OK) mr_scene_free(&s);
   assert_int_equal(st, MR_SCENE_ERR_VALUE);
   assert_non_null(strstr(e.text, "t.yaml:7:"));
   assert_non_null(strstr(e.text, "friction"));
@@ -343,7 +340,8 @@ static void syntax_errors_name_the_place(void **state) {
 
 static void not_yaml_is_refused(void **state) {
   (void)state;
-  static const char binary[] = "\x7f" "ELF\x02\x01\x01\x00\x00\x00";
+  static const char binary[] = "\x7f"
+                               "ELF\x02\x01\x01\x00\x00\x00";
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load_text("t.yaml", binary, sizeof binary - 1, &s, &e),
@@ -409,8 +407,7 @@ static void format_md_example_loads(void **state) {
   mr_scene s;
   mr_scene_error e;
   mr_scene_status st = mr_scene_load_text("FORMAT.md", start, (size_t)(end - start), &s, &e);
-  if (st != MR_SCENE_OK)
-    fail_msg("%s", e.text);
+  if (st != MR_SCENE_OK) fail_msg("%s", e.text);
   assert_int_equal(s.n_particles, 3);
   assert_int_equal(s.n_forces, 1);
   assert_int_equal(s.forces[0].kind, MR_EFFECT_STRINGS);
@@ -420,31 +417,31 @@ static void format_md_example_loads(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(good_scene_loads_with_paper_defaults),
-      cmocka_unit_test(settings_and_anchors_are_read),
-      cmocka_unit_test(keyframes_ease_and_hold),
-      cmocka_unit_test(oscillation_follows_the_sine),
-      cmocka_unit_test(unknown_top_level_key),
-      cmocka_unit_test(theater_section_is_reserved),
-      cmocka_unit_test(unknown_particle_key),
-      cmocka_unit_test(nan_is_refused),
-      cmocka_unit_test(negative_and_zero_mass_are_refused),
-      cmocka_unit_test(coincident_particles_are_refused),
-      cmocka_unit_test(zero_length_constraints_are_refused),
-      cmocka_unit_test(undeclared_effect_is_refused),
-      cmocka_unit_test(unknown_names_and_shapes),
-      cmocka_unit_test(duplicate_keys_are_refused),
-      cmocka_unit_test(unknown_alias_is_refused),
-      cmocka_unit_test(every_physics_force_kind_has_a_scene_section),
-      cmocka_unit_test(integrator_and_method_come_from_the_libraries_tables),
-      cmocka_unit_test(degenerate_groups_are_refused),
-      cmocka_unit_test(part_friction_is_read_and_checked),
+    cmocka_unit_test(good_scene_loads_with_paper_defaults),
+    cmocka_unit_test(settings_and_anchors_are_read),
+    cmocka_unit_test(keyframes_ease_and_hold),
+    cmocka_unit_test(oscillation_follows_the_sine),
+    cmocka_unit_test(unknown_top_level_key),
+    cmocka_unit_test(theater_section_is_reserved),
+    cmocka_unit_test(unknown_particle_key),
+    cmocka_unit_test(nan_is_refused),
+    cmocka_unit_test(negative_and_zero_mass_are_refused),
+    cmocka_unit_test(coincident_particles_are_refused),
+    cmocka_unit_test(zero_length_constraints_are_refused),
+    cmocka_unit_test(undeclared_effect_is_refused),
+    cmocka_unit_test(unknown_names_and_shapes),
+    cmocka_unit_test(duplicate_keys_are_refused),
+    cmocka_unit_test(unknown_alias_is_refused),
+    cmocka_unit_test(every_physics_force_kind_has_a_scene_section),
+    cmocka_unit_test(integrator_and_method_come_from_the_libraries_tables),
+    cmocka_unit_test(degenerate_groups_are_refused),
+    cmocka_unit_test(part_friction_is_read_and_checked),
     cmocka_unit_test(syntax_errors_name_the_place),
-      cmocka_unit_test(not_yaml_is_refused),
-      cmocka_unit_test(missing_file_is_an_io_error),
-      cmocka_unit_test(file_errors_carry_the_path),
-      cmocka_unit_test(expected_load_error_is_readable_from_a_broken_scene),
-      cmocka_unit_test(format_md_example_loads),
+    cmocka_unit_test(not_yaml_is_refused),
+    cmocka_unit_test(missing_file_is_an_io_error),
+    cmocka_unit_test(file_errors_carry_the_path),
+    cmocka_unit_test(expected_load_error_is_readable_from_a_broken_scene),
+    cmocka_unit_test(format_md_example_loads),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -21,13 +21,12 @@ static char *marionette;
 
 /* Runs marionette with the arguments up to a NULL. */
 static void run(tt_output *p, ...) {
-  char *argv[16] = {marionette};
+  char *argv[16] = { marionette };
   int n = 1;
   va_list ap;
   va_start(ap, p);
   const char *a;
-  while ((a = va_arg(ap, const char *)) != NULL && n < 15)
-    argv[n++] = (char *)a;
+  while ((a = va_arg(ap, const char *)) != NULL && n < 15) argv[n++] = (char *)a;
   va_end(ap);
   argv[n] = NULL;
   assert_int_equal(tt_capture(argv, p), 0);
@@ -48,13 +47,14 @@ static void help_lists_subcommands_and_flags(void **state) {
   tt_output_free(&p);
   run(&p, "sim", "--help", NULL);
   assert_int_equal(p.status, 0);
-  const char *flags[] = {"--time SECONDS", "--csv FILE", "--check", "--quiet", "--help"};
+  const char *flags[] = { "--time SECONDS", "--csv FILE", "--check", "--quiet", "--help" };
   for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
     assert_non_null(strstr(p.out, flags[i]));
   tt_output_free(&p);
   run(&p, "dance", NULL);
   assert_int_equal(p.status, 2);
-  assert_string_equal(p.err, "marionette: unknown command 'dance'; expected one of: sim (see --help)\n");
+  assert_string_equal(p.err,
+                      "marionette: unknown command 'dance'; expected one of: sim (see --help)\n");
   tt_output_free(&p);
 }
 
@@ -81,7 +81,8 @@ static void load_errors_are_one_line_with_the_place(void **state) {
                              "file: No such file or directory\n");
   tt_output_free(&p);
 
-  const char binary[] = "\x7f" "ELF\x02\x01\x01";
+  const char binary[] = "\x7f"
+                        "ELF\x02\x01\x01";
   path = tt_tmp_file("sim_binary.yaml", binary, sizeof binary); /* with its NUL */
   snprintf(expected, sizeof expected,
            "marionette: %s:1:8: expected a YAML text file, found a NUL byte\n", path);
@@ -126,7 +127,7 @@ static void same_scene_same_state_hash(void **state) {
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load(scene_path, &s, &e), MR_SCENE_OK);
-  mr_scene_run_opts opts = {4.0, NULL, NULL};
+  mr_scene_run_opts opts = { 4.0, NULL, NULL };
   mr_scene_run_result r;
   assert_int_equal(mr_scene_run(&s, &opts, &r, &e), MR_SCENE_OK);
   char lib[64];
@@ -164,10 +165,17 @@ static void undeclared_effects_have_zero_pass_calls(void **state) {
   assert_true(field_u64(p.out, "pass gravity") >= steps);
   assert_true(field_u64(p.out, "pass constraints") >= steps);
   assert_true(field_u64(p.out, "pass solve") >= steps);
-  const char *off[] = {"pass drag",         "pass springs",         "pass strings",
-                       "pass antigravity",  "pass triggered",       "pass sine-springs",
-                       "pass planes",       "pass self-collision",  "pass puppet-collision",
-                       "pass string-correction", "pass frames"};
+  const char *off[] = { "pass drag",
+                        "pass springs",
+                        "pass strings",
+                        "pass antigravity",
+                        "pass triggered",
+                        "pass sine-springs",
+                        "pass planes",
+                        "pass self-collision",
+                        "pass puppet-collision",
+                        "pass string-correction",
+                        "pass frames" };
   for (size_t i = 0; i < sizeof off / sizeof off[0]; i++) {
     char v[32];
     assert_int_equal(tt_field(p.out, off[i], v, sizeof v), 0);
@@ -195,8 +203,8 @@ static void csv_has_one_row_per_step_call(void **state) {
   while (fgets(line, sizeof line, f)) {
     double dt, err, speed;
     int acc, rej, reset;
-    assert_int_equal(sscanf(line, "%lf,%lf,%lf,%d,%d,%d,%lf", &t, &dt, &err, &acc, &rej, &reset,
-                            &speed), 7);
+    assert_int_equal(
+        sscanf(line, "%lf,%lf,%lf,%d,%d,%d,%lf", &t, &dt, &err, &acc, &rej, &reset, &speed), 7);
     assert_true(t > last_t);
     assert_true(dt > 0 && dt <= 0.05 + 1e-12);
     last_t = t;
@@ -226,8 +234,8 @@ static void check_fails_with_a_clear_line(void **state) {
   run(&p, "sim", "--check", "--quiet", "--time", "1", path, NULL);
   assert_int_equal(p.status, 1);
   char prefix[4300];
-  snprintf(prefix, sizeof prefix, "marionette: %s: check failed: expected max deviation <= 1e-30, got ",
-           path);
+  snprintf(prefix, sizeof prefix,
+           "marionette: %s: check failed: expected max deviation <= 1e-30, got ", path);
   assert_memory_equal(p.err, prefix, strlen(prefix));
   /* one line */
   assert_ptr_equal(strchr(p.err, '\n'), p.err + strlen(p.err) - 1);
@@ -330,16 +338,16 @@ int main(int argc, char **argv) {
   }
   marionette = argv[1];
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(help_lists_subcommands_and_flags),
-      cmocka_unit_test(load_errors_are_one_line_with_the_place),
-      cmocka_unit_test(bad_usage_exits_2),
-      cmocka_unit_test(same_scene_same_state_hash),
-      cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
-      cmocka_unit_test(csv_has_one_row_per_step_call),
-      cmocka_unit_test(check_fails_with_a_clear_line),
-      cmocka_unit_test(string_stretch_is_measured_and_checked),
-      cmocka_unit_test(pinned_state_hash_is_checked),
-      cmocka_unit_test(example_puppet_runs_cleanly),
+    cmocka_unit_test(help_lists_subcommands_and_flags),
+    cmocka_unit_test(load_errors_are_one_line_with_the_place),
+    cmocka_unit_test(bad_usage_exits_2),
+    cmocka_unit_test(same_scene_same_state_hash),
+    cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
+    cmocka_unit_test(csv_has_one_row_per_step_call),
+    cmocka_unit_test(check_fails_with_a_clear_line),
+    cmocka_unit_test(string_stretch_is_measured_and_checked),
+    cmocka_unit_test(pinned_state_hash_is_checked),
+    cmocka_unit_test(example_puppet_runs_cleanly),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

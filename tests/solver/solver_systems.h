@@ -10,21 +10,23 @@
 #include <stdint.h>
 
 typedef struct test_system {
-    int np, k;
-    double *pos;        /* 3 np */
-    double *inv_mass;   /* np; 0 = fixed */
-    double *dense_j;    /* k × 3np, row-major */
-    mr_jac J;
+  int np, k;
+  double *pos;      /* 3 np */
+  double *inv_mass; /* np; 0 = fixed */
+  double *dense_j;  /* k × 3np, row-major */
+  mr_jac J;
 } test_system;
 
 /* A deterministic generator (splitmix64). */
-typedef struct test_rng { uint64_t s; } test_rng;
-double test_rng_uniform(test_rng *r);            /* [0, 1) */
+typedef struct test_rng {
+  uint64_t s;
+} test_rng;
+double test_rng_uniform(test_rng *r); /* [0, 1) */
 double test_rng_range(test_rng *r, double lo, double hi);
 
 void test_system_init(test_system *s, int np);
 void test_system_free(test_system *s);
-int  test_system_add_particle(test_system *s, const double x[3], double inv_mass);
+int test_system_add_particle(test_system *s, const double x[3], double inv_mass);
 /* C = |x_a − x_b| − L: row ∂C/∂x_a = u, ∂C/∂x_b = −u, u the unit a−b. */
 void test_system_distance(test_system *s, int a, int b);
 /* C = e·x_p − c: the pin of particle p along the unit vector e. */
@@ -44,7 +46,7 @@ void test_system_random(test_system *s, int k, uint64_t seed);
 void test_system_consistent_rhs(const test_system *s, test_rng *rng, double *b);
 
 /* Dense helpers on the system's own J. */
-void test_dense_jmjt(const test_system *s, double *a_kk);   /* k × k */
+void test_dense_jmjt(const test_system *s, double *a_kk); /* k × k */
 void test_dense_jt(const test_system *s, const double *lam, double *f3n);
 
 double test_norm(int n, const double *v);

@@ -17,238 +17,227 @@
 #include "solver_assert.h"
 #include "solver_systems.h"
 
-static const mr_solve_method methods[] = { MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG, MR_SOLVE_LDLT, MR_SOLVE_EIGEN };
+static const mr_solve_method methods[] = { MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG, MR_SOLVE_LDLT,
+                                           MR_SOLVE_EIGEN };
 #define N_METHODS 4
 
-static mr_solve_def opts_for(mr_solve_method m)
-{
-    mr_solve_def o = mr_default_solve_def();
-    o.method = m;
-    o.tol = 1e-12;
-    o.max_iter = 100000;
-    return o;
+static mr_solve_def opts_for(mr_solve_method m) {
+  mr_solve_def o = mr_default_solve_def();
+  o.method = m;
+  o.tol = 1e-12;
+  o.max_iter = 100000;
+  return o;
 }
 
 /* Four particles in general position, all six edges: rigid (§5.1). */
-static void tetrahedron(test_system *s, double fixed_first)
-{
-    static const double x[4][3] = { { 0, 0, 0 }, { 1.0, 0.1, 0 }, { 0.3, 0.9, 0.1 }, { 0.4, 0.3, 1.1 } };
-    static const double inv_mass[4] = { 1.0, 0.5, 2.0, 0.25 };
-    test_system_init(s, 4);
-    for (int p = 0; p < 4; p++)
-        test_system_add_particle(s, x[p], p == 0 ? fixed_first : inv_mass[p]);
-    for (int a = 0; a < 4; a++)
-        for (int b = a + 1; b < 4; b++)
-            test_system_distance(s, a, b);
+static void tetrahedron(test_system *s, double fixed_first) {
+  static const double x[4][3] = {
+    { 0, 0, 0 }, { 1.0, 0.1, 0 }, { 0.3, 0.9, 0.1 }, { 0.4, 0.3, 1.1 }
+  };
+  static const double inv_mass[4] = { 1.0, 0.5, 2.0, 0.25 };
+  test_system_init(s, 4);
+  for (int p = 0; p < 4; p++) test_system_add_particle(s, x[p], p == 0 ? fixed_first : inv_mass[p]);
+  for (int a = 0; a < 4; a++)
+    for (int b = a + 1; b < 4; b++) test_system_distance(s, a, b);
 }
 
 /* The right-hand side of the redundant system: b = J M⁻¹ f for one f, so
  * the reference (without the extra rows) sees the same f. */
-static void rhs_pair(const test_system *full, const test_system *ref, uint64_t seed, double *b_full, double *b_ref)
-{
-    test_rng r1 = { seed }, r2 = { seed };
-    test_system_consistent_rhs(full, &r1, b_full);
-    test_system_consistent_rhs(ref, &r2, b_ref);
+static void rhs_pair(const test_system *full, const test_system *ref, uint64_t seed, double *b_full,
+                     double *b_ref) {
+  test_rng r1 = { seed }, r2 = { seed };
+  test_system_consistent_rhs(full, &r1, b_full);
+  test_system_consistent_rhs(ref, &r2, b_ref);
 }
 
 typedef struct expect {
-    int dependent;      /* rows each method must report, -1: only LDLᵀ/Eigen must */
-    int consistent;     /* b in the range of A: forces must match */
+  int dependent;  /* rows each method must report, -1: only LDLᵀ/Eigen must */
+  int consistent; /* b in the range of A: forces must match */
 } expect;
 
 /* Solves full with every method and checks against ref solved by Eigen. */
-static void check_methods(const test_system *full, const double *b_full, const test_system *ref, const double *b_ref,
-                          expect e, const char *name)
-{
-    mr_solver *solver = mr_solver_create();
-    mr_csr A = { 0 }, Aref = { 0 };
-    assert_int_equal(mr_csr_assemble(&A, &full->J, full->inv_mass), 0);
-    assert_int_equal(mr_csr_assemble(&Aref, &ref->J, ref->inv_mass), 0);
-    int n3 = 3 * full->J.n_particles;
-    double *lam_ref = calloc((size_t)ref->k, sizeof *lam_ref), *lam = calloc((size_t)full->k, sizeof *lam);
-    double *f_ref = malloc((size_t)n3 * sizeof *f_ref), *f = malloc((size_t)n3 * sizeof *f);
-    mr_solve_def oe = opts_for(MR_SOLVE_EIGEN);
-    mr_solve_result r;
-    assert_int_equal(mr_solver_solve(solver, &oe, &Aref, b_ref, lam_ref, &r), MR_SOLVE_OK);
-    test_dense_jt(ref, lam_ref, f_ref);
-    double lam_ref_norm = test_norm(ref->k, lam_ref), f_ref_norm = test_norm(n3, f_ref);
+static void check_methods(const test_system *full, const double *b_full, const test_system *ref,
+                          const double *b_ref, expect e, const char *name) {
+  mr_solver *solver = mr_solver_create();
+  mr_csr A = { 0 }, Aref = { 0 };
+  assert_int_equal(mr_csr_assemble(&A, &full->J, full->inv_mass), 0);
+  assert_int_equal(mr_csr_assemble(&Aref, &ref->J, ref->inv_mass), 0);
+  int n3 = 3 * full->J.n_particles;
+  double *lam_ref = calloc((size_t)ref->k, sizeof *lam_ref),
+         *lam = calloc((size_t)full->k, sizeof *lam);
+  double *f_ref = malloc((size_t)n3 * sizeof *f_ref), *f = malloc((size_t)n3 * sizeof *f);
+  mr_solve_def oe = opts_for(MR_SOLVE_EIGEN);
+  mr_solve_result r;
+  assert_int_equal(mr_solver_solve(solver, &oe, &Aref, b_ref, lam_ref, &r), MR_SOLVE_OK);
+  test_dense_jt(ref, lam_ref, f_ref);
+  double lam_ref_norm = test_norm(ref->k, lam_ref), f_ref_norm = test_norm(n3, f_ref);
 
-    for (int m = 0; m < N_METHODS; m++) {
-        mr_solve_def o = opts_for(methods[m]);
-        memset(lam, 0, (size_t)full->k * sizeof *lam);
-        int st = mr_solver_solve(solver, &o, &A, b_full, lam, &r);
-        int direct = methods[m] == MR_SOLVE_LDLT || methods[m] == MR_SOLVE_EIGEN;
-        for (int i = 0; i < full->k; i++)
-            assert_true(isfinite(lam[i]));
-        test_dense_jt(full, lam, f);
-        double lam_norm = test_norm(full->k, lam), f_norm = test_norm(n3, f);
-        double fd = test_rel_diff(n3, f, f_ref);
-        printf("%s: %-12s status %d dependent %d iterations %d residual %.2e |lam|/|lam_ref| %.6f "
-               "|F-F_ref|/|F_ref| %.2e\n",
-               name, mr_solve_method_name(methods[m]), st, r.dependent, r.iterations, r.residual,
-               lam_norm / lam_ref_norm, fd);
-        if (e.dependent >= 0 || direct) {
-            int want = e.dependent >= 0 ? e.dependent : 1;
-            assert_int_equal(st, MR_SOLVE_DEPENDENT);
-            assert_int_equal(r.dependent, want);
-        } else {
-            assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT || (!e.consistent && st == MR_SOLVE_NOT_CONVERGED));
-        }
-        if (e.consistent) {
-            /* J M⁻¹ Jᵀ λ = b holds for every row, and the forces are the
+  for (int m = 0; m < N_METHODS; m++) {
+    mr_solve_def o = opts_for(methods[m]);
+    memset(lam, 0, (size_t)full->k * sizeof *lam);
+    int st = mr_solver_solve(solver, &o, &A, b_full, lam, &r);
+    int direct = methods[m] == MR_SOLVE_LDLT || methods[m] == MR_SOLVE_EIGEN;
+    for (int i = 0; i < full->k; i++) assert_true(isfinite(lam[i]));
+    test_dense_jt(full, lam, f);
+    double lam_norm = test_norm(full->k, lam), f_norm = test_norm(n3, f);
+    double fd = test_rel_diff(n3, f, f_ref);
+    printf("%s: %-12s status %d dependent %d iterations %d residual %.2e |lam|/|lam_ref| %.6f "
+           "|F-F_ref|/|F_ref| %.2e\n",
+           name, mr_solve_method_name(methods[m]), st, r.dependent, r.iterations, r.residual,
+           lam_norm / lam_ref_norm, fd);
+    if (e.dependent >= 0 || direct) {
+      int want = e.dependent >= 0 ? e.dependent : 1;
+      assert_int_equal(st, MR_SOLVE_DEPENDENT);
+      assert_int_equal(r.dependent, want);
+    } else {
+      assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT ||
+                  (!e.consistent && st == MR_SOLVE_NOT_CONVERGED));
+    }
+    if (e.consistent) {
+      /* J M⁻¹ Jᵀ λ = b holds for every row, and the forces are the
              * unique ones; λ is no larger than the reference's. */
-            assert_true(r.residual < 1e-9);
-            assert_true(fd < 1e-9);
-            assert_true(lam_norm <= lam_ref_norm * (1.0 + 1e-9));
-        } else {
-            /* Bounded: same order as the well-posed answer. */
-            assert_true(lam_norm < 10.0 * lam_ref_norm);
-            assert_true(f_norm < 10.0 * f_ref_norm);
-        }
+      assert_true(r.residual < 1e-9);
+      assert_true(fd < 1e-9);
+      assert_true(lam_norm <= lam_ref_norm * (1.0 + 1e-9));
+    } else {
+      /* Bounded: same order as the well-posed answer. */
+      assert_true(lam_norm < 10.0 * lam_ref_norm);
+      assert_true(f_norm < 10.0 * f_ref_norm);
     }
-    free(lam_ref);
-    free(lam);
-    free(f_ref);
-    free(f);
-    mr_csr_free(&A);
-    mr_csr_free(&Aref);
-    mr_solver_destroy(solver);
+  }
+  free(lam_ref);
+  free(lam);
+  free(f_ref);
+  free(f);
+  mr_csr_free(&A);
+  mr_csr_free(&Aref);
+  mr_solver_destroy(solver);
 }
 
-static void tetrahedron_with_an_edge_written_twice(void **state)
-{
-    (void)state;
-    for (int fixed = 0; fixed < 2; fixed++) {
-        test_system full, ref;
-        tetrahedron(&full, fixed ? 0.0 : 1.0);
-        tetrahedron(&ref, fixed ? 0.0 : 1.0);
-        test_system_copy_row(&full, 3);
-        double b_full[7], b_ref[6];
-        rhs_pair(&full, &ref, 21 + (uint64_t)fixed, b_full, b_ref);
-        check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 1 }, fixed ? "tetra (one vertex fixed) + dup" : "tetra + dup");
+static void tetrahedron_with_an_edge_written_twice(void **state) {
+  (void)state;
+  for (int fixed = 0; fixed < 2; fixed++) {
+    test_system full, ref;
+    tetrahedron(&full, fixed ? 0.0 : 1.0);
+    tetrahedron(&ref, fixed ? 0.0 : 1.0);
+    test_system_copy_row(&full, 3);
+    double b_full[7], b_ref[6];
+    rhs_pair(&full, &ref, 21 + (uint64_t)fixed, b_full, b_ref);
+    check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 1 },
+                  fixed ? "tetra (one vertex fixed) + dup" : "tetra + dup");
 
-        /* The same with an inconsistent b: the copy asks for a different
+    /* The same with an inconsistent b: the copy asks for a different
          * acceleration than the original. */
-        b_full[6] += 0.5 * (fabs(b_full[3]) + 1.0);
-        check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 0 }, "tetra + dup, inconsistent");
-        test_system_free(&full);
-        test_system_free(&ref);
-    }
+    b_full[6] += 0.5 * (fabs(b_full[3]) + 1.0);
+    check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 0 }, "tetra + dup, inconsistent");
+    test_system_free(&full);
+    test_system_free(&ref);
+  }
 }
 
-static void row_duplicated_in_a_larger_system(void **state)
-{
-    (void)state;
-    static const int copied[] = { 0, 17, 39 };
-    for (size_t t = 0; t < sizeof copied / sizeof copied[0]; t++) {
-        test_system full, ref;
-        test_system_random(&full, 40, 500);
-        test_system_random(&ref, 40, 500);
-        test_system_copy_row(&full, copied[t]);
-        double b_full[41], b_ref[40];
-        rhs_pair(&full, &ref, 501, b_full, b_ref);
-        check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 1 }, "random 40 + dup");
-        test_system_free(&full);
-        test_system_free(&ref);
-    }
+static void row_duplicated_in_a_larger_system(void **state) {
+  (void)state;
+  static const int copied[] = { 0, 17, 39 };
+  for (size_t t = 0; t < sizeof copied / sizeof copied[0]; t++) {
+    test_system full, ref;
+    test_system_random(&full, 40, 500);
+    test_system_random(&ref, 40, 500);
+    test_system_copy_row(&full, copied[t]);
+    double b_full[41], b_ref[40];
+    rhs_pair(&full, &ref, 501, b_full, b_ref);
+    check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 1 }, "random 40 + dup");
+    test_system_free(&full);
+    test_system_free(&ref);
+  }
 }
 
 /* A distance between two fixed particles: a zero row of J. */
-static void row_on_fixed_particles_only(void **state)
-{
-    (void)state;
-    test_system full, ref;
-    tetrahedron(&ref, 0.0);
-    test_system_init(&full, 5);
-    for (int p = 0; p < 4; p++)
-        test_system_add_particle(&full, ref.pos + 3 * p, ref.inv_mass[p]);
-    const double x4[3] = { -1, -1, 0 };
-    test_system_add_particle(&full, x4, 0.0);
-    for (int a = 0; a < 4; a++)
-        for (int b = a + 1; b < 4; b++)
-            test_system_distance(&full, a, b);
-    test_system_distance(&full, 0, 4);
-    /* ref needs the same particle count for the force comparison. */
-    test_system_free(&ref);
-    test_system_init(&ref, 5);
-    for (int p = 0; p < 5; p++)
-        test_system_add_particle(&ref, full.pos + 3 * p, full.inv_mass[p]);
-    for (int a = 0; a < 4; a++)
-        for (int b = a + 1; b < 4; b++)
-            test_system_distance(&ref, a, b);
-    double b_full[7], b_ref[6];
-    rhs_pair(&full, &ref, 31, b_full, b_ref);
-    assert_true(b_full[6] == 0.0);
-    check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 1 }, "zero row");
-    test_system_free(&full);
-    test_system_free(&ref);
+static void row_on_fixed_particles_only(void **state) {
+  (void)state;
+  test_system full, ref;
+  tetrahedron(&ref, 0.0);
+  test_system_init(&full, 5);
+  for (int p = 0; p < 4; p++) test_system_add_particle(&full, ref.pos + 3 * p, ref.inv_mass[p]);
+  const double x4[3] = { -1, -1, 0 };
+  test_system_add_particle(&full, x4, 0.0);
+  for (int a = 0; a < 4; a++)
+    for (int b = a + 1; b < 4; b++) test_system_distance(&full, a, b);
+  test_system_distance(&full, 0, 4);
+  /* ref needs the same particle count for the force comparison. */
+  test_system_free(&ref);
+  test_system_init(&ref, 5);
+  for (int p = 0; p < 5; p++) test_system_add_particle(&ref, full.pos + 3 * p, full.inv_mass[p]);
+  for (int a = 0; a < 4; a++)
+    for (int b = a + 1; b < 4; b++) test_system_distance(&ref, a, b);
+  double b_full[7], b_ref[6];
+  rhs_pair(&full, &ref, 31, b_full, b_ref);
+  assert_true(b_full[6] == 0.0);
+  check_methods(&full, b_full, &ref, b_ref, (expect){ 1, 1 }, "zero row");
+  test_system_free(&full);
+  test_system_free(&ref);
 }
 
 /* Pins along x, along y and along (x + y)/√2 on one particle: each pair is
  * independent, the three are not. The direct solvers find it; the
  * iterative ones still converge to the right forces on a consistent b. */
-static void dependency_among_three_rows(void **state)
-{
-    (void)state;
-    static const double ex[3] = { 1, 0, 0 }, ey[3] = { 0, 1, 0 };
-    const double exy[3] = { sqrt(0.5), sqrt(0.5), 0 };
-    test_system full, ref;
-    for (int t = 0; t < 2; t++) {
-        test_system *s = t ? &ref : &full;
-        tetrahedron(s, 1.0);
-        test_system_pin(s, 2, ex);
-        test_system_pin(s, 2, ey);
-        if (!t)
-            test_system_pin(s, 2, exy);
-    }
-    /* 6 edges + 2 pins leave 12 − 8 = 4 degrees of freedom. */
-    double b_full[9], b_ref[8];
-    rhs_pair(&full, &ref, 41, b_full, b_ref);
-    check_methods(&full, b_full, &ref, b_ref, (expect){ -1, 1 }, "three-row dependency");
-    test_system_free(&full);
-    test_system_free(&ref);
+static void dependency_among_three_rows(void **state) {
+  (void)state;
+  static const double ex[3] = { 1, 0, 0 }, ey[3] = { 0, 1, 0 };
+  const double exy[3] = { sqrt(0.5), sqrt(0.5), 0 };
+  test_system full, ref;
+  for (int t = 0; t < 2; t++) {
+    test_system *s = t ? &ref : &full;
+    tetrahedron(s, 1.0);
+    test_system_pin(s, 2, ex);
+    test_system_pin(s, 2, ey);
+    if (!t) test_system_pin(s, 2, exy);
+  }
+  /* 6 edges + 2 pins leave 12 − 8 = 4 degrees of freedom. */
+  double b_full[9], b_ref[8];
+  rhs_pair(&full, &ref, 41, b_full, b_ref);
+  check_methods(&full, b_full, &ref, b_ref, (expect){ -1, 1 }, "three-row dependency");
+  test_system_free(&full);
+  test_system_free(&ref);
 }
 
 /* CG meets an inconsistent three-row dependency as a search direction A
  * does not stretch, and reports it. */
-static void cg_reports_an_inconsistent_hidden_dependency(void **state)
-{
-    (void)state;
-    static const double ex[3] = { 1, 0, 0 }, ey[3] = { 0, 1, 0 };
-    const double exy[3] = { sqrt(0.5), sqrt(0.5), 0 };
-    test_system s;
-    tetrahedron(&s, 1.0);
-    test_system_pin(&s, 2, ex);
-    test_system_pin(&s, 2, ey);
-    test_system_pin(&s, 2, exy);
-    mr_csr A = { 0 };
-    assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
-    double b[9], lam[9] = { 0 };
-    test_rng rng = { 42 };
-    test_system_consistent_rhs(&s, &rng, b);
-    b[8] += 1.0;
-    mr_solver *solver = mr_solver_create();
-    mr_solve_def o = opts_for(MR_SOLVE_CG);
-    mr_solve_result r;
-    int st = mr_solver_solve(solver, &o, &A, b, lam, &r);
-    printf("cg, inconsistent three-row dependency: status %d dependent %d iterations %d |lam| %.3f\n", st,
-           r.dependent, r.iterations, test_norm(9, lam));
-    assert_int_equal(st, MR_SOLVE_DEPENDENT);
-    assert_int_equal(r.dependent, 1);
-    assert_true(test_norm(9, lam) < 1e3);
-    mr_solver_destroy(solver);
-    mr_csr_free(&A);
-    test_system_free(&s);
+static void cg_reports_an_inconsistent_hidden_dependency(void **state) {
+  (void)state;
+  static const double ex[3] = { 1, 0, 0 }, ey[3] = { 0, 1, 0 };
+  const double exy[3] = { sqrt(0.5), sqrt(0.5), 0 };
+  test_system s;
+  tetrahedron(&s, 1.0);
+  test_system_pin(&s, 2, ex);
+  test_system_pin(&s, 2, ey);
+  test_system_pin(&s, 2, exy);
+  mr_csr A = { 0 };
+  assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
+  double b[9], lam[9] = { 0 };
+  test_rng rng = { 42 };
+  test_system_consistent_rhs(&s, &rng, b);
+  b[8] += 1.0;
+  mr_solver *solver = mr_solver_create();
+  mr_solve_def o = opts_for(MR_SOLVE_CG);
+  mr_solve_result r;
+  int st = mr_solver_solve(solver, &o, &A, b, lam, &r);
+  printf("cg, inconsistent three-row dependency: status %d dependent %d iterations %d |lam| %.3f\n",
+         st, r.dependent, r.iterations, test_norm(9, lam));
+  assert_int_equal(st, MR_SOLVE_DEPENDENT);
+  assert_int_equal(r.dependent, 1);
+  assert_true(test_norm(9, lam) < 1e3);
+  mr_solver_destroy(solver);
+  mr_csr_free(&A);
+  test_system_free(&s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(tetrahedron_with_an_edge_written_twice),
-        cmocka_unit_test(row_duplicated_in_a_larger_system),
-        cmocka_unit_test(row_on_fixed_particles_only),
-        cmocka_unit_test(dependency_among_three_rows),
-        cmocka_unit_test(cg_reports_an_inconsistent_hidden_dependency),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(tetrahedron_with_an_edge_written_twice),
+    cmocka_unit_test(row_duplicated_in_a_larger_system),
+    cmocka_unit_test(row_on_fixed_particles_only),
+    cmocka_unit_test(dependency_among_three_rows),
+    cmocka_unit_test(cg_reports_an_inconsistent_hidden_dependency),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
 }

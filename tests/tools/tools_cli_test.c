@@ -43,48 +43,48 @@ static void tools_cli_bad_usage_exits_2_with_one_line_naming_the_program(void **
   const char *G = tt_glove_gen, *D = tt_glove_dump, *M = g_marionette;
   (void)state;
   {
-    const char *a[] = {G, "--bogus", NULL};
+    const char *a[] = { G, "--bogus", NULL };
     expect_one_line(a, "glove-gen", 2, "unknown option '--bogus'");
   }
   {
-    const char *a[] = {G, "-x", NULL};
+    const char *a[] = { G, "-x", NULL };
     expect_one_line(a, "glove-gen", 2, "unknown option '-x'");
   }
   {
-    const char *a[] = {G, "--rate", NULL};
+    const char *a[] = { G, "--rate", NULL };
     expect_one_line(a, "glove-gen", 2, "'--rate' needs a value");
   }
   {
-    const char *a[] = {G, "-n", "3", "-o", "tcp-listen:99999", NULL};
+    const char *a[] = { G, "-n", "3", "-o", "tcp-listen:99999", NULL };
     expect_one_line(a, "glove-gen", 2, "99999");
   }
   {
-    const char *a[] = {D, "--bogus", NULL};
+    const char *a[] = { D, "--bogus", NULL };
     expect_one_line(a, "glove-dump", 2, "unknown option '--bogus'");
   }
   {
     /* Not 1: a port out of range is the user's usage, not a failure. */
-    const char *a[] = {D, "tcp-listen:99999", NULL};
+    const char *a[] = { D, "tcp-listen:99999", NULL };
     expect_one_line(a, "glove-dump", 2, "99999");
   }
   {
-    const char *a[] = {D, "tcp:localhost", NULL};
+    const char *a[] = { D, "tcp:localhost", NULL };
     expect_one_line(a, "glove-dump", 2, "tcp:HOST:PORT");
   }
   {
-    const char *a[] = {D, "a.bin", "b.bin", NULL};
+    const char *a[] = { D, "a.bin", "b.bin", NULL };
     expect_one_line(a, "glove-dump", 2, "one SOURCE only");
   }
   {
-    const char *a[] = {M, NULL};
+    const char *a[] = { M, NULL };
     expect_one_line(a, "marionette", 2, "expected a command");
   }
   {
-    const char *a[] = {M, "bogus", NULL};
+    const char *a[] = { M, "bogus", NULL };
     expect_one_line(a, "marionette", 2, "unknown command 'bogus'");
   }
   {
-    const char *a[] = {M, "sim", "--bogus", NULL};
+    const char *a[] = { M, "sim", "--bogus", NULL };
     expect_one_line(a, "marionette", 2, "unknown option '--bogus'");
   }
 }
@@ -93,15 +93,15 @@ static void tools_cli_a_missing_device_reads_the_same_in_every_tool(void **state
   const char *want = "/dev/ttyNOSUCH0: cannot open: No such file or directory";
   (void)state;
   {
-    const char *a[] = {tt_glove_dump, "/dev/ttyNOSUCH0", NULL};
+    const char *a[] = { tt_glove_dump, "/dev/ttyNOSUCH0", NULL };
     expect_one_line(a, "glove-dump", 1, want);
   }
   {
-    const char *a[] = {tt_glove_dump, "serial:/dev/ttyNOSUCH0@9600", NULL};
+    const char *a[] = { tt_glove_dump, "serial:/dev/ttyNOSUCH0@9600", NULL };
     expect_one_line(a, "glove-dump", 1, want);
   }
   {
-    const char *a[] = {tt_glove_gen, "-n", "3", "-o", "serial:/dev/ttyNOSUCH0", NULL};
+    const char *a[] = { tt_glove_gen, "-n", "3", "-o", "serial:/dev/ttyNOSUCH0", NULL };
     expect_one_line(a, "glove-gen", 1, want);
   }
 }
@@ -111,7 +111,7 @@ static void tools_cli_a_missing_device_reads_the_same_in_every_tool(void **state
 static void tools_cli_glove_gen_refuses_to_write_binary_to_a_terminal(void **state) {
   int master = posix_openpt(O_RDWR | O_NOCTTY);
   char *dir = tt_tmpdir(), *err;
-  const char *argv[] = {tt_glove_gen, "-n", "10", "--fast", NULL};
+  const char *argv[] = { tt_glove_gen, "-n", "10", "--fast", NULL };
   (void)state;
   assert_non_null(dir);
   if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0 || !ptsname(master)) {
@@ -134,7 +134,7 @@ static void tools_cli_glove_gen_refuses_to_write_binary_to_a_terminal(void **sta
   }
   {
     /* -o - on a pipe or file is fine: only the terminal is refused. */
-    const char *ok[] = {tt_glove_gen, "-n", "10", "--fast", "-o", "-", NULL};
+    const char *ok[] = { tt_glove_gen, "-n", "10", "--fast", "-o", "-", NULL };
     assert_int_equal(tt_run(ok, tt_path(dir, "out.bin"), NULL, 30), 0);
   }
   close(master);
@@ -145,9 +145,9 @@ static void tools_cli_glove_gen_refuses_to_write_binary_to_a_terminal(void **sta
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_cli_bad_usage_exits_2_with_one_line_naming_the_program),
-      cmocka_unit_test(tools_cli_a_missing_device_reads_the_same_in_every_tool),
-      cmocka_unit_test(tools_cli_glove_gen_refuses_to_write_binary_to_a_terminal),
+    cmocka_unit_test(tools_cli_bad_usage_exits_2_with_one_line_naming_the_program),
+    cmocka_unit_test(tools_cli_a_missing_device_reads_the_same_in_every_tool),
+    cmocka_unit_test(tools_cli_glove_gen_refuses_to_write_binary_to_a_terminal),
   };
   tt_take_args(argc, argv);
   if (argc > 3) g_marionette = argv[3];

@@ -22,7 +22,7 @@ static int setup(void **state) {
   if (!g_dir) return -1;
   char out[1100];
   snprintf(out, sizeof out, "file:%s", tt_path(g_dir, "s.bin"));
-  const char *argv[] = {tt_glove_gen, "--fast", "-n", "200", "-q", "-o", out, NULL};
+  const char *argv[] = { tt_glove_gen, "--fast", "-n", "200", "-q", "-o", out, NULL };
   return tt_run(argv, NULL, NULL, 60) == 0 ? 0 : -1;
 }
 
@@ -38,7 +38,7 @@ static void tools_dump_output_full_stdout_is_an_error(void **state) {
   char in[1024], errp[1024];
   snprintf(in, sizeof in, "%s", tt_path(g_dir, "s.bin"));
   snprintf(errp, sizeof errp, "%s", tt_path(g_dir, "full.err"));
-  const char *argv[] = {tt_glove_dump, in, NULL};
+  const char *argv[] = { tt_glove_dump, in, NULL };
   assert_int_equal(tt_run(argv, "/dev/full", errp, 60), 1);
   char *err = tt_read_file(errp, NULL);
   assert_non_null(err);
@@ -62,19 +62,19 @@ static void tools_dump_output_stream_cut_inside_a_frame_is_reported(void **state
   assert_non_null(f);
   assert_int_equal(fwrite(whole, 1, cut, f), cut);
   assert_int_equal(fclose(f), 0);
-  const char *argv[] = {tt_glove_dump, "-q", cutp, NULL};
+  const char *argv[] = { tt_glove_dump, "-q", cutp, NULL };
   assert_int_equal(tt_run(argv, NULL, errp, 60), 0);
   char *err = tt_read_file(errp, NULL);
   assert_non_null(err);
-  snprintf(want, sizeof want, "its last %zu bytes (from byte %zu) were not decoded",
-           cut - last0, last0);
+  snprintf(want, sizeof want, "its last %zu bytes (from byte %zu) were not decoded", cut - last0,
+           last0);
   if (!strstr(err, want)) fail_msg("stderr lacks '%s':\n%s", want, err);
   /* The frames before it are all there: 200 SAMPLEs less the cut one, one INFO. */
   assert_int_equal(tt_kv(err, "frames"), 200);
   assert_int_equal(tt_kv(err, "framing_errors"), 0);
   free(err);
   /* The whole stream ends on a delimiter: nothing to report. */
-  const char *argv2[] = {tt_glove_dump, "-q", tt_path(g_dir, "s.bin"), NULL};
+  const char *argv2[] = { tt_glove_dump, "-q", tt_path(g_dir, "s.bin"), NULL };
   assert_int_equal(tt_run(argv2, NULL, errp, 60), 0);
   err = tt_read_file(errp, NULL);
   assert_non_null(err);
@@ -93,13 +93,15 @@ static void tools_dump_output_record_keeps_every_byte_read(void **state) {
   {
     char o[1100];
     snprintf(o, sizeof o, "file:%s", in);
-    const char *argv[] = {tt_glove_gen, "--fast", "-q", "-n", "3000", "--faults", "0.1",
-                          "--seed", "5", "--stall-frames", "1:5", "-o", o, NULL};
+    const char *argv[] = { tt_glove_gen, "--fast", "-q",     "-n", "3000",
+                           "--faults",   "0.1",    "--seed", "5",  "--stall-frames",
+                           "1:5",        "-o",     o,        NULL };
     assert_int_equal(tt_run(argv, NULL, NULL, 60), 0);
   }
   {
-    const char *argv[] = {tt_glove_dump, "-q", "--keep-going", "--record", rec,
-                          "--counters", c1, in, NULL};
+    const char *argv[] = {
+      tt_glove_dump, "-q", "--keep-going", "--record", rec, "--counters", c1, in, NULL
+    };
     assert_int_equal(tt_run(argv, NULL, NULL, 60), 3); /* wrong-hash faults */
   }
   /* The chunks, joined, are the input byte for byte, in non-decreasing time. */
@@ -129,7 +131,7 @@ static void tools_dump_output_record_keeps_every_byte_read(void **state) {
   assert_memory_equal(got, want, len);
   /* And replaying it counts the same. */
   {
-    const char *argv[] = {tt_glove_dump, "-q", "--keep-going", "--counters", c2, rec, NULL};
+    const char *argv[] = { tt_glove_dump, "-q", "--keep-going", "--counters", c2, rec, NULL };
     assert_int_equal(tt_run(argv, NULL, NULL, 60), 3);
   }
   char *a = tt_read_file(c1, NULL), *b = tt_read_file(c2, NULL);
@@ -145,9 +147,9 @@ static void tools_dump_output_record_keeps_every_byte_read(void **state) {
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_dump_output_full_stdout_is_an_error),
-      cmocka_unit_test(tools_dump_output_stream_cut_inside_a_frame_is_reported),
-      cmocka_unit_test(tools_dump_output_record_keeps_every_byte_read),
+    cmocka_unit_test(tools_dump_output_full_stdout_is_an_error),
+    cmocka_unit_test(tools_dump_output_stream_cut_inside_a_frame_is_reported),
+    cmocka_unit_test(tools_dump_output_record_keeps_every_byte_read),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -30,9 +30,9 @@ static int teardown(void **state) {
 
 static void generate(const char *seed, const char *out, const char *truth, const char *rec) {
   char o[1100];
-  const char *argv[] = {tt_glove_gen, "--fast", "-n", FRAMES, "--faults", "0.10",
-                        "--stall-frames", "1:20", "--seed", seed, "-o", o,
-                        "--truth", truth, "--record", rec, NULL};
+  const char *argv[] = { tt_glove_gen,     "--fast", "-n",       FRAMES, "--faults", "0.10",
+                         "--stall-frames", "1:20",   "--seed",   seed,   "-o",       o,
+                         "--truth",        truth,    "--record", rec,    NULL };
   snprintf(o, sizeof o, "file:%s", out);
   assert_int_equal(tt_run(argv, NULL, tt_path(g_dir, "gen.err"), 120), 0);
 }
@@ -52,8 +52,8 @@ static void tools_faults_every_counter_equals_what_was_injected(void **state) {
 
   /* Every kind of fault really happened, and about 10 % of slots in all. */
   {
-    static const char *const kinds[] = {"drop", "dup", "reorder", "flip", "truncate",
-                                        "garbage", "wrong-hash", "stall", "unknown"};
+    static const char *const kinds[] = { "drop",    "dup",        "reorder", "flip",   "truncate",
+                                         "garbage", "wrong-hash", "stall",   "unknown" };
     long long total = 0;
     for (size_t i = 0; i < 9; i++) {
       char key[64];
@@ -98,14 +98,15 @@ static void tools_faults_every_counter_equals_what_was_injected(void **state) {
 
   {
     const uint64_t have[TT_N_COUNTERS] = {
-        d->c.frames, d->c.crc_errors, d->c.framing_errors, d->c.oversize, d->c.unknown_type,
-        d->c.spec_mismatch, d->c.lost, d->c.duplicates, d->c.reordered, d->c.seq_restarts,
-        d->c.bytes};
+      d->c.frames,       d->c.crc_errors,    d->c.framing_errors, d->c.oversize,
+      d->c.unknown_type, d->c.spec_mismatch, d->c.lost,           d->c.duplicates,
+      d->c.reordered,    d->c.seq_restarts,  d->c.bytes
+    };
     for (size_t k = 0; k < TT_N_COUNTERS; k++) {
       long long expect = tt_kv(truth, tt_counter_keys[k]);
       if ((long long)have[k] != expect)
-        fail_msg("%s: decoder %llu, injected %lld", tt_counter_keys[k],
-                 (unsigned long long)have[k], expect);
+        fail_msg("%s: decoder %llu, injected %lld", tt_counter_keys[k], (unsigned long long)have[k],
+                 expect);
     }
     assert_true(d->c.lost > 0 && d->c.reordered > 0 && d->c.duplicates > 0);
   }
@@ -122,7 +123,7 @@ static void tools_faults_every_counter_equals_what_was_injected(void **state) {
  * recording glove-gen made of them. */
 static void tools_faults_glove_dump_counters_match_truth_raw_and_recorded(void **state) {
   char *truth = tt_read_file(tt_path(g_dir, "t.txt"), NULL);
-  const char *inputs[2] = {"s.bin", "s.mrec"};
+  const char *inputs[2] = { "s.bin", "s.mrec" };
   (void)state;
   assert_non_null(truth);
   for (int i = 0; i < 2; i++) {
@@ -131,8 +132,9 @@ static void tools_faults_glove_dump_counters_match_truth_raw_and_recorded(void *
     snprintf(in, sizeof in, "%s", tt_path(g_dir, inputs[i]));
     snprintf(counters, sizeof counters, "%s", tt_path(g_dir, "c.txt"));
     {
-      const char *argv[] = {tt_glove_dump, "-q", "--keep-going", "--counters", counters, in,
-                            NULL};
+      const char *argv[] = {
+        tt_glove_dump, "-q", "--keep-going", "--counters", counters, in, NULL
+      };
       /* 3: the stream holds frames from a foreign spec (wrong-hash faults). */
       assert_int_equal(tt_run(argv, NULL, tt_path(g_dir, "dump.err"), 120), 3);
     }
@@ -175,9 +177,9 @@ static void tools_faults_same_seed_same_bytes(void **state) {
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_faults_every_counter_equals_what_was_injected),
-      cmocka_unit_test(tools_faults_glove_dump_counters_match_truth_raw_and_recorded),
-      cmocka_unit_test(tools_faults_same_seed_same_bytes),
+    cmocka_unit_test(tools_faults_every_counter_equals_what_was_injected),
+    cmocka_unit_test(tools_faults_glove_dump_counters_match_truth_raw_and_recorded),
+    cmocka_unit_test(tools_faults_same_seed_same_bytes),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, setup, teardown);

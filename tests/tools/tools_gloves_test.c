@@ -32,10 +32,11 @@ static void tools_gloves_each_output_is_its_own_glove(void **state) {
   }
   {
     /* Two hands given, the third by default (right, left, right, ...). */
-    const char *argv[] = {tt_glove_gen, "--fast", "-q", "-n", "3000", "--faults", "0.05",
-                          "--seed", "9", "--uid", "0x1000", "--hand", "left", "--hand", "left",
-                          "-o", out[0], "-o", out[1], "-o", out[2],
-                          "--truth", truth[0], "--truth", truth[1], "--truth", truth[2], NULL};
+    const char *argv[] = { tt_glove_gen, "--fast",  "-q",     "-n",      "3000",   "--faults",
+                           "0.05",       "--seed",  "9",      "--uid",   "0x1000", "--hand",
+                           "left",       "--hand",  "left",   "-o",      out[0],   "-o",
+                           out[1],       "-o",      out[2],   "--truth", truth[0], "--truth",
+                           truth[1],     "--truth", truth[2], NULL };
     assert_int_equal(tt_run(argv, NULL, tt_path(dir, "gen.err"), 60), 0);
   }
   for (int k = 0; k < N_GLOVES; k++) {
@@ -62,9 +63,10 @@ static void tools_gloves_each_output_is_its_own_glove(void **state) {
     assert_true(have_info && have_sample);
     {
       const uint64_t got[TT_N_COUNTERS] = {
-          d->c.frames, d->c.crc_errors, d->c.framing_errors, d->c.oversize,
-          d->c.unknown_type, d->c.spec_mismatch, d->c.lost, d->c.duplicates,
-          d->c.reordered, d->c.seq_restarts, d->c.bytes};
+        d->c.frames,       d->c.crc_errors,    d->c.framing_errors, d->c.oversize,
+        d->c.unknown_type, d->c.spec_mismatch, d->c.lost,           d->c.duplicates,
+        d->c.reordered,    d->c.seq_restarts,  d->c.bytes
+      };
       for (size_t i = 0; i < TT_N_COUNTERS; i++)
         if ((long long)got[i] != tt_kv(want, tt_counter_keys[i]))
           fail_msg("glove %d %s: decoder %llu, truth %lld", k, tt_counter_keys[i],
@@ -93,7 +95,7 @@ static void tools_gloves_each_output_is_its_own_glove(void **state) {
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_gloves_each_output_is_its_own_glove),
+    cmocka_unit_test(tools_gloves_each_output_is_its_own_glove),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -238,8 +238,8 @@ static void tools_io_pty_drain_returns_once_the_reader_has_every_byte(void **sta
   pid_t child;
   (void)state;
   fill(sent, TOTAL, 5);
-  read_so_far = mmap(NULL, sizeof *read_so_far, PROT_READ | PROT_WRITE,
-                     MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  read_so_far =
+      mmap(NULL, sizeof *read_so_far, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
   assert_true(read_so_far != MAP_FAILED);
   *read_so_far = 0;
   tt_assert_io_ok(mr_io_open(&master, "pty", MR_IO_WRITE, &err), err);
@@ -255,7 +255,7 @@ static void tools_io_pty_drain_returns_once_the_reader_has_every_byte(void **sta
     }
     for (;;) {
       size_t n = 0;
-      struct timespec ts = {0, 5000000L};
+      struct timespec ts = { 0, 5000000L };
       if (mr_io_read(&slave, buf, sizeof buf, 10000, &n, &err) != MR_IO_OK) break;
       *read_so_far += n;
       nanosleep(&ts, NULL);
@@ -276,7 +276,8 @@ static void expect_open_fails(const char *spec, mr_io_status code, const char *n
   mr_io io;
   mr_io_err err;
   assert_int_equal(mr_io_open(&io, spec, MR_IO_READ, &err), -1);
-  if (err.status != code) fail_msg("%s: code %d, expected %d (%s)", spec, err.status, code, err.msg);
+  if (err.status != code)
+    fail_msg("%s: code %d, expected %d (%s)", spec, err.status, code, err.msg);
   if (!strstr(err.msg, names)) fail_msg("%s: '%s' does not name '%s'", spec, err.msg, names);
 }
 
@@ -300,8 +301,8 @@ static void tools_io_bad_specs_are_errors_that_name_them(void **state) {
  * whether it was named as a path, a serial port (with or without a baud) or
  * a file, so the tools built on mr_io all say it one way. */
 static void tools_io_a_missing_device_fails_with_one_message_for_every_spec(void **state) {
-  const char *specs[] = {"/dev/ttyNOSUCH0", "serial:/dev/ttyNOSUCH0",
-                         "serial:/dev/ttyNOSUCH0@9600", "file:/dev/ttyNOSUCH0"};
+  const char *specs[] = { "/dev/ttyNOSUCH0", "serial:/dev/ttyNOSUCH0",
+                          "serial:/dev/ttyNOSUCH0@9600", "file:/dev/ttyNOSUCH0" };
   (void)state;
   for (size_t i = 0; i < sizeof specs / sizeof specs[0]; i++) {
     mr_io io;
@@ -309,8 +310,8 @@ static void tools_io_a_missing_device_fails_with_one_message_for_every_spec(void
     assert_int_equal(mr_io_open(&io, specs[i], MR_IO_READ, &err), -1);
     if (err.status != MR_IO_ERR_SYSTEM || err.sys_errno != ENOENT ||
         strcmp(err.msg, "/dev/ttyNOSUCH0: cannot open: No such file or directory") != 0)
-      fail_msg("%s: status %s, errno %d, message '%s'", specs[i],
-               mr_io_status_name(err.status), err.sys_errno, err.msg);
+      fail_msg("%s: status %s, errno %d, message '%s'", specs[i], mr_io_status_name(err.status),
+               err.sys_errno, err.msg);
   }
 }
 
@@ -354,16 +355,16 @@ static void tools_io_serial_list_does_not_fail(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
-      cmocka_unit_test(tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read),
-      cmocka_unit_test(tools_io_pty_drain_returns_once_the_reader_has_every_byte),
-      cmocka_unit_test(tools_io_tcp_peer_close_is_hangup),
-      cmocka_unit_test(tools_io_file_and_fifo_end_with_eof),
-      cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),
-      cmocka_unit_test(tools_io_a_missing_device_fails_with_one_message_for_every_spec),
-      cmocka_unit_test(tools_io_status_names_are_distinct_and_only_errors_fail),
-      cmocka_unit_test(tools_io_pty_slave_detection),
-      cmocka_unit_test(tools_io_serial_list_does_not_fail),
+    cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
+    cmocka_unit_test(tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read),
+    cmocka_unit_test(tools_io_pty_drain_returns_once_the_reader_has_every_byte),
+    cmocka_unit_test(tools_io_tcp_peer_close_is_hangup),
+    cmocka_unit_test(tools_io_file_and_fifo_end_with_eof),
+    cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),
+    cmocka_unit_test(tools_io_a_missing_device_fails_with_one_message_for_every_spec),
+    cmocka_unit_test(tools_io_status_names_are_distinct_and_only_errors_fail),
+    cmocka_unit_test(tools_io_pty_slave_detection),
+    cmocka_unit_test(tools_io_serial_list_does_not_fail),
   };
   signal(SIGPIPE, SIG_IGN);
   return cmocka_run_group_tests(tests, NULL, NULL);

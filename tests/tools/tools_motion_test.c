@@ -44,7 +44,9 @@ static const char *write_file(const char *name, const char *text) {
   return path;
 }
 
-static int counts(double v) { return (int)lround(v * GG_ADC_MAX); }
+static int counts(double v) {
+  return (int)lround(v * GG_ADC_MAX);
+}
 
 static void load(gg_motion *m, const char *text) {
   char err[600];
@@ -56,14 +58,13 @@ static void tools_motion_shapes_follow_their_formulas(void **state) {
   gg_motion m;
   uint16_t ch[GG_CHANNELS];
   (void)state;
-  load(&m,
-       "# one shape per finger\n"
-       "duration 12.5\n"
-       "thumb  keys 0:0 1:1 2:0.5:inout\n"
-       "index  step from=0.2 to=0.8 at=1\n"
-       "middle sine mid=0.5 amp=0.4 freq=1 to=3 over=2\n"
-       "ring   const value=0.25\n"
-       "little step from=0 to=1 at=0 period=1 duty=0.5\n");
+  load(&m, "# one shape per finger\n"
+           "duration 12.5\n"
+           "thumb  keys 0:0 1:1 2:0.5:inout\n"
+           "index  step from=0.2 to=0.8 at=1\n"
+           "middle sine mid=0.5 amp=0.4 freq=1 to=3 over=2\n"
+           "ring   const value=0.25\n"
+           "little step from=0 to=1 at=0 period=1 duty=0.5\n");
   assert_true(fabs(m.duration_s - 12.5) < 1e-12);
 
   gg_motion_eval(&m, 0.5, ch);
@@ -94,8 +95,8 @@ static void tools_motion_keys_loop_and_clamp(void **state) {
   (void)state;
   load(&m, "all keys loop=1 0:-0.5 1:1.5\n");
   gg_motion_eval(&m, 0, ch);
-  assert_int_equal(ch[0], 0);      /* clamped to the ADC range */
-  gg_motion_eval(&m, 1.5, ch);     /* looped: same as 0.5 */
+  assert_int_equal(ch[0], 0);  /* clamped to the ADC range */
+  gg_motion_eval(&m, 1.5, ch); /* looped: same as 0.5 */
   assert_int_equal(ch[4], counts(0.5));
   gg_motion_eval(&m, 0.99, ch);
   assert_int_equal(ch[2], GG_ADC_MAX);
@@ -133,10 +134,9 @@ static void tools_motion_csv_track_interpolates(void **state) {
   gg_motion m;
   uint16_t ch[GG_CHANNELS];
   (void)state;
-  write_file("take.csv",
-             "seq,t_us,ch0,ch1,ch2,ch3,ch4,flags,late\n"
-             "0,1000000,0,100,200,300,400,0,0\n"
-             "1,2000000,1000,100,200,300,4095,0,0\n");
+  write_file("take.csv", "seq,t_us,ch0,ch1,ch2,ch3,ch4,flags,late\n"
+                         "0,1000000,0,100,200,300,400,0,0\n"
+                         "1,2000000,1000,100,200,300,4095,0,0\n");
   /* Relative to the script's folder. */
   load(&m, "all csv file=take.csv loop=0\nring csv file=take.csv column=0\n");
   gg_motion_eval(&m, 0.5, ch);
@@ -411,17 +411,17 @@ static void tools_stream_a_stall_never_swallows_the_last_slots(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_motion_shapes_follow_their_formulas),
-      cmocka_unit_test(tools_motion_keys_loop_and_clamp),
-      cmocka_unit_test(tools_motion_walk_is_bounded_and_seeded),
-      cmocka_unit_test(tools_motion_csv_track_interpolates),
-      cmocka_unit_test(tools_motion_mrec_track_follows_the_recorded_samples),
-      cmocka_unit_test(tools_motion_mrec_track_cut_short_keeps_what_came_before),
-      cmocka_unit_test(tools_motion_errors_name_file_line_and_column),
-      cmocka_unit_test(tools_motion_default_stays_in_range_and_moves),
-      cmocka_unit_test(tools_stream_stopped_while_a_reorder_is_held_counts_no_reorder),
-      cmocka_unit_test(tools_stream_never_faults_the_first_or_the_last_two_slots),
-      cmocka_unit_test(tools_stream_a_stall_never_swallows_the_last_slots),
+    cmocka_unit_test(tools_motion_shapes_follow_their_formulas),
+    cmocka_unit_test(tools_motion_keys_loop_and_clamp),
+    cmocka_unit_test(tools_motion_walk_is_bounded_and_seeded),
+    cmocka_unit_test(tools_motion_csv_track_interpolates),
+    cmocka_unit_test(tools_motion_mrec_track_follows_the_recorded_samples),
+    cmocka_unit_test(tools_motion_mrec_track_cut_short_keeps_what_came_before),
+    cmocka_unit_test(tools_motion_errors_name_file_line_and_column),
+    cmocka_unit_test(tools_motion_default_stays_in_range_and_moves),
+    cmocka_unit_test(tools_stream_stopped_while_a_reorder_is_held_counts_no_reorder),
+    cmocka_unit_test(tools_stream_never_faults_the_first_or_the_last_two_slots),
+    cmocka_unit_test(tools_stream_a_stall_never_swallows_the_last_slots),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -12,9 +12,9 @@
 
 #include "tools_roundtrip.h"
 
-#define GEN_ARGS                                                                       \
-  "-n", "6000", "--rate", "2000", "--fast", "--faults", "0.05", "--stall-frames", "1:5", \
-      "--seed", "5"
+#define GEN_ARGS                                                                                   \
+  "-n", "6000", "--rate", "2000", "--fast", "--faults", "0.05", "--stall-frames", "1:5", "--seed", \
+      "5"
 
 static void tools_pty_roundtrip_frames_and_counters_survive_the_pty(void **state) {
   char *dir = tt_tmpdir(), ref_out[1100], path_file[1100], truth[1100], ref_truth[1100];
@@ -34,7 +34,7 @@ static void tools_pty_roundtrip_frames_and_counters_survive_the_pty(void **state
   /* The same stream into a file first: its truth says how many frames the
    * pty must deliver, so glove-dump can stop on the last one. */
   {
-    const char *argv[] = {tt_glove_gen, GEN_ARGS, "-o", ref_out, "--truth", ref_truth, NULL};
+    const char *argv[] = { tt_glove_gen, GEN_ARGS, "-o", ref_out, "--truth", ref_truth, NULL };
     assert_int_equal(tt_run(argv, NULL, NULL, 60), 0);
   }
   ref_text = tt_read_file(ref_truth, NULL);
@@ -42,8 +42,8 @@ static void tools_pty_roundtrip_frames_and_counters_survive_the_pty(void **state
   assert_true(tt_kv(ref_text, "frames") > 5000);
 
   {
-    const char *argv[] = {tt_glove_gen, GEN_ARGS, "-o", "pty", "--path-file", path_file,
-                          "--wait", "60", "--truth", truth, NULL};
+    const char *argv[] = { tt_glove_gen, GEN_ARGS, "-o",      "pty", "--path-file", path_file,
+                           "--wait",     "60",     "--truth", truth, NULL };
     gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
     assert_true(gen > 0);
   }
@@ -55,8 +55,8 @@ static void tools_pty_roundtrip_frames_and_counters_survive_the_pty(void **state
   free(p);
   {
     char count[32];
-    const char *argv[] = {tt_glove_dump, "--csv", "--keep-going", "--count", count,
-                          "--counters", counters, "--idle", "60", dev, NULL};
+    const char *argv[] = { tt_glove_dump, "--csv",  "--keep-going", "--count", count, "--counters",
+                           counters,      "--idle", "60",           dev,       NULL };
     snprintf(count, sizeof count, "%lld", tt_kv(ref_text, "frames"));
     dump_rc = tt_run(argv, csv_path, tt_path(dir, "dump.err"), 120);
   }
@@ -99,14 +99,16 @@ static void tools_pty_roundtrip_unplug_mid_stream_keeps_frames_read(void **state
   snprintf(path_file, sizeof path_file, "%s", tt_path(dir, "pty.path"));
   snprintf(csv_path, sizeof csv_path, "%s", tt_path(dir, "out.csv"));
   {
-    const char *argv[] = {tt_glove_gen, "-n", "100000", "--rate", "500", "--seed", "6",
-                          "--fast", "-o", ref_out, "--truth", ref_truth, NULL};
+    const char *argv[] = { tt_glove_gen, "-n", "100000", "--rate",  "500",     "--seed", "6",
+                           "--fast",     "-o", ref_out,  "--truth", ref_truth, NULL };
     assert_int_equal(tt_run(argv, NULL, NULL, 60), 0);
   }
   {
     /* Real time: 200 s of stream, far more than the test waits for. */
-    const char *argv[] = {tt_glove_gen, "-n", "100000", "--rate", "500", "--seed", "6",
-                          "-o", "pty", "--path-file", path_file, "--wait", "60", NULL};
+    const char *argv[] = {
+      tt_glove_gen, "-n",  "100000",      "--rate",  "500",    "--seed", "6",
+      "-o",         "pty", "--path-file", path_file, "--wait", "60",     NULL
+    };
     gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
     assert_true(gen > 0);
   }
@@ -116,14 +118,14 @@ static void tools_pty_roundtrip_unplug_mid_stream_keeps_frames_read(void **state
   snprintf(dev, sizeof dev, "%.*s", (int)strcspn(p, "\n"), p);
   free(p);
   {
-    const char *argv[] = {tt_glove_dump, "--csv", dev, NULL};
+    const char *argv[] = { tt_glove_dump, "--csv", dev, NULL };
     dump = tt_spawn(argv, csv_path, tt_path(dir, "dump.err"));
     assert_true(dump > 0);
   }
   /* Some frames through (a few KiB of CSV, past stdout's buffering), then
    * pull the plug. */
   while ((stat(csv_path, &st) != 0 || st.st_size < 12000) && waited++ < 6000) {
-    struct timespec ts = {0, 10000000L};
+    struct timespec ts = { 0, 10000000L };
     nanosleep(&ts, NULL);
   }
   assert_true(st.st_size >= 12000);
@@ -163,8 +165,8 @@ static void tools_pty_roundtrip_unplug_mid_stream_keeps_frames_read(void **state
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_pty_roundtrip_frames_and_counters_survive_the_pty),
-      cmocka_unit_test(tools_pty_roundtrip_unplug_mid_stream_keeps_frames_read),
+    cmocka_unit_test(tools_pty_roundtrip_frames_and_counters_survive_the_pty),
+    cmocka_unit_test(tools_pty_roundtrip_unplug_mid_stream_keeps_frames_read),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -10,9 +10,9 @@
 #include "tools_roundtrip.h"
 
 static void run_glove(const char *addr, const char *seed, const char *truth) {
-  const char *argv[] = {tt_glove_gen, "-n", "3000", "--fast", "--faults", "0.05",
-                        "--stall-frames", "1:5", "--seed", seed, "-o", addr,
-                        "--truth", truth, NULL};
+  const char *argv[] = { tt_glove_gen,     "-n",  "3000",   "--fast", "--faults", "0.05",
+                         "--stall-frames", "1:5", "--seed", seed,     "-o",       addr,
+                         "--truth",        truth, NULL };
   assert_int_equal(tt_run(argv, NULL, NULL, 60), 0);
 }
 
@@ -32,9 +32,11 @@ static void tools_reconnect_counters_span_both_connections(void **state) {
   snprintf(csv_path, sizeof csv_path, "%s", tt_path(dir, "out.csv"));
   {
     /* After the second glove leaves, nobody comes back: 2 s later it stops. */
-    const char *argv[] = {tt_glove_dump, "--csv", "--keep-going", "--reconnect", "2",
-                          "--counters", counters, "--path-file", path_file,
-                          "tcp-listen:127.0.0.1:0", NULL};
+    const char *argv[] = {
+      tt_glove_dump, "--csv",  "--keep-going", "--reconnect", "2",
+      "--counters",  counters, "--path-file",  path_file,     "tcp-listen:127.0.0.1:0",
+      NULL
+    };
     dump = tt_spawn(argv, csv_path, tt_path(dir, "dump.err"));
     assert_true(dump > 0);
   }
@@ -97,7 +99,7 @@ static void tools_reconnect_counters_span_both_connections(void **state) {
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_reconnect_counters_span_both_connections),
+    cmocka_unit_test(tools_reconnect_counters_span_both_connections),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, NULL, NULL);

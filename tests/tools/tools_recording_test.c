@@ -100,8 +100,8 @@ static void tools_recording_write_then_read_back_identical(void **state) {
   mr_rec_reader r;
   mr_io_err err;
   uint8_t *data = malloc(MR_REC_MAX_CHUNK + 8); /* chunk i starts at data + i */
-  size_t lens[] = {1, 21, 21, 300, 4096, MR_REC_MAX_CHUNK, 2};
-  uint64_t times[] = {0, 0, 4000000, 4000000, 8000001, 9000000000ull, 9000000001ull};
+  size_t lens[] = { 1, 21, 21, 300, 4096, MR_REC_MAX_CHUNK, 2 };
+  uint64_t times[] = { 0, 0, 4000000, 4000000, 8000001, 9000000000ull, 9000000001ull };
   uint64_t t;
   const uint8_t *d;
   size_t len;
@@ -133,7 +133,7 @@ static void tools_recording_writer_refuses_bad_chunks_and_stays_usable(void **st
   const char *path = tt_path(g_dir, "w.mrec");
   mr_rec_writer w;
   mr_io_err err;
-  uint8_t b[4] = {1, 2, 3, 4};
+  uint8_t b[4] = { 1, 2, 3, 4 };
   int final_rc;
   (void)state;
   assert_int_equal(mr_rec_writer_open(&w, path, 1, 0, &err), 0);
@@ -268,13 +268,13 @@ static void tools_recording_reader_takes_a_sniffed_prefix(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_recording_write_then_read_back_identical),
-      cmocka_unit_test(tools_recording_writer_refuses_bad_chunks_and_stays_usable),
-      cmocka_unit_test(tools_recording_header_malformations_name_their_offset),
-      cmocka_unit_test(tools_recording_longer_header_is_skipped),
-      cmocka_unit_test(tools_recording_chunk_malformations_name_their_offset),
-      cmocka_unit_test(tools_recording_truncated_last_chunk_keeps_the_rest),
-      cmocka_unit_test(tools_recording_reader_takes_a_sniffed_prefix),
+    cmocka_unit_test(tools_recording_write_then_read_back_identical),
+    cmocka_unit_test(tools_recording_writer_refuses_bad_chunks_and_stays_usable),
+    cmocka_unit_test(tools_recording_header_malformations_name_their_offset),
+    cmocka_unit_test(tools_recording_longer_header_is_skipped),
+    cmocka_unit_test(tools_recording_chunk_malformations_name_their_offset),
+    cmocka_unit_test(tools_recording_truncated_last_chunk_keeps_the_rest),
+    cmocka_unit_test(tools_recording_reader_takes_a_sniffed_prefix),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

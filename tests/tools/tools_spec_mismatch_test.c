@@ -13,8 +13,8 @@
 static char *g_dir;
 
 static int setup(void **state) {
-  const char *argv[] = {tt_glove_gen, "--spec-hash", "0x12345678", "-n", "300", "--fast",
-                        "-o", NULL, "--truth", NULL, NULL};
+  const char *argv[] = { tt_glove_gen, "--spec-hash", "0x12345678", "-n", "300", "--fast",
+                         "-o",         NULL,          "--truth",    NULL, NULL };
   char out[1100], truth[1100];
   (void)state;
   g_dir = tt_tmpdir();
@@ -35,7 +35,7 @@ static int teardown(void **state) {
 
 static void tools_spec_mismatch_reported_with_both_hashes_and_exit_3(void **state) {
   char in[1100], line[128], *err, *out;
-  const char *argv[] = {tt_glove_dump, in, NULL};
+  const char *argv[] = { tt_glove_dump, in, NULL };
   (void)state;
   snprintf(in, sizeof in, "%s", tt_path(g_dir, "foreign.bin"));
   assert_int_equal(tt_run(argv, tt_path(g_dir, "out.txt"), tt_path(g_dir, "err.txt"), 60), 3);
@@ -57,7 +57,7 @@ static void tools_spec_mismatch_reported_with_both_hashes_and_exit_3(void **stat
  * truth says, and none is accepted. */
 static void tools_spec_mismatch_every_frame_counted_with_keep_going(void **state) {
   char in[1100], counters[1100], *truth, *text;
-  const char *argv[] = {tt_glove_dump, "-q", "--keep-going", "--counters", counters, in, NULL};
+  const char *argv[] = { tt_glove_dump, "-q", "--keep-going", "--counters", counters, in, NULL };
   (void)state;
   snprintf(in, sizeof in, "%s", tt_path(g_dir, "foreign.bin"));
   snprintf(counters, sizeof counters, "%s", tt_path(g_dir, "counters.txt"));
@@ -80,8 +80,8 @@ static void tools_spec_mismatch_every_frame_counted_with_keep_going(void **state
 /* The host's own stream, by contrast, exits 0 with no mismatch line. */
 static void tools_spec_mismatch_not_reported_for_the_host_spec(void **state) {
   char out[1100], *err;
-  const char *gen[] = {tt_glove_gen, "-n", "300", "--fast", "-o", out, NULL};
-  const char *dump[] = {tt_glove_dump, "-q", out + 5, NULL};
+  const char *gen[] = { tt_glove_gen, "-n", "300", "--fast", "-o", out, NULL };
+  const char *dump[] = { tt_glove_dump, "-q", out + 5, NULL };
   (void)state;
   snprintf(out, sizeof out, "file:%s", tt_path(g_dir, "own.bin"));
   assert_int_equal(tt_run(gen, NULL, NULL, 60), 0);
@@ -95,9 +95,9 @@ static void tools_spec_mismatch_not_reported_for_the_host_spec(void **state) {
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_spec_mismatch_reported_with_both_hashes_and_exit_3),
-      cmocka_unit_test(tools_spec_mismatch_every_frame_counted_with_keep_going),
-      cmocka_unit_test(tools_spec_mismatch_not_reported_for_the_host_spec),
+    cmocka_unit_test(tools_spec_mismatch_reported_with_both_hashes_and_exit_3),
+    cmocka_unit_test(tools_spec_mismatch_every_frame_counted_with_keep_going),
+    cmocka_unit_test(tools_spec_mismatch_not_reported_for_the_host_spec),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -21,9 +21,10 @@ static void tools_tcp_roundtrip_frames_and_counters_survive_loopback(void **stat
   snprintf(counters, sizeof counters, "%s", tt_path(dir, "counters.txt"));
   snprintf(csv_path, sizeof csv_path, "%s", tt_path(dir, "out.csv"));
   {
-    const char *argv[] = {tt_glove_gen, "-n", "20000", "--fast", "--faults", "0.05",
-                          "--seed", "9", "-o", "tcp-listen:127.0.0.1:0",
-                          "--path-file", path_file, "--wait", "60", "--truth", truth, NULL};
+    const char *argv[] = { tt_glove_gen,  "-n",      "20000",  "--fast", "--faults",
+                           "0.05",        "--seed",  "9",      "-o",     "tcp-listen:127.0.0.1:0",
+                           "--path-file", path_file, "--wait", "60",     "--truth",
+                           truth,         NULL };
     gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
     assert_true(gen > 0);
   }
@@ -34,8 +35,8 @@ static void tools_tcp_roundtrip_frames_and_counters_survive_loopback(void **stat
   snprintf(addr, sizeof addr, "tcp:%.*s", (int)strcspn(p, "\n"), p);
   free(p);
   {
-    const char *argv[] = {tt_glove_dump, "--csv", "--keep-going", "--counters", counters,
-                          "--idle", "60", addr, NULL};
+    const char *argv[] = { tt_glove_dump, "--csv", "--keep-going", "--counters", counters,
+                           "--idle",      "60",    addr,           NULL };
     dump_rc = tt_run(argv, csv_path, tt_path(dir, "dump.err"), 120);
   }
   assert_int_equal(tt_wait(gen, 60), 0);
@@ -61,7 +62,7 @@ static void tools_tcp_roundtrip_frames_and_counters_survive_loopback(void **stat
 
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(tools_tcp_roundtrip_frames_and_counters_survive_loopback),
+    cmocka_unit_test(tools_tcp_roundtrip_frames_and_counters_survive_loopback),
   };
   tt_take_args(argc, argv);
   return cmocka_run_group_tests(tests, NULL, NULL);

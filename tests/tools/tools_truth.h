@@ -15,9 +15,10 @@ typedef struct tt_sample {
 } tt_sample;
 
 /* The counter keys, in gp_counters order. */
-static const char *const tt_counter_keys[] = {
-    "frames", "crc_errors", "framing_errors", "oversize", "unknown_type", "spec_mismatch",
-    "lost", "duplicates", "reordered", "seq_restarts", "bytes"};
+static const char *const tt_counter_keys[] = { "frames",       "crc_errors",   "framing_errors",
+                                               "oversize",     "unknown_type", "spec_mismatch",
+                                               "lost",         "duplicates",   "reordered",
+                                               "seq_restarts", "bytes" };
 #define TT_N_COUNTERS (sizeof tt_counter_keys / sizeof tt_counter_keys[0])
 
 /* Up to n unsigned numbers from p, each followed by sep (or the line's end);

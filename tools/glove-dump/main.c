@@ -26,44 +26,43 @@ static void on_signal(int sig) {
 }
 
 static void usage(FILE *f) {
-  fprintf(f,
-"usage: glove-dump [options] [SOURCE]\n"
-"Decodes a glove stream into one line per frame (or CSV) and prints the\n"
-"decoder's counters at the end, on SIGINT too.\n"
-"\n"
-"SOURCE (default -):\n"
-"  -                      stdin\n"
-"  PATH or file:PATH      raw stream bytes, or a .mrec recording (by its magic)\n"
-"  /dev/ttyUSB0, /dev/pts/N, serial:DEV[@BAUD]\n"
-"                         a serial device 8N1 (a pty is opened through termios)\n"
-"  tcp:HOST:PORT          connect;  tcp-listen:[HOST:]PORT  wait for one peer\n"
-"\n"
-"Output:\n"
-"      --csv              SAMPLE frames as CSV (seq,t_us,ch0..ch4,flags,late)\n"
-"  -q, --quiet            no frame lines, only the counters\n"
-"      --no-events        no lines for bad frames (\"! crc error at byte N\")\n"
-"      --counters FILE    also write the counters to FILE (key=value)\n"
-"      --record FILE.mrec record the raw input, as read, with its timing\n"
-"Input:\n"
-"      --baud N           baud for a serial device given without @BAUD (115200)\n"
-"      --realtime         replay a .mrec at its recorded pace (default: at once)\n"
-"      --reconnect SECS   after a hang-up (device unplugged, peer gone), keep\n"
-"                         trying to reopen SOURCE for SECS (0: forever); a\n"
-"                         tcp-listen SOURCE waits for the next peer on the\n"
-"                         same port; the counters carry on across the gap\n"
-"      --idle SECS        stop when nothing arrives for SECS\n"
-"  -n, --count N          stop after N valid frames\n"
-"      --keep-going       go on decoding after a spec mismatch (still exit 3)\n"
-"      --path-file FILE   once SOURCE is open, write where it is (for\n"
-"                         tcp-listen:[HOST:]0, the port the kernel picked)\n"
-"      --list             list serial ports with their USB ids and exit\n"
-"  -h, --help             this text\n"
-"\n"
-"Exit: 0 end of stream or hang-up, 1 error (cannot open, read error,\n"
-"malformed recording, stdout not writable), 2 bad usage (also a SOURCE that\n"
-"does not parse), 3 spec mismatch, 130 SIGINT.\n"
-"A spec mismatch prints exactly:\n"
-"  glove-dump: spec mismatch (device 0xDEVICE, host 0xHOST)\n");
+  fprintf(f, "usage: glove-dump [options] [SOURCE]\n"
+             "Decodes a glove stream into one line per frame (or CSV) and prints the\n"
+             "decoder's counters at the end, on SIGINT too.\n"
+             "\n"
+             "SOURCE (default -):\n"
+             "  -                      stdin\n"
+             "  PATH or file:PATH      raw stream bytes, or a .mrec recording (by its magic)\n"
+             "  /dev/ttyUSB0, /dev/pts/N, serial:DEV[@BAUD]\n"
+             "                         a serial device 8N1 (a pty is opened through termios)\n"
+             "  tcp:HOST:PORT          connect;  tcp-listen:[HOST:]PORT  wait for one peer\n"
+             "\n"
+             "Output:\n"
+             "      --csv              SAMPLE frames as CSV (seq,t_us,ch0..ch4,flags,late)\n"
+             "  -q, --quiet            no frame lines, only the counters\n"
+             "      --no-events        no lines for bad frames (\"! crc error at byte N\")\n"
+             "      --counters FILE    also write the counters to FILE (key=value)\n"
+             "      --record FILE.mrec record the raw input, as read, with its timing\n"
+             "Input:\n"
+             "      --baud N           baud for a serial device given without @BAUD (115200)\n"
+             "      --realtime         replay a .mrec at its recorded pace (default: at once)\n"
+             "      --reconnect SECS   after a hang-up (device unplugged, peer gone), keep\n"
+             "                         trying to reopen SOURCE for SECS (0: forever); a\n"
+             "                         tcp-listen SOURCE waits for the next peer on the\n"
+             "                         same port; the counters carry on across the gap\n"
+             "      --idle SECS        stop when nothing arrives for SECS\n"
+             "  -n, --count N          stop after N valid frames\n"
+             "      --keep-going       go on decoding after a spec mismatch (still exit 3)\n"
+             "      --path-file FILE   once SOURCE is open, write where it is (for\n"
+             "                         tcp-listen:[HOST:]0, the port the kernel picked)\n"
+             "      --list             list serial ports with their USB ids and exit\n"
+             "  -h, --help             this text\n"
+             "\n"
+             "Exit: 0 end of stream or hang-up, 1 error (cannot open, read error,\n"
+             "malformed recording, stdout not writable), 2 bad usage (also a SOURCE that\n"
+             "does not parse), 3 spec mismatch, 130 SIGINT.\n"
+             "A spec mismatch prints exactly:\n"
+             "  glove-dump: spec mismatch (device 0xDEVICE, host 0xHOST)\n");
 }
 
 /* getopt's own messages start with argv[0], often a long path, and take two
@@ -139,7 +138,8 @@ static int feed(dump *D, const uint8_t *p, size_t n) {
     p += used;
     n -= used;
     switch (ev) {
-    case GP_EV_NONE: break;
+    case GP_EV_NONE:
+      break;
     case GP_EV_FRAME:
     case GP_EV_FRAME_LATE:
       if (D->quiet) break;
@@ -187,7 +187,7 @@ static int record(dump *D, const uint8_t *p, size_t n) {
 }
 
 static void sleep_ns(uint64_t ns) {
-  struct timespec ts = {(time_t)(ns / 1000000000ull), (long)(ns % 1000000000ull)};
+  struct timespec ts = { (time_t)(ns / 1000000000ull), (long)(ns % 1000000000ull) };
   while (!g_stop && nanosleep(&ts, &ts) == -1 && errno == EINTR) {
   }
 }
@@ -262,17 +262,34 @@ static int reopen(mr_io *io, const char *spec, double secs) {
 }
 
 int main(int argc, char **argv) {
-  enum { O_CSV = 256, O_NO_EVENTS, O_COUNTERS, O_RECORD, O_BAUD, O_REALTIME, O_RECONNECT,
-         O_IDLE, O_KEEP_GOING, O_LIST, O_PATH_FILE };
-  static const struct option opts[] = {
-      {"csv", no_argument, 0, O_CSV},          {"quiet", no_argument, 0, 'q'},
-      {"no-events", no_argument, 0, O_NO_EVENTS}, {"counters", required_argument, 0, O_COUNTERS},
-      {"record", required_argument, 0, O_RECORD}, {"baud", required_argument, 0, O_BAUD},
-      {"realtime", no_argument, 0, O_REALTIME}, {"reconnect", required_argument, 0, O_RECONNECT},
-      {"idle", required_argument, 0, O_IDLE},   {"count", required_argument, 0, 'n'},
-      {"keep-going", no_argument, 0, O_KEEP_GOING}, {"list", no_argument, 0, O_LIST},
-      {"path-file", required_argument, 0, O_PATH_FILE},
-      {"help", no_argument, 0, 'h'},            {0, 0, 0, 0}};
+  enum {
+    O_CSV = 256,
+    O_NO_EVENTS,
+    O_COUNTERS,
+    O_RECORD,
+    O_BAUD,
+    O_REALTIME,
+    O_RECONNECT,
+    O_IDLE,
+    O_KEEP_GOING,
+    O_LIST,
+    O_PATH_FILE
+  };
+  static const struct option opts[] = { { "csv", no_argument, 0, O_CSV },
+                                        { "quiet", no_argument, 0, 'q' },
+                                        { "no-events", no_argument, 0, O_NO_EVENTS },
+                                        { "counters", required_argument, 0, O_COUNTERS },
+                                        { "record", required_argument, 0, O_RECORD },
+                                        { "baud", required_argument, 0, O_BAUD },
+                                        { "realtime", no_argument, 0, O_REALTIME },
+                                        { "reconnect", required_argument, 0, O_RECONNECT },
+                                        { "idle", required_argument, 0, O_IDLE },
+                                        { "count", required_argument, 0, 'n' },
+                                        { "keep-going", no_argument, 0, O_KEEP_GOING },
+                                        { "list", no_argument, 0, O_LIST },
+                                        { "path-file", required_argument, 0, O_PATH_FILE },
+                                        { "help", no_argument, 0, 'h' },
+                                        { 0, 0, 0, 0 } };
   static dump D;
   const char *spec = "-", *counters_path = NULL, *record_path = NULL, *path_file = NULL;
   char spec_buf[512];
@@ -288,11 +305,21 @@ int main(int argc, char **argv) {
   while ((c = getopt_long(argc, argv, ":qn:h", opts, NULL)) != -1) {
     char *end;
     switch (c) {
-    case O_CSV: D.csv = 1; break;
-    case 'q': D.quiet = 1; break;
-    case O_NO_EVENTS: D.events = 0; break;
-    case O_COUNTERS: counters_path = optarg; break;
-    case O_RECORD: record_path = optarg; break;
+    case O_CSV:
+      D.csv = 1;
+      break;
+    case 'q':
+      D.quiet = 1;
+      break;
+    case O_NO_EVENTS:
+      D.events = 0;
+      break;
+    case O_COUNTERS:
+      counters_path = optarg;
+      break;
+    case O_RECORD:
+      record_path = optarg;
+      break;
     case O_BAUD:
       baud = strtol(optarg, &end, 10);
       if (*end || baud <= 0) {
@@ -300,7 +327,9 @@ int main(int argc, char **argv) {
         return EXIT_USAGE;
       }
       break;
-    case O_REALTIME: realtime = 1; break;
+    case O_REALTIME:
+      realtime = 1;
+      break;
     case O_RECONNECT:
     case O_IDLE: {
       double v = strtod(optarg, &end);
@@ -309,8 +338,10 @@ int main(int argc, char **argv) {
                 c == O_IDLE ? "--idle" : "--reconnect", optarg);
         return EXIT_USAGE;
       }
-      if (c == O_IDLE) idle = v;
-      else reconnect = v;
+      if (c == O_IDLE)
+        idle = v;
+      else
+        reconnect = v;
       break;
     }
     case 'n': {
@@ -322,11 +353,19 @@ int main(int argc, char **argv) {
       D.max_frames = v;
       break;
     }
-    case O_KEEP_GOING: D.keep_going = 1; break;
-    case O_PATH_FILE: path_file = optarg; break;
-    case O_LIST: return list_ports();
-    case 'h': usage(stdout); return 0;
-    default: return bad_option(c, argv);
+    case O_KEEP_GOING:
+      D.keep_going = 1;
+      break;
+    case O_PATH_FILE:
+      path_file = optarg;
+      break;
+    case O_LIST:
+      return list_ports();
+    case 'h':
+      usage(stdout);
+      return 0;
+    default:
+      return bad_option(c, argv);
     }
   }
   if (optind < argc) spec = argv[optind++];
@@ -336,8 +375,7 @@ int main(int argc, char **argv) {
   }
   if (baud && !strchr(spec, '@')) {
     struct stat st;
-    int is_dev = strncmp(spec, "serial:", 7) == 0 ||
-                 (stat(spec, &st) == 0 && S_ISCHR(st.st_mode));
+    int is_dev = strncmp(spec, "serial:", 7) == 0 || (stat(spec, &st) == 0 && S_ISCHR(st.st_mode));
     if (is_dev) {
       snprintf(spec_buf, sizeof spec_buf, "%s%s@%ld",
                strncmp(spec, "serial:", 7) == 0 ? "" : "serial:", spec, baud);

@@ -24,8 +24,8 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-static const char *const finger_names[GG_CHANNELS] = {"thumb", "index", "middle", "ring",
-                                                      "little"};
+static const char *const finger_names[GG_CHANNELS] = { "thumb", "index", "middle", "ring",
+                                                       "little" };
 
 static void gen_init(gg_gen *g) {
   memset(g, 0, sizeof *g);
@@ -75,7 +75,7 @@ typedef struct ctx {
   int line;
   char *err;
   size_t errcap;
-  char dir[1024];  /* the script's folder, for relative track paths */
+  char dir[1024]; /* the script's folder, for relative track paths */
 } ctx;
 
 static int fail(ctx *c, int col, const char *fmt, ...) {
@@ -100,23 +100,25 @@ static int parse_num(ctx *c, const tok *t, const char *s, size_t len, double *ou
   buf[len] = 0;
   errno = 0;
   v = strtod(buf, &end);
-  if (errno || *end || !isfinite(v))
-    return fail(c, t->col, "'%s' is not a finite number", buf);
+  if (errno || *end || !isfinite(v)) return fail(c, t->col, "'%s' is not a finite number", buf);
   *out = v;
   return 0;
 }
 
 static int parse_ease(ctx *c, const tok *t, const char *s, size_t len, gg_ease *out) {
-  static const struct { const char *name; gg_ease e; } names[] = {
-      {"linear", GG_EASE_LINEAR}, {"hold", GG_EASE_HOLD}, {"in", GG_EASE_IN},
-      {"out", GG_EASE_OUT},       {"inout", GG_EASE_INOUT}, {"sine", GG_EASE_SINE}};
+  static const struct {
+    const char *name;
+    gg_ease e;
+  } names[] = {
+    { "linear", GG_EASE_LINEAR }, { "hold", GG_EASE_HOLD },   { "in", GG_EASE_IN },
+    { "out", GG_EASE_OUT },       { "inout", GG_EASE_INOUT }, { "sine", GG_EASE_SINE }
+  };
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
     if (strlen(names[i].name) == len && strncmp(s, names[i].name, len) == 0) {
       *out = names[i].e;
       return 0;
     }
-  return fail(c, t->col, "unknown easing '%.*s' (linear, hold, in, out, inout, sine)",
-              (int)len, s);
+  return fail(c, t->col, "unknown easing '%.*s' (linear, hold, in, out, inout, sine)", (int)len, s);
 }
 
 /* "all", a finger name, a channel number, "1-3", or a comma list of those. */
@@ -191,11 +193,9 @@ static int parse_keys(ctx *c, const tok *toks, int nt, gg_gen *g) {
     if (!c1) return fail(c, t->col, "expected a key TIME:VALUE[:EASE]");
     c2 = memchr(c1 + 1, ':', t->len - (size_t)(c1 + 1 - t->s));
     if (parse_num(c, t, t->s, (size_t)(c1 - t->s), &k.t) != 0) return -1;
-    if (parse_num(c, t, c1 + 1, (size_t)((c2 ? c2 : t->s + t->len) - c1 - 1), &k.v) != 0)
-      return -1;
+    if (parse_num(c, t, c1 + 1, (size_t)((c2 ? c2 : t->s + t->len) - c1 - 1), &k.v) != 0) return -1;
     k.ease = def;
-    if (c2 && parse_ease(c, t, c2 + 1, (size_t)(t->s + t->len - c2 - 1), &k.ease) != 0)
-      return -1;
+    if (c2 && parse_ease(c, t, c2 + 1, (size_t)(t->s + t->len - c2 - 1), &k.ease) != 0) return -1;
     if (g->n_keys && k.t <= g->keys[g->n_keys - 1].t)
       return fail(c, t->col, "key time %g is not after the previous key's %g", k.t,
                   g->keys[g->n_keys - 1].t);
@@ -228,8 +228,8 @@ static int parse_opts(ctx *c, const tok *toks, int nt, const opt *opts, const ch
     for (o = opts; o->name; o++)
       if (key_is(&toks[i], kl, o->name)) break;
     if (!o->name)
-      return fail(c, toks[i].col, "unknown option '%.*s' for %s (%s)", (int)kl, toks[i].s,
-                  shape, names);
+      return fail(c, toks[i].col, "unknown option '%.*s' for %s (%s)", (int)kl, toks[i].s, shape,
+                  names);
     if (parse_num(c, &toks[i], v, vl, o->dst) != 0) return -1;
   }
   return 0;
@@ -255,8 +255,8 @@ static int parse_track(ctx *c, const tok *toks, int nt, const tok *kind, gg_gen 
       if (*column < 0 || *column > 4 || *column != floor(*column))
         return fail(c, toks[i].col, "column must be 0..4");
     } else {
-      return fail(c, toks[i].col, "unknown option '%.*s' for %.*s (file, column, loop)",
-                  (int)kl, toks[i].s, (int)kind->len, kind->s);
+      return fail(c, toks[i].col, "unknown option '%.*s' for %.*s (file, column, loop)", (int)kl,
+                  toks[i].s, (int)kind->len, kind->s);
     }
   }
   if (!file[0]) return fail(c, kind->col, "%.*s needs file=PATH", (int)kind->len, kind->s);
@@ -284,11 +284,12 @@ static int parse_line(ctx *c, gg_motion *m, const tok *toks, int nt) {
     return 0;
   }
   if (parse_channels(c, &toks[0], sel) != 0) return -1;
-  if (nt < 2) return fail(c, toks[0].col + (int)toks[0].len, "expected a motion after the channels");
+  if (nt < 2)
+    return fail(c, toks[0].col + (int)toks[0].len, "expected a motion after the channels");
   kind = &toks[1];
   gen_init(&g);
   if (tok_is(kind, "const")) {
-    opt o[] = {{"value", &g.value}, {NULL, NULL}};
+    opt o[] = { { "value", &g.value }, { NULL, NULL } };
     g.shape = GG_CONST;
     if (parse_opts(c, toks + 2, nt - 2, o, "const", "value") != 0) return -1;
   } else if (tok_is(kind, "keys")) {
@@ -299,9 +300,9 @@ static int parse_line(ctx *c, gg_motion *m, const tok *toks, int nt) {
     }
   } else if (tok_is(kind, "sine")) {
     double phase_deg = 0;
-    opt o[] = {{"mid", &g.mid},     {"amp", &g.amp},        {"freq", &g.freq},
-               {"to", &g.freq_end}, {"over", &g.sweep_s},   {"phase", &phase_deg},
-               {NULL, NULL}};
+    opt o[] = { { "mid", &g.mid },     { "amp", &g.amp },      { "freq", &g.freq },
+                { "to", &g.freq_end }, { "over", &g.sweep_s }, { "phase", &phase_deg },
+                { NULL, NULL } };
     g.shape = GG_SINE;
     g.mid = 0.5;
     g.amp = 0.4;
@@ -313,8 +314,8 @@ static int parse_line(ctx *c, gg_motion *m, const tok *toks, int nt) {
     if (g.sweep_s < 0) return fail(c, kind->col, "over must not be negative");
     g.phase = phase_deg * M_PI / 180.0;
   } else if (tok_is(kind, "step")) {
-    opt o[] = {{"from", &g.from}, {"to", &g.to},     {"at", &g.at},
-               {"period", &g.period}, {"duty", &g.duty}, {NULL, NULL}};
+    opt o[] = { { "from", &g.from },     { "to", &g.to },     { "at", &g.at },
+                { "period", &g.period }, { "duty", &g.duty }, { NULL, NULL } };
     g.shape = GG_STEP;
     g.to = 1;
     g.at = 1;
@@ -323,8 +324,11 @@ static int parse_line(ctx *c, gg_motion *m, const tok *toks, int nt) {
     if (g.period < 0 || g.duty < 0 || g.duty > 1)
       return fail(c, kind->col, "step needs period >= 0 and duty in 0..1");
   } else if (tok_is(kind, "walk")) {
-    opt o[] = {{"start", &g.start}, {"sigma", &g.sigma}, {"min", &g.lo},
-               {"max", &g.hi},      {NULL, NULL}};
+    opt o[] = { { "start", &g.start },
+                { "sigma", &g.sigma },
+                { "min", &g.lo },
+                { "max", &g.hi },
+                { NULL, NULL } };
     g.shape = GG_WALK;
     g.start = 0.5;
     g.sigma = 0.3;
@@ -419,12 +423,18 @@ int gg_motion_load(gg_motion *m, const char *path, uint64_t seed, char *err, siz
 
 static double ease(gg_ease e, double u) {
   switch (e) {
-  case GG_EASE_LINEAR: return u;
-  case GG_EASE_HOLD: return u >= 1 ? 1 : 0;
-  case GG_EASE_IN: return u * u;
-  case GG_EASE_OUT: return 1 - (1 - u) * (1 - u);
-  case GG_EASE_INOUT: return u * u * (3 - 2 * u);
-  case GG_EASE_SINE: return 0.5 - 0.5 * cos(M_PI * u);
+  case GG_EASE_LINEAR:
+    return u;
+  case GG_EASE_HOLD:
+    return u >= 1 ? 1 : 0;
+  case GG_EASE_IN:
+    return u * u;
+  case GG_EASE_OUT:
+    return 1 - (1 - u) * (1 - u);
+  case GG_EASE_INOUT:
+    return u * u * (3 - 2 * u);
+  case GG_EASE_SINE:
+    return 0.5 - 0.5 * cos(M_PI * u);
   }
   return u;
 }
@@ -439,7 +449,10 @@ static double eval_keys(const gg_gen *g, double t) {
   hi = n - 1;
   while (hi - lo > 1) {
     size_t mid = (lo + hi) / 2;
-    if (k[mid].t <= t) lo = mid; else hi = mid;
+    if (k[mid].t <= t)
+      lo = mid;
+    else
+      hi = mid;
   }
   return k[lo].v + (k[hi].v - k[lo].v) * ease(k[hi].ease, (t - k[lo].t) / (k[hi].t - k[lo].t));
 }
@@ -489,12 +502,24 @@ void gg_motion_eval(gg_motion *m, double t_s, uint16_t out[GG_CHANNELS]) {
     gg_gen *g = &m->ch[i];
     double v = 0;
     switch (g->shape) {
-    case GG_CONST: v = g->value; break;
-    case GG_KEYS: v = eval_keys(g, t_s); break;
-    case GG_SINE: v = eval_sine(g, t_s); break;
-    case GG_STEP: v = eval_step(g, t_s); break;
-    case GG_WALK: v = dt > 0 ? eval_walk(g, &m->rng, dt) : g->walk_v; break;
-    case GG_TRACK: v = gg_track_eval(g->track, g->column, t_s, g->loop); break;
+    case GG_CONST:
+      v = g->value;
+      break;
+    case GG_KEYS:
+      v = eval_keys(g, t_s);
+      break;
+    case GG_SINE:
+      v = eval_sine(g, t_s);
+      break;
+    case GG_STEP:
+      v = eval_step(g, t_s);
+      break;
+    case GG_WALK:
+      v = dt > 0 ? eval_walk(g, &m->rng, dt) : g->walk_v;
+      break;
+    case GG_TRACK:
+      v = gg_track_eval(g->track, g->column, t_s, g->loop);
+      break;
     }
     if (!(v > 0)) v = 0; /* also catches NaN */
     if (v > 1) v = 1;

@@ -11,49 +11,55 @@
 
 /* The channel count and full scale of SAMPLE's ch field (protocol/messages.def). */
 #define GG_CHANNELS ((int)GP_SAMPLE_CH_COUNT)
-#define GG_ADC_MAX ((int)GP_SAMPLE_CH_MAX)
+#define GG_ADC_MAX  ((int)GP_SAMPLE_CH_MAX)
 
 typedef enum gg_shape {
   GG_CONST,
-  GG_KEYS,   /* keyframes with easing */
-  GG_SINE,   /* sine, optionally sweeping its frequency */
-  GG_STEP,   /* a step, or a square wave */
-  GG_WALK,   /* random walk */
-  GG_TRACK,  /* a recorded track (CSV or .mrec) */
+  GG_KEYS,  /* keyframes with easing */
+  GG_SINE,  /* sine, optionally sweeping its frequency */
+  GG_STEP,  /* a step, or a square wave */
+  GG_WALK,  /* random walk */
+  GG_TRACK, /* a recorded track (CSV or .mrec) */
 } gg_shape;
 
-typedef enum gg_ease { GG_EASE_LINEAR, GG_EASE_HOLD, GG_EASE_IN, GG_EASE_OUT, GG_EASE_INOUT,
-                       GG_EASE_SINE } gg_ease;
+typedef enum gg_ease {
+  GG_EASE_LINEAR,
+  GG_EASE_HOLD,
+  GG_EASE_IN,
+  GG_EASE_OUT,
+  GG_EASE_INOUT,
+  GG_EASE_SINE
+} gg_ease;
 
 typedef struct gg_key {
   double t, v;
-  gg_ease ease;  /* how the segment arriving at this key moves */
+  gg_ease ease; /* how the segment arriving at this key moves */
 } gg_key;
 
 typedef struct gg_track {
   size_t n;
-  double *t;             /* seconds from the track's start */
-  double *v;             /* n * GG_CHANNELS values, 0..1 */
+  double *t; /* seconds from the track's start */
+  double *v; /* n * GG_CHANNELS values, 0..1 */
   int refs;
 } gg_track;
 
 typedef struct gg_gen {
   gg_shape shape;
-  double value;                  /* CONST */
-  gg_key *keys;                  /* KEYS */
+  double value; /* CONST */
+  gg_key *keys; /* KEYS */
   size_t n_keys;
-  int loop;                      /* KEYS and TRACK: repeat instead of holding */
-  double mid, amp, freq, freq_end, sweep_s, phase;  /* SINE */
-  double from, to, at, period, duty;                /* STEP */
-  double start, sigma, lo, hi, walk_v;              /* WALK */
-  gg_track *track;               /* TRACK */
-  int column;                    /* TRACK: which channel of the track */
+  int loop;                                        /* KEYS and TRACK: repeat instead of holding */
+  double mid, amp, freq, freq_end, sweep_s, phase; /* SINE */
+  double from, to, at, period, duty;               /* STEP */
+  double start, sigma, lo, hi, walk_v;             /* WALK */
+  gg_track *track;                                 /* TRACK */
+  int column;                                      /* TRACK: which channel of the track */
 } gg_gen;
 
 typedef struct gg_motion {
   gg_gen ch[GG_CHANNELS];
-  double duration_s;             /* from the script's `duration`; 0: none */
-  gg_rng rng;                    /* WALK steps */
+  double duration_s; /* from the script's `duration`; 0: none */
+  gg_rng rng;        /* WALK steps */
   double last_t;
   int started;
 } gg_motion;

@@ -9,7 +9,9 @@ typedef struct gg_rng {
   uint64_t s;
 } gg_rng;
 
-static inline void gg_rng_seed(gg_rng *r, uint64_t seed) { r->s = seed; }
+static inline void gg_rng_seed(gg_rng *r, uint64_t seed) {
+  r->s = seed;
+}
 
 static inline uint64_t gg_rng_u64(gg_rng *r) {
   uint64_t z = (r->s += 0x9E3779B97F4A7C15ull);

@@ -7,8 +7,9 @@
 
 #include "gg_stream.h"
 
-const char *const gg_fault_names[GG_F_COUNT] = {
-    "drop", "dup", "reorder", "flip", "truncate", "garbage", "wrong-hash", "stall", "unknown"};
+const char *const gg_fault_names[GG_F_COUNT] = { "drop",       "dup",      "reorder",
+                                                 "flip",       "truncate", "garbage",
+                                                 "wrong-hash", "stall",    "unknown" };
 
 void gg_stream_init(gg_stream *s, const gg_stream_config *cfg, gg_motion *motion, FILE *truth) {
   memset(s, 0, sizeof *s);
@@ -196,8 +197,10 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
   if (info_due(s)) {
     n += put_info(s, s->cfg.spec_hash, out + n);
     s->infos++;
-    if (s->cfg.spec_hash == GP_SPEC_HASH) s->expect.frames++;
-    else s->expect.spec_mismatch++;
+    if (s->cfg.spec_hash == GP_SPEC_HASH)
+      s->expect.frames++;
+    else
+      s->expect.spec_mismatch++;
   }
   if (fault >= 0) s->injected[fault]++;
   switch (fault) {

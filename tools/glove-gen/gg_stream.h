@@ -34,32 +34,32 @@ typedef struct gg_expect {
 } gg_expect;
 
 typedef struct gg_stream_config {
-  double rate_hz;              /* SAMPLE frames per second */
-  uint64_t count;              /* SAMPLE slots; UINT64_MAX: no end */
-  uint32_t spec_hash;          /* what every frame is encoded with */
+  double rate_hz;     /* SAMPLE frames per second */
+  uint64_t count;     /* SAMPLE slots; UINT64_MAX: no end */
+  uint32_t spec_hash; /* what every frame is encoded with */
   uint8_t hand;
   uint32_t uid[3];
   uint32_t baud;
-  double rates[GG_F_COUNT];    /* probability per SAMPLE slot */
-  uint32_t stall_min, stall_max;  /* frames lost per stall */
+  double rates[GG_F_COUNT];      /* probability per SAMPLE slot */
+  uint32_t stall_min, stall_max; /* frames lost per stall */
   uint64_t seed;
 } gg_stream_config;
 
 typedef struct gg_stream {
   gg_stream_config cfg;
-  gg_motion *motion;           /* borrowed */
-  FILE *truth;                 /* intact SAMPLE lines go here as they are sent */
-  gg_rng rng;                  /* faults only, so motion does not depend on them */
-  uint64_t slot;               /* the next SAMPLE slot */
+  gg_motion *motion; /* borrowed */
+  FILE *truth;       /* intact SAMPLE lines go here as they are sent */
+  gg_rng rng;        /* faults only, so motion does not depend on them */
+  uint64_t slot;     /* the next SAMPLE slot */
   uint64_t stall_left;
-  int force_intact;            /* the slot after a reorder must go out intact */
-  int held;                    /* a reordered SAMPLE waits to go after the next */
+  int force_intact; /* the slot after a reorder must go out intact */
+  int held;         /* a reordered SAMPLE waits to go after the next */
   uint8_t held_wire[GP_MAX_WIRE];
   size_t held_len;
   gp_sample held_sample;
-  int foreign_announced;       /* the decoder knows the foreign hash */
+  int foreign_announced; /* the decoder knows the foreign hash */
   uint32_t foreign_hash;
-  uint64_t lost_pending;       /* counted by the decoder once a newer SAMPLE arrives */
+  uint64_t lost_pending; /* counted by the decoder once a newer SAMPLE arrives */
   gg_expect expect;
   uint64_t injected[GG_F_COUNT];
   uint64_t stall_frames;

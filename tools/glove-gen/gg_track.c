@@ -49,7 +49,7 @@ void gg_track_release(gg_track *t) {
 gg_track *gg_track_load_csv(const char *path, char *err, size_t errcap) {
   FILE *f = fopen(path, "r");
   char line[4096];
-  int lineno = 0, tcol = -1, chcol[GG_CHANNELS] = {-1, -1, -1, -1, -1}, have_header = 0;
+  int lineno = 0, tcol = -1, chcol[GG_CHANNELS] = { -1, -1, -1, -1, -1 }, have_header = 0;
   double tscale = 1, t0 = 0, last = -INFINITY;
   size_t cap = 0;
   gg_track *t;
@@ -80,14 +80,13 @@ gg_track *gg_track_load_csv(const char *path, char *err, size_t errcap) {
         } else if (strcmp(fields[i], "t") == 0 || strcmp(fields[i], "t_s") == 0) {
           tcol = i;
           tscale = 1;
-        } else if (strncmp(fields[i], "ch", 2) == 0 && fields[i][2] >= '0' &&
-                   fields[i][2] <= '4' && !fields[i][3]) {
+        } else if (strncmp(fields[i], "ch", 2) == 0 && fields[i][2] >= '0' && fields[i][2] <= '4' &&
+                   !fields[i][3]) {
           chcol[fields[i][2] - '0'] = i;
         }
       }
       if (tcol < 0) {
-        snprintf(err, errcap, "%s:%d:1: header has no time column (t_us, t or t_s)", path,
-                 lineno);
+        snprintf(err, errcap, "%s:%d:1: header has no time column (t_us, t or t_s)", path, lineno);
         goto fail;
       }
       for (int c = 0; c < GG_CHANNELS; c++)
@@ -222,7 +221,10 @@ double gg_track_eval(const gg_track *t, int column, double t_s, int loop) {
   if (t_s >= span) return t->v[(t->n - 1) * GG_CHANNELS + (size_t)column];
   while (hi - lo > 1) {
     size_t mid = (lo + hi) / 2;
-    if (t->t[mid] <= t_s) lo = mid; else hi = mid;
+    if (t->t[mid] <= t_s)
+      lo = mid;
+    else
+      hi = mid;
   }
   {
     double a = t->v[lo * GG_CHANNELS + (size_t)column], b = t->v[hi * GG_CHANNELS + (size_t)column];

@@ -26,59 +26,59 @@ static void on_signal(int sig) {
 
 static void usage(FILE *f) {
   fprintf(f,
-"usage: glove-gen [options]\n"
-"Writes synthetic glove streams (the wire format of protocol/SPEC.md): SAMPLE\n"
-"frames at --rate, INFO first and then once a second, with optional faults.\n"
-"\n"
-"Output (repeat -o for several gloves, each its own stream, uid and hand):\n"
-"  -o, --output SPEC       - (stdout, the default), file:PATH or PATH, pty,\n"
-"                          tcp:HOST:PORT, tcp-listen:[HOST:]PORT, serial:DEV[@BAUD]\n"
-"      --path-file FILE    once every output is open, write one line per output:\n"
-"                          the pty slave path, the listening HOST:PORT, or the spec\n"
-"      --wait SECS         how long a pty or tcp-listen output waits for its\n"
-"                          reader (default: forever)\n"
-"      --linger SECS       at the end, how long to wait for a pty reader to read\n"
-"                          what was sent (default 5)\n"
-"Timing:\n"
-"  -r, --rate HZ           SAMPLE frames per second (default 250; any rate > 0)\n"
-"  -n, --count N           SAMPLE slots per glove (lost ones included)\n"
-"  -d, --duration SECS     the same in seconds of stream time; without either,\n"
-"                          the script's duration, else no end\n"
-"      --fast              as fast as the output takes the bytes (default: real\n"
-"                          time, paced by the monotonic clock)\n"
-"Content:\n"
-"  -s, --script FILE       motion script (tools/README.md); default: each finger\n"
-"                          a slow sine of its own frequency\n"
-"      --seed N            seed for motion and faults (default 1): same seed,\n"
-"                          same bytes\n"
-"      --hand left|right   hand of the next glove (repeatable; default right,\n"
-"                          left, right, ...)\n"
-"      --uid HEX           uid word 0 of glove 0 (glove k gets HEX+k)\n"
-"      --baud N            baud rate announced in INFO (default 115200)\n"
-"      --spec-hash HEX     encode everything with this spec hash, as a device\n"
-"                          built from another definition would (no faults)\n"
-"Faults (RATE is a probability per SAMPLE slot, 0..1; at most one per frame):\n"
-"      --faults RATE       all nine kinds below, RATE split evenly\n"
-"      --drop RATE         frame not sent                      -> lost\n"
-"      --dup RATE          frame sent twice                    -> duplicates\n"
-"      --reorder RATE      frame swapped with the next         -> reordered\n"
-"      --flip RATE         1..3 bits flipped                   -> crc_errors, lost\n"
-"      --truncate RATE     frame cut short                     -> framing_errors, lost\n"
-"      --garbage RATE      burst of noise before the frame     -> oversize\n"
-"      --wrong-hash RATE   frame encoded with a foreign hash   -> spec_mismatch, lost\n"
-"                          (plus one foreign INFO the first time -> spec_mismatch)\n"
-"      --unknown RATE      frame of an undefined type first    -> unknown_type\n"
-"      --stall RATE        unplug/replug: nothing sent for a while -> lost\n"
-"      --stall-frames MIN[:MAX]  frames lost per stall (default 10:100)\n"
-"Records:\n"
-"      --truth FILE        expected decoder counters (key=value) and the intact\n"
-"                          SAMPLEs (sample SEQ T_US CH0..CH4), one per -o, in order\n"
-"      --record FILE.mrec  record the bytes sent, one per -o, in order\n"
-"      --progress          progress on stderr (default when stderr is a terminal)\n"
-"  -q, --quiet             no messages but errors\n"
-"  -h, --help              this text\n"
-"Exit: 0 done (or stopped by SIGINT/SIGTERM), 1 error, 2 bad usage (also: an\n"
-"output spec that does not parse, or stdout is a terminal).\n");
+          "usage: glove-gen [options]\n"
+          "Writes synthetic glove streams (the wire format of protocol/SPEC.md): SAMPLE\n"
+          "frames at --rate, INFO first and then once a second, with optional faults.\n"
+          "\n"
+          "Output (repeat -o for several gloves, each its own stream, uid and hand):\n"
+          "  -o, --output SPEC       - (stdout, the default), file:PATH or PATH, pty,\n"
+          "                          tcp:HOST:PORT, tcp-listen:[HOST:]PORT, serial:DEV[@BAUD]\n"
+          "      --path-file FILE    once every output is open, write one line per output:\n"
+          "                          the pty slave path, the listening HOST:PORT, or the spec\n"
+          "      --wait SECS         how long a pty or tcp-listen output waits for its\n"
+          "                          reader (default: forever)\n"
+          "      --linger SECS       at the end, how long to wait for a pty reader to read\n"
+          "                          what was sent (default 5)\n"
+          "Timing:\n"
+          "  -r, --rate HZ           SAMPLE frames per second (default 250; any rate > 0)\n"
+          "  -n, --count N           SAMPLE slots per glove (lost ones included)\n"
+          "  -d, --duration SECS     the same in seconds of stream time; without either,\n"
+          "                          the script's duration, else no end\n"
+          "      --fast              as fast as the output takes the bytes (default: real\n"
+          "                          time, paced by the monotonic clock)\n"
+          "Content:\n"
+          "  -s, --script FILE       motion script (tools/README.md); default: each finger\n"
+          "                          a slow sine of its own frequency\n"
+          "      --seed N            seed for motion and faults (default 1): same seed,\n"
+          "                          same bytes\n"
+          "      --hand left|right   hand of the next glove (repeatable; default right,\n"
+          "                          left, right, ...)\n"
+          "      --uid HEX           uid word 0 of glove 0 (glove k gets HEX+k)\n"
+          "      --baud N            baud rate announced in INFO (default 115200)\n"
+          "      --spec-hash HEX     encode everything with this spec hash, as a device\n"
+          "                          built from another definition would (no faults)\n"
+          "Faults (RATE is a probability per SAMPLE slot, 0..1; at most one per frame):\n"
+          "      --faults RATE       all nine kinds below, RATE split evenly\n"
+          "      --drop RATE         frame not sent                      -> lost\n"
+          "      --dup RATE          frame sent twice                    -> duplicates\n"
+          "      --reorder RATE      frame swapped with the next         -> reordered\n"
+          "      --flip RATE         1..3 bits flipped                   -> crc_errors, lost\n"
+          "      --truncate RATE     frame cut short                     -> framing_errors, lost\n"
+          "      --garbage RATE      burst of noise before the frame     -> oversize\n"
+          "      --wrong-hash RATE   frame encoded with a foreign hash   -> spec_mismatch, lost\n"
+          "                          (plus one foreign INFO the first time -> spec_mismatch)\n"
+          "      --unknown RATE      frame of an undefined type first    -> unknown_type\n"
+          "      --stall RATE        unplug/replug: nothing sent for a while -> lost\n"
+          "      --stall-frames MIN[:MAX]  frames lost per stall (default 10:100)\n"
+          "Records:\n"
+          "      --truth FILE        expected decoder counters (key=value) and the intact\n"
+          "                          SAMPLEs (sample SEQ T_US CH0..CH4), one per -o, in order\n"
+          "      --record FILE.mrec  record the bytes sent, one per -o, in order\n"
+          "      --progress          progress on stderr (default when stderr is a terminal)\n"
+          "  -q, --quiet             no messages but errors\n"
+          "  -h, --help              this text\n"
+          "Exit: 0 done (or stopped by SIGINT/SIGTERM), 1 error, 2 bad usage (also: an\n"
+          "output spec that does not parse, or stdout is a terminal).\n");
 }
 
 static int die_usage(const char *fmt, const char *arg) {
@@ -129,7 +129,7 @@ static uint64_t unix_ns(void) {
 }
 
 static void sleep_until_ns(uint64_t t) {
-  struct timespec ts = {(time_t)(t / 1000000000ull), (long)(t % 1000000000ull)};
+  struct timespec ts = { (time_t)(t / 1000000000ull), (long)(t % 1000000000ull) };
   while (!g_stop && clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
   }
 }
@@ -144,7 +144,7 @@ typedef struct glove {
   FILE *truth;
   mr_rec_writer rec;
   int recording;
-  int gone;          /* its reader left */
+  int gone; /* its reader left */
   uint64_t frames_written;
 } glove;
 
@@ -181,38 +181,62 @@ static int send_bytes(glove *g, int idx, const uint8_t *buf, size_t len, uint64_
 
 int main(int argc, char **argv) {
   enum {
-    O_PATH_FILE = 256, O_WAIT, O_LINGER, O_FAST, O_SEED, O_HAND, O_UID, O_BAUD, O_SPEC_HASH,
-    O_FAULTS, O_STALL_FRAMES, O_TRUTH, O_RECORD, O_PROGRESS, O_FAULT0
+    O_PATH_FILE = 256,
+    O_WAIT,
+    O_LINGER,
+    O_FAST,
+    O_SEED,
+    O_HAND,
+    O_UID,
+    O_BAUD,
+    O_SPEC_HASH,
+    O_FAULTS,
+    O_STALL_FRAMES,
+    O_TRUTH,
+    O_RECORD,
+    O_PROGRESS,
+    O_FAULT0
   };
   static const struct option opts[] = {
-      {"output", required_argument, 0, 'o'},   {"path-file", required_argument, 0, O_PATH_FILE},
-      {"wait", required_argument, 0, O_WAIT},  {"linger", required_argument, 0, O_LINGER},
-      {"rate", required_argument, 0, 'r'},     {"count", required_argument, 0, 'n'},
-      {"duration", required_argument, 0, 'd'}, {"fast", no_argument, 0, O_FAST},
-      {"script", required_argument, 0, 's'},   {"seed", required_argument, 0, O_SEED},
-      {"hand", required_argument, 0, O_HAND},  {"uid", required_argument, 0, O_UID},
-      {"baud", required_argument, 0, O_BAUD},  {"spec-hash", required_argument, 0, O_SPEC_HASH},
-      {"faults", required_argument, 0, O_FAULTS},
-      {"drop", required_argument, 0, O_FAULT0 + GG_F_DROP},
-      {"dup", required_argument, 0, O_FAULT0 + GG_F_DUP},
-      {"reorder", required_argument, 0, O_FAULT0 + GG_F_REORDER},
-      {"flip", required_argument, 0, O_FAULT0 + GG_F_FLIP},
-      {"truncate", required_argument, 0, O_FAULT0 + GG_F_TRUNCATE},
-      {"garbage", required_argument, 0, O_FAULT0 + GG_F_GARBAGE},
-      {"wrong-hash", required_argument, 0, O_FAULT0 + GG_F_WRONG_HASH},
-      {"stall", required_argument, 0, O_FAULT0 + GG_F_STALL},
-      {"unknown", required_argument, 0, O_FAULT0 + GG_F_UNKNOWN},
-      {"stall-frames", required_argument, 0, O_STALL_FRAMES},
-      {"truth", required_argument, 0, O_TRUTH},   {"record", required_argument, 0, O_RECORD},
-      {"progress", no_argument, 0, O_PROGRESS},   {"quiet", no_argument, 0, 'q'},
-      {"help", no_argument, 0, 'h'},              {0, 0, 0, 0}};
+    { "output", required_argument, 0, 'o' },
+    { "path-file", required_argument, 0, O_PATH_FILE },
+    { "wait", required_argument, 0, O_WAIT },
+    { "linger", required_argument, 0, O_LINGER },
+    { "rate", required_argument, 0, 'r' },
+    { "count", required_argument, 0, 'n' },
+    { "duration", required_argument, 0, 'd' },
+    { "fast", no_argument, 0, O_FAST },
+    { "script", required_argument, 0, 's' },
+    { "seed", required_argument, 0, O_SEED },
+    { "hand", required_argument, 0, O_HAND },
+    { "uid", required_argument, 0, O_UID },
+    { "baud", required_argument, 0, O_BAUD },
+    { "spec-hash", required_argument, 0, O_SPEC_HASH },
+    { "faults", required_argument, 0, O_FAULTS },
+    { "drop", required_argument, 0, O_FAULT0 + GG_F_DROP },
+    { "dup", required_argument, 0, O_FAULT0 + GG_F_DUP },
+    { "reorder", required_argument, 0, O_FAULT0 + GG_F_REORDER },
+    { "flip", required_argument, 0, O_FAULT0 + GG_F_FLIP },
+    { "truncate", required_argument, 0, O_FAULT0 + GG_F_TRUNCATE },
+    { "garbage", required_argument, 0, O_FAULT0 + GG_F_GARBAGE },
+    { "wrong-hash", required_argument, 0, O_FAULT0 + GG_F_WRONG_HASH },
+    { "stall", required_argument, 0, O_FAULT0 + GG_F_STALL },
+    { "unknown", required_argument, 0, O_FAULT0 + GG_F_UNKNOWN },
+    { "stall-frames", required_argument, 0, O_STALL_FRAMES },
+    { "truth", required_argument, 0, O_TRUTH },
+    { "record", required_argument, 0, O_RECORD },
+    { "progress", no_argument, 0, O_PROGRESS },
+    { "quiet", no_argument, 0, 'q' },
+    { "help", no_argument, 0, 'h' },
+    { 0, 0, 0, 0 }
+  };
   static glove gloves[MAX_GLOVES];
   const char *specs[MAX_GLOVES], *truths[MAX_GLOVES], *records[MAX_GLOVES];
   unsigned hands[MAX_GLOVES];
   int n_out = 0, n_truth = 0, n_rec = 0, n_hand = 0;
   const char *script = NULL, *path_file = NULL;
   double rate = 250, duration = -1, wait_s = -1, linger_s = 5, all_faults = 0;
-  double rates[GG_F_COUNT] = {0};
+  double rates[GG_F_COUNT] = { 0 };
   uint64_t count = 0, seed = 1, uid0 = 0, baud = 115200, spec_hash = GP_SPEC_HASH;
   uint32_t stall_min = 10, stall_max = 100;
   int have_count = 0, fast = 0, progress = isatty(STDERR_FILENO), quiet = 0, c, rc = 0;
@@ -229,7 +253,9 @@ int main(int argc, char **argv) {
       if (n_out == MAX_GLOVES) return die_usage("at most 16 outputs%s", "");
       specs[n_out++] = optarg;
       break;
-    case O_PATH_FILE: path_file = optarg; break;
+    case O_PATH_FILE:
+      path_file = optarg;
+      break;
     case O_WAIT:
       if (!parse_double(optarg, &wait_s) || wait_s < 0)
         return die_usage("--wait '%s' is not a number of seconds", optarg);
@@ -251,16 +277,23 @@ int main(int argc, char **argv) {
       if (!parse_double(optarg, &duration) || duration <= 0)
         return die_usage("--duration '%s' is not a positive number of seconds", optarg);
       break;
-    case O_FAST: fast = 1; break;
-    case 's': script = optarg; break;
+    case O_FAST:
+      fast = 1;
+      break;
+    case 's':
+      script = optarg;
+      break;
     case O_SEED:
       if (!parse_u64(optarg, &seed, 0)) return die_usage("--seed '%s' is not an integer", optarg);
       break;
     case O_HAND:
       if (n_hand == MAX_GLOVES) return die_usage("at most 16 hands%s", "");
-      if (strcmp(optarg, "left") == 0) hands[n_hand++] = GP_HAND_LEFT;
-      else if (strcmp(optarg, "right") == 0) hands[n_hand++] = GP_HAND_RIGHT;
-      else return die_usage("--hand '%s' is not left or right", optarg);
+      if (strcmp(optarg, "left") == 0)
+        hands[n_hand++] = GP_HAND_LEFT;
+      else if (strcmp(optarg, "right") == 0)
+        hands[n_hand++] = GP_HAND_RIGHT;
+      else
+        return die_usage("--hand '%s' is not left or right", optarg);
       break;
     case O_UID:
       if (!parse_u64(optarg, &uid0, 16) || uid0 > 0xFFFFFFFFu)
@@ -300,9 +333,15 @@ int main(int argc, char **argv) {
       if (n_rec == MAX_GLOVES) return die_usage("at most 16 recordings%s", "");
       records[n_rec++] = optarg;
       break;
-    case O_PROGRESS: progress = 1; break;
-    case 'q': quiet = 1; break;
-    case 'h': usage(stdout); return 0;
+    case O_PROGRESS:
+      progress = 1;
+      break;
+    case 'q':
+      quiet = 1;
+      break;
+    case 'h':
+      usage(stdout);
+      return 0;
     default:
       if (c >= O_FAULT0 && c < O_FAULT0 + GG_F_COUNT) {
         if (!parse_double(optarg, &d) || d < 0 || d > 1)
@@ -325,8 +364,7 @@ int main(int argc, char **argv) {
       return 2;
     }
   }
-  if (n_truth && n_truth != n_out)
-    return die_usage("give one --truth per output%s", "");
+  if (n_truth && n_truth != n_out) return die_usage("give one --truth per output%s", "");
   if (n_rec && n_rec != n_out) return die_usage("give one --record per output%s", "");
   {
     double sum = 0;
@@ -447,8 +485,8 @@ int main(int argc, char **argv) {
       waited_ms += 200;
       if (g_stop) goto out;
       if (wait_s >= 0 && waited_ms >= wait_s * 1000) {
-        fprintf(stderr, "glove-gen: glove %d: %s: no reader within %g s\n", i,
-                mr_io_path(&g->io), wait_s);
+        fprintf(stderr, "glove-gen: glove %d: %s: no reader within %g s\n", i, mr_io_path(&g->io),
+                wait_s);
         rc = 1;
         goto out;
       }
@@ -497,8 +535,8 @@ int main(int argc, char **argv) {
     if (g->io.kind == MR_IO_PTY) {
       mr_io_status st = mr_io_drain(&g->io, (int)(linger_s * 1000), &err);
       if (st == MR_IO_TIMEOUT && !quiet)
-        fprintf(stderr, "glove-gen: glove %d: %s: the reader left bytes unread after %g s\n",
-                i, mr_io_path(&g->io), linger_s);
+        fprintf(stderr, "glove-gen: glove %d: %s: the reader left bytes unread after %g s\n", i,
+                mr_io_path(&g->io), linger_s);
     }
   }
 

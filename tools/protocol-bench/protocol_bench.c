@@ -15,12 +15,11 @@ static double now_s(void) {
 }
 
 static void usage(FILE *f) {
-  fprintf(f,
-          "usage: protocol-bench [--frames N] [--repeat R] [--chunk BYTES]\n"
-          "Decodes a synthetic stream of N SAMPLE frames (default 1000000) R times\n"
-          "(default 5) and prints the best decoder throughput in MB/s and frames/s,\n"
-          "fed CHUNK bytes per call (default 4096; 1 = byte at a time), plus the wire\n"
-          "bytes per SAMPLE frame and the share of a 115200 and a 921600 8N1 link.\n");
+  fprintf(f, "usage: protocol-bench [--frames N] [--repeat R] [--chunk BYTES]\n"
+             "Decodes a synthetic stream of N SAMPLE frames (default 1000000) R times\n"
+             "(default 5) and prints the best decoder throughput in MB/s and frames/s,\n"
+             "fed CHUNK bytes per call (default 4096; 1 = byte at a time), plus the wire\n"
+             "bytes per SAMPLE frame and the share of a 115200 and a 921600 8N1 link.\n");
 }
 
 static long arg_long(const char *flag, const char *v, long lo, long hi) {
@@ -86,8 +85,7 @@ int main(int argc, char **argv) {
       }
     }
     double t = now_s() - t0;
-    if (t < best)
-      best = t;
+    if (t < best) best = t;
     decoded = d.c.frames;
   }
   free(stream);

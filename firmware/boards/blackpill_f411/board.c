@@ -11,7 +11,7 @@
 
 /* Flash sector 1 (16 KiB at 0x08004000) holds the calibration record. */
 #define CAL_SECTOR 1u
-#define CAL_ADDR 0x08004000u
+#define CAL_ADDR   0x08004000u
 /* Bounds on flash waits: a 16 KiB sector erase takes up to 500 ms
  * (datasheet), each poll well over 10 ns, so this outlasts it. */
 #define FLASH_WAIT_POLLS 100000000u
@@ -77,7 +77,9 @@ static void watchdog_init(void) {
   IWDG_KR = IWDG_KEY_RELOAD;
 }
 
-void fw_hal_watchdog_kick(void) { IWDG_KR = IWDG_KEY_RELOAD; }
+void fw_hal_watchdog_kick(void) {
+  IWDG_KR = IWDG_KEY_RELOAD;
+}
 
 /* PC13 drives the LED's cathode: low lights it. */
 void fw_hal_led(int on) {

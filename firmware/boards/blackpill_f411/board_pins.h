@@ -8,20 +8,20 @@
 #define BOARD_PINS_H
 
 #define BOARD_PIN(port, n) ((((port) - 'A') << 4) | (n))
-#define BOARD_PIN_PORT(p) ((p) >> 4)
-#define BOARD_PIN_NUM(p) ((p) & 15)
+#define BOARD_PIN_PORT(p)  ((p) >> 4)
+#define BOARD_PIN_NUM(p)   ((p)&15)
 
 /* Five string-stretch sensors, one ADC1 input each (PA0 is the KEY button,
  * so the channels start at PA1). */
-#define PIN_CH_THUMB BOARD_PIN('A', 1)  /* ADC1_IN1 */
-#define PIN_CH_INDEX BOARD_PIN('A', 2)  /* ADC1_IN2 */
+#define PIN_CH_THUMB  BOARD_PIN('A', 1) /* ADC1_IN1 */
+#define PIN_CH_INDEX  BOARD_PIN('A', 2) /* ADC1_IN2 */
 #define PIN_CH_MIDDLE BOARD_PIN('A', 3) /* ADC1_IN3 */
-#define PIN_CH_RING BOARD_PIN('A', 4)   /* ADC1_IN4 */
+#define PIN_CH_RING   BOARD_PIN('A', 4) /* ADC1_IN4 */
 #define PIN_CH_LITTLE BOARD_PIN('A', 5) /* ADC1_IN5 */
-#define ADC_CH_THUMB 1
-#define ADC_CH_INDEX 2
+#define ADC_CH_THUMB  1
+#define ADC_CH_INDEX  2
 #define ADC_CH_MIDDLE 3
-#define ADC_CH_RING 4
+#define ADC_CH_RING   4
 #define ADC_CH_LITTLE 5
 
 /* USART1 to the host through a USB-serial adapter (AF7). */

@@ -16,10 +16,10 @@ static volatile uint16_t dma_buf[2][FW_BLOCK_LEN];
 static fw_blockq blocks;
 static uint32_t tick_count;
 
-static const uint8_t channels[FW_N_CH] = {ADC_CH_THUMB, ADC_CH_INDEX, ADC_CH_MIDDLE,
-                                          ADC_CH_RING, ADC_CH_LITTLE};
-static const uint8_t channel_pins[FW_N_CH] = {PIN_CH_THUMB, PIN_CH_INDEX, PIN_CH_MIDDLE,
-                                              PIN_CH_RING, PIN_CH_LITTLE};
+static const uint8_t channels[FW_N_CH] = { ADC_CH_THUMB, ADC_CH_INDEX, ADC_CH_MIDDLE, ADC_CH_RING,
+                                           ADC_CH_LITTLE };
+static const uint8_t channel_pins[FW_N_CH] = { PIN_CH_THUMB, PIN_CH_INDEX, PIN_CH_MIDDLE,
+                                               PIN_CH_RING, PIN_CH_LITTLE };
 
 static void dma_start(void) {
   DMA2_S0CR = 0;
@@ -40,8 +40,8 @@ static void adc_start(void) {
   /* Scan the five channels, one DMA request per conversion, re-armed after
    * every scan (DDS), started on TIM3's TRGO rising edge. */
   ADC1_CR1 = ADC_CR1_SCAN;
-  ADC1_CR2 = ADC_CR2_ADON | ADC_CR2_DMA | ADC_CR2_DDS | ADC_CR2_EXTSEL_TIM3_TRGO |
-             ADC_CR2_EXTEN_RISING;
+  ADC1_CR2 =
+      ADC_CR2_ADON | ADC_CR2_DMA | ADC_CR2_DDS | ADC_CR2_EXTSEL_TIM3_TRGO | ADC_CR2_EXTEN_RISING;
 }
 
 void sampling_start(void) {
@@ -113,4 +113,6 @@ int fw_hal_adc_take(uint16_t block[FW_BLOCK_LEN], uint32_t *tick) {
 }
 
 /* No ADC wait here: the timer starts and the DMA collects every conversion. */
-uint32_t fw_hal_adc_timeouts(void) { return 0; }
+uint32_t fw_hal_adc_timeouts(void) {
+  return 0;
+}

@@ -50,7 +50,9 @@ void USART1_IRQHandler(void) {
   }
 }
 
-size_t fw_hal_uart_tx_free(void) { return FW_TXQ_BYTES - (tx_head - tx_tail); }
+size_t fw_hal_uart_tx_free(void) {
+  return FW_TXQ_BYTES - (tx_head - tx_tail);
+}
 
 void fw_hal_uart_write(const uint8_t *data, size_t n) {
   for (size_t i = 0; i < n; i++) {
@@ -64,7 +66,9 @@ void fw_hal_uart_write(const uint8_t *data, size_t n) {
   __asm volatile("cpsie i" ::: "memory");
 }
 
-int fw_hal_uart_tx_idle(void) { return tx_head == tx_tail && (USART1_SR & USART_SR_TC); }
+int fw_hal_uart_tx_idle(void) {
+  return tx_head == tx_tail && (USART1_SR & USART_SR_TC);
+}
 
 int fw_hal_uart_read(uint8_t *byte) {
   if (rx_head == rx_tail) return 0;

@@ -24,15 +24,15 @@ void fw_default_handler(void) {
 typedef void (*fw_vector)(void);
 
 __attribute__((section(".isr_vector"), used)) static const fw_vector vectors[16 + BOARD_N_IRQ] = {
-    [0] = (fw_vector)(uintptr_t)&_estack,
-    [1] = Reset_Handler,
-    [2 ... 14] = fw_default_handler,
-    [15] = SysTick_Handler,
-    [16 ... 16 + 36] = fw_default_handler,
-    [16 + 37] = USART1_IRQHandler, /* IRQ 37 on the F405 and the F411 */
-    [16 + 38 ... 16 + 55] = fw_default_handler,
-    [16 + 56] = DMA2_Stream0_IRQHandler, /* IRQ 56 on both */
-    [16 + 57 ... 15 + BOARD_N_IRQ] = fw_default_handler,
+  [0] = (fw_vector)(uintptr_t)&_estack,
+  [1] = Reset_Handler,
+  [2 ... 14] = fw_default_handler,
+  [15] = SysTick_Handler,
+  [16 ... 16 + 36] = fw_default_handler,
+  [16 + 37] = USART1_IRQHandler, /* IRQ 37 on the F405 and the F411 */
+  [16 + 38 ... 16 + 55] = fw_default_handler,
+  [16 + 56] = DMA2_Stream0_IRQHandler, /* IRQ 56 on both */
+  [16 + 57 ... 15 + BOARD_N_IRQ] = fw_default_handler,
 };
 
 void Reset_Handler(void) {

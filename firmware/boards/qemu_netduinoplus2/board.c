@@ -15,8 +15,8 @@
 #include "fw_hal.h"
 #include "stm32f4_regs.h"
 
-#define CPU_HZ 168000000u  /* the clock QEMU's SysTick counts */
-#define APB2_HZ 84000000u  /* what USART1 would see on a real F405 */
+#define CPU_HZ    168000000u /* the clock QEMU's SysTick counts */
+#define APB2_HZ   84000000u  /* what USART1 would see on a real F405 */
 #define RXQ_BYTES 64u
 
 static fw_blockq blocks;
@@ -26,8 +26,8 @@ static volatile uint32_t adc_timeouts;
 static volatile uint8_t rxq[RXQ_BYTES];
 static volatile uint32_t rx_head, rx_tail;
 
-static const uint8_t adc_channels[FW_N_CH] = {ADC_CH_THUMB, ADC_CH_INDEX, ADC_CH_MIDDLE,
-                                              ADC_CH_RING, ADC_CH_LITTLE};
+static const uint8_t adc_channels[FW_N_CH] = { ADC_CH_THUMB, ADC_CH_INDEX, ADC_CH_MIDDLE,
+                                               ADC_CH_RING, ADC_CH_LITTLE };
 
 static uint16_t convert(uint8_t channel) {
   ADC1_SQR3 = channel;
@@ -68,11 +68,15 @@ int fw_hal_adc_take(uint16_t block[FW_BLOCK_LEN], uint32_t *tick) {
   return fw_blockq_take(&blocks, block, tick);
 }
 
-uint32_t fw_hal_adc_timeouts(void) { return adc_timeouts; }
+uint32_t fw_hal_adc_timeouts(void) {
+  return adc_timeouts;
+}
 
 /* Transmission is synchronous here: QEMU takes a byte as soon as it is
  * written, so the queue is always empty. */
-size_t fw_hal_uart_tx_free(void) { return FW_TXQ_BYTES; }
+size_t fw_hal_uart_tx_free(void) {
+  return FW_TXQ_BYTES;
+}
 
 void fw_hal_uart_write(const uint8_t *data, size_t n) {
   for (size_t i = 0; i < n; i++) {
@@ -82,7 +86,9 @@ void fw_hal_uart_write(const uint8_t *data, size_t n) {
   }
 }
 
-int fw_hal_uart_tx_idle(void) { return 1; }
+int fw_hal_uart_tx_idle(void) {
+  return 1;
+}
 
 int fw_hal_uart_read(uint8_t *byte) {
   if (rx_head == rx_tail) return 0;
@@ -91,7 +97,9 @@ int fw_hal_uart_read(uint8_t *byte) {
   return 1;
 }
 
-void fw_hal_uart_set_baud(uint32_t baud) { USART1_BRR = (APB2_HZ + baud / 2u) / baud; }
+void fw_hal_uart_set_baud(uint32_t baud) {
+  USART1_BRR = (APB2_HZ + baud / 2u) / baud;
+}
 
 int fw_hal_flash_read(void *data, size_t len) {
   (void)data;
@@ -106,10 +114,16 @@ int fw_hal_flash_write(const void *data, size_t len) {
 }
 
 /* Nothing is stored, so nothing needs erasing. */
-int fw_hal_flash_erase(void) { return 0; }
+int fw_hal_flash_erase(void) {
+  return 0;
+}
 
-void fw_hal_led(int on) { (void)on; }
-int fw_hal_button(void) { return 0; }
+void fw_hal_led(int on) {
+  (void)on;
+}
+int fw_hal_button(void) {
+  return 0;
+}
 void fw_hal_watchdog_kick(void) {}
 
 /* QEMU maps nothing at the unique-id address (a read faults), so the

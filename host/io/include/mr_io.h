@@ -38,25 +38,27 @@ typedef enum mr_io_status {
 } mr_io_status;
 
 /* True for the MR_IO_ERR_* values. */
-static inline int mr_io_failed(mr_io_status st) { return st >= MR_IO_ERR_SYSTEM; }
+static inline int mr_io_failed(mr_io_status st) {
+  return st >= MR_IO_ERR_SYSTEM;
+}
 
 typedef struct mr_io_err {
   mr_io_status status;
-  int sys_errno;   /* for MR_IO_ERR_SYSTEM, else 0 */
+  int sys_errno; /* for MR_IO_ERR_SYSTEM, else 0 */
   char msg[320];
 } mr_io_err;
 
 /* --- sources and sinks ------------------------------------------------------ */
 
 typedef enum mr_io_kind {
-  MR_IO_STDIO,       /* "-": stdin to read, stdout to write */
-  MR_IO_FILE,        /* a regular file */
-  MR_IO_FIFO,        /* a named pipe */
-  MR_IO_PTY,         /* the master side of a pty this process created */
-  MR_IO_TTY,         /* a tty opened through termios (a pty's slave side) */
-  MR_IO_SERIAL,      /* a serial device opened through libserialport */
-  MR_IO_TCP,         /* a connected TCP socket */
-  MR_IO_TCP_LISTEN,  /* a listening socket; the first read/write accepts */
+  MR_IO_STDIO,      /* "-": stdin to read, stdout to write */
+  MR_IO_FILE,       /* a regular file */
+  MR_IO_FIFO,       /* a named pipe */
+  MR_IO_PTY,        /* the master side of a pty this process created */
+  MR_IO_TTY,        /* a tty opened through termios (a pty's slave side) */
+  MR_IO_SERIAL,     /* a serial device opened through libserialport */
+  MR_IO_TCP,        /* a connected TCP socket */
+  MR_IO_TCP_LISTEN, /* a listening socket; the first read/write accepts */
 } mr_io_kind;
 
 enum { MR_IO_READ = 1, MR_IO_WRITE = 2 };
@@ -65,15 +67,15 @@ enum { MR_IO_READ = 1, MR_IO_WRITE = 2 };
 
 typedef struct mr_io {
   mr_io_kind kind;
-  int fd;            /* the descriptor bytes move through (-1 before accept) */
-  int listen_fd;     /* from "tcp-listen:": the listening socket */
-  int mode;          /* MR_IO_READ and/or MR_IO_WRITE */
-  int baud;          /* ttys and serial devices */
-  int port;          /* TCP: the port actually bound or connected */
-  int peer_seen;     /* MR_IO_PTY: a peer has opened the slave side */
-  int borrowed;      /* from mr_io_from_fd: the caller closes fd */
-  char path[256];    /* file or device path, pty slave path, or host:port */
-  void *sp;          /* libserialport's port, for MR_IO_SERIAL */
+  int fd;         /* the descriptor bytes move through (-1 before accept) */
+  int listen_fd;  /* from "tcp-listen:": the listening socket */
+  int mode;       /* MR_IO_READ and/or MR_IO_WRITE */
+  int baud;       /* ttys and serial devices */
+  int port;       /* TCP: the port actually bound or connected */
+  int peer_seen;  /* MR_IO_PTY: a peer has opened the slave side */
+  int borrowed;   /* from mr_io_from_fd: the caller closes fd */
+  char path[256]; /* file or device path, pty slave path, or host:port */
+  void *sp;       /* libserialport's port, for MR_IO_SERIAL */
 } mr_io;
 
 /* Opens a source or sink named by spec:
@@ -98,14 +100,14 @@ void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name);
 /* Reads up to cap bytes, waiting at most timeout_ms (negative: forever).
  * MR_IO_OK sets *got > 0. Bytes that arrived before a hang-up are returned
  * first; the hang-up is reported by the next call. */
-mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms,
-                        size_t *got, mr_io_err *err);
+mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t *got,
+                        mr_io_err *err);
 
 /* Writes all len bytes, waiting at most timeout_ms for the link to take each
  * piece (negative: forever). On anything but MR_IO_OK, *sent (if not NULL)
  * says how many went out. */
-mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
-                         size_t *sent, mr_io_err *err);
+mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms, size_t *sent,
+                         mr_io_err *err);
 
 /* MR_IO_TCP_LISTEN: waits for one peer and adopts it (later reads and writes
  * go to it). Other kinds: MR_IO_OK at once. */
@@ -140,11 +142,11 @@ int mr_io_is_pty_slave(const char *path);
 /* --- serial devices (libserialport) ------------------------------------------ */
 
 typedef struct mr_serial_info {
-  char name[128];          /* /dev/ttyUSB0 */
+  char name[128]; /* /dev/ttyUSB0 */
   char description[128];
   int is_usb;
-  int usb_vid, usb_pid;    /* -1 when not USB */
-  char serial[64];         /* USB serial number, "" if none */
+  int usb_vid, usb_pid; /* -1 when not USB */
+  char serial[64];      /* USB serial number, "" if none */
   char manufacturer[64];
   char product[64];
 } mr_serial_info;
@@ -154,22 +156,22 @@ int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_io_err *err);
 
 /* --- stream recordings (*.mrec; protocol/SPEC.md, "Stream recordings") ----- */
 
-#define MR_REC_MAGIC "MRSTREAM"
-#define MR_REC_VERSION 1u
-#define MR_REC_HEADER_LEN 32u
+#define MR_REC_MAGIC            "MRSTREAM"
+#define MR_REC_VERSION          1u
+#define MR_REC_HEADER_LEN       32u
 #define MR_REC_CHUNK_HEADER_LEN 12u
-#define MR_REC_MAX_CHUNK 1048576u
+#define MR_REC_MAX_CHUNK        1048576u
 
 typedef struct mr_rec_header {
   uint16_t version;
   uint16_t header_len;
-  uint32_t spec_hash;       /* the recorder's; informational */
-  uint64_t start_unix_ns;   /* 0 if unknown */
+  uint32_t spec_hash;     /* the recorder's; informational */
+  uint64_t start_unix_ns; /* 0 if unknown */
 } mr_rec_header;
 
 typedef struct mr_rec_writer {
   int fd;
-  uint64_t offset;          /* bytes written so far */
+  uint64_t offset; /* bytes written so far */
   uint64_t last_t_ns;
   uint64_t chunks;
   char path[256];
@@ -189,12 +191,12 @@ typedef struct mr_rec_reader {
   int fd;
   int owns_fd;
   mr_rec_header header;
-  uint64_t offset;          /* bytes consumed from the file so far */
+  uint64_t offset; /* bytes consumed from the file so far */
   uint64_t last_t_ns;
   uint64_t chunks;
-  uint8_t *data;            /* the current chunk */
+  uint8_t *data; /* the current chunk */
   size_t data_cap;
-  const uint8_t *prefix;    /* bytes already read from fd by the caller */
+  const uint8_t *prefix; /* bytes already read from fd by the caller */
   size_t prefix_len;
   char name[256];
 } mr_rec_reader;
@@ -205,15 +207,15 @@ int mr_rec_reader_open(mr_rec_reader *r, const char *path, mr_io_err *err);
 /* The same over an open descriptor whose first prefix_len bytes the caller has
  * already read (e.g. to sniff the magic); prefix must outlive the header
  * read. name appears in messages. */
-int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name,
-                          const void *prefix, size_t prefix_len, mr_io_err *err);
+int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void *prefix,
+                          size_t prefix_len, mr_io_err *err);
 
 /* The next chunk: 1 with *t_ns, *data (valid until the next call) and *len
  * set; 0 at a clean end of file; -1 on a malformed chunk (MR_IO_ERR_FORMAT) or a
  * final chunk cut short (MR_IO_ERR_TRUNCATED: offset and bytes missing in the
  * message). Every chunk returned before an error is complete. */
-int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data,
-                       size_t *len, mr_io_err *err);
+int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data, size_t *len,
+                       mr_io_err *err);
 
 void mr_rec_reader_close(mr_rec_reader *r);
 

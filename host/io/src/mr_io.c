@@ -59,8 +59,8 @@ static int parse_baud(const char *s, int *baud, const char *spec, mr_io_err *err
   errno = 0;
   v = strtol(s, &end, 10);
   if (errno || end == s || *end || v <= 0 || v > 100000000)
-    return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: baud rate '%s' is not a positive integer",
-                      spec, s);
+    return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: baud rate '%s' is not a positive integer", spec,
+                         s);
   *baud = (int)v;
   return 0;
 }
@@ -82,8 +82,7 @@ static int open_serial(mr_io *io, const char *dev_at_baud, const char *spec, mr_
 
 static int open_file(mr_io *io, const char *path, mr_io_err *err) {
   struct stat st;
-  int flags = (io->mode & MR_IO_WRITE) ? ((io->mode & MR_IO_READ) ? O_RDWR : O_WRONLY)
-                                        : O_RDONLY;
+  int flags = (io->mode & MR_IO_WRITE) ? ((io->mode & MR_IO_READ) ? O_RDWR : O_WRONLY) : O_RDONLY;
   if (io->mode & MR_IO_WRITE) {
     /* A FIFO must not be truncated or replaced: open it as it is. */
     if (!(stat(path, &st) == 0 && S_ISFIFO(st.st_mode))) flags |= O_CREAT | O_TRUNC;
@@ -105,7 +104,9 @@ static int open_file(mr_io *io, const char *path, mr_io_err *err) {
  * /dev/urandom, ...) read and write as plain files; any other is taken for a
  * serial line. Deciding without opening it matters: opening a USB serial
  * port raises DTR, which resets some boards. */
-static int is_mem_device(const struct stat *st) { return major(st->st_rdev) == 1; }
+static int is_mem_device(const struct stat *st) {
+  return major(st->st_rdev) == 1;
+}
 
 int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err) {
   struct stat st;
@@ -138,7 +139,8 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err) {
     const char *port = colon ? colon + 1 : rest;
     if (colon) {
       size_t hn = (size_t)(colon - rest);
-      if (hn >= sizeof host) return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: host name too long", spec);
+      if (hn >= sizeof host)
+        return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: host name too long", spec);
       memcpy(host, rest, hn);
       host[hn] = 0;
       /* [::1]:5000 */
@@ -151,7 +153,7 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err) {
     }
     if (!*host || !*port)
       return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: expected %s", spec,
-                        listen ? "tcp-listen:[HOST:]PORT" : "tcp:HOST:PORT");
+                           listen ? "tcp-listen:[HOST:]PORT" : "tcp:HOST:PORT");
     /* A number, checked here: getaddrinfo takes any digits and keeps the
      * low 16 bits, so 99999 would quietly become port 34463. */
     {
@@ -159,10 +161,9 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err) {
       unsigned long pn = strtoul(port, &end, 10);
       if (*end || port[0] < '0' || port[0] > '9' || pn > 65535 || (!listen && pn == 0))
         return mr_io_err_set(err, MR_IO_ERR_SPEC, "%s: port '%s' is not %s", spec, port,
-                          listen ? "0..65535" : "1..65535");
+                             listen ? "0..65535" : "1..65535");
     }
-    return listen ? mr_io_tcp_listen(io, host, port, err)
-                  : mr_io_tcp_connect(io, host, port, err);
+    return listen ? mr_io_tcp_listen(io, host, port, err) : mr_io_tcp_connect(io, host, port, err);
   }
   if (strncmp(spec, "serial:", 7) == 0) return open_serial(io, spec + 7, spec, err);
   if (stat(spec, &st) == 0 && S_ISCHR(st.st_mode) && !is_mem_device(&st))
@@ -175,8 +176,8 @@ static int is_link_kind(mr_io_kind k) {
 }
 
 static int is_gone_errno(int e) {
-  return e == EIO || e == ECONNRESET || e == ENXIO || e == ENODEV || e == EPIPE ||
-         e == ETIMEDOUT || e == ENOTCONN || e == ESHUTDOWN;
+  return e == EIO || e == ECONNRESET || e == ENXIO || e == ENODEV || e == EPIPE || e == ETIMEDOUT ||
+         e == ENOTCONN || e == ESHUTDOWN;
 }
 
 mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t *got,
@@ -194,7 +195,7 @@ mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t
     if (st != MR_IO_OK) return st;
   }
   for (;;) {
-    struct pollfd p = {io->fd, POLLIN, 0};
+    struct pollfd p = { io->fd, POLLIN, 0 };
     ssize_t n;
     int r = poll(&p, 1, mr_io_ms_left(start, timeout_ms));
     if (r < 0) {
@@ -223,8 +224,8 @@ mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t
   }
 }
 
-mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
-                         size_t *sent, mr_io_err *err) {
+mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms, size_t *sent,
+                         mr_io_err *err) {
   long long start = mr_io_now_ms();
   const uint8_t *p = buf;
   size_t done = 0;
@@ -240,7 +241,7 @@ mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms,
     if (st != MR_IO_OK) goto out;
   }
   while (done < len) {
-    struct pollfd pf = {io->fd, POLLOUT, 0};
+    struct pollfd pf = { io->fd, POLLOUT, 0 };
     ssize_t n;
     int r = poll(&pf, 1, mr_io_ms_left(start, timeout_ms));
     if (r < 0) {
@@ -284,34 +285,54 @@ out:
   return st;
 }
 
-const char *mr_io_path(const mr_io *io) { return io->path; }
+const char *mr_io_path(const mr_io *io) {
+  return io->path;
+}
 
 const char *mr_io_status_name(mr_io_status st) {
   switch (st) {
-  case MR_IO_OK: return "ok";
-  case MR_IO_TIMEOUT: return "timeout";
-  case MR_IO_EOF: return "end of stream";
-  case MR_IO_HANGUP: return "hang-up";
-  case MR_IO_ERR_SYSTEM: return "system error";
-  case MR_IO_ERR_SPEC: return "bad spec";
-  case MR_IO_ERR_SERIAL: return "serial port error";
-  case MR_IO_ERR_FORMAT: return "malformed recording";
-  case MR_IO_ERR_TRUNCATED: return "recording cut short";
-  case MR_IO_ERR_ARG: return "bad argument";
+  case MR_IO_OK:
+    return "ok";
+  case MR_IO_TIMEOUT:
+    return "timeout";
+  case MR_IO_EOF:
+    return "end of stream";
+  case MR_IO_HANGUP:
+    return "hang-up";
+  case MR_IO_ERR_SYSTEM:
+    return "system error";
+  case MR_IO_ERR_SPEC:
+    return "bad spec";
+  case MR_IO_ERR_SERIAL:
+    return "serial port error";
+  case MR_IO_ERR_FORMAT:
+    return "malformed recording";
+  case MR_IO_ERR_TRUNCATED:
+    return "recording cut short";
+  case MR_IO_ERR_ARG:
+    return "bad argument";
   }
   return "?";
 }
 
 const char *mr_io_kind_name(mr_io_kind kind) {
   switch (kind) {
-  case MR_IO_STDIO: return "stdio";
-  case MR_IO_FILE: return "file";
-  case MR_IO_FIFO: return "fifo";
-  case MR_IO_PTY: return "pty";
-  case MR_IO_TTY: return "tty";
-  case MR_IO_SERIAL: return "serial";
-  case MR_IO_TCP: return "tcp";
-  case MR_IO_TCP_LISTEN: return "tcp-listen";
+  case MR_IO_STDIO:
+    return "stdio";
+  case MR_IO_FILE:
+    return "file";
+  case MR_IO_FIFO:
+    return "fifo";
+  case MR_IO_PTY:
+    return "pty";
+  case MR_IO_TTY:
+    return "tty";
+  case MR_IO_SERIAL:
+    return "serial";
+  case MR_IO_TCP:
+    return "tcp";
+  case MR_IO_TCP_LISTEN:
+    return "tcp-listen";
   }
   return "?";
 }

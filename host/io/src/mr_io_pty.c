@@ -15,17 +15,28 @@
 
 static speed_t baud_to_speed(int baud) {
   switch (baud) {
-  case 9600: return B9600;
-  case 19200: return B19200;
-  case 38400: return B38400;
-  case 57600: return B57600;
-  case 115200: return B115200;
-  case 230400: return B230400;
-  case 460800: return B460800;
-  case 921600: return B921600;
-  case 1000000: return B1000000;
-  case 2000000: return B2000000;
-  default: return 0;
+  case 9600:
+    return B9600;
+  case 19200:
+    return B19200;
+  case 38400:
+    return B38400;
+  case 57600:
+    return B57600;
+  case 115200:
+    return B115200;
+  case 230400:
+    return B230400;
+  case 460800:
+    return B460800;
+  case 921600:
+    return B921600;
+  case 1000000:
+    return B1000000;
+  case 2000000:
+    return B2000000;
+  default:
+    return 0;
   }
 }
 
@@ -103,12 +114,12 @@ int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_io_err *err) {
 }
 
 static void sleep_ms(int ms) {
-  struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
+  struct timespec ts = { ms / 1000, (long)(ms % 1000) * 1000000L };
   nanosleep(&ts, NULL);
 }
 
 static int master_hup(const mr_io *io) {
-  struct pollfd p = {io->fd, POLLOUT, 0};
+  struct pollfd p = { io->fd, POLLOUT, 0 };
   return poll(&p, 1, 0) == 1 && (p.revents & POLLHUP);
 }
 

@@ -17,9 +17,10 @@ static int sp_fail(mr_io_err *err, enum sp_return rc, const char *what, const ch
     if (m) sp_free_error_message(m);
   } else {
     mr_io_err_set(err, MR_IO_ERR_SERIAL, "%s: %s: %s", path, what,
-               rc == SP_ERR_ARG ? "invalid argument"
-               : rc == SP_ERR_SUPP ? "not supported by this device"
-               : rc == SP_ERR_MEM ? "out of memory" : "failed");
+                  rc == SP_ERR_ARG    ? "invalid argument"
+                  : rc == SP_ERR_SUPP ? "not supported by this device"
+                  : rc == SP_ERR_MEM  ? "out of memory"
+                                      : "failed");
   }
   return -1;
 }

@@ -41,8 +41,7 @@ static int open_stream(const char *host, const char *port, int listening, int *g
   hints.ai_socktype = SOCK_STREAM;
   hints.ai_flags = listening ? AI_PASSIVE : 0;
   *gai = getaddrinfo(host, port, &hints, &res);
-  if (*gai != 0)
-    return -1;
+  if (*gai != 0) return -1;
   for (ai = res; ai; ai = ai->ai_next) {
     fd = socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
     if (fd < 0) {
@@ -69,8 +68,7 @@ int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_io_err *
   int fd = open_stream(host, port, 0, &gai);
   if (gai != 0)
     return mr_io_err_set(err, MR_IO_ERR_SPEC, "tcp:%s:%s: %s", host, port, gai_strerror(gai));
-  if (fd < 0)
-    return mr_io_err_sys(err, "tcp:%s:%s: cannot connect", host, port);
+  if (fd < 0) return mr_io_err_sys(err, "tcp:%s:%s: cannot connect", host, port);
   set_stream_opts(fd);
   io->fd = fd;
   io->kind = MR_IO_TCP;
@@ -83,9 +81,9 @@ int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_err *e
   int gai;
   int fd = open_stream(host, port, 1, &gai);
   if (gai != 0)
-    return mr_io_err_set(err, MR_IO_ERR_SPEC, "tcp-listen:%s:%s: %s", host, port, gai_strerror(gai));
-  if (fd < 0)
-    return mr_io_err_sys(err, "tcp-listen:%s:%s: cannot listen", host, port);
+    return mr_io_err_set(err, MR_IO_ERR_SPEC, "tcp-listen:%s:%s: %s", host, port,
+                         gai_strerror(gai));
+  if (fd < 0) return mr_io_err_sys(err, "tcp-listen:%s:%s: cannot listen", host, port);
   io->listen_fd = fd;
   io->fd = -1;
   io->kind = MR_IO_TCP_LISTEN;

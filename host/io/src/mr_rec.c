@@ -65,17 +65,17 @@ int mr_rec_writer_add(mr_rec_writer *w, uint64_t t_ns, const void *data, size_t 
   if (w->fd < 0) return mr_io_err_set(err, MR_IO_ERR_ARG, "%s: recording is not open", w->path);
   if (len == 0 || len > MR_REC_MAX_CHUNK)
     return mr_io_err_set(err, MR_IO_ERR_ARG, "%s: byte %llu: chunk length %zu (must be 1..%u)",
-                      w->path, (unsigned long long)w->offset, len, MR_REC_MAX_CHUNK);
+                         w->path, (unsigned long long)w->offset, len, MR_REC_MAX_CHUNK);
   if (t_ns < w->last_t_ns)
     return mr_io_err_set(err, MR_IO_ERR_ARG,
-                      "%s: byte %llu: chunk time %llu ns is before the previous %llu ns",
-                      w->path, (unsigned long long)w->offset, (unsigned long long)t_ns,
-                      (unsigned long long)w->last_t_ns);
+                         "%s: byte %llu: chunk time %llu ns is before the previous %llu ns",
+                         w->path, (unsigned long long)w->offset, (unsigned long long)t_ns,
+                         (unsigned long long)w->last_t_ns);
   put_le(h, t_ns, 8);
   put_le(h + 8, len, 4);
   if (write_all(w->fd, h, sizeof h) != 0 || write_all(w->fd, data, len) != 0)
     return mr_io_err_sys(err, "%s: byte %llu: cannot write a chunk", w->path,
-                      (unsigned long long)w->offset);
+                         (unsigned long long)w->offset);
   w->offset += sizeof h + len;
   w->last_t_ns = t_ns;
   w->chunks++;
@@ -128,32 +128,34 @@ int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void
   if (got < 0) return mr_io_err_sys(err, "%s: byte 0: cannot read the header", r->name);
   if (got < 8 || memcmp(h, MR_REC_MAGIC, 8) != 0)
     return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte 0: not a stream recording (no %s magic)",
-                      r->name, MR_REC_MAGIC);
+                         r->name, MR_REC_MAGIC);
   if (got < (ssize_t)sizeof h)
-    return mr_io_err_set(err, MR_IO_ERR_FORMAT,
-                      "%s: byte %zd: header cut short (%zd of %u bytes)", r->name, got, got,
-                      MR_REC_HEADER_LEN);
+    return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte %zd: header cut short (%zd of %u bytes)",
+                         r->name, got, got, MR_REC_HEADER_LEN);
   r->header.version = (uint16_t)get_le(h + 8, 2);
   r->header.header_len = (uint16_t)get_le(h + 10, 2);
   r->header.spec_hash = (uint32_t)get_le(h + 12, 4);
   r->header.start_unix_ns = get_le(h + 16, 8);
   if (r->header.version != MR_REC_VERSION)
-    return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte 8: unknown version %u (this reader knows %u)",
-                      r->name, r->header.version, MR_REC_VERSION);
+    return mr_io_err_set(err, MR_IO_ERR_FORMAT,
+                         "%s: byte 8: unknown version %u (this reader knows %u)", r->name,
+                         r->header.version, MR_REC_VERSION);
   if (r->header.header_len < MR_REC_HEADER_LEN)
-    return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte 10: header length %u is below %u", r->name,
-                      r->header.header_len, MR_REC_HEADER_LEN);
+    return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte 10: header length %u is below %u",
+                         r->name, r->header.header_len, MR_REC_HEADER_LEN);
   /* A longer header comes from a later minor revision: skip what we do not
    * know. */
   for (size_t skip = r->header.header_len - MR_REC_HEADER_LEN; skip;) {
     uint8_t tmp[256];
     size_t n = skip < sizeof tmp ? skip : sizeof tmp;
     got = read_full(r, tmp, n);
-    if (got < 0) return mr_io_err_sys(err, "%s: byte %llu: cannot read", r->name,
-                                   (unsigned long long)r->offset);
+    if (got < 0)
+      return mr_io_err_sys(err, "%s: byte %llu: cannot read", r->name,
+                           (unsigned long long)r->offset);
     if ((size_t)got < n)
-      return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte %llu: header cut short (%u bytes declared)",
-                        r->name, (unsigned long long)r->offset, r->header.header_len);
+      return mr_io_err_set(err, MR_IO_ERR_FORMAT,
+                           "%s: byte %llu: header cut short (%u bytes declared)", r->name,
+                           (unsigned long long)r->offset, r->header.header_len);
     skip -= n;
   }
   return 0;
@@ -186,36 +188,36 @@ int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data, s
   if (got == 0) return 0;
   if ((size_t)got < sizeof h)
     return mr_io_err_set(err, MR_IO_ERR_TRUNCATED,
-                      "%s: byte %llu: last chunk cut short: %zd of its %u header bytes, "
-                      "at least %zu bytes missing",
-                      r->name, (unsigned long long)at, got, MR_REC_CHUNK_HEADER_LEN,
-                      MR_REC_CHUNK_HEADER_LEN - (size_t)got + 1);
+                         "%s: byte %llu: last chunk cut short: %zd of its %u header bytes, "
+                         "at least %zu bytes missing",
+                         r->name, (unsigned long long)at, got, MR_REC_CHUNK_HEADER_LEN,
+                         MR_REC_CHUNK_HEADER_LEN - (size_t)got + 1);
   t = get_le(h, 8);
   n = (uint32_t)get_le(h + 8, 4);
   if (n == 0 || n > MR_REC_MAX_CHUNK)
     return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte %llu: chunk length %u (must be 1..%u)",
-                      r->name, (unsigned long long)(at + 8), n, MR_REC_MAX_CHUNK);
+                         r->name, (unsigned long long)(at + 8), n, MR_REC_MAX_CHUNK);
   if (t < r->last_t_ns)
-    return mr_io_err_set(err, MR_IO_ERR_FORMAT,
-                      "%s: byte %llu: chunk time %llu ns goes back before %llu ns", r->name,
-                      (unsigned long long)at, (unsigned long long)t,
-                      (unsigned long long)r->last_t_ns);
+    return mr_io_err_set(
+        err, MR_IO_ERR_FORMAT, "%s: byte %llu: chunk time %llu ns goes back before %llu ns",
+        r->name, (unsigned long long)at, (unsigned long long)t, (unsigned long long)r->last_t_ns);
   if (r->data_cap < n) {
     uint8_t *p = realloc(r->data, n);
-    if (!p) return mr_io_err_set(err, MR_IO_ERR_SYSTEM, "%s: byte %llu: out of memory for %u bytes",
-                              r->name, (unsigned long long)at, n);
+    if (!p)
+      return mr_io_err_set(err, MR_IO_ERR_SYSTEM, "%s: byte %llu: out of memory for %u bytes",
+                           r->name, (unsigned long long)at, n);
     r->data = p;
     r->data_cap = n;
   }
   got = read_full(r, r->data, n);
   if (got < 0)
     return mr_io_err_sys(err, "%s: byte %llu: cannot read", r->name,
-                      (unsigned long long)(at + sizeof h));
+                         (unsigned long long)(at + sizeof h));
   if ((size_t)got < n)
     return mr_io_err_set(err, MR_IO_ERR_TRUNCATED,
-                      "%s: byte %llu: last chunk cut short: %zd of %u bytes, %llu missing",
-                      r->name, (unsigned long long)at, got, n,
-                      (unsigned long long)(n - (size_t)got));
+                         "%s: byte %llu: last chunk cut short: %zd of %u bytes, %llu missing",
+                         r->name, (unsigned long long)at, got, n,
+                         (unsigned long long)(n - (size_t)got));
   r->last_t_ns = t;
   r->chunks++;
   *t_ns = t;

@@ -46,12 +46,12 @@ extern "C" {
 typedef enum mr_status {
   MR_OK = 0,
   /* Not failures: the call did its work and has something to report. */
-  MR_DIVERGED = 1,   /* the state went NaN/Inf or past the divergence bound
+  MR_DIVERGED = 1,  /* the state went NaN/Inf or past the divergence bound
                         and was reset to its start configuration (§7) */
-  MR_DEPENDENT = 2,  /* dependent (redundant) constraint rows were found;
+  MR_DEPENDENT = 2, /* dependent (redundant) constraint rows were found;
                         their multipliers are zero, forces stay bounded */
   /* Failures: nothing was changed. */
-  MR_ERR_ARG = -1,          /* NULL pointer, bad count, out-of-range value */
+  MR_ERR_ARG = -1, /* NULL pointer, bad count, out-of-range value */
   MR_ERR_NOMEM = -2,
   MR_ERR_ID = -3,           /* unknown particle/frame/... id */
   MR_ERR_NONFINITE = -4,    /* NaN or Inf in an input */
@@ -64,7 +64,7 @@ typedef enum mr_status {
                                memory, or the method is not built in) */
 } mr_status;
 
-const char *mr_status_name(mr_status s);   /* "ok", "diverged", ... */
+const char *mr_status_name(mr_status s); /* "ok", "diverged", ... */
 
 /* ---------------------------------------------------------- definitions */
 
@@ -88,23 +88,23 @@ const char *mr_status_name(mr_status s);   /* "ok", "diverged", ... */
  *   3. its reader in the scene library, which fills the definition from
  *      mr_default_x_def() and calls mr_world_add_x().
  * Nothing else lists the kinds: names, passes, counters and storage follow. */
-#define MR_FORCE_KINDS(X)                                                                          \
-  X(GRAVITY, gravity, "gravity")                /* m g on every dynamic particle */               \
-  X(DRAG, drag, "drag")                         /* viscous friction −drag·v */                    \
-  X(SPRINGS, springs, "springs")                /* springs and dampers */                         \
-  X(STRINGS, strings, "strings")                /* frame → puppet strings (§6.2) */               \
-  X(ANTIGRAVITY, antigravity, "antigravity")    /* §6.2 antigravity forces */                     \
-  X(TRIGGERED, triggered, "triggered")          /* §6.2 triggered action forces */                \
+#define MR_FORCE_KINDS(X)                                                              \
+  X(GRAVITY, gravity, "gravity")                /* m g on every dynamic particle */    \
+  X(DRAG, drag, "drag")                         /* viscous friction −drag·v */      \
+  X(SPRINGS, springs, "springs")                /* springs and dampers */              \
+  X(STRINGS, strings, "strings")                /* frame → puppet strings (§6.2) */ \
+  X(ANTIGRAVITY, antigravity, "antigravity")    /* §6.2 antigravity forces */         \
+  X(TRIGGERED, triggered, "triggered")          /* §6.2 triggered action forces */    \
   X(SINE_SPRINGS, sine_springs, "sine-springs") /* §6.2 capped sine-shaped springs */
 
 /* The effects that are not applied forces, X(ID, stem, name) alike. */
-#define MR_OTHER_EFFECTS(X)                                                                        \
-  X(CONSTRAINTS, constraints, "constraints")    /* distance, pin, curve, rigid groups */          \
-  X(PLANES, planes, "planes")                   /* floor and other planes (§4.4) */               \
-  X(SELF_COLLISION, self_collision, "self-collision")       /* sphere trees in one puppet */      \
-  X(PUPPET_COLLISION, puppet_collision, "puppet-collision") /* sphere trees between puppets */    \
-  X(STRING_CORRECTION, string_correction, "string-correction") /* §6.2 / [19] */                  \
-  X(FRAMES, frames, "frames")                   /* kinematic control frames */
+#define MR_OTHER_EFFECTS(X)                                                                       \
+  X(CONSTRAINTS, constraints, "constraints")          /* distance, pin, curve, rigid groups */    \
+  X(PLANES, planes, "planes")                         /* floor and other planes (§4.4) */        \
+  X(SELF_COLLISION, self_collision, "self-collision") /* sphere trees in one puppet */            \
+  X(PUPPET_COLLISION, puppet_collision, "puppet-collision")    /* sphere trees between puppets */ \
+  X(STRING_CORRECTION, string_correction, "string-correction") /* §6.2 / [19] */                 \
+  X(FRAMES, frames, "frames")                                  /* kinematic control frames */
 
 #define MR_EFFECTS(X) MR_FORCE_KINDS(X) MR_OTHER_EFFECTS(X)
 
@@ -116,13 +116,13 @@ enum mr_effect_bit {
 #define MR_X_(id, stem, name) MR_EFFECT_BIT_##id,
   MR_EFFECTS(MR_X_)
 #undef MR_X_
-  MR_EFFECT_COUNT
+      MR_EFFECT_COUNT
 };
 enum {
 #define MR_X_(id, stem, name) MR_EFFECT_##id = 1u << MR_EFFECT_BIT_##id,
   MR_EFFECTS(MR_X_)
 #undef MR_X_
-  MR_EFFECT_ALL = (1u << MR_EFFECT_COUNT) - 1u
+      MR_EFFECT_ALL = (1u << MR_EFFECT_COUNT) - 1u
 };
 
 /* The name of one effect bit ("gravity", "sine-springs", ...), or "unknown"
@@ -141,7 +141,7 @@ typedef enum mr_pass {
 #define MR_X_(id, stem, name) MR_PASS_##id,
   MR_FORCE_KINDS(MR_X_)
 #undef MR_X_
-  MR_PASS_CONSTRAINTS,      /* rows of C, J, J̇q̇ for the solve */
+      MR_PASS_CONSTRAINTS,  /* rows of C, J, J̇q̇ for the solve */
   MR_PASS_SOLVE,            /* J M⁻¹ Jᵀ λ = b, eq. 8 (and eq. 9) */
   MR_PASS_PLANES,           /* particle–plane detection and contacts */
   MR_PASS_SELF_COLLISION,   /* sphere-tree traversal within puppets */
@@ -150,74 +150,74 @@ typedef enum mr_pass {
   MR_PASS_COUNT
 } mr_pass;
 
-const char *mr_pass_name(mr_pass p); /* "gravity", "solve", ...; "unknown" */
+const char *mr_pass_name(mr_pass p);               /* "gravity", "solve", ...; "unknown" */
 int mr_pass_parse(const char *name, mr_pass *out); /* 0, or -1 if unknown */
 
 /* ----------------------------------------------------------- integrators */
 
-#define MR_INTEGRATORS(X)                                                                          \
-  X(RK4, "rk4")                                 /* default, §4.2 */                               \
-  X(EULER, "euler")                             /* explicit Euler */                              \
-  X(SEMI_IMPLICIT_EULER, "semi-implicit-euler") /* velocity first, then position */               \
+#define MR_INTEGRATORS(X)                                                           \
+  X(RK4, "rk4")                                 /* default, §4.2 */                \
+  X(EULER, "euler")                             /* explicit Euler */                \
+  X(SEMI_IMPLICIT_EULER, "semi-implicit-euler") /* velocity first, then position */ \
   X(MIDPOINT, "midpoint")
 
 typedef enum mr_integrator {
 #define MR_X_(id, name) MR_INTEGRATOR_##id,
   MR_INTEGRATORS(MR_X_)
 #undef MR_X_
-  MR_INTEGRATOR_COUNT
+      MR_INTEGRATOR_COUNT
 } mr_integrator;
 
-const char *mr_integrator_name(mr_integrator i); /* "rk4", ...; "unknown" */
+const char *mr_integrator_name(mr_integrator i);               /* "rk4", ...; "unknown" */
 int mr_integrator_parse(const char *name, mr_integrator *out); /* 0, or -1 if unknown */
 
 /* ----------------------------------------------------------------- world */
 
-typedef struct mr_world mr_world;   /* opaque */
+typedef struct mr_world mr_world; /* opaque */
 
 typedef struct mr_world_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_world_def() */
-  double gravity[3];          /* m/s²; default (0, −9.81, 0): y is up */
-  uint32_t effects;           /* MR_EFFECT_* bits; default GRAVITY|CONSTRAINTS */
-  mr_integrator integrator;   /* default RK4 */
+  uint32_t cookie;          /* MR_DEF_COOKIE, set by mr_default_world_def() */
+  double gravity[3];        /* m/s²; default (0, −9.81, 0): y is up */
+  uint32_t effects;         /* MR_EFFECT_* bits; default GRAVITY|CONSTRAINTS */
+  mr_integrator integrator; /* default RK4 */
 
   /* Adaptive time step (§4.5, §7). */
-  double dt_initial;          /* first step, s; default 0.02 */
-  double dt_min, dt_max;      /* bounds, s; default 0.01, 0.05 */
-  double deviation_low;       /* grow Δt below this relative deviation;
+  double dt_initial;       /* first step, s; default 0.02 */
+  double dt_min, dt_max;   /* bounds, s; default 0.01, 0.05 */
+  double deviation_low;    /* grow Δt below this relative deviation;
                                  default 1e-4 (0.01 %) */
-  double deviation_high;      /* reject and shrink above it; default 1e-2 */
-  double deviation_length;    /* length dividing absolute deviations of pins
+  double deviation_high;   /* reject and shrink above it; default 1e-2 */
+  double deviation_length; /* length dividing absolute deviations of pins
                                  and curves, m; default 1 */
-  double divergence_bound;    /* relative deviation treated as divergence
+  double divergence_bound; /* relative deviation treated as divergence
                                  (§7); default 0.5 */
-  int max_steps_per_call;     /* guard for mr_world_step_to; default 1000000 */
+  int max_steps_per_call;  /* guard for mr_world_step_to; default 1000000 */
 
   /* The constraint solve (§4.3, §5.2). */
-  mr_solve_method solver;     /* default MR_SOLVE_LDLT */
-  double solver_tolerance;    /* iterative methods; default 1e-10 */
-  int solver_max_iterations;  /* iterative methods; default 1000 */
-  double ks, kd;              /* correction gains of eq. 7/8 (1/s², 1/s);
+  mr_solve_method solver;    /* default MR_SOLVE_LDLT */
+  double solver_tolerance;   /* iterative methods; default 1e-10 */
+  int solver_max_iterations; /* iterative methods; default 1000 */
+  double ks, kd;             /* correction gains of eq. 7/8 (1/s², 1/s);
                                  default 100, 20 (critically damped) */
 
-  double drag;                /* viscous friction, N·s/m; default 0.1 */
+  double drag; /* viscous friction, N·s/m; default 0.1 */
 
   /* Contacts (§4.4, §5.4). */
-  double contact_slop;        /* |χ| within this is "touching", m; default 1e-4 */
-  double rest_speed;          /* impacts slower than this are inelastic and
+  double contact_slop; /* |χ| within this is "touching", m; default 1e-4 */
+  double rest_speed;   /* impacts slower than this are inelastic and
                                  become resting contacts, m/s; default 0.05 */
 
   /* String correction (§6.2, [19]). */
-  double string_max_stretch;  /* allowed relative over-length; default 0.1 */
-  int string_correction_iterations;  /* default 10 */
+  double string_max_stretch;        /* allowed relative over-length; default 0.1 */
+  int string_correction_iterations; /* default 10 */
 } mr_world_def;
 
 mr_world_def mr_default_world_def(void);
 
 /* Creates a world. On failure *out_world is NULL and msg (if not NULL)
  * holds a line naming the bad field. */
-mr_status mr_world_create(const mr_world_def *def, mr_world **out_world,
-                          char *msg, size_t msg_size);
+mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *msg,
+                          size_t msg_size);
 void mr_world_destroy(mr_world *w);
 
 /* The message of the last failure or report on this world ("" if none). */
@@ -226,13 +226,13 @@ const char *mr_world_last_error(const mr_world *w);
 /* ------------------------------------------------------------- particles */
 
 typedef struct mr_particle_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_particle_def() */
-  double mass;          /* kg, > 0 (ignored for frame particles); default 1 */
-  double position[3];   /* m, world coordinates */
-  double velocity[3];   /* m/s */
-  double radius;        /* collision radius / model extent, m, ≥ 0; default 0 */
-  int puppet;           /* puppet this particle belongs to, ≥ 0; default 0 */
-  int frame;            /* control frame carrying it kinematically, or −1
+  uint32_t cookie;    /* MR_DEF_COOKIE, set by mr_default_particle_def() */
+  double mass;        /* kg, > 0 (ignored for frame particles); default 1 */
+  double position[3]; /* m, world coordinates */
+  double velocity[3]; /* m/s */
+  double radius;      /* collision radius / model extent, m, ≥ 0; default 0 */
+  int puppet;         /* puppet this particle belongs to, ≥ 0; default 0 */
+  int frame;          /* control frame carrying it kinematically, or −1
                            (default). Its offset in the frame is taken from
                            position and the frame's current pose. */
 } mr_particle_def;
@@ -247,15 +247,16 @@ mr_status mr_world_particle_state(const mr_world *w, int id, double pos[3], doub
  * the number copied. */
 int mr_world_positions(const mr_world *w, double *xyz, int count);
 /* Overwrites a dynamic particle's state (e.g. a scene's initial kick). */
-mr_status mr_world_set_particle_state(mr_world *w, int id, const double pos[3], const double vel[3]);
+mr_status mr_world_set_particle_state(mr_world *w, int id, const double pos[3],
+                                      const double vel[3]);
 
 /* --------------------------------------------------------- control frame */
 
 /* Poses are mr_pose (mr_pose.h): a position and a unit quaternion. */
 
 typedef struct mr_frame_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_frame_def() */
-  mr_pose pose;            /* initial pose; default identity */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_frame_def() */
+  mr_pose pose;    /* initial pose; default identity */
 } mr_frame_def;
 
 mr_frame_def mr_default_frame_def(void);
@@ -275,11 +276,11 @@ mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out);
  * damping): F_a = −(stiffness (d − rest) + damping ḋ) û, F_b = −F_a.
  * A damper is a spring with stiffness 0. Needs MR_EFFECT_SPRINGS. */
 typedef struct mr_spring_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_spring_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_spring_def() */
   int a, b;
-  double rest_length;   /* m; < 0 (default) = the current distance */
-  double stiffness;     /* N/m; default 100 */
-  double damping;       /* N·s/m; default 1 */
+  double rest_length; /* m; < 0 (default) = the current distance */
+  double stiffness;   /* N/m; default 100 */
+  double damping;     /* N·s/m; default 1 */
 } mr_spring_def;
 mr_spring_def mr_default_spring_def(void);
 mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id);
@@ -288,11 +289,11 @@ mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id
  * a spring/damper that only pulls (slack when shorter than rest_length).
  * Needs MR_EFFECT_STRINGS; corrected by MR_EFFECT_STRING_CORRECTION. */
 typedef struct mr_string_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_string_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_string_def() */
   int frame_particle, puppet_particle;
-  double rest_length;   /* < 0 (default) = current distance */
-  double stiffness;     /* default 500 */
-  double damping;       /* default 5 */
+  double rest_length; /* < 0 (default) = current distance */
+  double stiffness;   /* default 500 */
+  double damping;     /* default 5 */
 } mr_string_def;
 mr_string_def mr_default_string_def(void);
 mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id);
@@ -302,10 +303,10 @@ mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id
  *   F = −g · fraction · M_puppet · min(d/d0, max_scale),
  * d = |x_trigger − x_acted|, d0 = d when added. Needs MR_EFFECT_ANTIGRAVITY. */
 typedef struct mr_antigravity_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_antigravity_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_antigravity_def() */
   int acted, trigger;
-  double fraction;      /* default 0.5 */
-  double max_scale;     /* default 2 */
+  double fraction;  /* default 0.5 */
+  double max_scale; /* default 2 */
 } mr_antigravity_def;
 mr_antigravity_def mr_default_antigravity_def(void);
 mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, int *out_id);
@@ -315,10 +316,10 @@ mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, i
  *   F = clamp(gain · M_puppet · (d − d0), ±max_force) · û(acted → control),
  * d = |x_control − x_trigger|. Needs MR_EFFECT_TRIGGERED. */
 typedef struct mr_triggered_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_triggered_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_triggered_def() */
   int acted, control, trigger;
-  double gain;          /* N/(kg·m); default 10 */
-  double max_force;     /* N; default 100 */
+  double gain;      /* N/(kg·m); default 10 */
+  double max_force; /* N; default 100 */
 } mr_triggered_def;
 mr_triggered_def mr_default_triggered_def(void);
 mr_status mr_world_add_triggered(mr_world *w, const mr_triggered_def *def, int *out_id);
@@ -328,12 +329,12 @@ mr_status mr_world_add_triggered(mr_world *w, const mr_triggered_def *def, int *
  *   |F| = max_force · sin(π/2 · min(|d − rest|/reach, 1)), plus damping ḋ,
  * along the line, restoring. Needs MR_EFFECT_SINE_SPRINGS. */
 typedef struct mr_sine_spring_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_sine_spring_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_sine_spring_def() */
   int a, b;
-  double rest_length;   /* < 0 (default) = current distance */
-  double max_force;     /* N; default 50 */
-  double reach;         /* m; default 0.1 */
-  double damping;       /* N·s/m; default 1 */
+  double rest_length; /* < 0 (default) = current distance */
+  double max_force;   /* N; default 50 */
+  double reach;       /* m; default 0.1 */
+  double damping;     /* N·s/m; default 1 */
 } mr_sine_spring_def;
 mr_sine_spring_def mr_default_sine_spring_def(void);
 mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, int *out_id);
@@ -343,19 +344,19 @@ mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, i
 
 /* C = |x_a − x_b| − length. */
 typedef struct mr_distance_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_distance_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_distance_def() */
   int a, b;
-  double length;        /* > 0; < 0 (default) = current distance */
+  double length; /* > 0; < 0 (default) = current distance */
 } mr_distance_def;
 mr_distance_def mr_default_distance_def(void);
 mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *out_id);
 
 /* C = x − point (3 rows). */
 typedef struct mr_pin_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_pin_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_pin_def() */
   int particle;
   double point[3];
-  int at_current;       /* nonzero (default): point = current position */
+  int at_current; /* nonzero (default): point = current position */
 } mr_pin_def;
 mr_pin_def mr_default_pin_def(void);
 mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id);
@@ -365,19 +366,19 @@ mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id);
  * increasing, copied) or a callback. Before the first / after the last key
  * the curve holds its end point. */
 typedef enum mr_curve_interp {
-  MR_CURVE_CATMULL_ROM = 0,  /* C¹ cubic through the keys, at rest at the
+  MR_CURVE_CATMULL_ROM = 0, /* C¹ cubic through the keys, at rest at the
                                 first and last key (default) */
-  MR_CURVE_LINEAR            /* polyline: ċ piecewise constant, c̈ = 0 */
+  MR_CURVE_LINEAR           /* polyline: ċ piecewise constant, c̈ = 0 */
 } mr_curve_interp;
 typedef void (*mr_curve_fn)(void *user, double t, double pos[3], double vel[3], double acc[3]);
 typedef struct mr_curve_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_curve_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_curve_def() */
   int particle;
-  int key_count;            /* ≥ 1 when fn is NULL */
-  const double *times;      /* key_count */
-  const double *points;     /* 3·key_count */
+  int key_count;        /* ≥ 1 when fn is NULL */
+  const double *times;  /* key_count */
+  const double *points; /* 3·key_count */
   mr_curve_interp interp;
-  mr_curve_fn fn;           /* if not NULL, used instead of the keys */
+  mr_curve_fn fn; /* if not NULL, used instead of the keys */
   void *user;
 } mr_curve_def;
 mr_curve_def mr_default_curve_def(void);
@@ -389,9 +390,9 @@ mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id);
  * nearest such), so no constraint is dependent. Two or three particles give
  * a link or a triangle. */
 typedef struct mr_rigid_group_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_rigid_group_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_rigid_group_def() */
   const int *particles;
-  int count;                /* ≥ 2 */
+  int count; /* ≥ 2 */
 } mr_rigid_group_def;
 mr_rigid_group_def mr_default_rigid_group_def(void);
 mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, int *out_id);
@@ -404,11 +405,11 @@ int mr_world_constraint_rows(const mr_world *w);
 /* Plane n·x = offset (n normalised on entry); particles stay on the side n
  * points to, at distance ≥ their radius. Needs MR_EFFECT_PLANES. */
 typedef struct mr_plane_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_plane_def() */
-  double normal[3];     /* default (0, 1, 0): the floor */
-  double offset;        /* default 0 */
-  double restitution;   /* 0..1; default 0.5 */
-  double friction;      /* Coulomb μ ≥ 0; default 0.3 */
+  uint32_t cookie;    /* MR_DEF_COOKIE, set by mr_default_plane_def() */
+  double normal[3];   /* default (0, 1, 0): the floor */
+  double offset;      /* default 0 */
+  double restitution; /* 0..1; default 0.5 */
+  double friction;    /* Coulomb μ ≥ 0; default 0.3 */
 } mr_plane_def;
 mr_plane_def mr_default_plane_def(void);
 mr_status mr_world_add_plane(mr_world *w, const mr_plane_def *def, int *out_id);
@@ -421,13 +422,13 @@ mr_status mr_world_add_plane(mr_world *w, const mr_plane_def *def, int *out_id);
  * adjacent and never tested against each other. Needs
  * MR_EFFECT_SELF_COLLISION or MR_EFFECT_PUPPET_COLLISION. */
 typedef struct mr_part_def {
-  uint32_t cookie;            /* MR_DEF_COOKIE, set by mr_default_part_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_part_def() */
   const int *particles;
-  int count;                /* ≥ 1 */
-  double radius;            /* m; default 0 */
-  int segment_spheres;      /* default 0 */
-  double restitution;       /* default 0.5 */
-  double friction;          /* Coulomb μ ≥ 0 against other parts' spheres
+  int count;           /* ≥ 1 */
+  double radius;       /* m; default 0 */
+  int segment_spheres; /* default 0 */
+  double restitution;  /* default 0.5 */
+  double friction;     /* Coulomb μ ≥ 0 against other parts' spheres
                                (the mean of the two parts'); default 0.3 */
 } mr_part_def;
 mr_part_def mr_default_part_def(void);
@@ -436,11 +437,11 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id);
 /* -------------------------------------------------------------- stepping */
 
 typedef struct mr_step_report {
-  int steps;          /* accepted steps taken by this call */
-  int rejected;       /* steps rejected by the deviation rule */
-  int collisions;     /* impulse events */
-  int divergences;    /* resets to the start configuration */
-  int dependent;      /* dependent constraint rows seen (max over solves) */
+  int steps;       /* accepted steps taken by this call */
+  int rejected;    /* steps rejected by the deviation rule */
+  int collisions;  /* impulse events */
+  int divergences; /* resets to the start configuration */
+  int dependent;   /* dependent constraint rows seen (max over solves) */
 } mr_step_report;
 
 /* Advances the world to exactly t_target (the last step is shortened to land
@@ -455,16 +456,16 @@ mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
 mr_status mr_world_step(mr_world *w, mr_step_report *report);
 
 double mr_world_time(const mr_world *w);
-double mr_world_next_dt(const mr_world *w);   /* Δt the ATS will try next */
+double mr_world_next_dt(const mr_world *w); /* Δt the ATS will try next */
 
 typedef struct mr_stats {
   uint64_t steps, rejected, collisions, divergences;
   uint64_t solves, solver_failures, solver_iterations;
-  int dependent_rows;         /* of the latest solve */
-  int resting_contacts;       /* at the latest step */
-  double last_dt, min_dt, max_dt;   /* accepted steps */
-  double last_error, max_error;     /* relative deviation after a step */
-  double max_multiplier;      /* largest |λ| of the latest force solve: the
+  int dependent_rows;             /* of the latest solve */
+  int resting_contacts;           /* at the latest step */
+  double last_dt, min_dt, max_dt; /* accepted steps */
+  double last_error, max_error;   /* relative deviation after a step */
+  double max_multiplier;          /* largest |λ| of the latest force solve: the
                                  bound on constraint forces */
 } mr_stats;
 /* The counters so far. MR_ERR_ARG for a NULL argument. */
@@ -482,8 +483,13 @@ uint64_t mr_world_state_hash(const mr_world *w);
  * error > high: reject, Δt_new = Δt_old·min((high/error)^¼, ½) (unless
  * Δt_old is already dt_min: then accept). error < low: Δt_new = Δt_old·(low/error)^¼.
  * Otherwise keep Δt. The result is clamped to [dt_min, dt_max]. */
-typedef struct mr_ats_params { double dt_min, dt_max, low, high; } mr_ats_params;
-typedef struct mr_ats_decision { int accept; double dt_next; } mr_ats_decision;
+typedef struct mr_ats_params {
+  double dt_min, dt_max, low, high;
+} mr_ats_params;
+typedef struct mr_ats_decision {
+  int accept;
+  double dt_next;
+} mr_ats_decision;
 mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error);
 
 #ifdef __cplusplus

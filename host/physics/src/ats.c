@@ -21,21 +21,17 @@
  * rounded, so this gives the same bits under every libm, compiler and
  * optimisation level; pow carries no such promise and would put the pinned
  * state hashes at the mercy of the C library. */
-static double fourth_root(double x)
-{
+static double fourth_root(double x) {
   return sqrt(sqrt(x));
 }
 
-static double clamp(double v, double lo, double hi)
-{
+static double clamp(double v, double lo, double hi) {
   return v < lo ? lo : (v > hi ? hi : v);
 }
 
-mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error)
-{
-  mr_ats_decision d = {1, dt_old};
-  if (!p)
-    return d;
+mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error) {
+  mr_ats_decision d = { 1, dt_old };
+  if (!p) return d;
   if (!(error == error) || error > p->high) {
     /* NaN counts as too large. At the lower bound there is nothing shorter
      * to retry with: the step stands (divergence is judged elsewhere). */

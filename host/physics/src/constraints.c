@@ -17,8 +17,7 @@
  *   Ċ   = u·(v_a − v_b)
  *   J̇q̇  = (|v_a − v_b|² − (u·(v_a − v_b))²) / L      (∂C/∂t = 0) */
 static int distance_rows(mr_world *w, const double *x, const double *v, double *c, double *cdot,
-                         double *bias)
-{
+                         double *bias) {
   int r = 0;
   for (int i = 0; i < w->distances.n; i++, r++) {
     const mr_distance *d = &MR_AT(w->distances, mr_distance, i);
@@ -46,18 +45,16 @@ static int distance_rows(mr_world *w, const double *x, const double *v, double *
   return r;
 }
 
-static const double unit[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+static const double unit[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
 
 /* Pin to a point p: C = x − p (3 rows), J = I, Ċ = v, J̇q̇ = 0. */
 static int pin_rows(mr_world *w, const double *x, const double *v, double *c, double *cdot,
-                    double *bias)
-{
+                    double *bias) {
   int r = 0;
   for (int i = 0; i < w->pins.n; i++) {
     const mr_pin *p = &MR_AT(w->pins, mr_pin, i);
     for (int k = 0; k < 3; k++, r++) {
-      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, p->particle, unit[k]) != 0)
-        return -1;
+      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, p->particle, unit[k]) != 0) return -1;
       c[r] = x[3 * p->particle + k] - p->point[k];
       cdot[r] = v[3 * p->particle + k];
       bias[r] = 0.0;
@@ -69,16 +66,14 @@ static int pin_rows(mr_world *w, const double *x, const double *v, double *c, do
 /* Point on a time-dependent curve c(t): C = x − c(t), J = I,
  * Ċ = v − ċ(t) (∂C/∂t = −ċ), J̇q̇ + ∂²C/∂t² = −c̈(t). */
 static int curve_rows(mr_world *w, double t, const double *x, const double *v, double *c,
-                      double *cdot, double *bias)
-{
+                      double *cdot, double *bias) {
   int r = 0;
   for (int i = 0; i < w->curves.n; i++) {
     const mr_curve *cv = &MR_AT(w->curves, mr_curve, i);
     double p[3], pv[3], pa[3];
     mr_curve_eval(cv, t, p, pv, pa);
     for (int k = 0; k < 3; k++, r++) {
-      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, cv->particle, unit[k]) != 0)
-        return -1;
+      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, cv->particle, unit[k]) != 0) return -1;
       c[r] = x[3 * cv->particle + k] - p[k];
       cdot[r] = v[3 * cv->particle + k] - pv[k];
       bias[r] = -pa[k];
@@ -87,47 +82,38 @@ static int curve_rows(mr_world *w, double t, const double *x, const double *v, d
   return r;
 }
 
-int mr_constraint_row_count(const mr_world *w)
-{
+int mr_constraint_row_count(const mr_world *w) {
   return w->distances.n + 3 * w->pins.n + 3 * w->curves.n;
 }
 
-int mr_world_constraint_rows(const mr_world *w)
-{
+int mr_world_constraint_rows(const mr_world *w) {
   return w ? mr_constraint_row_count(w) : 0;
 }
 
 int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v, double *c,
-                        double *cdot, double *bias)
-{
+                        double *cdot, double *bias) {
   w->pass_calls[MR_PASS_CONSTRAINTS]++;
   int r0 = distance_rows(w, x, v, c, cdot, bias);
-  if (r0 < 0)
-    return -1;
+  if (r0 < 0) return -1;
   int r1 = pin_rows(w, x, v, c + r0, cdot + r0, bias + r0);
-  if (r1 < 0)
-    return -1;
+  if (r1 < 0) return -1;
   int r2 = curve_rows(w, t, x, v, c + r0 + r1, cdot + r0 + r1, bias + r0 + r1);
-  if (r2 < 0)
-    return -1;
+  if (r2 < 0) return -1;
   return r0 + r1 + r2;
 }
 
-static double worse(double e, double d)
-{
+static double worse(double e, double d) {
   /* NaN must win, so a non-finite state is never read as "no error". */
   return (d > e || d != d) ? d : e;
 }
 
 /* §4.5: the largest relative deviation from the geometric constraints. */
-double mr_constraints_deviation(const mr_world *w, double t, const double *x)
-{
+double mr_constraints_deviation(const mr_world *w, double t, const double *x) {
   double e = 0.0;
   for (int i = 0; i < w->distances.n; i++) {
     const mr_distance *d = &MR_AT(w->distances, mr_distance, i);
     double dx[3];
-    for (int k = 0; k < 3; k++)
-      dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
+    for (int k = 0; k < 3; k++) dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
     double len = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
     e = worse(e, fabs(len - d->length) / d->length);
   }
@@ -151,58 +137,48 @@ double mr_constraints_deviation(const mr_world *w, double t, const double *x)
   return e;
 }
 
-double mr_world_deviation(const mr_world *w)
-{
+double mr_world_deviation(const mr_world *w) {
   return w ? mr_constraints_deviation(w, w->t, w->x) : 0.0;
 }
 
 /* ------------------------------------------------------------ definitions */
 
-mr_distance_def mr_default_distance_def(void)
-{
-  return (mr_distance_def){.cookie = MR_DEF_COOKIE, .length = -1.0};
+mr_distance_def mr_default_distance_def(void) {
+  return (mr_distance_def){ .cookie = MR_DEF_COOKIE, .length = -1.0 };
 }
 
-mr_pin_def mr_default_pin_def(void)
-{
-  return (mr_pin_def){.cookie = MR_DEF_COOKIE, .at_current = 1};
+mr_pin_def mr_default_pin_def(void) {
+  return (mr_pin_def){ .cookie = MR_DEF_COOKIE, .at_current = 1 };
 }
 
-mr_curve_def mr_default_curve_def(void)
-{
-  return (mr_curve_def){.cookie = MR_DEF_COOKIE, .interp = MR_CURVE_CATMULL_ROM};
+mr_curve_def mr_default_curve_def(void) {
+  return (mr_curve_def){ .cookie = MR_DEF_COOKIE, .interp = MR_CURVE_CATMULL_ROM };
 }
 
 /* A constraint must move something: a row on frame particles only has no
  * mass to act on. */
-static int dynamic(const mr_world *w, int p)
-{
+static int dynamic(const mr_world *w, int p) {
   return w->inv_mass[p] > 0.0;
 }
 
 /* A pin or a curve holds one particle, which must exist and not ride on a
  * control frame. */
-static mr_status check_moving(mr_world *w, int p, const char *what)
-{
-  if (mr_check_particle(w, p, what) != 0)
-    return MR_ERR_ID;
+static mr_status check_moving(mr_world *w, int p, const char *what) {
+  if (mr_check_particle(w, p, what) != 0) return MR_ERR_ID;
   if (!dynamic(w, p))
     return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, p);
   return MR_OK;
 }
 
-int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id)
-{
-  mr_distance d = {a, b, length};
+int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id) {
+  mr_distance d = { a, b, length };
   return mr_add_push(w, &w->distances, &d, sizeof d, out_id, "distance") == MR_OK ? 0 : -1;
 }
 
-mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *out_id)
-{
+mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *out_id) {
   const char *what = "mr_world_add_distance";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
-  if (s != MR_OK)
-    return s;
+  if (s != MR_OK) return s;
   if (mr_check_particle(w, def->a, what) != 0 || mr_check_particle(w, def->b, what) != 0)
     return MR_ERR_ID;
   if (def->a == def->b)
@@ -210,8 +186,7 @@ mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *ou
   if (!dynamic(w, def->a) && !dynamic(w, def->b))
     return mr_fail(w, MR_ERR_ARG, "%s: particles %d and %d are both on control frames", what,
                    def->a, def->b);
-  if (!isfinite(def->length))
-    return mr_fail(w, MR_ERR_NONFINITE, "%s: length is NaN or Inf", what);
+  if (!isfinite(def->length)) return mr_fail(w, MR_ERR_NONFINITE, "%s: length is NaN or Inf", what);
   const double *xa = &w->x[3 * def->a], *xb = &w->x[3 * def->b];
   double cur = sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
                     (xa[2] - xb[2]) * (xa[2] - xb[2]));
@@ -223,18 +198,15 @@ mr_status mr_world_add_distance(mr_world *w, const mr_distance_def *def, int *ou
   if (!(len > 1e-9))
     return mr_fail(w, MR_ERR_DEGENERATE, "%s: zero length between particles %d and %d", what,
                    def->a, def->b);
-  mr_distance d = {def->a, def->b, len};
+  mr_distance d = { def->a, def->b, len };
   return mr_add_push(w, &w->distances, &d, sizeof d, out_id, what);
 }
 
-mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id)
-{
+mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id) {
   const char *what = "mr_world_add_pin";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
-  if (s == MR_OK)
-    s = check_moving(w, def->particle, what);
-  if (s != MR_OK)
-    return s;
+  if (s == MR_OK) s = check_moving(w, def->particle, what);
+  if (s != MR_OK) return s;
   if (!def->at_current && !mr_finite3(def->point))
     return mr_fail(w, MR_ERR_NONFINITE, "%s: point is NaN or Inf", what);
   mr_pin p;
@@ -244,8 +216,7 @@ mr_status mr_world_add_pin(mr_world *w, const mr_pin_def *def, int *out_id)
 }
 
 /* Keys in order and finite; 0 or the failure. */
-static mr_status check_keys(mr_world *w, const mr_curve_def *def, const char *what)
-{
+static mr_status check_keys(mr_world *w, const mr_curve_def *def, const char *what) {
   int n = def->key_count;
   if (n < 1 || !def->times || !def->points)
     return mr_fail(w, MR_ERR_ARG, "%s: needs a callback or at least one key", what);
@@ -259,20 +230,16 @@ static mr_status check_keys(mr_world *w, const mr_curve_def *def, const char *wh
   return MR_OK;
 }
 
-mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id)
-{
+mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id) {
   const char *what = "mr_world_add_curve";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
-  if (s == MR_OK)
-    s = check_moving(w, def->particle, what);
-  if (s != MR_OK)
-    return s;
+  if (s == MR_OK) s = check_moving(w, def->particle, what);
+  if (s != MR_OK) return s;
   if ((unsigned)def->interp > MR_CURVE_LINEAR)
     return mr_fail(w, MR_ERR_ARG, "%s: unknown interpolation %d", what, (int)def->interp);
-  mr_curve c = {def->particle, 0, NULL, NULL, def->interp, def->fn, def->user};
+  mr_curve c = { def->particle, 0, NULL, NULL, def->interp, def->fn, def->user };
   if (!def->fn) {
-    if ((s = check_keys(w, def, what)) != MR_OK)
-      return s;
+    if ((s = check_keys(w, def, what)) != MR_OK) return s;
     int n = def->key_count;
     c.key_count = n;
     c.times = malloc((size_t)n * sizeof *c.times);

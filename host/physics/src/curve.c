@@ -5,8 +5,7 @@
 #include <string.h>
 
 /* Index i of the segment [times[i], times[i+1]) holding t. */
-static int segment(const double *times, int n, double t)
-{
+static int segment(const double *times, int n, double t) {
   int lo = 0, hi = n - 1;
   while (hi - lo > 1) {
     int mid = (lo + hi) / 2;
@@ -22,19 +21,16 @@ static int segment(const double *times, int n, double t)
  * get zero: the curve starts from rest and comes to rest, so holding the end
  * point afterwards asks for no jump in velocity, which a constraint can only
  * follow with a jolt. */
-static void tangent(const mr_curve *c, int i, double m[3])
-{
+static void tangent(const mr_curve *c, int i, double m[3]) {
   if (i == 0 || i == c->key_count - 1) {
     m[0] = m[1] = m[2] = 0.0;
     return;
   }
   double dt = c->times[i + 1] - c->times[i - 1];
-  for (int k = 0; k < 3; k++)
-    m[k] = (c->points[3 * (i + 1) + k] - c->points[3 * (i - 1) + k]) / dt;
+  for (int k = 0; k < 3; k++) m[k] = (c->points[3 * (i + 1) + k] - c->points[3 * (i - 1) + k]) / dt;
 }
 
-void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], double acc[3])
-{
+void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], double acc[3]) {
   if (c->fn) {
     c->fn(c->user, t, pos, vel, acc);
     return;
@@ -67,7 +63,8 @@ void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], do
   /* Cubic Hermite basis in s and its s-derivatives. */
   double s2 = s * s, s3 = s2 * s;
   double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-  double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -6 * s2 + 6 * s, d11 = 3 * s2 - 2 * s;
+  double d00 = 6 * s2 - 6 * s, d10 = 3 * s2 - 4 * s + 1, d01 = -6 * s2 + 6 * s,
+         d11 = 3 * s2 - 2 * s;
   double e00 = 12 * s - 6, e10 = 6 * s - 4, e01 = -12 * s + 6, e11 = 6 * s - 2;
   for (int k = 0; k < 3; k++) {
     pos[k] = h00 * p0[k] + h10 * h * m0[k] + h01 * p1[k] + h11 * h * m1[k];

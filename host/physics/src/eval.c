@@ -13,19 +13,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-int mr_rows_reserve(mr_world *w, int rows)
-{
-  if (rows <= w->cap_rows)
-    return 0;
-  double **arr[] = {&w->rhs, &w->lambda, &w->row_c, &w->row_cdot, &w->row_bias, &w->row_jv};
+int mr_rows_reserve(mr_world *w, int rows) {
+  if (rows <= w->cap_rows) return 0;
+  double **arr[] = { &w->rhs, &w->lambda, &w->row_c, &w->row_cdot, &w->row_bias, &w->row_jv };
   for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
     int cap = w->cap_rows;
-    if (mr_grow((void **)arr[i], &cap, rows, sizeof(double)) != 0)
-      return -1;
+    if (mr_grow((void **)arr[i], &cap, rows, sizeof(double)) != 0) return -1;
   }
   int cap = w->cap_rows;
-  if (mr_grow((void **)&w->row_contact, &cap, rows, sizeof(int)) != 0)
-    return -1;
+  if (mr_grow((void **)&w->row_contact, &cap, rows, sizeof(int)) != 0) return -1;
   w->cap_rows = cap;
   return 0;
 }
@@ -38,24 +34,19 @@ int mr_rows_reserve(mr_world *w, int rows)
  * contact row (a soft contact: 1e-6 g of sag under its own weight) keeps
  * them independent, so redundant contacts share the load. Constraint rows
  * keep their exact, reported treatment. */
-static void soften_contacts(mr_world *w)
-{
+static void soften_contacts(mr_world *w) {
   mr_csr *A = &w->A;
   for (int r = 0; r < A->n; r++) {
-    if (w->row_contact[r] < 0)
-      continue;
+    if (w->row_contact[r] < 0) continue;
     for (int e = A->row_ptr[r]; e < A->row_ptr[r + 1]; e++)
-      if (A->col[e] == r)
-        A->val[e] *= 1.0 + 1e-6;
+      if (A->col[e] == r) A->val[e] *= 1.0 + 1e-6;
   }
 }
 
-int mr_solve_rows(mr_world *w, int assemble)
-{
+int mr_solve_rows(mr_world *w, int assemble) {
   int k = w->J.rows;
   if (assemble) {
-    if (mr_csr_assemble(&w->A, &w->J, w->inv_mass) != 0)
-      return -1;
+    if (mr_csr_assemble(&w->A, &w->J, w->inv_mass) != 0) return -1;
     soften_contacts(w);
   }
   memset(w->lambda, 0, (size_t)k * sizeof *w->lambda);
@@ -67,31 +58,27 @@ int mr_solve_rows(mr_world *w, int assemble)
   if (st == MR_SOLVE_NONFINITE) {
     /* NaN or Inf in the system (a callback curve, an exploded state): let it
      * reach the state, where the step sees it and resets the world (§7). */
-    for (int i = 0; i < k; i++)
-      w->lambda[i] = NAN;
+    for (int i = 0; i < k; i++) w->lambda[i] = NAN;
     w->stats.solver_failures++;
     return 0;
   }
   if (st == MR_SOLVE_ENOMEM || st == MR_SOLVE_UNAVAILABLE) {
     w->stats.solver_failures++;
-    w->fail = mr_fail(w, MR_ERR_SOLVER, "solver %s: %s (%d rows)", mr_solve_method_name(w->opts.method),
-                      st == MR_SOLVE_ENOMEM ? "out of memory" : "not built into this library", k);
+    w->fail =
+        mr_fail(w, MR_ERR_SOLVER, "solver %s: %s (%d rows)", mr_solve_method_name(w->opts.method),
+                st == MR_SOLVE_ENOMEM ? "out of memory" : "not built into this library", k);
     return -1;
   }
-  if (st == MR_SOLVE_NOT_CONVERGED)
-    w->stats.solver_failures++;
-  if (r.dependent > w->last_dependent)
-    w->last_dependent = r.dependent;
+  if (st == MR_SOLVE_NOT_CONVERGED) w->stats.solver_failures++;
+  if (r.dependent > w->last_dependent) w->last_dependent = r.dependent;
   w->stats.dependent_rows = r.dependent;
   return 0;
 }
 
 /* a = M⁻¹ f for every particle (0 on frame particles). */
-static void accelerations(const mr_world *w, const double *f, double *a)
-{
+static void accelerations(const mr_world *w, const double *f, double *a) {
   for (int i = 0; i < w->n; i++)
-    for (int k = 0; k < 3; k++)
-      a[3 * i + k] = f[3 * i + k] * w->inv_mass[i];
+    for (int k = 0; k < 3; k++) a[3 * i + k] = f[3 * i + k] * w->inv_mass[i];
 }
 
 /* Rows of the constraints and of the active contacts (w->contact_active)
@@ -99,25 +86,19 @@ static void accelerations(const mr_world *w, const double *f, double *a)
  * row the contact it stands for (-1 for a constraint). Returns the number
  * of rows, or -1 when out of memory. The force solve (eq. 8) and the
  * impulse solve (eq. 9, which does not read the bias) share it. */
-int mr_rows_build(mr_world *w, double t, const double *x, const double *v)
-{
+int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
   int nc = mr_constraint_row_count(w);
-  if (mr_rows_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0)
-    return -1;
+  if (mr_rows_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0) return -1;
   int r = 0;
   if (nc > 0) {
     r = mr_constraints_rows(w, t, x, v, w->row_c, w->row_cdot, w->row_bias);
-    if (r < 0)
-      return -1;
+    if (r < 0) return -1;
   }
-  for (int i = 0; i < r; i++)
-    w->row_contact[i] = -1;
+  for (int i = 0; i < r; i++) w->row_contact[i] = -1;
   for (int c = 0; c < w->contacts.n; c++) {
-    if (!w->contact_active[c])
-      continue;
+    if (!w->contact_active[c]) continue;
     double chi, chidot, jdqd;
-    if (mr_contact_row(w, &w->contacts.c[c], x, v, &chi, &chidot, &jdqd) != 0)
-      return -1;
+    if (mr_contact_row(w, &w->contacts.c[c], x, v, &chi, &chidot, &jdqd) != 0) return -1;
     w->row_c[r] = chi;
     w->row_cdot[r] = chidot;
     w->row_bias[r] = jdqd;
@@ -128,11 +109,11 @@ int mr_rows_build(mr_world *w, double t, const double *x, const double *v)
 }
 
 /* §5.2, eq. 8: b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t². */
-static void rhs_eq8(mr_world *w, int rows, const double *a_free)
-{
+static void rhs_eq8(mr_world *w, int rows, const double *a_free) {
   mr_jac_mul(&w->J, a_free, w->row_jv);
   for (int i = 0; i < rows; i++)
-    w->rhs[i] = -w->row_bias[i] - w->row_jv[i] - w->def.ks * w->row_c[i] - w->def.kd * w->row_cdot[i];
+    w->rhs[i] =
+        -w->row_bias[i] - w->row_jv[i] - w->def.ks * w->row_c[i] - w->def.kd * w->row_cdot[i];
 }
 
 /* Coulomb friction at resting contacts (§4.4), with N the contact's
@@ -150,19 +131,15 @@ static void rhs_eq8(mr_world *w, int rows, const double *a_free)
  * against the sliding velocity. Returns 0, or −1 when nothing can move
  * along the contact (it is then left alone). */
 static int contact_friction(const mr_world *w, const mr_contact *ct, double nforce, double tau,
-                             const double *x, const double *v, const double *acc,
-                             const double fc[3], double next[3])
-{
+                            const double *x, const double *v, const double *acc, const double fc[3],
+                            double next[3]) {
   next[0] = next[1] = next[2] = 0.0;
-  if (!(nforce > 0))
-    return 0;
+  if (!(nforce > 0)) return 0;
   double vt[3], at[3];
   double inv = mr_contact_slip(w, ct, x, v, vt);
   mr_contact_slip(w, ct, x, acc, at);
-  if (!(inv > 0))
-    return -1;
-  for (int k = 0; k < 3; k++)
-    next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
+  if (!(inv > 0)) return -1;
+  for (int k = 0; k < 3; k++) next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
   double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
   double need = sqrt(next[0] * next[0] + next[1] * next[1] + next[2] * next[2]);
   double limit = ct->friction * nforce;
@@ -177,20 +154,16 @@ static int contact_friction(const mr_world *w, const mr_contact *ct, double nfor
  * to acc so that the next contact on the same particle sees it. Returns the
  * largest change, N. */
 static double friction(mr_world *w, double h, int rows, const double *x, const double *v,
-                       double *acc, double *fr, double *f)
-{
+                       double *acc, double *fr, double *f) {
   const double tau = 0.5 * h;
   double change = 0.0;
   for (int r = 0; r < rows; r++) {
     int c = w->row_contact[r];
-    if (c < 0)
-      continue;
+    if (c < 0) continue;
     const mr_contact *ct = &w->contacts.c[c];
-    if (ct->friction <= 0)
-      continue;
+    if (ct->friction <= 0) continue;
     double *fc = &fr[3 * c], next[3], d[3];
-    if (contact_friction(w, ct, w->lambda[r], tau, x, v, acc, fc, next) != 0)
-      continue;
+    if (contact_friction(w, ct, w->lambda[r], tau, x, v, acc, fc, next) != 0) continue;
     for (int k = 0; k < 3; k++) {
       d[k] = next[k] - fc[k];
       change = fmax(change, fabs(d[k]));
@@ -203,8 +176,7 @@ static double friction(mr_world *w, double h, int rows, const double *x, const d
 }
 
 /* Stage 2: F = F_a from the world's force passes, a = M⁻¹ F. */
-static void applied_forces(mr_world *w, double t, const double *x, const double *v, double *a)
-{
+static void applied_forces(mr_world *w, double t, const double *x, const double *v, double *a) {
   double *f = w->scratch.force;
   memset(f, 0, (size_t)(3 * w->n) * sizeof *f);
   for (int p = 0; p < w->n_force_passes; p++) {
@@ -220,13 +192,12 @@ static void applied_forces(mr_world *w, double t, const double *x, const double 
  * body at rest, whose contact points move by rounding, from switching its
  * contacts off and on between the stages of one step, which made a lying
  * puppet jitter at 0.1 m/s. */
-static void select_resting_contacts(mr_world *w, const double *x, const double *v)
-{
+static void select_resting_contacts(mr_world *w, const double *x, const double *v) {
   const double separating = 0.1 * w->def.rest_speed;
   for (int c = 0; c < w->contacts.n; c++) {
     const mr_contact *ct = &w->contacts.c[c];
     w->contact_active[c] =
-      !(mr_contact_gap(w, ct, x) >= 0.0 && mr_contact_rate(w, ct, x, v) > separating);
+        !(mr_contact_gap(w, ct, x) >= 0.0 && mr_contact_rate(w, ct, x, v) > separating);
   }
 }
 
@@ -234,16 +205,13 @@ static void select_resting_contacts(mr_world *w, const double *x, const double *
  * never pull (§5.4, eq. 13b): a contact whose multiplier comes out negative
  * is released and the system solved again. Returns the number of rows (0:
  * nothing to solve), or −1. */
-static int solve_eq8(mr_world *w, double t, const double *x, const double *v, const double *a)
-{
+static int solve_eq8(mr_world *w, double t, const double *x, const double *v, const double *a) {
   int rows = 0;
   for (int round = 0; round <= w->contacts.n; round++) {
     rows = mr_rows_build(w, t, x, v);
-    if (rows <= 0)
-      return rows;
+    if (rows <= 0) return rows;
     rhs_eq8(w, rows, a);
-    if (mr_solve_rows(w, 1) != 0)
-      return -1;
+    if (mr_solve_rows(w, 1) != 0) return -1;
     int released = 0;
     for (int r = 0; r < rows; r++) {
       int c = w->row_contact[r];
@@ -252,17 +220,14 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
         released = 1;
       }
     }
-    if (!released)
-      break;
+    if (!released) break;
   }
   return rows;
 }
 
-static int has_friction(const mr_world *w, int rows)
-{
+static int has_friction(const mr_world *w, int rows) {
   for (int r = 0; r < rows; r++)
-    if (w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 &&
-        w->lambda[r] > 0)
+    if (w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 && w->lambda[r] > 0)
       return 1;
   return 0;
 }
@@ -272,57 +237,45 @@ static int has_friction(const mr_world *w, int rows)
  * differently, which changes what each contact must hold, so repeat a few
  * rounds (a rigid body on a slope sticks only when its contacts agree). */
 static int friction_rounds(mr_world *w, double h, int rows, const double *x, const double *v,
-                           double *a)
-{
+                           double *a) {
   int n3 = 3 * w->n;
   double *acc = w->scratch.acc_try;
   memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
   double scale = 0;
-  for (int r = 0; r < rows; r++)
-    scale = fmax(scale, fabs(w->lambda[r]));
+  for (int r = 0; r < rows; r++) scale = fmax(scale, fabs(w->lambda[r]));
   for (int round = 0; round < 32; round++) {
     mr_jac_tmul(&w->J, w->lambda, acc);
-    for (int i = 0; i < n3; i++)
-      acc[i] = a[i] + acc[i] * w->inv_mass[i / 3];
+    for (int i = 0; i < n3; i++) acc[i] = a[i] + acc[i] * w->inv_mass[i / 3];
     double change = friction(w, h, rows, x, v, acc, w->fric, w->scratch.force);
-    if (round > 0 && !(change > 1e-9 * scale))
-      break;
+    if (round > 0 && !(change > 1e-9 * scale)) break;
     accelerations(w, w->scratch.force, a);
     rhs_eq8(w, rows, a);
-    if (mr_solve_rows(w, 0) != 0)
-      return -1;
+    if (mr_solve_rows(w, 0) != 0) return -1;
   }
   return 0;
 }
 
 /* §5.2, eq. 5: F_c = Jᵀ λ, and a += M⁻¹ F_c. */
-static void add_constraint_forces(mr_world *w, int rows, double *a)
-{
+static void add_constraint_forces(mr_world *w, int rows, double *a) {
   double *fc = w->scratch.constraint_force;
   mr_jac_tmul(&w->J, w->lambda, fc);
   double big = 0;
   for (int r = 0; r < rows; r++) {
     double l = fabs(w->lambda[r]);
-    if (l > big || l != l)
-      big = l;
+    if (l > big || l != l) big = l;
   }
   w->stats.max_multiplier = big;
-  for (int i = 0; i < 3 * w->n; i++)
-    a[i] += fc[i] * w->inv_mass[i / 3];
+  for (int i = 0; i < 3 * w->n; i++) a[i] += fc[i] * w->inv_mass[i / 3];
 }
 
-int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a)
-{
-  mr_frames_place(w, t, x, v);      /* 1 */
-  applied_forces(w, t, x, v, a);    /* 2 */
-  if (!w->has_solve)
-    return 0;
+int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a) {
+  mr_frames_place(w, t, x, v);   /* 1 */
+  applied_forces(w, t, x, v, a); /* 2 */
+  if (!w->has_solve) return 0;
   select_resting_contacts(w, x, v);
   int rows = solve_eq8(w, t, x, v, a); /* 3, 4 */
-  if (rows <= 0)
-    return rows;
-  if (has_friction(w, rows) && friction_rounds(w, h, rows, x, v, a) != 0)
-    return -1;
+  if (rows <= 0) return rows;
+  if (has_friction(w, rows) && friction_rounds(w, h, rows, x, v, a) != 0) return -1;
   add_constraint_forces(w, rows, a);
   return 0;
 }

@@ -11,15 +11,26 @@
 
 /* ------------------------------------------------------------- elements */
 
-typedef struct mr_spring { int a, b; double rest, ks, kd; } mr_spring;
-typedef struct mr_antigravity { int acted, trigger; double d0, fraction, max_scale; } mr_antigravity;
-typedef struct mr_triggered { int acted, control, trigger; double d0, gain, max_force; } mr_triggered;
-typedef struct mr_sine_spring { int a, b; double rest, max_force, reach, kd; } mr_sine_spring;
+typedef struct mr_spring {
+  int a, b;
+  double rest, ks, kd;
+} mr_spring;
+typedef struct mr_antigravity {
+  int acted, trigger;
+  double d0, fraction, max_scale;
+} mr_antigravity;
+typedef struct mr_triggered {
+  int acted, control, trigger;
+  double d0, gain, max_force;
+} mr_triggered;
+typedef struct mr_sine_spring {
+  int a, b;
+  double rest, max_force, reach, kd;
+} mr_sine_spring;
 
 /* ---------------------------------------------------------------- passes */
 
-static void gravity_pass(mr_world *w, double t, const double *x, const double *v, double *f)
-{
+static void gravity_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)x, (void)v;
   const double *g = w->def.gravity;
   for (int i = 0; i < w->n; i++) {
@@ -31,21 +42,17 @@ static void gravity_pass(mr_world *w, double t, const double *x, const double *v
 }
 
 /* Viscous friction F = −drag·v: the paper's default "particle friction". */
-static void drag_pass(mr_world *w, double t, const double *x, const double *v, double *f)
-{
+static void drag_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)x;
   double c = w->def.drag;
   for (int i = 0; i < w->n; i++) {
-    if (w->inv_mass[i] == 0.0)
-      continue;
-    for (int k = 0; k < 3; k++)
-      f[3 * i + k] -= c * v[3 * i + k];
+    if (w->inv_mass[i] == 0.0) continue;
+    for (int k = 0; k < 3; k++) f[3 * i + k] -= c * v[3 * i + k];
   }
 }
 
 /* Length L, unit direction u = (x_a − x_b)/L and rate L̇ = u·(v_a − v_b). */
-static double line(const double *x, const double *v, int a, int b, double u[3], double *rate)
-{
+static double line(const double *x, const double *v, int a, int b, double u[3], double *rate) {
   double d[3], dv[3];
   for (int k = 0; k < 3; k++) {
     d[k] = x[3 * a + k] - x[3 * b + k];
@@ -57,15 +64,13 @@ static double line(const double *x, const double *v, int a, int b, double u[3], 
     *rate = 0.0;
     return len;
   }
-  for (int k = 0; k < 3; k++)
-    u[k] = d[k] / len;
+  for (int k = 0; k < 3; k++) u[k] = d[k] / len;
   *rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
   return len;
 }
 
 /* Equal and opposite forces s·u on a and −s·u on b. */
-static void push_pair(double *f, int a, int b, const double u[3], double s)
-{
+static void push_pair(double *f, int a, int b, const double u[3], double s) {
   for (int k = 0; k < 3; k++) {
     f[3 * a + k] += s * u[k];
     f[3 * b + k] -= s * u[k];
@@ -73,8 +78,7 @@ static void push_pair(double *f, int a, int b, const double u[3], double s)
 }
 
 /* F_a = −(ks (L − rest) + kd L̇) u. */
-static void springs_pass(mr_world *w, double t, const double *x, const double *v, double *f)
-{
+static void springs_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t;
   const mr_list *l = MR_FORCES(w, SPRINGS);
   for (int i = 0; i < l->n; i++) {
@@ -86,62 +90,51 @@ static void springs_pass(mr_world *w, double t, const double *x, const double *v
 }
 
 /* A string pulls and never pushes: tension max(0, ks (L − rest) + kd L̇). */
-static void strings_pass(mr_world *w, double t, const double *x, const double *v, double *f)
-{
+static void strings_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t;
   const mr_list *l = MR_FORCES(w, STRINGS);
   for (int i = 0; i < l->n; i++) {
     const mr_string *s = &MR_AT(*l, mr_string, i);
     double u[3], rate;
     double len = line(x, v, s->puppet_particle, s->frame_particle, u, &rate);
-    if (len <= s->rest)
-      continue;
+    if (len <= s->rest) continue;
     double tension = s->ks * (len - s->rest) + s->kd * rate;
-    if (tension > 0)
-      push_pair(f, s->puppet_particle, s->frame_particle, u, -tension);
+    if (tension > 0) push_pair(f, s->puppet_particle, s->frame_particle, u, -tension);
   }
 }
 
-static double dist(const double *x, int a, int b)
-{
-  double d[3] = {x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2]};
+static double dist(const double *x, int a, int b) {
+  double d[3] = { x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2] };
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
 /* §6.2: F = −g · fraction · M_puppet · min(d/d0, max_scale). */
-static void antigravity_pass(mr_world *w, double t, const double *x, const double *v, double *f)
-{
+static void antigravity_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)v;
   const double *g = w->def.gravity;
   const mr_list *l = MR_FORCES(w, ANTIGRAVITY);
   for (int i = 0; i < l->n; i++) {
     const mr_antigravity *a = &MR_AT(*l, mr_antigravity, i);
     double scale = dist(x, a->trigger, a->acted) / a->d0;
-    if (scale > a->max_scale)
-      scale = a->max_scale;
+    if (scale > a->max_scale) scale = a->max_scale;
     double s = a->fraction * w->puppet_mass[w->puppet[a->acted]] * scale;
-    for (int k = 0; k < 3; k++)
-      f[3 * a->acted + k] -= s * g[k];
+    for (int k = 0; k < 3; k++) f[3 * a->acted + k] -= s * g[k];
   }
 }
 
 /* §6.2: F = clamp(gain · M_puppet · (d − d0), ±max) · û(acted → control),
  * d = |x_control − x_trigger|. */
-static void triggered_pass(mr_world *w, double t, const double *x, const double *v, double *f)
-{
+static void triggered_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)v;
   const mr_list *list = MR_FORCES(w, TRIGGERED);
   for (int i = 0; i < list->n; i++) {
     const mr_triggered *a = &MR_AT(*list, mr_triggered, i);
-    double s = a->gain * w->puppet_mass[w->puppet[a->acted]] *
-               (dist(x, a->control, a->trigger) - a->d0);
-    if (s > a->max_force)
-      s = a->max_force;
-    if (s < -a->max_force)
-      s = -a->max_force;
+    double s =
+        a->gain * w->puppet_mass[w->puppet[a->acted]] * (dist(x, a->control, a->trigger) - a->d0);
+    if (s > a->max_force) s = a->max_force;
+    if (s < -a->max_force) s = -a->max_force;
     double l = dist(x, a->control, a->acted);
-    if (!(l > 1e-12))
-      continue;
+    if (!(l > 1e-12)) continue;
     for (int k = 0; k < 3; k++)
       f[3 * a->acted + k] += s * (x[3 * a->control + k] - x[3 * a->acted + k]) / l;
   }
@@ -149,8 +142,7 @@ static void triggered_pass(mr_world *w, double t, const double *x, const double 
 
 /* §6.2: |F| = max · sin(π/2 · min(|L − rest|/reach, 1)): a shifted sine from
  * 0° to 90°, flat (capped) beyond `reach`, restoring, plus damping. */
-static void sine_springs_pass(mr_world *w, double t, const double *x, const double *v, double *f)
-{
+static void sine_springs_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t;
   const double half_pi = 1.57079632679489661923;
   const mr_list *l = MR_FORCES(w, SINE_SPRINGS);
@@ -164,21 +156,18 @@ static void sine_springs_pass(mr_world *w, double t, const double *x, const doub
   }
 }
 
-int mr_forces_build_passes(mr_world *w)
-{
-#define MR_ROW_(id, stem, name) {MR_EFFECT_##id, MR_PASS_##id, stem##_pass},
+int mr_forces_build_passes(mr_world *w) {
+#define MR_ROW_(id, stem, name) { MR_EFFECT_##id, MR_PASS_##id, stem##_pass },
   static const struct {
     uint32_t effect;
     mr_pass pass;
     mr_force_pass fn;
-  } table[] = {MR_FORCE_KINDS(MR_ROW_)};
+  } table[] = { MR_FORCE_KINDS(MR_ROW_) };
 #undef MR_ROW_
   w->n_force_passes = 0;
   for (size_t i = 0; i < sizeof table / sizeof table[0]; i++) {
-    if (!(w->def.effects & table[i].effect))
-      continue;
-    if (w->n_force_passes >= MR_MAX_PASSES)
-      return -1;
+    if (!(w->def.effects & table[i].effect)) continue;
+    if (w->n_force_passes >= MR_MAX_PASSES) return -1;
     w->force_passes[w->n_force_passes] = table[i].fn;
     w->force_pass_ids[w->n_force_passes] = table[i].pass;
     w->n_force_passes++;
@@ -189,26 +178,21 @@ int mr_forces_build_passes(mr_world *w)
 /* ---------------------------------------------------------- add helpers */
 
 /* Two distinct existing particles; fills *len with their distance. */
-static mr_status check_pair(mr_world *w, int a, int b, const char *what, double *len)
-{
-  if (mr_check_particle(w, a, what) != 0 || mr_check_particle(w, b, what) != 0)
-    return MR_ERR_ID;
-  if (a == b)
-    return mr_fail(w, MR_ERR_ARG, "%s: both ends are particle %d", what, a);
+static mr_status check_pair(mr_world *w, int a, int b, const char *what, double *len) {
+  if (mr_check_particle(w, a, what) != 0 || mr_check_particle(w, b, what) != 0) return MR_ERR_ID;
+  if (a == b) return mr_fail(w, MR_ERR_ARG, "%s: both ends are particle %d", what, a);
   *len = dist(w->x, a, b);
   return MR_OK;
 }
 
-static mr_status check_rest(mr_world *w, const char *what, double rest, double current, double *out)
-{
-  if (!isfinite(rest))
-    return mr_fail(w, MR_ERR_NONFINITE, "%s: rest length is NaN or Inf", what);
+static mr_status check_rest(mr_world *w, const char *what, double rest, double current,
+                            double *out) {
+  if (!isfinite(rest)) return mr_fail(w, MR_ERR_NONFINITE, "%s: rest length is NaN or Inf", what);
   *out = rest < 0 ? current : rest;
   return MR_OK;
 }
 
-static mr_status check_gains(mr_world *w, const char *what, double a, double b)
-{
+static mr_status check_gains(mr_world *w, const char *what, double a, double b) {
   if (!isfinite(a) || !isfinite(b))
     return mr_fail(w, MR_ERR_NONFINITE, "%s: a coefficient is NaN or Inf", what);
   if (a < 0 || b < 0)
@@ -218,124 +202,99 @@ static mr_status check_gains(mr_world *w, const char *what, double a, double b)
 
 /* ----------------------------------------------------------------- kinds */
 
-mr_spring_def mr_default_spring_def(void)
-{
-  return (mr_spring_def){.cookie = MR_DEF_COOKIE, .rest_length = -1.0, .stiffness = 100.0,
-                         .damping = 1.0};
+mr_spring_def mr_default_spring_def(void) {
+  return (mr_spring_def){
+    .cookie = MR_DEF_COOKIE, .rest_length = -1.0, .stiffness = 100.0, .damping = 1.0
+  };
 }
 
-mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id)
-{
+mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id) {
   const char *what = "mr_world_add_spring";
   double len = 0.0, rest = 0.0;
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_SPRINGS, what);
-  if (s == MR_OK)
-    s = check_pair(w, def->a, def->b, what, &len);
-  if (s == MR_OK)
-    s = check_rest(w, what, def->rest_length, len, &rest);
-  if (s == MR_OK)
-    s = check_gains(w, what, def->stiffness, def->damping);
-  if (s != MR_OK)
-    return s;
-  mr_spring e = {def->a, def->b, rest, def->stiffness, def->damping};
+  if (s == MR_OK) s = check_pair(w, def->a, def->b, what, &len);
+  if (s == MR_OK) s = check_rest(w, what, def->rest_length, len, &rest);
+  if (s == MR_OK) s = check_gains(w, what, def->stiffness, def->damping);
+  if (s != MR_OK) return s;
+  mr_spring e = { def->a, def->b, rest, def->stiffness, def->damping };
   return mr_add_push(w, MR_FORCES(w, SPRINGS), &e, sizeof e, out_id, what);
 }
 
-mr_string_def mr_default_string_def(void)
-{
-  return (mr_string_def){.cookie = MR_DEF_COOKIE, .rest_length = -1.0, .stiffness = 500.0,
-                         .damping = 5.0};
+mr_string_def mr_default_string_def(void) {
+  return (mr_string_def){
+    .cookie = MR_DEF_COOKIE, .rest_length = -1.0, .stiffness = 500.0, .damping = 5.0
+  };
 }
 
-mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id)
-{
+mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id) {
   const char *what = "mr_world_add_string";
   double len = 0.0, rest = 0.0;
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_STRINGS, what);
-  if (s == MR_OK)
-    s = check_pair(w, def->frame_particle, def->puppet_particle, what, &len);
-  if (s != MR_OK)
-    return s;
+  if (s == MR_OK) s = check_pair(w, def->frame_particle, def->puppet_particle, what, &len);
+  if (s != MR_OK) return s;
   if (w->frame[def->frame_particle] < 0)
-    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is not on a control frame", what, def->frame_particle);
+    return mr_fail(w, MR_ERR_ARG, "%s: particle %d is not on a control frame", what,
+                   def->frame_particle);
   if (w->frame[def->puppet_particle] >= 0)
     return mr_fail(w, MR_ERR_ARG, "%s: puppet particle %d is on a control frame", what,
                    def->puppet_particle);
   s = check_rest(w, what, def->rest_length, len, &rest);
-  if (s == MR_OK)
-    s = check_gains(w, what, def->stiffness, def->damping);
-  if (s != MR_OK)
-    return s;
-  mr_string e = {def->frame_particle, def->puppet_particle, rest, def->stiffness, def->damping};
+  if (s == MR_OK) s = check_gains(w, what, def->stiffness, def->damping);
+  if (s != MR_OK) return s;
+  mr_string e = { def->frame_particle, def->puppet_particle, rest, def->stiffness, def->damping };
   return mr_add_push(w, MR_FORCES(w, STRINGS), &e, sizeof e, out_id, what);
 }
 
-mr_antigravity_def mr_default_antigravity_def(void)
-{
-  return (mr_antigravity_def){.cookie = MR_DEF_COOKIE, .fraction = 0.5, .max_scale = 2.0};
+mr_antigravity_def mr_default_antigravity_def(void) {
+  return (mr_antigravity_def){ .cookie = MR_DEF_COOKIE, .fraction = 0.5, .max_scale = 2.0 };
 }
 
-mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, int *out_id)
-{
+mr_status mr_world_add_antigravity(mr_world *w, const mr_antigravity_def *def, int *out_id) {
   const char *what = "mr_world_add_antigravity";
   double d0 = 0.0;
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_ANTIGRAVITY, what);
-  if (s == MR_OK)
-    s = check_pair(w, def->acted, def->trigger, what, &d0);
-  if (s == MR_OK)
-    s = check_gains(w, what, def->fraction, def->max_scale);
-  if (s != MR_OK)
-    return s;
+  if (s == MR_OK) s = check_pair(w, def->acted, def->trigger, what, &d0);
+  if (s == MR_OK) s = check_gains(w, what, def->fraction, def->max_scale);
+  if (s != MR_OK) return s;
   if (!(d0 > 1e-9))
     return mr_fail(w, MR_ERR_DEGENERATE, "%s: acted %d and trigger %d coincide", what, def->acted,
                    def->trigger);
-  mr_antigravity e = {def->acted, def->trigger, d0, def->fraction, def->max_scale};
+  mr_antigravity e = { def->acted, def->trigger, d0, def->fraction, def->max_scale };
   return mr_add_push(w, MR_FORCES(w, ANTIGRAVITY), &e, sizeof e, out_id, what);
 }
 
-mr_triggered_def mr_default_triggered_def(void)
-{
-  return (mr_triggered_def){.cookie = MR_DEF_COOKIE, .gain = 10.0, .max_force = 100.0};
+mr_triggered_def mr_default_triggered_def(void) {
+  return (mr_triggered_def){ .cookie = MR_DEF_COOKIE, .gain = 10.0, .max_force = 100.0 };
 }
 
-mr_status mr_world_add_triggered(mr_world *w, const mr_triggered_def *def, int *out_id)
-{
+mr_status mr_world_add_triggered(mr_world *w, const mr_triggered_def *def, int *out_id) {
   const char *what = "mr_world_add_triggered";
   double d0 = 0.0, unused = 0.0;
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_TRIGGERED, what);
-  if (s == MR_OK)
-    s = check_pair(w, def->control, def->trigger, what, &d0);
-  if (s == MR_OK)
-    s = check_pair(w, def->acted, def->control, what, &unused);
-  if (s == MR_OK)
-    s = check_gains(w, what, def->gain, def->max_force);
-  if (s != MR_OK)
-    return s;
-  mr_triggered e = {def->acted, def->control, def->trigger, d0, def->gain, def->max_force};
+  if (s == MR_OK) s = check_pair(w, def->control, def->trigger, what, &d0);
+  if (s == MR_OK) s = check_pair(w, def->acted, def->control, what, &unused);
+  if (s == MR_OK) s = check_gains(w, what, def->gain, def->max_force);
+  if (s != MR_OK) return s;
+  mr_triggered e = { def->acted, def->control, def->trigger, d0, def->gain, def->max_force };
   return mr_add_push(w, MR_FORCES(w, TRIGGERED), &e, sizeof e, out_id, what);
 }
 
-mr_sine_spring_def mr_default_sine_spring_def(void)
-{
-  return (mr_sine_spring_def){.cookie = MR_DEF_COOKIE, .rest_length = -1.0, .max_force = 50.0,
-                              .reach = 0.1, .damping = 1.0};
+mr_sine_spring_def mr_default_sine_spring_def(void) {
+  return (mr_sine_spring_def){
+    .cookie = MR_DEF_COOKIE, .rest_length = -1.0, .max_force = 50.0, .reach = 0.1, .damping = 1.0
+  };
 }
 
-mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, int *out_id)
-{
+mr_status mr_world_add_sine_spring(mr_world *w, const mr_sine_spring_def *def, int *out_id) {
   const char *what = "mr_world_add_sine_spring";
   double len = 0.0, rest = 0.0;
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_SINE_SPRINGS, what);
-  if (s == MR_OK)
-    s = check_pair(w, def->a, def->b, what, &len);
-  if (s == MR_OK)
-    s = check_rest(w, what, def->rest_length, len, &rest);
-  if (s == MR_OK)
-    s = check_gains(w, what, def->max_force, def->damping);
-  if (s != MR_OK)
-    return s;
+  if (s == MR_OK) s = check_pair(w, def->a, def->b, what, &len);
+  if (s == MR_OK) s = check_rest(w, what, def->rest_length, len, &rest);
+  if (s == MR_OK) s = check_gains(w, what, def->max_force, def->damping);
+  if (s != MR_OK) return s;
   if (!isfinite(def->reach) || !(def->reach > 0))
     return mr_fail(w, MR_ERR_ARG, "%s: reach must be > 0 (got %g)", what, def->reach);
-  mr_sine_spring e = {def->a, def->b, rest, def->max_force, def->reach, def->damping};
+  mr_sine_spring e = { def->a, def->b, rest, def->max_force, def->reach, def->damping };
   return mr_add_push(w, MR_FORCES(w, SINE_SPRINGS), &e, sizeof e, out_id, what);
 }

@@ -9,8 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-mr_frame_def mr_default_frame_def(void)
-{
+mr_frame_def mr_default_frame_def(void) {
   mr_frame_def d;
   memset(&d, 0, sizeof d);
   d.cookie = MR_DEF_COOKIE;
@@ -18,11 +17,9 @@ mr_frame_def mr_default_frame_def(void)
   return d;
 }
 
-static mr_status pose_check(mr_world *w, const mr_pose *p, const char *what, mr_pose *out)
-{
+static mr_status pose_check(mr_world *w, const mr_pose *p, const char *what, mr_pose *out) {
   *out = *p;
-  if (mr_pose_normalize(out) == 0)
-    return MR_OK;
+  if (mr_pose_normalize(out) == 0) return MR_OK;
   if (!mr_finite3(p->position) || !mr_finite3(p->orientation) || !isfinite(p->orientation[3]))
     return mr_fail(w, MR_ERR_NONFINITE, "%s: pose has NaN or Inf", what);
   return mr_fail(w, MR_ERR_DEGENERATE, "%s: orientation quaternion is zero", what);
@@ -30,15 +27,12 @@ static mr_status pose_check(mr_world *w, const mr_pose *p, const char *what, mr_
 
 /* The frame's pose at t, and its velocity and angular velocity: the
  * interpolation from `from` at t0 to `to` at t1, held outside [t0, t1]. */
-void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3])
-{
+void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]) {
   double span = fr->t1 - fr->t0;
   double s = span > 0 ? (t - fr->t0) / span : 1.0;
   int moving = span > 0 && s > 0 && s < 1;
-  if (s <= 0)
-    s = 0;
-  if (s >= 1)
-    s = 1;
+  if (s <= 0) s = 0;
+  if (s >= 1) s = 1;
   *pose = mr_pose_interpolate(&fr->from, &fr->to, s);
   for (int k = 0; k < 3; k++) {
     vel[k] = moving ? (fr->to.position[k] - fr->from.position[k]) / span : 0.0;
@@ -49,15 +43,12 @@ void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], d
     double axis[3];
     double angle = mr_pose_turn(fr->from.orientation, fr->to.orientation, axis);
     if (angle > 0)
-      for (int k = 0; k < 3; k++)
-        omega[k] = axis[k] * (angle / span);
+      for (int k = 0; k < 3; k++) omega[k] = axis[k] * (angle / span);
   }
 }
 
-void mr_frames_place(mr_world *w, double t, double *x, double *v)
-{
-  if (!w->has_frames)
-    return;
+void mr_frames_place(mr_world *w, double t, double *x, double *v) {
+  if (!w->has_frames) return;
   w->pass_calls[MR_PASS_FRAMES]++;
   /* Each frame's pose once, then its particles. */
   for (int f = 0; f < w->frames.n; f++) {
@@ -73,23 +64,19 @@ void mr_frames_place(mr_world *w, double t, double *x, double *v)
     const double *p = st, *qq = st + 3, *fv = st + 7, *fo = st + 10;
     double r[3];
     mr_pose_rotate(qq, &w->local[3 * i], r);
-    for (int k = 0; k < 3; k++)
-      x[3 * i + k] = p[k] + r[k];
+    for (int k = 0; k < 3; k++) x[3 * i + k] = p[k] + r[k];
     v[3 * i + 0] = fv[0] + fo[1] * r[2] - fo[2] * r[1];
     v[3 * i + 1] = fv[1] + fo[2] * r[0] - fo[0] * r[2];
     v[3 * i + 2] = fv[2] + fo[0] * r[1] - fo[1] * r[0];
   }
 }
 
-mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id)
-{
+mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id) {
   const char *what = "mr_world_add_frame";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_FRAMES, what);
   mr_frame fr;
-  if (s == MR_OK)
-    s = pose_check(w, &def->pose, what, &fr.from);
-  if (s != MR_OK)
-    return s;
+  if (s == MR_OK) s = pose_check(w, &def->pose, what, &fr.from);
+  if (s != MR_OK) return s;
   int cap = w->frames.cap;
   if (mr_grow((void **)&w->frame_state, &cap, w->frames.n + 1, 13 * sizeof(double)) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
@@ -98,18 +85,15 @@ mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id)
   return mr_add_push(w, &w->frames, &fr, sizeof fr, out_id, what);
 }
 
-mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t)
-{
-  if (!w || !pose)
-    return mr_fail(w, MR_ERR_ARG, "mr_world_set_frame_target: NULL argument");
+mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t) {
+  if (!w || !pose) return mr_fail(w, MR_ERR_ARG, "mr_world_set_frame_target: NULL argument");
   if (frame < 0 || frame >= w->frames.n)
     return mr_fail(w, MR_ERR_ID, "mr_world_set_frame_target: frame %d does not exist", frame);
   if (!isfinite(t))
     return mr_fail(w, MR_ERR_NONFINITE, "mr_world_set_frame_target: time is NaN or Inf");
   mr_pose p;
   mr_status s = pose_check(w, pose, "mr_world_set_frame_target", &p);
-  if (s != MR_OK)
-    return s;
+  if (s != MR_OK) return s;
   mr_frame *fr = &MR_AT(w->frames, mr_frame, frame);
   double vel[3], om[3];
   mr_pose now;
@@ -126,12 +110,9 @@ mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose,
   return MR_OK;
 }
 
-mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out)
-{
-  if (!w || !out)
-    return MR_ERR_ARG;
-  if (frame < 0 || frame >= w->frames.n)
-    return MR_ERR_ID;
+mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out) {
+  if (!w || !out) return MR_ERR_ARG;
+  if (frame < 0 || frame >= w->frames.n) return MR_ERR_ID;
   double vel[3], om[3];
   mr_frame_eval(&MR_AT(w->frames, mr_frame, frame), w->t, out, vel, om);
   return MR_OK;

@@ -20,15 +20,13 @@
 /* Normal velocities χ̇⁻ before the impulse; the approaching contacts start
  * in the system. Returns whether any contact approaches; *collided when one
  * is faster than rest_speed. */
-static int approach_rates(mr_world *w, const double *x, const double *v, int *collided)
-{
+static int approach_rates(mr_world *w, const double *x, const double *v, int *collided) {
   int any = 0;
   for (int c = 0; c < w->contacts.n; c++) {
     w->contact_pre[c] = mr_contact_rate(w, &w->contacts.c[c], x, v);
     w->contact_active[c] = w->contact_pre[c] < 0;
     any |= w->contact_active[c];
-    if (w->contact_pre[c] < -w->def.rest_speed)
-      *collided = 1;
+    if (w->contact_pre[c] < -w->def.rest_speed) *collided = 1;
   }
   return any;
 }
@@ -38,33 +36,28 @@ static int approach_rates(mr_world *w, const double *x, const double *v, int *co
  * two spheres): at most μ times the normal impulse (1 + e)·(−χ̇⁻)·m_eff the
  * contact would take on its own, and no more than stops the sliding. Also
  * M⁻¹ L_a. */
-static void impact_friction(mr_world *w, const double *x, const double *v)
-{
+static void impact_friction(mr_world *w, const double *x, const double *v) {
   double *la = w->scratch.impact_momentum, *dv = w->scratch.impact_dv;
   int n3 = 3 * w->n;
   memset(la, 0, (size_t)n3 * sizeof *la);
   for (int c = 0; c < w->contacts.n; c++) {
     const mr_contact *ct = &w->contacts.c[c];
     const double pre = w->contact_pre[c];
-    if (ct->friction <= 0 || !(pre < -w->def.rest_speed))
-      continue;
+    if (ct->friction <= 0 || !(pre < -w->def.rest_speed)) continue;
     double vt[3];
     double inv = mr_contact_slip(w, ct, x, v, vt);
     double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-    if (!(speed > 0) || !(inv > 0))
-      continue;
+    if (!(speed > 0) || !(inv > 0)) continue;
     double pn = (1.0 + ct->restitution) * -pre / inv;
     double mag = fmin(ct->friction * pn, speed / inv);
     mr_contact_spread(w, ct, vt, -mag / speed, 0, la);
   }
-  for (int i = 0; i < n3; i++)
-    dv[i] = la[i] * w->inv_mass[i / 3];
+  for (int i = 0; i < n3; i++) dv[i] = la[i] * w->inv_mass[i / 3];
 }
 
 /* The right-hand side of eq. 9 for the rows built: −J M⁻¹ L_a plus the
  * change of J q̇ each row asks for. */
-static void rhs_eq9(mr_world *w, int rows)
-{
+static void rhs_eq9(mr_world *w, int rows) {
   mr_jac_mul(&w->J, w->scratch.impact_dv, w->row_jv);
   for (int r = 0; r < rows; r++) {
     int c = w->row_contact[r];
@@ -78,8 +71,7 @@ static void rhs_eq9(mr_world *w, int rows)
 /* After a trial impulse, a contact with a negative multiplier leaves the
  * system; if none does, a contact the impulse drives inwards joins it.
  * Returns whether the set changed. */
-static int update_contact_set(mr_world *w, int rows, const double *x)
-{
+static int update_contact_set(mr_world *w, int rows, const double *x) {
   int changed = 0;
   for (int r = 0; r < rows; r++) {
     int c = w->row_contact[r];
@@ -88,11 +80,9 @@ static int update_contact_set(mr_world *w, int rows, const double *x)
       changed = 1;
     }
   }
-  if (changed)
-    return 1;
+  if (changed) return 1;
   for (int c = 0; c < w->contacts.n; c++) {
-    if (w->contact_active[c])
-      continue;
+    if (w->contact_active[c]) continue;
     if (mr_contact_rate(w, &w->contacts.c[c], x, w->scratch.v_try) < -1e-9) {
       w->contact_active[c] = 1;
       changed = 1;
@@ -103,44 +93,33 @@ static int update_contact_set(mr_world *w, int rows, const double *x)
 
 /* Solves eq. 9 until the contact set settles; the velocities q̇⁺ are left in
  * scratch.v_try. */
-static int solve_eq9(mr_world *w, double t, const double *x, const double *v)
-{
+static int solve_eq9(mr_world *w, double t, const double *x, const double *v) {
   int n3 = 3 * w->n;
   double *vt = w->scratch.v_try;
   const double *la = w->scratch.impact_momentum;
   for (int round = 0; round <= w->contacts.n + 1; round++) {
     int rows = mr_rows_build(w, t, x, v);
-    if (rows < 0)
-      return -1;
+    if (rows < 0) return -1;
     if (rows == 0) {
-      for (int i = 0; i < n3; i++)
-        vt[i] = v[i] + w->scratch.impact_dv[i];
+      for (int i = 0; i < n3; i++) vt[i] = v[i] + w->scratch.impact_dv[i];
       return 0;
     }
     rhs_eq9(w, rows);
-    if (mr_solve_rows(w, 1) != 0)
-      return -1;
+    if (mr_solve_rows(w, 1) != 0) return -1;
     mr_jac_tmul(&w->J, w->lambda, vt);
-    for (int i = 0; i < n3; i++)
-      vt[i] = v[i] + (la[i] + vt[i]) * w->inv_mass[i / 3];
-    if (!update_contact_set(w, rows, x))
-      return 0;
+    for (int i = 0; i < n3; i++) vt[i] = v[i] + (la[i] + vt[i]) * w->inv_mass[i / 3];
+    if (!update_contact_set(w, rows, x)) return 0;
   }
   return 0;
 }
 
-int mr_impulses_apply(mr_world *w, double t, int *collided)
-{
+int mr_impulses_apply(mr_world *w, double t, int *collided) {
   *collided = 0;
-  if (w->contacts.n == 0)
-    return 0;
-  if (!approach_rates(w, w->x, w->v, collided))
-    return 0;
+  if (w->contacts.n == 0) return 0;
+  if (!approach_rates(w, w->x, w->v, collided)) return 0;
   impact_friction(w, w->x, w->v);
-  if (solve_eq9(w, t, w->x, w->v) != 0)
-    return -1;
+  if (solve_eq9(w, t, w->x, w->v) != 0) return -1;
   memcpy(w->v, w->scratch.v_try, (size_t)(3 * w->n) * sizeof *w->v);
-  if (*collided)
-    w->stats.collisions++;
+  if (*collided) w->stats.collisions++;
   return 0;
 }

@@ -5,15 +5,12 @@
 
 #include <string.h>
 
-static void axpy(int n, double *out, const double *x, double h, const double *y)
-{
-  for (int i = 0; i < n; i++)
-    out[i] = x[i] + h * y[i];
+static void axpy(int n, double *out, const double *x, double h, const double *y) {
+  for (int i = 0; i < n; i++) out[i] = x[i] + h * y[i];
 }
 
 int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0, double *x1,
-                 double *v1)
-{
+                 double *v1) {
   int n3 = 3 * w->n;
   size_t bytes = (size_t)n3 * sizeof(double);
   double *xs = w->scratch.xs, *vs = w->scratch.vs;
@@ -22,8 +19,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
   double *kv3 = k + 4 * n3, *ka3 = k + 5 * n3, *kv4 = k + 6 * n3, *ka4 = k + 7 * n3;
   memcpy(kv1, v0, bytes);
   memcpy(xs, x0, bytes);
-  if (mr_eval(w, t, h, xs, kv1, ka1) != 0)
-    return -1;
+  if (mr_eval(w, t, h, xs, kv1, ka1) != 0) return -1;
   switch (w->def.integrator) {
   case MR_INTEGRATOR_EULER:
     axpy(n3, x1, xs, h, kv1);
@@ -36,8 +32,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
   case MR_INTEGRATOR_MIDPOINT:
     axpy(n3, vs, kv1, 0.5 * h, ka1);
     axpy(n3, x1, xs, 0.5 * h, kv1);
-    if (mr_eval(w, t + 0.5 * h, h, x1, vs, ka2) != 0)
-      return -1;
+    if (mr_eval(w, t + 0.5 * h, h, x1, vs, ka2) != 0) return -1;
     axpy(n3, x1, xs, h, vs);
     axpy(n3, v1, kv1, h, ka2);
     break;
@@ -46,16 +41,13 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
     double *xa = x1; /* stage positions; x1 is written last */
     axpy(n3, xa, xs, 0.5 * h, kv1);
     axpy(n3, kv2, kv1, 0.5 * h, ka1);
-    if (mr_eval(w, t + 0.5 * h, h, xa, kv2, ka2) != 0)
-      return -1;
+    if (mr_eval(w, t + 0.5 * h, h, xa, kv2, ka2) != 0) return -1;
     axpy(n3, xa, xs, 0.5 * h, kv2);
     axpy(n3, kv3, kv1, 0.5 * h, ka2);
-    if (mr_eval(w, t + 0.5 * h, h, xa, kv3, ka3) != 0)
-      return -1;
+    if (mr_eval(w, t + 0.5 * h, h, xa, kv3, ka3) != 0) return -1;
     axpy(n3, xa, xs, h, kv3);
     axpy(n3, kv4, kv1, h, ka3);
-    if (mr_eval(w, t + h, h, xa, kv4, ka4) != 0)
-      return -1;
+    if (mr_eval(w, t + h, h, xa, kv4, ka4) != 0) return -1;
     const double h6 = h / 6.0;
     for (int i = 0; i < n3; i++) {
       x1[i] = xs[i] + h6 * (kv1[i] + 2.0 * kv2[i] + 2.0 * kv3[i] + kv4[i]);

@@ -12,16 +12,24 @@
 /* ------------------------------------------------------------- elements */
 
 typedef struct mr_frame {
-  mr_pose from, to;     /* interpolated from `from` at t0 to `to` at t1 */
+  mr_pose from, to; /* interpolated from `from` at t0 to `to` at t1 */
   double t0, t1;
 } mr_frame;
 
-
 /* A string's element: forces.c pulls with it, string_correction.c shortens it. */
-typedef struct mr_string { int frame_particle, puppet_particle; double rest, ks, kd; } mr_string;
+typedef struct mr_string {
+  int frame_particle, puppet_particle;
+  double rest, ks, kd;
+} mr_string;
 
-typedef struct mr_distance { int a, b; double length; } mr_distance;
-typedef struct mr_pin { int particle; double point[3]; } mr_pin;
+typedef struct mr_distance {
+  int a, b;
+  double length;
+} mr_distance;
+typedef struct mr_pin {
+  int particle;
+  double point[3];
+} mr_pin;
 typedef struct mr_curve {
   int particle;
   int key_count;
@@ -31,24 +39,41 @@ typedef struct mr_curve {
   void *user;
 } mr_curve;
 
-typedef struct mr_plane { double n[3], offset, restitution, friction; } mr_plane;
+typedef struct mr_plane {
+  double n[3], offset, restitution, friction;
+} mr_plane;
 
 /* A leaf sphere of a part: centre (1−s)·x[p0] + s·x[p1]. */
-typedef struct mr_leaf { int p0, p1; double s, r; int part, puppet; } mr_leaf;
-typedef struct mr_part { int first_leaf, leaf_count, puppet; double restitution, friction; } mr_part;
-typedef struct mr_tree_node { double c[3], r; int left, right, leaf; } mr_tree_node;
-typedef struct mr_tree { int puppet, first_node, node_count, root; } mr_tree;
+typedef struct mr_leaf {
+  int p0, p1;
+  double s, r;
+  int part, puppet;
+} mr_leaf;
+typedef struct mr_part {
+  int first_leaf, leaf_count, puppet;
+  double restitution, friction;
+} mr_part;
+typedef struct mr_tree_node {
+  double c[3], r;
+  int left, right, leaf;
+} mr_tree_node;
+typedef struct mr_tree {
+  int puppet, first_node, node_count, root;
+} mr_tree;
 
 typedef enum mr_contact_kind { MR_CONTACT_PLANE, MR_CONTACT_SPHERES } mr_contact_kind;
 typedef struct mr_contact {
   mr_contact_kind kind;
-  int a, b;             /* plane: particle a, plane b; spheres: leaves a, b */
+  int a, b; /* plane: particle a, plane b; spheres: leaves a, b */
   double restitution, friction;
 } mr_contact;
 
 /* A force pass adds its forces into f (3n) for the state (x, v) at time t. */
 typedef void (*mr_force_pass)(mr_world *w, double t, const double *x, const double *v, double *f);
-typedef struct mr_contact_list { int n, cap; mr_contact *c; } mr_contact_list;
+typedef struct mr_contact_list {
+  int n, cap;
+  mr_contact *c;
+} mr_contact_list;
 /* A detector appends the contacts whose gap χ is at most `gap` in state x. */
 typedef int (*mr_detect_pass)(mr_world *w, const double *x, double gap, mr_contact_list *out);
 
@@ -56,7 +81,10 @@ typedef int (*mr_detect_pass)(mr_world *w, const double *x, double gap, mr_conta
 
 /* One growable list of elements. Every array of the world grows through
  * mr_grow, the one growth helper. */
-typedef struct mr_list { void *data; int n, cap; } mr_list;
+typedef struct mr_list {
+  void *data;
+  int n, cap;
+} mr_list;
 #define MR_AT(list, type, i) (((type *)(list).data)[i])
 
 /* The force kinds, numbered as their effect bits (they come first). */
@@ -73,41 +101,47 @@ struct mr_world {
   mr_world_def def;
   char err[256];
   double t;
-  int started;          /* a step has been taken: start config is fixed */
-  int dirty;            /* elements added since the derived data was built */
+  int started; /* a step has been taken: start config is fixed */
+  int dirty;   /* elements added since the derived data was built */
 
   /* particles */
   int n, cap_n;
-  double *x, *v;                 /* 3n, hot */
+  double *x, *v; /* 3n, hot */
   double *mass, *inv_mass, *radius;
-  double *x_start, *v_start;     /* the start configuration (§7) */
-  double *local;                 /* 3n offsets in the particle's frame */
+  double *x_start, *v_start; /* the start configuration (§7) */
+  double *local;             /* 3n offsets in the particle's frame */
   int *puppet, *frame;
 
-  mr_list frames;                 /* mr_frame */
-  double *frame_state;            /* per frame: p, q, ṗ, ω (13) */
-  mr_list kin;                    /* int: particles carried by frames */
+  mr_list frames;                      /* mr_frame */
+  double *frame_state;                 /* per frame: p, q, ṗ, ω (13) */
+  mr_list kin;                         /* int: particles carried by frames */
   mr_list forces[MR_FORCE_KIND_COUNT]; /* per force kind, its elements */
-  mr_list distances;              /* mr_distance */
-  mr_list pins;                   /* mr_pin */
-  mr_list curves;                 /* mr_curve */
-  int n_groups;                   /* rigid groups added (ids) */
-  mr_list planes;                 /* mr_plane */
-  mr_list parts;                  /* mr_part */
-  mr_list leaves;                 /* mr_leaf */
+  mr_list distances;                   /* mr_distance */
+  mr_list pins;                        /* mr_pin */
+  mr_list curves;                      /* mr_curve */
+  int n_groups;                        /* rigid groups added (ids) */
+  mr_list planes;                      /* mr_plane */
+  mr_list parts;                       /* mr_part */
+  mr_list leaves;                      /* mr_leaf */
 
   /* derived at finalize */
   int npuppets, cap_puppets;
   double *puppet_mass;
-  unsigned char *part_adjacent;  /* nparts × nparts */
-  int ntrees; mr_tree *trees;
-  int nnodes; mr_tree_node *nodes;
-  double *leaf_c;                /* 3 per leaf, refitted per detection */
+  unsigned char *part_adjacent; /* nparts × nparts */
+  int ntrees;
+  mr_tree *trees;
+  int nnodes;
+  mr_tree_node *nodes;
+  double *leaf_c;                  /* 3 per leaf, refitted per detection */
   int *tree_stack, cap_tree_stack; /* node pairs of a traversal */
 
   /* the passes this world runs, built at creation from its effects */
-  int n_force_passes; mr_force_pass force_passes[MR_MAX_PASSES]; mr_pass force_pass_ids[MR_MAX_PASSES];
-  int n_detect_passes; mr_detect_pass detect_passes[4]; mr_pass detect_pass_ids[4];
+  int n_force_passes;
+  mr_force_pass force_passes[MR_MAX_PASSES];
+  mr_pass force_pass_ids[MR_MAX_PASSES];
+  int n_detect_passes;
+  mr_detect_pass detect_passes[4];
+  mr_pass detect_pass_ids[4];
   int has_frames, has_solve, has_string_correction;
   uint64_t pass_calls[MR_PASS_COUNT];
 
@@ -127,33 +161,33 @@ struct mr_world {
   mr_solve_def opts;
   int cap_rows;
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
-  int *row_contact;              /* −1 constraint row, else contact index */
+  int *row_contact; /* −1 constraint row, else contact index */
 
   /* The end state of a step, traded with x and v when it is accepted. */
   double *x1, *v1;
 
   /* Per-step scratch, 3n each unless said (mr_world_ensure_ready sizes
    * them). Each buffer has one meaning throughout a step. */
-  int cap_scratch;               /* particles the scratch holds */
+  int cap_scratch; /* particles the scratch holds */
   struct {
-    double *x0, *v0;             /* the state at the start of the step */
-    double *xs, *vs;             /* integrator stage state */
-    double *k;                   /* stage derivatives, 8 × 3n (RK4) */
-    double *force;               /* F of the evaluation under way */
-    double *constraint_force;    /* Jᵀ λ of the evaluation under way */
-    double *acc_try;             /* a + M⁻¹ Jᵀ λ within friction rounds */
-    double *impact_momentum;     /* L_a, friction at an impact (eq. 9) */
-    double *impact_dv;           /* M⁻¹ L_a */
-    double *v_try;               /* q̇⁺ of a trial impulse */
+    double *x0, *v0;          /* the state at the start of the step */
+    double *xs, *vs;          /* integrator stage state */
+    double *k;                /* stage derivatives, 8 × 3n (RK4) */
+    double *force;            /* F of the evaluation under way */
+    double *constraint_force; /* Jᵀ λ of the evaluation under way */
+    double *acc_try;          /* a + M⁻¹ Jᵀ λ within friction rounds */
+    double *impact_momentum;  /* L_a, friction at an impact (eq. 9) */
+    double *impact_dv;        /* M⁻¹ L_a */
+    double *v_try;            /* q̇⁺ of a trial impulse */
   } scratch;
 
   /* ATS */
   double dt_next;
-  int recovering;                /* after a collision Δt doubles (§4.5) */
+  int recovering; /* after a collision Δt doubles (§4.5) */
 
   mr_stats stats;
   int last_dependent;
-  mr_status fail;                /* why an inner stage returned −1 (0: memory) */
+  mr_status fail; /* why an inner stage returned −1 (0: memory) */
 };
 
 /* world.c */
@@ -167,7 +201,7 @@ int mr_grow(void **data, int *cap, int need, size_t elem);
  * failure (the world's message set). */
 mr_status mr_add_check(mr_world *w, const void *def, uint32_t cookie, uint32_t effect,
                        const char *what);
-#define MR_ADD_CHECK(w, def, effect, what)                                                         \
+#define MR_ADD_CHECK(w, def, effect, what) \
   mr_add_check((w), (def), (def) ? (def)->cookie : 0u, (effect), (what))
 /* The end of every add call: appends the element to its list, returns its
  * id in *out_id (may be NULL) and marks the derived data stale. */
@@ -190,8 +224,8 @@ void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], do
 int mr_forces_build_passes(mr_world *w);
 
 /* constraints.c: rows of C, J, J̇q̇ for eq. 8 */
-int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v,
-                        double *c, double *cdot, double *bias);
+int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v, double *c,
+                        double *cdot, double *bias);
 int mr_constraint_row_count(const mr_world *w);
 double mr_constraints_deviation(const mr_world *w, double t, const double *x);
 int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id);
@@ -218,8 +252,8 @@ void mr_contact_list_free(mr_contact_list *l);
  * side a's, into out (3n); with by_mass, each term divided by its mass. */
 double mr_contact_slip(const mr_world *w, const mr_contact *c, const double *x, const double *q,
                        double out[3]);
-void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3], double s, int by_mass,
-                       double *out);
+void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3], double s,
+                       int by_mass, double *out);
 
 /* sphere_tree.c */
 int mr_trees_build(mr_world *w);
@@ -238,8 +272,8 @@ int mr_solve_rows(mr_world *w, int assemble);
 int mr_impulses_apply(mr_world *w, double t, int *collided);
 
 /* integrate.c */
-int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0,
-                 double *x1, double *v1);
+int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0, double *x1,
+                 double *v1);
 
 /* string_correction.c */
 void mr_strings_correct(mr_world *w);

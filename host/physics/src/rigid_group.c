@@ -9,22 +9,19 @@
 #include <math.h>
 #include <stdlib.h>
 
-static double dist(const double *x, int a, int b)
-{
-  double d[3] = {x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2]};
+static double dist(const double *x, int a, int b) {
+  double d[3] = { x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2] };
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
 /* |det(b−a, c−a, d−a)| / (|b−a| |c−a| |d−a|): 0 when coplanar, 1 for three
  * orthogonal edges. Scale-free, so one threshold fits any model size. */
-static double flatness(const double *x, int a, int b, int c, int d)
-{
+static double flatness(const double *x, int a, int b, int c, int d) {
   double e[3][3];
-  int o[3] = {b, c, d};
+  int o[3] = { b, c, d };
   double norm = 1.0;
   for (int i = 0; i < 3; i++) {
-    for (int k = 0; k < 3; k++)
-      e[i][k] = x[3 * o[i] + k] - x[3 * a + k];
+    for (int k = 0; k < 3; k++) e[i][k] = x[3 * o[i] + k] - x[3 * a + k];
     norm *= sqrt(e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]);
   }
   double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
@@ -34,45 +31,42 @@ static double flatness(const double *x, int a, int b, int c, int d)
 }
 
 /* |(b−a) × (c−a)| / (|b−a| |c−a|): 0 when collinear. */
-static double straightness(const double *x, int a, int b, int c)
-{
+static double straightness(const double *x, int a, int b, int c) {
   double u[3], v[3];
   for (int k = 0; k < 3; k++) {
     u[k] = x[3 * b + k] - x[3 * a + k];
     v[k] = x[3 * c + k] - x[3 * a + k];
   }
-  double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  double n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  double cr[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                   u[0] * v[1] - u[1] * v[0] };
+  double n =
+      sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   return n > 0 ? sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) / n : 0.0;
 }
 
 static const double min_shape = 1e-3;
 
-static int link(mr_world *w, int a, int b, int *n)
-{
+static int link(mr_world *w, int a, int b, int *n) {
   /* Two frame particles are already rigid through their frame; a row
    * between them would have no mass to act on. */
-  if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0)
-    return 0;
-  if (mr_distance_add_internal(w, a, b, dist(w->x, a, b), NULL) != 0)
-    return -1;
+  if (w->inv_mass[a] == 0.0 && w->inv_mass[b] == 0.0) return 0;
+  if (mr_distance_add_internal(w, a, b, dist(w->x, a, b), NULL) != 0) return -1;
   (*n)++;
   return 0;
 }
 
 /* The particles must exist, be distinct and apart, and the first three (or
  * four) span a triangle (tetrahedron). */
-static mr_status check_shape(mr_world *w, const int *ids, int count, const char *what)
-{
+static mr_status check_shape(mr_world *w, const int *ids, int count, const char *what) {
   const double *x = w->x;
   for (int i = 0; i < count; i++) {
-    if (mr_check_particle(w, ids[i], what) != 0)
-      return MR_ERR_ID;
+    if (mr_check_particle(w, ids[i], what) != 0) return MR_ERR_ID;
     for (int j = 0; j < i; j++) {
       if (ids[i] == ids[j])
         return mr_fail(w, MR_ERR_ARG, "%s: particle %d listed twice", what, ids[i]);
       if (!(dist(x, ids[i], ids[j]) > 1e-9))
-        return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d and %d coincide", what, ids[j], ids[i]);
+        return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d and %d coincide", what, ids[j],
+                       ids[i]);
     }
   }
   if (count == 3 && straightness(x, ids[0], ids[1], ids[2]) < min_shape)
@@ -83,7 +77,8 @@ static mr_status check_shape(mr_world *w, const int *ids, int count, const char 
         flatness(x, ids[0], ids[1], ids[2], ids[3]) < min_shape)
       return mr_fail(w, MR_ERR_DEGENERATE,
                      "%s: the first four particles (%d, %d, %d, %d) are coplanar; a rigid group "
-                     "starts with a tetrahedron", what, ids[0], ids[1], ids[2], ids[3]);
+                     "starts with a tetrahedron",
+                     what, ids[0], ids[1], ids[2], ids[3]);
   }
   return MR_OK;
 }
@@ -91,15 +86,13 @@ static mr_status check_shape(mr_world *w, const int *ids, int count, const char 
 /* Particle i's three partners among ids[0..i): the nearest triple not
  * coplanar with it (short links stay well conditioned). 0, or -1 if every
  * triple is coplanar with it. */
-static int choose_partners(const double *x, const int *ids, int i, int best[3])
-{
+static int choose_partners(const double *x, const int *ids, int i, int best[3]) {
   double best_len = INFINITY;
   best[0] = best[1] = best[2] = -1;
   for (int a = 0; a < i; a++)
     for (int b = a + 1; b < i; b++)
       for (int c = b + 1; c < i; c++) {
-        if (flatness(x, ids[i], ids[a], ids[b], ids[c]) < min_shape)
-          continue;
+        if (flatness(x, ids[i], ids[a], ids[b], ids[c]) < min_shape) continue;
         double len = dist(x, ids[i], ids[a]) + dist(x, ids[i], ids[b]) + dist(x, ids[i], ids[c]);
         if (len < best_len) {
           best_len = len;
@@ -111,21 +104,18 @@ static int choose_partners(const double *x, const int *ids, int i, int best[3])
   return best[0] < 0 ? -1 : 0;
 }
 
-mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n)
-{
+mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n) {
   const char *what = "mr_world_add_rigid_group";
   *first = w->distances.n;
   *n = 0;
   mr_status s = check_shape(w, ids, count, what);
-  if (s != MR_OK)
-    return s;
+  if (s != MR_OK) return s;
   /* Choose every later particle's three partners before adding anything, so
    * a failure leaves the world unchanged. */
-  int (*partners)[3] = NULL;
+  int(*partners)[3] = NULL;
   if (count > 4) {
     partners = malloc((size_t)count * sizeof *partners);
-    if (!partners)
-      return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+    if (!partners) return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
     for (int i = 4; i < count; i++)
       if (choose_partners(w->x, ids, i, partners[i]) != 0) {
         free(partners);
@@ -136,30 +126,23 @@ mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *firs
   int clique = count < 4 ? count : 4;
   int ok = 0;
   for (int i = 0; i < clique && ok == 0; i++)
-    for (int j = i + 1; j < clique && ok == 0; j++)
-      ok = link(w, ids[i], ids[j], n);
+    for (int j = i + 1; j < clique && ok == 0; j++) ok = link(w, ids[i], ids[j], n);
   for (int i = 4; i < count && ok == 0; i++)
-    for (int k = 0; k < 3 && ok == 0; k++)
-      ok = link(w, ids[i], partners[i][k], n);
+    for (int k = 0; k < 3 && ok == 0; k++) ok = link(w, ids[i], partners[i][k], n);
   free(partners);
-  if (ok != 0)
-    return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  if (ok != 0) return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   return MR_OK;
 }
 
-mr_rigid_group_def mr_default_rigid_group_def(void)
-{
-  return (mr_rigid_group_def){.cookie = MR_DEF_COOKIE};
+mr_rigid_group_def mr_default_rigid_group_def(void) {
+  return (mr_rigid_group_def){ .cookie = MR_DEF_COOKIE };
 }
 
-mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, int *out_id)
-{
+mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, int *out_id) {
   const char *what = "mr_world_add_rigid_group";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_CONSTRAINTS, what);
-  if (s != MR_OK)
-    return s;
-  if (!def->particles && def->count > 0)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL particles", what);
+  if (s != MR_OK) return s;
+  if (!def->particles && def->count > 0) return mr_fail(w, MR_ERR_ARG, "%s: NULL particles", what);
   if (def->count < 2)
     return mr_fail(w, MR_ERR_ARG, "%s: needs at least 2 particles (got %d)", what, def->count);
   int first, n;
@@ -168,8 +151,7 @@ mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, i
     w->distances.n = first; /* drop links added before an allocation failure */
     return s;
   }
-  if (out_id)
-    *out_id = w->n_groups;
+  if (out_id) *out_id = w->n_groups;
   w->n_groups++;
   return MR_OK;
 }

@@ -12,55 +12,47 @@
 #include <stdlib.h>
 #include <string.h>
 
-mr_part_def mr_default_part_def(void)
-{
-  return (mr_part_def){.cookie = MR_DEF_COOKIE, .restitution = 0.5, .friction = 0.3};
+mr_part_def mr_default_part_def(void) {
+  return (mr_part_def){ .cookie = MR_DEF_COOKIE, .restitution = 0.5, .friction = 0.3 };
 }
 
-void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3])
-{
+void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3]) {
   (void)w;
-  for (int k = 0; k < 3; k++)
-    c[k] = (1.0 - l->s) * x[3 * l->p0 + k] + l->s * x[3 * l->p1 + k];
+  for (int k = 0; k < 3; k++) c[k] = (1.0 - l->s) * x[3 * l->p0 + k] + l->s * x[3 * l->p1 + k];
 }
 
-static int push_leaf(mr_world *w, int p0, int p1, double s, double r, int part, int puppet)
-{
-  mr_leaf l = {p0, p1, s, r, part, puppet};
+static int push_leaf(mr_world *w, int p0, int p1, double s, double r, int part, int puppet) {
+  mr_leaf l = { p0, p1, s, r, part, puppet };
   return mr_add_push(w, &w->leaves, &l, sizeof l, NULL, "mr_world_add_part") == MR_OK ? 0 : -1;
 }
 
-mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
-{
+mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id) {
   const char *what = "mr_world_add_part";
   mr_status st = MR_ADD_CHECK(w, def, 0, what);
-  if (st != MR_OK)
-    return st;
-  if (!def->particles && def->count > 0)
-    return mr_fail(w, MR_ERR_ARG, "%s: NULL particles", what);
+  if (st != MR_OK) return st;
+  if (!def->particles && def->count > 0) return mr_fail(w, MR_ERR_ARG, "%s: NULL particles", what);
   if (!(w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION)))
-    return mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world declares no sphere-tree collisions", what);
-  if (def->count < 1)
-    return mr_fail(w, MR_ERR_ARG, "%s: needs at least one particle", what);
+    return mr_fail(w, MR_ERR_NOT_DECLARED, "%s: the world declares no sphere-tree collisions",
+                   what);
+  if (def->count < 1) return mr_fail(w, MR_ERR_ARG, "%s: needs at least one particle", what);
   if (!isfinite(def->radius) || !isfinite(def->restitution) || !isfinite(def->friction))
     return mr_fail(w, MR_ERR_NONFINITE, "%s: radius, restitution or friction is NaN or Inf", what);
   if (def->radius < 0 || def->restitution < 0 || def->restitution > 1 || def->segment_spheres < 0 ||
       def->friction < 0)
-    return mr_fail(w, MR_ERR_ARG,
-                   "%s: need radius >= 0, 0 <= restitution <= 1, friction >= 0, segment_spheres >= 0",
-                   what);
+    return mr_fail(
+        w, MR_ERR_ARG,
+        "%s: need radius >= 0, 0 <= restitution <= 1, friction >= 0, segment_spheres >= 0", what);
   if (def->segment_spheres > 0 && def->count != 2)
     return mr_fail(w, MR_ERR_ARG, "%s: segment_spheres needs a two-particle part", what);
   int puppet = -1;
   for (int i = 0; i < def->count; i++) {
     int p = def->particles[i];
-    if (mr_check_particle(w, p, what) != 0)
-      return MR_ERR_ID;
+    if (mr_check_particle(w, p, what) != 0) return MR_ERR_ID;
     if (w->frame[p] >= 0)
       return mr_fail(w, MR_ERR_ARG, "%s: particle %d is on a control frame", what, p);
     if (puppet >= 0 && w->puppet[p] != puppet)
-      return mr_fail(w, MR_ERR_ARG, "%s: particle %d is in puppet %d, the part is in puppet %d", what,
-                     p, w->puppet[p], puppet);
+      return mr_fail(w, MR_ERR_ARG, "%s: particle %d is in puppet %d, the part is in puppet %d",
+                     what, p, w->puppet[p], puppet);
     puppet = w->puppet[p];
   }
   int id = w->parts.n, first = w->leaves.n;
@@ -79,10 +71,9 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
     w->leaves.n = first;
     return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   }
-  mr_part part = {first, w->leaves.n - first, puppet, def->restitution, def->friction};
+  mr_part part = { first, w->leaves.n - first, puppet, def->restitution, def->friction };
   st = mr_add_push(w, &w->parts, &part, sizeof part, out_id, what);
-  if (st != MR_OK)
-    w->leaves.n = first;
+  if (st != MR_OK) w->leaves.n = first;
   return st;
 }
 
@@ -91,8 +82,7 @@ mr_status mr_world_add_part(mr_world *w, const mr_part_def *def, int *out_id)
 /* Sorts leaf indices by their centre's coordinate on `axis` (ties by index,
  * a total order, so builds are reproducible). Insertion sort: a puppet has
  * tens of leaves, and it keeps no state outside the call. */
-static void sort_by_axis(int *idx, int n, const double *c, int axis)
-{
+static void sort_by_axis(int *idx, int n, const double *c, int axis) {
   for (int i = 1; i < n; i++) {
     int v = idx[i], j = i - 1;
     double key = c[3 * v + axis];
@@ -106,15 +96,14 @@ static void sort_by_axis(int *idx, int n, const double *c, int axis)
 
 /* Builds the subtree over leaves idx[0..n) and returns its node index;
  * children are emitted before their parent, so refitting is one pass. */
-static int build(mr_world *w, int *idx, int n)
-{
+static int build(mr_world *w, int *idx, int n) {
   int node;
   if (n == 1) {
     node = w->nnodes++;
-    w->nodes[node] = (mr_tree_node){{0, 0, 0}, 0, -1, -1, idx[0]};
+    w->nodes[node] = (mr_tree_node){ { 0, 0, 0 }, 0, -1, -1, idx[0] };
     return node;
   }
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
   for (int i = 0; i < n; i++)
     for (int k = 0; k < 3; k++) {
       double c = w->leaf_c[3 * idx[i] + k];
@@ -123,45 +112,38 @@ static int build(mr_world *w, int *idx, int n)
     }
   int axis = 0;
   for (int k = 1; k < 3; k++)
-    if (hi[k] - lo[k] > hi[axis] - lo[axis])
-      axis = k;
+    if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
   sort_by_axis(idx, n, w->leaf_c, axis);
   int left = build(w, idx, n / 2);
   int right = build(w, idx + n / 2, n - n / 2);
   node = w->nnodes++;
-  w->nodes[node] = (mr_tree_node){{0, 0, 0}, 0, left, right, -1};
+  w->nodes[node] = (mr_tree_node){ { 0, 0, 0 }, 0, left, right, -1 };
   return node;
 }
 
-static int parts_touch(const mr_world *w, int i, int j)
-{
+static int parts_touch(const mr_world *w, int i, int j) {
   const mr_part *a = &MR_AT(w->parts, mr_part, i), *b = &MR_AT(w->parts, mr_part, j);
   for (int u = 0; u < a->leaf_count; u++) {
     const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, a->first_leaf + u);
-    if (la->s != 0.0)
-      continue;
+    if (la->s != 0.0) continue;
     for (int v = 0; v < b->leaf_count; v++) {
       const mr_leaf *lb = &MR_AT(w->leaves, mr_leaf, b->first_leaf + v);
-      if (lb->s == 0.0 && lb->p0 == la->p0)
-        return 1;
+      if (lb->s == 0.0 && lb->p0 == la->p0) return 1;
     }
   }
   return 0;
 }
 
-static int part_has(const mr_world *w, int part, int p)
-{
+static int part_has(const mr_world *w, int part, int p) {
   const mr_part *a = &MR_AT(w->parts, mr_part, part);
   for (int u = 0; u < a->leaf_count; u++) {
     const mr_leaf *l = &MR_AT(w->leaves, mr_leaf, a->first_leaf + u);
-    if (l->s == 0.0 && l->p0 == p)
-      return 1;
+    if (l->s == 0.0 && l->p0 == p) return 1;
   }
   return 0;
 }
 
-int mr_trees_build(mr_world *w)
-{
+int mr_trees_build(mr_world *w) {
   free(w->nodes);
   free(w->trees);
   free(w->leaf_c);
@@ -171,8 +153,7 @@ int mr_trees_build(mr_world *w)
   w->leaf_c = NULL;
   w->part_adjacent = NULL;
   w->nnodes = w->ntrees = 0;
-  if (w->leaves.n == 0)
-    return 0;
+  if (w->leaves.n == 0) return 0;
   int np = w->parts.n;
   w->leaf_c = malloc((size_t)w->leaves.n * 3 * sizeof *w->leaf_c);
   w->nodes = malloc((size_t)(2 * w->leaves.n) * sizeof *w->nodes);
@@ -188,25 +169,21 @@ int mr_trees_build(mr_world *w)
   /* One tree per puppet, in order of first appearance. */
   for (int i = 0; i < w->leaves.n; i++) {
     int puppet = MR_AT(w->leaves, mr_leaf, i).puppet, seen = 0;
-    for (int t = 0; t < w->ntrees && !seen; t++)
-      seen = w->trees[t].puppet == puppet;
-    if (seen)
-      continue;
+    for (int t = 0; t < w->ntrees && !seen; t++) seen = w->trees[t].puppet == puppet;
+    if (seen) continue;
     int n = 0;
     for (int j = i; j < w->leaves.n; j++)
-      if (MR_AT(w->leaves, mr_leaf, j).puppet == puppet)
-        idx[n++] = j;
+      if (MR_AT(w->leaves, mr_leaf, j).puppet == puppet) idx[n++] = j;
     int first = w->nnodes;
     int root = build(w, idx, n);
-    w->trees[w->ntrees++] = (mr_tree){puppet, first, w->nnodes - first, root};
+    w->trees[w->ntrees++] = (mr_tree){ puppet, first, w->nnodes - first, root };
   }
   free(idx);
   /* Adjacent parts (sharing a particle or joined by a distance constraint)
    * touch by design and are never tested. */
   for (int i = 0; i < np; i++)
     for (int j = 0; j < np; j++)
-      if (i == j || parts_touch(w, i, j))
-        w->part_adjacent[i * np + j] = 1;
+      if (i == j || parts_touch(w, i, j)) w->part_adjacent[i * np + j] = 1;
   for (int d = 0; d < w->distances.n; d++)
     for (int i = 0; i < np; i++)
       if (part_has(w, i, MR_AT(w->distances, mr_distance, d).a))
@@ -218,8 +195,7 @@ int mr_trees_build(mr_world *w)
 
 /* ----------------------------------------------------------------- refit */
 
-static void refit(mr_world *w, const mr_tree *t, const double *x)
-{
+static void refit(mr_world *w, const mr_tree *t, const double *x) {
   for (int i = t->first_node; i < t->first_node + t->node_count; i++) {
     mr_tree_node *nd = &w->nodes[i];
     if (nd->leaf >= 0) {
@@ -228,7 +204,7 @@ static void refit(mr_world *w, const mr_tree *t, const double *x)
       continue;
     }
     const mr_tree_node *a = &w->nodes[nd->left], *b = &w->nodes[nd->right];
-    double d[3] = {b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2]};
+    double d[3] = { b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2] };
     double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (len + b->r <= a->r) {
       memcpy(nd->c, a->c, sizeof nd->c);
@@ -239,8 +215,7 @@ static void refit(mr_world *w, const mr_tree *t, const double *x)
     } else {
       double r = 0.5 * (len + a->r + b->r);
       double s = (r - a->r) / len;
-      for (int k = 0; k < 3; k++)
-        nd->c[k] = a->c[k] + s * d[k];
+      for (int k = 0; k < 3; k++) nd->c[k] = a->c[k] + s * d[k];
       nd->r = r;
     }
   }
@@ -248,19 +223,17 @@ static void refit(mr_world *w, const mr_tree *t, const double *x)
 
 /* ------------------------------------------------------------- traversal */
 
-static double node_gap(const mr_tree_node *a, const mr_tree_node *b)
-{
-  double d[3] = {b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2]};
+static double node_gap(const mr_tree_node *a, const mr_tree_node *b) {
+  double d[3] = { b->c[0] - a->c[0], b->c[1] - a->c[1], b->c[2] - a->c[2] };
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - a->r - b->r;
 }
 
 /* Two leaves within the gap: a contact, unless their parts are adjacent. */
-static int leaf_pair(mr_world *w, int leaf_a, int leaf_b, mr_contact_list *out)
-{
+static int leaf_pair(mr_world *w, int leaf_a, int leaf_b, mr_contact_list *out) {
   const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, leaf_a), *lb = &MR_AT(w->leaves, mr_leaf, leaf_b);
-  if (w->part_adjacent[la->part * w->parts.n + lb->part])
-    return 0;
-  const mr_part *pa = &MR_AT(w->parts, mr_part, la->part), *pb = &MR_AT(w->parts, mr_part, lb->part);
+  if (w->part_adjacent[la->part * w->parts.n + lb->part]) return 0;
+  const mr_part *pa = &MR_AT(w->parts, mr_part, la->part),
+                *pb = &MR_AT(w->parts, mr_part, lb->part);
   double e = 0.5 * (pa->restitution + pb->restitution);
   double mu = 0.5 * (pa->friction + pb->friction);
   return mr_contact_push(out, MR_CONTACT_SPHERES, leaf_a, leaf_b, e, mu);
@@ -269,8 +242,7 @@ static int leaf_pair(mr_world *w, int leaf_a, int leaf_b, mr_contact_list *out)
 /* The child pairs of the node pair (a, b) to test next: (n, n) of one tree
  * expands to its three distinct pairs, otherwise the larger node (or the
  * one that is not a leaf) is split. */
-static int expand(const mr_world *w, int a, int b, int same, int pairs[3][2])
-{
+static int expand(const mr_world *w, int a, int b, int same, int pairs[3][2]) {
   const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
   if (a == b && same) {
     pairs[0][0] = na->left, pairs[0][1] = na->left;
@@ -290,22 +262,18 @@ static int expand(const mr_world *w, int a, int b, int same, int pairs[3][2])
 
 /* Depth-first traversal of the node pair (a, b); same = a and b are the
  * same tree. */
-static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contact_list *out)
-{
+static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contact_list *out) {
   int top = 0;
-  if (mr_grow((void **)&w->tree_stack, &w->cap_tree_stack, 2, sizeof(int)) != 0)
-    return -1;
+  if (mr_grow((void **)&w->tree_stack, &w->cap_tree_stack, 2, sizeof(int)) != 0) return -1;
   int *stack = w->tree_stack;
   stack[top++] = ra;
   stack[top++] = rb;
   while (top > 0) {
     int b = stack[--top], a = stack[--top];
     const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
-    if (!(a == b && same) && !(node_gap(na, nb) <= gap))
-      continue;
+    if (!(a == b && same) && !(node_gap(na, nb) <= gap)) continue;
     if (na->leaf >= 0 && nb->leaf >= 0) {
-      if (a != b && leaf_pair(w, na->leaf, nb->leaf, out) != 0)
-        return -1;
+      if (a != b && leaf_pair(w, na->leaf, nb->leaf, out) != 0) return -1;
       continue;
     }
     int pairs[3][2];
@@ -323,25 +291,20 @@ static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contac
   return 0;
 }
 
-int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out)
-{
+int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out) {
   w->pass_calls[MR_PASS_SELF_COLLISION]++;
   for (int t = 0; t < w->ntrees; t++) {
     refit(w, &w->trees[t], x);
-    if (traverse(w, w->trees[t].root, w->trees[t].root, 1, gap, out) != 0)
-      return -1;
+    if (traverse(w, w->trees[t].root, w->trees[t].root, 1, gap, out) != 0) return -1;
   }
   return 0;
 }
 
-int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out)
-{
+int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out) {
   w->pass_calls[MR_PASS_PUPPET_COLLISION]++;
-  for (int t = 0; t < w->ntrees; t++)
-    refit(w, &w->trees[t], x);
+  for (int t = 0; t < w->ntrees; t++) refit(w, &w->trees[t], x);
   for (int a = 0; a < w->ntrees; a++)
     for (int b = a + 1; b < w->ntrees; b++)
-      if (traverse(w, w->trees[a].root, w->trees[b].root, 0, gap, out) != 0)
-        return -1;
+      if (traverse(w, w->trees[a].root, w->trees[b].root, 0, gap, out) != 0) return -1;
   return 0;
 }

@@ -26,77 +26,66 @@
 /* One step's (or one call's) bookkeeping. */
 typedef struct mr_step_ctx {
   /* the call */
-  int to_target;         /* 1: mr_world_step_to (land on t_target) */
+  int to_target; /* 1: mr_world_step_to (land on t_target) */
   double t_target;
-  mr_step_report rep;    /* summed over the call */
-  mr_status result;      /* MR_OK, or MR_DIVERGED once a reset happened */
+  mr_step_report rep; /* summed over the call */
+  mr_status result;   /* MR_OK, or MR_DIVERGED once a reset happened */
   /* the step under way */
-  double t;              /* world time at its start */
-  double planned;        /* Δt the ATS chose after the previous step */
-  double h;              /* Δt being tried, then taken */
-  int landing;           /* h ends exactly on t_target */
-  int shortened;         /* landing cut h below the planned Δt */
-  int rejected_any;      /* a try of this step was rejected */
-  int located;           /* h was cut to a contact time (§4.5) */
-  double error;          /* relative deviation of the end state (§4.5) */
-  mr_ats_decision dec;   /* the ATS rule on the accepted try */
+  double t;            /* world time at its start */
+  double planned;      /* Δt the ATS chose after the previous step */
+  double h;            /* Δt being tried, then taken */
+  int landing;         /* h ends exactly on t_target */
+  int shortened;       /* landing cut h below the planned Δt */
+  int rejected_any;    /* a try of this step was rejected */
+  int located;         /* h was cut to a contact time (§4.5) */
+  double error;        /* relative deviation of the end state (§4.5) */
+  mr_ats_decision dec; /* the ATS rule on the accepted try */
 } mr_step_ctx;
 
 /* ------------------------------------------------------- derived data */
 
 /* 3n scratch, and the integrator's 8 × 3n, for the particles there are. */
-static int size_scratch(mr_world *w)
-{
-  double **arr[] = {&w->scratch.x0,    &w->scratch.v0,    &w->scratch.xs,
-                    &w->scratch.vs,    &w->scratch.force, &w->scratch.constraint_force,
-                    &w->scratch.acc_try, &w->scratch.impact_momentum, &w->scratch.impact_dv,
-                    &w->scratch.v_try};
+static int size_scratch(mr_world *w) {
+  double **arr[] = { &w->scratch.x0,        &w->scratch.v0,
+                     &w->scratch.xs,        &w->scratch.vs,
+                     &w->scratch.force,     &w->scratch.constraint_force,
+                     &w->scratch.acc_try,   &w->scratch.impact_momentum,
+                     &w->scratch.impact_dv, &w->scratch.v_try };
   int need = w->n > 0 ? w->n : 1, cap = w->cap_scratch;
   for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
     cap = w->cap_scratch;
-    if (mr_grow((void **)arr[i], &cap, need, 3 * sizeof(double)) != 0)
-      return -1;
+    if (mr_grow((void **)arr[i], &cap, need, 3 * sizeof(double)) != 0) return -1;
   }
   cap = w->cap_scratch;
-  if (mr_grow((void **)&w->scratch.k, &cap, need, 24 * sizeof(double)) != 0)
-    return -1;
+  if (mr_grow((void **)&w->scratch.k, &cap, need, 24 * sizeof(double)) != 0) return -1;
   w->cap_scratch = cap;
   return 0;
 }
 
 /* The whole mass of each puppet, for the §6.2 forces. */
-static int puppet_masses(mr_world *w)
-{
+static int puppet_masses(mr_world *w) {
   int np = 0;
   for (int i = 0; i < w->n; i++)
-    if (w->puppet[i] + 1 > np)
-      np = w->puppet[i] + 1;
+    if (w->puppet[i] + 1 > np) np = w->puppet[i] + 1;
   if (mr_grow((void **)&w->puppet_mass, &w->cap_puppets, np > 0 ? np : 1, sizeof(double)) != 0)
     return -1;
   memset(w->puppet_mass, 0, (size_t)w->cap_puppets * sizeof *w->puppet_mass);
   w->npuppets = np;
-  for (int i = 0; i < w->n; i++)
-    w->puppet_mass[w->puppet[i]] += w->mass[i];
+  for (int i = 0; i < w->n; i++) w->puppet_mass[w->puppet[i]] += w->mass[i];
   return 0;
 }
 
 /* The per-contact arrays hold at least the contacts of both lists. */
-static int contact_capacity(mr_world *w, int need)
-{
-  if (need <= w->cap_contact)
-    return 0;
+static int contact_capacity(mr_world *w, int need) {
+  if (need <= w->cap_contact) return 0;
   int cap = w->cap_contact;
-  if (mr_grow((void **)&w->contact_active, &cap, need, 1) != 0)
-    return -1;
+  if (mr_grow((void **)&w->contact_active, &cap, need, 1) != 0) return -1;
   cap = w->cap_contact;
-  if (mr_grow((void **)&w->probe_valid, &cap, need, 1) != 0)
-    return -1;
+  if (mr_grow((void **)&w->probe_valid, &cap, need, 1) != 0) return -1;
   cap = w->cap_contact;
-  if (mr_grow((void **)&w->contact_pre, &cap, need, sizeof(double)) != 0)
-    return -1;
+  if (mr_grow((void **)&w->contact_pre, &cap, need, sizeof(double)) != 0) return -1;
   cap = w->cap_contact;
-  if (mr_grow((void **)&w->fric, &cap, need, 3 * sizeof(double)) != 0)
-    return -1;
+  if (mr_grow((void **)&w->fric, &cap, need, 3 * sizeof(double)) != 0) return -1;
   w->cap_contact = cap;
   return 0;
 }
@@ -110,11 +99,9 @@ static int contact_capacity(mr_world *w, int need)
  * system grows the solver's arrays when it first meets a bigger size. */
 #define MR_SOLVE_RESERVE_MAX_ROWS 512
 
-static int reserve_contacts(mr_world *w)
-{
+static int reserve_contacts(mr_world *w) {
   long dynamic = 0;
-  for (int i = 0; i < w->n; i++)
-    dynamic += w->inv_mass[i] > 0.0;
+  for (int i = 0; i < w->n; i++) dynamic += w->inv_mass[i] > 0.0;
   long plane_pairs = (long)w->planes.n * dynamic;
   long sphere_pairs = (long)w->leaves.n * (w->leaves.n - 1) / 2;
   long most = plane_pairs + sphere_pairs;
@@ -128,12 +115,10 @@ static int reserve_contacts(mr_world *w)
    * one, a plane contact one, a sphere contact up to four. */
   int rows = mr_constraint_row_count(w) + cap;
   long plane_rows = plane_pairs < cap ? plane_pairs : cap;
-  long entries = 2L * w->distances.n + 3L * (w->pins.n + w->curves.n) + plane_rows +
-                 4L * (cap - plane_rows);
-  if (mr_rows_reserve(w, rows) != 0)
-    return -1;
-  if (rows == 0 || rows > MR_SOLVE_RESERVE_MAX_ROWS)
-    return 0;
+  long entries =
+      2L * w->distances.n + 3L * (w->pins.n + w->curves.n) + plane_rows + 4L * (cap - plane_rows);
+  if (mr_rows_reserve(w, rows) != 0) return -1;
+  if (rows == 0 || rows > MR_SOLVE_RESERVE_MAX_ROWS) return 0;
   if (mr_jac_reserve(&w->J, rows, (int)entries) != MR_SOLVE_OK ||
       mr_csr_reserve(&w->A, rows, w->n, (int)entries) != MR_SOLVE_OK ||
       mr_solver_reserve(w->solver, rows) != MR_SOLVE_OK)
@@ -143,37 +128,28 @@ static int reserve_contacts(mr_world *w)
 
 /* Derived data: scratch sized to the particles, puppet masses, sphere trees
  * and contact room. Rebuilt when elements were added. */
-int mr_world_ensure_ready(mr_world *w)
-{
-  if (!w->dirty && w->cap_scratch >= w->n)
-    return 0;
-  if (size_scratch(w) != 0 || puppet_masses(w) != 0)
-    return -1;
+int mr_world_ensure_ready(mr_world *w) {
+  if (!w->dirty && w->cap_scratch >= w->n) return 0;
+  if (size_scratch(w) != 0 || puppet_masses(w) != 0) return -1;
   if (w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION))
-    if (mr_trees_build(w) != 0)
-      return -1;
-  if (reserve_contacts(w) != 0)
-    return -1;
+    if (mr_trees_build(w) != 0) return -1;
+  if (reserve_contacts(w) != 0) return -1;
   w->dirty = 0;
   return 0;
 }
 
 /* ------------------------------------------------------------- helpers */
 
-static int all_finite(const double *a, int n)
-{
+static int all_finite(const double *a, int n) {
   for (int i = 0; i < n; i++)
-    if (!isfinite(a[i]))
-      return 0;
+    if (!isfinite(a[i])) return 0;
   return 1;
 }
 
 /* §7: back to the start configuration, and carry on. */
-static void reset_to_start(mr_world *w, double e)
-{
+static void reset_to_start(mr_world *w, double e) {
   for (int i = 0; i < w->n; i++) {
-    if (w->frame[i] >= 0)
-      continue;
+    if (w->frame[i] >= 0) continue;
     memcpy(&w->x[3 * i], &w->x_start[3 * i], 3 * sizeof(double));
     memcpy(&w->v[3 * i], &w->v_start[3 * i], 3 * sizeof(double));
   }
@@ -183,25 +159,24 @@ static void reset_to_start(mr_world *w, double e)
   w->contacts.n = 0;
   w->stats.divergences++;
   if (e == e)
-    mr_fail(w, MR_DIVERGED, "t=%.6f s: deviation %.3g passed the divergence bound %.3g; reset to the "
-            "start configuration", w->t, e, w->def.divergence_bound);
+    mr_fail(w, MR_DIVERGED,
+            "t=%.6f s: deviation %.3g passed the divergence bound %.3g; reset to the "
+            "start configuration",
+            w->t, e, w->def.divergence_bound);
   else
-    mr_fail(w, MR_DIVERGED, "t=%.6f s: the state became NaN or Inf; reset to the start configuration",
-            w->t);
+    mr_fail(w, MR_DIVERGED,
+            "t=%.6f s: the state became NaN or Inf; reset to the start configuration", w->t);
 }
 
 /* An inner stage failed: keep the solver's own message, or name memory. */
-static mr_status inner_failure(mr_world *w, const char *what)
-{
+static mr_status inner_failure(mr_world *w, const char *what) {
   mr_status s = w->fail;
   w->fail = MR_OK;
-  if (s != MR_OK)
-    return s;
+  if (s != MR_OK) return s;
   return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (%s)", what);
 }
 
-static void count_rejection(mr_world *w, mr_step_ctx *c)
-{
+static void count_rejection(mr_world *w, mr_step_ctx *c) {
   w->stats.rejected++;
   c->rep.rejected++;
   c->rejected_any = 1;
@@ -209,14 +184,12 @@ static void count_rejection(mr_world *w, mr_step_ctx *c)
 
 /* ------------------------------------------------------- locating (6b) */
 
-static double offenders_gap(mr_world *w, const double *x, const unsigned char *valid)
-{
+static double offenders_gap(mr_world *w, const double *x, const unsigned char *valid) {
   double g = INFINITY;
   for (int i = 0; i < w->probe.n; i++)
     if (valid[i]) {
       double c = mr_contact_gap(w, &w->probe.c[i], x);
-      if (c < g || c != c)
-        g = c;
+      if (c < g || c != c) g = c;
     }
   return g;
 }
@@ -227,15 +200,13 @@ static double offenders_gap(mr_world *w, const double *x, const unsigned char *v
  * Marks those in probe_valid (its own flags: every trial integration
  * rewrites contact_active) and returns the smallest start gap of them, or
  * INFINITY if there is none. */
-static double mark_offenders(mr_world *w)
-{
+static double mark_offenders(mr_world *w) {
   const double slop = w->def.contact_slop;
   double g0 = INFINITY;
   for (int i = 0; i < w->probe.n; i++) {
     double c0 = mr_contact_gap(w, &w->probe.c[i], w->scratch.x0);
     w->probe_valid[i] = c0 > slop;
-    if (w->probe_valid[i] && c0 < g0)
-      g0 = c0;
+    if (w->probe_valid[i] && c0 < g0) g0 = c0;
   }
   return g0;
 }
@@ -244,45 +215,38 @@ static double mark_offenders(mr_world *w)
  * regula falsi (Illinois) on the smallest gap of the offending contacts,
  * aiming at −slop/2, each trial a full integration from the start state, and
  * leave the state at t + h* in x1, v1 (§4.5, §5.4). Returns h*. */
-static double locate_contact(mr_world *w, double t, double h, int *err)
-{
+static double locate_contact(mr_world *w, double t, double h, int *err) {
   const double slop = w->def.contact_slop, aim = -0.5 * slop;
   const double *x0 = w->scratch.x0, *v0 = w->scratch.v0;
   const unsigned char *valid = w->probe_valid;
   double g0 = mark_offenders(w);
-  if (g0 == INFINITY)
-    return h;
+  if (g0 == INFINITY) return h;
   double lo = 0.0, flo = g0 - aim, hi = h, fhi = offenders_gap(w, w->x1, valid) - aim;
   int side = 0;
   for (int it = 0; it < 24; it++) {
     double hm = hi - fhi * (hi - lo) / (fhi - flo);
-    if (!(hm > lo && hm < hi))
-      hm = 0.5 * (lo + hi);
+    if (!(hm > lo && hm < hi)) hm = 0.5 * (lo + hi);
     if (mr_integrate(w, t, hm, x0, v0, w->x1, w->v1) != 0) {
       *err = 1;
       return h;
     }
     double fm = offenders_gap(w, w->x1, valid) - aim;
-    if (fabs(fm) <= 0.5 * slop)
-      return hm;
+    if (fabs(fm) <= 0.5 * slop) return hm;
     if (fm < 0) {
       hi = hm;
       fhi = fm;
-      if (side == -1)
-        flo *= 0.5;
+      if (side == -1) flo *= 0.5;
       side = -1;
     } else {
       lo = hm;
       flo = fm;
-      if (side == 1)
-        fhi *= 0.5;
+      if (side == 1) fhi *= 0.5;
       side = 1;
     }
   }
   /* Not within the slop after all trials: stop just before the contact. */
   double hs = lo > 0 ? lo : hi;
-  if (mr_integrate(w, t, hs, x0, v0, w->x1, w->v1) != 0)
-    *err = 1;
+  if (mr_integrate(w, t, hs, x0, v0, w->x1, w->v1) != 0) *err = 1;
   return hs;
 }
 
@@ -290,8 +254,7 @@ static double locate_contact(mr_world *w, double t, double h, int *err)
 
 /* Δt for this step: the planned one, or exactly what is left to t_target
  * (never leaving a sliver of a step behind it). */
-static void plan(mr_world *w, mr_step_ctx *c)
-{
+static void plan(mr_world *w, mr_step_ctx *c) {
   c->t = w->t;
   c->planned = w->dt_next;
   c->h = c->planned;
@@ -308,18 +271,16 @@ static void plan(mr_world *w, mr_step_ctx *c)
   c->rejected_any = 0;
   c->located = 0;
   c->error = 0.0;
-  c->dec = (mr_ats_decision){1, c->planned};
+  c->dec = (mr_ats_decision){ 1, c->planned };
 }
 
 /* 6a: contacts at the start state; impulses for the colliding ones. */
-static mr_status impacts(mr_world *w, mr_step_ctx *c)
-{
+static mr_status impacts(mr_world *w, mr_step_ctx *c) {
   if (mr_contacts_detect(w, w->x, w->def.contact_slop, &w->contacts) != 0 ||
       contact_capacity(w, w->contacts.n) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
   int collided = 0;
-  if (mr_impulses_apply(w, c->t, &collided) != 0)
-    return inner_failure(w, "impulses");
+  if (mr_impulses_apply(w, c->t, &collided) != 0) return inner_failure(w, "impulses");
   c->rep.collisions += collided;
   w->stats.resting_contacts = w->contacts.n;
   return MR_OK;
@@ -329,8 +290,7 @@ enum verdict { TRY_ACCEPT, TRY_AGAIN, TRY_DIVERGED };
 
 /* 8: NaN/Inf or a deviation past the bound. Retried once at the lower
  * bound; diverged if it happens there. */
-static enum verdict divergence_check(mr_world *w, mr_step_ctx *c)
-{
+static enum verdict divergence_check(mr_world *w, mr_step_ctx *c) {
   const int n3 = 3 * w->n;
   if (all_finite(w->x1, n3) && all_finite(w->v1, n3) && c->error <= w->def.divergence_bound)
     return TRY_ACCEPT;
@@ -346,53 +306,43 @@ static enum verdict divergence_check(mr_world *w, mr_step_ctx *c)
 }
 
 /* 7: the §4.5 rule; a rejected try is retried with the Δt it gives. */
-static enum verdict ats_decision(mr_world *w, mr_step_ctx *c)
-{
-  const mr_ats_params ats = {w->def.dt_min, w->def.dt_max, w->def.deviation_low,
-                             w->def.deviation_high};
+static enum verdict ats_decision(mr_world *w, mr_step_ctx *c) {
+  const mr_ats_params ats = { w->def.dt_min, w->def.dt_max, w->def.deviation_low,
+                              w->def.deviation_high };
   c->dec = mr_ats_next(&ats, c->h, c->error);
-  if (c->dec.accept)
-    return TRY_ACCEPT;
+  if (c->dec.accept) return TRY_ACCEPT;
   count_rejection(w, c);
   c->h = c->dec.dt_next;
   c->landing = c->to_target && c->h >= c->t_target - c->t;
-  if (c->landing)
-    c->h = c->t_target - c->t;
+  if (c->landing) c->h = c->t_target - c->t;
   return TRY_AGAIN;
 }
 
 /* 5, 8, 7: integrate from the start state until a try is accepted or the
  * world diverged. MR_OK, or the failure of an inner stage. */
-static mr_status integrate_until_accepted(mr_world *w, mr_step_ctx *c, enum verdict *v)
-{
+static mr_status integrate_until_accepted(mr_world *w, mr_step_ctx *c, enum verdict *v) {
   for (;;) {
     if (mr_integrate(w, c->t, c->h, w->scratch.x0, w->scratch.v0, w->x1, w->v1) != 0)
       return inner_failure(w, "solve");
     c->error = mr_constraints_deviation(w, c->t + c->h, w->x1);
     *v = divergence_check(w, c);
-    if (*v == TRY_AGAIN)
-      continue;
-    if (*v == TRY_DIVERGED)
-      return MR_OK;
+    if (*v == TRY_AGAIN) continue;
+    if (*v == TRY_DIVERGED) return MR_OK;
     *v = ats_decision(w, c);
-    if (*v == TRY_ACCEPT)
-      return MR_OK;
+    if (*v == TRY_ACCEPT) return MR_OK;
   }
 }
 
 /* 6b: a contact gone through by the end state: roll back and step only to
  * its time. */
-static mr_status penetration(mr_world *w, mr_step_ctx *c)
-{
+static mr_status penetration(mr_world *w, mr_step_ctx *c) {
   if (mr_contacts_detect(w, w->x1, -w->def.contact_slop, &w->probe) != 0 ||
       contact_capacity(w, w->probe.n) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
-  if (w->probe.n == 0)
-    return MR_OK;
+  if (w->probe.n == 0) return MR_OK;
   int err = 0;
   double hc = locate_contact(w, c->t, c->h, &err);
-  if (err)
-    return inner_failure(w, "contact time");
+  if (err) return inner_failure(w, "contact time");
   if (hc < c->h) {
     c->located = 1;
     c->h = hc;
@@ -402,23 +352,18 @@ static mr_status penetration(mr_world *w, mr_step_ctx *c)
   return MR_OK;
 }
 
-static void record_step(mr_world *w, double h, double e)
-{
+static void record_step(mr_world *w, double h, double e) {
   mr_stats *s = &w->stats;
   s->steps++;
   s->last_dt = h;
-  if (h < s->min_dt)
-    s->min_dt = h;
-  if (h > s->max_dt)
-    s->max_dt = h;
+  if (h < s->min_dt) s->min_dt = h;
+  if (h > s->max_dt) s->max_dt = h;
   s->last_error = e;
-  if (e > s->max_error)
-    s->max_error = e;
+  if (e > s->max_error) s->max_error = e;
 }
 
 /* The end state becomes the state. */
-static void accept(mr_world *w, mr_step_ctx *c)
-{
+static void accept(mr_world *w, mr_step_ctx *c) {
   double *tx = w->x, *tv = w->v;
   w->x = w->x1;
   w->v = w->v1;
@@ -432,8 +377,7 @@ static void accept(mr_world *w, mr_step_ctx *c)
 /* 7, second half: the Δt the next step will try. After a located contact
  * it doubles each step until the rule's own choice is smaller (§4.5). A
  * step shortened only to land on the target keeps the plan. */
-static void next_dt(mr_world *w, const mr_step_ctx *c)
-{
+static void next_dt(mr_world *w, const mr_step_ctx *c) {
   if (c->located) {
     w->dt_next = fmin(fmax(2.0 * c->h, 1e-3 * w->def.dt_min), w->def.dt_max);
     w->recovering = 1;
@@ -452,21 +396,18 @@ static void next_dt(mr_world *w, const mr_step_ctx *c)
 
 /* One step, every stage. MR_OK (also after a divergence reset, which
  * c->result records), or a failure. */
-static mr_status step_once(mr_world *w, mr_step_ctx *c)
-{
+static mr_status step_once(mr_world *w, mr_step_ctx *c) {
   const int colliders = mr_colliders(w);
   const size_t bytes = (size_t)(3 * w->n) * sizeof(double);
   mr_status st;
   plan(w, c);
-  if (colliders && (st = impacts(w, c)) != MR_OK)
-    return st;
+  if (colliders && (st = impacts(w, c)) != MR_OK) return st;
   if (bytes > 0) { /* an empty world has no arrays yet */
     memcpy(w->scratch.x0, w->x, bytes);
     memcpy(w->scratch.v0, w->v, bytes);
   }
   enum verdict v;
-  if ((st = integrate_until_accepted(w, c, &v)) != MR_OK)
-    return st;
+  if ((st = integrate_until_accepted(w, c, &v)) != MR_OK) return st;
   if (v == TRY_DIVERGED) {
     /* The failed step's time passes and the world starts again at its
      * end (frames where the hand is then), so a cause tied to a moment
@@ -478,19 +419,16 @@ static mr_status step_once(mr_world *w, mr_step_ctx *c)
     reset_to_start(w, c->error);
     return MR_OK;
   }
-  if (colliders && (st = penetration(w, c)) != MR_OK)
-    return st;
+  if (colliders && (st = penetration(w, c)) != MR_OK) return st;
   accept(w, c);
-  if (w->has_string_correction)
-    mr_strings_correct(w);
+  if (w->has_string_correction) mr_strings_correct(w);
   next_dt(w, c);
   return MR_OK;
 }
 
 /* ------------------------------------------------------------ the calls */
 
-static mr_status begin(mr_world *w, mr_step_ctx *c)
-{
+static mr_status begin(mr_world *w, mr_step_ctx *c) {
   memset(c, 0, sizeof *c);
   if (mr_world_ensure_ready(w) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory");
@@ -499,11 +437,9 @@ static mr_status begin(mr_world *w, mr_step_ctx *c)
   return MR_OK;
 }
 
-static mr_status finish(mr_world *w, mr_step_ctx *c, mr_step_report *report)
-{
+static mr_status finish(mr_world *w, mr_step_ctx *c, mr_step_report *report) {
   c->rep.dependent = w->last_dependent;
-  if (report)
-    *report = c->rep;
+  if (report) *report = c->rep;
   if (c->result == MR_OK && w->last_dependent > 0) {
     mr_fail(w, MR_DEPENDENT, "%d dependent constraint rows found; their multipliers were set to 0",
             w->last_dependent);
@@ -512,45 +448,37 @@ static mr_status finish(mr_world *w, mr_step_ctx *c, mr_step_report *report)
   return c->result;
 }
 
-mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report)
-{
-  if (report)
-    memset(report, 0, sizeof *report);
-  if (!w)
-    return MR_ERR_ARG;
+mr_status mr_world_step_to(mr_world *w, double t_target, mr_step_report *report) {
+  if (report) memset(report, 0, sizeof *report);
+  if (!w) return MR_ERR_ARG;
   if (!isfinite(t_target))
     return mr_fail(w, MR_ERR_NONFINITE, "mr_world_step_to: target time is NaN or Inf");
   if (t_target < w->t)
-    return mr_fail(w, MR_ERR_TIME, "mr_world_step_to: target %.9g s is before the world time %.9g s",
-                   t_target, w->t);
+    return mr_fail(w, MR_ERR_TIME,
+                   "mr_world_step_to: target %.9g s is before the world time %.9g s", t_target,
+                   w->t);
   mr_step_ctx c;
   mr_status st = begin(w, &c);
-  if (st != MR_OK)
-    return st;
+  if (st != MR_OK) return st;
   c.to_target = 1;
   c.t_target = t_target;
   for (int calls = 0; w->t < t_target; calls++) {
     if (calls >= w->def.max_steps_per_call) {
-      if (report)
-        *report = c.rep;
-      return mr_fail(w, MR_ERR_LIMIT, "mr_world_step_to: %d steps did not reach t=%.9g s (at %.9g s)",
+      if (report) *report = c.rep;
+      return mr_fail(w, MR_ERR_LIMIT,
+                     "mr_world_step_to: %d steps did not reach t=%.9g s (at %.9g s)",
                      w->def.max_steps_per_call, t_target, w->t);
     }
-    if ((st = step_once(w, &c)) != MR_OK)
-      return st;
+    if ((st = step_once(w, &c)) != MR_OK) return st;
   }
   return finish(w, &c, report);
 }
 
-mr_status mr_world_step(mr_world *w, mr_step_report *report)
-{
-  if (report)
-    memset(report, 0, sizeof *report);
-  if (!w)
-    return MR_ERR_ARG;
+mr_status mr_world_step(mr_world *w, mr_step_report *report) {
+  if (report) memset(report, 0, sizeof *report);
+  if (!w) return MR_ERR_ARG;
   mr_step_ctx c;
   mr_status st = begin(w, &c);
-  if (st == MR_OK)
-    st = step_once(w, &c);
+  if (st == MR_OK) st = step_once(w, &c);
   return st == MR_OK ? finish(w, &c, report) : st;
 }

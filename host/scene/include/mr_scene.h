@@ -189,8 +189,8 @@ typedef struct mr_scene {
 mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error *err);
 
 /* The same from text in memory; name is used in error texts. */
-mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t len,
-                                   mr_scene *scene, mr_scene_error *err);
+mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t len, mr_scene *scene,
+                                   mr_scene_error *err);
 
 void mr_scene_free(mr_scene *scene);
 

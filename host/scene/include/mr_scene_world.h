@@ -22,19 +22,18 @@ typedef struct mr_scene_world {
   size_t n_particles, n_control;
 } mr_scene_world;
 
-mr_scene_status mr_scene_build(const mr_scene *scene, mr_scene_world *out,
-                               mr_scene_error *err);
+mr_scene_status mr_scene_build(const mr_scene *scene, mr_scene_world *out, mr_scene_error *err);
 void mr_scene_world_free(mr_scene_world *sw);
 
 /* One row of the per-step trace. */
 typedef struct mr_scene_step {
-  double t;        /* world time after the step */
-  double dt;       /* length of the accepted step */
-  double error;    /* relative deviation after it (§4.5) */
-  int accepted;    /* accepted steps in this call (1, or more after a
+  double t;         /* world time after the step */
+  double dt;        /* length of the accepted step */
+  double error;     /* relative deviation after it (§4.5) */
+  int accepted;     /* accepted steps in this call (1, or more after a
                       rejection shrank Δt) */
-  int rejected;    /* rejected tries before them */
-  int reset;       /* 1 if the world diverged and returned to its start */
+  int rejected;     /* rejected tries before them */
+  int reset;        /* 1 if the world diverged and returned to its start */
   double max_speed; /* fastest particle after the step, m/s */
 } mr_scene_step;
 
@@ -52,16 +51,16 @@ typedef struct mr_scene_run_result {
   double dt_mean, dt_min, dt_max;
   double at_upper_fraction; /* steps with Δt at the ATS's upper bound */
   double max_deviation, rms_deviation;
-  int dependent_rows;       /* most dependent rows seen in one call */
+  int dependent_rows; /* most dependent rows seen in one call */
   uint64_t pass_calls[MR_PASS_COUNT];
-  uint64_t hash;            /* mr_world_state_hash at the end */
-  bool finite;              /* every state finite after every step */
+  uint64_t hash; /* mr_world_state_hash at the end */
+  bool finite;   /* every state finite after every step */
   /* Rest checks (expect.rest): largest displacement of a watched particle
    * from its position at `settle`, and its largest speed after `settle`. */
   double creep, jitter;
-  double string_stretch;    /* largest length/rest of any string after any step */
-  mr_status last_status;    /* of the last step call */
-  char first_reset[256];    /* the physics' account of the first reset */
+  double string_stretch; /* largest length/rest of any string after any step */
+  mr_status last_status; /* of the last step call */
+  char first_reset[256]; /* the physics' account of the first reset */
 } mr_scene_run_result;
 
 /* Builds the scene's world and runs it. Returns MR_SCENE_OK, or an error

@@ -33,8 +33,7 @@ static mr_scene_status fail(const mr_scene *s, mr_scene_error *err, mr_scene_pos
 /* An add call's verdict: on a refusal, the item's place in the file. */
 static mr_scene_status added(const mr_scene *s, const mr_scene_world *sw, mr_scene_error *err,
                              mr_scene_pos at, const char *what, mr_status st) {
-  if (st == MR_OK)
-    return MR_SCENE_OK;
+  if (st == MR_OK) return MR_SCENE_OK;
   return fail(s, err, at, st == MR_ERR_NOMEM ? MR_SCENE_ERR_NOMEM : MR_SCENE_ERR_BUILD,
               "the physics refused %s (%s): %s", what, mr_status_name(st),
               mr_world_last_error(sw->world));
@@ -42,12 +41,10 @@ static mr_scene_status added(const mr_scene *s, const mr_scene_world *sw, mr_sce
 
 /* The reader wrote world ids for particles and control points; the
  * physics numbers particles in creation order, which is the file's. */
-static mr_scene_status numbered(const mr_scene *s, mr_scene_error *err, mr_scene_pos at,
-                                int id, size_t want) {
-  if (id == (int)want)
-    return MR_SCENE_OK;
-  return fail(s, err, at, MR_SCENE_ERR_BUILD, "the physics numbered particle %zu as %d", want,
-              id);
+static mr_scene_status numbered(const mr_scene *s, mr_scene_error *err, mr_scene_pos at, int id,
+                                size_t want) {
+  if (id == (int)want) return MR_SCENE_OK;
+  return fail(s, err, at, MR_SCENE_ERR_BUILD, "the physics numbered particle %zu as %d", want, id);
 }
 
 static mr_scene_status add_particles(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
@@ -56,8 +53,7 @@ static mr_scene_status add_particles(const mr_scene *s, mr_scene_world *sw, mr_s
     const mr_scene_particle *p = &s->particles[i];
     rc = added(s, sw, err, p->pos, "the particle",
                mr_world_add_particle(sw->world, &p->def, &sw->particle_ids[i]));
-    if (rc == MR_SCENE_OK)
-      rc = numbered(s, err, p->pos, sw->particle_ids[i], i);
+    if (rc == MR_SCENE_OK) rc = numbered(s, err, p->pos, sw->particle_ids[i], i);
     if (rc == MR_SCENE_OK && p->pinned) {
       mr_pin_def pin = mr_default_pin_def();
       pin.particle = sw->particle_ids[i];
@@ -70,8 +66,7 @@ static mr_scene_status add_particles(const mr_scene *s, mr_scene_world *sw, mr_s
 
 /* The frame at its pose at t = 0, and its points as kinematic particles. */
 static mr_scene_status add_control(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
-  if (s->n_control_points == 0)
-    return MR_SCENE_OK;
+  if (s->n_control_points == 0) return MR_SCENE_OK;
   mr_frame_def fd = mr_default_frame_def();
   mr_scene_control_pose_at(s, 0.0, &fd.pose);
   mr_scene_status rc = added(s, sw, err, s->control_points[0].pos, "the control frame",
@@ -83,14 +78,12 @@ static mr_scene_status add_control(const mr_scene *s, mr_scene_world *sw, mr_sce
     mr_scene_control_point_world(s, i, &fd.pose, d.position);
     rc = added(s, sw, err, c->pos, "the control point",
                mr_world_add_particle(sw->world, &d, &sw->control_ids[i]));
-    if (rc == MR_SCENE_OK)
-      rc = numbered(s, err, c->pos, sw->control_ids[i], s->n_particles + i);
+    if (rc == MR_SCENE_OK) rc = numbered(s, err, c->pos, sw->control_ids[i], s->n_particles + i);
   }
   return rc;
 }
 
-static mr_scene_status add_constraints(const mr_scene *s, mr_scene_world *sw,
-                                       mr_scene_error *err) {
+static mr_scene_status add_constraints(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
   int id;
   mr_scene_status rc = MR_SCENE_OK;
   for (size_t i = 0; i < s->n_distances && rc == MR_SCENE_OK; i++)
@@ -113,8 +106,7 @@ static mr_scene_status add_forces(const mr_scene *s, mr_scene_world *sw, mr_scen
   return rc;
 }
 
-static mr_scene_status add_collisions(const mr_scene *s, mr_scene_world *sw,
-                                      mr_scene_error *err) {
+static mr_scene_status add_collisions(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
   int id;
   mr_scene_status rc = MR_SCENE_OK;
   if (s->floor.present)
@@ -127,43 +119,38 @@ static mr_scene_status add_collisions(const mr_scene *s, mr_scene_world *sw,
 }
 
 static mr_scene_status create_world(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
-  mr_scene_pos top = {0, 0};
+  mr_scene_pos top = { 0, 0 };
   sw->particle_ids = calloc(s->n_particles ? s->n_particles : 1, sizeof *sw->particle_ids);
-  sw->control_ids =
-      calloc(s->n_control_points ? s->n_control_points : 1, sizeof *sw->control_ids);
+  sw->control_ids = calloc(s->n_control_points ? s->n_control_points : 1, sizeof *sw->control_ids);
   if (sw->particle_ids == NULL || sw->control_ids == NULL)
     return fail(s, err, top, MR_SCENE_ERR_NOMEM, "out of memory");
   sw->n_particles = s->n_particles;
   sw->n_control = s->n_control_points;
   char msg[256] = "";
   if (mr_world_create(&s->world, &sw->world, msg, sizeof msg) != MR_OK)
-    return fail(s, err, top, MR_SCENE_ERR_BUILD, "the physics refused the world settings: %s",
-                msg);
+    return fail(s, err, top, MR_SCENE_ERR_BUILD, "the physics refused the world settings: %s", msg);
   return MR_SCENE_OK;
 }
 
-typedef mr_scene_status (*build_stage)(const mr_scene *s, mr_scene_world *sw,
-                                       mr_scene_error *err);
+typedef mr_scene_status (*build_stage)(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err);
 
 mr_scene_status mr_scene_build(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
   /* Particles before the control points, which are numbered after them;
    * both before anything that names them. */
-  static const build_stage stages[] = {create_world,    add_particles, add_control,
-                                       add_constraints, add_forces,    add_collisions};
+  static const build_stage stages[] = { create_world,    add_particles, add_control,
+                                        add_constraints, add_forces,    add_collisions };
   memset(sw, 0, sizeof *sw);
   memset(err, 0, sizeof *err);
   sw->frame = -1;
   mr_scene_status rc = MR_SCENE_OK;
   for (size_t i = 0; i < sizeof stages / sizeof stages[0] && rc == MR_SCENE_OK; i++)
     rc = stages[i](s, sw, err);
-  if (rc != MR_SCENE_OK)
-    mr_scene_world_free(sw);
+  if (rc != MR_SCENE_OK) mr_scene_world_free(sw);
   return rc;
 }
 
 void mr_scene_world_free(mr_scene_world *sw) {
-  if (sw->world != NULL)
-    mr_world_destroy(sw->world);
+  if (sw->world != NULL) mr_world_destroy(sw->world);
   free(sw->particle_ids);
   free(sw->control_ids);
   memset(sw, 0, sizeof *sw);

@@ -14,28 +14,26 @@ static const double PI = 3.14159265358979323846;
 
 /* position and rotation keys of n over *p; a key left out keeps p's. */
 static int read_pose(mr_reader *r, const mr_ynode *n, mr_pose *p) {
-  static const double zero[3] = {0, 0, 0};
+  static const double zero[3] = { 0, 0, 0 };
   const mr_ynode *v;
   double deg[3];
   if ((v = mr_scene_yaml_get(n, "position")) != NULL &&
       mr_scene_read_vec3(r, v, "position", p->position) != 0)
     return -1;
-  if ((v = mr_scene_yaml_get(n, "rotation")) == NULL)
-    return 0;
-  if (mr_scene_read_vec3(r, v, "rotation", deg) != 0)
-    return -1;
+  if ((v = mr_scene_yaml_get(n, "rotation")) == NULL) return 0;
+  if (mr_scene_read_vec3(r, v, "rotation", deg) != 0) return -1;
   mr_pose turn = mr_pose_from_euler_deg(zero, deg);
   memcpy(p->orientation, turn.orientation, sizeof p->orientation);
   return 0;
 }
 
 static int read_point(mr_reader *r, const mr_ynode *it, void *slot) {
-  static const char *const keys[] = {"name", "offset", NULL};
+  static const char *const keys[] = { "name", "offset", NULL };
   const mr_scene *s = r->scene;
   mr_scene_control_point *c = slot;
   const mr_ynode *v;
-  if ((v = mr_scene_read_named(r, it, "a control point", keys, "control point name",
-                               c->name)) == NULL)
+  if ((v = mr_scene_read_named(r, it, "a control point", keys, "control point name", c->name)) ==
+      NULL)
     return -1;
   if (mr_scene_find_particle(s, c->name) != (size_t)-1)
     return mr_scene_read_fail(
@@ -53,7 +51,7 @@ static int read_point(mr_reader *r, const mr_ynode *it, void *slot) {
 }
 
 static int read_keyframe(mr_reader *r, const mr_ynode *it, void *slot) {
-  static const char *const keys[] = {"t", "position", "rotation", NULL};
+  static const char *const keys[] = { "t", "position", "rotation", NULL };
   const mr_scene_track *tr = &r->scene->track;
   mr_scene_keyframe *k = slot;
   const mr_ynode *v;
@@ -65,8 +63,8 @@ static int read_keyframe(mr_reader *r, const mr_ynode *it, void *slot) {
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected t >= 0, got %g", k->t);
   if (tr->n_keys > 1 && !(k->t > k[-1].t))
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                              "expected keyframe times in increasing order, got %g after %g",
-                              k->t, k[-1].t);
+                              "expected keyframe times in increasing order, got %g after %g", k->t,
+                              k[-1].t);
   k->pose = r->scene->control_pose;
   k->pos = mr_scene_read_pos(it);
   return read_pose(r, it, &k->pose);
@@ -82,14 +80,15 @@ static int read_keyframes(mr_reader *r, const mr_ynode *n) {
 }
 
 static int read_oscillate(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"amplitude", "rotation", "frequency", "phase",
-                                     "start",     "ramp",     NULL};
+  static const char *const keys[] = { "amplitude", "rotation", "frequency", "phase",
+                                      "start",     "ramp",     NULL };
   static const mr_scene_field fields[] = {
-      {"amplitude", MR_SCENE_FIELD_VEC3, offsetof(mr_scene_track, amplitude), 0, 0},
-      {"frequency", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene_track, frequency_hz), 0, 0},
-      {"phase", MR_SCENE_FIELD_NUMBER, offsetof(mr_scene_track, phase_rad), 0, 0},
-      {"start", MR_SCENE_FIELD_NONNEG, offsetof(mr_scene_track, start), 0, 0},
-      {"ramp", MR_SCENE_FIELD_NONNEG, offsetof(mr_scene_track, ramp), 0, 0}};
+    { "amplitude", MR_SCENE_FIELD_VEC3, offsetof(mr_scene_track, amplitude), 0, 0 },
+    { "frequency", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene_track, frequency_hz), 0, 0 },
+    { "phase", MR_SCENE_FIELD_NUMBER, offsetof(mr_scene_track, phase_rad), 0, 0 },
+    { "start", MR_SCENE_FIELD_NONNEG, offsetof(mr_scene_track, start), 0, 0 },
+    { "ramp", MR_SCENE_FIELD_NONNEG, offsetof(mr_scene_track, ramp), 0, 0 }
+  };
   mr_scene_track *tr = &r->scene->track;
   mr_pose turn = mr_pose_identity();
   if (mr_scene_read_map(r, n, "control.track.oscillate", keys) != 0 ||
@@ -103,9 +102,8 @@ static int read_oscillate(mr_reader *r, const mr_ynode *n) {
 }
 
 static int read_track(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"keyframes", "interpolation", "oscillate", NULL};
-  if (mr_scene_read_map(r, n, "control.track", keys) != 0)
-    return -1;
+  static const char *const keys[] = { "keyframes", "interpolation", "oscillate", NULL };
+  if (mr_scene_read_map(r, n, "control.track", keys) != 0) return -1;
   const mr_ynode *k = mr_scene_yaml_get(n, "keyframes");
   const mr_ynode *o = mr_scene_yaml_get(n, "oscillate");
   const mr_ynode *v = mr_scene_yaml_get(n, "interpolation");
@@ -129,22 +127,20 @@ static int read_track(mr_reader *r, const mr_ynode *n) {
 }
 
 int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"points", "pose", "track", NULL};
-  static const char *const pose_keys[] = {"position", "rotation", NULL};
+  static const char *const keys[] = { "points", "pose", "track", NULL };
+  static const char *const pose_keys[] = { "position", "rotation", NULL };
   mr_scene *s = r->scene;
-  if (mr_scene_read_map(r, n, "physics.control", keys) != 0)
-    return -1;
+  if (mr_scene_read_map(r, n, "physics.control", keys) != 0) return -1;
   const mr_ynode *v = mr_scene_read_need(r, n, "points", "physics.control");
-  if (v == NULL || mr_scene_read_items(r, v, "control.points", 0, NULL,
-                                       sizeof *s->control_points, (void **)&s->control_points,
-                                       &s->n_control_points, read_point) != 0)
+  if (v == NULL ||
+      mr_scene_read_items(r, v, "control.points", 0, NULL, sizeof *s->control_points,
+                          (void **)&s->control_points, &s->n_control_points, read_point) != 0)
     return -1;
   if ((v = mr_scene_yaml_get(n, "pose")) != NULL &&
       (mr_scene_read_map(r, v, "control.pose", pose_keys) != 0 ||
        read_pose(r, v, &s->control_pose) != 0))
     return -1;
-  if ((v = mr_scene_yaml_get(n, "track")) != NULL && read_track(r, v) != 0)
-    return -1;
+  if ((v = mr_scene_yaml_get(n, "track")) != NULL && read_track(r, v) != 0) return -1;
   return 0;
 }
 
@@ -154,16 +150,12 @@ int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
 static mr_pose keyframes_at(const mr_scene_track *tr, double t) {
   const mr_scene_keyframe *k = tr->keys;
   size_t n = tr->n_keys;
-  if (t <= k[0].t)
-    return k[0].pose;
-  if (t >= k[n - 1].t)
-    return k[n - 1].pose;
+  if (t <= k[0].t) return k[0].pose;
+  if (t >= k[n - 1].t) return k[n - 1].pose;
   size_t i = 1;
-  while (k[i].t < t)
-    i++;
+  while (k[i].t < t) i++;
   double u = (t - k[i - 1].t) / (k[i].t - k[i - 1].t);
-  if (!tr->linear)
-    u = u * u * (3.0 - 2.0 * u);
+  if (!tr->linear) u = u * u * (3.0 - 2.0 * u);
   return mr_pose_interpolate(&k[i - 1].pose, &k[i].pose, u);
 }
 
@@ -171,16 +163,14 @@ static mr_pose keyframes_at(const mr_scene_track *tr, double t) {
  * the other way (the slerp runs backwards from the identity). */
 static mr_pose oscillate_at(const mr_scene_track *tr, const mr_pose *start, double t) {
   mr_pose o = *start;
-  if (!(t > tr->start))
-    return o;
+  if (!(t > tr->start)) return o;
   double ramp = tr->ramp > 0 ? fmin(1.0, (t - tr->start) / tr->ramp) : 1.0;
   double w = sin(2.0 * PI * tr->frequency_hz * (t - tr->start) + tr->phase_rad);
   mr_pose id = mr_pose_identity(), full = mr_pose_identity();
   memcpy(full.orientation, tr->turn, sizeof full.orientation);
   mr_pose turn = mr_pose_interpolate(&id, &full, ramp * w);
   o = mr_pose_compose(start, &turn);
-  for (int i = 0; i < 3; i++)
-    o.position[i] += ramp * tr->amplitude[i] * w;
+  for (int i = 0; i < 3; i++) o.position[i] += ramp * tr->amplitude[i] * w;
   return o;
 }
 
@@ -194,7 +184,6 @@ void mr_scene_control_pose_at(const mr_scene *s, double t, mr_pose *out) {
     *out = s->control_pose;
 }
 
-void mr_scene_control_point_world(const mr_scene *s, size_t i, const mr_pose *pose,
-                                  double out[3]) {
+void mr_scene_control_point_world(const mr_scene *s, size_t i, const mr_pose *pose, double out[3]) {
   mr_pose_apply(pose, s->control_points[i].offset, out);
 }

@@ -9,7 +9,7 @@
 /* Below this normalised volume (or area) the members are taken as coplanar
  * (or collinear), where distance constraints no longer fix the shape. */
 #define GENERAL_POSITION_MIN 1e-3
-#define GROUP_MAX 64
+#define GROUP_MAX            64
 
 static void sub3(const double a[3], const double b[3], double o[3]) {
   o[0] = a[0] - b[0];
@@ -17,7 +17,9 @@ static void sub3(const double a[3], const double b[3], double o[3]) {
   o[2] = a[2] - b[2];
 }
 
-static double norm3(const double a[3]) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+static double norm3(const double a[3]) {
+  return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
 
 static void cross3(const double a[3], const double b[3], double o[3]) {
   o[0] = a[1] * b[2] - a[2] * b[1];
@@ -56,14 +58,13 @@ static int check_member(mr_reader *r, const mr_scene_group *g, int k, const mr_y
   const mr_scene_particle *p = r->scene->particles;
   const int *m = g->def.particles;
   const double *pk = p[m[k]].def.position;
-  if (k == 2 && triangle_quality(p[m[0]].def.position, p[m[1]].def.position, pk) <
-                    GENERAL_POSITION_MIN)
+  if (k == 2 &&
+      triangle_quality(p[m[0]].def.position, p[m[1]].def.position, pk) < GENERAL_POSITION_MIN)
     return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
                               "group '%s': '%s', '%s' and '%s' are collinear; expected members "
                               "in general position (§5.1)",
                               g->name, p[m[0]].name, p[m[1]].name, p[m[2]].name);
-  if (k < 3)
-    return 0;
+  if (k < 3) return 0;
   double best = 0;
   for (int i = 0; i < k; i++)
     for (int j = i + 1; j < k; j++)
@@ -90,28 +91,24 @@ static const mr_ynode *read_members(mr_reader *r, const mr_ynode *it, const char
 }
 
 static int read_group(mr_reader *r, const mr_ynode *it, void *slot) {
-  static const char *const keys[] = {"name", "particles", NULL};
+  static const char *const keys[] = { "name", "particles", NULL };
   const mr_scene *s = r->scene;
   mr_scene_group *g = slot;
   const mr_ynode *v;
   g->def = mr_default_rigid_group_def();
-  if ((v = mr_scene_read_named(r, it, "a group", keys, "group name", g->name)) == NULL)
-    return -1;
+  if ((v = mr_scene_read_named(r, it, "a group", keys, "group name", g->name)) == NULL) return -1;
   for (size_t j = 0; j + 1 < s->n_groups; j++)
     if (strcmp(s->groups[j].name, g->name) == 0)
       return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                                "expected a unique group name, '%s' is already declared",
-                                g->name);
+                                "expected a unique group name, '%s' is already declared", g->name);
   g->pos = mr_scene_read_pos(it);
-  if ((v = read_members(r, it, "a group", &g->def.particles, &g->def.count)) == NULL)
-    return -1;
+  if ((v = read_members(r, it, "a group", &g->def.particles, &g->def.count)) == NULL) return -1;
   if (v->count < 2 || v->count > GROUP_MAX)
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                               "expected 2 to %d particles in group '%s', got %zu", GROUP_MAX,
                               g->name, v->count);
   for (int k = 0; k < g->def.count; k++)
-    if (check_member(r, g, k, v->items[k]) != 0)
-      return -1;
+    if (check_member(r, g, k, v->items[k]) != 0) return -1;
   return 0;
 }
 
@@ -122,26 +119,23 @@ int mr_scene_read_groups(mr_reader *r, const mr_ynode *n) {
 }
 
 static int read_part(mr_reader *r, const mr_ynode *it, void *slot) {
-  static const char *const keys[] = {"particles", "radius", "segment_spheres", "restitution",
-                                     "friction", NULL};
+  static const char *const keys[] = { "particles",   "radius",   "segment_spheres",
+                                      "restitution", "friction", NULL };
   static const mr_scene_field fields[] = {
-      {"radius", MR_SCENE_FIELD_NONNEG, offsetof(mr_part_def, radius), 0, 0},
-      {"restitution", MR_SCENE_FIELD_UNIT, offsetof(mr_part_def, restitution), 0, 0},
-      {"friction", MR_SCENE_FIELD_NONNEG, offsetof(mr_part_def, friction), 0, 0},
-      {"segment_spheres", MR_SCENE_FIELD_INT, offsetof(mr_part_def, segment_spheres), 0, 64}};
+    { "radius", MR_SCENE_FIELD_NONNEG, offsetof(mr_part_def, radius), 0, 0 },
+    { "restitution", MR_SCENE_FIELD_UNIT, offsetof(mr_part_def, restitution), 0, 0 },
+    { "friction", MR_SCENE_FIELD_NONNEG, offsetof(mr_part_def, friction), 0, 0 },
+    { "segment_spheres", MR_SCENE_FIELD_INT, offsetof(mr_part_def, segment_spheres), 0, 64 }
+  };
   mr_scene_part *p = slot;
   const mr_ynode *v;
   p->def = mr_default_part_def();
-  if (mr_scene_read_map(r, it, "a part", keys) != 0)
-    return -1;
+  if (mr_scene_read_map(r, it, "a part", keys) != 0) return -1;
   p->pos = mr_scene_read_pos(it);
-  if ((v = read_members(r, it, "a part", &p->def.particles, &p->def.count)) == NULL)
-    return -1;
+  if ((v = read_members(r, it, "a part", &p->def.particles, &p->def.count)) == NULL) return -1;
   if (p->def.count == 0)
-    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                              "expected at least one particle in a part");
-  if (mr_scene_read_fields(r, it, fields, 4, &p->def) != 0)
-    return -1;
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected at least one particle in a part");
+  if (mr_scene_read_fields(r, it, fields, 4, &p->def) != 0) return -1;
   if (p->def.segment_spheres > 0 && p->def.count != 2)
     return mr_scene_read_fail(r, mr_scene_yaml_get(it, "segment_spheres"), MR_SCENE_ERR_VALUE,
                               "segment spheres need a part of exactly two particles");
@@ -150,7 +144,6 @@ static int read_part(mr_reader *r, const mr_ynode *it, void *slot) {
 
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
-  return mr_scene_read_items(r, n, "physics.parts", MR_EFFECT_SELF_COLLISION,
-                             "collision parts are", sizeof *s->parts, (void **)&s->parts,
-                             &s->n_parts, read_part);
+  return mr_scene_read_items(r, n, "physics.parts", MR_EFFECT_SELF_COLLISION, "collision parts are",
+                             sizeof *s->parts, (void **)&s->parts, &s->n_parts, read_part);
 }

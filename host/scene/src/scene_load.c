@@ -10,9 +10,8 @@
 
 /* Sections the theater will add to the same files; refusing them now keeps a
  * newer file from being half-understood by this version. */
-static const char *const theater_sections[] = {"models", "lights", "camera", "stage",
-                                               "glove",  "mapping", "render", "audio",
-                                               NULL};
+static const char *const theater_sections[] = { "models",  "lights", "camera", "stage", "glove",
+                                                "mapping", "render", "audio",  NULL };
 
 static void defaults(mr_scene *s) {
   memset(s, 0, sizeof *s);
@@ -30,12 +29,12 @@ static void defaults(mr_scene *s) {
 }
 
 static int read_sim(mr_reader *r, const mr_ynode *sim) {
-  static const char *const keys[] = {"duration", "fps", NULL};
+  static const char *const keys[] = { "duration", "fps", NULL };
   static const mr_scene_field fields[] = {
-      {"duration", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, duration), 0, 0},
-      {"fps", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, fps), 0, 0}};
-  if (mr_scene_read_map(r, sim, "sim", keys) != 0)
-    return -1;
+    { "duration", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, duration), 0, 0 },
+    { "fps", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, fps), 0, 0 }
+  };
+  if (mr_scene_read_map(r, sim, "sim", keys) != 0) return -1;
   return mr_scene_read_fields(r, sim, fields, 2, r->scene);
 }
 
@@ -43,63 +42,58 @@ static int read_root(mr_reader *r, const mr_ynode *root) {
   mr_scene *s = r->scene;
   if (root == NULL)
     return mr_scene_read_fail_at(r, 1, 1, MR_SCENE_ERR_SCHEMA,
-                      "expected a mapping with a 'physics' section, the file is empty");
+                                 "expected a mapping with a 'physics' section, the file is empty");
   if (root->kind != MR_YNODE_MAP)
-    return mr_scene_read_fail(r, root, MR_SCENE_ERR_SCHEMA,
-                   "expected a mapping with a 'physics' section at the top level, got a %s",
-                   mr_scene_yaml_kind_name(root->kind));
+    return mr_scene_read_fail(
+        r, root, MR_SCENE_ERR_SCHEMA,
+        "expected a mapping with a 'physics' section at the top level, got a %s",
+        mr_scene_yaml_kind_name(root->kind));
   for (size_t i = 0; i < root->count; i++) {
     const mr_ynode *key = root->items[2 * i];
     for (const char *const *t = theater_sections; *t; t++)
       if (strcmp(key->text, *t) == 0)
-        return mr_scene_read_fail(r, key, MR_SCENE_ERR_SCHEMA,
-                       "section '%s' is reserved for the theater and not supported "
-                       "by this version; expected one of: format, name, sim, physics, expect",
-                       key->text);
+        return mr_scene_read_fail(
+            r, key, MR_SCENE_ERR_SCHEMA,
+            "section '%s' is reserved for the theater and not supported "
+            "by this version; expected one of: format, name, sim, physics, expect",
+            key->text);
   }
-  static const char *const keys[] = {"format", "name", "sim", "physics", "expect", NULL};
-  if (mr_scene_read_map(r, root, "the scene", keys) != 0)
-    return -1;
+  static const char *const keys[] = { "format", "name", "sim", "physics", "expect", NULL };
+  if (mr_scene_read_map(r, root, "the scene", keys) != 0) return -1;
   const mr_ynode *v = mr_scene_yaml_get(root, "format");
   if (v != NULL) {
     long format = 0;
-    if (mr_scene_read_long(r, v, "format", &format) != 0)
-      return -1;
+    if (mr_scene_read_long(r, v, "format", &format) != 0) return -1;
     if (format != 1)
       return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                     "expected format: 1 (the only version this program reads), got %ld",
-                     format);
+                                "expected format: 1 (the only version this program reads), got %ld",
+                                format);
   }
   if ((v = mr_scene_yaml_get(root, "name")) != NULL) {
     if (v->kind != MR_YNODE_SCALAR)
       return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected a text for name");
     snprintf(s->name, sizeof s->name, "%s", v->text);
   }
-  if ((v = mr_scene_yaml_get(root, "sim")) != NULL && read_sim(r, v) != 0)
-    return -1;
+  if ((v = mr_scene_yaml_get(root, "sim")) != NULL && read_sim(r, v) != 0) return -1;
   const mr_ynode *physics = mr_scene_read_need(r, root, "physics", "the scene");
-  if (physics == NULL)
-    return -1;
-  if (mr_scene_read_physics(r, physics) != 0)
-    return -1;
-  if ((v = mr_scene_yaml_get(root, "expect")) != NULL && mr_scene_read_expect(r, v) != 0)
-    return -1;
+  if (physics == NULL) return -1;
+  if (mr_scene_read_physics(r, physics) != 0) return -1;
+  if ((v = mr_scene_yaml_get(root, "expect")) != NULL && mr_scene_read_expect(r, v) != 0) return -1;
   return 0;
 }
 
-mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t len,
-                                   mr_scene *scene, mr_scene_error *err) {
+mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t len, mr_scene *scene,
+                                   mr_scene_error *err) {
   defaults(scene);
   memset(err, 0, sizeof *err);
-  mr_reader r = {name, err, scene};
+  mr_reader r = { name, err, scene };
   scene->path = malloc(strlen(name) + 1);
   if (scene->path == NULL) {
     mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
     return err->status;
   }
   strcpy(scene->path, name);
-  if (scene->name[0] == '\0')
-    snprintf(scene->name, sizeof scene->name, "%s", name);
+  if (scene->name[0] == '\0') snprintf(scene->name, sizeof scene->name, "%s", name);
 
   mr_ydoc doc;
   mr_yerror yerr;
@@ -120,11 +114,11 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
 mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error *err) {
   defaults(scene);
   memset(err, 0, sizeof *err);
-  mr_reader r = {path, err, scene};
+  mr_reader r = { path, err, scene };
   FILE *f = fopen(path, "rb");
   if (f == NULL) {
     mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_IO, "expected a readable scene file: %s",
-               strerror(errno));
+                          strerror(errno));
     return err->status;
   }
   size_t cap = 1 << 16, len = 0;
@@ -151,13 +145,13 @@ mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error 
   fclose(f);
   if (buf == NULL) {
     mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM,
-               "expected a scene file under 64 MiB that fits in memory");
+                          "expected a scene file under 64 MiB that fits in memory");
     return err->status;
   }
   if (io_error != 0) {
     free(buf);
     mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_IO, "expected a readable scene file: %s",
-               strerror(io_error));
+                          strerror(io_error));
     return err->status;
   }
   mr_scene_status st = mr_scene_load_text(path, buf, len, scene, err);
@@ -169,11 +163,9 @@ void mr_scene_free(mr_scene *s) {
   free(s->path);
   free(s->particles);
   free(s->distances);
-  for (size_t i = 0; i < s->n_groups; i++)
-    free((int *)s->groups[i].def.particles);
+  for (size_t i = 0; i < s->n_groups; i++) free((int *)s->groups[i].def.particles);
   free(s->groups);
-  for (size_t i = 0; i < s->n_parts; i++)
-    free((int *)s->parts[i].def.particles);
+  for (size_t i = 0; i < s->n_parts; i++) free((int *)s->parts[i].def.particles);
   free(s->parts);
   free(s->forces);
   free(s->control_points);
@@ -184,14 +176,12 @@ void mr_scene_free(mr_scene *s) {
 
 size_t mr_scene_find_particle(const mr_scene *s, const char *name) {
   for (size_t i = 0; i < s->n_particles; i++)
-    if (strcmp(s->particles[i].name, name) == 0)
-      return i;
+    if (strcmp(s->particles[i].name, name) == 0) return i;
   return (size_t)-1;
 }
 
 size_t mr_scene_find_control_point(const mr_scene *s, const char *name) {
   for (size_t i = 0; i < s->n_control_points; i++)
-    if (strcmp(s->control_points[i].name, name) == 0)
-      return i;
+    if (strcmp(s->control_points[i].name, name) == 0) return i;
   return (size_t)-1;
 }

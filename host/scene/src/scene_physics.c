@@ -27,12 +27,11 @@ static double dist3(const double a[3], const double b[3]) {
 static const struct {
   const char *word;
   uint32_t bit;
-} file_words[] = {{"floor", MR_EFFECT_PLANES}, {"control", MR_EFFECT_FRAMES}};
+} file_words[] = { { "floor", MR_EFFECT_PLANES }, { "control", MR_EFFECT_FRAMES } };
 
 const char *mr_scene_effect_name(uint32_t bit) {
   for (size_t i = 0; i < sizeof file_words / sizeof file_words[0]; i++)
-    if (file_words[i].bit == bit)
-      return file_words[i].word;
+    if (file_words[i].bit == bit) return file_words[i].word;
   return mr_effect_name(bit);
 }
 
@@ -51,8 +50,7 @@ static int parse_effect(const char *word, uint32_t *bit) {
 }
 
 static int read_effects(mr_reader *r, const mr_ynode *node) {
-  if (mr_scene_read_seq(r, node, "physics.effects") != 0)
-    return -1;
+  if (mr_scene_read_seq(r, node, "physics.effects") != 0) return -1;
   uint32_t fx = 0;
   for (size_t i = 0; i < node->count; i++) {
     const mr_ynode *e = node->items[i];
@@ -65,8 +63,7 @@ static int read_effects(mr_reader *r, const mr_ynode *node) {
                                 e->kind == MR_YNODE_SCALAR ? e->text : "?", list);
     }
     if (fx & bit)
-      return mr_scene_read_fail(r, e, MR_SCENE_ERR_VALUE, "effect '%s' is listed twice",
-                                e->text);
+      return mr_scene_read_fail(r, e, MR_SCENE_ERR_VALUE, "effect '%s' is listed twice", e->text);
     fx |= bit;
   }
   r->scene->world.effects = fx;
@@ -76,18 +73,19 @@ static int read_effects(mr_reader *r, const mr_ynode *node) {
 /* §4.5 and §7: the ATS. Keys left out keep the library's defaults, which
  * are the paper's. */
 static int read_ats(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"dt_initial",    "dt_min",        "dt_max",
-                                     "threshold_min", "threshold_max", "divergence",
-                                     "deviation_length", "max_steps", NULL};
+  static const char *const keys[] = { "dt_initial",       "dt_min",        "dt_max",
+                                      "threshold_min",    "threshold_max", "divergence",
+                                      "deviation_length", "max_steps",     NULL };
   static const mr_scene_field fields[] = {
-      {"dt_initial", MR_SCENE_FIELD_POSITIVE, WORLD(dt_initial), 0, 0},
-      {"dt_min", MR_SCENE_FIELD_POSITIVE, WORLD(dt_min), 0, 0},
-      {"dt_max", MR_SCENE_FIELD_POSITIVE, WORLD(dt_max), 0, 0},
-      {"threshold_min", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_low), 0, 0},
-      {"threshold_max", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_high), 0, 0},
-      {"divergence", MR_SCENE_FIELD_POSITIVE, WORLD(divergence_bound), 0, 0},
-      {"deviation_length", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_length), 0, 0},
-      {"max_steps", MR_SCENE_FIELD_INT, WORLD(max_steps_per_call), 1, 100000000}};
+    { "dt_initial", MR_SCENE_FIELD_POSITIVE, WORLD(dt_initial), 0, 0 },
+    { "dt_min", MR_SCENE_FIELD_POSITIVE, WORLD(dt_min), 0, 0 },
+    { "dt_max", MR_SCENE_FIELD_POSITIVE, WORLD(dt_max), 0, 0 },
+    { "threshold_min", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_low), 0, 0 },
+    { "threshold_max", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_high), 0, 0 },
+    { "divergence", MR_SCENE_FIELD_POSITIVE, WORLD(divergence_bound), 0, 0 },
+    { "deviation_length", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_length), 0, 0 },
+    { "max_steps", MR_SCENE_FIELD_INT, WORLD(max_steps_per_call), 1, 100000000 }
+  };
   mr_world_def *d = &r->scene->world;
   if (mr_scene_read_map(r, n, "physics.ats", keys) != 0 ||
       mr_scene_read_fields(r, n, fields, sizeof fields / sizeof fields[0], d) != 0)
@@ -99,14 +97,13 @@ static int read_ats(mr_reader *r, const mr_ynode *n) {
   if ((v = mr_scene_yaml_get(n, "dt_initial")) != NULL &&
       (d->dt_initial < d->dt_min || d->dt_initial > d->dt_max))
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                              "expected dt_min <= dt_initial <= dt_max (%g..%g), got %g",
-                              d->dt_min, d->dt_max, d->dt_initial);
+                              "expected dt_min <= dt_initial <= dt_max (%g..%g), got %g", d->dt_min,
+                              d->dt_max, d->dt_initial);
   if (d->deviation_low > d->deviation_high)
     return mr_scene_read_fail(r, n, MR_SCENE_ERR_VALUE,
                               "expected threshold_min <= threshold_max, got %g > %g",
                               d->deviation_low, d->deviation_high);
-  if ((v = mr_scene_yaml_get(n, "divergence")) != NULL &&
-      d->divergence_bound <= d->deviation_high)
+  if ((v = mr_scene_yaml_get(n, "divergence")) != NULL && d->divergence_bound <= d->deviation_high)
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                               "expected divergence above threshold_max (%g), got %g",
                               d->deviation_high, d->divergence_bound);
@@ -115,8 +112,12 @@ static int read_ats(mr_reader *r, const mr_ynode *n) {
 
 /* The integrators' and solve methods' own name tables, typed for
  * mr_scene_read_choice. */
-static const char *integrator_at(int i) { return mr_integrator_name((mr_integrator)i); }
-static const char *method_at(int i) { return mr_solve_method_name((mr_solve_method)i); }
+static const char *integrator_at(int i) {
+  return mr_integrator_name((mr_integrator)i);
+}
+static const char *method_at(int i) {
+  return mr_solve_method_name((mr_solve_method)i);
+}
 static int parse_integrator(const char *word, int *out) {
   mr_integrator x;
   int rc = mr_integrator_parse(word, &x);
@@ -131,18 +132,18 @@ static int parse_method(const char *word, int *out) {
 }
 
 static int read_solver(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"integrator", "method", "ks", "kd",
-                                     "tolerance",  "max_iterations", NULL};
+  static const char *const keys[] = { "integrator", "method",         "ks", "kd",
+                                      "tolerance",  "max_iterations", NULL };
   static const mr_scene_field fields[] = {
-      {"ks", MR_SCENE_FIELD_NONNEG, WORLD(ks), 0, 0},
-      {"kd", MR_SCENE_FIELD_NONNEG, WORLD(kd), 0, 0},
-      {"tolerance", MR_SCENE_FIELD_POSITIVE, WORLD(solver_tolerance), 0, 0},
-      {"max_iterations", MR_SCENE_FIELD_INT, WORLD(solver_max_iterations), 1, 1000000}};
+    { "ks", MR_SCENE_FIELD_NONNEG, WORLD(ks), 0, 0 },
+    { "kd", MR_SCENE_FIELD_NONNEG, WORLD(kd), 0, 0 },
+    { "tolerance", MR_SCENE_FIELD_POSITIVE, WORLD(solver_tolerance), 0, 0 },
+    { "max_iterations", MR_SCENE_FIELD_INT, WORLD(solver_max_iterations), 1, 1000000 }
+  };
   mr_world_def *d = &r->scene->world;
   int integrator = (int)d->integrator, method = (int)d->solver;
   if (mr_scene_read_map(r, n, "physics.solver", keys) != 0 ||
-      mr_scene_read_choice(r, n, "integrator", parse_integrator, integrator_at, &integrator) !=
-          0 ||
+      mr_scene_read_choice(r, n, "integrator", parse_integrator, integrator_at, &integrator) != 0 ||
       mr_scene_read_choice(r, n, "method", parse_method, method_at, &method) != 0 ||
       mr_scene_read_fields(r, n, fields, sizeof fields / sizeof fields[0], d) != 0)
     return -1;
@@ -152,10 +153,11 @@ static int read_solver(mr_reader *r, const mr_ynode *n) {
 }
 
 static int read_contact(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"slop", "rest_speed", NULL};
+  static const char *const keys[] = { "slop", "rest_speed", NULL };
   static const mr_scene_field fields[] = {
-      {"slop", MR_SCENE_FIELD_POSITIVE, WORLD(contact_slop), 0, 0},
-      {"rest_speed", MR_SCENE_FIELD_NONNEG, WORLD(rest_speed), 0, 0}};
+    { "slop", MR_SCENE_FIELD_POSITIVE, WORLD(contact_slop), 0, 0 },
+    { "rest_speed", MR_SCENE_FIELD_NONNEG, WORLD(rest_speed), 0, 0 }
+  };
   if (mr_scene_read_map(r, n, "physics.contact", keys) != 0 ||
       mr_scene_read_need_effect(r, n, MR_EFFECT_PLANES | MR_EFFECT_SELF_COLLISION,
                                 "contact settings are") != 0)
@@ -164,10 +166,11 @@ static int read_contact(mr_reader *r, const mr_ynode *n) {
 }
 
 static int read_string_correction(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"max_stretch", "iterations", NULL};
+  static const char *const keys[] = { "max_stretch", "iterations", NULL };
   static const mr_scene_field fields[] = {
-      {"max_stretch", MR_SCENE_FIELD_POSITIVE, WORLD(string_max_stretch), 0, 0},
-      {"iterations", MR_SCENE_FIELD_INT, WORLD(string_correction_iterations), 1, 1000}};
+    { "max_stretch", MR_SCENE_FIELD_POSITIVE, WORLD(string_max_stretch), 0, 0 },
+    { "iterations", MR_SCENE_FIELD_INT, WORLD(string_correction_iterations), 1, 1000 }
+  };
   if (mr_scene_read_map(r, n, "physics.string_correction", keys) != 0 ||
       mr_scene_read_need_effect(r, n, MR_EFFECT_STRING_CORRECTION, "string correction is") != 0)
     return -1;
@@ -177,15 +180,14 @@ static int read_string_correction(mr_reader *r, const mr_ynode *n) {
 /* gravity and drag: each needs its effect; without the gravity effect the
  * world has none. */
 static int read_gravity_and_drag(mr_reader *r, const mr_ynode *n) {
-  static const mr_scene_field drag = {"drag", MR_SCENE_FIELD_NONNEG, WORLD(drag), 0, 0};
+  static const mr_scene_field drag = { "drag", MR_SCENE_FIELD_NONNEG, WORLD(drag), 0, 0 };
   mr_world_def *d = &r->scene->world;
   const mr_ynode *v;
   if ((v = mr_scene_yaml_get(n, "gravity")) != NULL &&
       (mr_scene_read_need_effect(r, v, MR_EFFECT_GRAVITY, "gravity is") != 0 ||
        mr_scene_read_vec3(r, v, "gravity", d->gravity) != 0))
     return -1;
-  if (!(d->effects & MR_EFFECT_GRAVITY))
-    memset(d->gravity, 0, sizeof d->gravity);
+  if (!(d->effects & MR_EFFECT_GRAVITY)) memset(d->gravity, 0, sizeof d->gravity);
   if ((v = mr_scene_yaml_get(n, "drag")) != NULL)
     return mr_scene_read_need_effect(r, v, MR_EFFECT_DRAG, "drag is") != 0 ||
                    mr_scene_read_field(r, n, &drag, d) != 0
@@ -198,11 +200,12 @@ static int read_gravity_and_drag(mr_reader *r, const mr_ynode *n) {
 }
 
 static int read_particle(mr_reader *r, const mr_ynode *it, void *slot) {
-  static const char *const keys[] = {"name", "position", "velocity", "mass",
-                                     "radius", "pinned", NULL};
+  static const char *const keys[] = { "name",   "position", "velocity", "mass",
+                                      "radius", "pinned",   NULL };
   static const mr_scene_field fields[] = {
-      {"velocity", MR_SCENE_FIELD_VEC3, offsetof(mr_particle_def, velocity), 0, 0},
-      {"radius", MR_SCENE_FIELD_NONNEG, offsetof(mr_particle_def, radius), 0, 0}};
+    { "velocity", MR_SCENE_FIELD_VEC3, offsetof(mr_particle_def, velocity), 0, 0 },
+    { "radius", MR_SCENE_FIELD_NONNEG, offsetof(mr_particle_def, radius), 0, 0 }
+  };
   mr_scene_particle *p = slot;
   const mr_ynode *v;
   p->def = mr_default_particle_def();
@@ -210,8 +213,7 @@ static int read_particle(mr_reader *r, const mr_ynode *it, void *slot) {
     return -1;
   if (mr_scene_find_particle(r->scene, p->name) < r->scene->n_particles - 1)
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                              "expected a unique particle name, '%s' is already declared",
-                              p->name);
+                              "expected a unique particle name, '%s' is already declared", p->name);
   if ((v = mr_scene_read_need(r, it, "position", "a particle")) == NULL ||
       mr_scene_read_vec3(r, v, "position", p->def.position) != 0 ||
       mr_scene_read_fields(r, it, fields, 2, &p->def) != 0)
@@ -242,17 +244,16 @@ static int read_particles(mr_reader *r, const mr_ynode *n) {
   for (size_t i = 0; i < s->n_particles; i++)
     for (size_t j = 0; j < i; j++)
       if (dist3(s->particles[i].def.position, s->particles[j].def.position) < COINCIDENT_M)
-        return mr_scene_read_fail_at(r, s->particles[i].pos.line, s->particles[i].pos.column,
-                                     MR_SCENE_ERR_VALUE,
-                                     "particle '%s' coincides with particle '%s' (line %d); "
-                                     "expected distinct positions",
-                                     s->particles[i].name, s->particles[j].name,
-                                     s->particles[j].pos.line);
+        return mr_scene_read_fail_at(
+            r, s->particles[i].pos.line, s->particles[i].pos.column, MR_SCENE_ERR_VALUE,
+            "particle '%s' coincides with particle '%s' (line %d); "
+            "expected distinct positions",
+            s->particles[i].name, s->particles[j].name, s->particles[j].pos.line);
   return 0;
 }
 
 static int read_distance(mr_reader *r, const mr_ynode *it, void *slot) {
-  static const char *const keys[] = {"between", "length", NULL};
+  static const char *const keys[] = { "between", "length", NULL };
   const mr_scene *s = r->scene;
   mr_scene_distance *c = slot;
   mr_distance_def *d = &c->def;
@@ -268,14 +269,12 @@ static int read_distance(mr_reader *r, const mr_ynode *it, void *slot) {
       mr_scene_read_particle(r, v->items[1], &d->b) != 0)
     return -1;
   if (d->a == d->b)
-    return mr_scene_read_fail(
-        r, v, MR_SCENE_ERR_VALUE,
-        "zero-length constraint: both ends are '%s'; expected two particles",
-        s->particles[d->a].name);
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "zero-length constraint: both ends are '%s'; expected two particles",
+                              s->particles[d->a].name);
   d->length = dist3(s->particles[d->a].def.position, s->particles[d->b].def.position);
   const mr_ynode *len = mr_scene_yaml_get(it, "length");
-  if (len != NULL && mr_scene_read_number(r, len, "length", &d->length) != 0)
-    return -1;
+  if (len != NULL && mr_scene_read_number(r, len, "length", &d->length) != 0) return -1;
   if (!(d->length > COINCIDENT_M))
     return mr_scene_read_fail(r, len ? len : it, MR_SCENE_ERR_VALUE,
                               "zero-length constraint between '%s' and '%s'; expected a length "
@@ -286,19 +285,19 @@ static int read_distance(mr_reader *r, const mr_ynode *it, void *slot) {
 }
 
 static int read_floor(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {"height", "restitution", "friction", NULL};
+  static const char *const keys[] = { "height", "restitution", "friction", NULL };
   static const mr_scene_field fields[] = {
-      {"height", MR_SCENE_FIELD_NUMBER, offsetof(mr_plane_def, offset), 0, 0},
-      {"restitution", MR_SCENE_FIELD_UNIT, offsetof(mr_plane_def, restitution), 0, 0},
-      {"friction", MR_SCENE_FIELD_NONNEG, offsetof(mr_plane_def, friction), 0, 0}};
+    { "height", MR_SCENE_FIELD_NUMBER, offsetof(mr_plane_def, offset), 0, 0 },
+    { "restitution", MR_SCENE_FIELD_UNIT, offsetof(mr_plane_def, restitution), 0, 0 },
+    { "friction", MR_SCENE_FIELD_NONNEG, offsetof(mr_plane_def, friction), 0, 0 }
+  };
   mr_scene_floor *f = &r->scene->floor;
   if (mr_scene_read_map(r, n, "physics.floor", keys) != 0 ||
       mr_scene_read_need_effect(r, n, MR_EFFECT_PLANES, "a floor is") != 0)
     return -1;
   f->present = true;
   f->pos = mr_scene_read_pos(n);
-  if (mr_scene_read_fields(r, n, fields, 3, &f->def) != 0)
-    return -1;
+  if (mr_scene_read_fields(r, n, fields, 3, &f->def) != 0) return -1;
   for (size_t i = 0; i < r->scene->n_particles; i++) {
     const mr_scene_particle *p = &r->scene->particles[i];
     double bottom = p->def.position[1] - p->def.radius;
@@ -313,16 +312,13 @@ static int read_floor(mr_reader *r, const mr_ynode *n) {
 
 /* The keys physics: may hold: the fixed ones around the force table's. */
 static void physics_keys(const char **keys, size_t max) {
-  static const char *const head[] = {"effects", "gravity",   "drag",    "ats",
-                                     "solver",  "contact",   "particles", "control",
-                                     "constraints", "groups"};
-  static const char *const tail[] = {"floor", "parts", "string_correction", NULL};
+  static const char *const head[] = { "effects", "gravity",   "drag",    "ats",         "solver",
+                                      "contact", "particles", "control", "constraints", "groups" };
+  static const char *const tail[] = { "floor", "parts", "string_correction", NULL };
   size_t n = 0;
-  for (size_t i = 0; i < sizeof head / sizeof head[0]; i++)
-    keys[n++] = head[i];
+  for (size_t i = 0; i < sizeof head / sizeof head[0]; i++) keys[n++] = head[i];
   n += mr_scene_force_keys(keys + n, max - n - 4);
-  for (size_t i = 0; i < 4; i++)
-    keys[n++] = tail[i];
+  for (size_t i = 0; i < 4; i++) keys[n++] = tail[i];
 }
 
 /* A section read by fn when the file has it. */
@@ -334,33 +330,29 @@ static int optional(mr_reader *r, const mr_ynode *n, const char *key,
 
 static int read_constraints(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
-  return mr_scene_read_items(r, n, "physics.constraints", MR_EFFECT_CONSTRAINTS,
-                             "constraints are", sizeof *s->distances, (void **)&s->distances,
-                             &s->n_distances, read_distance);
+  return mr_scene_read_items(r, n, "physics.constraints", MR_EFFECT_CONSTRAINTS, "constraints are",
+                             sizeof *s->distances, (void **)&s->distances, &s->n_distances,
+                             read_distance);
 }
 
 static int read_control(mr_reader *r, const mr_ynode *n) {
-  if (mr_scene_read_need_effect(r, n, MR_EFFECT_FRAMES, "a control frame is") != 0)
-    return -1;
+  if (mr_scene_read_need_effect(r, n, MR_EFFECT_FRAMES, "a control frame is") != 0) return -1;
   return mr_scene_read_control(r, n);
 }
 
 int mr_scene_read_physics(mr_reader *r, const mr_ynode *n) {
   const char *keys[40];
   physics_keys(keys, sizeof keys / sizeof keys[0]);
-  if (mr_scene_read_map(r, n, "physics", keys) != 0)
-    return -1;
+  if (mr_scene_read_map(r, n, "physics", keys) != 0) return -1;
   const mr_ynode *v = mr_scene_read_need(r, n, "effects", "physics");
-  if (v == NULL || read_effects(r, v) != 0 || read_gravity_and_drag(r, n) != 0)
-    return -1;
+  if (v == NULL || read_effects(r, v) != 0 || read_gravity_and_drag(r, n) != 0) return -1;
   if (optional(r, n, "ats", read_ats) != 0 || optional(r, n, "solver", read_solver) != 0 ||
       optional(r, n, "contact", read_contact) != 0 ||
       optional(r, n, "string_correction", read_string_correction) != 0)
     return -1;
   /* Fixed order, whatever the order in the file: later items name earlier
    * ones. */
-  if ((v = mr_scene_read_need(r, n, "particles", "physics")) == NULL ||
-      read_particles(r, v) != 0)
+  if ((v = mr_scene_read_need(r, n, "particles", "physics")) == NULL || read_particles(r, v) != 0)
     return -1;
   if (optional(r, n, "control", read_control) != 0 ||
       optional(r, n, "constraints", read_constraints) != 0 ||

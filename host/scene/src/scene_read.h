@@ -22,8 +22,8 @@ typedef struct mr_reader {
 /* Fills the error; returns -1 so callers can `return mr_scene_read_fail(...)`. */
 int mr_scene_read_fail_at(mr_reader *r, int line, int column, mr_scene_status status,
                           const char *fmt, ...) MR_PRINTF(5, 6);
-int mr_scene_read_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status,
-                       const char *fmt, ...) MR_PRINTF(4, 5);
+int mr_scene_read_fail(mr_reader *r, const mr_ynode *at, mr_scene_status status, const char *fmt,
+                       ...) MR_PRINTF(4, 5);
 mr_scene_pos mr_scene_read_pos(const mr_ynode *node);
 
 /* node must be a mapping whose keys are all in allowed (NULL-terminated). */
@@ -64,11 +64,10 @@ typedef struct mr_scene_field {
   long lo, hi; /* MR_SCENE_FIELD_INT */
 } mr_scene_field;
 
-int mr_scene_read_fields(mr_reader *r, const mr_ynode *map, const mr_scene_field *fields,
-                         size_t n, void *def);
+int mr_scene_read_fields(mr_reader *r, const mr_ynode *map, const mr_scene_field *fields, size_t n,
+                         void *def);
 /* The same for one field. */
-int mr_scene_read_field(mr_reader *r, const mr_ynode *map, const mr_scene_field *field,
-                        void *def);
+int mr_scene_read_field(mr_reader *r, const mr_ynode *map, const mr_scene_field *field, void *def);
 
 /* A word from an enum's own name table: parse() it with the defining
  * library's parser; on failure list name(i) for every i the table has. */
@@ -96,15 +95,14 @@ int mr_scene_read_point(mr_reader *r, const mr_ynode *node, int *id); /* either 
 bool mr_scene_is_control_id(const mr_scene *scene, int id);
 const char *mr_scene_point_name(const mr_scene *scene, int id);
 /* A sequence of particle names, each at most once, as world ids. */
-int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *what,
-                                int **out, int *count);
+int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *what, int **out,
+                                int *count);
 /* [a, b] under `between`: two distinct points, not both control points. */
 int mr_scene_read_between(mr_reader *r, const mr_ynode *item, const char *what, int *a, int *b);
 
 /* Fails unless the scene declared one of the effect bits; `what` names the
  * item ("springs are"). */
-int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, uint32_t effect,
-                              const char *what);
+int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, uint32_t effect, const char *what);
 /* The name a scene file uses for one effect bit. */
 const char *mr_scene_effect_name(uint32_t effect_bit);
 

@@ -15,8 +15,7 @@
 
 static bool state_finite(const double *xyz, int n) {
   for (int i = 0; i < 3 * n; i++)
-    if (!isfinite(xyz[i]))
-      return false;
+    if (!isfinite(xyz[i])) return false;
   return true;
 }
 
@@ -38,12 +37,11 @@ static double string_stretch(const mr_scene *s, const mr_scene_world *sw) {
   for (size_t i = 0; i < s->n_forces; i++) {
     const mr_string_def *str = &s->forces[i].def.string;
     double a[3], b[3];
-    if (s->forces[i].kind != MR_EFFECT_STRINGS || !(str->rest_length > 0))
-      continue;
+    if (s->forces[i].kind != MR_EFFECT_STRINGS || !(str->rest_length > 0)) continue;
     if (mr_world_particle_state(sw->world, str->frame_particle, a, NULL) != MR_OK ||
         mr_world_particle_state(sw->world, str->puppet_particle, b, NULL) != MR_OK)
       continue;
-    double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
     m = fmax(m, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / str->rest_length);
   }
   return m;
@@ -58,8 +56,7 @@ typedef struct watcher {
 
 static void watch(watcher *w, double t, mr_scene_run_result *r) {
   const mr_scene_expect *e = w->e;
-  if (e->n_watch == 0 || !(t >= e->settle))
-    return;
+  if (e->n_watch == 0 || !(t >= e->settle)) return;
   for (size_t k = 0; k < e->n_watch; k++) {
     double p[3], v[3];
     mr_world_particle_state(w->sw->world, e->watch[k], p, v);
@@ -67,8 +64,8 @@ static void watch(watcher *w, double t, mr_scene_run_result *r) {
       memcpy(&w->anchor[3 * k], p, sizeof p);
       continue;
     }
-    double d[3] = {p[0] - w->anchor[3 * k], p[1] - w->anchor[3 * k + 1],
-                   p[2] - w->anchor[3 * k + 2]};
+    double d[3] = { p[0] - w->anchor[3 * k], p[1] - w->anchor[3 * k + 1],
+                    p[2] - w->anchor[3 * k + 2] };
     r->creep = fmax(r->creep, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
     r->jitter = fmax(r->jitter, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
   }
@@ -110,15 +107,14 @@ typedef struct run {
 static mr_scene_status run_open(run *u, mr_scene_error *err) {
   const mr_scene *s = u->s;
   mr_scene_status rc = mr_scene_build(s, &u->sw, err);
-  if (rc != MR_SCENE_OK)
-    return rc;
+  if (rc != MR_SCENE_OK) return rc;
   u->duration = u->opts && u->opts->duration > 0 ? u->opts->duration : s->duration;
   u->fps = s->fps;
   u->dt_max = s->world.dt_max;
   u->n = mr_world_particle_count(u->sw.world);
   u->xyz = malloc((size_t)(u->n > 0 ? u->n : 1) * 3 * sizeof *u->xyz);
   double *anchor = calloc(s->expect.n_watch ? 3 * s->expect.n_watch : 1, sizeof *anchor);
-  u->w = (watcher){&s->expect, &u->sw, anchor, false};
+  u->w = (watcher){ &s->expect, &u->sw, anchor, false };
   u->t_frame = -1.0;
   if (u->xyz == NULL || anchor == NULL)
     return run_fail(s, err, MR_SCENE_ERR_NOMEM, "out of memory", 0);
@@ -143,18 +139,15 @@ static double next_target(run *u, double t, bool *land) {
     if (!(u->t_frame > t + LAND_S)) {
       u->frame_k++;
       u->t_frame = fmin((double)u->frame_k / u->fps, u->duration);
-      if (u->sw.frame >= 0)
-        place_frame(u->s, &u->sw, u->t_frame);
+      if (u->sw.frame >= 0) place_frame(u->s, &u->sw, u->t_frame);
     }
     end = u->t_frame;
   }
   /* One ATS step at a time, so the trace sees each; the step that would
    * pass a frame time or the end lands on it instead. */
   *land = target > end - LAND_S;
-  if (*land)
-    target = end;
-  if (u->fps <= 0 && u->sw.frame >= 0)
-    place_frame(u->s, &u->sw, target);
+  if (*land) target = end;
+  if (u->fps <= 0 && u->sw.frame >= 0) place_frame(u->s, &u->sw, target);
   return target;
 }
 
@@ -163,8 +156,10 @@ static mr_scene_step record(run *u, const mr_step_report *rep) {
   mr_scene_run_result *r = u->r;
   mr_stats stats;
   mr_world_stats(u->sw.world, &stats);
-  mr_scene_step row = {mr_world_time(u->sw.world), stats.last_dt, stats.last_error, rep->steps,
-                       rep->rejected, rep->divergences > 0, max_speed(&u->sw)};
+  mr_scene_step row = {
+    mr_world_time(u->sw.world), stats.last_dt,    stats.last_error, rep->steps, rep->rejected,
+    rep->divergences > 0,       max_speed(&u->sw)
+  };
   mr_world_positions(u->sw.world, u->xyz, u->n);
   if (!state_finite(u->xyz, u->n) || !isfinite(row.error) || !isfinite(row.max_speed))
     r->finite = false;
@@ -175,14 +170,12 @@ static mr_scene_step record(run *u, const mr_step_report *rep) {
     snprintf(r->first_reset, sizeof r->first_reset, "%s", mr_world_last_error(u->sw.world));
   r->resets += (uint64_t)rep->divergences;
   r->collisions += (uint64_t)rep->collisions;
-  if (rep->dependent > r->dependent_rows)
-    r->dependent_rows = rep->dependent;
+  if (rep->dependent > r->dependent_rows) r->dependent_rows = rep->dependent;
   if (rep->steps > 0 && isfinite(row.dt)) {
     u->sum_dt += row.dt * rep->steps;
     r->dt_min = fmin(r->dt_min, row.dt);
     r->dt_max = fmax(r->dt_max, row.dt);
-    if (row.dt >= u->dt_max * (1 - 1e-9))
-      u->at_upper += (uint64_t)rep->steps;
+    if (row.dt >= u->dt_max * (1 - 1e-9)) u->at_upper += (uint64_t)rep->steps;
   }
   if (isfinite(row.error)) {
     r->max_deviation = fmax(r->max_deviation, row.error);
@@ -197,8 +190,8 @@ static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
   double target = next_target(u, *t, &land);
   mr_step_report rep;
   memset(&rep, 0, sizeof rep);
-  mr_status st = land ? mr_world_step_to(u->sw.world, target, &rep)
-                      : mr_world_step(u->sw.world, &rep);
+  mr_status st =
+      land ? mr_world_step_to(u->sw.world, target, &rep) : mr_world_step(u->sw.world, &rep);
   u->r->last_status = st;
   if (st < 0) {
     char msg[400];
@@ -209,8 +202,7 @@ static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
   mr_scene_step row = record(u, &rep);
   *t = row.t;
   watch(&u->w, *t, u->r);
-  if (u->opts && u->opts->on_step)
-    u->opts->on_step(u->opts->user, &row);
+  if (u->opts && u->opts->on_step) u->opts->on_step(u->opts->user, &row);
   return MR_SCENE_OK;
 }
 
@@ -246,8 +238,7 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
   }
   double t = mr_world_time(u.sw.world);
   watch(&u.w, t, r);
-  while (t < u.duration - LAND_S && rc == MR_SCENE_OK)
-    rc = advance(&u, &t, err);
+  while (t < u.duration - LAND_S && rc == MR_SCENE_OK) rc = advance(&u, &t, err);
   run_finish(&u, t);
   run_close(&u);
   return rc;
@@ -265,8 +256,7 @@ int mr_scene_check(const mr_scene *s, const mr_scene_run_result *r, char *why, s
     return -1;
   }
   if (!isnan(e->max_deviation) && !(r->max_deviation <= e->max_deviation)) {
-    snprintf(why, size, "expected max deviation <= %g, got %g", e->max_deviation,
-             r->max_deviation);
+    snprintf(why, size, "expected max deviation <= %g, got %g", e->max_deviation, r->max_deviation);
     return -1;
   }
   if (e->resets_min >= 0 && r->resets < (uint64_t)e->resets_min) {
@@ -294,17 +284,16 @@ int mr_scene_check(const mr_scene *s, const mr_scene_run_result *r, char *why, s
     return -1;
   }
   if (!isnan(e->jitter) && !(r->jitter <= e->jitter)) {
-    snprintf(why, size, "expected speeds <= %g m/s after %g s (no jitter), got %g m/s",
-             e->jitter, e->settle, r->jitter);
+    snprintf(why, size, "expected speeds <= %g m/s after %g s (no jitter), got %g m/s", e->jitter,
+             e->settle, r->jitter);
     return -1;
   }
   /* The pin holds for a run of the scene's own length only. */
   if (e->has_state_hash && r->sim_time == s->duration && r->hash != e->state_hash) {
-    snprintf(why, size, "expected state hash 0x%016" PRIx64 ", got 0x%016" PRIx64,
-             e->state_hash, r->hash);
+    snprintf(why, size, "expected state hash 0x%016" PRIx64 ", got 0x%016" PRIx64, e->state_hash,
+             r->hash);
     return -1;
   }
-  if (size > 0)
-    why[0] = '\0';
+  if (size > 0) why[0] = '\0';
   return 0;
 }

@@ -23,8 +23,7 @@ static void *arena_alloc(mr_yarena **head, size_t size) {
   if (a == NULL || a->cap - a->used < size) {
     size_t cap = size > 16384 ? size : 16384;
     mr_yarena *b = malloc(sizeof *b + cap);
-    if (b == NULL)
-      return NULL;
+    if (b == NULL) return NULL;
     b->next = a;
     b->used = 0;
     b->cap = cap;
@@ -128,14 +127,12 @@ static int add_anchor(builder *b, char *name, mr_ynode *node) {
 
 static mr_ynode *find_anchor(const builder *b, const char *name) {
   for (size_t i = b->n_anchors; i-- > 0;)
-    if (strcmp(b->anchors[i].name, name) == 0)
-      return b->anchors[i].node;
+    if (strcmp(b->anchors[i].name, name) == 0) return b->anchors[i].node;
   return NULL;
 }
 
 static bool same_scalar(const mr_ynode *a, const mr_ynode *b) {
-  return a->kind == MR_YNODE_SCALAR && b->kind == MR_YNODE_SCALAR &&
-         strcmp(a->text, b->text) == 0;
+  return a->kind == MR_YNODE_SCALAR && b->kind == MR_YNODE_SCALAR && strcmp(a->text, b->text) == 0;
 }
 
 /* Attach a finished node to the container on top of the stack. */
@@ -153,14 +150,13 @@ static int attach(builder *b, mr_ynode *node) {
     for (size_t i = 0; i < f->n; i += 2)
       if (same_scalar(f->tmp[i], node))
         return fail(b->err, node->line, node->column,
-                    "duplicate key '%s' (first at line %d, column %d)",
-                    node->text, f->tmp[i]->line, f->tmp[i]->column);
+                    "duplicate key '%s' (first at line %d, column %d)", node->text, f->tmp[i]->line,
+                    f->tmp[i]->column);
   }
   if (f->n == f->cap) {
     size_t cap = f->cap ? 2 * f->cap : 8;
     mr_ynode **t = realloc(f->tmp, cap * sizeof *t);
-    if (t == NULL)
-      return fail(b->err, node->line, node->column, "out of memory");
+    if (t == NULL) return fail(b->err, node->line, node->column, "out of memory");
     f->tmp = t;
     f->cap = cap;
   }
@@ -184,13 +180,11 @@ static mr_ynode *new_node(builder *b, mr_ynode_kind kind, const struct fy_mark *
 static int open_container(builder *b, mr_ynode_kind kind, struct fy_event *e,
                           struct fy_token *anchor_tok) {
   mr_ynode *n = new_node(b, kind, fy_event_start_mark(e));
-  if (n == NULL)
-    return -1;
+  if (n == NULL) return -1;
   if (b->depth == b->stack_cap) {
     size_t cap = b->stack_cap ? 2 * b->stack_cap : 16;
     frame *s = realloc(b->stack, cap * sizeof *s);
-    if (s == NULL)
-      return fail(b->err, n->line, n->column, "out of memory");
+    if (s == NULL) return fail(b->err, n->line, n->column, "out of memory");
     b->stack = s;
     b->stack_cap = cap;
   }
@@ -199,8 +193,7 @@ static int open_container(builder *b, mr_ynode_kind kind, struct fy_event *e,
   f->node = n;
   if (anchor_tok != NULL) {
     f->anchor = token_strdup(anchor_tok);
-    if (f->anchor == NULL)
-      return fail(b->err, n->line, n->column, "out of memory");
+    if (f->anchor == NULL) return fail(b->err, n->line, n->column, "out of memory");
   }
   return 0;
 }
@@ -210,16 +203,14 @@ static int close_container(builder *b) {
   mr_ynode *n = f->node;
   if (f->n > 0) {
     n->items = arena_alloc(&b->doc->arena, f->n * sizeof *n->items);
-    if (n->items == NULL)
-      return fail(b->err, n->line, n->column, "out of memory");
+    if (n->items == NULL) return fail(b->err, n->line, n->column, "out of memory");
     memcpy(n->items, f->tmp, f->n * sizeof *n->items);
   }
   n->count = n->kind == MR_YNODE_MAP ? f->n / 2 : f->n;
   free(f->tmp);
   char *name = f->anchor;
   b->depth--;
-  if (name != NULL && add_anchor(b, name, n) != 0)
-    return -1;
+  if (name != NULL && add_anchor(b, name, n) != 0) return -1;
   return attach(b, n);
 }
 
@@ -230,8 +221,7 @@ static int on_event(builder *b, struct fy_event *e) {
   switch (e->type) {
   case FYET_DOCUMENT_START:
     if (++b->documents > 1)
-      return fail(b->err, line, column,
-                  "expected one YAML document, found a second one");
+      return fail(b->err, line, column, "expected one YAML document, found a second one");
     return 0;
   case FYET_MAPPING_START:
     return open_container(b, MR_YNODE_MAP, e, e->mapping_start.anchor);
@@ -242,17 +232,14 @@ static int on_event(builder *b, struct fy_event *e) {
     return close_container(b);
   case FYET_SCALAR: {
     mr_ynode *n = new_node(b, MR_YNODE_SCALAR, m);
-    if (n == NULL)
-      return -1;
+    if (n == NULL) return -1;
     n->text = token_dup(&b->doc->arena, e->scalar.value);
-    if (n->text == NULL)
-      return fail(b->err, line, column, "out of memory");
+    if (n->text == NULL) return fail(b->err, line, column, "out of memory");
     enum fy_scalar_style style = fy_token_scalar_style(e->scalar.value);
     n->quoted = style != FYSS_PLAIN;
     /* libfyaml marks a quoted scalar at its first character inside the
      * quotes; point at the opening quote, where the value starts. */
-    if ((style == FYSS_SINGLE_QUOTED || style == FYSS_DOUBLE_QUOTED) && n->column > 1)
-      n->column--;
+    if ((style == FYSS_SINGLE_QUOTED || style == FYSS_DOUBLE_QUOTED) && n->column > 1) n->column--;
     if (e->scalar.anchor != NULL) {
       char *name = token_strdup(e->scalar.anchor);
       if (name == NULL || add_anchor(b, name, n) != 0)
@@ -280,8 +267,7 @@ static int on_event(builder *b, struct fy_event *e) {
 /* Position of the first NUL byte, if any: such input is not a text file. */
 static bool find_nul(const char *text, size_t len, int *line, int *column) {
   const char *z = memchr(text, '\0', len);
-  if (z == NULL)
-    return false;
+  if (z == NULL) return false;
   *line = 1;
   *column = 1;
   for (const char *p = text; p < z; p++) {
@@ -302,18 +288,15 @@ static struct fy_parser *open_parser(const char *text, size_t len, struct fy_dia
   dcfg.fp = NULL;
   dcfg.colorize = false;
   *diag = fy_diag_create(&dcfg);
-  if (*diag == NULL)
-    return NULL;
+  if (*diag == NULL) return NULL;
   fy_diag_set_collect_errors(*diag, true);
   struct fy_parse_cfg cfg;
   memset(&cfg, 0, sizeof cfg);
   cfg.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG;
   cfg.diag = *diag;
   struct fy_parser *fyp = fy_parser_create(&cfg);
-  if (fyp != NULL && fy_parser_set_string(fyp, text, len) == 0)
-    return fyp;
-  if (fyp != NULL)
-    fy_parser_destroy(fyp);
+  if (fyp != NULL && fy_parser_set_string(fyp, text, len) == 0) return fyp;
+  if (fyp != NULL) fy_parser_destroy(fyp);
   fy_diag_destroy(*diag);
   return NULL;
 }
@@ -333,8 +316,7 @@ static int build_tree(builder *b, struct fy_parser *fyp, struct fy_diag *diag) {
     rc = on_event(b, e);
     fy_parser_event_free(fyp, e);
   }
-  if (rc != 0 || !fy_parser_get_stream_error(fyp))
-    return rc;
+  if (rc != 0 || !fy_parser_get_stream_error(fyp)) return rc;
   void *it = NULL;
   struct fy_diag_error *de = fy_diag_errors_iterate(diag, &it);
   if (de != NULL) /* libfyaml's collected diagnostics are already 1-based */
@@ -348,8 +330,7 @@ static void builder_free(builder *b) {
     free(b->stack[i].anchor);
   }
   free(b->stack);
-  for (size_t i = 0; i < b->n_anchors; i++)
-    free(b->anchors[i].name);
+  for (size_t i = 0; i < b->n_anchors; i++) free(b->anchors[i].name);
   free(b->anchors);
 }
 
@@ -361,8 +342,7 @@ int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *e
     return fail(err, nl, nc, "expected a YAML text file, found a NUL byte");
   struct fy_diag *diag;
   struct fy_parser *fyp = open_parser(text, len, &diag);
-  if (fyp == NULL)
-    return fail(err, 0, 0, "out of memory");
+  if (fyp == NULL) return fail(err, 0, 0, "out of memory");
   builder b;
   memset(&b, 0, sizeof b);
   b.doc = doc;
@@ -371,8 +351,7 @@ int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *e
   builder_free(&b);
   fy_parser_destroy(fyp);
   fy_diag_destroy(diag);
-  if (rc != 0)
-    mr_scene_yaml_free(doc);
+  if (rc != 0) mr_scene_yaml_free(doc);
   return rc;
 }
 
@@ -383,11 +362,9 @@ void mr_scene_yaml_free(mr_ydoc *doc) {
 }
 
 const mr_ynode *mr_scene_yaml_get(const mr_ynode *map, const char *key) {
-  if (map == NULL || map->kind != MR_YNODE_MAP)
-    return NULL;
+  if (map == NULL || map->kind != MR_YNODE_MAP) return NULL;
   for (size_t i = 0; i < map->count; i++)
-    if (strcmp(map->items[2 * i]->text, key) == 0)
-      return map->items[2 * i + 1];
+    if (strcmp(map->items[2 * i]->text, key) == 0) return map->items[2 * i + 1];
   return NULL;
 }
 

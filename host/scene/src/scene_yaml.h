@@ -8,11 +8,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-typedef enum mr_ynode_kind {
-  MR_YNODE_SCALAR,
-  MR_YNODE_MAP,
-  MR_YNODE_SEQ
-} mr_ynode_kind;
+typedef enum mr_ynode_kind { MR_YNODE_SCALAR, MR_YNODE_MAP, MR_YNODE_SEQ } mr_ynode_kind;
 
 typedef struct mr_ynode {
   mr_ynode_kind kind;

@@ -8,112 +8,94 @@
 #include <string.h>
 
 /* row_ptr holds rows + 1 entries. */
-static int grow_rows(mr_jac *J, int rows)
-{
-    return mr_grow(&J->row_ptr, &J->cap_rows, (size_t)rows + 1, sizeof *J->row_ptr);
+static int grow_rows(mr_jac *J, int rows) {
+  return mr_grow(&J->row_ptr, &J->cap_rows, (size_t)rows + 1, sizeof *J->row_ptr);
 }
 
 /* particle and d share one count; each keeps its own copy of the
  * capacity until both have grown. */
-static int grow_entries(mr_jac *J, int entries)
-{
-    size_t cap_p = J->cap_entries, cap_d = J->cap_entries;
-    if (mr_grow(&J->particle, &cap_p, (size_t)entries, sizeof *J->particle) != 0 ||
-            mr_grow(&J->d, &cap_d, (size_t)entries, sizeof *J->d) != 0)
-        return MR_SOLVE_ENOMEM;
-    J->cap_entries = cap_p;
-    return 0;
+static int grow_entries(mr_jac *J, int entries) {
+  size_t cap_p = J->cap_entries, cap_d = J->cap_entries;
+  if (mr_grow(&J->particle, &cap_p, (size_t)entries, sizeof *J->particle) != 0 ||
+      mr_grow(&J->d, &cap_d, (size_t)entries, sizeof *J->d) != 0)
+    return MR_SOLVE_ENOMEM;
+  J->cap_entries = cap_p;
+  return 0;
 }
 
-mr_solve_status mr_jac_reset(mr_jac *J, int n_particles)
-{
-    if (!J || n_particles < 0)
-        return MR_SOLVE_BAD_ARG;
-    J->rows = 0;
-    J->n_particles = n_particles;
-    if (grow_rows(J, 0) != 0)
-        return MR_SOLVE_ENOMEM;
-    J->row_ptr[0] = 0;
-    return MR_SOLVE_OK;
+mr_solve_status mr_jac_reset(mr_jac *J, int n_particles) {
+  if (!J || n_particles < 0) return MR_SOLVE_BAD_ARG;
+  J->rows = 0;
+  J->n_particles = n_particles;
+  if (grow_rows(J, 0) != 0) return MR_SOLVE_ENOMEM;
+  J->row_ptr[0] = 0;
+  return MR_SOLVE_OK;
 }
 
-mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries)
-{
-    if (!J || rows < 0 || entries < 0)
-        return MR_SOLVE_BAD_ARG;
-    if (grow_rows(J, rows) != 0 || grow_entries(J, entries) != 0)
-        return MR_SOLVE_ENOMEM;
-    return MR_SOLVE_OK;
+mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries) {
+  if (!J || rows < 0 || entries < 0) return MR_SOLVE_BAD_ARG;
+  if (grow_rows(J, rows) != 0 || grow_entries(J, entries) != 0) return MR_SOLVE_ENOMEM;
+  return MR_SOLVE_OK;
 }
 
-int mr_jac_begin_row(mr_jac *J)
-{
-    if (!J || !J->row_ptr)
-        return -1;
-    if (grow_rows(J, J->rows + 1) != 0)
-        return -1;
-    int end = J->row_ptr[J->rows];
-    J->rows++;
-    J->row_ptr[J->rows] = end;
-    return J->rows - 1;
+int mr_jac_begin_row(mr_jac *J) {
+  if (!J || !J->row_ptr) return -1;
+  if (grow_rows(J, J->rows + 1) != 0) return -1;
+  int end = J->row_ptr[J->rows];
+  J->rows++;
+  J->row_ptr[J->rows] = end;
+  return J->rows - 1;
 }
 
-mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3])
-{
-    if (!J || J->rows == 0 || particle < 0 || particle >= J->n_particles)
-        return MR_SOLVE_BAD_ARG;
-    int start = J->row_ptr[J->rows - 1];
-    int end = J->row_ptr[J->rows];
-    /* A constraint may name a particle twice (e.g. a term built from two
+mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]) {
+  if (!J || J->rows == 0 || particle < 0 || particle >= J->n_particles) return MR_SOLVE_BAD_ARG;
+  int start = J->row_ptr[J->rows - 1];
+  int end = J->row_ptr[J->rows];
+  /* A constraint may name a particle twice (e.g. a term built from two
      * pieces); J must hold the sum, once, or JM⁻¹Jᵀ would miss the cross
      * terms' structure. Rows are short, so a linear scan is cheapest. */
-    for (int e = start; e < end; e++) {
-        if (J->particle[e] == particle) {
-            J->d[e][0] += d[0];
-            J->d[e][1] += d[1];
-            J->d[e][2] += d[2];
-            return MR_SOLVE_OK;
-        }
+  for (int e = start; e < end; e++) {
+    if (J->particle[e] == particle) {
+      J->d[e][0] += d[0];
+      J->d[e][1] += d[1];
+      J->d[e][2] += d[2];
+      return MR_SOLVE_OK;
     }
-    if ((size_t)end + 1 > J->cap_entries && grow_entries(J, end + 1) != 0)
-        return MR_SOLVE_ENOMEM;
-    J->particle[end] = particle;
-    memcpy(J->d[end], d, sizeof J->d[end]);
-    J->row_ptr[J->rows] = end + 1;
-    return MR_SOLVE_OK;
+  }
+  if ((size_t)end + 1 > J->cap_entries && grow_entries(J, end + 1) != 0) return MR_SOLVE_ENOMEM;
+  J->particle[end] = particle;
+  memcpy(J->d[end], d, sizeof J->d[end]);
+  J->row_ptr[J->rows] = end + 1;
+  return MR_SOLVE_OK;
 }
 
-void mr_jac_free(mr_jac *J)
-{
-    if (!J)
-        return;
-    free(J->row_ptr);
-    free(J->particle);
-    free(J->d);
-    memset(J, 0, sizeof *J);
+void mr_jac_free(mr_jac *J) {
+  if (!J) return;
+  free(J->row_ptr);
+  free(J->particle);
+  free(J->d);
+  memset(J, 0, sizeof *J);
 }
 
-void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k)
-{
-    for (int i = 0; i < J->rows; i++) {
-        double s = 0.0;
-        for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-            const double *v = v3n + 3 * J->particle[e];
-            s += J->d[e][0] * v[0] + J->d[e][1] * v[1] + J->d[e][2] * v[2];
-        }
-        out_k[i] = s;
+void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k) {
+  for (int i = 0; i < J->rows; i++) {
+    double s = 0.0;
+    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
+      const double *v = v3n + 3 * J->particle[e];
+      s += J->d[e][0] * v[0] + J->d[e][1] * v[1] + J->d[e][2] * v[2];
     }
+    out_k[i] = s;
+  }
 }
 
-void mr_jac_tmul(const mr_jac *J, const double *lam_k, double *out_3n)
-{
-    memset(out_3n, 0, (size_t)J->n_particles * 3 * sizeof *out_3n);
-    for (int i = 0; i < J->rows; i++) {
-        for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-            double *o = out_3n + 3 * J->particle[e];
-            o[0] += J->d[e][0] * lam_k[i];
-            o[1] += J->d[e][1] * lam_k[i];
-            o[2] += J->d[e][2] * lam_k[i];
-        }
+void mr_jac_tmul(const mr_jac *J, const double *lam_k, double *out_3n) {
+  memset(out_3n, 0, (size_t)J->n_particles * 3 * sizeof *out_3n);
+  for (int i = 0; i < J->rows; i++) {
+    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
+      double *o = out_3n + 3 * J->particle[e];
+      o[0] += J->d[e][0] * lam_k[i];
+      o[1] += J->d[e][1] * lam_k[i];
+      o[2] += J->d[e][2] * lam_k[i];
     }
+  }
 }

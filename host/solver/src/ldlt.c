@@ -24,242 +24,218 @@
 
 #define BUF(f, name, type) ((type *)(f)->name.p)
 
-void mr_ldlt_free(mr_ldlt *f)
-{
-    mr_buf *const bufs[] = { &f->perm, &f->iperm, &f->parent, &f->lnz, &f->flag, &f->stack, &f->lp,
-                             &f->dropped, &f->li, &f->lx, &f->diag, &f->y, &f->z, &f->skip, &f->res,
-                             &f->dx, &f->cand, &f->bits };
-    mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
-    mr_pattern_free(&f->pattern);
-    memset(f, 0, sizeof *f);
+void mr_ldlt_free(mr_ldlt *f) {
+  mr_buf *const bufs[] = { &f->perm, &f->iperm,   &f->parent, &f->lnz, &f->flag, &f->stack,
+                           &f->lp,   &f->dropped, &f->li,     &f->lx,  &f->diag, &f->y,
+                           &f->z,    &f->skip,    &f->res,    &f->dx,  &f->cand, &f->bits };
+  mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
+  mr_pattern_free(&f->pattern);
+  memset(f, 0, sizeof *f);
 }
 
 /* Elimination tree and column counts of L for the ordering in perm/iperm.
  * Returns nnz(L) below the diagonal. */
-static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *parent, int *lnz, int *flag)
-{
-    size_t total = 0;
-    for (int k = 0; k < A->n; k++) {
-        parent[k] = -1;
-        flag[k] = k;
-        lnz[k] = 0;
-        int old = perm[k];
-        for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
-            for (int i = iperm[A->col[q]]; i < k && flag[i] != k; i = parent[i]) {
-                if (parent[i] == -1)
-                    parent[i] = k;
-                lnz[i]++;
-                total++;
-                flag[i] = k;
-            }
-        }
+static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *parent, int *lnz,
+                       int *flag) {
+  size_t total = 0;
+  for (int k = 0; k < A->n; k++) {
+    parent[k] = -1;
+    flag[k] = k;
+    lnz[k] = 0;
+    int old = perm[k];
+    for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
+      for (int i = iperm[A->col[q]]; i < k && flag[i] != k; i = parent[i]) {
+        if (parent[i] == -1) parent[i] = k;
+        lnz[i]++;
+        total++;
+        flag[i] = k;
+      }
     }
-    return total;
+  }
+  return total;
 }
 
-static int reserve_order(mr_ldlt *f, size_t n)
-{
-    const size_t si = sizeof(int);
-    if (mr_buf_reserve(&f->perm, n, si) || mr_buf_reserve(&f->iperm, n, si) || mr_buf_reserve(&f->cand, n, si)
-        || mr_buf_reserve(&f->parent, n, si) || mr_buf_reserve(&f->lnz, n, si)
-        || mr_buf_reserve(&f->flag, n, si) || mr_buf_reserve(&f->stack, 2 * n, si)
-        || (n <= MR_MIN_DEGREE_MAX_N && mr_buf_reserve(&f->bits, n * ((n + 63) / 64), sizeof(uint64_t))))
-        return MR_SOLVE_ENOMEM;
-    return 0;
+static int reserve_order(mr_ldlt *f, size_t n) {
+  const size_t si = sizeof(int);
+  if (mr_buf_reserve(&f->perm, n, si) || mr_buf_reserve(&f->iperm, n, si) ||
+      mr_buf_reserve(&f->cand, n, si) || mr_buf_reserve(&f->parent, n, si) ||
+      mr_buf_reserve(&f->lnz, n, si) || mr_buf_reserve(&f->flag, n, si) ||
+      mr_buf_reserve(&f->stack, 2 * n, si) ||
+      (n <= MR_MIN_DEGREE_MAX_N && mr_buf_reserve(&f->bits, n * ((n + 63) / 64), sizeof(uint64_t))))
+    return MR_SOLVE_ENOMEM;
+  return 0;
 }
 
-static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l)
-{
-    if (mr_buf_reserve(&f->lp, n + 1, sizeof(int)) || mr_buf_reserve(&f->dropped, n, 1)
-        || mr_buf_reserve(&f->diag, n, sizeof(double)) || mr_buf_reserve(&f->y, n, sizeof(double))
-        || mr_buf_reserve(&f->z, n, sizeof(double)) || mr_buf_reserve(&f->skip, n, 1)
-        || mr_buf_reserve(&f->res, n, sizeof(double)) || mr_buf_reserve(&f->dx, n, sizeof(double))
-        || mr_buf_reserve(&f->li, nnz_l, sizeof(int)) || mr_buf_reserve(&f->lx, nnz_l, sizeof(double)))
-        return MR_SOLVE_ENOMEM;
-    return 0;
+static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l) {
+  if (mr_buf_reserve(&f->lp, n + 1, sizeof(int)) || mr_buf_reserve(&f->dropped, n, 1) ||
+      mr_buf_reserve(&f->diag, n, sizeof(double)) || mr_buf_reserve(&f->y, n, sizeof(double)) ||
+      mr_buf_reserve(&f->z, n, sizeof(double)) || mr_buf_reserve(&f->skip, n, 1) ||
+      mr_buf_reserve(&f->res, n, sizeof(double)) || mr_buf_reserve(&f->dx, n, sizeof(double)) ||
+      mr_buf_reserve(&f->li, nnz_l, sizeof(int)) || mr_buf_reserve(&f->lx, nnz_l, sizeof(double)))
+    return MR_SOLVE_ENOMEM;
+  return 0;
 }
 
-int mr_ldlt_reserve(mr_ldlt *f, int rows)
-{
-    const size_t n = (size_t)rows;
-    if (reserve_order(f, n) || reserve_factor(f, n, n * (n > 0 ? n - 1 : 0) / 2)
-        || mr_pattern_reserve(&f->pattern, n, n * n))
-        return MR_SOLVE_ENOMEM;
-    return 0;
+int mr_ldlt_reserve(mr_ldlt *f, int rows) {
+  const size_t n = (size_t)rows;
+  if (reserve_order(f, n) || reserve_factor(f, n, n * (n > 0 ? n - 1 : 0) / 2) ||
+      mr_pattern_reserve(&f->pattern, n, n * n))
+    return MR_SOLVE_ENOMEM;
+  return 0;
 }
 
-int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l)
-{
-    const int n = A->n;
-    if (reserve_order(f, (size_t)n))
-        return MR_SOLVE_ENOMEM;
-    int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *cand = BUF(f, cand, int);
-    int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
+int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l) {
+  const int n = A->n;
+  if (reserve_order(f, (size_t)n)) return MR_SOLVE_ENOMEM;
+  int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *cand = BUF(f, cand, int);
+  int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
 
-    /* Try the natural order, minimum degree (while its n² bits stay
+  /* Try the natural order, minimum degree (while its n² bits stay
      * small) and reverse Cuthill–McKee; keep whichever fills in least.
      * Each try is one symbolic pass, cheap beside a factorisation, and runs
      * only when the pattern changes. */
-    size_t best = 0;
-    for (int way = 0; way < 3; way++) {
-        if (way == 0) {
-            for (int i = 0; i < n; i++)
-                cand[i] = i;
-        } else if (way == 1) {
-            if (n > MR_MIN_DEGREE_MAX_N)
-                continue;
-            mr_order_min_degree(A, cand, f->bits.p, lnz);
-        } else {
-            mr_order_rcm(A, cand, BUF(f, stack, int));
-        }
-        for (int i = 0; i < n; i++)
-            iperm[cand[i]] = i;
-        size_t fill = symbolic(A, cand, iperm, parent, lnz, flag);
-        if (way == 0 || fill < best) {
-            best = fill;
-            memcpy(perm, cand, (size_t)n * sizeof *perm);
-        }
+  size_t best = 0;
+  for (int way = 0; way < 3; way++) {
+    if (way == 0) {
+      for (int i = 0; i < n; i++) cand[i] = i;
+    } else if (way == 1) {
+      if (n > MR_MIN_DEGREE_MAX_N) continue;
+      mr_order_min_degree(A, cand, f->bits.p, lnz);
+    } else {
+      mr_order_rcm(A, cand, BUF(f, stack, int));
     }
-    for (int i = 0; i < n; i++)
-        iperm[perm[i]] = i;
-    *nnz_l = best;
-    return 0;
+    for (int i = 0; i < n; i++) iperm[cand[i]] = i;
+    size_t fill = symbolic(A, cand, iperm, parent, lnz, flag);
+    if (way == 0 || fill < best) {
+      best = fill;
+      memcpy(perm, cand, (size_t)n * sizeof *perm);
+    }
+  }
+  for (int i = 0; i < n; i++) iperm[perm[i]] = i;
+  *nnz_l = best;
+  return 0;
 }
 
-static int analyse(mr_ldlt *f, const mr_csr *A)
-{
-    const int n = A->n;
-    f->pattern.valid = 0;
-    if (mr_ldlt_order(f, A, &f->nnz_l) != 0 || reserve_factor(f, (size_t)n, f->nnz_l) != 0)
-        return MR_SOLVE_ENOMEM;
-    /* The lnz of the ordering kept, not of the last one tried. */
-    int *lnz = BUF(f, lnz, int);
-    symbolic(A, BUF(f, perm, int), BUF(f, iperm, int), BUF(f, parent, int), lnz, BUF(f, flag, int));
-    int *lp = BUF(f, lp, int);
-    lp[0] = 0;
-    for (int k = 0; k < n; k++)
-        lp[k + 1] = lp[k] + lnz[k];
-    return mr_pattern_keep(&f->pattern, A);
+static int analyse(mr_ldlt *f, const mr_csr *A) {
+  const int n = A->n;
+  f->pattern.valid = 0;
+  if (mr_ldlt_order(f, A, &f->nnz_l) != 0 || reserve_factor(f, (size_t)n, f->nnz_l) != 0)
+    return MR_SOLVE_ENOMEM;
+  /* The lnz of the ordering kept, not of the last one tried. */
+  int *lnz = BUF(f, lnz, int);
+  symbolic(A, BUF(f, perm, int), BUF(f, iperm, int), BUF(f, parent, int), lnz, BUF(f, flag, int));
+  int *lp = BUF(f, lp, int);
+  lp[0] = 0;
+  for (int k = 0; k < n; k++) lp[k + 1] = lp[k] + lnz[k];
+  return mr_pattern_keep(&f->pattern, A);
 }
 
 /* Returns the number of dropped (dependent) rows. */
-static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol)
-{
-    const int n = A->n;
-    const int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *parent = BUF(f, parent, int);
-    const int *lp = BUF(f, lp, int);
-    int *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int), *stack = BUF(f, stack, int), *li = BUF(f, li, int);
-    unsigned char *dropped = BUF(f, dropped, unsigned char);
-    double *lx = BUF(f, lx, double), *diag = BUF(f, diag, double), *y = BUF(f, y, double);
-    int count = 0;
+static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol) {
+  const int n = A->n;
+  const int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *parent = BUF(f, parent, int);
+  const int *lp = BUF(f, lp, int);
+  int *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int), *stack = BUF(f, stack, int),
+      *li = BUF(f, li, int);
+  unsigned char *dropped = BUF(f, dropped, unsigned char);
+  double *lx = BUF(f, lx, double), *diag = BUF(f, diag, double), *y = BUF(f, y, double);
+  int count = 0;
 
-    for (int k = 0; k < n; k++)
-        y[k] = 0.0;
-    for (int k = 0; k < n; k++) {
-        /* Scatter column k of PAPᵀ (rows ≤ k) into y and find the rows of L
+  for (int k = 0; k < n; k++) y[k] = 0.0;
+  for (int k = 0; k < n; k++) {
+    /* Scatter column k of PAPᵀ (rows ≤ k) into y and find the rows of L
          * that row k touches, in an order where each comes before its
          * ancestors in the elimination tree. */
-        int top = n, old = perm[k];
-        double akk = 0.0;
-        flag[k] = k;
-        lnz[k] = 0;
-        for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
-            int i = iperm[A->col[q]];
-            if (i > k)
-                continue;
-            y[i] += A->val[q];
-            if (i == k) {
-                akk = A->val[q];
-                continue;
-            }
-            int len = 0;
-            for (; flag[i] != k; i = parent[i]) {
-                stack[len++] = i;
-                flag[i] = k;
-            }
-            while (len > 0)
-                stack[--top] = stack[--len];
-        }
-        double d = y[k];
-        y[k] = 0.0;
-        for (; top < n; top++) {
-            int i = stack[top];
-            double yi = y[i];
-            y[i] = 0.0;
-            int end = lp[i] + lnz[i];
-            for (int p = lp[i]; p < end; p++)
-                y[li[p]] -= lx[p] * yi;
-            double l = dropped[i] ? 0.0 : yi / diag[i];
-            d -= l * yi;
-            li[end] = k;
-            lx[end] = l;
-            lnz[i]++;
-        }
-        /* The pivot test (see the top of this file); !(d > …) also catches
-         * a NaN pivot. */
-        if (!(akk > DBL_MIN) || !(d > pivot_tol * akk)) {
-            dropped[k] = 1;
-            diag[k] = 0.0;
-            count++;
-        } else {
-            dropped[k] = 0;
-            diag[k] = d;
-        }
+    int top = n, old = perm[k];
+    double akk = 0.0;
+    flag[k] = k;
+    lnz[k] = 0;
+    for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
+      int i = iperm[A->col[q]];
+      if (i > k) continue;
+      y[i] += A->val[q];
+      if (i == k) {
+        akk = A->val[q];
+        continue;
+      }
+      int len = 0;
+      for (; flag[i] != k; i = parent[i]) {
+        stack[len++] = i;
+        flag[i] = k;
+      }
+      while (len > 0) stack[--top] = stack[--len];
     }
-    return count;
+    double d = y[k];
+    y[k] = 0.0;
+    for (; top < n; top++) {
+      int i = stack[top];
+      double yi = y[i];
+      y[i] = 0.0;
+      int end = lp[i] + lnz[i];
+      for (int p = lp[i]; p < end; p++) y[li[p]] -= lx[p] * yi;
+      double l = dropped[i] ? 0.0 : yi / diag[i];
+      d -= l * yi;
+      li[end] = k;
+      lx[end] = l;
+      lnz[i]++;
+    }
+    /* The pivot test (see the top of this file); !(d > …) also catches
+         * a NaN pivot. */
+    if (!(akk > DBL_MIN) || !(d > pivot_tol * akk)) {
+      dropped[k] = 1;
+      diag[k] = 0.0;
+      count++;
+    } else {
+      dropped[k] = 0;
+      diag[k] = d;
+    }
+  }
+  return count;
 }
 
 /* x = (P L D Lᵀ Pᵀ)⁺ b with dropped rows' unknowns set to zero. */
-static void solve_factored(const mr_ldlt *f, const double *b, double *x)
-{
-    const int n = f->pattern.n;
-    const int *perm = BUF(f, perm, const int), *lp = BUF(f, lp, const int), *li = BUF(f, li, const int);
-    const double *lx = BUF(f, lx, const double), *diag = BUF(f, diag, const double);
-    const unsigned char *dropped = BUF(f, dropped, const unsigned char);
-    double *z = BUF(f, z, double);
-    for (int k = 0; k < n; k++)
-        z[k] = b[perm[k]];
-    for (int j = 0; j < n; j++)
-        for (int p = lp[j]; p < lp[j + 1]; p++)
-            z[li[p]] -= lx[p] * z[j];
-    for (int j = 0; j < n; j++)
-        z[j] = dropped[j] ? 0.0 : z[j] / diag[j];
-    for (int j = n - 1; j >= 0; j--)
-        for (int p = lp[j]; p < lp[j + 1]; p++)
-            z[j] -= lx[p] * z[li[p]];
-    for (int k = 0; k < n; k++)
-        x[perm[k]] = z[k];
+static void solve_factored(const mr_ldlt *f, const double *b, double *x) {
+  const int n = f->pattern.n;
+  const int *perm = BUF(f, perm, const int), *lp = BUF(f, lp, const int),
+            *li = BUF(f, li, const int);
+  const double *lx = BUF(f, lx, const double), *diag = BUF(f, diag, const double);
+  const unsigned char *dropped = BUF(f, dropped, const unsigned char);
+  double *z = BUF(f, z, double);
+  for (int k = 0; k < n; k++) z[k] = b[perm[k]];
+  for (int j = 0; j < n; j++)
+    for (int p = lp[j]; p < lp[j + 1]; p++) z[li[p]] -= lx[p] * z[j];
+  for (int j = 0; j < n; j++) z[j] = dropped[j] ? 0.0 : z[j] / diag[j];
+  for (int j = n - 1; j >= 0; j--)
+    for (int p = lp[j]; p < lp[j + 1]; p++) z[j] -= lx[p] * z[li[p]];
+  for (int k = 0; k < n; k++) x[perm[k]] = z[k];
 }
 
-int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x, mr_solve_result *r)
-{
-    const int n = A->n;
-    if (!mr_pattern_same(&f->pattern, A)) {
-        int st = analyse(f, A);
-        if (st != 0)
-            return st;
-    }
-    r->dependent = factor(f, A, o->pivot_tol);
-    solve_factored(f, b, x);
-    r->iterations = 1;
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
+                  mr_solve_result *r) {
+  const int n = A->n;
+  if (!mr_pattern_same(&f->pattern, A)) {
+    int st = analyse(f, A);
+    if (st != 0) return st;
+  }
+  r->dependent = factor(f, A, o->pivot_tol);
+  solve_factored(f, b, x);
+  r->iterations = 1;
 
-    /* Iterative refinement: a step or two recovers the digits that
+  /* Iterative refinement: a step or two recovers the digits that
      * elimination loses on a badly scaled system (masses far apart). The
      * test skips dropped rows, whose equations an inconsistent b can leave
      * unsatisfiable. */
-    unsigned char *skip = BUF(f, skip, unsigned char);
-    const unsigned char *dropped = BUF(f, dropped, unsigned char);
-    const int *perm = BUF(f, perm, int);
-    for (int k = 0; k < n; k++)
-        skip[perm[k]] = dropped[k];
-    double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
-    const double stop = o->tol * mr_norm2(n, b);
-    for (int step = 0; step < 2 && mr_residual_norm(A, b, x, skip) > stop; step++) {
-        mr_residual(A, b, x, res);
-        solve_factored(f, res, dx);
-        for (int i = 0; i < n; i++)
-            x[i] += dx[i];
-        r->iterations++;
-    }
-    return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+  unsigned char *skip = BUF(f, skip, unsigned char);
+  const unsigned char *dropped = BUF(f, dropped, unsigned char);
+  const int *perm = BUF(f, perm, int);
+  for (int k = 0; k < n; k++) skip[perm[k]] = dropped[k];
+  double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
+  const double stop = o->tol * mr_norm2(n, b);
+  for (int step = 0; step < 2 && mr_residual_norm(A, b, x, skip) > stop; step++) {
+    mr_residual(A, b, x, res);
+    solve_factored(f, res, dx);
+    for (int i = 0; i < n; i++) x[i] += dx[i];
+    r->iterations++;
+  }
+  return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
 }
