@@ -2,7 +2,7 @@
 # for the sanitizer run, build-fuzz/ for libFuzzer); the firmware cross-builds
 # with its own Makefile into build/firmware/.
 .PHONY: all deps build build-asan firmware test test-native test-asan fuzz demo bench \
-        install clean
+        install format clean
 
 JOBS      ?= $(shell nproc)
 BUILD     := build
@@ -69,6 +69,12 @@ test: test-native test-asan fuzz
 
 demo: build
 	@tools/demo.sh $(BUILD)
+
+# Rewrites every C and C++ file in the one .clang-format style (the test
+# style_format fails on a file that is not).
+format:
+	@find protocol firmware host tools tests \( -name '*.c' -o -name '*.h' -o -name '*.cpp' \) \
+	  -type f -exec clang-format -i {} +
 
 # The decoder's throughput and the wire cost of a SAMPLE frame.
 bench: build

@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake pkg-config python3 clang libclang-rt-14-dev
   libcmocka-dev libserialport-dev libfyaml-dev libeigen3-dev
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
-  qemu-system-arm
+  qemu-system-arm clang-format groff-base
 )
 
 missing=()
