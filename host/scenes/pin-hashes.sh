@@ -57,7 +57,7 @@ splice() {
 splice sample "$out/host/scenes/FORMAT.md" "$body"
 say "FORMAT.md: sample regenerated"
 
-# One row per hard case that runs, as test_scene_hard.c builds it.
+# One row per hard case that runs, as tests/scene/test_hard.c builds it.
 {
   echo '| scene | simulated | steps | rejected | mean Δt | at upper bound | max deviation | resets |'
   echo '|---|---|---|---|---|---|---|---|'

@@ -4,7 +4,7 @@
 #ifndef TOOLS_PROC_H
 #define TOOLS_PROC_H
 
-#include "test_proc.h"
+#include "proc.h"
 
 /* The paths of the tools, from the test's command line. */
 extern const char *tt_glove_gen;

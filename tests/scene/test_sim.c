@@ -13,7 +13,7 @@
 
 #include "mr_scene.h"
 #include "mr_scene_world.h"
-#include "test_proc.h"
+#include "proc.h"
 
 static char *marionette;
 

@@ -5,7 +5,7 @@ option its program's --help lists; the Makefile hands PREFIX and the udev
 folder to the install, keeps the build log off the screen and runs the
 benchmark for make bench.
 
-usage: install_test.py SOURCE_DIR BUILD_DIR
+usage: test_install.py SOURCE_DIR BUILD_DIR
 """
 import os
 import re

@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "mr_scene.h"
-#include "test_proc.h"
+#include "proc.h"
 
 #define BASE                                        \
   "physics:\n"                                      \

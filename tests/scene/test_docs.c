@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "test_proc.h"
+#include "proc.h"
 
 static char *marionette;
 

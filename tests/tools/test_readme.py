@@ -4,7 +4,7 @@ on the PATH as `make install` puts them: the check each shows prints
 nothing, and what it compares is really there (a decoder counter line that
 matched nothing would make it print).
 
-usage: readme_test.py SOURCE_DIR GLOVE_GEN GLOVE_DUMP
+usage: test_readme.py SOURCE_DIR GLOVE_GEN GLOVE_DUMP
 """
 import os
 import re

@@ -6,7 +6,7 @@ are followed as written. It must read every golden vector as its stated
 meaning, and count every glove-gen fault stream exactly as the C decoder
 (glove-dump) and the injected truth do. If the page and the code drift
 apart, a stranger's decoder would too, and this fails.
-Run by ctest as tools_spec_decoder: spec_decoder_test.py SRC GLOVE_GEN GLOVE_DUMP."""
+Run by ctest as tools_spec_decoder: test_spec_decoder.py SRC GLOVE_GEN GLOVE_DUMP."""
 import os
 import re
 import subprocess
