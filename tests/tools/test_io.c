@@ -353,11 +353,24 @@ static void tools_io_serial_list_does_not_fail(void **state) {
   }
 }
 
+static void tools_io_clocks_tell_unix_time_and_never_go_back(void **state) {
+  (void)state;
+  uint64_t a = mr_io_monotonic_ns();
+  struct timespec pause = { 0, 2000000 };
+  nanosleep(&pause, NULL);
+  uint64_t b = mr_io_monotonic_ns();
+  assert_true(b >= a + 2000000u);
+  uint64_t u = mr_io_unix_ns() / 1000000000u;
+  uint64_t t = (uint64_t)time(NULL);
+  assert_true(u + 1 >= t && u <= t + 1);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
     cmocka_unit_test(tools_io_pty_slave_gone_is_hangup_and_keeps_what_was_read),
     cmocka_unit_test(tools_io_pty_drain_returns_once_the_reader_has_every_byte),
+    cmocka_unit_test(tools_io_clocks_tell_unix_time_and_never_go_back),
     cmocka_unit_test(tools_io_tcp_peer_close_is_hangup),
     cmocka_unit_test(tools_io_file_and_fifo_end_with_eof),
     cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),

@@ -110,18 +110,6 @@ typedef struct dump {
   int out_errno; /* set when stdout refused the lines: they would be lost */
 } dump;
 
-static uint64_t now_ns(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
-}
-
-static uint64_t unix_ns(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
-}
-
 /* Lines that cannot be written (a full disk, a reader that went away) are
  * lost: stop and say so instead of decoding on into nothing. */
 static int stdout_failed(dump *D) {
@@ -178,7 +166,7 @@ static int feed(dump *D, const uint8_t *p, size_t n) {
 static int record(dump *D, const uint8_t *p, size_t n) {
   mr_io_err err;
   if (!D->recording || !n) return 0;
-  if (mr_rec_writer_add(&D->rec, now_ns() - D->t0_ns, p, n, &err) != 0) {
+  if (mr_rec_writer_add(&D->rec, mr_io_monotonic_ns() - D->t0_ns, p, n, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     D->recording = 0;
     return -1;
@@ -197,7 +185,7 @@ static int dump_recording(dump *D, mr_io *io, const uint8_t *prefix, size_t pref
                           int realtime) {
   mr_rec_reader r;
   mr_io_err err;
-  uint64_t t_ns, start = now_ns();
+  uint64_t t_ns, start = mr_io_monotonic_ns();
   const uint8_t *data;
   size_t len;
   int rc;
@@ -207,7 +195,7 @@ static int dump_recording(dump *D, mr_io *io, const uint8_t *prefix, size_t pref
   }
   while (!g_stop && (rc = mr_rec_reader_next(&r, &t_ns, &data, &len, &err)) == 1) {
     if (realtime) {
-      uint64_t now = now_ns() - start;
+      uint64_t now = mr_io_monotonic_ns() - start;
       if (t_ns > now) sleep_ns(t_ns - now);
     }
     record(D, data, len);
@@ -243,7 +231,7 @@ static int write_path_file(const char *path, const char *what) {
 }
 
 static int reopen(mr_io *io, const char *spec, double secs) {
-  uint64_t start = now_ns();
+  uint64_t start = mr_io_monotonic_ns();
   mr_io_err err;
   fprintf(stderr, "glove-dump: %s: waiting for it to come back%s\n", spec,
           secs > 0 ? "" : " (Ctrl-C to stop)");
@@ -252,7 +240,7 @@ static int reopen(mr_io *io, const char *spec, double secs) {
       fprintf(stderr, "glove-dump: %s: reopened\n", spec);
       return 0;
     }
-    if (secs > 0 && (double)(now_ns() - start) / 1e9 >= secs) {
+    if (secs > 0 && (double)(mr_io_monotonic_ns() - start) / 1e9 >= secs) {
       fprintf(stderr, "glove-dump: %s: not back within %g s: %s\n", spec, secs, err.msg);
       return -1;
     }
@@ -391,7 +379,7 @@ int main(int argc, char **argv) {
   signal(SIGPIPE, SIG_IGN);
 
   gp_decoder_init(&D.dec, GP_SPEC_HASH);
-  D.t0_ns = now_ns();
+  D.t0_ns = mr_io_monotonic_ns();
   if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
     /* A SOURCE that does not parse is the user's usage, not a failure. */
     fprintf(stderr, "glove-dump: %s%s\n", err.msg,
@@ -403,7 +391,7 @@ int main(int argc, char **argv) {
     return 1;
   }
   if (record_path) {
-    if (mr_rec_writer_open(&D.rec, record_path, GP_SPEC_HASH, unix_ns(), &err) != 0) {
+    if (mr_rec_writer_open(&D.rec, record_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0) {
       fprintf(stderr, "glove-dump: %s\n", err.msg);
       mr_io_close(&io);
       return 1;
@@ -415,14 +403,14 @@ int main(int argc, char **argv) {
   {
     uint8_t buf[4096];
     size_t have = 0;
-    uint64_t last_data = now_ns(), back_by = 0;
+    uint64_t last_data = mr_io_monotonic_ns(), back_by = 0;
     int sniffing = io.kind == MR_IO_FILE || io.kind == MR_IO_FIFO || io.kind == MR_IO_STDIO;
     int stop = 0;
     while (!stop && !g_stop) {
       size_t got = 0;
       mr_io_status st = mr_io_read(&io, buf + have, sizeof buf - have, 200, &got, &err);
       if (st == MR_IO_OK) {
-        last_data = now_ns();
+        last_data = mr_io_monotonic_ns();
         back_by = 0;
         have += got;
         if (sniffing) {
@@ -443,11 +431,11 @@ int main(int argc, char **argv) {
       if (st == MR_IO_TIMEOUT) {
         /* A listening socket reopens at once; the device is back only when
          * bytes arrive. */
-        if (back_by && now_ns() >= back_by) {
+        if (back_by && mr_io_monotonic_ns() >= back_by) {
           fprintf(stderr, "glove-dump: %s: nothing came back within %g s\n", spec, reconnect);
           break;
         }
-        if (idle >= 0 && (double)(now_ns() - last_data) / 1e9 >= idle) {
+        if (idle >= 0 && (double)(mr_io_monotonic_ns() - last_data) / 1e9 >= idle) {
           fprintf(stderr, "glove-dump: %s: nothing for %g s, stopping\n", mr_io_path(&io), idle);
           break;
         }
@@ -493,7 +481,7 @@ int main(int argc, char **argv) {
           break;
         }
       }
-      last_data = now_ns();
+      last_data = mr_io_monotonic_ns();
       if (reconnect > 0) back_by = last_data + (uint64_t)(reconnect * 1e9);
     }
     if (!hung_up) mr_io_close(&io);

@@ -116,18 +116,6 @@ static int parse_u64(const char *s, uint64_t *out, int base) {
   return !(errno || end == s || *end);
 }
 
-static uint64_t now_ns(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
-}
-
-static uint64_t unix_ns(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
-}
-
 static void sleep_until_ns(uint64_t t) {
   struct timespec ts = { (time_t)(t / 1000000000ull), (long)(t % 1000000000ull) };
   while (!g_stop && clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL) == EINTR) {
@@ -441,7 +429,8 @@ int main(int argc, char **argv) {
       fprintf(g->truth, "# glove-gen truth: intact SAMPLE frames (sample SEQ T_US CH0..CH4), "
                         "then the expected decoder counters\n");
     if (g->record_path) {
-      if (mr_rec_writer_open(&g->rec, g->record_path, (uint32_t)spec_hash, unix_ns(), &err) != 0) {
+      if (mr_rec_writer_open(&g->rec, g->record_path, (uint32_t)spec_hash, mr_io_unix_ns(), &err) !=
+          0) {
         fprintf(stderr, "glove-gen: %s\n", err.msg);
         rc = 1;
         goto out;
@@ -493,7 +482,7 @@ int main(int argc, char **argv) {
     }
   }
 
-  t0 = now_ns();
+  t0 = mr_io_monotonic_ns();
   next_progress = t0 + 1000000000ull;
   for (uint64_t slot = 0; !g_stop; slot++) {
     int all_done = 1;
@@ -509,13 +498,13 @@ int main(int argc, char **argv) {
       if (done) continue;
       all_done = 0;
       /* Recordings carry stream time when fast, so a replay keeps the pace. */
-      if (n && send_bytes(g, i, buf, n, fast ? t_slot - t0 : now_ns() - t0) != 0) {
+      if (n && send_bytes(g, i, buf, n, fast ? t_slot - t0 : mr_io_monotonic_ns() - t0) != 0) {
         if (g_stop) break;
         rc = 1;
       }
     }
     if (all_done) break;
-    if (progress && now_ns() >= next_progress) {
+    if (progress && mr_io_monotonic_ns() >= next_progress) {
       next_progress += 1000000000ull;
       if (count == UINT64_MAX)
         fprintf(stderr, "\rglove-gen: %llu frames", (unsigned long long)slot);
@@ -531,7 +520,7 @@ int main(int argc, char **argv) {
     size_t n = gg_stream_finish(&g->stream, buf);
     mr_io_err err;
     if (g->gone) continue;
-    if (n && send_bytes(g, i, buf, n, now_ns() - t0) != 0) continue;
+    if (n && send_bytes(g, i, buf, n, mr_io_monotonic_ns() - t0) != 0) continue;
     if (g->io.kind == MR_IO_PTY) {
       mr_io_status st = mr_io_drain(&g->io, (int)(linger_s * 1000), &err);
       if (st == MR_IO_TIMEOUT && !quiet)

@@ -222,4 +222,9 @@ void mr_rec_reader_close(mr_rec_reader *r);
 /* True if buf starts with the recording magic (needs 8 bytes). */
 int mr_rec_is_recording(const void *buf, size_t len);
 
+/* The host's clocks, in ns: monotonic for the times inside a recording and
+ * for pacing, Unix time for a recording's header. */
+uint64_t mr_io_monotonic_ns(void);
+uint64_t mr_io_unix_ns(void);
+
 #endif

@@ -14,10 +14,22 @@
 
 #include "mr_io_internal.h"
 
-long long mr_io_now_ms(void) {
+static uint64_t clock_ns(clockid_t id) {
   struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+  clock_gettime(id, &ts);
+  return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+}
+
+uint64_t mr_io_monotonic_ns(void) {
+  return clock_ns(CLOCK_MONOTONIC);
+}
+
+uint64_t mr_io_unix_ns(void) {
+  return clock_ns(CLOCK_REALTIME);
+}
+
+long long mr_io_now_ms(void) {
+  return (long long)(mr_io_monotonic_ns() / 1000000u);
 }
 
 int mr_io_ms_left(long long start_ms, int timeout_ms) {
