@@ -193,6 +193,15 @@ typedef struct mr_world_def {
                                  (§7); default 0.5 */
   int max_steps_per_call;  /* guard for mr_world_step_to; default 1000000 */
 
+  /* Integration error (beyond the paper, README "Error control"): an
+   * embedded estimate of each step's local error in positions and velocities,
+   * divided by these scales, is held to the same thresholds as the
+   * deviation; the worse of the two sets Δt. 0 switches the estimate off. */
+  double error_length; /* m; default 1 */
+  double error_speed;  /* m/s; default 1 */
+  /* A particle faster than this is divergence (§7), as NaN is; default 200. */
+  double max_speed;
+
   /* The constraint solve (§4.3, §5.2). */
   mr_solve_method solver;    /* default MR_SOLVE_LDLT */
   double solver_tolerance;   /* iterative methods; default 1e-10 */
@@ -442,6 +451,8 @@ typedef struct mr_step_report {
   int collisions;  /* impulse events */
   int divergences; /* resets to the start configuration */
   int dependent;   /* dependent constraint rows seen (max over solves) */
+  int corrections; /* steps at the lower bound projected back onto the
+                      constraints because their deviation was too large */
 } mr_step_report;
 
 /* Advances the world to exactly t_target (the last step is shortened to land
@@ -463,8 +474,19 @@ typedef struct mr_stats {
   uint64_t solves, solver_failures, solver_iterations;
   int dependent_rows;             /* of the latest solve */
   int resting_contacts;           /* at the latest step */
-  double last_dt, min_dt, max_dt; /* accepted steps */
+  uint64_t corrections;           /* see mr_step_report */
+  uint64_t softened_forces;       /* springs and strings too stiff for a step of
+                                     dt_min/100 on their masses, softened to
+                                     that step's stability limit */
+  double last_dt, min_dt, max_dt; /* accepted steps the ATS chose */
+  double min_dt_landing;          /* accepted steps shortened only to land
+                                     on a requested time (INFINITY if none) */
+  double stable_dt;               /* RK4's stability limit for the stiffest
+                                     spring, string or drag (INFINITY if none);
+                                     Δt never exceeds it */
   double last_error, max_error;   /* relative deviation after a step */
+  double max_integration_error;   /* the largest scaled local error estimate
+                                     of an accepted step */
   double max_multiplier;          /* largest |λ| of the latest force solve: the
                                  bound on constraint forces */
 } mr_stats;

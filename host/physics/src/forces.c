@@ -47,7 +47,8 @@ static void drag_pass(mr_world *w, double t, const double *x, const double *v, d
   double c = w->def.drag;
   for (int i = 0; i < w->n; i++) {
     if (w->inv_mass[i] == 0.0) continue;
-    for (int k = 0; k < 3; k++) f[3 * i + k] -= c * v[3 * i + k];
+    double ci = fmin(c, w->drag_rate_cap * w->mass[i]); /* see mr_forces_stable_dt */
+    for (int k = 0; k < 3; k++) f[3 * i + k] -= ci * v[3 * i + k];
   }
 }
 
@@ -173,6 +174,106 @@ int mr_forces_build_passes(mr_world *w) {
     w->n_force_passes++;
   }
   return 0;
+}
+
+/* ------------------------------------------------------- stiff modes */
+
+/* The step rule of §4.5 watches the constraints and the error estimate; a
+ * stiff spring on a light particle can still grow without bound between
+ * two looks, once h·|λ| leaves the integrator's stability region. The
+ * largest |λ| of the linearised applied forces is bounded per particle
+ * (Gershgorin on M⁻¹K and M⁻¹C, columns of kinematic particles left out):
+ *   ω² ≤ inv_i (Σ k + Σ k of the links whose other end moves),
+ *   rate ≤ inv_i (Σ c + the same) + drag·inv_i,
+ * and |λ| ≤ max(ω, rate) for x'' + rate x' + ω² x = 0. RK4's region
+ * reaches −2.78 on the real axis and ±2.83 on the imaginary one; 2.5 keeps
+ * a margin on every ray between. The first-order methods get 2. */
+static double reach(const mr_world *w) {
+  return w->def.integrator == MR_INTEGRATOR_RK4 ? 2.5 : 2.0;
+}
+
+/* A link whose own mode needs a step below `floor` is softened to the
+ * limit there (its stiffness and damping scaled down), so that a 1 mg
+ * particle on a string cannot demand a million steps a second. Returns 1
+ * if it was. */
+static int soften(const mr_world *w, int a, int b, double *k, double *c, double floor) {
+  double inv = w->inv_mass[a] + w->inv_mass[b], top = reach(w) / floor;
+  int changed = 0;
+  if (*k * inv > top * top) {
+    *k = top * top / inv;
+    changed = 1;
+  }
+  if (*c * inv > top) {
+    *c = top / inv;
+    changed = 1;
+  }
+  return changed;
+}
+
+/* Adds one link's k and c to its ends' Gershgorin sums (4 per particle:
+ * Σk, Σk of moving neighbours, Σc, Σc of moving neighbours). */
+static void add_link(const mr_world *w, double *sum, int a, int b, double k, double c) {
+  const int ends[2][2] = { { a, b }, { b, a } };
+  for (int e = 0; e < 2; e++) {
+    int i = ends[e][0], j = ends[e][1];
+    int other_moves = w->inv_mass[j] > 0;
+    sum[4 * i + 0] += k;
+    sum[4 * i + 1] += other_moves ? k : 0.0;
+    sum[4 * i + 2] += c;
+    sum[4 * i + 3] += other_moves ? c : 0.0;
+  }
+}
+
+/* Every spring-like link: springs, strings, and sine springs at their
+ * steepest (slope max_force·π/2 / reach at rest), softened if need be. */
+static int links(mr_world *w, double *sum, double floor) {
+  int softened = 0;
+  mr_list *l = MR_FORCES(w, SPRINGS);
+  for (int i = 0; i < l->n; i++) {
+    mr_spring *s = &MR_AT(*l, mr_spring, i);
+    softened += soften(w, s->a, s->b, &s->ks, &s->kd, floor);
+    add_link(w, sum, s->a, s->b, s->ks, s->kd);
+  }
+  l = MR_FORCES(w, STRINGS);
+  for (int i = 0; i < l->n; i++) {
+    mr_string *s = &MR_AT(*l, mr_string, i);
+    softened += soften(w, s->puppet_particle, s->frame_particle, &s->ks, &s->kd, floor);
+    add_link(w, sum, s->puppet_particle, s->frame_particle, s->ks, s->kd);
+  }
+  l = MR_FORCES(w, SINE_SPRINGS);
+  const double half_pi = 1.57079632679489661923;
+  for (int i = 0; i < l->n; i++) {
+    mr_sine_spring *s = &MR_AT(*l, mr_sine_spring, i);
+    double k = s->max_force * half_pi / s->reach;
+    if (soften(w, s->a, s->b, &k, &s->kd, floor)) {
+      s->reach = s->max_force * half_pi / k;
+      softened++;
+    }
+    add_link(w, sum, s->a, s->b, k, s->kd);
+  }
+  return softened;
+}
+
+double mr_forces_stable_dt(mr_world *w) {
+  const double floor = 0.01 * w->def.dt_min;
+  double *sum = w->scratch.k; /* 24 per particle; 4 used */
+  memset(sum, 0, (size_t)w->n * 4 * sizeof *sum);
+  int softened = links(w, sum, floor);
+  double drag = (w->def.effects & MR_EFFECT_DRAG) ? w->def.drag : 0.0;
+  /* Drag too is capped at the floor's rate on a particle light enough. */
+  w->drag_rate_cap = reach(w) / floor;
+  double top = 0.0;
+  for (int i = 0; i < w->n; i++) {
+    double inv = w->inv_mass[i];
+    if (!(inv > 0)) continue;
+    double omega = sqrt(inv * (sum[4 * i] + sum[4 * i + 1]));
+    double rate = inv * (sum[4 * i + 2] + sum[4 * i + 3]) + fmin(drag * inv, w->drag_rate_cap);
+    top = fmax(top, fmax(omega, rate));
+  }
+  if (w->def.effects & MR_EFFECT_CONSTRAINTS) /* eq. 8's feedback: C̈ + kd Ċ + ks C = 0 */
+    top = fmax(top, fmax(sqrt(w->def.ks), w->def.kd));
+  w->stats.softened_forces = (uint64_t)softened;
+  return top > 0 ? reach(w) / top : INFINITY;
 }
 
 /* ---------------------------------------------------------- add helpers */

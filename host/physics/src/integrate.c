@@ -3,14 +3,61 @@
  * semi-implicit Euler and midpoint are here to show what accuracy costs. */
 #include "internal.h"
 
+#include <math.h>
 #include <string.h>
 
 static void axpy(int n, double *out, const double *x, double h, const double *y) {
   for (int i = 0; i < n; i++) out[i] = x[i] + h * y[i];
 }
 
+/* The scaled size of one particle's local error (ex, ev). */
+static double particle_error(const mr_world *w, const double ex[3], const double ev[3]) {
+  double px = sqrt(ex[0] * ex[0] + ex[1] * ex[1] + ex[2] * ex[2]);
+  double pv = sqrt(ev[0] * ev[0] + ev[1] * ev[1] + ev[2] * ev[2]);
+  double e = 0.0;
+  if (w->def.error_length > 0) e = px / w->def.error_length;
+  if (w->def.error_speed > 0) {
+    double s = pv / w->def.error_speed;
+    if (s > e || s != s) e = s;
+  }
+  return px != px ? px : e;
+}
+
+/* The local error estimate of the step just taken, the largest over the
+ * dynamic particles of |δx|/error_length and |δv|/error_speed.
+ *
+ * RK4 (§4.2) carries an embedded third-order solution for the price of one
+ * more evaluation, at the step's end (k5 = f(t + h, y1)): the weights
+ * b̂ = (1/6, 1/3, 1/3, 0, 1/6) on the nodes c = (0, ½, ½, 1, 1) meet the
+ * order-3 conditions Σb̂ = 1, Σb̂c = ½, Σb̂c² = ⅓, Σb̂(Ac) = 1/6, so
+ * y1 − ŷ1 = h/6 (k4 − k5) estimates the third-order solution's error, an
+ * upper bound on RK4's own (the §4.5 fourth root keeps its meaning). The
+ * first- and second-order integrators compare with the trapezoid rule
+ * instead, δ = h/2 (f(y1) − f(y0)), the same one evaluation.
+ * kv, ka: the stage whose difference with the end is taken (k4, or k1);
+ * scale: h/6 or h/2. a_end is scratch for f(y1). */
+static int local_error(mr_world *w, double t, double h, double *x1, double *v1, const double *kv,
+                       const double *ka, double scale, double *a_end, double *err) {
+  if (mr_eval(w, t + h, h, x1, v1, a_end) != 0) return -1;
+  double e = 0.0;
+  for (int i = 0; i < w->n; i++) {
+    if (!(w->inv_mass[i] > 0)) continue;
+    double ex[3], ev[3];
+    for (int k = 0; k < 3; k++) {
+      ex[k] = scale * (kv[3 * i + k] - v1[3 * i + k]);
+      ev[k] = scale * (ka[3 * i + k] - a_end[3 * i + k]);
+    }
+    double p = particle_error(w, ex, ev);
+    if (p > e || p != p) e = p;
+  }
+  *err = e;
+  return 0;
+}
+
+/* err: the scaled local error estimate (above), or NULL when the caller
+ * does not need one (it then costs nothing). */
 int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0, double *x1,
-                 double *v1) {
+                 double *v1, double *err) {
   int n3 = 3 * w->n;
   size_t bytes = (size_t)n3 * sizeof(double);
   double *xs = w->scratch.xs, *vs = w->scratch.vs;
@@ -57,5 +104,11 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
   }
   }
   mr_frames_place(w, t + h, x1, v1);
-  return 0;
+  if (!err || (w->def.error_length <= 0 && w->def.error_speed <= 0)) {
+    if (err) *err = 0.0;
+    return 0;
+  }
+  if (w->def.integrator == MR_INTEGRATOR_RK4) /* k1 is spent: f(y1) goes there */
+    return local_error(w, t, h, x1, v1, kv4, ka4, h / 6.0, ka1, err);
+  return local_error(w, t, h, x1, v1, kv1, ka1, 0.5 * h, ka4, err);
 }

@@ -183,7 +183,9 @@ struct mr_world {
 
   /* ATS */
   double dt_next;
-  int recovering; /* after a collision Δt doubles (§4.5) */
+  double stable_dt;     /* mr_forces_stable_dt, at ensure_ready */
+  double drag_rate_cap; /* drag/m never exceeds this (1/s) */
+  int recovering;       /* after a collision Δt doubles (§4.5) */
 
   mr_stats stats;
   int last_dependent;
@@ -273,7 +275,24 @@ int mr_impulses_apply(mr_world *w, double t, int *collided);
 
 /* integrate.c */
 int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0, double *x1,
-                 double *v1);
+                 double *v1, double *err);
+
+/* project.c: the inverse-dynamics iteration of §6.2 [19] applied to the
+ * constraints. mr_project_positions moves x (3n) along M⁻¹Jᵀ, so that
+ * heavy particles move least and momentum is kept, until the largest
+ * relative deviation is within tol or max_iter rounds ran; returns the
+ * rounds used, or −1 (out of memory, or no progress: then x is unchanged).
+ * mr_project_velocities then removes the velocity along the constraint
+ * normals, J v = −∂C/∂t, in the same metric. 0 or −1. Frame particles do
+ * not move; contacts are not rows here. */
+int mr_project_positions(mr_world *w, double t, double *x, const double *v, double tol,
+                         int max_iter);
+int mr_project_velocities(mr_world *w, double t, const double *x, double *v);
+
+/* forces.c: the integrator's stability limit on Δt for the stiffest mode
+ * of the applied forces (and eq. 8's feedback); links too stiff for a step
+ * of dt_min/100 are softened to it first (counted in stats). */
+double mr_forces_stable_dt(mr_world *w);
 
 /* string_correction.c */
 void mr_strings_correct(mr_world *w);

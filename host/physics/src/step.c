@@ -34,11 +34,16 @@ typedef struct mr_step_ctx {
   double t;            /* world time at its start */
   double planned;      /* Δt the ATS chose after the previous step */
   double h;            /* Δt being tried, then taken */
+  double asked;        /* the Δt the rule asked for: h, unless h was
+                          stretched by a hair to land on t_target */
   int landing;         /* h ends exactly on t_target */
   int shortened;       /* landing cut h below the planned Δt */
   int rejected_any;    /* a try of this step was rejected */
   int located;         /* h was cut to a contact time (§4.5) */
   double error;        /* relative deviation of the end state (§4.5) */
+  double int_error;    /* scaled local error estimate (integrate.c) */
+  double speed;        /* fastest particle of the end state, m/s */
+  int fastest;         /* its id */
   mr_ats_decision dec; /* the ATS rule on the accepted try */
 } mr_step_ctx;
 
@@ -134,20 +139,18 @@ int mr_world_ensure_ready(mr_world *w) {
   if (w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION))
     if (mr_trees_build(w) != 0) return -1;
   if (reserve_contacts(w) != 0) return -1;
+  w->stable_dt = mr_forces_stable_dt(w);
+  w->stats.stable_dt = w->stable_dt;
+  if (w->dt_next > w->stable_dt) w->dt_next = w->stable_dt;
   w->dirty = 0;
   return 0;
 }
 
 /* ------------------------------------------------------------- helpers */
 
-static int all_finite(const double *a, int n) {
-  for (int i = 0; i < n; i++)
-    if (!isfinite(a[i])) return 0;
-  return 1;
-}
-
-/* §7: back to the start configuration, and carry on. */
-static void reset_to_start(mr_world *w, double e) {
+/* §7: back to the start configuration, and carry on. The message names
+ * what was seen: a NaN, a particle past max_speed, or the deviation. */
+static void reset_to_start(mr_world *w, const mr_step_ctx *c) {
   for (int i = 0; i < w->n; i++) {
     if (w->frame[i] >= 0) continue;
     memcpy(&w->x[3 * i], &w->x_start[3 * i], 3 * sizeof(double));
@@ -158,14 +161,65 @@ static void reset_to_start(mr_world *w, double e) {
   w->recovering = 0;
   w->contacts.n = 0;
   w->stats.divergences++;
-  if (e == e)
+  if (c->speed != c->speed || c->error != c->error)
+    mr_fail(w, MR_DIVERGED,
+            "t=%.6f s: the state became NaN or Inf; reset to the start configuration", w->t);
+  else if (c->speed > w->def.max_speed)
+    mr_fail(w, MR_DIVERGED,
+            "t=%.6f s: particle %d reached %.3g m/s, past max_speed %.3g m/s; reset to the "
+            "start configuration",
+            w->t, c->fastest, c->speed, w->def.max_speed);
+  else
     mr_fail(w, MR_DIVERGED,
             "t=%.6f s: deviation %.3g passed the divergence bound %.3g; reset to the "
             "start configuration",
-            w->t, e, w->def.divergence_bound);
-  else
-    mr_fail(w, MR_DIVERGED,
-            "t=%.6f s: the state became NaN or Inf; reset to the start configuration", w->t);
+            w->t, c->error, w->def.divergence_bound);
+}
+
+/* The fastest dynamic particle of (x, v): its speed (NaN if any value is
+ * not finite) into c. */
+static void fastest(const mr_world *w, const double *x, const double *v, mr_step_ctx *c) {
+  c->speed = 0.0;
+  c->fastest = -1;
+  for (int i = 0; i < w->n; i++) {
+    const double *q = &v[3 * i], *p = &x[3 * i];
+    if (!isfinite(p[0] + p[1] + p[2]) || !isfinite(q[0] + q[1] + q[2])) {
+      c->speed = NAN;
+      c->fastest = i;
+      return;
+    }
+    if (!(w->inv_mass[i] > 0)) continue;
+    double s = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    if (s > c->speed) {
+      c->speed = s;
+      c->fastest = i;
+    }
+  }
+}
+
+/* The bounds the ATS works within: the scene's, lowered to the
+ * integrator's stability limit where that is shorter (forces.c). */
+static mr_ats_params ats_params(const mr_world *w) {
+  const mr_ats_params p = { fmin(w->def.dt_min, w->stable_dt), fmin(w->def.dt_max, w->stable_dt),
+                            w->def.deviation_low, w->def.deviation_high };
+  return p;
+}
+
+/* h for a retry, and whether it lands: never past the target, and never a
+ * sliver short of it. */
+static void retry_with(mr_step_ctx *c, double h) {
+  c->h = h;
+  c->landing = 0;
+  if (c->to_target) {
+    double rem = c->t_target - c->t;
+    if (c->h >= rem || rem - c->h < 1e-3 * c->h) {
+      c->h = rem;
+      c->landing = 1;
+    }
+  }
+  /* The rule judges the Δt it asked for: a hair's stretch to land is not
+   * a longer step to reject again (that would loop at the lower bound). */
+  c->asked = fmin(h, c->h);
 }
 
 /* An inner stage failed: keep the solver's own message, or name memory. */
@@ -226,7 +280,7 @@ static double locate_contact(mr_world *w, double t, double h, int *err) {
   for (int it = 0; it < 24; it++) {
     double hm = hi - fhi * (hi - lo) / (fhi - flo);
     if (!(hm > lo && hm < hi)) hm = 0.5 * (lo + hi);
-    if (mr_integrate(w, t, hm, x0, v0, w->x1, w->v1) != 0) {
+    if (mr_integrate(w, t, hm, x0, v0, w->x1, w->v1, NULL) != 0) {
       *err = 1;
       return h;
     }
@@ -246,7 +300,7 @@ static double locate_contact(mr_world *w, double t, double h, int *err) {
   }
   /* Not within the slop after all trials: stop just before the contact. */
   double hs = lo > 0 ? lo : hi;
-  if (mr_integrate(w, t, hs, x0, v0, w->x1, w->v1) != 0) *err = 1;
+  if (mr_integrate(w, t, hs, x0, v0, w->x1, w->v1, NULL) != 0) *err = 1;
   return hs;
 }
 
@@ -256,7 +310,7 @@ static double locate_contact(mr_world *w, double t, double h, int *err) {
  * (never leaving a sliver of a step behind it). */
 static void plan(mr_world *w, mr_step_ctx *c) {
   c->t = w->t;
-  c->planned = w->dt_next;
+  c->planned = fmin(w->dt_next, w->stable_dt);
   c->h = c->planned;
   c->landing = 0;
   if (c->to_target) {
@@ -266,11 +320,15 @@ static void plan(mr_world *w, mr_step_ctx *c) {
       c->landing = 1;
     }
   }
+  c->asked = fmin(c->h, c->planned);
   /* Rounding in t + Δt must not count as a shortened step. */
   c->shortened = c->landing && c->h < c->planned * (1.0 - 1e-9);
   c->rejected_any = 0;
   c->located = 0;
   c->error = 0.0;
+  c->int_error = 0.0;
+  c->speed = 0.0;
+  c->fastest = -1;
   c->dec = (mr_ats_decision){ 1, c->planned };
 }
 
@@ -291,12 +349,11 @@ enum verdict { TRY_ACCEPT, TRY_AGAIN, TRY_DIVERGED };
 /* 8: NaN/Inf or a deviation past the bound. Retried once at the lower
  * bound; diverged if it happens there. */
 static enum verdict divergence_check(mr_world *w, mr_step_ctx *c) {
-  const int n3 = 3 * w->n;
-  if (all_finite(w->x1, n3) && all_finite(w->v1, n3) && c->error <= w->def.divergence_bound)
-    return TRY_ACCEPT;
-  if (c->h > w->def.dt_min) {
-    c->h = w->def.dt_min;
-    c->landing = 0;
+  fastest(w, w->x1, w->v1, c);
+  if (c->speed <= w->def.max_speed && c->error <= w->def.divergence_bound) return TRY_ACCEPT;
+  const double lowest = ats_params(w).dt_min;
+  if (c->asked > lowest) {
+    retry_with(c, lowest);
     count_rejection(w, c);
     return TRY_AGAIN;
   }
@@ -306,15 +363,18 @@ static enum verdict divergence_check(mr_world *w, mr_step_ctx *c) {
 }
 
 /* 7: the §4.5 rule; a rejected try is retried with the Δt it gives. */
+/* The error the rule sees: the worse of the deviation (§4.5) and the local
+ * error estimate; NaN wins. */
+static double step_error(const mr_step_ctx *c) {
+  return (c->int_error > c->error || c->int_error != c->int_error) ? c->int_error : c->error;
+}
+
 static enum verdict ats_decision(mr_world *w, mr_step_ctx *c) {
-  const mr_ats_params ats = { w->def.dt_min, w->def.dt_max, w->def.deviation_low,
-                              w->def.deviation_high };
-  c->dec = mr_ats_next(&ats, c->h, c->error);
+  const mr_ats_params ats = ats_params(w);
+  c->dec = mr_ats_next(&ats, c->asked, step_error(c));
   if (c->dec.accept) return TRY_ACCEPT;
   count_rejection(w, c);
-  c->h = c->dec.dt_next;
-  c->landing = c->to_target && c->h >= c->t_target - c->t;
-  if (c->landing) c->h = c->t_target - c->t;
+  retry_with(c, c->dec.dt_next);
   return TRY_AGAIN;
 }
 
@@ -322,7 +382,7 @@ static enum verdict ats_decision(mr_world *w, mr_step_ctx *c) {
  * world diverged. MR_OK, or the failure of an inner stage. */
 static mr_status integrate_until_accepted(mr_world *w, mr_step_ctx *c, enum verdict *v) {
   for (;;) {
-    if (mr_integrate(w, c->t, c->h, w->scratch.x0, w->scratch.v0, w->x1, w->v1) != 0)
+    if (mr_integrate(w, c->t, c->h, w->scratch.x0, w->scratch.v0, w->x1, w->v1, &c->int_error) != 0)
       return inner_failure(w, "solve");
     c->error = mr_constraints_deviation(w, c->t + c->h, w->x1);
     *v = divergence_check(w, c);
@@ -352,14 +412,38 @@ static mr_status penetration(mr_world *w, mr_step_ctx *c) {
   return MR_OK;
 }
 
-static void record_step(mr_world *w, double h, double e) {
+static void record_step(mr_world *w, const mr_step_ctx *c) {
   mr_stats *s = &w->stats;
+  const double h = c->h, e = c->error;
   s->steps++;
   s->last_dt = h;
-  if (h < s->min_dt) s->min_dt = h;
+  /* A step cut only to land on the requested time is not the rule's
+   * choice: it is reported apart, so "dt min" says what the ATS did. */
+  if (c->shortened && !c->rejected_any && !c->located) {
+    if (h < s->min_dt_landing) s->min_dt_landing = h;
+  } else if (h < s->min_dt) {
+    s->min_dt = h;
+  }
   if (h > s->max_dt) s->max_dt = h;
   s->last_error = e;
   if (e > s->max_error) s->max_error = e;
+  if (c->int_error > s->max_integration_error) s->max_integration_error = c->int_error;
+}
+
+/* §6.2 [19] on the constraints: a step the rule had to accept with its
+ * deviation over the threshold (at the lower bound, or cut to a contact or
+ * a landing) is projected back onto the constraints, positions then
+ * velocities, and counted; never taken silently. */
+static mr_status correct(mr_world *w, mr_step_ctx *c) {
+  if (!(c->error > w->def.deviation_high)) return MR_OK;
+  double t1 = c->t + c->h;
+  int rounds = mr_project_positions(w, t1, w->x1, w->v1, w->def.deviation_low, 20);
+  if (rounds < 0 && w->fail != MR_OK) return inner_failure(w, "projection");
+  if (mr_project_velocities(w, t1, w->x1, w->v1) != 0) return inner_failure(w, "projection");
+  c->error = mr_constraints_deviation(w, t1, w->x1);
+  w->stats.corrections++;
+  c->rep.corrections++;
+  return MR_OK;
 }
 
 /* The end state becomes the state. */
@@ -371,15 +455,16 @@ static void accept(mr_world *w, mr_step_ctx *c) {
   w->v1 = tv;
   w->t = c->landing ? c->t_target : c->t + c->h;
   c->rep.steps++;
-  record_step(w, c->h, c->error);
+  record_step(w, c);
 }
 
 /* 7, second half: the Δt the next step will try. After a located contact
  * it doubles each step until the rule's own choice is smaller (§4.5). A
  * step shortened only to land on the target keeps the plan. */
 static void next_dt(mr_world *w, const mr_step_ctx *c) {
+  const mr_ats_params ats = ats_params(w);
   if (c->located) {
-    w->dt_next = fmin(fmax(2.0 * c->h, 1e-3 * w->def.dt_min), w->def.dt_max);
+    w->dt_next = fmin(fmax(2.0 * c->h, 1e-3 * ats.dt_min), ats.dt_max);
     w->recovering = 1;
   } else if (w->recovering) {
     double twice = 2.0 * c->planned;
@@ -416,10 +501,11 @@ static mr_status step_once(mr_world *w, mr_step_ctx *c) {
      * the no-friction extreme case, carrying it under a frame swinging at
      * 11 m/s diverged again more often (21 resets against 13). */
     w->t = c->landing ? c->t_target : c->t + c->h;
-    reset_to_start(w, c->error);
+    reset_to_start(w, c);
     return MR_OK;
   }
   if (colliders && (st = penetration(w, c)) != MR_OK) return st;
+  if ((st = correct(w, c)) != MR_OK) return st;
   accept(w, c);
   if (w->has_string_correction) mr_strings_correct(w);
   next_dt(w, c);

@@ -118,6 +118,14 @@ mr_world_def mr_default_world_def(void) {
   d.deviation_length = 1.0;
   d.divergence_bound = 0.5;
   d.max_steps_per_call = 1000000;
+  /* A local error of 1 % of a metre or of a metre per second per step is
+   * rejected, below 0.01 % Δt grows: a puppet a metre tall swinging at a
+   * few m/s. At the paper's bounds the puppet's steps stay where the
+   * deviation put them (README, "Error control"). */
+  d.error_length = 1.0;
+  d.error_speed = 1.0;
+  /* Puppets and their strings move at a few m/s, a thrown one at 10. */
+  d.max_speed = 200.0;
   d.solver = MR_SOLVE_LDLT;
   d.solver_tolerance = 1e-10;
   d.solver_max_iterations = 1000;
@@ -223,7 +231,10 @@ static mr_status check_world_def(const mr_world_def *def, char *msg, size_t msg_
                              def->drag,
                              def->contact_slop,
                              def->rest_speed,
-                             def->string_max_stretch };
+                             def->string_max_stretch,
+                             def->error_length,
+                             def->error_speed,
+                             def->max_speed };
   for (size_t i = 0; i < sizeof scalars / sizeof scalars[0]; i++)
     if (!isfinite(scalars[i]))
       return def_error(msg, msg_size, MR_ERR_NONFINITE,
@@ -243,6 +254,9 @@ static mr_status check_world_def(const mr_world_def *def, char *msg, size_t msg_
     return def_error(msg, msg_size, MR_ERR_ARG,
                      "ks, kd, drag, rest_speed and string_max_stretch must be >= 0, "
                      "contact_slop and solver_tolerance > 0");
+  if (def->error_length < 0 || def->error_speed < 0 || !(def->max_speed > 0))
+    return def_error(msg, msg_size, MR_ERR_ARG,
+                     "error_length and error_speed must be >= 0, max_speed > 0");
   if (def->max_steps_per_call < 1 || def->solver_max_iterations < 1 ||
       def->string_correction_iterations < 0)
     return def_error(msg, msg_size, MR_ERR_ARG,
@@ -282,6 +296,10 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
   w->dt_next = fmin(fmax(def->dt_initial, def->dt_min), def->dt_max);
   w->dirty = 1; /* derived data and scratch are built at the first step */
   w->stats.min_dt = INFINITY;
+  w->stats.min_dt_landing = INFINITY;
+  w->stats.stable_dt = INFINITY;
+  w->stable_dt = INFINITY;
+  w->drag_rate_cap = INFINITY;
   w->has_frames = (def->effects & MR_EFFECT_FRAMES) != 0;
   w->has_solve = (def->effects & (MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES |
                                   MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION)) != 0;

@@ -75,7 +75,8 @@ static int read_effects(mr_reader *r, const mr_ynode *node) {
 static int read_ats(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = { "dt_initial",       "dt_min",        "dt_max",
                                       "threshold_min",    "threshold_max", "divergence",
-                                      "deviation_length", "max_steps",     NULL };
+                                      "deviation_length", "max_steps",     "error_length",
+                                      "error_speed",      "max_speed",     NULL };
   static const mr_scene_field fields[] = {
     { "dt_initial", MR_SCENE_FIELD_POSITIVE, WORLD(dt_initial), 0, 0 },
     { "dt_min", MR_SCENE_FIELD_POSITIVE, WORLD(dt_min), 0, 0 },
@@ -84,7 +85,10 @@ static int read_ats(mr_reader *r, const mr_ynode *n) {
     { "threshold_max", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_high), 0, 0 },
     { "divergence", MR_SCENE_FIELD_POSITIVE, WORLD(divergence_bound), 0, 0 },
     { "deviation_length", MR_SCENE_FIELD_POSITIVE, WORLD(deviation_length), 0, 0 },
-    { "max_steps", MR_SCENE_FIELD_INT, WORLD(max_steps_per_call), 1, 100000000 }
+    { "max_steps", MR_SCENE_FIELD_INT, WORLD(max_steps_per_call), 1, 100000000 },
+    { "error_length", MR_SCENE_FIELD_NONNEG, WORLD(error_length), 0, 0 },
+    { "error_speed", MR_SCENE_FIELD_NONNEG, WORLD(error_speed), 0, 0 },
+    { "max_speed", MR_SCENE_FIELD_POSITIVE, WORLD(max_speed), 0, 0 }
   };
   mr_world_def *d = &r->scene->world;
   if (mr_scene_read_map(r, n, "physics.ats", keys) != 0 ||

@@ -1,0 +1,288 @@
+/* Error control beyond the paper's constraint measure: the embedded local
+ * error estimate, the correction of a step the rule had to accept over its
+ * threshold, the stability limit of stiff springs, divergence that names
+ * its cause, and steps cut to land reported apart from the rule's. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "mr_physics.h"
+
+static int particle(mr_world *w, double x, double y, double z, double mass, int frame) {
+  mr_particle_def p = mr_default_particle_def();
+  p.position[0] = x;
+  p.position[1] = y;
+  p.position[2] = z;
+  p.mass = mass;
+  p.frame = frame;
+  int id = -1;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  return id;
+}
+
+/* A control frame at (0, 2, 0) with one point, and a particle hanging from
+ * it on a string of rest length `rest` (k, c given). */
+static mr_world *hanging(mr_world_def def, double mass, double rest, double k, double c,
+                         double start[3], int *bob) {
+  def.effects |= MR_EFFECT_FRAMES | MR_EFFECT_STRINGS;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_frame_def f = mr_default_frame_def();
+  f.pose.position[1] = 2.0;
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &f, &frame), MR_OK);
+  int bar = particle(w, 0, 2, 0, 1, frame);
+  *bob = particle(w, start[0], start[1], start[2], mass, -1);
+  mr_string_def s = mr_default_string_def();
+  s.frame_particle = bar;
+  s.puppet_particle = *bob;
+  s.rest_length = rest;
+  s.stiffness = k;
+  s.damping = c;
+  assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
+  return w;
+}
+
+static double speed_of(const mr_world *w, int id, double x[3]) {
+  double v[3];
+  assert_int_equal(mr_world_particle_state(w, id, x, v), MR_OK);
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* A weight on a string and nothing else: no constraint, so the paper's
+ * measure reads 0 and would take Δt to the upper bound of 100 s. */
+static void weight_on_a_string_stays_under_it_at_any_upper_bound(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_GRAVITY;
+  def.dt_max = 100.0;
+  def.dt_initial = 1.0;
+  int bob;
+  mr_world *w = hanging(def, 1.0, 0.9, 500.0, 5.0, (double[3]){ 0, 1.0, 0 }, &bob);
+  assert_int_equal(mr_world_step_to(w, 10.0, NULL), MR_OK);
+  double x[3];
+  double v = speed_of(w, bob, x);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("after 10 s: y = %.6f m, speed %.3g m/s, %llu steps, max dt %.4f s\n", x[1], v,
+         (unsigned long long)st.steps, st.max_dt);
+  /* At rest it hangs 0.9 + g/k below the bar. */
+  assert_true(fabs(x[1] - (2.0 - 0.9 - 9.81 / 500.0)) < 1e-3);
+  assert_true(v < 1e-2);
+  assert_true(st.max_dt <= st.stable_dt);
+  mr_world_destroy(w);
+}
+
+/* A zero-rest-length string without damping is a harmonic oscillator in
+ * 3D (the weight circles the bar): its energy must stay. Without the local
+ * error estimate the steps run at the stability limit and RK4 bleeds the
+ * energy away. */
+static void undamped_string_keeps_its_energy(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = 0;
+  def.dt_max = 1.0;
+  int bob;
+  const double k = 50.0, m = 0.5;
+  mr_world *w = hanging(def, m, 0.0, k, 0.0, (double[3]){ 0.5, 2.0, 0 }, &bob);
+  assert_int_equal(
+      mr_world_set_particle_state(w, bob, (double[3]){ 0.5, 2.0, 0 }, (double[3]){ 0, 0, 5.0 }),
+      MR_OK);
+  const double e0 = 0.5 * m * 25.0 + 0.5 * k * 0.25;
+  assert_int_equal(mr_world_step_to(w, 5.0, NULL), MR_OK);
+  double x[3];
+  double v = speed_of(w, bob, x);
+  double r2 = x[0] * x[0] + (x[1] - 2) * (x[1] - 2) + x[2] * x[2];
+  double e = 0.5 * m * v * v + 0.5 * k * r2;
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("energy after 5 s: %.6f of %.6f (%llu steps, largest error estimate %.3g)\n", e, e0,
+         (unsigned long long)st.steps, st.max_integration_error);
+  assert_true(fabs(e - e0) / e0 < 1e-3);
+  assert_true(st.max_integration_error > 0);
+  mr_world_destroy(w);
+}
+
+/* The estimate of one RK4 step is the embedded third-order solution's
+ * error: O(h⁴). Halving h must divide it by 16. */
+static double one_step_estimate(double h) {
+  mr_world_def def = mr_default_world_def();
+  def.effects = 0;
+  def.dt_min = def.dt_max = def.dt_initial = h;
+  int bob;
+  mr_world *w = hanging(def, 0.5, 0.0, 50.0, 0.0, (double[3]){ 0.5, 2.0, 0 }, &bob);
+  assert_int_equal(mr_world_step(w, NULL), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  mr_world_destroy(w);
+  return st.max_integration_error;
+}
+
+static void rk4_estimate_is_fourth_order(void **state) {
+  (void)state;
+  double a = one_step_estimate(0.02), b = one_step_estimate(0.01), c = one_step_estimate(0.005);
+  printf("estimates %.4g %.4g %.4g: ratios %.3f %.3f\n", a, b, c, a / b, b / c);
+  assert_true(fabs(a / b - 16.0) < 1.0);
+  assert_true(fabs(b / c - 16.0) < 0.5);
+}
+
+/* With thresholds no step at the lower bound can meet, every step would be
+ * accepted over the threshold; each is projected back instead and counted. */
+static void over_threshold_at_lower_bound_is_corrected(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.dt_min = def.dt_max = def.dt_initial = 0.05;
+  def.deviation_high = 1e-9;
+  def.deviation_low = 1e-11;
+  def.divergence_bound = 0.5;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int pivot = particle(w, 0, 0, 0, 1, -1), bob = particle(w, 1, 0, 0, 1, -1);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = pivot;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = pivot;
+  d.b = bob;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  double worst = 0;
+  int corrected = 0;
+  for (int i = 0; i < 40; i++) {
+    mr_step_report rep;
+    assert_int_equal(mr_world_step(w, &rep), MR_OK);
+    corrected += rep.corrections;
+    worst = fmax(worst, mr_world_deviation(w));
+  }
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("%llu corrections in %llu steps, worst deviation after a step %.3g\n",
+         (unsigned long long)st.corrections, (unsigned long long)st.steps, worst);
+  assert_true(st.corrections > 0);
+  assert_int_equal((int)st.corrections, corrected);
+  assert_true(worst <= 1e-9);
+  mr_world_destroy(w);
+}
+
+/* A 1 mg particle on a default string: k/m and c/m ask for Δt far below
+ * the lower bound. The stability limit lets the step go there (softening
+ * the string's damping to a step of dt_min/100), and the run stays finite
+ * and under the bar. */
+static void light_particle_on_a_string_is_stable(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_DRAG;
+  int bob;
+  mr_world *w = hanging(def, 1e-6, 1.0, 500.0, 5.0, (double[3]){ 0, 1.0, 0 }, &bob);
+  assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
+  double x[3];
+  double v = speed_of(w, bob, x);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("1 mg: y = %.6f, speed %.3g, stable dt %.3g s, softened %llu, %llu steps\n", x[1], v,
+         st.stable_dt, (unsigned long long)st.softened_forces, (unsigned long long)st.steps);
+  assert_true(isfinite(v) && v < 1e-3);
+  assert_true(fabs(x[1] - 1.0) < 1e-3);
+  /* The string's damping and the drag each at the floor's rate: twice it. */
+  assert_true(st.stable_dt < def.dt_min && st.stable_dt >= 0.005 * def.dt_min * 0.999);
+  assert_int_equal((int)st.softened_forces, 1);
+  assert_int_equal((int)st.divergences, 0);
+  mr_world_destroy(w);
+}
+
+/* A particle in free fall past max_speed is divergence, and the message
+ * says so, naming the particle, not "deviation 0". */
+static void speed_bound_is_divergence_and_is_named(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.max_speed = 5.0;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int fast = particle(w, 1, 0, 0, 1, -1);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 1.0, &rep), MR_DIVERGED);
+  printf("%s\n", mr_world_last_error(w));
+  assert_true(rep.divergences >= 1);
+  assert_non_null(strstr(mr_world_last_error(w), "max_speed"));
+  char who[32];
+  snprintf(who, sizeof who, "particle %d", fast);
+  assert_non_null(strstr(mr_world_last_error(w), who));
+  assert_null(strstr(mr_world_last_error(w), "deviation"));
+  mr_world_destroy(w);
+}
+
+static void nan_curve(void *user, double t, double pos[3], double vel[3], double acc[3]) {
+  (void)user;
+  for (int k = 0; k < 3; k++) pos[k] = vel[k] = acc[k] = t > 0.1 ? NAN : 0.0;
+}
+
+static void nan_is_named_as_nan(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int p = particle(w, 0, 0, 0, 1, -1);
+  mr_curve_def c = mr_default_curve_def();
+  c.particle = p;
+  c.fn = nan_curve;
+  assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
+  assert_int_equal(mr_world_step_to(w, 0.5, NULL), MR_DIVERGED);
+  printf("%s\n", mr_world_last_error(w));
+  assert_non_null(strstr(mr_world_last_error(w), "NaN or Inf"));
+  mr_world_destroy(w);
+}
+
+/* Steps cut to land on a requested time are not the rule's choice: they
+ * are reported apart, and the rule's smallest step stays within its bounds. */
+static void landing_steps_are_reported_apart(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  particle(w, 0, 0, 0, 1, -1);
+  for (int k = 1; k <= 20; k++) assert_int_equal(mr_world_step_to(w, k * 0.13, NULL), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("dt min %.4g s (rule), %.4g s (landing)\n", st.min_dt, st.min_dt_landing);
+  assert_true(st.min_dt >= def.dt_min);
+  assert_true(st.min_dt_landing < def.dt_min);
+  mr_world_destroy(w);
+}
+
+/* A reset in a step that lands on the target leaves no sliver behind: the
+ * world is at the target afterwards, exactly. */
+static void reset_at_a_landing_leaves_no_sliver(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.max_speed = 1e-3; /* every step diverges */
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  particle(w, 0, 0, 0, 1, -1);
+  for (int k = 1; k <= 30; k++) {
+    double target = k * 0.1 / 3.0;
+    mr_step_report rep;
+    assert_int_equal(mr_world_step_to(w, target, &rep), MR_DIVERGED);
+    assert_true(mr_world_time(w) == target);
+  }
+  mr_world_destroy(w);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(weight_on_a_string_stays_under_it_at_any_upper_bound),
+    cmocka_unit_test(undamped_string_keeps_its_energy),
+    cmocka_unit_test(rk4_estimate_is_fourth_order),
+    cmocka_unit_test(over_threshold_at_lower_bound_is_corrected),
+    cmocka_unit_test(light_particle_on_a_string_is_stable),
+    cmocka_unit_test(speed_bound_is_divergence_and_is_named),
+    cmocka_unit_test(nan_is_named_as_nan),
+    cmocka_unit_test(landing_steps_are_reported_apart),
+    cmocka_unit_test(reset_at_a_landing_leaves_no_sliver),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
