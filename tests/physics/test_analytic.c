@@ -247,7 +247,7 @@ static void integrators_rank_by_accuracy_and_cost(void **state) {
     mr_world_def def = mr_default_world_def();
     def.effects = MR_EFFECT_SPRINGS | MR_EFFECT_CONSTRAINTS;
     def.integrator = kinds[i];
-    def.dt_min = def.dt_max = def.dt_initial = 0.01;
+    def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = 0.01;
     mr_world *w = NULL;
     assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
     int anchor = add(w, 0, 0, 0, 1.0), m = add(w, 1.1, 0, 0, 1.0);

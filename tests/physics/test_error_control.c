@@ -114,7 +114,7 @@ static void undamped_string_keeps_its_energy(void **state) {
 static double one_step_estimate(double h) {
   mr_world_def def = mr_default_world_def();
   def.effects = 0;
-  def.dt_min = def.dt_max = def.dt_initial = h;
+  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = h;
   int bob;
   mr_world *w = hanging(def, 0.5, 0.0, 50.0, 0.0, (double[3]){ 0.5, 2.0, 0 }, &bob);
   assert_int_equal(mr_world_step(w, NULL), MR_OK);
@@ -137,7 +137,7 @@ static void rk4_estimate_is_fourth_order(void **state) {
 static void over_threshold_at_lower_bound_is_corrected(void **state) {
   (void)state;
   mr_world_def def = mr_default_world_def();
-  def.dt_min = def.dt_max = def.dt_initial = 0.05;
+  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = 0.05;
   def.deviation_high = 1e-9;
   def.deviation_low = 1e-11;
   def.divergence_bound = 0.5;

@@ -184,6 +184,11 @@ typedef struct mr_world_def {
   /* Adaptive time step (§4.5, §7). */
   double dt_initial;       /* first step, s; default 0.02 */
   double dt_min, dt_max;   /* bounds, s; default 0.01, 0.05 */
+  double dt_floor;         /* s, ≤ dt_min: a mode too fast for dt_min (its
+                              local error estimate over the threshold) may
+                              take steps down to this; springs too stiff for
+                              it are softened. 0 (default): dt_min/100;
+                              dt_floor = dt_min = dt_max: fixed steps */
   double deviation_low;    /* grow Δt below this relative deviation;
                                  default 1e-4 (0.01 %) */
   double deviation_high;   /* reject and shrink above it; default 1e-2 */
@@ -408,6 +413,18 @@ mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, i
 
 /* Number of scalar constraint rows (k). */
 int mr_world_constraint_rows(const mr_world *w);
+
+/* The largest mass ratio the constraint solve honours between two dynamic
+ * particles joined by a distance constraint (or a rigid group's): a nearly
+ * dependent row is regularised at 1e-4 of its effective mass (README,
+ * "Near-singular constraints"), and the heavier particle's share of a row
+ * is 1/ratio of it. */
+#define MR_MAX_MASS_RATIO 1e4
+/* The largest mass ratio across a distance constraint (≥ 1; 1 with no
+ * constraint between dynamic particles), and its heavier and lighter
+ * particle (either may be NULL). Scene readers refuse a world past
+ * MR_MAX_MASS_RATIO naming the two. */
+double mr_world_mass_ratio(const mr_world *w, int *heavy, int *light);
 
 /* ------------------------------------------------------------ collisions */
 

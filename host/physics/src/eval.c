@@ -33,7 +33,8 @@ int mr_rows_reserve(mr_world *w, int rows) {
  * that never comes to rest. A compliance of 1e-6 of its own diagonal on each
  * contact row (a soft contact: 1e-6 g of sag under its own weight) keeps
  * them independent, so redundant contacts share the load. Constraint rows
- * keep their exact, reported treatment. */
+ * are exact, except those the solver finds nearly dependent on the others,
+ * which it regularises (mr_solve_def.reg_tol, set in world.c). */
 static void soften_contacts(mr_world *w) {
   mr_csr *A = &w->A;
   for (int r = 0; r < A->n; r++) {

@@ -255,7 +255,7 @@ static int links(mr_world *w, double *sum, double floor) {
 }
 
 double mr_forces_stable_dt(mr_world *w) {
-  const double floor = 0.01 * w->def.dt_min;
+  const double floor = w->def.dt_floor > 0 ? w->def.dt_floor : 0.01 * w->def.dt_min;
   double *sum = w->scratch.k; /* 24 per particle; 4 used */
   memset(sum, 0, (size_t)w->n * 4 * sizeof *sum);
   int softened = links(w, sum, floor);

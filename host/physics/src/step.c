@@ -205,6 +205,12 @@ static mr_ats_params ats_params(const mr_world *w) {
   return p;
 }
 
+/* The shortest step the local error estimate may ask for (see
+ * ats_decision); forces.c softens what would need less. */
+static double floor_dt(const mr_world *w) {
+  return fmin(w->def.dt_floor > 0 ? w->def.dt_floor : 0.01 * w->def.dt_min, w->stable_dt);
+}
+
 /* h for a retry, and whether it lands: never past the target, and never a
  * sliver short of it. */
 static void retry_with(mr_step_ctx *c, double h) {
@@ -351,7 +357,8 @@ enum verdict { TRY_ACCEPT, TRY_AGAIN, TRY_DIVERGED };
 static enum verdict divergence_check(mr_world *w, mr_step_ctx *c) {
   fastest(w, w->x1, w->v1, c);
   if (c->speed <= w->def.max_speed && c->error <= w->def.divergence_bound) return TRY_ACCEPT;
-  const double lowest = ats_params(w).dt_min;
+  double lowest = ats_params(w).dt_min;
+  if (c->asked < lowest) lowest = floor_dt(w);
   if (c->asked > lowest) {
     retry_with(c, lowest);
     count_rejection(w, c);
@@ -369,8 +376,14 @@ static double step_error(const mr_step_ctx *c) {
   return (c->int_error > c->error || c->int_error != c->int_error) ? c->int_error : c->error;
 }
 
+/* The lower bound is the paper's for the deviation (§7: a real-time
+ * budget). A mode it cannot resolve (a light joint between constraints,
+ * a chain pulled taut, whose frequency grows with its tension) shows in
+ * the local error estimate, not in the deviation, and would blow up at
+ * dt_min: for that error alone the step may go down to dt_min/100. */
 static enum verdict ats_decision(mr_world *w, mr_step_ctx *c) {
-  const mr_ats_params ats = ats_params(w);
+  mr_ats_params ats = ats_params(w);
+  if (c->int_error > ats.high || c->asked < ats.dt_min) ats.dt_min = floor_dt(w);
   c->dec = mr_ats_next(&ats, c->asked, step_error(c));
   if (c->dec.accept) return TRY_ACCEPT;
   count_rejection(w, c);

@@ -2,6 +2,14 @@
  * counters and the state hash. */
 #include "internal.h"
 
+/* Near-singular constraint sets (a chain pulled straight between two
+ * pins, a flat square kicked out of its plane, a ring closed on a braced
+ * square, a light joint between heavy parts): a row whose independent part
+ * is below this share of its own effective mass (sin² of its angle to the
+ * span of the others) gets a compliance on that direction alone, bounding
+ * its multiplier; see host/physics/README.md, "Near-singular constraints". */
+#define MR_REG_TOL 1e-4
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -221,6 +229,7 @@ static mr_status check_world_def(const mr_world_def *def, char *msg, size_t msg_
   const double scalars[] = { def->dt_initial,
                              def->dt_min,
                              def->dt_max,
+                             def->dt_floor,
                              def->deviation_low,
                              def->deviation_high,
                              def->deviation_length,
@@ -243,6 +252,8 @@ static mr_status check_world_def(const mr_world_def *def, char *msg, size_t msg_
     return def_error(msg, msg_size, MR_ERR_NONFINITE, "gravity is NaN or Inf");
   if (!(def->dt_min > 0 && def->dt_min <= def->dt_max))
     return def_error(msg, msg_size, MR_ERR_ARG, "need 0 < dt_min <= dt_max");
+  if (def->dt_floor < 0 || def->dt_floor > def->dt_min)
+    return def_error(msg, msg_size, MR_ERR_ARG, "need 0 <= dt_floor <= dt_min");
   if (!(def->dt_initial > 0)) return def_error(msg, msg_size, MR_ERR_ARG, "need dt_initial > 0");
   if (!(def->deviation_low > 0 && def->deviation_low <= def->deviation_high))
     return def_error(msg, msg_size, MR_ERR_ARG, "need 0 < deviation_low <= deviation_high");
@@ -293,6 +304,7 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
   w->opts.method = def->solver;
   w->opts.tol = def->solver_tolerance;
   w->opts.max_iter = def->solver_max_iterations;
+  w->opts.reg_tol = MR_REG_TOL;
   w->dt_next = fmin(fmax(def->dt_initial, def->dt_min), def->dt_max);
   w->dirty = 1; /* derived data and scratch are built at the first step */
   w->stats.min_dt = INFINITY;

@@ -73,10 +73,11 @@ static int read_effects(mr_reader *r, const mr_ynode *node) {
 /* §4.5 and §7: the ATS. Keys left out keep the library's defaults, which
  * are the paper's. */
 static int read_ats(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "dt_initial",       "dt_min",        "dt_max",
-                                      "threshold_min",    "threshold_max", "divergence",
-                                      "deviation_length", "max_steps",     "error_length",
-                                      "error_speed",      "max_speed",     NULL };
+  static const char *const keys[] = {
+    "dt_initial", "dt_min",           "dt_max",    "threshold_min", "threshold_max",
+    "divergence", "deviation_length", "max_steps", "error_length",  "error_speed",
+    "max_speed",  "dt_floor",         NULL
+  };
   static const mr_scene_field fields[] = {
     { "dt_initial", MR_SCENE_FIELD_POSITIVE, WORLD(dt_initial), 0, 0 },
     { "dt_min", MR_SCENE_FIELD_POSITIVE, WORLD(dt_min), 0, 0 },
@@ -88,7 +89,8 @@ static int read_ats(mr_reader *r, const mr_ynode *n) {
     { "max_steps", MR_SCENE_FIELD_INT, WORLD(max_steps_per_call), 1, 100000000 },
     { "error_length", MR_SCENE_FIELD_NONNEG, WORLD(error_length), 0, 0 },
     { "error_speed", MR_SCENE_FIELD_NONNEG, WORLD(error_speed), 0, 0 },
-    { "max_speed", MR_SCENE_FIELD_POSITIVE, WORLD(max_speed), 0, 0 }
+    { "max_speed", MR_SCENE_FIELD_POSITIVE, WORLD(max_speed), 0, 0 },
+    { "dt_floor", MR_SCENE_FIELD_POSITIVE, WORLD(dt_floor), 0, 0 }
   };
   mr_world_def *d = &r->scene->world;
   if (mr_scene_read_map(r, n, "physics.ats", keys) != 0 ||
@@ -98,6 +100,9 @@ static int read_ats(mr_reader *r, const mr_ynode *n) {
   if (d->dt_min > d->dt_max)
     return mr_scene_read_fail(r, n, MR_SCENE_ERR_VALUE, "expected dt_min <= dt_max, got %g > %g",
                               d->dt_min, d->dt_max);
+  if ((v = mr_scene_yaml_get(n, "dt_floor")) != NULL && d->dt_floor > d->dt_min)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected dt_floor <= dt_min (%g), got %g",
+                              d->dt_min, d->dt_floor);
   if ((v = mr_scene_yaml_get(n, "dt_initial")) != NULL &&
       (d->dt_initial < d->dt_min || d->dt_initial > d->dt_max))
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,

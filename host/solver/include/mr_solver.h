@@ -84,6 +84,10 @@ typedef struct mr_solve_def {
   double tol;       /* iterative methods: stop at ‖Ax − b‖ ≤ tol ‖b‖ */
   int max_iter;     /* iterative methods: sweeps or CG steps */
   double pivot_tol; /* a row is dependent when its pivot is ≤ pivot_tol · A_ii */
+  double reg_tol;   /* LDLT: a row nearly dependent, pivot_tol · A_ii < pivot <
+                       reg_tol · A_ii, is regularised: its pivot is raised to
+                       reg_tol · A_ii (a compliance on that direction only), so
+                       its multiplier stays bounded; 0 (default) = off */
 } mr_solve_def;
 /* MR_SOLVE_LDLT (exact to rounding, nothing to tune, and it names dependent
  * rows instead of converging slowly towards them), tol 1e-10, max_iter
@@ -95,6 +99,7 @@ typedef struct mr_solve_result {
   int iterations;
   double residual; /* ‖Ax − b‖ / max(‖b‖, tiny) */
   int dependent;   /* rows found dependent */
+  int regularised; /* rows found nearly dependent and regularised (reg_tol) */
 } mr_solve_result;
 
 typedef struct mr_solver mr_solver; /* the workspace of every method */

@@ -130,8 +130,13 @@ static int analyse(mr_ldlt *f, const mr_csr *A) {
   return mr_pattern_keep(&f->pattern, A);
 }
 
-/* Returns the number of dropped (dependent) rows. */
-static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol) {
+/* Returns the number of dropped (dependent) rows; *regularised counts the
+ * nearly dependent ones whose pivot was raised to reg_tol · A_kk. That is a
+ * factorisation of A + E with E diagonal and nonzero only on those rows
+ * (a modified Cholesky): a compliance on the directions the other rows
+ * nearly span, and nowhere else, so well-conditioned rows stay exact and
+ * no multiplier exceeds about |b| / (reg_tol · A_kk). */
+static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol, double reg_tol, int *regularised) {
   const int n = A->n;
   const int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *parent = BUF(f, parent, int);
   const int *lp = BUF(f, lp, int);
@@ -173,7 +178,7 @@ static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol) {
       y[i] = 0.0;
       int end = lp[i] + lnz[i];
       for (int p = lp[i]; p < end; p++) y[li[p]] -= lx[p] * yi;
-      double l = dropped[i] ? 0.0 : yi / diag[i];
+      double l = dropped[i] == 1 ? 0.0 : yi / diag[i];
       d -= l * yi;
       li[end] = k;
       lx[end] = l;
@@ -185,6 +190,10 @@ static int factor(mr_ldlt *f, const mr_csr *A, double pivot_tol) {
       dropped[k] = 1;
       diag[k] = 0.0;
       count++;
+    } else if (d < reg_tol * akk) {
+      dropped[k] = 2; /* regularised: kept, but not refined below */
+      diag[k] = reg_tol * akk;
+      (*regularised)++;
     } else {
       dropped[k] = 0;
       diag[k] = d;
@@ -204,7 +213,7 @@ static void solve_factored(const mr_ldlt *f, const double *b, double *x) {
   for (int k = 0; k < n; k++) z[k] = b[perm[k]];
   for (int j = 0; j < n; j++)
     for (int p = lp[j]; p < lp[j + 1]; p++) z[li[p]] -= lx[p] * z[j];
-  for (int j = 0; j < n; j++) z[j] = dropped[j] ? 0.0 : z[j] / diag[j];
+  for (int j = 0; j < n; j++) z[j] = dropped[j] == 1 ? 0.0 : z[j] / diag[j];
   for (int j = n - 1; j >= 0; j--)
     for (int p = lp[j]; p < lp[j + 1]; p++) z[j] -= lx[p] * z[li[p]];
   for (int k = 0; k < n; k++) x[perm[k]] = z[k];
@@ -217,7 +226,8 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const doub
     int st = analyse(f, A);
     if (st != 0) return st;
   }
-  r->dependent = factor(f, A, o->pivot_tol);
+  r->regularised = 0;
+  r->dependent = factor(f, A, o->pivot_tol, o->reg_tol, &r->regularised);
   solve_factored(f, b, x);
   r->iterations = 1;
 
@@ -228,11 +238,14 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const doub
   unsigned char *skip = BUF(f, skip, unsigned char);
   const unsigned char *dropped = BUF(f, dropped, unsigned char);
   const int *perm = BUF(f, perm, int);
-  for (int k = 0; k < n; k++) skip[perm[k]] = dropped[k];
+  for (int k = 0; k < n; k++) skip[perm[k]] = dropped[k] != 0;
   double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
   const double stop = o->tol * mr_norm2(n, b);
   for (int step = 0; step < 2 && mr_residual_norm(A, b, x, skip) > stop; step++) {
     mr_residual(A, b, x, res);
+    /* Refining a regularised row would undo its compliance. */
+    for (int i = 0; i < n; i++)
+      if (skip[i]) res[i] = 0.0;
     solve_factored(f, res, dx);
     for (int i = 0; i < n; i++) x[i] += dx[i];
     r->iterations++;

@@ -8,7 +8,7 @@
 #include <string.h>
 
 mr_solve_def mr_default_solve_def(void) {
-  mr_solve_def d = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12 };
+  mr_solve_def d = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12, 0.0 };
   return d;
 }
 
@@ -183,6 +183,7 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
   r->iterations = 0;
   r->residual = 0.0;
   r->dependent = 0;
+  r->regularised = 0;
 
   mr_solve_def def = mr_default_solve_def();
   if (!o) o = &def;
