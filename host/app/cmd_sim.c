@@ -73,12 +73,16 @@ static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, d
   printf("rejected: %" PRIu64 "\n", r->rejected);
   printf("dt mean: %.4g s\n", r->dt_mean);
   printf("dt min: %.4g s\n", r->dt_min);
+  if (r->dt_min_landing > 0) printf("dt min (landing): %.4g s\n", r->dt_min_landing);
   printf("dt max: %.4g s\n", r->dt_max);
   printf("at upper bound: %.1f %%\n", 100.0 * r->at_upper_fraction);
   printf("deviation max: %.3e\n", r->max_deviation);
   printf("deviation rms: %.3e\n", r->rms_deviation);
   printf("resets: %" PRIu64 "\n", r->resets);
   if (r->resets > 0) printf("first reset: %s\n", r->first_reset);
+  printf("corrections: %" PRIu64 "\n", r->corrections);
+  if (r->stable_dt > 0) printf("stable dt: %.4g s\n", r->stable_dt);
+  if (r->softened_forces > 0) printf("softened forces: %" PRIu64 "\n", r->softened_forces);
   printf("collisions: %" PRIu64 "\n", r->collisions);
   printf("dependent rows: %d\n", r->dependent_rows);
   printf("finite: %s\n", r->finite ? "yes" : "no");

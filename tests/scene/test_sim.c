@@ -218,6 +218,64 @@ static void csv_has_one_row_per_step_call(void **state) {
   tt_output_free(&p);
 }
 
+/* A scene whose every step diverges (a speed bound no fall can meet),
+ * sampled at a frame rate so one step call holds several resets: the CSV's
+ * reset column counts them, so its sum is the summary's figure. */
+static void csv_resets_add_up_to_the_summary(void **state) {
+  (void)state;
+  static const char scene[] = "sim: {duration: 0.5, fps: 10}\n"
+                              "physics:\n"
+                              "  effects: [gravity]\n"
+                              "  ats: {max_speed: 0.001, dt_min: 0.01, dt_max: 0.02}\n"
+                              "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+  char path[4200], csv[4200];
+  snprintf(path, sizeof path, "%s", tt_tmp_file("resets.yaml", scene, sizeof scene - 1));
+  snprintf(csv, sizeof csv, "%s", tt_tmp_file("resets.csv", "", 0));
+  tt_output p;
+  run(&p, "sim", "--csv", csv, path, NULL);
+  assert_int_equal(p.status, 0);
+  uint64_t resets = field_u64(p.out, "resets");
+  FILE *f = fopen(csv, "r");
+  assert_non_null(f);
+  char line[512];
+  assert_non_null(fgets(line, sizeof line, f));
+  uint64_t sum = 0;
+  int most = 0;
+  while (fgets(line, sizeof line, f)) {
+    double t, dt, err, speed;
+    int acc, rej, reset;
+    assert_int_equal(
+        sscanf(line, "%lf,%lf,%lf,%d,%d,%d,%lf", &t, &dt, &err, &acc, &rej, &reset, &speed), 7);
+    sum += (uint64_t)reset;
+    if (reset > most) most = reset;
+  }
+  fclose(f);
+  printf("%" PRIu64 " resets, %d in one call at most\n", resets, most);
+  assert_true(resets >= 10);
+  assert_true(most > 1);
+  assert_int_equal(sum, resets);
+  tt_output_free(&p);
+}
+
+/* sim.max_steps stops a run whose settings ask for too many steps, with one
+ * clear line and a failure status, instead of running on for hours. */
+static void run_past_the_step_guard_stops_clearly(void **state) {
+  (void)state;
+  static const char scene[] = "sim: {duration: 10, max_steps: 50}\n"
+                              "physics:\n"
+                              "  effects: [gravity]\n"
+                              "  ats: {dt_min: 0.001, dt_initial: 0.001, dt_max: 0.001}\n"
+                              "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+  char path[4200];
+  snprintf(path, sizeof path, "%s", tt_tmp_file("guard.yaml", scene, sizeof scene - 1));
+  tt_output p;
+  run(&p, "sim", path, NULL);
+  assert_int_not_equal(p.status, 0);
+  assert_non_null(strstr(p.err, "past sim.max_steps (50)"));
+  assert_ptr_equal(strchr(p.err, '\n'), p.err + strlen(p.err) - 1); /* one line */
+  tt_output_free(&p);
+}
+
 static void check_fails_with_a_clear_line(void **state) {
   (void)state;
   /* A swinging pendulum cannot meet a deviation bound of 1e-30. */
@@ -344,6 +402,8 @@ int main(int argc, char **argv) {
     cmocka_unit_test(same_scene_same_state_hash),
     cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
     cmocka_unit_test(csv_has_one_row_per_step_call),
+    cmocka_unit_test(csv_resets_add_up_to_the_summary),
+    cmocka_unit_test(run_past_the_step_guard_stops_clearly),
     cmocka_unit_test(check_fails_with_a_clear_line),
     cmocka_unit_test(string_stretch_is_measured_and_checked),
     cmocka_unit_test(pinned_state_hash_is_checked),

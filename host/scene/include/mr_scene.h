@@ -157,12 +157,17 @@ typedef struct mr_scene_expect {
   mr_scene_pos pos;
 } mr_scene_expect;
 
+/* The default guard on one run's step tries (sim.max_steps). */
+#define MR_SCENE_MAX_STEPS 2000000L
+
 typedef struct mr_scene {
   char *path;
   char name[96];
   mr_world_def world; /* effects, gravity, drag, ATS, solver, contacts */
   double duration;    /* default simulated time for `marionette sim` */
   double fps;         /* rate at which the control track is sampled; 0: every step */
+  long max_steps;     /* a run stops past this many step tries (accepted and
+                         rejected): MR_SCENE_MAX_STEPS unless sim.max_steps */
 
   mr_scene_particle *particles;
   size_t n_particles;

@@ -33,7 +33,7 @@ typedef struct mr_scene_step {
   int accepted;     /* accepted steps in this call (1, or more after a
                       rejection shrank Δt) */
   int rejected;     /* rejected tries before them */
-  int reset;        /* 1 if the world diverged and returned to its start */
+  int reset;        /* resets to the start in this call (the world diverged) */
   double max_speed; /* fastest particle after the step, m/s */
 } mr_scene_step;
 
@@ -48,8 +48,12 @@ typedef struct mr_scene_run_opts {
 typedef struct mr_scene_run_result {
   double sim_time;
   uint64_t steps, rejected, resets, collisions;
-  double dt_mean, dt_min, dt_max;
-  double at_upper_fraction; /* steps with Δt at the ATS's upper bound */
+  double dt_mean, dt_min, dt_max; /* dt_min: the ATS's choice (mr_stats.min_dt) */
+  double dt_min_landing;          /* shortest step cut to land on a frame; 0 if none */
+  double stable_dt;               /* mr_stats.stable_dt; 0 if no limit */
+  uint64_t corrections;           /* steps projected back onto the constraints */
+  uint64_t softened_forces;       /* mr_stats.softened_forces */
+  double at_upper_fraction;       /* steps with Δt at the ATS's upper bound */
   double max_deviation, rms_deviation;
   int dependent_rows; /* most dependent rows seen in one call */
   uint64_t pass_calls[MR_PASS_COUNT];

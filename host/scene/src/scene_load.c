@@ -21,6 +21,7 @@ static void defaults(mr_scene *s) {
   memcpy(s->track.turn, s->control_pose.orientation, sizeof s->track.turn);
   s->duration = 10.0;
   s->fps = 0.0;
+  s->max_steps = MR_SCENE_MAX_STEPS;
   mr_scene_expect *e = &s->expect;
   e->finite = true;
   e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
@@ -29,13 +30,23 @@ static void defaults(mr_scene *s) {
 }
 
 static int read_sim(mr_reader *r, const mr_ynode *sim) {
-  static const char *const keys[] = { "duration", "fps", NULL };
+  static const char *const keys[] = { "duration", "fps", "max_steps", NULL };
   static const mr_scene_field fields[] = {
     { "duration", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, duration), 0, 0 },
     { "fps", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, fps), 0, 0 }
   };
-  if (mr_scene_read_map(r, sim, "sim", keys) != 0) return -1;
-  return mr_scene_read_fields(r, sim, fields, 2, r->scene);
+  if (mr_scene_read_map(r, sim, "sim", keys) != 0 ||
+      mr_scene_read_fields(r, sim, fields, 2, r->scene) != 0)
+    return -1;
+  const mr_ynode *v = mr_scene_yaml_get(sim, "max_steps");
+  if (v == NULL) return 0;
+  long n;
+  if (mr_scene_read_long(r, v, "max_steps", &n) != 0) return -1;
+  if (n < 1 || n > 1000000000L)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected max_steps between 1 and 1000000000, got %ld", n);
+  r->scene->max_steps = n;
+  return 0;
 }
 
 static int read_root(mr_reader *r, const mr_ynode *root) {

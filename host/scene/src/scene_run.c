@@ -158,7 +158,7 @@ static mr_scene_step record(run *u, const mr_step_report *rep) {
   mr_world_stats(u->sw.world, &stats);
   mr_scene_step row = {
     mr_world_time(u->sw.world), stats.last_dt,    stats.last_error, rep->steps, rep->rejected,
-    rep->divergences > 0,       max_speed(&u->sw)
+    rep->divergences,           max_speed(&u->sw)
   };
   mr_world_positions(u->sw.world, u->xyz, u->n);
   if (!state_finite(u->xyz, u->n) || !isfinite(row.error) || !isfinite(row.max_speed))
@@ -173,7 +173,6 @@ static mr_scene_step record(run *u, const mr_step_report *rep) {
   if (rep->dependent > r->dependent_rows) r->dependent_rows = rep->dependent;
   if (rep->steps > 0 && isfinite(row.dt)) {
     u->sum_dt += row.dt * rep->steps;
-    r->dt_min = fmin(r->dt_min, row.dt);
     r->dt_max = fmax(r->dt_max, row.dt);
     if (row.dt >= u->dt_max * (1 - 1e-9)) u->at_upper += (uint64_t)rep->steps;
   }
@@ -200,6 +199,14 @@ static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
     return run_fail(u->s, err, MR_SCENE_ERR_BUILD, msg, *t);
   }
   mr_scene_step row = record(u, &rep);
+  if (u->r->steps + u->r->rejected > (uint64_t)u->s->max_steps) {
+    char msg[300];
+    snprintf(msg, sizeof msg,
+             "stopped after %" PRIu64 " step tries, past sim.max_steps (%ld); the time step "
+             "settings ask for more steps than a run may take",
+             u->r->steps + u->r->rejected, u->s->max_steps);
+    return run_fail(u->s, err, MR_SCENE_ERR_BUILD, msg, row.t);
+  }
   *t = row.t;
   watch(&u->w, *t, u->r);
   if (u->opts && u->opts->on_step) u->opts->on_step(u->opts->user, &row);
@@ -209,12 +216,17 @@ static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
 static void run_finish(run *u, double t) {
   mr_scene_run_result *r = u->r;
   r->sim_time = t;
+  mr_stats st;
+  mr_world_stats(u->sw.world, &st);
+  r->dt_min = isfinite(st.min_dt) && st.steps > 0 ? st.min_dt : 0.0;
+  r->dt_min_landing = isfinite(st.min_dt_landing) ? st.min_dt_landing : 0.0;
+  r->stable_dt = isfinite(st.stable_dt) ? st.stable_dt : 0.0;
+  r->corrections = st.corrections;
+  r->softened_forces = st.softened_forces;
   if (r->steps > 0) {
     r->dt_mean = u->sum_dt / (double)r->steps;
     r->rms_deviation = sqrt(u->sum_err2 / (double)r->steps);
     r->at_upper_fraction = (double)u->at_upper / (double)r->steps;
-  } else {
-    r->dt_min = 0;
   }
   for (int p = 0; p < MR_PASS_COUNT; p++)
     r->pass_calls[p] = mr_world_pass_calls(u->sw.world, (mr_pass)p);
