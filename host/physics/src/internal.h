@@ -184,6 +184,7 @@ struct mr_world {
   /* ATS */
   double dt_next;
   double stable_dt;     /* mr_forces_stable_dt, at ensure_ready */
+  double min_leaf_r;    /* smallest leaf sphere (INFINITY: no sphere trees) */
   double drag_rate_cap; /* drag/m never exceeds this (1/s) */
   int recovering;       /* after a collision Δt doubles (§4.5) */
 
