@@ -301,6 +301,39 @@ static void degenerate_groups_are_refused(void **state) {
 
 /* A part's restitution and friction (Coulomb μ against other parts) are
  * read; a negative friction names its place. */
+/* Four bytes that hang libfyaml ('%x', a lone 0xC3, a newline) never reach
+ * it: malformed UTF-8 is refused at its place. */
+static void malformed_utf8_is_refused_before_the_parser(void **state) {
+  (void)state;
+  expect_error("%x\xc3\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:1:3: expected UTF-8 text, found the byte 0xC3");
+  expect_error("name: \xed\xa0\x80\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:1:7: expected UTF-8 text, found the byte 0xED"); /* a surrogate */
+  expect_error("name: \xc0\xaf\n", MR_SCENE_ERR_SYNTAX,
+               "t.yaml:1:7: expected UTF-8 text, found the byte 0xC0"); /* overlong */
+}
+
+/* Flow nesting is measured before libfyaml reads ahead (a megabyte of '['
+ * took it a gigabyte). */
+static void deep_nesting_is_refused(void **state) {
+  (void)state;
+  char text[2100];
+  memset(text, '[', 2000);
+  text[2000] = '\0';
+  expect_error(text, MR_SCENE_ERR_SYNTAX, "t.yaml:1:65: expected at most 64 levels of nesting");
+}
+
+/* A key holding a newline and a terminal escape is shown escaped: the
+ * error stays one line. */
+static void control_bytes_in_errors_are_escaped(void **state) {
+  (void)state;
+  expect_error("physics:\n  effects: [gravity]\n  \"a\\nb\\e[31m\": 1\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:3:3: unknown key 'a\\nb\\x1b[31m' in physics; expected one of: effects, "
+               "gravity, drag, ats, solver, contact, particles, control, constraints, groups, "
+               "springs, strings, sine_springs, antigravity, triggered, floor, parts, "
+               "string_correction");
+}
+
 static void part_friction_is_read_and_checked(void **state) {
   (void)state;
   const char *fx = "physics:\n"
@@ -436,6 +469,9 @@ int main(void) {
     cmocka_unit_test(integrator_and_method_come_from_the_libraries_tables),
     cmocka_unit_test(degenerate_groups_are_refused),
     cmocka_unit_test(part_friction_is_read_and_checked),
+    cmocka_unit_test(malformed_utf8_is_refused_before_the_parser),
+    cmocka_unit_test(deep_nesting_is_refused),
+    cmocka_unit_test(control_bytes_in_errors_are_escaped),
     cmocka_unit_test(syntax_errors_name_the_place),
     cmocka_unit_test(not_yaml_is_refused),
     cmocka_unit_test(missing_file_is_an_io_error),

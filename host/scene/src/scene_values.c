@@ -17,6 +17,26 @@ static void set_text(mr_scene_error *e, const char *file) {
     snprintf(e->text, sizeof e->text, "%s: %s", file, e->message);
 }
 
+/* A key or value from the file can hold a newline or a terminal's escape
+ * codes; an error stays one line of plain text: control bytes are written
+ * as \n, \t or \xNN. */
+static void escape_controls(char *s, size_t size) {
+  char out[sizeof((mr_scene_error *)0)->message];
+  size_t k = 0;
+  for (const unsigned char *p = (const unsigned char *)s; *p && k + 5 < sizeof out; p++) {
+    if (*p >= 0x20 && *p != 0x7f) {
+      out[k++] = (char)*p;
+    } else if (*p == '\n' || *p == '\t') {
+      out[k++] = '\\';
+      out[k++] = *p == '\n' ? 'n' : 't';
+    } else {
+      k += (size_t)snprintf(out + k, sizeof out - k, "\\x%02x", *p);
+    }
+  }
+  out[k] = '\0';
+  snprintf(s, size, "%s", out);
+}
+
 static int vfail(mr_reader *r, int line, int column, mr_scene_status status, const char *fmt,
                  va_list ap) {
   mr_scene_error *e = r->err;
@@ -24,6 +44,7 @@ static int vfail(mr_reader *r, int line, int column, mr_scene_status status, con
   e->line = line;
   e->column = column;
   vsnprintf(e->message, sizeof e->message, fmt, ap);
+  escape_controls(e->message, sizeof e->message);
   set_text(e, r->file);
   return -1;
 }

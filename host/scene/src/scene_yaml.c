@@ -17,6 +17,10 @@ struct mr_yarena {
   alignas(max_align_t) unsigned char data[];
 };
 
+/* No scene nests deeper than a few levels; a file nested millions deep
+ * must not build millions of open containers. */
+#define MR_YAML_MAX_DEPTH 64
+
 static void *arena_alloc(mr_yarena **head, size_t size) {
   size = (size + alignof(max_align_t) - 1) & ~(alignof(max_align_t) - 1);
   mr_yarena *a = *head;
@@ -181,6 +185,9 @@ static int open_container(builder *b, mr_ynode_kind kind, struct fy_event *e,
                           struct fy_token *anchor_tok) {
   mr_ynode *n = new_node(b, kind, fy_event_start_mark(e));
   if (n == NULL) return -1;
+  if (b->depth >= MR_YAML_MAX_DEPTH)
+    return fail(b->err, n->line, n->column, "expected at most %d levels of nesting",
+                MR_YAML_MAX_DEPTH);
   if (b->depth == b->stack_cap) {
     size_t cap = b->stack_cap ? 2 * b->stack_cap : 16;
     frame *s = realloc(b->stack, cap * sizeof *s);
@@ -281,6 +288,72 @@ static bool find_nul(const char *text, size_t len, int *line, int *column) {
   return true;
 }
 
+/* The first byte that is not part of well-formed UTF-8 (RFC 3629: no
+ * overlong forms, no surrogates, nothing past U+10FFFF), or -1. libfyaml
+ * (github.com/pantoniou/libfyaml) loops forever on some malformed input,
+ * such as a '%' directive line holding a lone 0xC3, so nothing it has not
+ * been shown to handle reaches it. */
+static long bad_utf8(const unsigned char *s, size_t len) {
+  size_t i = 0;
+  while (i < len) {
+    unsigned c = s[i];
+    size_t n = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xe ? 2 : (c >> 3) == 0x1e ? 3 : 9;
+    if (n == 9 || i + n >= len + (n == 0)) return (long)i;
+    unsigned cp = n == 0 ? c : n == 1 ? c & 0x1f : n == 2 ? c & 0x0f : c & 0x07;
+    for (size_t k = 1; k <= n; k++) {
+      if ((s[i + k] & 0xc0) != 0x80) return (long)i;
+      cp = (cp << 6) | (s[i + k] & 0x3f);
+    }
+    static const unsigned least[4] = { 0, 0x80, 0x800, 0x10000 };
+    if (cp < least[n] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return (long)i;
+    i += n + 1;
+  }
+  return -1;
+}
+
+/* libfyaml reads a whole flow collection ahead of its events (a file of
+ * three million '[' took a gigabyte before the first event), so flow
+ * nesting is measured here first: the offset of the bracket that opens
+ * level max_depth + 1, or -1. Quoted scalars and comments are skipped; a
+ * plain scalar holding that many brackets is refused too, a price no
+ * scene pays. */
+static long too_deep(const char *s, size_t len, int max_depth) {
+  int depth = 0;
+  char quote = 0;
+  for (size_t i = 0; i < len; i++) {
+    char c = s[i];
+    if (quote) {
+      if (c == '\\' && quote == '"' && i + 1 < len)
+        i++;
+      else if (c == quote)
+        quote = 0;
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+    } else if (c == '#' && (i == 0 || s[i - 1] == ' ' || s[i - 1] == '\t' || s[i - 1] == '\n')) {
+      while (i + 1 < len && s[i + 1] != '\n') i++;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth) return (long)i;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      depth--;
+    }
+  }
+  return -1;
+}
+
+/* Line and column (1-based) of byte offset `at`. */
+static void place_of(const char *text, size_t at, int *line, int *column) {
+  *line = 1;
+  *column = 1;
+  for (size_t i = 0; i < at; i++) {
+    if (text[i] == '\n') {
+      (*line)++;
+      *column = 1;
+    } else {
+      (*column)++;
+    }
+  }
+}
+
 /* A quiet parser over text whose errors gather in *diag, or NULL. */
 static struct fy_parser *open_parser(const char *text, size_t len, struct fy_diag **diag) {
   struct fy_diag_cfg dcfg;
@@ -340,6 +413,17 @@ int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *e
   int nl, nc;
   if (find_nul(text, len, &nl, &nc))
     return fail(err, nl, nc, "expected a YAML text file, found a NUL byte");
+  long bad = bad_utf8((const unsigned char *)text, len);
+  if (bad >= 0) {
+    place_of(text, (size_t)bad, &nl, &nc);
+    return fail(err, nl, nc, "expected UTF-8 text, found the byte 0x%02X",
+                (unsigned)(unsigned char)text[bad]);
+  }
+  bad = too_deep(text, len, MR_YAML_MAX_DEPTH);
+  if (bad >= 0) {
+    place_of(text, (size_t)bad, &nl, &nc);
+    return fail(err, nl, nc, "expected at most %d levels of nesting", MR_YAML_MAX_DEPTH);
+  }
   struct fy_diag *diag;
   struct fy_parser *fyp = open_parser(text, len, &diag);
   if (fyp == NULL) return fail(err, 0, 0, "out of memory");
