@@ -418,13 +418,9 @@ int mr_world_constraint_rows(const mr_world *w);
  * particles joined by a distance constraint (or a rigid group's): a nearly
  * dependent row is regularised at 1e-4 of its effective mass (README,
  * "Near-singular constraints"), and the heavier particle's share of a row
- * is 1/ratio of it. */
+ * is 1/ratio of it. Scene readers refuse a scene past it, naming the two
+ * particles. */
 #define MR_MAX_MASS_RATIO 1e4
-/* The largest mass ratio across a distance constraint (≥ 1; 1 with no
- * constraint between dynamic particles), and its heavier and lighter
- * particle (either may be NULL). Scene readers refuse a world past
- * MR_MAX_MASS_RATIO naming the two. */
-double mr_world_mass_ratio(const mr_world *w, int *heavy, int *light);
 
 /* ------------------------------------------------------------ collisions */
 

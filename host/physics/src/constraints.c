@@ -259,22 +259,3 @@ mr_status mr_world_add_curve(mr_world *w, const mr_curve_def *def, int *out_id) 
   }
   return s;
 }
-
-double mr_world_mass_ratio(const mr_world *w, int *heavy, int *light) {
-  double worst = 1.0;
-  if (heavy) *heavy = -1;
-  if (light) *light = -1;
-  if (!w) return worst;
-  for (int i = 0; i < w->distances.n; i++) {
-    const mr_distance *d = &MR_AT(w->distances, mr_distance, i);
-    if (!(w->inv_mass[d->a] > 0) || !(w->inv_mass[d->b] > 0)) continue;
-    int h = w->mass[d->a] >= w->mass[d->b] ? d->a : d->b, l = h == d->a ? d->b : d->a;
-    double r = w->mass[h] / w->mass[l];
-    if (r > worst) {
-      worst = r;
-      if (heavy) *heavy = h;
-      if (light) *light = l;
-    }
-  }
-  return worst;
-}

@@ -132,30 +132,13 @@ static mr_scene_status create_world(const mr_scene *s, mr_scene_world *sw, mr_sc
   return MR_SCENE_OK;
 }
 
-/* A mass ratio across a constraint that the solve cannot honour is a load
- * error naming the two particles, not a run that resets forever. */
-static mr_scene_status check_mass_ratio(const mr_scene *s, mr_scene_world *sw,
-                                        mr_scene_error *err) {
-  int heavy, light;
-  double ratio = mr_world_mass_ratio(sw->world, &heavy, &light);
-  if (!(ratio > MR_MAX_MASS_RATIO) || heavy < 0 || (size_t)heavy >= s->n_particles ||
-      (size_t)light >= s->n_particles)
-    return MR_SCENE_OK;
-  const mr_scene_particle *h = &s->particles[heavy], *l = &s->particles[light];
-  return fail(s, err, l->pos, MR_SCENE_ERR_VALUE,
-              "particle '%s' (%g kg) is joined to particle '%s' (%g kg, line %d): a mass ratio of "
-              "%.3g, past the %g the constraint solve can honour; expected masses closer together",
-              l->name, l->def.mass, h->name, h->def.mass, h->pos.line, ratio, MR_MAX_MASS_RATIO);
-}
-
 typedef mr_scene_status (*build_stage)(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err);
 
 mr_scene_status mr_scene_build(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
   /* Particles before the control points, which are numbered after them;
    * both before anything that names them. */
   static const build_stage stages[] = { create_world,    add_particles, add_control,
-                                        add_constraints, add_forces,    add_collisions,
-                                        check_mass_ratio };
+                                        add_constraints, add_forces,    add_collisions };
   memset(sw, 0, sizeof *sw);
   memset(err, 0, sizeof *err);
   sw->frame = -1;

@@ -49,6 +49,42 @@ static int read_sim(mr_reader *r, const mr_ynode *sim) {
   return 0;
 }
 
+/* The ratio of particles a and b (both dynamic), heavier over lighter. */
+static void worse_pair(const mr_scene *s, int a, int b, double *worst, int *heavy, int *light) {
+  if (a < 0 || b < 0 || (size_t)a >= s->n_particles || (size_t)b >= s->n_particles) return;
+  double ma = s->particles[a].def.mass, mb = s->particles[b].def.mass;
+  double r = ma >= mb ? ma / mb : mb / ma;
+  if (r > *worst) {
+    *worst = r;
+    *heavy = ma >= mb ? a : b;
+    *light = ma >= mb ? b : a;
+  }
+}
+
+/* A mass ratio across a constraint (or within a rigid group) that the
+ * solve cannot honour (MR_MAX_MASS_RATIO, mr_physics.h) is a load error
+ * naming the two particles, not a run that resets forever. */
+static int check_mass_ratios(mr_reader *r) {
+  const mr_scene *s = r->scene;
+  double worst = 1.0;
+  int heavy = -1, light = -1;
+  for (size_t i = 0; i < s->n_distances; i++)
+    worse_pair(s, s->distances[i].def.a, s->distances[i].def.b, &worst, &heavy, &light);
+  for (size_t g = 0; g < s->n_groups; g++) {
+    const mr_rigid_group_def *d = &s->groups[g].def;
+    for (int i = 0; i < d->count; i++)
+      for (int j = i + 1; j < d->count; j++)
+        worse_pair(s, d->particles[i], d->particles[j], &worst, &heavy, &light);
+  }
+  if (!(worst > MR_MAX_MASS_RATIO)) return 0;
+  const mr_scene_particle *h = &s->particles[heavy], *l = &s->particles[light];
+  return mr_scene_read_fail_at(
+      r, l->pos.line, l->pos.column, MR_SCENE_ERR_VALUE,
+      "particle '%s' (%g kg) is joined to particle '%s' (%g kg, line %d): a mass ratio of %.3g, "
+      "past the %g the constraint solve can honour; expected masses closer together",
+      l->name, l->def.mass, h->name, h->def.mass, h->pos.line, worst, MR_MAX_MASS_RATIO);
+}
+
 static int read_root(mr_reader *r, const mr_ynode *root) {
   mr_scene *s = r->scene;
   if (root == NULL)
@@ -88,7 +124,7 @@ static int read_root(mr_reader *r, const mr_ynode *root) {
   if ((v = mr_scene_yaml_get(root, "sim")) != NULL && read_sim(r, v) != 0) return -1;
   const mr_ynode *physics = mr_scene_read_need(r, root, "physics", "the scene");
   if (physics == NULL) return -1;
-  if (mr_scene_read_physics(r, physics) != 0) return -1;
+  if (mr_scene_read_physics(r, physics) != 0 || check_mass_ratios(r) != 0) return -1;
   if ((v = mr_scene_yaml_get(root, "expect")) != NULL && mr_scene_read_expect(r, v) != 0) return -1;
   return 0;
 }
