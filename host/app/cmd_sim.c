@@ -86,6 +86,10 @@ static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, d
   printf("collisions: %" PRIu64 "\n", r->collisions);
   printf("dependent rows: %d\n", r->dependent_rows);
   printf("finite: %s\n", r->finite ? "yes" : "no");
+  printf("speed max: %.3g m/s\n", r->max_speed);
+  if (scene->world.effects &
+      (MR_EFFECT_PLANES | MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION))
+    printf("penetration max: %.3g m\n", r->max_penetration);
   if (r->string_stretch > 0) /* some string states its rest length */
     printf("string stretch max: %.3g x rest\n", r->string_stretch);
   if (scene->expect.n_watch > 0) {

@@ -221,7 +221,7 @@ static void unknown_names_and_shapes(void **state) {
                "t.yaml:6:3: unknown key 'effects2' in physics; expected one of: effects, "
                "gravity, drag, ats, solver, contact, particles, control, constraints, groups, "
                "springs, strings, sine_springs, antigravity, triggered, floor, parts, "
-               "string_correction");
+               "string_correction, puppets");
 }
 
 /* A word that is not in the enum's own name table is an error at its
@@ -331,7 +331,7 @@ static void control_bytes_in_errors_are_escaped(void **state) {
                "t.yaml:3:3: unknown key 'a\\nb\\x1b[31m' in physics; expected one of: effects, "
                "gravity, drag, ats, solver, contact, particles, control, constraints, groups, "
                "springs, strings, sine_springs, antigravity, triggered, floor, parts, "
-               "string_correction");
+               "string_correction, puppets");
 }
 
 static void part_friction_is_read_and_checked(void **state) {

@@ -509,6 +509,10 @@ mr_status mr_world_stats(const mr_world *w, mr_stats *out);
 uint64_t mr_world_pass_calls(const mr_world *w, mr_pass p);
 /* The largest relative constraint deviation of the current state (§4.5). */
 double mr_world_deviation(const mr_world *w);
+/* How deep, in m, the deepest pair of bodies the world's collision effects
+ * watch (particle and plane, sphere and sphere) is into each other in the
+ * current state; 0 when none touch, NaN when out of memory. */
+double mr_world_penetration(mr_world *w);
 /* FNV-1a (64-bit) over the bytes of time, positions and velocities. */
 uint64_t mr_world_state_hash(const mr_world *w);
 

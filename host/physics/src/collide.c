@@ -103,6 +103,19 @@ int mr_contacts_detect(mr_world *w, const double *x, double gap, mr_contact_list
   return 0;
 }
 
+double mr_world_penetration(mr_world *w) {
+  if (w == NULL || w->n_detect_passes == 0) return 0.0;
+  /* A list of its own, so the contacts the next step works from stay as
+   * they are; kept, so a run that measures every step allocates nothing
+   * once it has grown. */
+  mr_contact_list *list = &w->measured;
+  double deepest = 0.0;
+  if (mr_contacts_detect(w, w->x, 0.0, list) != 0) deepest = NAN;
+  for (int i = 0; i < list->n && !isnan(deepest); i++)
+    deepest = fmax(deepest, -mr_contact_gap(w, &list->c[i], w->x));
+  return deepest;
+}
+
 static void sphere_geometry(const mr_world *w, const mr_contact *c, const double *x, double d[3],
                             double *len) {
   double ca[3], cb[3];

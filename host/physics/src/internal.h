@@ -148,6 +148,7 @@ struct mr_world {
   /* contacts: found before a step and held during it (resting set), and a
    * probe list for the end-of-step penetration test */
   mr_contact_list contacts, probe;
+  mr_contact_list measured;      /* mr_world_penetration's own, kept between calls */
   int cap_contact;               /* what the four per-contact arrays hold */
   unsigned char *contact_active; /* in the system being solved (eq. 9 or 8) */
   double *contact_pre;           /* χ̇⁻ before an impulse */

@@ -380,6 +380,7 @@ void mr_world_destroy(mr_world *w) {
   for (int i = 0; i < MR_FORCE_KIND_COUNT; i++) free(w->forces[i].data);
   mr_contact_list_free(&w->contacts);
   mr_contact_list_free(&w->probe);
+  mr_contact_list_free(&w->measured);
   mr_jac_free(&w->J);
   mr_csr_free(&w->A);
   mr_solver_destroy(w->solver);

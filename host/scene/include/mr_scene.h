@@ -93,6 +93,16 @@ typedef struct mr_scene_part {
   mr_scene_pos pos;
 } mr_scene_part;
 
+/* A puppet (physics.puppets): a unit of particles with its own whole mass
+ * for the §6.2 forces and its own sphere tree. Its particles are
+ * particles[first .. first + count), named "puppet.particle". */
+typedef struct mr_scene_puppet {
+  char name[MR_SCENE_NAME_MAX];
+  int id; /* the world's puppet number */
+  size_t first, count;
+  mr_scene_pos pos;
+} mr_scene_puppet;
+
 typedef struct mr_scene_floor {
   bool present;
   mr_plane_def def;
@@ -143,6 +153,8 @@ typedef struct mr_scene_expect {
   long resets_min, resets_max;
   double min_mean_dt;
   double min_string_stretch; /* some string reaches this many times its rest */
+  double max_speed;          /* no particle faster than this, m/s */
+  double max_penetration;    /* no two bodies deeper into each other, m */
   char load_error[256];      /* the load must fail with text containing this */
   bool has_load_error;
   /* Creep and jitter: after `settle` seconds no watched particle moves
@@ -180,6 +192,9 @@ typedef struct mr_scene {
   mr_scene_part *parts;
   size_t n_parts;
   mr_scene_floor floor;
+  mr_scene_puppet *puppets; /* none when the file declares no puppets: its
+                               particles are then one puppet, number 0 */
+  size_t n_puppets;
 
   mr_scene_control_point *control_points;
   size_t n_control_points;

@@ -62,9 +62,11 @@ typedef struct mr_scene_run_result {
   /* Rest checks (expect.rest): largest displacement of a watched particle
    * from its position at `settle`, and its largest speed after `settle`. */
   double creep, jitter;
-  double string_stretch; /* largest length/rest of any string after any step */
-  mr_status last_status; /* of the last step call */
-  char first_reset[256]; /* the physics' account of the first reset */
+  double string_stretch;  /* largest length/rest of any string after any step */
+  double max_speed;       /* fastest particle after any step, m/s */
+  double max_penetration; /* deepest contact after any step (mr_world_penetration), m */
+  mr_status last_status;  /* of the last step call */
+  char first_reset[256];  /* the physics' account of the first reset */
 } mr_scene_run_result;
 
 /* Builds the scene's world and runs it. Returns MR_SCENE_OK, or an error

@@ -35,7 +35,7 @@ static int read_point(mr_reader *r, const mr_ynode *it, void *slot) {
   if ((v = mr_scene_read_named(r, it, "a control point", keys, "control point name", c->name)) ==
       NULL)
     return -1;
-  if (mr_scene_find_particle(s, c->name) != (size_t)-1)
+  if (mr_scene_lookup_particle(r, c->name) != (size_t)-1)
     return mr_scene_read_fail(
         r, v, MR_SCENE_ERR_VALUE,
         "expected a control point name unused by particles, '%s' is a particle", c->name);

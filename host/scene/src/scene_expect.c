@@ -82,13 +82,17 @@ static int read_state_hash(mr_reader *r, const mr_ynode *v, uint64_t *out) {
 }
 
 int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "finite",      "max_deviation",      "resets",
-                                      "min_mean_dt", "min_string_stretch", "rest",
-                                      "load_error",  "state_hash",         NULL };
+  static const char *const keys[] = {
+    "finite",    "max_deviation",   "resets", "min_mean_dt", "min_string_stretch",
+    "max_speed", "max_penetration", "rest",   "load_error",  "state_hash",
+    NULL
+  };
   static const mr_scene_field fields[] = {
     { "max_deviation", MR_SCENE_FIELD_POSITIVE, EXPECT(max_deviation), 0, 0 },
     { "min_mean_dt", MR_SCENE_FIELD_POSITIVE, EXPECT(min_mean_dt), 0, 0 },
-    { "min_string_stretch", MR_SCENE_FIELD_POSITIVE, EXPECT(min_string_stretch), 0, 0 }
+    { "min_string_stretch", MR_SCENE_FIELD_POSITIVE, EXPECT(min_string_stretch), 0, 0 },
+    { "max_speed", MR_SCENE_FIELD_POSITIVE, EXPECT(max_speed), 0, 0 },
+    { "max_penetration", MR_SCENE_FIELD_POSITIVE, EXPECT(max_penetration), 0, 0 }
   };
   mr_scene_expect *e = &r->scene->expect;
   if (mr_scene_read_map(r, n, "expect", keys) != 0) return -1;
@@ -107,7 +111,7 @@ int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
   if ((v = mr_scene_yaml_get(n, "finite")) != NULL &&
       mr_scene_read_bool(r, v, "finite", &e->finite) != 0)
     return -1;
-  if (mr_scene_read_fields(r, n, fields, 3, e) != 0) return -1;
+  if (mr_scene_read_fields(r, n, fields, sizeof fields / sizeof fields[0], e) != 0) return -1;
   if ((v = mr_scene_yaml_get(n, "resets")) != NULL && read_resets(r, v) != 0) return -1;
   if ((v = mr_scene_yaml_get(n, "rest")) != NULL && read_rest(r, v) != 0) return -1;
   if ((v = mr_scene_yaml_get(n, "state_hash")) != NULL) {

@@ -209,7 +209,8 @@ static int read_force(mr_reader *r, const mr_ynode *it, const force_kind *k) {
   return k->read(r, it, f);
 }
 
-/* One array for every kind, filled kind by kind in table order. */
+/* One array for every kind, filled kind by kind in table order (within
+ * the scene's own forces, then within each puppet's). */
 int mr_scene_read_forces(mr_reader *r, const mr_ynode *physics) {
   mr_scene *s = r->scene;
   size_t total = 0;
@@ -217,8 +218,11 @@ int mr_scene_read_forces(mr_reader *r, const mr_ynode *physics) {
     const mr_ynode *n = mr_scene_yaml_get(physics, kinds[i].key);
     total += n != NULL && n->kind == MR_YNODE_SEQ ? n->count : 0;
   }
-  s->forces = calloc(total ? total : 1, sizeof *s->forces);
-  if (s->forces == NULL) return mr_scene_read_fail(r, physics, MR_SCENE_ERR_NOMEM, "out of memory");
+  /* Appends: each puppet adds its forces after the scene's own. */
+  mr_scene_force *grown = realloc(s->forces, (s->n_forces + total + 1) * sizeof *s->forces);
+  if (grown == NULL) return mr_scene_read_fail(r, physics, MR_SCENE_ERR_NOMEM, "out of memory");
+  s->forces = grown;
+  memset(s->forces + s->n_forces, 0, (total + 1) * sizeof *s->forces);
   for (int i = 0; i < N_KINDS; i++) {
     const mr_ynode *n = mr_scene_yaml_get(physics, kinds[i].key);
     if (n == NULL) continue;

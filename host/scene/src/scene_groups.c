@@ -96,7 +96,13 @@ static int read_group(mr_reader *r, const mr_ynode *it, void *slot) {
   mr_scene_group *g = slot;
   const mr_ynode *v;
   g->def = mr_default_rigid_group_def();
-  if ((v = mr_scene_read_named(r, it, "a group", keys, "group name", g->name)) == NULL) return -1;
+  char bare[MR_SCENE_NAME_MAX];
+  if ((v = mr_scene_read_named(r, it, "a group", keys, "group name", bare)) == NULL) return -1;
+  if (mr_scene_qualify(r, bare, g->name) != 0)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected '%s.%s' to fit in %d characters; shorten the puppet's or "
+                              "the group's name",
+                              r->puppet, bare, MR_SCENE_NAME_MAX - 1);
   for (size_t j = 0; j + 1 < s->n_groups; j++)
     if (strcmp(s->groups[j].name, g->name) == 0)
       return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
@@ -114,8 +120,9 @@ static int read_group(mr_reader *r, const mr_ynode *it, void *slot) {
 
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
-  return mr_scene_read_items(r, n, "physics.groups", MR_EFFECT_CONSTRAINTS, "rigid groups are",
-                             sizeof *s->groups, (void **)&s->groups, &s->n_groups, read_group);
+  return mr_scene_read_items(r, n, r->puppet ? "a puppet's groups" : "physics.groups",
+                             MR_EFFECT_CONSTRAINTS, "rigid groups are", sizeof *s->groups,
+                             (void **)&s->groups, &s->n_groups, read_group);
 }
 
 static int read_part(mr_reader *r, const mr_ynode *it, void *slot) {
@@ -144,6 +151,8 @@ static int read_part(mr_reader *r, const mr_ynode *it, void *slot) {
 
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
-  return mr_scene_read_items(r, n, "physics.parts", MR_EFFECT_SELF_COLLISION, "collision parts are",
-                             sizeof *s->parts, (void **)&s->parts, &s->n_parts, read_part);
+  return mr_scene_read_items(r, n, r->puppet ? "a puppet's parts" : "physics.parts",
+                             MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION,
+                             "collision parts are", sizeof *s->parts, (void **)&s->parts,
+                             &s->n_parts, read_part);
 }

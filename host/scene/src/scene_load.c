@@ -25,6 +25,7 @@ static void defaults(mr_scene *s) {
   mr_scene_expect *e = &s->expect;
   e->finite = true;
   e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
+  e->max_speed = e->max_penetration = NAN;
   e->settle = e->creep = e->jitter = NAN;
   e->resets_min = e->resets_max = -1;
 }
@@ -133,7 +134,7 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
                                    mr_scene_error *err) {
   defaults(scene);
   memset(err, 0, sizeof *err);
-  mr_reader r = { name, err, scene };
+  mr_reader r = { .file = name, .err = err, .scene = scene };
   scene->path = malloc(strlen(name) + 1);
   if (scene->path == NULL) {
     mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
@@ -151,6 +152,7 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
   }
   int rc = read_root(&r, doc.root);
   mr_scene_yaml_free(&doc);
+  free(r.by_name);
   if (rc != 0) {
     mr_scene_free(scene);
     return err->status ? err->status : MR_SCENE_ERR_SCHEMA;
@@ -161,7 +163,7 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
 mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error *err) {
   defaults(scene);
   memset(err, 0, sizeof *err);
-  mr_reader r = { path, err, scene };
+  mr_reader r = { .file = path, .err = err, .scene = scene };
   FILE *f = fopen(path, "rb");
   if (f == NULL) {
     mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_IO, "expected a readable scene file: %s",
@@ -214,6 +216,7 @@ void mr_scene_free(mr_scene *s) {
   free(s->groups);
   for (size_t i = 0; i < s->n_parts; i++) free((int *)s->parts[i].def.particles);
   free(s->parts);
+  free(s->puppets);
   free(s->forces);
   free(s->control_points);
   free(s->track.keys);

@@ -10,10 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Two particles closer than this are one point: every constraint or force
- * between them has no direction (a zero row of J, §5.2). */
-#define COINCIDENT_M 1e-6
-
 #define WORLD(field) offsetof(mr_world_def, field)
 
 static double dist3(const double a[3], const double b[3]) {
@@ -168,8 +164,9 @@ static int read_contact(mr_reader *r, const mr_ynode *n) {
     { "rest_speed", MR_SCENE_FIELD_NONNEG, WORLD(rest_speed), 0, 0 }
   };
   if (mr_scene_read_map(r, n, "physics.contact", keys) != 0 ||
-      mr_scene_read_need_effect(r, n, MR_EFFECT_PLANES | MR_EFFECT_SELF_COLLISION,
-                                "contact settings are") != 0)
+      mr_scene_read_need_effect(
+          r, n, MR_EFFECT_PLANES | MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION,
+          "contact settings are") != 0)
     return -1;
   return mr_scene_read_fields(r, n, fields, 2, &r->scene->world);
 }
@@ -218,15 +215,20 @@ static int read_particle(mr_reader *r, const mr_ynode *it, void *slot) {
   mr_scene_particle *p = slot;
   const mr_ynode *v;
   p->def = mr_default_particle_def();
-  if ((v = mr_scene_read_named(r, it, "a particle", keys, "particle name", p->name)) == NULL)
+  char bare[MR_SCENE_NAME_MAX];
+  if ((v = mr_scene_read_named(r, it, "a particle", keys, "particle name", bare)) == NULL)
     return -1;
-  if (mr_scene_find_particle(r->scene, p->name) < r->scene->n_particles - 1)
+  if (mr_scene_qualify(r, bare, p->name) != 0)
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                              "expected a unique particle name, '%s' is already declared", p->name);
+                              "expected '%s.%s' to fit in %d characters; shorten the puppet's or "
+                              "the particle's name",
+                              r->puppet, bare, MR_SCENE_NAME_MAX - 1);
   if ((v = mr_scene_read_need(r, it, "position", "a particle")) == NULL ||
       mr_scene_read_vec3(r, v, "position", p->def.position) != 0 ||
       mr_scene_read_fields(r, it, fields, 2, &p->def) != 0)
     return -1;
+  for (int k = 0; k < 3; k++) p->def.position[k] += r->offset[k];
+  p->def.puppet = r->puppet_id;
   if ((v = mr_scene_yaml_get(it, "pinned")) != NULL &&
       (mr_scene_read_bool(r, v, "pinned", &p->pinned) != 0 ||
        (p->pinned &&
@@ -243,22 +245,15 @@ static int read_particle(mr_reader *r, const mr_ynode *it, void *slot) {
   return 0;
 }
 
-static int read_particles(mr_reader *r, const mr_ynode *n) {
+int mr_scene_read_particles(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
   if (n->kind == MR_YNODE_SEQ && n->count == 0)
     return mr_scene_read_fail(r, n, MR_SCENE_ERR_VALUE, "expected at least one particle");
-  if (mr_scene_read_items(r, n, "physics.particles", 0, NULL, sizeof *s->particles,
-                          (void **)&s->particles, &s->n_particles, read_particle) != 0)
+  if (mr_scene_read_items(r, n, r->puppet ? "a puppet's particles" : "physics.particles", 0, NULL,
+                          sizeof *s->particles, (void **)&s->particles, &s->n_particles,
+                          read_particle) != 0)
     return -1;
-  for (size_t i = 0; i < s->n_particles; i++)
-    for (size_t j = 0; j < i; j++)
-      if (dist3(s->particles[i].def.position, s->particles[j].def.position) < COINCIDENT_M)
-        return mr_scene_read_fail_at(
-            r, s->particles[i].pos.line, s->particles[i].pos.column, MR_SCENE_ERR_VALUE,
-            "particle '%s' coincides with particle '%s' (line %d); "
-            "expected distinct positions",
-            s->particles[i].name, s->particles[j].name, s->particles[j].pos.line);
-  return 0;
+  return mr_scene_index_particles(r);
 }
 
 static int read_distance(mr_reader *r, const mr_ynode *it, void *slot) {
@@ -284,11 +279,12 @@ static int read_distance(mr_reader *r, const mr_ynode *it, void *slot) {
   d->length = dist3(s->particles[d->a].def.position, s->particles[d->b].def.position);
   const mr_ynode *len = mr_scene_yaml_get(it, "length");
   if (len != NULL && mr_scene_read_number(r, len, "length", &d->length) != 0) return -1;
-  if (!(d->length > COINCIDENT_M))
+  if (!(d->length > MR_SCENE_COINCIDENT_M))
     return mr_scene_read_fail(r, len ? len : it, MR_SCENE_ERR_VALUE,
                               "zero-length constraint between '%s' and '%s'; expected a length "
                               "above %g m",
-                              s->particles[d->a].name, s->particles[d->b].name, COINCIDENT_M);
+                              s->particles[d->a].name, s->particles[d->b].name,
+                              MR_SCENE_COINCIDENT_M);
   c->pos = mr_scene_read_pos(it);
   return 0;
 }
@@ -310,7 +306,7 @@ static int read_floor(mr_reader *r, const mr_ynode *n) {
   for (size_t i = 0; i < r->scene->n_particles; i++) {
     const mr_scene_particle *p = &r->scene->particles[i];
     double bottom = p->def.position[1] - p->def.radius;
-    if (bottom < f->def.offset - COINCIDENT_M)
+    if (bottom < f->def.offset - MR_SCENE_COINCIDENT_M)
       return mr_scene_read_fail_at(r, p->pos.line, p->pos.column, MR_SCENE_ERR_VALUE,
                                    "particle '%s' starts below the floor (y - radius = %g < %g); "
                                    "expected it on or above the floor",
@@ -323,11 +319,12 @@ static int read_floor(mr_reader *r, const mr_ynode *n) {
 static void physics_keys(const char **keys, size_t max) {
   static const char *const head[] = { "effects", "gravity",   "drag",    "ats",         "solver",
                                       "contact", "particles", "control", "constraints", "groups" };
-  static const char *const tail[] = { "floor", "parts", "string_correction", NULL };
+  static const char *const tail[] = { "floor", "parts", "string_correction", "puppets", NULL };
+  enum { N_TAIL = sizeof tail / sizeof tail[0] };
   size_t n = 0;
   for (size_t i = 0; i < sizeof head / sizeof head[0]; i++) keys[n++] = head[i];
-  n += mr_scene_force_keys(keys + n, max - n - 4);
-  for (size_t i = 0; i < 4; i++) keys[n++] = tail[i];
+  n += mr_scene_force_keys(keys + n, max - n - N_TAIL);
+  for (size_t i = 0; i < N_TAIL; i++) keys[n++] = tail[i];
 }
 
 /* A section read by fn when the file has it. */
@@ -337,11 +334,11 @@ static int optional(mr_reader *r, const mr_ynode *n, const char *key,
   return v != NULL ? fn(r, v) : 0;
 }
 
-static int read_constraints(mr_reader *r, const mr_ynode *n) {
+int mr_scene_read_constraints(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
-  return mr_scene_read_items(r, n, "physics.constraints", MR_EFFECT_CONSTRAINTS, "constraints are",
-                             sizeof *s->distances, (void **)&s->distances, &s->n_distances,
-                             read_distance);
+  return mr_scene_read_items(r, n, r->puppet ? "a puppet's constraints" : "physics.constraints",
+                             MR_EFFECT_CONSTRAINTS, "constraints are", sizeof *s->distances,
+                             (void **)&s->distances, &s->n_distances, read_distance);
 }
 
 static int read_control(mr_reader *r, const mr_ynode *n) {
@@ -360,12 +357,18 @@ int mr_scene_read_physics(mr_reader *r, const mr_ynode *n) {
       optional(r, n, "string_correction", read_string_correction) != 0)
     return -1;
   /* Fixed order, whatever the order in the file: later items name earlier
-   * ones. */
-  if ((v = mr_scene_read_need(r, n, "particles", "physics")) == NULL || read_particles(r, v) != 0)
+   * ones, and every particle has its world id before the control points
+   * take theirs after them. */
+  const mr_ynode *puppets = mr_scene_yaml_get(n, "puppets");
+  if ((v = mr_scene_yaml_get(n, "particles")) != NULL && mr_scene_read_particles(r, v) != 0)
     return -1;
+  if (v == NULL && puppets == NULL)
+    return mr_scene_read_need(r, n, "particles", "physics") ? 0 : -1;
+  if (puppets != NULL && mr_scene_read_puppet_particles(r, puppets) != 0) return -1;
   if (optional(r, n, "control", read_control) != 0 ||
-      optional(r, n, "constraints", read_constraints) != 0 ||
+      optional(r, n, "constraints", mr_scene_read_constraints) != 0 ||
       optional(r, n, "groups", mr_scene_read_groups) != 0 || mr_scene_read_forces(r, n) != 0 ||
+      (puppets != NULL && mr_scene_read_puppet_items(r, puppets) != 0) ||
       optional(r, n, "floor", read_floor) != 0 || optional(r, n, "parts", mr_scene_read_parts) != 0)
     return -1;
   return 0;

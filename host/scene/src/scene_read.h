@@ -7,10 +7,22 @@
 #include "mr_scene.h"
 #include "scene_yaml.h"
 
+/* Two particles closer than this are one point: every constraint or force
+ * between them has no direction (a zero row of J, §5.2). */
+#define MR_SCENE_COINCIDENT_M 1e-6
+
 typedef struct mr_reader {
   const char *file;
   mr_scene_error *err;
   mr_scene *scene;
+  /* While a puppet is read: its name, which qualifies the names it
+   * declares ("alice.hand"), its world puppet number and its placement. */
+  const char *puppet;
+  int puppet_id;
+  double offset[3];
+  /* Particle indices sorted by name, for lookups in O(log n). */
+  size_t *by_name;
+  size_t n_by_name;
 } mr_reader;
 
 #if defined(__GNUC__)
@@ -100,6 +112,15 @@ int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *
 /* [a, b] under `between`: two distinct points, not both control points. */
 int mr_scene_read_between(mr_reader *r, const mr_ynode *item, const char *what, int *a, int *b);
 
+/* Indexes the particles read so far by name and checks that no two share
+ * a name or a place; the error names the later one of a pair. */
+int mr_scene_index_particles(mr_reader *r);
+/* A particle's index by its full name, or (size_t)-1. */
+size_t mr_scene_lookup_particle(const mr_reader *r, const char *name);
+/* name qualified by the puppet being read ("alice.hand"); -1 when it does
+ * not fit. */
+int mr_scene_qualify(const mr_reader *r, const char *name, char out[MR_SCENE_NAME_MAX]);
+
 /* Fails unless the scene declared one of the effect bits; `what` names the
  * item ("springs are"). */
 int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, uint32_t effect, const char *what);
@@ -112,6 +133,13 @@ int mr_scene_read_control(mr_reader *r, const mr_ynode *control);
 int mr_scene_read_expect(mr_reader *r, const mr_ynode *expect);
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *groups);
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *parts);
+int mr_scene_read_particles(mr_reader *r, const mr_ynode *particles);
+int mr_scene_read_constraints(mr_reader *r, const mr_ynode *constraints);
+/* physics.puppets in two passes: every puppet's particles first, so that
+ * world ids stay fixed before anything names a control point; then their
+ * constraints, groups, forces and parts. */
+int mr_scene_read_puppet_particles(mr_reader *r, const mr_ynode *puppets);
+int mr_scene_read_puppet_items(mr_reader *r, const mr_ynode *puppets);
 int mr_scene_read_forces(mr_reader *r, const mr_ynode *physics);
 /* Adds one force to a world with its kind's add call; *what names the item
  * for a refusal ("the spring"). */

@@ -164,6 +164,8 @@ static mr_scene_step record(run *u, const mr_step_report *rep) {
   if (!state_finite(u->xyz, u->n) || !isfinite(row.error) || !isfinite(row.max_speed))
     r->finite = false;
   r->string_stretch = fmax(r->string_stretch, string_stretch(u->s, &u->sw));
+  if (isfinite(row.max_speed)) r->max_speed = fmax(r->max_speed, row.max_speed);
+  r->max_penetration = fmax(r->max_penetration, mr_world_penetration(u->sw.world));
   r->steps += (uint64_t)rep->steps;
   r->rejected += (uint64_t)rep->rejected;
   if (rep->divergences > 0 && r->resets == 0)
@@ -288,6 +290,15 @@ int mr_scene_check(const mr_scene *s, const mr_scene_run_result *r, char *why, s
   if (!isnan(e->min_string_stretch) && !(r->string_stretch >= e->min_string_stretch)) {
     snprintf(why, size, "expected a string stretched to >= %g x its rest length, got %g x",
              e->min_string_stretch, r->string_stretch);
+    return -1;
+  }
+  if (!isnan(e->max_speed) && !(r->max_speed <= e->max_speed)) {
+    snprintf(why, size, "expected speeds <= %g m/s, got %g m/s", e->max_speed, r->max_speed);
+    return -1;
+  }
+  if (!isnan(e->max_penetration) && !(r->max_penetration <= e->max_penetration)) {
+    snprintf(why, size, "expected penetration <= %g m, got %g m", e->max_penetration,
+             r->max_penetration);
     return -1;
   }
   if (!isnan(e->creep) && !(r->creep <= e->creep)) {

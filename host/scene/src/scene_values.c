@@ -319,13 +319,15 @@ int mr_scene_read_items(mr_reader *r, const mr_ynode *seq, const char *what, uin
   if (mr_scene_read_seq(r, seq, what) != 0) return -1;
   if (seq->count > 0 && effect != 0 && mr_scene_read_need_effect(r, seq, effect, declared) != 0)
     return -1;
-  unsigned char *a = calloc(seq->count ? seq->count : 1, size);
+  /* Appends: each puppet adds its items after the scene's own. */
+  size_t have = *count, total = have + seq->count;
+  unsigned char *a = realloc(*items, (total ? total : 1) * size);
   if (a == NULL) return mr_scene_read_fail(r, seq, MR_SCENE_ERR_NOMEM, "out of memory");
+  memset(a + have * size, 0, (total - have) * size);
   *items = a;
-  *count = 0;
   for (size_t i = 0; i < seq->count; i++) {
-    *count = i + 1;
-    if (read(r, seq->items[i], a + i * size) != 0) return -1;
+    *count = have + i + 1;
+    if (read(r, seq->items[i], a + (have + i) * size) != 0) return -1;
   }
   return 0;
 }
@@ -343,12 +345,18 @@ const char *mr_scene_point_name(const mr_scene *s, int id) {
 
 /* A name resolved to a world id among the particles, the control points,
  * or both; `expected` completes "expected the name of ...". */
+/* A name resolved to a world id among the particles, the control points,
+ * or both; `expected` completes "expected the name of ...". Inside a
+ * puppet its own particles come first: "hand" is "alice.hand" there. */
 static int resolve(mr_reader *r, const mr_ynode *node, const char *what, bool particles,
                    bool controls, const char *expected, int *id) {
-  char name[MR_SCENE_NAME_MAX];
+  char name[MR_SCENE_NAME_MAX], own[MR_SCENE_NAME_MAX];
   const mr_scene *s = r->scene;
   if (mr_scene_read_name(r, node, what, name) != 0) return -1;
-  size_t i = particles ? mr_scene_find_particle(s, name) : (size_t)-1;
+  size_t i = (size_t)-1;
+  if (particles && r->puppet != NULL && mr_scene_qualify(r, name, own) == 0)
+    i = mr_scene_lookup_particle(r, own);
+  if (particles && i == (size_t)-1) i = mr_scene_lookup_particle(r, name);
   if (i == (size_t)-1 && controls && (i = mr_scene_find_control_point(s, name)) != (size_t)-1)
     i += s->n_particles;
   if (i == (size_t)-1)
