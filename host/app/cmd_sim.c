@@ -90,8 +90,8 @@ static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, d
   if (scene->world.effects &
       (MR_EFFECT_PLANES | MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION))
     printf("penetration max: %.3g m\n", r->max_penetration);
-  if (r->string_stretch > 0) /* some string states its rest length */
-    printf("string stretch max: %.3g x rest\n", r->string_stretch);
+  if (r->string_stretch > 0) /* some string has a rest length above 0 */
+    printf("string stretch max: %.6g x rest\n", r->string_stretch);
   if (scene->expect.n_watch > 0) {
     printf("creep: %.3e m\n", r->creep);
     printf("jitter: %.3e m/s\n", r->jitter);

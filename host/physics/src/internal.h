@@ -126,6 +126,11 @@ struct mr_world {
 
   /* derived at finalize */
   int npuppets, cap_puppets;
+  /* The string correction's working set: per string, released from the
+   * projection because holding it would push; per row, its string. */
+  unsigned char *string_released;
+  int *string_of_row;
+  int cap_string_work;
   double *puppet_mass;
   unsigned char *part_adjacent; /* nparts × nparts */
   int ntrees;
@@ -290,6 +295,11 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
 int mr_project_positions(mr_world *w, double t, double *x, const double *v, double tol,
                          int max_iter);
 int mr_project_velocities(mr_world *w, double t, const double *x, double *v);
+/* The pieces of both: the constraint rows at (t, x, v) into w->J, w->row_c
+ * and w->row_cdot, with room for `extra` rows after them (the number of
+ * constraint rows, or −1); and q += M⁻¹ Jᵀ λ for the solve just made. */
+int mr_project_rows(mr_world *w, double t, const double *x, const double *v, int extra);
+void mr_project_apply(mr_world *w, double *q);
 
 /* forces.c: the integrator's stability limit on Δt for the stiffest mode
  * of the applied forces (and eq. 8's feedback); links too stiff for a step

@@ -16,19 +16,21 @@
 #include <math.h>
 #include <string.h>
 
-/* The constraint rows at (t, x, v) into w->J, w->row_c, w->row_cdot; the
- * number of rows, or −1. */
-static int constraint_rows(mr_world *w, double t, const double *x, const double *v) {
+int mr_project_rows(mr_world *w, double t, const double *x, const double *v, int extra) {
   int nc = mr_constraint_row_count(w);
+  if (nc + extra == 0) return 0;
+  if (mr_rows_reserve(w, nc + extra) != 0 || mr_jac_reset(&w->J, w->n) != 0) return -1;
   if (nc == 0) return 0;
-  if (mr_rows_reserve(w, nc) != 0 || mr_jac_reset(&w->J, w->n) != 0) return -1;
   int r = mr_constraints_rows(w, t, x, v, w->row_c, w->row_cdot, w->row_bias);
   for (int i = 0; i < r; i++) w->row_contact[i] = -1;
   return r;
 }
 
-/* q += M⁻¹ Jᵀ λ for the solve just made. */
-static void apply(mr_world *w, double *q) {
+static int constraint_rows(mr_world *w, double t, const double *x, const double *v) {
+  return mr_project_rows(w, t, x, v, 0);
+}
+
+void mr_project_apply(mr_world *w, double *q) {
   double *d = w->scratch.acc_try;
   mr_jac_tmul(&w->J, w->lambda, d);
   for (int i = 0; i < 3 * w->n; i++) q[i] += d[i] * w->inv_mass[i / 3];
@@ -47,7 +49,7 @@ int mr_project_positions(mr_world *w, double t, double *x, const double *v, doub
     for (int i = 0; i < rows; i++) w->rhs[i] = -w->row_c[i];
     if (mr_solve_rows(w, 1) != 0) return -1;
     memcpy(last, x, bytes);
-    apply(w, x);
+    mr_project_apply(w, x);
     double next = mr_constraints_deviation(w, t, x);
     if (!(next < e)) { /* no progress: undo the round that did harm */
       memcpy(x, last, bytes);
@@ -64,6 +66,6 @@ int mr_project_velocities(mr_world *w, double t, const double *x, double *v) {
   if (rows <= 0) return rows;
   for (int i = 0; i < rows; i++) w->rhs[i] = -w->row_cdot[i];
   if (mr_solve_rows(w, 1) != 0) return -1;
-  apply(w, v);
+  mr_project_apply(w, v);
   return 0;
 }

@@ -114,11 +114,13 @@ static int reserve_contacts(mr_world *w) {
   if (cap > 0 &&
       (mr_grow((void **)&w->contacts.c, &w->contacts.cap, cap, sizeof(mr_contact)) != 0 ||
        mr_grow((void **)&w->probe.c, &w->probe.cap, cap, sizeof(mr_contact)) != 0 ||
+       mr_grow((void **)&w->measured.c, &w->measured.cap, cap, sizeof(mr_contact)) != 0 ||
        contact_capacity(w, cap) != 0))
     return -1;
   /* Rows and J entries: a distance has two particles, a pin or curve row
-   * one, a plane contact one, a sphere contact up to four. */
-  int rows = mr_constraint_row_count(w) + cap;
+   * one, a plane contact one, a sphere contact up to four; the string
+   * correction adds one per string. */
+  int rows = mr_constraint_row_count(w) + cap + MR_FORCES(w, STRINGS)->n;
   long plane_rows = plane_pairs < cap ? plane_pairs : cap;
   long entries =
       2L * w->distances.n + 3L * (w->pins.n + w->curves.n) + plane_rows + 4L * (cap - plane_rows);

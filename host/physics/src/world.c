@@ -381,6 +381,8 @@ void mr_world_destroy(mr_world *w) {
   mr_contact_list_free(&w->contacts);
   mr_contact_list_free(&w->probe);
   mr_contact_list_free(&w->measured);
+  free(w->string_released);
+  free(w->string_of_row);
   mr_jac_free(&w->J);
   mr_csr_free(&w->A);
   mr_solver_destroy(w->solver);

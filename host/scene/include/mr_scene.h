@@ -153,6 +153,7 @@ typedef struct mr_scene_expect {
   long resets_min, resets_max;
   double min_mean_dt;
   double min_string_stretch; /* some string reaches this many times its rest */
+  double max_string_stretch; /* no string ever longer than this times its rest */
   double max_speed;          /* no particle faster than this, m/s */
   double max_penetration;    /* no two bodies deeper into each other, m */
   char load_error[256];      /* the load must fail with text containing this */

@@ -82,15 +82,15 @@ static int read_state_hash(mr_reader *r, const mr_ynode *v, uint64_t *out) {
 }
 
 int mr_scene_read_expect(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {
-    "finite",    "max_deviation",   "resets", "min_mean_dt", "min_string_stretch",
-    "max_speed", "max_penetration", "rest",   "load_error",  "state_hash",
-    NULL
-  };
+  static const char *const keys[] = { "finite",      "max_deviation",      "resets",
+                                      "min_mean_dt", "min_string_stretch", "max_string_stretch",
+                                      "max_speed",   "max_penetration",    "rest",
+                                      "load_error",  "state_hash",         NULL };
   static const mr_scene_field fields[] = {
     { "max_deviation", MR_SCENE_FIELD_POSITIVE, EXPECT(max_deviation), 0, 0 },
     { "min_mean_dt", MR_SCENE_FIELD_POSITIVE, EXPECT(min_mean_dt), 0, 0 },
     { "min_string_stretch", MR_SCENE_FIELD_POSITIVE, EXPECT(min_string_stretch), 0, 0 },
+    { "max_string_stretch", MR_SCENE_FIELD_POSITIVE, EXPECT(max_string_stretch), 0, 0 },
     { "max_speed", MR_SCENE_FIELD_POSITIVE, EXPECT(max_speed), 0, 0 },
     { "max_penetration", MR_SCENE_FIELD_POSITIVE, EXPECT(max_penetration), 0, 0 }
   };

@@ -25,7 +25,7 @@ static void defaults(mr_scene *s) {
   mr_scene_expect *e = &s->expect;
   e->finite = true;
   e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
-  e->max_speed = e->max_penetration = NAN;
+  e->max_speed = e->max_penetration = e->max_string_stretch = NAN;
   e->settle = e->creep = e->jitter = NAN;
   e->resets_min = e->resets_max = -1;
 }

@@ -29,21 +29,33 @@ static double max_speed(const mr_scene_world *sw) {
   return m;
 }
 
-/* How far the most stretched string is past its rest length, as a ratio:
- * the distance from its control point to its particle over its rest. Only
- * strings whose file states a rest length above 0 have a ratio. */
-static double string_stretch(const mr_scene *s, const mr_scene_world *sw) {
-  double m = 0;
+/* A string's length: from its control point to its particle. */
+static double string_length(const mr_scene_world *sw, const mr_string_def *str) {
+  double a[3], b[3];
+  if (mr_world_particle_state(sw->world, str->frame_particle, a, NULL) != MR_OK ||
+      mr_world_particle_state(sw->world, str->puppet_particle, b, NULL) != MR_OK)
+    return NAN;
+  double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+/* Each force's string rest length: the file's, else the length at the
+ * start, as the physics takes it; 0 for other forces. */
+static void string_rests(const mr_scene *s, const mr_scene_world *sw, double *rest) {
   for (size_t i = 0; i < s->n_forces; i++) {
     const mr_string_def *str = &s->forces[i].def.string;
-    double a[3], b[3];
-    if (s->forces[i].kind != MR_EFFECT_STRINGS || !(str->rest_length > 0)) continue;
-    if (mr_world_particle_state(sw->world, str->frame_particle, a, NULL) != MR_OK ||
-        mr_world_particle_state(sw->world, str->puppet_particle, b, NULL) != MR_OK)
-      continue;
-    double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-    m = fmax(m, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / str->rest_length);
+    rest[i] = s->forces[i].kind != MR_EFFECT_STRINGS ? 0.0
+              : str->rest_length >= 0                ? str->rest_length
+                                                     : string_length(sw, str);
   }
+}
+
+/* How far the most stretched string is past its rest length, as a ratio
+ * of its length to its rest. A string of rest 0 has no ratio. */
+static double string_stretch(const mr_scene *s, const mr_scene_world *sw, const double *rest) {
+  double m = 0;
+  for (size_t i = 0; i < s->n_forces; i++)
+    if (rest[i] > 0) m = fmax(m, string_length(sw, &s->forces[i].def.string) / rest[i]);
   return m;
 }
 
@@ -95,7 +107,8 @@ typedef struct run {
   mr_scene_run_result *r;
   mr_scene_world sw;
   double duration, fps, dt_max;
-  double *xyz; /* positions, to check every state is finite */
+  double *xyz;  /* positions, to check every state is finite */
+  double *rest; /* per force: a string's rest length, else 0 */
   int n;
   watcher w;
   double sum_dt, sum_err2;
@@ -113,16 +126,19 @@ static mr_scene_status run_open(run *u, mr_scene_error *err) {
   u->dt_max = s->world.dt_max;
   u->n = mr_world_particle_count(u->sw.world);
   u->xyz = malloc((size_t)(u->n > 0 ? u->n : 1) * 3 * sizeof *u->xyz);
+  u->rest = calloc(s->n_forces ? s->n_forces : 1, sizeof *u->rest);
+  if (u->rest != NULL) string_rests(s, &u->sw, u->rest);
   double *anchor = calloc(s->expect.n_watch ? 3 * s->expect.n_watch : 1, sizeof *anchor);
   u->w = (watcher){ &s->expect, &u->sw, anchor, false };
   u->t_frame = -1.0;
-  if (u->xyz == NULL || anchor == NULL)
+  if (u->xyz == NULL || u->rest == NULL || anchor == NULL)
     return run_fail(s, err, MR_SCENE_ERR_NOMEM, "out of memory", 0);
   return MR_SCENE_OK;
 }
 
 static void run_close(run *u) {
   free(u->xyz);
+  free(u->rest);
   free(u->w.anchor);
   mr_scene_world_free(&u->sw);
 }
@@ -163,7 +179,7 @@ static mr_scene_step record(run *u, const mr_step_report *rep) {
   mr_world_positions(u->sw.world, u->xyz, u->n);
   if (!state_finite(u->xyz, u->n) || !isfinite(row.error) || !isfinite(row.max_speed))
     r->finite = false;
-  r->string_stretch = fmax(r->string_stretch, string_stretch(u->s, &u->sw));
+  r->string_stretch = fmax(r->string_stretch, string_stretch(u->s, &u->sw, u->rest));
   if (isfinite(row.max_speed)) r->max_speed = fmax(r->max_speed, row.max_speed);
   r->max_penetration = fmax(r->max_penetration, mr_world_penetration(u->sw.world));
   r->steps += (uint64_t)rep->steps;
@@ -290,6 +306,11 @@ int mr_scene_check(const mr_scene *s, const mr_scene_run_result *r, char *why, s
   if (!isnan(e->min_string_stretch) && !(r->string_stretch >= e->min_string_stretch)) {
     snprintf(why, size, "expected a string stretched to >= %g x its rest length, got %g x",
              e->min_string_stretch, r->string_stretch);
+    return -1;
+  }
+  if (!isnan(e->max_string_stretch) && !(r->string_stretch <= e->max_string_stretch)) {
+    snprintf(why, size, "expected every string within %g x its rest length, got %g x",
+             e->max_string_stretch, r->string_stretch);
     return -1;
   }
   if (!isnan(e->max_speed) && !(r->max_speed <= e->max_speed)) {
