@@ -8,6 +8,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <string.h>
 
 #include "mr_pose.h"
 
@@ -101,6 +102,37 @@ static void interpolate_slerps_the_short_way_at_a_constant_rate(void **state) {
   assert_vec(axis, 0, 0, 0, 0);
 }
 
+/* A jump in the input reaches the follower at most max_move and max_turn
+ * at a time, along the straight line and the short slerp; within them the
+ * goal itself comes out, to the bit; a goal that is not finite is held. */
+static void approach_limits_a_jump_and_passes_a_small_move(void **state) {
+  (void)state;
+  mr_pose a = mr_pose_identity();
+  const double far[3] = { 2.0, 0.0, 0.0 }, deg[3] = { 0, 0, 90 };
+  mr_pose b = mr_pose_from_euler_deg(far, deg);
+  mr_pose o = mr_pose_approach(&a, &b, 0.5, pi / 8);
+  assert_vec(o.position, 0.5, 0, 0, 1e-15);
+  double axis[3];
+  assert_true(fabs(mr_pose_turn(a.orientation, o.orientation, axis) - pi / 8) < 1e-12);
+  assert_vec(axis, 0, 0, 1, 1e-12);
+  /* Five more of the same reach it, and stay. */
+  for (int i = 0; i < 5; i++) o = mr_pose_approach(&o, &b, 0.5, pi / 8);
+  assert_true(memcmp(&o, &b, sizeof o) == 0);
+  const double near[3] = { 0.1, 0.0, 0.0 }, tilt[3] = { 5, 0, 0 };
+  mr_pose c = mr_pose_from_euler_deg(near, tilt);
+  o = mr_pose_approach(&a, &c, 0.5, pi / 8);
+  assert_true(memcmp(&o, &c, sizeof o) == 0);
+  /* The two limits are separate: a pure turn is not slowed by the move. */
+  const double zero[3] = { 0, 0, 0 };
+  mr_pose d = mr_pose_from_euler_deg(zero, deg);
+  o = mr_pose_approach(&a, &d, 0.0, pi);
+  assert_true(memcmp(o.orientation, d.orientation, sizeof o.orientation) == 0);
+  mr_pose bad = b;
+  bad.position[1] = NAN;
+  o = mr_pose_approach(&a, &bad, 1.0, 1.0);
+  assert_true(memcmp(&o, &a, sizeof o) == 0);
+}
+
 static void normalize_refuses_zero_and_non_finite_quaternions(void **state) {
   (void)state;
   mr_pose p = mr_pose_identity();
@@ -122,6 +154,7 @@ int main(void) {
     cmocka_unit_test(unrotate_undoes_rotate_and_identity_moves_nothing),
     cmocka_unit_test(compose_applies_the_second_pose_first),
     cmocka_unit_test(interpolate_slerps_the_short_way_at_a_constant_rate),
+    cmocka_unit_test(approach_limits_a_jump_and_passes_a_small_move),
     cmocka_unit_test(normalize_refuses_zero_and_non_finite_quaternions),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

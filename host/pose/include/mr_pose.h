@@ -48,6 +48,15 @@ mr_pose mr_pose_interpolate(const mr_pose *a, const mr_pose *b, double s);
  * slerp over a time span T turns at the constant rate angle/T about it. */
 double mr_pose_turn(const double q0[4], const double q1[4], double axis[3]);
 
+/* The pose a rate-limited follower reaches heading from `from` to `to`
+ * when it may move at most max_move (m) and turn at most max_turn (rad):
+ * the position goes straight towards the goal, the orientation by slerp
+ * the short way, each the whole way when within its allowance, else its
+ * allowed part. A goal that is not finite leaves `from` as it is. This is
+ * the rule that keeps a jump in the input (a glove reconnecting, a track
+ * that teleports) from reaching the physics in one step (§7). */
+mr_pose mr_pose_approach(const mr_pose *from, const mr_pose *to, double max_move, double max_turn);
+
 /* A pose from a file's position and x-y-z Euler angles in degrees: x is
  * applied first, then y, then z (q = qz qy qx, v' = Rz Ry Rx v), as the
  * scene files have always meant them. */

@@ -103,6 +103,32 @@ mr_pose mr_pose_interpolate(const mr_pose *from, const mr_pose *to, double s) {
   return o;
 }
 
+static int pose_finite(const mr_pose *p) {
+  for (int k = 0; k < 3; k++)
+    if (!isfinite(p->position[k])) return 0;
+  for (int k = 0; k < 4; k++)
+    if (!isfinite(p->orientation[k])) return 0;
+  return 1;
+}
+
+mr_pose mr_pose_approach(const mr_pose *from, const mr_pose *to, double max_move, double max_turn) {
+  if (!pose_finite(to)) return *from;
+  double d[3], dist = 0, axis[3];
+  for (int k = 0; k < 3; k++) {
+    d[k] = to->position[k] - from->position[k];
+    dist += d[k] * d[k];
+  }
+  dist = sqrt(dist);
+  double angle = mr_pose_turn(from->orientation, to->orientation, axis);
+  double sp = dist <= max_move ? 1.0 : fmax(max_move, 0.0) / dist;
+  double sq = angle <= max_turn ? 1.0 : fmax(max_turn, 0.0) / angle;
+  /* Within its allowance a part is the goal's own, to the bit. */
+  mr_pose o = sq < 1.0 ? mr_pose_interpolate(from, to, sq) : *to;
+  if (sp < 1.0)
+    for (int k = 0; k < 3; k++) o.position[k] = from->position[k] + sp * d[k];
+  return o;
+}
+
 /* The turn is r = q1 q0*: its vector part is the axis times sin θ, and the
  * rotation angle is twice the half angle θ. */
 double mr_pose_turn(const double q0[4], const double q1_in[4], double axis[3]) {

@@ -136,8 +136,9 @@ typedef struct mr_scene_track {
   size_t n_keys;
   /* oscillate: s(t) = ramp(t) sin(2 pi f (t - start) + phase) scales the
    * displacement and the turn, both given at s = 1. */
-  double amplitude[3]; /* m */
-  double turn[4];      /* the rotation at s = 1, in the frame's own axes */
+  double amplitude[3];  /* m */
+  double quadrature[3]; /* m, moved by c(t), the cosine a quarter period ahead */
+  double turn[4];       /* the rotation at s = 1, in the frame's own axes */
   double frequency_hz;
   double phase_rad;
   double start; /* s */
@@ -172,6 +173,11 @@ typedef struct mr_scene_expect {
 
 /* The default guard on one run's step tries (sim.max_steps). */
 #define MR_SCENE_MAX_STEPS 2000000L
+/* The defaults of control.max_speed (m/s) and control.max_turn_rate
+ * (deg/s): above the fastest a hand moves a control bar (Fig. 10's extreme
+ * is 11 m/s), far below a teleport (2 m in a 60 Hz frame is 120 m/s). */
+#define MR_SCENE_CONTROL_MAX_SPEED    20.0
+#define MR_SCENE_CONTROL_MAX_TURN_DEG 1440.0
 
 typedef struct mr_scene {
   char *path;
@@ -200,6 +206,10 @@ typedef struct mr_scene {
   mr_scene_control_point *control_points;
   size_t n_control_points;
   mr_pose control_pose; /* at t = 0 before the track */
+  /* How fast the frame may follow its track (control.max_speed, m/s;
+   * control.max_turn_rate, read in deg/s, kept in rad/s): a jump in the
+   * input is spread over as many frames as these allow (mr_pose_approach). */
+  double control_max_speed, control_max_turn;
   mr_scene_track track;
 
   mr_scene_expect expect;

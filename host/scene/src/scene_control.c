@@ -80,10 +80,11 @@ static int read_keyframes(mr_reader *r, const mr_ynode *n) {
 }
 
 static int read_oscillate(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "amplitude", "rotation", "frequency", "phase",
-                                      "start",     "ramp",     NULL };
+  static const char *const keys[] = { "amplitude", "quadrature", "rotation", "frequency",
+                                      "phase",     "start",      "ramp",     NULL };
   static const mr_scene_field fields[] = {
     { "amplitude", MR_SCENE_FIELD_VEC3, offsetof(mr_scene_track, amplitude), 0, 0 },
+    { "quadrature", MR_SCENE_FIELD_VEC3, offsetof(mr_scene_track, quadrature), 0, 0 },
     { "frequency", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene_track, frequency_hz), 0, 0 },
     { "phase", MR_SCENE_FIELD_NUMBER, offsetof(mr_scene_track, phase_rad), 0, 0 },
     { "start", MR_SCENE_FIELD_NONNEG, offsetof(mr_scene_track, start), 0, 0 },
@@ -93,7 +94,8 @@ static int read_oscillate(mr_reader *r, const mr_ynode *n) {
   mr_pose turn = mr_pose_identity();
   if (mr_scene_read_map(r, n, "control.track.oscillate", keys) != 0 ||
       mr_scene_read_need(r, n, "frequency", "control.track.oscillate") == NULL ||
-      mr_scene_read_fields(r, n, fields, 5, tr) != 0 || read_pose(r, n, &turn) != 0)
+      mr_scene_read_fields(r, n, fields, sizeof fields / sizeof fields[0], tr) != 0 ||
+      read_pose(r, n, &turn) != 0)
     return -1;
   tr->kind = MR_SCENE_TRACK_OSCILLATE;
   tr->phase_rad = tr->phase_rad * PI / 180.0; /* read in degrees */
@@ -127,7 +129,13 @@ static int read_track(mr_reader *r, const mr_ynode *n) {
 }
 
 int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "points", "pose", "track", NULL };
+  static const char *const keys[] = {
+    "points", "pose", "track", "max_speed", "max_turn_rate", NULL
+  };
+  static const mr_scene_field fields[] = {
+    { "max_speed", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, control_max_speed), 0, 0 },
+    { "max_turn_rate", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, control_max_turn), 0, 0 }
+  };
   static const char *const pose_keys[] = { "position", "rotation", NULL };
   mr_scene *s = r->scene;
   if (mr_scene_read_map(r, n, "physics.control", keys) != 0) return -1;
@@ -141,6 +149,10 @@ int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
        read_pose(r, v, &s->control_pose) != 0))
     return -1;
   if ((v = mr_scene_yaml_get(n, "track")) != NULL && read_track(r, v) != 0) return -1;
+  double turn_deg = s->control_max_turn * 180.0 / PI;
+  s->control_max_turn = turn_deg;
+  if (mr_scene_read_fields(r, n, fields, 2, s) != 0) return -1;
+  s->control_max_turn *= PI / 180.0; /* read in degrees */
   return 0;
 }
 
@@ -165,12 +177,14 @@ static mr_pose oscillate_at(const mr_scene_track *tr, const mr_pose *start, doub
   mr_pose o = *start;
   if (!(t > tr->start)) return o;
   double ramp = tr->ramp > 0 ? fmin(1.0, (t - tr->start) / tr->ramp) : 1.0;
-  double w = sin(2.0 * PI * tr->frequency_hz * (t - tr->start) + tr->phase_rad);
+  double arg = 2.0 * PI * tr->frequency_hz * (t - tr->start) + tr->phase_rad;
+  double w = sin(arg), c = cos(arg) - 1.0; /* c(start) = 0: no jump at the start */
   mr_pose id = mr_pose_identity(), full = mr_pose_identity();
   memcpy(full.orientation, tr->turn, sizeof full.orientation);
   mr_pose turn = mr_pose_interpolate(&id, &full, ramp * w);
   o = mr_pose_compose(start, &turn);
-  for (int i = 0; i < 3; i++) o.position[i] += ramp * tr->amplitude[i] * w;
+  for (int i = 0; i < 3; i++)
+    o.position[i] += ramp * tr->amplitude[i] * w + ramp * tr->quadrature[i] * c;
   return o;
 }
 

@@ -22,6 +22,8 @@ static void defaults(mr_scene *s) {
   s->duration = 10.0;
   s->fps = 0.0;
   s->max_steps = MR_SCENE_MAX_STEPS;
+  s->control_max_speed = MR_SCENE_CONTROL_MAX_SPEED;
+  s->control_max_turn = MR_SCENE_CONTROL_MAX_TURN_DEG * 3.14159265358979323846 / 180.0;
   mr_scene_expect *e = &s->expect;
   e->finite = true;
   e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
