@@ -100,6 +100,9 @@ typedef struct mr_solve_result {
   double residual; /* ‖Ax − b‖ / max(‖b‖, tiny) */
   int dependent;   /* rows found dependent */
   int regularised; /* rows found nearly dependent and regularised (reg_tol) */
+  int fallback;    /* 1: Gauss–Seidel or CG could not finish (max_iter spent, or
+                      a dependency among several rows that CG's search met)
+                      and LDLᵀ solved the system; status and counts are its */
 } mr_solve_result;
 
 typedef struct mr_solver mr_solver; /* the workspace of every method */
@@ -111,8 +114,11 @@ mr_solve_status mr_solver_reserve(mr_solver *s, int rows);
 void mr_solver_destroy(mr_solver *s);
 /* x is the warm start of the iterative methods and the result. Returns
  * r->status (r may be NULL; def NULL means the defaults). On
- * MR_SOLVE_NOT_CONVERGED x is the best found; on MR_SOLVE_DEPENDENT the
- * dependent rows' λ are 0; on a negative status x is untouched. */
+ * MR_SOLVE_DEPENDENT the dependent rows' λ are 0; on a negative status x is
+ * untouched. An iterative method that cannot finish hands the system to
+ * LDLᵀ (r->fallback), so multipliers stay bounded whatever the method: an
+ * inconsistent dependency drives Gauss–Seidel's and CG's iterates along
+ * the direction A does not see, without bound. */
 mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *def, const mr_csr *A,
                                 const double *b, double *x, mr_solve_result *r);
 

@@ -184,6 +184,7 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
   r->residual = 0.0;
   r->dependent = 0;
   r->regularised = 0;
+  r->fallback = 0;
 
   mr_solve_def def = mr_default_solve_def();
   if (!o) o = &def;
@@ -224,6 +225,13 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
   default:
     st = mr_eigen_solve(&s->eigen, o, A, b, xw, r);
     break;
+  }
+  if (st == MR_CG_HIDDEN_DEPENDENCY) {
+    int iterations = r->iterations;
+    r->dependent = r->regularised = 0;
+    st = mr_ldlt_solve(&s->ldlt, o, A, b, xw, r);
+    r->iterations = iterations;
+    r->fallback = 1;
   }
   if (st < 0) return r->status = (mr_solve_status)st;
   if (!all_finite((size_t)A->n, xw)) return r->status = MR_SOLVE_NONFINITE;

@@ -90,6 +90,9 @@ int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, dou
                             mr_solve_result *r);
 int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
                     double *x, mr_solve_result *r);
+/* mr_cg's answer when its search meets a dependency among several rows:
+ * not a public status, the front then solves the system by LDLᵀ. */
+#define MR_CG_HIDDEN_DEPENDENCY 100
 int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
           mr_solve_result *r);
 int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
