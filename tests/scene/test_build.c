@@ -57,31 +57,146 @@ static void every_scene_effect_maps_to_its_own_physics_bit(void **state) {
   mr_scene_free(&s);
 }
 
-/* The physics places control points from the frame's pose; the scene
- * computes them from the pose it read. Both must agree, or strings would
- * start stretched. */
-static void control_points_sit_where_the_scene_says(void **state) {
+/* The control frame's pose reaches the physics as the file means it:
+ * rotations in degrees, x applied first, then y, then z, about the
+ * frame's origin, then moved to its position. Expected places are worked
+ * out by hand, not by the code under test, so a doubled angle, radians,
+ * a swapped order or a lost axis each move a point. */
+static void control_points_sit_where_the_file_means(void **state) {
+  (void)state;
+  static const struct {
+    const char *rotation;
+    double off[3], want[3];
+  } cases[] = {
+    /* y by 90°: (x, y, z) -> (z, y, −x) */
+    { "[0, 90, 0]", { 0.3, 0.1, -0.2 }, { 0.5 - 0.2, 2.1, -1.0 - 0.3 } },
+    /* x by 90° then z by 90°: (0, 1, 0) -> (0, 0, 1) -> (0, 0, 1) */
+    { "[90, 0, 90]", { 0, 1, 0 }, { 0.5, 2.0, 0.0 } },
+    /* x by 90° then z by 90°: (1, 0, 0) -> (1, 0, 0) -> (0, 1, 0) */
+    { "[90, 0, 90]", { 1, 0, 0 }, { 0.5, 3.0, -1.0 } },
+    /* z by 30°: (1, 0, 0) -> (cos 30°, sin 30°, 0) */
+    { "[0, 0, 30]", { 1, 0, 0 }, { 0.5 + 0.86602540378443865, 2.5, -1.0 } },
+  };
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    char text[512];
+    snprintf(text, sizeof text,
+             "physics:\n"
+             "  effects: [control]\n"
+             "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+             "  control:\n"
+             "    pose: {position: [0.5, 2, -1], rotation: %s}\n"
+             "    points: [{name: p, offset: [%g, %g, %g]}]\n",
+             cases[c].rotation, cases[c].off[0], cases[c].off[1], cases[c].off[2]);
+    mr_scene s;
+    load(text, &s);
+    mr_scene_world sw;
+    mr_scene_error e;
+    assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
+    double got[3];
+    assert_int_equal(mr_world_particle_state(sw.world, sw.control_ids[0], got, NULL), MR_OK);
+    for (int k = 0; k < 3; k++)
+      if (!(fabs(got[k] - cases[c].want[k]) < 1e-12))
+        fail_msg("rotation %s, offset (%g, %g, %g): point at (%.6f, %.6f, %.6f), expected "
+                 "(%.6f, %.6f, %.6f)",
+                 cases[c].rotation, cases[c].off[0], cases[c].off[1], cases[c].off[2], got[0],
+                 got[1], got[2], cases[c].want[0], cases[c].want[1], cases[c].want[2]);
+    mr_scene_world_free(&sw);
+    mr_scene_free(&s);
+  }
+}
+
+/* A track's rotation reaches the physics as the frame moves: keyframes
+ * turning the frame 90° about y in 1 s, run through mr_scene_run, leave
+ * the point where the turn puts it; an oscillation's phase is read in
+ * degrees (90° starts it at its crest). */
+static void track_rotation_and_phase_reach_the_world(void **state) {
   (void)state;
   const char *text = "physics:\n"
                      "  effects: [control]\n"
                      "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
                      "  control:\n"
-                     "    pose: {position: [0.5, 2, -1], rotation: [30, -50, 70]}\n"
-                     "    points:\n"
-                     "      - {name: p, offset: [0.3, 0.1, -0.2]}\n"
-                     "      - {name: q, offset: [-0.25, 0, 0.4]}\n";
+                     "    pose: {position: [0, 1, 0]}\n"
+                     "    points: [{name: p, offset: [1, 0, 0]}]\n"
+                     "    track:\n"
+                     "      keyframes:\n"
+                     "        - {t: 0, rotation: [0, 0, 0]}\n"
+                     "        - {t: 1, rotation: [0, 90, 0]}\n";
   mr_scene s;
   load(text, &s);
   mr_scene_world sw;
   mr_scene_error e;
   assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
-  assert_true(sw.frame >= 0);
-  for (size_t i = 0; i < 2; i++) {
-    double want[3], got[3];
-    mr_scene_control_point_world(&s, i, &s.control_pose, want);
-    assert_int_equal(mr_world_particle_state(sw.world, sw.control_ids[i], got, NULL), MR_OK);
-    for (int k = 0; k < 3; k++) assert_true(fabs(got[k] - want[k]) < 1e-12);
-  }
+  mr_pose at;
+  mr_scene_control_pose_at(&s, 1.0, &at);
+  assert_int_equal(mr_world_set_frame_target(sw.world, sw.frame, &at, 1.0), MR_OK);
+  assert_true(mr_world_step_to(sw.world, 1.0, NULL) >= 0);
+  double got[3];
+  mr_world_particle_state(sw.world, sw.control_ids[0], got, NULL);
+  /* (1, 0, 0) turned 90° about y is (0, 0, −1). */
+  assert_true(fabs(got[0]) < 1e-12 && fabs(got[1] - 1.0) < 1e-12 && fabs(got[2] + 1.0) < 1e-12);
+  mr_scene_world_free(&sw);
+  mr_scene_free(&s);
+
+  const char *osc = "physics:\n"
+                    "  effects: [control]\n"
+                    "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+                    "  control:\n"
+                    "    pose: {position: [0, 1, 0]}\n"
+                    "    points: [{name: p, offset: [0, 0, 0]}]\n"
+                    "    track:\n"
+                    "      oscillate: {amplitude: [0.2, 0, 0], frequency: 1, phase: 90}\n";
+  load(osc, &s);
+  mr_pose p;
+  mr_scene_control_pose_at(&s, 1e-9, &p);
+  assert_true(fabs(p.position[0] - 0.2) < 1e-9); /* sin(0 + 90°) = 1 */
+  mr_scene_control_pose_at(&s, 0.25, &p);
+  assert_true(fabs(p.position[0]) < 1e-12); /* sin(90° + 90°) = 0 */
+  mr_scene_control_pose_at(&s, 0.5, &p);
+  assert_true(fabs(p.position[0] + 0.2) < 1e-12);
+  mr_scene_free(&s);
+}
+
+/* Every setting a scene gives reaches the world it builds, each in its
+ * own field: distinct values, read back from the world, not the parse. */
+static void settings_reach_the_built_world(void **state) {
+  (void)state;
+  const char *text = "physics:\n"
+                     "  effects: [gravity, drag, constraints, floor, string_correction]\n"
+                     "  gravity: [0.1, -9.2, 0.3]\n"
+                     "  drag: 0.37\n"
+                     "  ats: {dt_initial: 0.021, dt_min: 0.011, dt_max: 0.047, "
+                     "threshold_min: 0.00021, threshold_max: 0.0093, divergence: 0.41, "
+                     "deviation_length: 0.013, max_steps: 77, error_length: 1.7, "
+                     "error_speed: 2.9, max_speed: 123, dt_floor: 0.0003}\n"
+                     "  solver: {integrator: midpoint, method: cg, ks: 31, kd: 17, "
+                     "tolerance: 1e-9, max_iterations: 321}\n"
+                     "  contact: {slop: 0.00031, rest_speed: 0.071}\n"
+                     "  string_correction: {max_stretch: 0.023, iterations: 13}\n"
+                     "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n"
+                     "  floor: {height: 0}\n";
+  mr_scene s;
+  load(text, &s);
+  mr_scene_world sw;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
+  mr_world_def d;
+  assert_int_equal(mr_world_get_def(sw.world, &d), MR_OK);
+  assert_true(d.gravity[0] == 0.1 && d.gravity[1] == -9.2 && d.gravity[2] == 0.3);
+  assert_true(d.drag == 0.37);
+  assert_true(d.dt_initial == 0.021 && d.dt_min == 0.011 && d.dt_max == 0.047);
+  assert_true(d.deviation_low == 0.00021 && d.deviation_high == 0.0093);
+  assert_true(d.divergence_bound == 0.41 && d.deviation_length == 0.013);
+  assert_int_equal(d.max_steps_per_call, 77);
+  assert_true(d.error_length == 1.7 && d.error_speed == 2.9 && d.max_speed == 123);
+  assert_true(d.dt_floor == 0.0003);
+  assert_int_equal(d.integrator, MR_INTEGRATOR_MIDPOINT);
+  assert_int_equal(d.solver, MR_SOLVE_CG);
+  assert_true(d.ks == 31 && d.kd == 17);
+  assert_true(d.solver_tolerance == 1e-9);
+  assert_int_equal(d.solver_max_iterations, 321);
+  assert_true(d.contact_slop == 0.00031 && d.rest_speed == 0.071);
+  assert_true(d.string_max_stretch == 0.023);
+  assert_int_equal(d.string_correction_iterations, 13);
   mr_scene_world_free(&sw);
   mr_scene_free(&s);
 }
@@ -233,7 +348,9 @@ static void steps_land_on_frame_times_with_fps(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(every_scene_effect_maps_to_its_own_physics_bit),
-    cmocka_unit_test(control_points_sit_where_the_scene_says),
+    cmocka_unit_test(control_points_sit_where_the_file_means),
+    cmocka_unit_test(track_rotation_and_phase_reach_the_world),
+    cmocka_unit_test(settings_reach_the_built_world),
     cmocka_unit_test(pinned_particle_stays_and_free_one_falls),
     cmocka_unit_test(run_reports_every_step_to_the_callback),
     cmocka_unit_test(steps_land_on_frame_times_with_fps),

@@ -11,6 +11,7 @@
 #include <cmocka.h>
 
 #include "mr_scene.h"
+#include "scene_read.h" /* the range table, to hold FORMAT.md to it */
 #include "proc.h"
 
 #define BASE                                        \
@@ -423,12 +424,84 @@ static void expected_load_error_is_readable_from_a_broken_scene(void **state) {
   assert_string_equal(out, "coincides with");
 }
 
+/* Legal YAML, absurd numbers: each is refused with its place and its
+ * range, before a run could try 1e300 steps. Empty values and explicit
+ * tags keep their place too. */
+static void absurd_values_empty_values_and_tags(void **state) {
+  (void)state;
+  static const char *const head = "physics:\n  effects: [gravity]\n";
+  static const char *const one = "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+  static const struct {
+    const char *before, *after, *error;
+  } cases[] = {
+    { "", "  ats: {dt_min: 1e-300}\n",
+      "t.yaml:4:17: expected dt_min between 1e-09 and 1000 s, got 1e-300" },
+    { "sim: {fps: 1e308}\n", "", "t.yaml:1:12: expected fps between 1 and 10000 Hz, got 1e+308" },
+    { "sim: {duration: 1e308}\n", "",
+      "t.yaml:1:17: expected duration between 1e-06 and 1e+06 s, got 1e+308" },
+    { "sim: {duration: 0}\n", "", "t.yaml:1:17: expected a positive number for duration, got 0" },
+    { "", "  drag: 1e12\n", "t.yaml:4:9: expected drag between 0 and 1e+06 N s/m, got 1e+12" },
+  };
+  char text[512];
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    snprintf(text, sizeof text, "%s%s%s%s", cases[i].before, head, one, cases[i].after);
+    if (strstr(cases[i].after, "drag")) {
+      snprintf(text, sizeof text, "physics:\n  effects: [gravity, drag]\n%s%s", one,
+               cases[i].after);
+    }
+    expect_error(text, MR_SCENE_ERR_VALUE, cases[i].error);
+  }
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n"
+               "    - {name: a, position: [0, 1, 0], mass: }\n",
+               MR_SCENE_ERR_SCHEMA, "t.yaml:4:42: expected a number for mass, got nothing");
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:3:12: expected a sequence (- item or [a, b]) for physics.particles, got "
+               "nothing");
+  expect_error("physics:\n  effects:\n  particles: []\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:2:10: expected a sequence (- item or [a, b]) for physics.effects, got "
+               "nothing");
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n"
+               "    - {name: a, position: [0, 1, 0], mass: !!str 0.2}\n",
+               MR_SCENE_ERR_SCHEMA, "t.yaml:4:50: expected a number for mass, got '0.2'");
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n"
+               "    - {name: a, position: [0, 1, 0], mass: !kg 0.2}\n",
+               MR_SCENE_ERR_SYNTAX,
+               "t.yaml:4:48: unsupported tag '!kg'; expected no tag, or one of !!str, !!int, "
+               "!!float, !!bool, !!null, !!map, !!seq");
+  /* The core schema's own tags on the right kind of value are fine. */
+  const char *ok = "physics:\n  effects: [gravity]\n  particles:\n"
+                   "    - {name: !!str a, position: [0, 1, 0], mass: !!float 0.2}\n";
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", ok, strlen(ok), &s, &e), MR_SCENE_OK);
+  assert_true(s.particles[0].def.mass == 0.2);
+  mr_scene_free(&s);
+}
+
+/* FORMAT.md's table of ranges is the loader's, row for row. */
+static void format_md_lists_every_range(void **state) {
+  (void)state;
+  FILE *f = fopen(MR_SOURCE_DIR "/host/scenes/FORMAT.md", "r");
+  assert_non_null(f);
+  static char doc[131072];
+  size_t n = fread(doc, 1, sizeof doc - 1, f);
+  fclose(f);
+  doc[n] = '\0';
+  int rows = 0;
+  for (const mr_scene_range *g; (g = mr_scene_range_at(rows)) != NULL; rows++) {
+    char row[160];
+    snprintf(row, sizeof row, "| `%s` | %g | %g | %s |", g->key, g->lo, g->hi, g->unit);
+    if (strstr(doc, row) == NULL) fail_msg("FORMAT.md has no row %s", row);
+  }
+  assert_true(rows > 50);
+}
+
 /* The commented example in FORMAT.md is a scene that loads. */
 static void format_md_example_loads(void **state) {
   (void)state;
   FILE *f = fopen(MR_SOURCE_DIR "/host/scenes/FORMAT.md", "r");
   assert_non_null(f);
-  static char doc[65536];
+  static char doc[131072];
   size_t n = fread(doc, 1, sizeof doc - 1, f);
   fclose(f);
   doc[n] = '\0';
@@ -478,6 +551,8 @@ int main(void) {
     cmocka_unit_test(file_errors_carry_the_path),
     cmocka_unit_test(expected_load_error_is_readable_from_a_broken_scene),
     cmocka_unit_test(format_md_example_loads),
+    cmocka_unit_test(absurd_values_empty_values_and_tags),
+    cmocka_unit_test(format_md_lists_every_range),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

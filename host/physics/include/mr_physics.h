@@ -233,6 +233,9 @@ mr_world_def mr_default_world_def(void);
 mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *msg,
                           size_t msg_size);
 void mr_world_destroy(mr_world *w);
+/* The settings the world runs with, as it took them from its definition:
+ * for checking what a loader built. MR_ERR_ARG for a NULL argument. */
+mr_status mr_world_get_def(const mr_world *w, mr_world_def *out);
 
 /* The message of the last failure or report on this world ("" if none). */
 const char *mr_world_last_error(const mr_world *w);
@@ -409,6 +412,24 @@ typedef struct mr_rigid_group_def {
   int count; /* ≥ 2 */
 } mr_rigid_group_def;
 mr_rigid_group_def mr_default_rigid_group_def(void);
+/* Whether count points (xyz, 3 per point, in the group's order) can be a
+ * rigid group (§5.1): no two within 1e-9 m, the first three not collinear,
+ * the first four a tetrahedron, and every later point off the plane of
+ * some three before it. Shape is measured scale-free: |sin| of the angle
+ * at the first point for three, |det| over the product of the three edges
+ * from the point being placed for four, each at least MR_GROUP_MIN_SHAPE.
+ * The world's add call and a scene loader use this one test, so what one
+ * accepts the other does. On a fault, *i and *j name the points (for
+ * COINCIDENT both; otherwise the point that fails, in *i). */
+#define MR_GROUP_MIN_SHAPE 1e-3
+typedef enum mr_shape_fault {
+  MR_SHAPE_OK = 0,
+  MR_SHAPE_COINCIDENT, /* points *j and *i */
+  MR_SHAPE_COLLINEAR,  /* the first three */
+  MR_SHAPE_FLAT_START, /* the first four */
+  MR_SHAPE_FLAT_MEMBER /* point *i lies in the plane of every three before it */
+} mr_shape_fault;
+mr_shape_fault mr_rigid_group_shape(const double *xyz, int count, int *i, int *j);
 mr_status mr_world_add_rigid_group(mr_world *w, const mr_rigid_group_def *def, int *out_id);
 
 /* Number of scalar constraint rows (k). */

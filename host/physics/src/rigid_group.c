@@ -14,14 +14,19 @@ static double dist(const double *x, int a, int b) {
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
+/* The point of index k of a group: ids[k] in x, or the k-th of x. */
+static const double *at(const double *x, const int *ids, int k) {
+  return &x[3 * (ids ? ids[k] : k)];
+}
+
 /* |det(b−a, c−a, d−a)| / (|b−a| |c−a| |d−a|): 0 when coplanar, 1 for three
  * orthogonal edges. Scale-free, so one threshold fits any model size. */
-static double flatness(const double *x, int a, int b, int c, int d) {
+static double flatness(const double *a, const double *b, const double *c, const double *d) {
   double e[3][3];
-  int o[3] = { b, c, d };
+  const double *o[3] = { b, c, d };
   double norm = 1.0;
   for (int i = 0; i < 3; i++) {
-    for (int k = 0; k < 3; k++) e[i][k] = x[3 * o[i] + k] - x[3 * a + k];
+    for (int k = 0; k < 3; k++) e[i][k] = o[i][k] - a[k];
     norm *= sqrt(e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]);
   }
   double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
@@ -31,11 +36,11 @@ static double flatness(const double *x, int a, int b, int c, int d) {
 }
 
 /* |(b−a) × (c−a)| / (|b−a| |c−a|): 0 when collinear. */
-static double straightness(const double *x, int a, int b, int c) {
+static double straightness(const double *a, const double *b, const double *c) {
   double u[3], v[3];
   for (int k = 0; k < 3; k++) {
-    u[k] = x[3 * b + k] - x[3 * a + k];
-    v[k] = x[3 * c + k] - x[3 * a + k];
+    u[k] = b[k] - a[k];
+    v[k] = c[k] - a[k];
   }
   double cr[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
                    u[0] * v[1] - u[1] * v[0] };
@@ -44,7 +49,69 @@ static double straightness(const double *x, int a, int b, int c) {
   return n > 0 ? sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) / n : 0.0;
 }
 
-static const double min_shape = 1e-3;
+static double gap(const double *a, const double *b) {
+  double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+static const double min_shape = MR_GROUP_MIN_SHAPE;
+
+/* Point i's three partners among the points before it: the nearest triple
+ * not coplanar with it (short links stay well conditioned). 0, or -1 if
+ * every triple is coplanar with it. best[] holds indices into the group. */
+static int choose_partners(const double *x, const int *ids, int i, int best[3]) {
+  double best_len = INFINITY;
+  const double *p = at(x, ids, i);
+  best[0] = best[1] = best[2] = -1;
+  for (int a = 0; a < i; a++)
+    for (int b = a + 1; b < i; b++)
+      for (int c = b + 1; c < i; c++) {
+        if (flatness(p, at(x, ids, a), at(x, ids, b), at(x, ids, c)) < min_shape) continue;
+        double len = gap(p, at(x, ids, a)) + gap(p, at(x, ids, b)) + gap(p, at(x, ids, c));
+        if (len < best_len) {
+          best_len = len;
+          best[0] = a;
+          best[1] = b;
+          best[2] = c;
+        }
+      }
+  return best[0] < 0 ? -1 : 0;
+}
+
+static mr_shape_fault shape_of(const double *x, const int *ids, int count, int *fi, int *fj) {
+  *fi = *fj = -1;
+  for (int i = 0; i < count; i++)
+    for (int j = 0; j < i; j++)
+      if (!(gap(at(x, ids, i), at(x, ids, j)) > 1e-9)) {
+        *fi = i;
+        *fj = j;
+        return MR_SHAPE_COINCIDENT;
+      }
+  if (count >= 3 && straightness(at(x, ids, 0), at(x, ids, 1), at(x, ids, 2)) < min_shape) {
+    *fi = 2;
+    return MR_SHAPE_COLLINEAR;
+  }
+  if (count >= 4 &&
+      flatness(at(x, ids, 0), at(x, ids, 1), at(x, ids, 2), at(x, ids, 3)) < min_shape) {
+    *fi = 3;
+    return MR_SHAPE_FLAT_START;
+  }
+  int partners[3];
+  for (int i = 4; i < count; i++)
+    if (choose_partners(x, ids, i, partners) != 0) {
+      *fi = i;
+      return MR_SHAPE_FLAT_MEMBER;
+    }
+  return MR_SHAPE_OK;
+}
+
+mr_shape_fault mr_rigid_group_shape(const double *xyz, int count, int *i, int *j) {
+  int a, b;
+  mr_shape_fault f = xyz != NULL && count > 0 ? shape_of(xyz, NULL, count, &a, &b) : MR_SHAPE_OK;
+  if (i) *i = a;
+  if (j) *j = b;
+  return f;
+}
 
 static int link(mr_world *w, int a, int b, int *n) {
   /* Two frame particles are already rigid through their frame; a row
@@ -55,53 +122,33 @@ static int link(mr_world *w, int a, int b, int *n) {
   return 0;
 }
 
-/* The particles must exist, be distinct and apart, and the first three (or
- * four) span a triangle (tetrahedron). */
+/* The particles must exist and be distinct, and their places pass the
+ * shape test a loader uses too (mr_rigid_group_shape). */
 static mr_status check_shape(mr_world *w, const int *ids, int count, const char *what) {
-  const double *x = w->x;
   for (int i = 0; i < count; i++) {
     if (mr_check_particle(w, ids[i], what) != 0) return MR_ERR_ID;
-    for (int j = 0; j < i; j++) {
+    for (int j = 0; j < i; j++)
       if (ids[i] == ids[j])
         return mr_fail(w, MR_ERR_ARG, "%s: particle %d listed twice", what, ids[i]);
-      if (!(dist(x, ids[i], ids[j]) > 1e-9))
-        return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d and %d coincide", what, ids[j],
-                       ids[i]);
-    }
   }
-  if (count == 3 && straightness(x, ids[0], ids[1], ids[2]) < min_shape)
+  int i, j;
+  switch (shape_of(w->x, ids, count, &i, &j)) {
+  case MR_SHAPE_OK:
+    return MR_OK;
+  case MR_SHAPE_COINCIDENT:
+    return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d and %d coincide", what, ids[j], ids[i]);
+  case MR_SHAPE_COLLINEAR:
     return mr_fail(w, MR_ERR_DEGENERATE, "%s: particles %d, %d, %d are collinear", what, ids[0],
                    ids[1], ids[2]);
-  if (count >= 4) {
-    if (straightness(x, ids[0], ids[1], ids[2]) < min_shape ||
-        flatness(x, ids[0], ids[1], ids[2], ids[3]) < min_shape)
-      return mr_fail(w, MR_ERR_DEGENERATE,
-                     "%s: the first four particles (%d, %d, %d, %d) are coplanar; a rigid group "
-                     "starts with a tetrahedron",
-                     what, ids[0], ids[1], ids[2], ids[3]);
+  case MR_SHAPE_FLAT_START:
+    return mr_fail(w, MR_ERR_DEGENERATE,
+                   "%s: the first four particles (%d, %d, %d, %d) are coplanar; a rigid group "
+                   "starts with a tetrahedron",
+                   what, ids[0], ids[1], ids[2], ids[3]);
+  default:
+    return mr_fail(w, MR_ERR_DEGENERATE, "%s: particle %d is coplanar with every triple before it",
+                   what, ids[i]);
   }
-  return MR_OK;
-}
-
-/* Particle i's three partners among ids[0..i): the nearest triple not
- * coplanar with it (short links stay well conditioned). 0, or -1 if every
- * triple is coplanar with it. */
-static int choose_partners(const double *x, const int *ids, int i, int best[3]) {
-  double best_len = INFINITY;
-  best[0] = best[1] = best[2] = -1;
-  for (int a = 0; a < i; a++)
-    for (int b = a + 1; b < i; b++)
-      for (int c = b + 1; c < i; c++) {
-        if (flatness(x, ids[i], ids[a], ids[b], ids[c]) < min_shape) continue;
-        double len = dist(x, ids[i], ids[a]) + dist(x, ids[i], ids[b]) + dist(x, ids[i], ids[c]);
-        if (len < best_len) {
-          best_len = len;
-          best[0] = ids[a];
-          best[1] = ids[b];
-          best[2] = ids[c];
-        }
-      }
-  return best[0] < 0 ? -1 : 0;
 }
 
 mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n) {
@@ -128,7 +175,7 @@ mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *firs
   for (int i = 0; i < clique && ok == 0; i++)
     for (int j = i + 1; j < clique && ok == 0; j++) ok = link(w, ids[i], ids[j], n);
   for (int i = 4; i < count && ok == 0; i++)
-    for (int k = 0; k < 3 && ok == 0; k++) ok = link(w, ids[i], partners[i][k], n);
+    for (int k = 0; k < 3 && ok == 0; k++) ok = link(w, ids[i], ids[partners[i][k]], n);
   free(partners);
   if (ok != 0) return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
   return MR_OK;

@@ -326,6 +326,12 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
   return MR_OK;
 }
 
+mr_status mr_world_get_def(const mr_world *w, mr_world_def *out) {
+  if (w == NULL || out == NULL) return MR_ERR_ARG;
+  *out = w->def;
+  return MR_OK;
+}
+
 void mr_world_destroy(mr_world *w) {
   if (!w) return;
   void *arrays[] = { w->x,

@@ -6,77 +6,43 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Below this normalised volume (or area) the members are taken as coplanar
- * (or collinear), where distance constraints no longer fix the shape. */
-#define GENERAL_POSITION_MIN 1e-3
-#define GROUP_MAX            64
-
-static void sub3(const double a[3], const double b[3], double o[3]) {
-  o[0] = a[0] - b[0];
-  o[1] = a[1] - b[1];
-  o[2] = a[2] - b[2];
-}
-
-static double norm3(const double a[3]) {
-  return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-}
-
-static void cross3(const double a[3], const double b[3], double o[3]) {
-  o[0] = a[1] * b[2] - a[2] * b[1];
-  o[1] = a[2] * b[0] - a[0] * b[2];
-  o[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/* |sin| of the angle at p between q and s: 0 when collinear. */
-static double triangle_quality(const double p[3], const double q[3], const double s[3]) {
-  double u[3], v[3], c[3];
-  sub3(q, p, u);
-  sub3(s, p, v);
-  cross3(u, v, c);
-  double d = norm3(u) * norm3(v);
-  return d > 0 ? norm3(c) / d : 0;
-}
-
-/* |det(a-p, b-p, c-p)| over the product of the edge lengths: 0 when p lies
- * in the plane of a, b, c. */
-static double tetra_quality(const double p[3], const double a[3], const double b[3],
-                            const double c[3]) {
-  double u[3], v[3], w[3], x[3];
-  sub3(a, p, u);
-  sub3(b, p, v);
-  sub3(c, p, w);
-  cross3(v, w, x);
-  double d = norm3(u) * norm3(v) * norm3(w);
-  return d > 0 ? fabs(u[0] * x[0] + u[1] * x[1] + u[2] * x[2]) / d : 0;
-}
+#define GROUP_MAX 64
 
 /* §5.1: each new member joins three earlier members that are not coplanar
- * with it, so a group's constraints are independent. The physics library
- * picks the three; here the file is checked so that a degenerate group is
- * reported at its line. */
-static int check_member(mr_reader *r, const mr_scene_group *g, int k, const mr_ynode *at) {
+ * with it, so a group's constraints are independent. The physics' own
+ * shape test (mr_rigid_group_shape) is applied to the file's positions, so
+ * a group the loader passes is one the world accepts, and a degenerate one
+ * is reported at its line, by its particles' names. */
+static int check_shape(mr_reader *r, const mr_scene_group *g, const mr_ynode *list) {
   const mr_scene_particle *p = r->scene->particles;
   const int *m = g->def.particles;
-  const double *pk = p[m[k]].def.position;
-  if (k == 2 &&
-      triangle_quality(p[m[0]].def.position, p[m[1]].def.position, pk) < GENERAL_POSITION_MIN)
+  double xyz[3 * GROUP_MAX];
+  for (int k = 0; k < g->def.count; k++)
+    memcpy(&xyz[3 * k], p[m[k]].def.position, sizeof(double[3]));
+  int i, j;
+  mr_shape_fault f = mr_rigid_group_shape(xyz, g->def.count, &i, &j);
+  if (f == MR_SHAPE_OK) return 0;
+  const mr_ynode *at = i >= 0 && (size_t)i < list->count ? list->items[i] : list;
+  switch (f) {
+  case MR_SHAPE_COINCIDENT:
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE, "group '%s': '%s' and '%s' coincide",
+                              g->name, p[m[j]].name, p[m[i]].name);
+  case MR_SHAPE_COLLINEAR:
     return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
                               "group '%s': '%s', '%s' and '%s' are collinear; expected members "
                               "in general position (§5.1)",
                               g->name, p[m[0]].name, p[m[1]].name, p[m[2]].name);
-  if (k < 3) return 0;
-  double best = 0;
-  for (int i = 0; i < k; i++)
-    for (int j = i + 1; j < k; j++)
-      for (int l = j + 1; l < k; l++)
-        best = fmax(best, tetra_quality(pk, p[m[i]].def.position, p[m[j]].def.position,
-                                        p[m[l]].def.position));
-  if (best < GENERAL_POSITION_MIN)
+  case MR_SHAPE_FLAT_START:
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
+                              "group '%s': '%s', '%s', '%s' and '%s' are coplanar; a group starts "
+                              "with four members in general position (§5.1)",
+                              g->name, p[m[0]].name, p[m[1]].name, p[m[2]].name, p[m[3]].name);
+  default:
     return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
                               "group '%s': '%s' is coplanar with every three earlier members; "
                               "expected members in general position (§5.1)",
-                              g->name, p[m[k]].name);
-  return 0;
+                              g->name, p[m[i]].name);
+  }
 }
 
 /* The members of a group or part: a list of particles, as an owned array
@@ -113,9 +79,7 @@ static int read_group(mr_reader *r, const mr_ynode *it, void *slot) {
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                               "expected 2 to %d particles in group '%s', got %zu", GROUP_MAX,
                               g->name, v->count);
-  for (int k = 0; k < g->def.count; k++)
-    if (check_member(r, g, k, v->items[k]) != 0) return -1;
-  return 0;
+  return check_shape(r, g, v);
 }
 
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *n) {

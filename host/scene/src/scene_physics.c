@@ -235,12 +235,13 @@ static int read_particle(mr_reader *r, const mr_ynode *it, void *slot) {
         mr_scene_read_need_effect(r, v, MR_EFFECT_CONSTRAINTS, "a pinned particle is") != 0)))
     return -1;
   if ((v = mr_scene_read_need(r, it, "mass", "a particle")) == NULL ||
-      mr_scene_read_number(r, v, "mass", &p->def.mass) != 0)
+      mr_scene_read_quantity(r, v, "mass", &p->def.mass) != 0)
     return -1;
   if (!(p->def.mass > 0))
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                               "expected a positive mass in kg for particle '%s', got %g", p->name,
                               p->def.mass);
+  if (mr_scene_range_check(r, v, "mass", p->def.mass) != 0) return -1;
   p->pos = mr_scene_read_pos(it);
   return 0;
 }

@@ -42,7 +42,11 @@ mr_scene_pos mr_scene_read_pos(const mr_ynode *node);
 int mr_scene_read_map(mr_reader *r, const mr_ynode *node, const char *what,
                       const char *const *allowed);
 int mr_scene_read_seq(mr_reader *r, const mr_ynode *node, const char *what);
+/* A finite decimal number within its documented range (scene_ranges.c). */
 int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, double *out);
+/* The same before its range: the caller checks what it can name better,
+ * then calls mr_scene_range_check. */
+int mr_scene_read_quantity(mr_reader *r, const mr_ynode *node, const char *what, double *out);
 int mr_scene_read_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]);
 int mr_scene_read_bool(mr_reader *r, const mr_ynode *node, const char *what, bool *out);
 int mr_scene_read_long(mr_reader *r, const mr_ynode *node, const char *what, long *out);
@@ -111,6 +115,17 @@ int mr_scene_read_particle_list(mr_reader *r, const mr_ynode *node, const char *
                                 int *count);
 /* [a, b] under `between`: two distinct points, not both control points. */
 int mr_scene_read_between(mr_reader *r, const mr_ynode *item, const char *what, int *a, int *b);
+
+/* The documented range of a quantity, by its key (scene_ranges.c). */
+typedef struct mr_scene_range {
+  const char *key;
+  double lo, hi;
+  const char *unit;
+} mr_scene_range;
+const mr_scene_range *mr_scene_range_of(const char *key); /* never NULL */
+const mr_scene_range *mr_scene_range_at(int i);           /* NULL past the end */
+/* 0 when lo <= v <= hi for key, else fails at node naming the range. */
+int mr_scene_range_check(mr_reader *r, const mr_ynode *node, const char *key, double v);
 
 /* Indexes the particles read so far by name and checks that no two share
  * a name or a place; the error names the later one of a pair. */

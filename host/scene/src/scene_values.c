@@ -78,6 +78,10 @@ static const char *shown(const mr_ynode *n, char *buf, size_t size) {
     snprintf(buf, size, "a %s", mr_scene_yaml_kind_name(n->kind));
     return buf;
   }
+  if (n->text[0] == '\0' && !n->quoted) {
+    snprintf(buf, size, "nothing");
+    return buf;
+  }
   char tmp[40];
   size_t k = 0;
   for (const char *s = n->text; *s && k + 1 < sizeof tmp; s++)
@@ -128,7 +132,8 @@ static bool is_nan_or_inf(const char *s) {
   return strcasecmp(t, "nan") == 0 || strcasecmp(t, "inf") == 0 || strcasecmp(t, "infinity") == 0;
 }
 
-int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
+/* A finite decimal number, not yet held to its range. */
+static int read_number_unranged(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
   char b[64];
   if (node->kind != MR_YNODE_SCALAR || node->quoted || node->text[0] == '\0')
     return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
@@ -155,6 +160,18 @@ int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, d
                               shown(node, b, sizeof b));
   *out = v;
   return 0;
+}
+
+int mr_scene_read_number(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
+  double v;
+  if (read_number_unranged(r, node, what, &v) != 0 || mr_scene_range_check(r, node, what, v) != 0)
+    return -1;
+  *out = v;
+  return 0;
+}
+
+int mr_scene_read_quantity(mr_reader *r, const mr_ynode *node, const char *what, double *out) {
+  return read_number_unranged(r, node, what, out);
 }
 
 int mr_scene_read_vec3(mr_reader *r, const mr_ynode *node, const char *what, double out[3]) {
@@ -276,7 +293,10 @@ int mr_scene_read_field(mr_reader *r, const mr_ynode *map, const mr_scene_field 
     return 0;
   }
   double x;
-  if (mr_scene_read_number(r, v, f->key, &x) != 0 || check_range(r, v, f, x) != 0) return -1;
+  /* The kind's own words first ("expected a positive ..."), then the range. */
+  if (read_number_unranged(r, v, f->key, &x) != 0 || check_range(r, v, f, x) != 0 ||
+      mr_scene_range_check(r, v, f->key, x) != 0)
+    return -1;
   *field_double(def, f) = x;
   return 0;
 }

@@ -221,6 +221,46 @@ static int close_container(builder *b) {
   return attach(b, n);
 }
 
+/* Explicit tags (§3.2.1.1 of YAML 1.2): the core schema's own are
+ * honoured, !!str making a scalar text even when it reads as a number;
+ * any other is refused rather than silently ignored. *as_text: !!str. */
+static int check_tag(builder *b, struct fy_token *tag, int line, int column, bool *as_text) {
+  static const char *const core[] = { "str", "int", "float", "bool", "null", "map", "seq" };
+  static const char prefix[] = "tag:yaml.org,2002:";
+  *as_text = false;
+  if (tag == NULL) return 0;
+  size_t len = 0;
+  const char *t = fy_token_get_text(tag, &len);
+  char name[80];
+  snprintf(name, sizeof name, "%.*s", (int)(t != NULL && len < 70 ? len : 70), t ? t : "");
+  if (strncmp(name, prefix, sizeof prefix - 1) == 0)
+    for (size_t i = 0; i < sizeof core / sizeof core[0]; i++)
+      if (strcmp(name + sizeof prefix - 1, core[i]) == 0) {
+        *as_text = i == 0;
+        return 0;
+      }
+  return fail(b->err, line, column,
+              "unsupported tag '%s'; expected no tag, or one of !!str, !!int, !!float, !!bool, "
+              "!!null, !!map, !!seq",
+              name);
+}
+
+/* An empty value has no mark of its own: it is where its key ends, or
+ * where its sequence starts. */
+static void empty_place(const builder *b, int *line, int *column) {
+  *line = *column = 0;
+  if (b->depth == 0) return;
+  const frame *f = &b->stack[b->depth - 1];
+  if (f->node->kind == MR_YNODE_MAP && f->n % 2 == 1) {
+    const mr_ynode *key = f->tmp[f->n - 1];
+    *line = key->line;
+    *column = key->column + (int)strlen(key->text) + (key->quoted ? 2 : 0);
+  } else {
+    *line = f->node->line;
+    *column = f->node->column;
+  }
+}
+
 static int on_event(builder *b, struct fy_event *e) {
   const struct fy_mark *m = fy_event_start_mark(e);
   int line = m ? m->line + 1 : 0;
@@ -231,19 +271,29 @@ static int on_event(builder *b, struct fy_event *e) {
       return fail(b->err, line, column, "expected one YAML document, found a second one");
     return 0;
   case FYET_MAPPING_START:
-    return open_container(b, MR_YNODE_MAP, e, e->mapping_start.anchor);
-  case FYET_SEQUENCE_START:
-    return open_container(b, MR_YNODE_SEQ, e, e->sequence_start.anchor);
+  case FYET_SEQUENCE_START: {
+    bool map = e->type == FYET_MAPPING_START, text;
+    if (check_tag(b, map ? e->mapping_start.tag : e->sequence_start.tag, line, column, &text) != 0)
+      return -1;
+    if (text)
+      return fail(b->err, line, column, "expected a text for the !!str tag, got a %s",
+                  map ? "mapping" : "sequence");
+    return open_container(b, map ? MR_YNODE_MAP : MR_YNODE_SEQ, e,
+                          map ? e->mapping_start.anchor : e->sequence_start.anchor);
+  }
   case FYET_MAPPING_END:
   case FYET_SEQUENCE_END:
     return close_container(b);
   case FYET_SCALAR: {
     mr_ynode *n = new_node(b, MR_YNODE_SCALAR, m);
     if (n == NULL) return -1;
+    if (m == NULL) empty_place(b, &n->line, &n->column);
+    bool as_text = false;
+    if (check_tag(b, e->scalar.tag, n->line, n->column, &as_text) != 0) return -1;
     n->text = token_dup(&b->doc->arena, e->scalar.value);
     if (n->text == NULL) return fail(b->err, line, column, "out of memory");
     enum fy_scalar_style style = fy_token_scalar_style(e->scalar.value);
-    n->quoted = style != FYSS_PLAIN;
+    n->quoted = style != FYSS_PLAIN || as_text;
     /* libfyaml marks a quoted scalar at its first character inside the
      * quotes; point at the opening quote, where the value starts. */
     if ((style == FYSS_SINGLE_QUOTED || style == FYSS_DOUBLE_QUOTED) && n->column > 1) n->column--;
