@@ -108,8 +108,11 @@ static void triggered_force_follows_control_trigger_distance(void **state) {
 /* Capped sine spring: |F| = max·sin(π/2·δ/reach) below reach, max beyond. */
 static void sine_spring_rises_as_sine_and_caps(void **state) {
   (void)state;
-  const double stretches[3] = { 0.025, 0.05, 0.3 };
-  for (int i = 0; i < 3; i++) {
+  /* Beyond the reach the force stays at its cap: 1.5 and 2 reaches, where
+   * an uncapped sine would give 0.71 and 0 of it (3 reaches gives |sin| = 1
+   * either way and cannot tell). */
+  const double stretches[5] = { 0.025, 0.05, 0.15, 0.2, 0.3 };
+  for (int i = 0; i < 5; i++) {
     mr_world *w = make(MR_EFFECT_SINE_SPRINGS, 0.0);
     int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
     mr_sine_spring_def s = mr_default_sine_spring_def();

@@ -534,6 +534,12 @@ double mr_world_deviation(const mr_world *w);
  * watch (particle and plane, sphere and sphere) is into each other in the
  * current state; 0 when none touch, NaN when out of memory. */
 double mr_world_penetration(mr_world *w);
+/* The sphere trees (§4.4) refitted to the current state: the smallest
+ * margin by which a parent sphere encloses each of its children, m (≥ 0,
+ * to rounding, when every parent encloses its children; INFINITY without
+ * trees). For tests: a tree whose parents miss part of a child misses the
+ * contacts inside it. */
+double mr_world_tree_slack(mr_world *w);
 /* FNV-1a (64-bit) over the bytes of time, positions and velocities. */
 uint64_t mr_world_state_hash(const mr_world *w);
 

@@ -221,6 +221,26 @@ static void refit(mr_world *w, const mr_tree *t, const double *x) {
   }
 }
 
+double mr_world_tree_slack(mr_world *w) {
+  if (w == NULL || w->ntrees == 0) return INFINITY;
+  double worst = INFINITY;
+  for (int t = 0; t < w->ntrees; t++) {
+    const mr_tree *tr = &w->trees[t];
+    refit(w, tr, w->x);
+    for (int i = tr->first_node; i < tr->first_node + tr->node_count; i++) {
+      const mr_tree_node *nd = &w->nodes[i];
+      if (nd->leaf >= 0) continue;
+      const int kids[2] = { nd->left, nd->right };
+      for (int k = 0; k < 2; k++) {
+        const mr_tree_node *c = &w->nodes[kids[k]];
+        double d[3] = { c->c[0] - nd->c[0], c->c[1] - nd->c[1], c->c[2] - nd->c[2] };
+        worst = fmin(worst, nd->r - (sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + c->r));
+      }
+    }
+  }
+  return worst;
+}
+
 /* ------------------------------------------------------------- traversal */
 
 static double node_gap(const mr_tree_node *a, const mr_tree_node *b) {
