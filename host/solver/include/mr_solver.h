@@ -84,7 +84,7 @@ typedef struct mr_solve_def {
   double tol;       /* iterative methods: stop at ‖Ax − b‖ ≤ tol ‖b‖ */
   int max_iter;     /* iterative methods: sweeps or CG steps */
   double pivot_tol; /* a row is dependent when its pivot is ≤ pivot_tol · A_ii */
-  double reg_tol;   /* LDLT: a row nearly dependent, pivot_tol · A_ii < pivot <
+  double reg_tol;   /* LDLT and Eigen: a row nearly dependent, pivot_tol · A_ii < pivot <
                        reg_tol · A_ii, is regularised: its pivot is raised to
                        reg_tol · A_ii (a compliance on that direction only), so
                        its multiplier stays bounded; 0 (default) = off */

@@ -78,6 +78,7 @@ struct EigenWorkspace {
   std::vector<std::pair<int, int>> column;
   std::vector<char> dep; // by old index
   Eigen::VectorXd adiag, scale, rhs;
+  Eigen::VectorXd reg; // by old index: what reg_tol adds to a nearly dependent row's diagonal
   ~EigenWorkspace() {
     mr_pattern_free(&pattern);
     mr_ldlt_free(&order);
@@ -98,6 +99,7 @@ void grow(EigenWorkspace &w, int n) {
   w.adiag.resize(size);
   w.scale.resize(size);
   w.rhs.resize(size);
+  w.reg.resize(size);
   w.outer.resize(size + 1);
 }
 
@@ -180,7 +182,7 @@ void load(EigenWorkspace &w, const mr_csr *A, bool scaled) {
       else if (scaled)
         val[t] = w.scale[orow] * A->val[w.src[t]] * w.scale[oc];
       else
-        val[t] = A->val[w.src[t]];
+        val[t] = A->val[w.src[t]] + (inner[t] == c ? w.reg[oc] : 0.0);
     }
   }
 }
@@ -223,9 +225,13 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
     if (mr_pattern_keep(&w.pattern, A) != 0) return MR_SOLVE_ENOMEM;
   }
   mr_csr_diagonal(A, w.adiag.data());
-  for (int i = 0; i < n; i++) w.dep[i] = !(w.adiag[i] > DBL_MIN);
-  // Each pass that does not solve marks a row, so n + 1 passes end.
-  for (int pass = 0; pass <= n; pass++) {
+  for (int i = 0; i < n; i++) {
+    w.dep[i] = !(w.adiag[i] > DBL_MIN);
+    w.reg[i] = 0.0;
+  }
+  // Each pass that does not solve marks a row dependent or raises one (a
+  // row is raised at most once before it passes), so 2n + 1 passes end.
+  for (int pass = 0; pass <= 2 * n; pass++) {
     load(w, A, false);
     w.ldlt.setShift(0.0, 1.0);
     w.ldlt.refactor(w.upper);
@@ -237,18 +243,33 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
       w.dep[bad] = 1;
       continue;
     }
+    // reg_tol as LDLᵀ applies it: a pivot d_k below reg_tol · A_kk is raised
+    // to it. Adding the shortfall to A_kk raises that pivot by exactly as
+    // much and the later ones by no less, so a refactor with the first
+    // short row shifted settles it; each pass settles one more row.
+    const int short_row = o->reg_tol > 0 ? first_small_pivot(w, n, o->reg_tol, false) : -1;
+    if (short_row >= 0) {
+      const Eigen::VectorXd &d = w.ldlt.pivots();
+      int t = 0;
+      while (w.perm()[t] != short_row) t++;
+      // A hair over, so the raised pivot passes the test it failed.
+      w.reg[short_row] += (o->reg_tol * (1.0 + 1e-9)) * w.adiag[short_row] - d[t];
+      continue;
+    }
     const int *perm = w.perm();
     for (int t = 0; t < w.size; t++) w.rhs[t] = t < n && !w.dep[perm[t]] ? b[perm[t]] : 0.0;
     w.ldlt.solve_in_place(w.rhs);
     for (int t = 0; t < n; t++) x[perm[t]] = w.rhs[t];
     break;
   }
-  int count = 0;
+  int count = 0, raised = 0;
   for (int i = 0; i < n; i++) {
     count += w.dep[i];
+    raised += !w.dep[i] && w.reg[i] > 0.0;
     if (w.dep[i]) x[i] = 0.0;
   }
   r->dependent = count;
+  r->regularised = raised;
   r->iterations = 1;
   return count ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
 }
