@@ -201,6 +201,67 @@ static void settings_reach_the_built_world(void **state) {
   mr_scene_free(&s);
 }
 
+/* A rigid group whose fourth member lies h above the plane of the first
+ * three: the loader and the physics measure flatness the same way, so
+ * for every h the file loads exactly when the world accepts the group, and
+ * a refusal names the particles and the line. */
+static void loader_and_physics_agree_on_flat_groups(void **state) {
+  (void)state;
+  /* d sits far from a, so a measure taken from d reads the same height as
+   * 40 times flatter than one taken from a: they disagree from 0.7 to 29 mm. */
+  const double heights[] = { 1e-4, 5e-4, 6e-4, 8e-4, 1e-3, 5e-3, 1e-2, 5e-2 };
+  int refused = 0, accepted = 0;
+  for (size_t i = 0; i < sizeof heights / sizeof heights[0]; i++) {
+    char text[512];
+    snprintf(text, sizeof text,
+             "physics:\n"
+             "  effects: [constraints]\n"
+             "  particles:\n"
+             "    - {name: a, position: [0, 1, 0], mass: 1}\n"
+             "    - {name: b, position: [0.1, 1, 0], mass: 1}\n"
+             "    - {name: c, position: [0, 1, 0.1], mass: 1}\n"
+             "    - {name: d, position: [0.5, %.9g, 0.5], mass: 1}\n"
+             "  groups: [{name: g, particles: [a, b, c, d]}]\n",
+             1.0 + heights[i]);
+    /* The world's own verdict on the same points. */
+    mr_world_def def = mr_default_world_def();
+    def.effects = MR_EFFECT_CONSTRAINTS;
+    mr_world *w = NULL;
+    assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+    const double pts[4][3] = {
+      { 0, 1, 0 }, { 0.1, 1, 0 }, { 0, 1, 0.1 }, { 0.5, 1 + heights[i], 0.5 }
+    };
+    int ids[4];
+    for (int k = 0; k < 4; k++) {
+      mr_particle_def p = mr_default_particle_def();
+      for (int j = 0; j < 3; j++) p.position[j] = pts[k][j];
+      assert_int_equal(mr_world_add_particle(w, &p, &ids[k]), MR_OK);
+    }
+    mr_rigid_group_def g = mr_default_rigid_group_def();
+    g.particles = ids;
+    g.count = 4;
+    int world_ok = mr_world_add_rigid_group(w, &g, NULL) == MR_OK;
+    mr_world_destroy(w);
+
+    mr_scene s;
+    mr_scene_error e;
+    int loads = mr_scene_load_text("t.yaml", text, strlen(text), &s, &e) == MR_SCENE_OK;
+    if (loads) {
+      mr_scene_world sw;
+      assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
+      mr_scene_world_free(&sw);
+      mr_scene_free(&s);
+    } else {
+      assert_string_equal(e.text, "t.yaml:8:43: group 'g': 'a', 'b', 'c' and 'd' are coplanar; a "
+                                  "group starts with four members in general position (§5.1)");
+    }
+    assert_int_equal(loads, world_ok);
+    refused += !loads;
+    accepted += loads;
+  }
+  assert_true(refused > 0 && accepted > 0); /* the sweep crosses the line */
+}
+
 static void pinned_particle_stays_and_free_one_falls(void **state) {
   (void)state;
   const char *text = "physics:\n"
@@ -351,6 +412,7 @@ int main(void) {
     cmocka_unit_test(control_points_sit_where_the_file_means),
     cmocka_unit_test(track_rotation_and_phase_reach_the_world),
     cmocka_unit_test(settings_reach_the_built_world),
+    cmocka_unit_test(loader_and_physics_agree_on_flat_groups),
     cmocka_unit_test(pinned_particle_stays_and_free_one_falls),
     cmocka_unit_test(run_reports_every_step_to_the_callback),
     cmocka_unit_test(steps_land_on_frame_times_with_fps),

@@ -424,6 +424,18 @@ static void expected_load_error_is_readable_from_a_broken_scene(void **state) {
   assert_string_equal(out, "coincides with");
 }
 
+/* host/scenes/FORMAT.md, read once. */
+static const char *format_md(void) {
+  static char doc[131072];
+  if (doc[0] != '\0') return doc;
+  FILE *f = fopen(MR_SOURCE_DIR "/host/scenes/FORMAT.md", "r");
+  assert_non_null(f);
+  size_t n = fread(doc, 1, sizeof doc - 1, f);
+  fclose(f);
+  doc[n] = '\0';
+  return doc;
+}
+
 /* Legal YAML, absurd numbers: each is refused with its place and its
  * range, before a run could try 1e300 steps. Empty values and explicit
  * tags keep their place too. */
@@ -481,12 +493,7 @@ static void absurd_values_empty_values_and_tags(void **state) {
 /* FORMAT.md's table of ranges is the loader's, row for row. */
 static void format_md_lists_every_range(void **state) {
   (void)state;
-  FILE *f = fopen(MR_SOURCE_DIR "/host/scenes/FORMAT.md", "r");
-  assert_non_null(f);
-  static char doc[131072];
-  size_t n = fread(doc, 1, sizeof doc - 1, f);
-  fclose(f);
-  doc[n] = '\0';
+  const char *doc = format_md();
   int rows = 0;
   for (const mr_scene_range *g; (g = mr_scene_range_at(rows)) != NULL; rows++) {
     char row[160];
@@ -499,12 +506,7 @@ static void format_md_lists_every_range(void **state) {
 /* The commented example in FORMAT.md is a scene that loads. */
 static void format_md_example_loads(void **state) {
   (void)state;
-  FILE *f = fopen(MR_SOURCE_DIR "/host/scenes/FORMAT.md", "r");
-  assert_non_null(f);
-  static char doc[131072];
-  size_t n = fread(doc, 1, sizeof doc - 1, f);
-  fclose(f);
-  doc[n] = '\0';
+  const char *doc = format_md();
   char *start = strstr(doc, "```yaml\n");
   assert_non_null(start);
   start += strlen("```yaml\n");

@@ -328,9 +328,8 @@ static void physics_keys(const char **keys, size_t max) {
   for (size_t i = 0; i < N_TAIL; i++) keys[n++] = tail[i];
 }
 
-/* A section read by fn when the file has it. */
-static int optional(mr_reader *r, const mr_ynode *n, const char *key,
-                    int (*fn)(mr_reader *, const mr_ynode *)) {
+int mr_scene_read_optional(mr_reader *r, const mr_ynode *n, const char *key,
+                           int (*fn)(mr_reader *, const mr_ynode *)) {
   const mr_ynode *v = mr_scene_yaml_get(n, key);
   return v != NULL ? fn(r, v) : 0;
 }
@@ -353,9 +352,10 @@ int mr_scene_read_physics(mr_reader *r, const mr_ynode *n) {
   if (mr_scene_read_map(r, n, "physics", keys) != 0) return -1;
   const mr_ynode *v = mr_scene_read_need(r, n, "effects", "physics");
   if (v == NULL || read_effects(r, v) != 0 || read_gravity_and_drag(r, n) != 0) return -1;
-  if (optional(r, n, "ats", read_ats) != 0 || optional(r, n, "solver", read_solver) != 0 ||
-      optional(r, n, "contact", read_contact) != 0 ||
-      optional(r, n, "string_correction", read_string_correction) != 0)
+  if (mr_scene_read_optional(r, n, "ats", read_ats) != 0 ||
+      mr_scene_read_optional(r, n, "solver", read_solver) != 0 ||
+      mr_scene_read_optional(r, n, "contact", read_contact) != 0 ||
+      mr_scene_read_optional(r, n, "string_correction", read_string_correction) != 0)
     return -1;
   /* Fixed order, whatever the order in the file: later items name earlier
    * ones, and every particle has its world id before the control points
@@ -366,11 +366,13 @@ int mr_scene_read_physics(mr_reader *r, const mr_ynode *n) {
   if (v == NULL && puppets == NULL)
     return mr_scene_read_need(r, n, "particles", "physics") ? 0 : -1;
   if (puppets != NULL && mr_scene_read_puppet_particles(r, puppets) != 0) return -1;
-  if (optional(r, n, "control", read_control) != 0 ||
-      optional(r, n, "constraints", mr_scene_read_constraints) != 0 ||
-      optional(r, n, "groups", mr_scene_read_groups) != 0 || mr_scene_read_forces(r, n) != 0 ||
+  if (mr_scene_read_optional(r, n, "control", read_control) != 0 ||
+      mr_scene_read_optional(r, n, "constraints", mr_scene_read_constraints) != 0 ||
+      mr_scene_read_optional(r, n, "groups", mr_scene_read_groups) != 0 ||
+      mr_scene_read_forces(r, n) != 0 ||
       (puppets != NULL && mr_scene_read_puppet_items(r, puppets) != 0) ||
-      optional(r, n, "floor", read_floor) != 0 || optional(r, n, "parts", mr_scene_read_parts) != 0)
+      mr_scene_read_optional(r, n, "floor", read_floor) != 0 ||
+      mr_scene_read_optional(r, n, "parts", mr_scene_read_parts) != 0)
     return -1;
   return 0;
 }

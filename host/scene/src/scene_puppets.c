@@ -74,22 +74,16 @@ int mr_scene_read_puppet_particles(mr_reader *r, const mr_ynode *n) {
   return 0;
 }
 
-static int optional(mr_reader *r, const mr_ynode *n, const char *key,
-                    int (*fn)(mr_reader *, const mr_ynode *)) {
-  const mr_ynode *v = mr_scene_yaml_get(n, key);
-  return v != NULL ? fn(r, v) : 0;
-}
-
 int mr_scene_read_puppet_items(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
   for (size_t i = 0; i < n->count && i < s->n_puppets; i++) {
     const mr_ynode *it = n->items[i];
     r->puppet = s->puppets[i].name;
     r->puppet_id = s->puppets[i].id;
-    int rc = optional(r, it, "constraints", mr_scene_read_constraints) != 0 ||
-                     optional(r, it, "groups", mr_scene_read_groups) != 0 ||
+    int rc = mr_scene_read_optional(r, it, "constraints", mr_scene_read_constraints) != 0 ||
+                     mr_scene_read_optional(r, it, "groups", mr_scene_read_groups) != 0 ||
                      mr_scene_read_forces(r, it) != 0 ||
-                     optional(r, it, "parts", mr_scene_read_parts) != 0
+                     mr_scene_read_optional(r, it, "parts", mr_scene_read_parts) != 0
                  ? -1
                  : 0;
     leave(r);

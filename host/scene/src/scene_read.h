@@ -142,6 +142,10 @@ int mr_scene_read_need_effect(mr_reader *r, const mr_ynode *at, uint32_t effect,
 /* The name a scene file uses for one effect bit. */
 const char *mr_scene_effect_name(uint32_t effect_bit);
 
+/* A section read by fn when the file has it (key under n). */
+int mr_scene_read_optional(mr_reader *r, const mr_ynode *n, const char *key,
+                           int (*fn)(mr_reader *, const mr_ynode *));
+
 /* Sections, one file each. */
 int mr_scene_read_physics(mr_reader *r, const mr_ynode *physics);
 int mr_scene_read_control(mr_reader *r, const mr_ynode *control);
