@@ -151,14 +151,14 @@ static void unknown_top_level_key(void **state) {
   (void)state;
   expect_error(BASE "bogus: 1\n", MR_SCENE_ERR_SCHEMA,
                "t.yaml:6:1: unknown key 'bogus' in the scene; expected one of: format, name, "
-               "sim, physics, expect");
+               "sim, physics, mapping, expect");
 }
 
 static void theater_section_is_reserved(void **state) {
   (void)state;
   expect_error("lights: []\n" BASE, MR_SCENE_ERR_SCHEMA,
                "t.yaml:1:1: section 'lights' is reserved for the theater and not supported by "
-               "this version; expected one of: format, name, sim, physics, expect");
+               "this version; expected one of: format, name, sim, physics, mapping, expect");
 }
 
 static void unknown_particle_key(void **state) {
@@ -424,6 +424,65 @@ static void expected_load_error_is_readable_from_a_broken_scene(void **state) {
   assert_string_equal(out, "coincides with");
 }
 
+/* The glove mappings: named, listed axes only, the frame's start pose as
+ * neutral, filter settings; without the section, none (the theater then
+ * takes the default). Each reads into a definition the control library
+ * accepts, and errors keep their place. */
+static void glove_mappings_are_read(void **state) {
+  (void)state;
+  static const char *const head = "physics:\n"
+                                  "  effects: [control]\n"
+                                  "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+                                  "  control:\n"
+                                  "    pose: {position: [0, 1.25, 0]}\n"
+                                  "    points: [{name: bar, offset: [0, 0, 0]}]\n";
+  char text[1024];
+  snprintf(text, sizeof text,
+           "%smapping:\n"
+           "  - name: walk\n"
+           "    filter: {min_cutoff: 2, beta: 0.3}\n"
+           "    stuck_after: 1.5\n"
+           "    axes:\n"
+           "      move_z: {channel: 4, range: [-0.3, 0.3], invert: true, dead_zone: 0.05}\n"
+           "      turn_y: {channel: 2, range: [-60, 60]}\n"
+           "  - name: head-only\n",
+           head);
+  mr_scene s;
+  mr_scene_error e;
+  if (mr_scene_load_text("t.yaml", text, strlen(text), &s, &e) != MR_SCENE_OK)
+    fail_msg("%s", e.text);
+  assert_int_equal(s.n_mappings, 2);
+  const mr_mapping_def *w = &s.mappings[0].def;
+  assert_string_equal(w->name, "walk");
+  assert_true(w->min_cutoff == 2 && w->beta == 0.3 && w->stuck_after == 1.5);
+  assert_int_equal(w->axes[MR_DOF_MOVE_Z].channel, 4);
+  assert_true(w->axes[MR_DOF_MOVE_Z].invert && w->axes[MR_DOF_MOVE_Z].dead_zone == 0.05);
+  assert_true(w->axes[MR_DOF_MOVE_Z].low == -0.3 && w->axes[MR_DOF_MOVE_Z].high == 0.3);
+  assert_int_equal(w->axes[MR_DOF_TURN_X].channel, -1); /* not listed: not driven */
+  assert_true(w->neutral.position[1] == 1.25);
+  /* A mapping that lists no axes keeps the paper's five. */
+  assert_int_equal(s.mappings[1].def.axes[MR_DOF_MOVE_Y].channel, 3);
+  const mr_mapping_def defs[2] = { s.mappings[0].def, s.mappings[1].def };
+  mr_control *c = NULL;
+  assert_int_equal(mr_control_create(defs, 2, &c, NULL, 0), MR_CONTROL_OK);
+  mr_control_destroy(c);
+  mr_scene_free(&s);
+
+  snprintf(text, sizeof text, "%smapping:\n  - name: m\n    axes:\n      fly: {channel: 1}\n",
+           head);
+  expect_error(text, MR_SCENE_ERR_SCHEMA,
+               "t.yaml:10:7: unknown axis 'fly'; expected one of: turn_x, turn_y, turn_z, "
+               "move_x, move_y, move_z");
+  snprintf(text, sizeof text, "%smapping:\n  - name: m\n    axes:\n      turn_x: {channel: 5}\n",
+           head);
+  expect_error(text, MR_SCENE_ERR_VALUE, "t.yaml:10:25: expected channel between 0 and 4, got 5");
+  expect_error("physics:\n  effects: [gravity]\n  particles: [{name: a, position: [0, 0, 0], "
+               "mass: 1}]\nmapping: [{name: m}]\n",
+               MR_SCENE_ERR_SCHEMA,
+               "t.yaml:4:10: a glove mapping is declared but effect 'control' is not listed in "
+               "physics.effects");
+}
+
 /* host/scenes/FORMAT.md, read once. */
 static const char *format_md(void) {
   static char doc[131072];
@@ -555,6 +614,7 @@ int main(void) {
     cmocka_unit_test(format_md_example_loads),
     cmocka_unit_test(absurd_values_empty_values_and_tags),
     cmocka_unit_test(format_md_lists_every_range),
+    cmocka_unit_test(glove_mappings_are_read),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -22,6 +22,9 @@ typedef struct mr_pose {
 /* At the origin, facing the identity (1, 0, 0, 0). */
 mr_pose mr_pose_identity(void);
 
+/* 1 when every component is finite, else 0. */
+int mr_pose_is_finite(const mr_pose *pose);
+
 /* Scales the orientation to unit length. Returns 0, or -1 (pose untouched)
  * when a component is NaN or Inf or the quaternion is (nearly) zero. */
 int mr_pose_normalize(mr_pose *pose);

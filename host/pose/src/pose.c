@@ -103,7 +103,7 @@ mr_pose mr_pose_interpolate(const mr_pose *from, const mr_pose *to, double s) {
   return o;
 }
 
-static int pose_finite(const mr_pose *p) {
+int mr_pose_is_finite(const mr_pose *p) {
   for (int k = 0; k < 3; k++)
     if (!isfinite(p->position[k])) return 0;
   for (int k = 0; k < 4; k++)
@@ -112,7 +112,7 @@ static int pose_finite(const mr_pose *p) {
 }
 
 mr_pose mr_pose_approach(const mr_pose *from, const mr_pose *to, double max_move, double max_turn) {
-  if (!pose_finite(to)) return *from;
+  if (!mr_pose_is_finite(to)) return *from;
   double d[3], dist = 0, axis[3];
   for (int k = 0; k < 3; k++) {
     d[k] = to->position[k] - from->position[k];

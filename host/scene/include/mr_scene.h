@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_control.h"
 #include "mr_physics.h"
 #include "mr_pose.h"
 
@@ -102,6 +103,12 @@ typedef struct mr_scene_puppet {
   size_t first, count;
   mr_scene_pos pos;
 } mr_scene_puppet;
+
+/* A glove mapping (the scene's `mapping:`), for the control library. */
+typedef struct mr_scene_mapping {
+  mr_mapping_def def;
+  mr_scene_pos pos;
+} mr_scene_mapping;
 
 typedef struct mr_scene_floor {
   bool present;
@@ -202,6 +209,9 @@ typedef struct mr_scene {
   mr_scene_puppet *puppets; /* none when the file declares no puppets: its
                                particles are then one puppet, number 0 */
   size_t n_puppets;
+
+  mr_scene_mapping *mappings; /* none: the default mapping (mr_default_mapping_def) */
+  size_t n_mappings;
 
   mr_scene_control_point *control_points;
   size_t n_control_points;

@@ -10,8 +10,8 @@
 
 /* Sections the theater will add to the same files; refusing them now keeps a
  * newer file from being half-understood by this version. */
-static const char *const theater_sections[] = { "models",  "lights", "camera", "stage", "glove",
-                                                "mapping", "render", "audio",  NULL };
+static const char *const theater_sections[] = { "models", "lights", "camera", "stage",
+                                                "glove",  "render", "audio",  NULL };
 
 static void defaults(mr_scene *s) {
   memset(s, 0, sizeof *s);
@@ -105,10 +105,12 @@ static int read_root(mr_reader *r, const mr_ynode *root) {
         return mr_scene_read_fail(
             r, key, MR_SCENE_ERR_SCHEMA,
             "section '%s' is reserved for the theater and not supported "
-            "by this version; expected one of: format, name, sim, physics, expect",
+            "by this version; expected one of: format, name, sim, physics, mapping, expect",
             key->text);
   }
-  static const char *const keys[] = { "format", "name", "sim", "physics", "expect", NULL };
+  static const char *const keys[] = {
+    "format", "name", "sim", "physics", "mapping", "expect", NULL
+  };
   if (mr_scene_read_map(r, root, "the scene", keys) != 0) return -1;
   const mr_ynode *v = mr_scene_yaml_get(root, "format");
   if (v != NULL) {
@@ -128,6 +130,7 @@ static int read_root(mr_reader *r, const mr_ynode *root) {
   const mr_ynode *physics = mr_scene_read_need(r, root, "physics", "the scene");
   if (physics == NULL) return -1;
   if (mr_scene_read_physics(r, physics) != 0 || check_mass_ratios(r) != 0) return -1;
+  if (mr_scene_read_optional(r, root, "mapping", mr_scene_read_mappings) != 0) return -1;
   if ((v = mr_scene_yaml_get(root, "expect")) != NULL && mr_scene_read_expect(r, v) != 0) return -1;
   return 0;
 }
@@ -219,6 +222,7 @@ void mr_scene_free(mr_scene *s) {
   for (size_t i = 0; i < s->n_parts; i++) free((int *)s->parts[i].def.particles);
   free(s->parts);
   free(s->puppets);
+  free(s->mappings);
   free(s->forces);
   free(s->control_points);
   free(s->track.keys);

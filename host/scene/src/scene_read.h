@@ -150,6 +150,7 @@ int mr_scene_read_optional(mr_reader *r, const mr_ynode *n, const char *key,
 int mr_scene_read_physics(mr_reader *r, const mr_ynode *physics);
 int mr_scene_read_control(mr_reader *r, const mr_ynode *control);
 int mr_scene_read_expect(mr_reader *r, const mr_ynode *expect);
+int mr_scene_read_mappings(mr_reader *r, const mr_ynode *mapping);
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *groups);
 int mr_scene_read_parts(mr_reader *r, const mr_ynode *parts);
 int mr_scene_read_particles(mr_reader *r, const mr_ynode *particles);
