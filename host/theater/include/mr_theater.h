@@ -1,0 +1,124 @@
+/* mr_theater: the clock and the frame scheduler of a show (§4.6).
+ *
+ * The stage is drawn at a fixed frame rate. Each tick presents the frame
+ * computed at the tick before (one frame of delay, by design), then runs
+ * the physics to the next frame's time, the last step landing on it. Under
+ * load the paper's policy skips renders while simulated time stays locked
+ * to wall time, and the catch-up is capped so the loop never spirals; the
+ * `slow` policy instead lets simulated time fall behind and skips nothing.
+ *
+ * Time comes from an mr_clock: the wall clock for a show, a virtual clock
+ * for tests, `marionette sim` and replays, so a run is reproducible. The
+ * scheduler knows nothing of physics or drawing: it calls the hooks it is
+ * given. Manners as elsewhere: definition structs from default makers,
+ * mr_object_verb names, no printing, no aborting.
+ */
+#ifndef MR_THEATER_H
+#define MR_THEATER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- clock */
+
+/* A source of time in seconds and a way to wait for a time. */
+typedef struct mr_clock {
+  double (*now)(void *self);
+  void (*wait_until)(void *self, double t); /* returns at once if t has passed */
+  void *self;
+} mr_clock;
+
+/* CLOCK_MONOTONIC, and nanosleep until the time asked. */
+mr_clock mr_clock_wall(void);
+
+/* A clock that moves only when told: waiting moves it to the time waited
+ * for, and work that costs time moves it by mr_virtual_clock_spend. */
+typedef struct mr_virtual_clock {
+  double t;
+} mr_virtual_clock;
+mr_clock mr_clock_virtual(mr_virtual_clock *vc);
+void mr_virtual_clock_spend(mr_virtual_clock *vc, double seconds);
+
+/* ------------------------------------------------------------ scheduler */
+
+typedef enum mr_policy {
+  MR_POLICY_SKIP = 0, /* the paper's: skip renders, keep simulated time on wall time */
+  MR_POLICY_SLOW      /* skip nothing, let simulated time slow down */
+} mr_policy;
+const char *mr_policy_name(mr_policy p);
+int mr_policy_parse(const char *name, mr_policy *out);
+
+typedef struct mr_scheduler_def {
+  uint32_t cookie; /* MR_THEATER_COOKIE, set by mr_default_scheduler_def() */
+  double fps;      /* frames per second, > 0; default 60 */
+  mr_policy policy;
+  int max_catch_up; /* frames simulated in one tick at the most when behind;
+                       past that the lag is dropped, so the loop never
+                       spirals. Default 5 */
+} mr_scheduler_def;
+#define MR_THEATER_COOKIE 0x6d725468u
+mr_scheduler_def mr_default_scheduler_def(void);
+
+/* What the physics did to reach one frame time. */
+typedef struct mr_frame_work {
+  uint64_t steps, rejected, resets;
+} mr_frame_work;
+
+typedef struct mr_scheduler_hooks {
+  /* Advance the world to simulated time t (its last step landing on t) and
+   * keep that state as the frame to present. Nonzero stops the show. */
+  int (*advance)(void *user, double t, mr_frame_work *work);
+  /* Draw the frame kept for simulated time t. */
+  void (*present)(void *user, double t);
+  void *user;
+} mr_scheduler_hooks;
+
+typedef struct mr_scheduler_stats {
+  uint64_t ticks, frames_simulated, frames_presented, frames_skipped;
+  uint64_t steps, rejected, resets;
+  double sim_time;                 /* simulated time reached, s */
+  double wall_time;                /* wall time since the first tick, s */
+  double dropped_time;             /* lag given up by the catch-up cap (skip policy), s */
+  double real_time_factor;         /* sim_time / wall_time; 1 when the show keeps up */
+  double latency_p50, latency_p99; /* input sample to presented frame, s;
+                                      0 before any input was noted */
+  double last_present_wall, last_present_sim; /* of the latest presented frame */
+} mr_scheduler_stats;
+
+typedef struct mr_scheduler mr_scheduler;
+
+typedef enum mr_theater_status {
+  MR_THEATER_OK = 0,
+  MR_THEATER_ERR_ARG = -1, /* a NULL, a def not made by its maker, a bad field */
+  MR_THEATER_STOPPED = -2  /* the advance hook asked to stop */
+} mr_theater_status;
+
+/* A scheduler over a clock (copied) and hooks (copied). msg names a bad
+ * field. The first tick starts simulated time 0 at the clock's now. */
+mr_theater_status mr_scheduler_create(const mr_scheduler_def *def, const mr_clock *clock,
+                                      const mr_scheduler_hooks *hooks, mr_scheduler **out,
+                                      char *msg, size_t msg_size);
+void mr_scheduler_destroy(mr_scheduler *s);
+
+/* One tick: present the frame computed last (unless the skip policy finds
+ * it stale), simulate to the next frame time (more than one when behind,
+ * up to max_catch_up), then wait for the next tick's time. */
+mr_theater_status mr_scheduler_tick(mr_scheduler *s);
+
+/* An input sample arrived at wall time t (the clock's): the next frame
+ * simulated uses it, and the latency counters measure from t to the
+ * presentation of that frame. */
+void mr_scheduler_note_input(mr_scheduler *s, double t);
+
+void mr_scheduler_stats_get(const mr_scheduler *s, mr_scheduler_stats *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MR_THEATER_H */
