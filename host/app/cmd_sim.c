@@ -15,6 +15,7 @@
 #include "app.h"
 #include "mr_scene.h"
 #include "mr_scene_world.h"
+#include "mr_sim.h"
 
 void mr_cmd_sim_usage(void) {
   printf("usage: marionette sim [OPTIONS] SCENE\n"
@@ -51,7 +52,7 @@ typedef struct csv_sink {
   int failed;
 } csv_sink;
 
-static void on_step(void *user, const mr_scene_step *s) {
+static void on_step(void *user, const mr_sim_step *s) {
   csv_sink *c = user;
   /* %.17g: the trace must carry the exact doubles for comparisons. */
   if (fprintf(c->f, "%.17g,%.17g,%.17g,%d,%d,%d,%.17g\n", s->t, s->dt, s->error, s->accepted,
@@ -65,7 +66,7 @@ static double wall_seconds(void) {
   return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
-static void print_summary(const mr_scene *scene, const mr_scene_run_result *r, double wall) {
+static void print_summary(const mr_scene *scene, const mr_sim_result *r, double wall) {
   printf("scene: %s (%s)\n", scene->name, scene->path);
   printf("simulated: %.3f s\n", r->sim_time);
   printf("wall: %.3f s\n", wall);
@@ -210,8 +211,7 @@ static int run_failed(const sim_args *a, const mr_scene *scene, const mr_scene_e
 }
 
 /* What a finished run prints, and the check's verdict. */
-static int report(const sim_args *a, const mr_scene *scene, const mr_scene_run_result *r,
-                  double wall) {
+static int report(const sim_args *a, const mr_scene *scene, const mr_sim_result *r, double wall) {
   bool csv_on_stdout = a->csv_path != NULL && strcmp(a->csv_path, "-") == 0;
   if (a->print_hash)
     printf("state_hash: 0x%016" PRIx64 "\n", r->hash);
@@ -219,7 +219,7 @@ static int report(const sim_args *a, const mr_scene *scene, const mr_scene_run_r
     print_summary(scene, r, wall);
   if (!a->check) return MR_EXIT_OK;
   char why[512];
-  if (mr_scene_check(scene, r, why, sizeof why) != 0) {
+  if (mr_sim_check(scene, r, why, sizeof why) != 0) {
     fprintf(stderr, "marionette: %s: check failed: %s\n", a->path, why);
     return MR_EXIT_FAIL;
   }
@@ -230,11 +230,11 @@ static int report(const sim_args *a, const mr_scene *scene, const mr_scene_run_r
 static int run_scene(const sim_args *a, mr_scene *scene) {
   csv_sink sink;
   if (csv_open(a->csv_path, &sink) != 0) return MR_EXIT_FAIL;
-  mr_scene_run_opts opts = { a->duration, a->csv_path ? on_step : NULL, &sink };
-  mr_scene_run_result result;
+  mr_sim_opts opts = { a->duration, a->csv_path ? on_step : NULL, &sink };
+  mr_sim_result result;
   mr_scene_error err;
   double t0 = wall_seconds();
-  mr_scene_status st = mr_scene_run(scene, &opts, &result, &err);
+  mr_scene_status st = mr_sim_run(scene, &opts, &result, &err);
   double wall = wall_seconds() - t0;
   int rc = csv_close(a->csv_path, &sink);
   if (st != MR_SCENE_OK) return run_failed(a, scene, &err);

@@ -16,6 +16,7 @@
 
 #include "mr_scene.h"
 #include "mr_scene_world.h"
+#include "mr_sim.h"
 
 /* ------------------------------------------------- counting allocator */
 
@@ -84,7 +85,7 @@ typedef struct watch {
 } watch;
 
 /* Counting starts once the first step is done and stops after 1 000 more. */
-static void on_step(void *user, const mr_scene_step *row) {
+static void on_step(void *user, const mr_sim_step *row) {
   watch *w = user;
   w->steps += (uint64_t)row->accepted;
   if (counting) w->watched += (uint64_t)row->accepted;
@@ -136,11 +137,11 @@ static void run_method(const char *method) {
     fail_msg("%s", err.text);
   watch w = { 0, 0, 0 };
   /* Long enough for 1 001 steps at the upper bound of 0.05 s. */
-  mr_scene_run_opts opts = { 60.0, on_step, &w };
-  mr_scene_run_result r;
+  mr_sim_opts opts = { 60.0, on_step, &w };
+  mr_sim_result r;
   allocations = 0;
   counting = 0;
-  if (mr_scene_run(&scene, &opts, &r, &err) != MR_SCENE_OK) fail_msg("%s", err.text);
+  if (mr_sim_run(&scene, &opts, &r, &err) != MR_SCENE_OK) fail_msg("%s", err.text);
   counting = 0;
   printf("%s: %llu steps, %llu watched, %lu allocations after the first step, %llu collisions\n",
          method, (unsigned long long)w.steps, (unsigned long long)w.watched, w.after_first,

@@ -12,6 +12,7 @@
 
 #include "mr_scene.h"
 #include "mr_scene_world.h"
+#include "mr_sim.h"
 
 static void load(const char *text, mr_scene *s) {
   mr_scene_error e;
@@ -299,7 +300,7 @@ typedef struct tally {
   int ordered;
 } tally;
 
-static void count_step(void *user, const mr_scene_step *step) {
+static void count_step(void *user, const mr_sim_step *step) {
   tally *t = user;
   t->accepted += (uint64_t)step->accepted;
   t->dt_sum += step->dt * step->accepted;
@@ -319,10 +320,10 @@ static void run_reports_every_step_to_the_callback(void **state) {
   mr_scene s;
   load(text, &s);
   tally t = { 0, 0, 0, 1 };
-  mr_scene_run_opts o = { 0, count_step, &t };
-  mr_scene_run_result r;
+  mr_sim_opts o = { 0, count_step, &t };
+  mr_sim_result r;
   mr_scene_error e;
-  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_int_equal(mr_sim_run(&s, &o, &r, &e), MR_SCENE_OK);
   assert_true(r.sim_time == 2.0);
   assert_true(r.finite);
   assert_int_equal(t.accepted, r.steps);
@@ -352,10 +353,10 @@ static void unset_settings_are_the_papers(void **state) {
   assert_true(d.deviation_low == 1e-4 && d.deviation_high == 1e-2);
   assert_int_equal(d.integrator, MR_INTEGRATOR_RK4);
   /* The run's steps stay inside those bounds. */
-  mr_scene_run_opts o = { 1.0, NULL, NULL };
-  mr_scene_run_result r;
+  mr_sim_opts o = { 1.0, NULL, NULL };
+  mr_sim_result r;
   mr_scene_error e;
-  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_int_equal(mr_sim_run(&s, &o, &r, &e), MR_SCENE_OK);
   assert_true(r.dt_max <= 0.05 + 1e-12);
   assert_true(r.steps >= 20); /* 1 s at no more than 0.05 s a step */
   mr_scene_free(&s);
@@ -367,7 +368,7 @@ typedef struct frames {
   uint64_t rows;
 } frames;
 
-static void check_frame_landing(void *user, const mr_scene_step *step) {
+static void check_frame_landing(void *user, const mr_sim_step *step) {
   frames *f = user;
   /* No frame time k/fps lies strictly inside a step. */
   double k_prev = floor(f->last_t * f->fps + 1e-9);
@@ -395,10 +396,10 @@ static void steps_land_on_frame_times_with_fps(void **state) {
   mr_scene s;
   load(text, &s);
   frames f = { 30.0, 0.0, 0, 0 };
-  mr_scene_run_opts o = { 0, check_frame_landing, &f };
-  mr_scene_run_result r;
+  mr_sim_opts o = { 0, check_frame_landing, &f };
+  mr_sim_result r;
   mr_scene_error e;
-  assert_int_equal(mr_scene_run(&s, &o, &r, &e), MR_SCENE_OK);
+  assert_int_equal(mr_sim_run(&s, &o, &r, &e), MR_SCENE_OK);
   assert_false(f.crossed);
   assert_true(f.rows >= 90); /* at least one step per frame */
   assert_true(r.dt_max <= 1.0 / 30.0 + 1e-12);

@@ -13,6 +13,7 @@
 
 #include "mr_scene.h"
 #include "mr_scene_world.h"
+#include "mr_sim.h"
 #include "proc.h"
 
 static char *marionette;
@@ -127,9 +128,9 @@ static void same_scene_same_state_hash(void **state) {
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load(scene_path, &s, &e), MR_SCENE_OK);
-  mr_scene_run_opts opts = { 4.0, NULL, NULL };
-  mr_scene_run_result r;
-  assert_int_equal(mr_scene_run(&s, &opts, &r, &e), MR_SCENE_OK);
+  mr_sim_opts opts = { 4.0, NULL, NULL };
+  mr_sim_result r;
+  assert_int_equal(mr_sim_run(&s, &opts, &r, &e), MR_SCENE_OK);
   char lib[64];
   snprintf(lib, sizeof lib, "%016" PRIx64, r.hash);
   assert_string_equal(ha, lib);
@@ -137,8 +138,8 @@ static void same_scene_same_state_hash(void **state) {
 
   /* A different run length is a different state: the hash is not constant. */
   opts.duration = 3.0;
-  mr_scene_run_result r3;
-  assert_int_equal(mr_scene_run(&s, &opts, &r3, &e), MR_SCENE_OK);
+  mr_sim_result r3;
+  assert_int_equal(mr_sim_run(&s, &opts, &r3, &e), MR_SCENE_OK);
   assert_true(r3.hash != r.hash);
   mr_scene_free(&s);
   tt_output_free(&a);

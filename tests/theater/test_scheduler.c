@@ -30,8 +30,7 @@ typedef struct show {
 
 static int advance(void *user, double t, mr_frame_work *w) {
   show *s = user;
-  double j = (double)s->advances;
-  if (t != j * s->period) s->bad_landing++;
+  if (t != (double)s->advances / 60.0) s->bad_landing++;
   s->advances++;
   s->advances_in_tick++;
   s->last_advance_t = t;

@@ -128,8 +128,14 @@ static double latency_quantile(const mr_scheduler *s, double q) {
   return (double)LAT_BINS * LAT_BIN;
 }
 
+/* Frame j's time is j/fps, computed afresh, never a running sum: a long
+ * show lands on its frame times exactly. */
+static double frame_time(const mr_scheduler *s, uint64_t j) {
+  return (double)j / s->def.fps;
+}
+
 static double slot(const mr_scheduler *s, uint64_t j) {
-  return s->t0 + (double)j * s->period;
+  return s->t0 + frame_time(s, j);
 }
 
 /* Shows the frame computed last, or drops it when it is stale. */
@@ -177,7 +183,7 @@ mr_theater_status mr_scheduler_tick(mr_scheduler *s) {
   uint64_t due = frames_due(s, now);
   for (uint64_t i = 0; i < due; i++) {
     mr_frame_work w = { 0, 0, 0 };
-    double t = (double)s->next * s->period;
+    double t = frame_time(s, s->next);
     if (s->hooks.advance(s->hooks.user, t, &w) != 0) return MR_THEATER_STOPPED;
     s->st.steps += w.steps;
     s->st.rejected += w.rejected;

@@ -1,7 +1,8 @@
 /* A headless run: the control track sampled at the scene's frame rate,
  * the world stepped one ATS step at a time in between (§4.5, §4.6), and the
  * numbers `marionette sim` prints gathered on the way. */
-#include "mr_scene_world.h"
+#include "mr_sim.h"
+#include "mr_theater.h"
 
 #include <inttypes.h>
 #include <math.h>
@@ -66,7 +67,7 @@ typedef struct watcher {
   bool anchored;
 } watcher;
 
-static void watch(watcher *w, double t, mr_scene_run_result *r) {
+static void watch(watcher *w, double t, mr_sim_result *r) {
   const mr_scene_expect *e = w->e;
   if (e->n_watch == 0 || !(t >= e->settle)) return;
   for (size_t k = 0; k < e->n_watch; k++) {
@@ -110,8 +111,8 @@ static mr_scene_status run_fail(const mr_scene *s, mr_scene_error *err, mr_scene
  * running sums the means are made from at the end. */
 typedef struct run {
   const mr_scene *s;
-  const mr_scene_run_opts *opts;
-  mr_scene_run_result *r;
+  const mr_sim_opts *opts;
+  mr_sim_result *r;
   mr_scene_world sw;
   double duration, fps, dt_max;
   double *xyz;  /* positions, to check every state is finite */
@@ -175,11 +176,11 @@ static double next_target(run *u, double t, bool *land) {
 }
 
 /* Folds one step call into the result and returns its trace row. */
-static mr_scene_step record(run *u, const mr_step_report *rep) {
-  mr_scene_run_result *r = u->r;
+static mr_sim_step record(run *u, const mr_step_report *rep) {
+  mr_sim_result *r = u->r;
   mr_stats stats;
   mr_world_stats(u->sw.world, &stats);
-  mr_scene_step row = {
+  mr_sim_step row = {
     mr_world_time(u->sw.world), stats.last_dt,    stats.last_error, rep->steps, rep->rejected,
     rep->divergences,           max_speed(&u->sw)
   };
@@ -223,7 +224,7 @@ static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
              mr_world_last_error(u->sw.world));
     return run_fail(u->s, err, MR_SCENE_ERR_BUILD, msg, *t);
   }
-  mr_scene_step row = record(u, &rep);
+  mr_sim_step row = record(u, &rep);
   if (u->r->steps + u->r->rejected > (uint64_t)u->s->max_steps) {
     char msg[300];
     snprintf(msg, sizeof msg,
@@ -239,7 +240,7 @@ static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
 }
 
 static void run_finish(run *u, double t) {
-  mr_scene_run_result *r = u->r;
+  mr_sim_result *r = u->r;
   r->sim_time = t;
   mr_stats st;
   mr_world_stats(u->sw.world, &st);
@@ -258,8 +259,8 @@ static void run_finish(run *u, double t) {
   r->hash = mr_world_state_hash(u->sw.world);
 }
 
-mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
-                             mr_scene_run_result *r, mr_scene_error *err) {
+mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_opts *opts, mr_sim_result *r,
+                           mr_scene_error *err) {
   memset(r, 0, sizeof *r);
   r->finite = true;
   r->dt_min = INFINITY;
@@ -281,7 +282,7 @@ mr_scene_status mr_scene_run(const mr_scene *s, const mr_scene_run_opts *opts,
   return rc;
 }
 
-int mr_scene_check(const mr_scene *s, const mr_scene_run_result *r, char *why, size_t size) {
+int mr_sim_check(const mr_scene *s, const mr_sim_result *r, char *why, size_t size) {
   const mr_scene_expect *e = &s->expect;
   if (e->has_load_error) {
     snprintf(why, size, "expected the load to fail with \"%s\", but the scene loaded",
