@@ -70,6 +70,7 @@ static void print_summary(const mr_scene *scene, const mr_sim_result *r, double 
   printf("scene: %s (%s)\n", scene->name, scene->path);
   printf("simulated: %.3f s\n", r->sim_time);
   printf("wall: %.3f s\n", wall);
+  if (r->frames > 0) printf("frames: %" PRIu64 " at %g fps\n", r->frames, scene->fps);
   printf("steps: %" PRIu64 "\n", r->steps);
   printf("rejected: %" PRIu64 "\n", r->rejected);
   printf("dt mean: %.4g s\n", r->dt_mean);

@@ -37,6 +37,7 @@ typedef struct mr_sim_opts {
 
 typedef struct mr_sim_result {
   double sim_time;
+  uint64_t frames; /* frames the scheduler paced (sim.fps), 0 without */
   uint64_t steps, rejected, resets, collisions;
   double dt_mean, dt_min, dt_max; /* dt_min: the ATS's choice (mr_stats.min_dt) */
   double dt_min_landing;          /* shortest step cut to land on a frame; 0 if none */

@@ -71,7 +71,8 @@ typedef struct mr_frame_work {
 
 typedef struct mr_scheduler_hooks {
   /* Advance the world to simulated time t (its last step landing on t) and
-   * keep that state as the frame to present. Nonzero stops the show. */
+   * keep that state as the frame to present. Nonzero stops the show after
+   * this frame (counted as simulated, never presented). */
   int (*advance)(void *user, double t, mr_frame_work *work);
   /* Draw the frame kept for simulated time t. */
   void (*present)(void *user, double t);

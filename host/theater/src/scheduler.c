@@ -184,14 +184,15 @@ mr_theater_status mr_scheduler_tick(mr_scheduler *s) {
   for (uint64_t i = 0; i < due; i++) {
     mr_frame_work w = { 0, 0, 0 };
     double t = frame_time(s, s->next);
-    if (s->hooks.advance(s->hooks.user, t, &w) != 0) return MR_THEATER_STOPPED;
+    int stop = s->hooks.advance(s->hooks.user, t, &w);
     s->st.steps += w.steps;
     s->st.rejected += w.rejected;
     s->st.resets += w.resets;
     s->st.frames_simulated++;
     s->st.sim_time = t;
     s->next++;
-    if (i + 1 < due) s->st.frames_skipped++; /* simulated, never shown */
+    if (stop != 0) return MR_THEATER_STOPPED; /* the frame it reached still counts */
+    if (i + 1 < due) s->st.frames_skipped++;  /* simulated, never shown */
   }
   s->pending = true;
   s->pending_t = s->st.sim_time;

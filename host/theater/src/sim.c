@@ -121,8 +121,9 @@ typedef struct run {
   watcher w;
   double sum_dt, sum_err2;
   uint64_t at_upper;
-  long frame_k;   /* frame times are k/fps, not a running sum, so long runs land exactly */
-  double t_frame; /* the frame time the steps head for */
+  double t;            /* world time reached */
+  mr_scene_error *err; /* where a failure inside a frame goes */
+  mr_scene_status rc;  /* a failure inside a frame */
 } run;
 
 static mr_scene_status run_open(run *u, mr_scene_error *err) {
@@ -138,7 +139,6 @@ static mr_scene_status run_open(run *u, mr_scene_error *err) {
   if (u->rest != NULL) string_rests(s, &u->sw, u->rest);
   double *anchor = calloc(s->expect.n_watch ? 3 * s->expect.n_watch : 1, sizeof *anchor);
   u->w = (watcher){ &s->expect, &u->sw, anchor, false };
-  u->t_frame = -1.0;
   if (u->xyz == NULL || u->rest == NULL || anchor == NULL)
     return run_fail(s, err, MR_SCENE_ERR_NOMEM, "out of memory", 0);
   return MR_SCENE_OK;
@@ -149,30 +149,6 @@ static void run_close(run *u) {
   free(u->rest);
   free(u->w.anchor);
   mr_scene_world_free(&u->sw);
-}
-
-/* The time the next step heads for, and whether it must land there
- * exactly. Without a frame rate the track is sampled at the end of every
- * step, so the ATS alone chooses Δt (§4.5). With one, steps land on the
- * frame times k/fps (§4.6) and the frame moves linearly between samples,
- * as in the theater. */
-static double next_target(run *u, double t, bool *land) {
-  double target = t + mr_world_next_dt(u->sw.world);
-  double end = u->duration;
-  if (u->fps > 0) {
-    if (!(u->t_frame > t + LAND_S)) {
-      u->frame_k++;
-      u->t_frame = fmin((double)u->frame_k / u->fps, u->duration);
-      if (u->sw.frame >= 0) place_frame(u->s, &u->sw, u->t_frame);
-    }
-    end = u->t_frame;
-  }
-  /* One ATS step at a time, so the trace sees each; the step that would
-   * pass a frame time or the end lands on it instead. */
-  *land = target > end - LAND_S;
-  if (*land) target = end;
-  if (u->fps <= 0 && u->sw.frame >= 0) place_frame(u->s, &u->sw, target);
-  return target;
 }
 
 /* Folds one step call into the result and returns its trace row. */
@@ -209,10 +185,9 @@ static mr_sim_step record(run *u, const mr_step_report *rep) {
   return row;
 }
 
-/* One step call; fails only when the physics stopped outright. */
-static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
-  bool land;
-  double target = next_target(u, *t, &land);
+/* One step call towards target (landing on it when land); fails only when
+ * the physics stopped outright or the run passed its step guard. */
+static mr_scene_status step_once(run *u, double target, bool land, double *t, mr_scene_error *err) {
   mr_step_report rep;
   memset(&rep, 0, sizeof rep);
   mr_status st =
@@ -237,6 +212,67 @@ static mr_scene_status advance(run *u, double *t, mr_scene_error *err) {
   watch(&u->w, *t, u->r);
   if (u->opts && u->opts->on_step) u->opts->on_step(u->opts->user, &row);
   return MR_SCENE_OK;
+}
+
+/* Steps from *t to `end`, one ATS step at a time so the trace sees each;
+ * the step that would pass `end` lands on it instead. Without a frame
+ * rate the track is sampled at the end of every step, so the ATS alone
+ * chooses Δt (§4.5). */
+static mr_scene_status step_to(run *u, double *t, double end, bool sample_each,
+                               mr_scene_error *err) {
+  mr_scene_status rc = MR_SCENE_OK;
+  while (*t < end - LAND_S && rc == MR_SCENE_OK) {
+    double target = *t + mr_world_next_dt(u->sw.world);
+    bool land = target > end - LAND_S;
+    if (land) target = end;
+    if (sample_each && u->sw.frame >= 0) place_frame(u->s, &u->sw, target);
+    rc = step_once(u, target, land, t, err);
+  }
+  return rc;
+}
+
+/* The scheduler's advance hook: the frame at time t (k/fps, §4.6) is
+ * sampled from the track and the world stepped to land on it, as in the
+ * theater. Nonzero ends the run: its end reached, or a failure (kept in
+ * u->rc). */
+static int advance_frame(void *user, double t, mr_frame_work *work) {
+  run *u = user;
+  double now = mr_world_time(u->sw.world), t_frame = fmin(t, u->duration);
+  uint64_t steps = u->r->steps, rejected = u->r->rejected, resets = u->r->resets;
+  if (t_frame > now + LAND_S) {
+    if (u->sw.frame >= 0) place_frame(u->s, &u->sw, t_frame);
+    u->rc = step_to(u, &now, t_frame, false, u->err);
+  }
+  work->steps = u->r->steps - steps;
+  work->rejected = u->r->rejected - rejected;
+  work->resets = u->r->resets - resets;
+  u->t = now;
+  return u->rc != MR_SCENE_OK || !(now < u->duration - LAND_S);
+}
+
+static void present_nothing(void *user, double t) {
+  (void)user, (void)t;
+}
+
+/* The frames, paced by the theater's scheduler on a virtual clock: the
+ * same loop as a show, only as fast as the physics goes. */
+static mr_scene_status run_frames(run *u) {
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock clock = mr_clock_virtual(&vc);
+  mr_scheduler_def def = mr_default_scheduler_def();
+  def.fps = u->fps;
+  mr_scheduler_hooks hooks = { advance_frame, present_nothing, u };
+  mr_scheduler *sch = NULL;
+  char msg[200];
+  if (mr_scheduler_create(&def, &clock, &hooks, &sch, msg, sizeof msg) != MR_THEATER_OK)
+    return run_fail(u->s, u->err, MR_SCENE_ERR_BUILD, msg, 0);
+  while (mr_scheduler_tick(sch) == MR_THEATER_OK) {
+  }
+  mr_scheduler_stats st;
+  mr_scheduler_stats_get(sch, &st);
+  u->r->frames = st.frames_simulated;
+  mr_scheduler_destroy(sch);
+  return u->rc;
 }
 
 static void run_finish(run *u, double t) {
@@ -274,10 +310,14 @@ mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_opts *opts, mr_sim_re
     run_close(&u);
     return rc;
   }
-  double t = mr_world_time(u.sw.world);
-  watch(&u.w, t, r);
-  while (t < u.duration - LAND_S && rc == MR_SCENE_OK) rc = advance(&u, &t, err);
-  run_finish(&u, t);
+  u.t = mr_world_time(u.sw.world);
+  u.err = err;
+  watch(&u.w, u.t, r);
+  if (u.fps > 0)
+    rc = run_frames(&u);
+  else
+    rc = step_to(&u, &u.t, u.duration, true, err);
+  run_finish(&u, u.t);
   run_close(&u);
   return rc;
 }
