@@ -262,18 +262,36 @@ static void csv_resets_add_up_to_the_summary(void **state) {
  * clear line and a failure status, instead of running on for hours. */
 static void run_past_the_step_guard_stops_clearly(void **state) {
   (void)state;
+  /* 10 s at steps of up to 1 s may fit in 50 steps; a stiff string's
+   * stability limit (2.5 ms) makes the run need thousands, and the guard
+   * stops it on the way. */
   static const char scene[] = "sim: {duration: 10, max_steps: 50}\n"
                               "physics:\n"
-                              "  effects: [gravity]\n"
-                              "  ats: {dt_min: 0.001, dt_initial: 0.001, dt_max: 0.001}\n"
-                              "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+                              "  effects: [gravity, strings, control]\n"
+                              "  ats: {dt_max: 1}\n"
+                              "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n"
+                              "  control: {points: [{name: bar, offset: [0, 2, 0]}]}\n"
+                              "  strings: [{from: bar, to: a, stiffness: 1000000}]\n";
   char path[4200];
   snprintf(path, sizeof path, "%s", tt_tmp_file("guard.yaml", scene, sizeof scene - 1));
   tt_output p;
   run(&p, "sim", path, NULL);
   assert_int_not_equal(p.status, 0);
-  assert_non_null(strstr(p.err, "past sim.max_steps (50)"));
+  assert_non_null(strstr(p.err, "stopped after 51 step tries, past sim.max_steps (50)"));
   assert_ptr_equal(strchr(p.err, '\n'), p.err + strlen(p.err) - 1); /* one line */
+  tt_output_free(&p);
+  /* Settings that cannot finish within the guard are refused at once:
+   * 10 s at steps of at most 1e-9 s needs 1e10 steps. */
+  static const char tiny[] = "sim: {duration: 10}\n"
+                             "physics:\n"
+                             "  effects: [gravity]\n"
+                             "  ats: {dt_min: 1e-9, dt_initial: 1e-9, dt_max: 1e-9}\n"
+                             "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n";
+  snprintf(path, sizeof path, "%s", tt_tmp_file("tiny.yaml", tiny, sizeof tiny - 1));
+  run(&p, "sim", path, NULL);
+  assert_int_not_equal(p.status, 0);
+  assert_non_null(strstr(p.err, "needs at least 1e+10 steps, past sim.max_steps (2000000)"));
+  assert_non_null(strstr(p.err, "at t = 0.000000 s"));
   tt_output_free(&p);
 }
 

@@ -310,6 +310,20 @@ mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_opts *opts, mr_sim_re
     run_close(&u);
     return rc;
   }
+  /* A run that cannot finish within the guard is refused before it
+   * starts, not after millions of steps: it needs at least duration/dt_max
+   * steps, and with a frame rate at least one per frame. */
+  double least = fmax(u.duration / u.dt_max, u.fps > 0 ? u.duration * u.fps : 0.0);
+  if (least > (double)s->max_steps) {
+    char msg[300];
+    snprintf(msg, sizeof msg,
+             "refused: %g s at steps of at most %g s needs at least %.3g steps, past "
+             "sim.max_steps (%ld); raise dt_max or max_steps, or shorten the run",
+             u.duration, u.dt_max, least, s->max_steps);
+    rc = run_fail(s, err, MR_SCENE_ERR_BUILD, msg, 0);
+    run_close(&u);
+    return rc;
+  }
   u.t = mr_world_time(u.sw.world);
   u.err = err;
   watch(&u.w, u.t, r);
