@@ -1,0 +1,101 @@
+/* mr_glove: a glove as a live object.
+ *
+ * A glove is a byte source (a serial port, a pty, a file, stdin or TCP)
+ * with the protocol's decoder on it (protocol/SPEC.md). It keeps the INFO
+ * the glove announced (uid, hand, firmware, spec hash, calibration range,
+ * rates), the latest five values calibrated to 0..1 with their device and
+ * host times, an estimate of the device-to-host clock offset, and the
+ * decoder's counters.
+ *
+ * A glove that stops sending, or whose port goes away, is marked lost; its
+ * port is tried again every retry_every seconds (at least once a second)
+ * and the stream resumes without a restart. A glove built from another
+ * protocol definition is a state of its own, shown, never swallowed.
+ *
+ * Time is an argument: every call that needs it takes the caller's `now`
+ * (the theater's clock), so tests drive losses and retries on a virtual
+ * clock. The library never prints and never aborts.
+ */
+#ifndef MR_GLOVE_H
+#define MR_GLOVE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "gp.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { MR_GLOVE_CHANNELS = 5, MR_GLOVE_SOURCE_MAX = 256 };
+
+typedef enum mr_glove_state {
+  MR_GLOVE_CONNECTING = 0, /* not open yet, or opened and waiting for bytes */
+  MR_GLOVE_LIVE,           /* samples arriving */
+  MR_GLOVE_LOST,           /* port gone or silent: retrying, last values held */
+  MR_GLOVE_MISMATCH        /* built from another protocol definition: reflash */
+} mr_glove_state;
+const char *mr_glove_state_name(mr_glove_state s);
+
+typedef struct mr_glove_def {
+  uint32_t cookie;                  /* MR_GLOVE_COOKIE, set by mr_default_glove_def() */
+  char source[MR_GLOVE_SOURCE_MAX]; /* serial:DEV[@BAUD], pty:PATH, file:PATH, -,
+                                       tcp:HOST:PORT, tcp-listen:[HOST:]PORT */
+  double lost_after;  /* s without a sample before a live glove is lost; default 0.5 */
+  double retry_every; /* s between attempts to reopen; default 0.5, at most 1 */
+} mr_glove_def;
+#define MR_GLOVE_COOKIE 0x6d72476cu
+mr_glove_def mr_default_glove_def(void);
+
+/* The latest reading. */
+typedef struct mr_glove_reading {
+  double values[MR_GLOVE_CHANNELS]; /* calibrated, nominally 0..1 */
+  uint16_t seq;
+  double device_t;  /* the sample's device time, s, unwrapped */
+  double host_t;    /* when its bytes were read, the caller's clock */
+  uint64_t samples; /* SAMPLEs taken so far */
+} mr_glove_reading;
+
+typedef struct mr_glove_counters {
+  gp_counters decoder; /* over every connection */
+  uint64_t opens, open_failures, losses;
+} mr_glove_counters;
+
+typedef enum mr_glove_status {
+  MR_GLOVE_OK = 0,
+  MR_GLOVE_ERR_ARG = -1 /* a NULL, a def not made by its maker, a bad source */
+} mr_glove_status;
+
+typedef struct mr_glove mr_glove;
+
+/* Checks the definition; the source is opened at the first poll. */
+mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *msg,
+                                size_t msg_size);
+void mr_glove_destroy(mr_glove *g);
+
+/* Reads what the source has (waiting up to timeout_ms for the first byte),
+ * decodes it and updates the state, at the caller's time `now`. Opens or
+ * reopens the source when it is due. Returns how many new SAMPLEs were
+ * taken. */
+int mr_glove_poll(mr_glove *g, double now, int timeout_ms);
+
+mr_glove_state mr_glove_state_get(const mr_glove *g);
+/* The glove's INFO, or NULL before one arrived. */
+const gp_info *mr_glove_info(const mr_glove *g);
+void mr_glove_latest(const mr_glove *g, mr_glove_reading *out);
+void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out);
+/* host time − device time, the smallest seen (the path's fixed delay
+ * included), s; NAN before a sample. A sample's latency is its host time
+ * minus its device time minus this. */
+double mr_glove_clock_offset(const mr_glove *g);
+/* One line for the user: the source, the state and what to do about it.
+ * Returns out. */
+const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MR_GLOVE_H */

@@ -1,0 +1,292 @@
+/* A glove as a live object: source, decoder, INFO, calibrated values,
+ * loss and reconnection (protocol/SPEC.md, "Receiver rules"). */
+#include "mr_glove.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mr_io.h"
+
+struct mr_glove {
+  mr_glove_def def;
+  char spec[MR_GLOVE_SOURCE_MAX + 16]; /* the source as mr_io reads it */
+  mr_glove_state state;
+  bool open, have_info;
+  mr_io io;
+  gp_decoder dec;
+  gp_info info;
+  mr_glove_reading latest;
+  double last_bytes; /* when bytes last arrived */
+  double next_open;  /* when to try the source again */
+  double lost_since;
+  double offset;      /* min(host − device), NAN before a sample */
+  uint32_t last_t_us; /* for unwrapping device time */
+  double device_base; /* s added for the wraps seen */
+  bool have_t;
+  uint32_t mismatch_hash;
+  mr_glove_counters counters;
+  char last_error[sizeof(((mr_io_err *)0)->msg)];
+};
+
+const char *mr_glove_state_name(mr_glove_state s) {
+  switch (s) {
+  case MR_GLOVE_CONNECTING:
+    return "connecting";
+  case MR_GLOVE_LIVE:
+    return "live";
+  case MR_GLOVE_LOST:
+    return "lost";
+  case MR_GLOVE_MISMATCH:
+    return "spec mismatch";
+  }
+  return "unknown";
+}
+
+mr_glove_def mr_default_glove_def(void) {
+  mr_glove_def d;
+  memset(&d, 0, sizeof d);
+  d.cookie = MR_GLOVE_COOKIE;
+  snprintf(d.source, sizeof d.source, "serial:auto");
+  d.lost_after = 0.5;
+  d.retry_every = 0.5;
+  return d;
+}
+
+/* A glove source as an mr_io spec: pty:PATH is a tty opened through
+ * termios, which mr_io does for a serial spec naming a pty. */
+static int to_io_spec(const char *source, char *out, size_t size) {
+  static const char *const prefixes[] = { "serial:", "file:", "tcp:", "tcp-listen:", NULL };
+  if (strncmp(source, "pty:", 4) == 0)
+    return source[4] != '\0' && snprintf(out, size, "serial:%s", source + 4) < (int)size ? 0 : -1;
+  if (strcmp(source, "serial:auto") == 0) return -1; /* probing comes with the port list */
+  bool known = strcmp(source, "-") == 0 || source[0] == '/';
+  for (int i = 0; prefixes[i] != NULL && !known; i++) {
+    size_t n = strlen(prefixes[i]);
+    known = strncmp(source, prefixes[i], n) == 0 && source[n] != '\0';
+  }
+  return known && snprintf(out, size, "%s", source) < (int)size ? 0 : -1;
+}
+
+mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *msg,
+                                size_t msg_size) {
+  char dummy[8];
+  if (msg == NULL || msg_size == 0) {
+    msg = dummy;
+    msg_size = sizeof dummy;
+  }
+  if (out != NULL) *out = NULL;
+  if (def == NULL || out == NULL || def->cookie != MR_GLOVE_COOKIE) {
+    snprintf(msg, msg_size, "expected a glove definition made by mr_default_glove_def");
+    return MR_GLOVE_ERR_ARG;
+  }
+  if (!(def->lost_after > 0) || !(def->retry_every > 0 && def->retry_every <= 1.0)) {
+    snprintf(msg, msg_size,
+             "glove %s: expected lost_after > 0 and retry_every in (0, 1] s, got %g and %g",
+             def->source, def->lost_after, def->retry_every);
+    return MR_GLOVE_ERR_ARG;
+  }
+  mr_glove *g = calloc(1, sizeof *g);
+  if (g == NULL) {
+    snprintf(msg, msg_size, "out of memory");
+    return MR_GLOVE_ERR_ARG;
+  }
+  g->def = *def;
+  g->def.source[MR_GLOVE_SOURCE_MAX - 1] = '\0';
+  if (strcmp(g->def.source, "serial:auto") == 0) {
+    snprintf(msg, msg_size,
+             "glove source 'serial:auto': probing every port is not in this version; name the "
+             "port (serial:/dev/ttyACM0)");
+    free(g);
+    return MR_GLOVE_ERR_ARG;
+  }
+  if (to_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
+    snprintf(msg, msg_size,
+             "glove source '%s': expected serial:DEV, pty:PATH, file:PATH, -, tcp:HOST:PORT or "
+             "tcp-listen:PORT",
+             g->def.source);
+    free(g);
+    return MR_GLOVE_ERR_ARG;
+  }
+  gp_decoder_init(&g->dec, GP_SPEC_HASH);
+  g->offset = NAN;
+  g->next_open = -INFINITY;
+  *out = g;
+  return MR_GLOVE_OK;
+}
+
+static void close_source(mr_glove *g) {
+  if (!g->open) return;
+  mr_io_close(&g->io);
+  g->open = false;
+}
+
+void mr_glove_destroy(mr_glove *g) {
+  if (g == NULL) return;
+  close_source(g);
+  free(g);
+}
+
+static void mark_lost(mr_glove *g, double now, const char *why) {
+  close_source(g);
+  if (g->state != MR_GLOVE_LOST) {
+    g->counters.losses++;
+    g->lost_since = now;
+  }
+  if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LOST;
+  snprintf(g->last_error, sizeof g->last_error, "%s", why);
+  g->next_open = now + g->def.retry_every;
+}
+
+static void try_open(mr_glove *g, double now) {
+  if (g->open || now < g->next_open) return;
+  mr_io_err err;
+  if (mr_io_open(&g->io, g->spec, MR_IO_READ, &err) != 0) {
+    g->counters.open_failures++;
+    snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
+    g->next_open = now + g->def.retry_every;
+    return;
+  }
+  g->open = true;
+  g->counters.opens++;
+  g->last_bytes = now;
+  /* A new connection starts a new byte stream: the decoder resynchronises
+   * on the next delimiter, its counters carry on. */
+  gp_counters keep = g->dec.c;
+  gp_decoder_init(&g->dec, GP_SPEC_HASH);
+  g->dec.c = keep;
+}
+
+/* Raw ADC counts to 0..1: by the glove's own calibrated range when its INFO
+ * says the range is valid, else by the ADC's full scale. */
+static double calibrate(const mr_glove *g, int k, uint16_t raw) {
+  if (g->have_info && g->info.cal_state == GP_CAL_VALID && g->info.cal_max[k] > g->info.cal_min[k])
+    return ((double)raw - g->info.cal_min[k]) / (double)(g->info.cal_max[k] - g->info.cal_min[k]);
+  int bits = g->have_info && g->info.adc_bits > 0 && g->info.adc_bits <= 16 ? g->info.adc_bits : 12;
+  return (double)raw / (double)((1u << bits) - 1u);
+}
+
+static void take_sample(mr_glove *g, const gp_sample *s, double now) {
+  if (g->have_t && s->t_us < g->last_t_us && g->last_t_us - s->t_us > 0x80000000u)
+    g->device_base += 4294.967296; /* the µs counter wrapped */
+  g->last_t_us = s->t_us;
+  g->have_t = true;
+  mr_glove_reading *r = &g->latest;
+  for (int k = 0; k < MR_GLOVE_CHANNELS; k++) r->values[k] = calibrate(g, k, s->ch[k]);
+  r->seq = s->seq;
+  r->device_t = g->device_base + (double)s->t_us * 1e-6;
+  r->host_t = now;
+  r->samples++;
+  double off = now - r->device_t;
+  if (!(g->offset <= off)) g->offset = off;
+  if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LIVE;
+}
+
+static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
+  int taken = 0;
+  while (n > 0) {
+    gp_msg m;
+    gp_event ev;
+    size_t used = gp_decoder_feed(&g->dec, buf, n, &m, &ev);
+    buf += used;
+    n -= used;
+    if (ev == GP_EV_SPEC_MISMATCH) {
+      g->state = MR_GLOVE_MISMATCH;
+      g->mismatch_hash = g->dec.peer_known ? g->dec.peer_hash : 0;
+    } else if (ev == GP_EV_FRAME && m.type == GP_INFO) {
+      g->info = m.u.info;
+      g->have_info = true;
+    } else if ((ev == GP_EV_FRAME) && m.type == GP_SAMPLE) {
+      take_sample(g, &m.u.sample, now);
+      taken++;
+    }
+  }
+  return taken;
+}
+
+int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
+  if (g == NULL || !isfinite(now)) return 0;
+  try_open(g, now);
+  if (!g->open) return 0;
+  uint8_t buf[4096];
+  int taken = 0;
+  for (int round = 0; round < 64; round++) {
+    size_t got = 0;
+    mr_io_err err;
+    mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
+    if (got > 0) {
+      g->last_bytes = now;
+      taken += feed(g, buf, got, now);
+    }
+    if (st == MR_IO_TIMEOUT) break;
+    if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) {
+      mark_lost(g, now,
+                st == MR_IO_EOF      ? "the stream ended"
+                : st == MR_IO_HANGUP ? "the port went away"
+                                     : err.msg);
+      return taken;
+    }
+    if (got < sizeof buf) break;
+  }
+  if (now - g->last_bytes > g->def.lost_after && g->state != MR_GLOVE_MISMATCH)
+    mark_lost(g, now, "no bytes for longer than lost_after");
+  return taken;
+}
+
+mr_glove_state mr_glove_state_get(const mr_glove *g) {
+  return g != NULL ? g->state : MR_GLOVE_CONNECTING;
+}
+
+const gp_info *mr_glove_info(const mr_glove *g) {
+  return g != NULL && g->have_info ? &g->info : NULL;
+}
+
+void mr_glove_latest(const mr_glove *g, mr_glove_reading *out) {
+  if (g != NULL && out != NULL) *out = g->latest;
+}
+
+void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out) {
+  if (g == NULL || out == NULL) return;
+  *out = g->counters;
+  out->decoder = g->dec.c;
+}
+
+double mr_glove_clock_offset(const mr_glove *g) {
+  return g != NULL ? g->offset : NAN;
+}
+
+const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t size) {
+  if (out == NULL || size == 0) return out;
+  if (g == NULL) {
+    snprintf(out, size, "no glove");
+    return out;
+  }
+  const char *src = g->def.source;
+  switch (g->state) {
+  case MR_GLOVE_MISMATCH:
+    snprintf(out, size,
+             "glove on %s was built from protocol 0x%08X, this host speaks 0x%08X: reflash it", src,
+             (unsigned)g->mismatch_hash, (unsigned)GP_SPEC_HASH);
+    break;
+  case MR_GLOVE_LOST:
+    snprintf(out, size, "glove on %s: lost %.1f s ago (%s); retrying every %.1f s", src,
+             now - g->lost_since, g->last_error, g->def.retry_every);
+    break;
+  case MR_GLOVE_LIVE:
+    if (g->have_info)
+      snprintf(out, size, "glove on %s: live, uid %08X, %s hand, %u Hz, %llu samples", src,
+               (unsigned)g->info.uid[0], g->info.hand == GP_HAND_LEFT ? "left" : "right",
+               (unsigned)g->info.frame_rate_hz, (unsigned long long)g->latest.samples);
+    else
+      snprintf(out, size, "glove on %s: live, %llu samples, no INFO yet", src,
+               (unsigned long long)g->latest.samples);
+    break;
+  default:
+    snprintf(out, size, "glove on %s: connecting%s%s", src, g->last_error[0] ? " (" : "",
+             g->last_error[0] ? g->last_error : "");
+    if (g->last_error[0]) snprintf(out + strlen(out), size - strlen(out), ")");
+    break;
+  }
+  return out;
+}

@@ -1,0 +1,232 @@
+/* A glove over a real pty: its INFO and calibrated values; a glove that
+ * falls silent or is unplugged is lost, its port retried at least once a
+ * second, and the stream resumes on a new pty without a restart; a glove
+ * built from another protocol definition is shown as such. Losses and
+ * retries run on the time the test passes in, a virtual clock. The port is
+ * reached through a symlink, as the udev rule names a real glove. */
+#define _DEFAULT_SOURCE /* symlink, mkdtemp */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "mr_glove.h"
+#include "mr_io.h"
+
+typedef struct port {
+  mr_io master;
+  char dir[64], link[96];
+} port;
+
+/* A new pty, and the symlink pointed at its slave side. */
+static void plug(port *p) {
+  mr_io_err err;
+  if (mr_io_open(&p->master, "pty", MR_IO_READ | MR_IO_WRITE, &err) != 0) fail_msg("%s", err.msg);
+  unlink(p->link);
+  assert_int_equal(symlink(mr_io_path(&p->master), p->link), 0);
+}
+
+static void unplug(port *p) {
+  mr_io_close(&p->master);
+  unlink(p->link);
+}
+
+static void send(port *p, const gp_msg *m, uint32_t hash) {
+  uint8_t wire[GP_MAX_WIRE + 2];
+  size_t n = gp_encode(m, hash, wire, sizeof wire);
+  assert_true(n > 0);
+  size_t sent = 0;
+  mr_io_err err;
+  assert_int_equal(mr_io_write(&p->master, wire, n, 1000, &sent, &err), MR_IO_OK);
+  assert_int_equal(sent, n);
+}
+
+static void send_info(port *p, uint32_t hash) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_INFO;
+  m.u.info.proto_major = 1;
+  m.u.info.spec_hash = hash;
+  m.u.info.uid[0] = 0xC0FFEE;
+  m.u.info.hand = GP_HAND_LEFT;
+  m.u.info.n_channels = 5;
+  m.u.info.adc_bits = 12;
+  m.u.info.frame_rate_hz = 100;
+  m.u.info.cal_state = GP_CAL_VALID;
+  for (int k = 0; k < 5; k++) {
+    m.u.info.cal_min[k] = 1000;
+    m.u.info.cal_max[k] = 3000;
+  }
+  send(p, &m, hash);
+}
+
+static void send_sample(port *p, uint16_t seq, uint32_t t_us, uint16_t raw) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_SAMPLE;
+  m.u.sample.seq = seq;
+  m.u.sample.t_us = t_us;
+  for (int k = 0; k < 5; k++) m.u.sample.ch[k] = (uint16_t)(raw + 100 * k);
+  send(p, &m, GP_SPEC_HASH);
+}
+
+static mr_glove *glove_on(const char *source) {
+  mr_glove_def d = mr_default_glove_def();
+  snprintf(d.source, sizeof d.source, "%s", source);
+  mr_glove *g = NULL;
+  char msg[200];
+  if (mr_glove_create(&d, &g, msg, sizeof msg) != MR_GLOVE_OK) fail_msg("%s", msg);
+  return g;
+}
+
+/* Polls at `now` until a sample comes in or a second of real time passes:
+ * the bytes cross a real pty. */
+static int poll_for_samples(mr_glove *g, double now) {
+  for (int i = 0; i < 100; i++) {
+    int n = mr_glove_poll(g, now, 10);
+    if (n > 0) return n;
+  }
+  return 0;
+}
+
+static void make_port(port *p) {
+  snprintf(p->dir, sizeof p->dir, "/tmp/mr-glove-XXXXXX");
+  assert_non_null(mkdtemp(p->dir));
+  snprintf(p->link, sizeof p->link, "%s/glove", p->dir);
+}
+
+static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
+  (void)state;
+  port p;
+  make_port(&p);
+  plug(&p);
+  char source[128], line[300];
+  snprintf(source, sizeof source, "pty:%s", p.link);
+  mr_glove *g = glove_on(source);
+  double now = 10.0;
+  mr_glove_poll(g, now, 0); /* opens the port */
+  send_info(&p, GP_SPEC_HASH);
+  send_sample(&p, 1, 5000000, 2000); /* device time 5 s */
+  assert_true(poll_for_samples(g, now) > 0);
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  const gp_info *info = mr_glove_info(g);
+  assert_non_null(info);
+  assert_int_equal(info->uid[0], 0xC0FFEE);
+  mr_glove_reading r;
+  mr_glove_latest(g, &r);
+  /* (raw − cal_min) / (cal_max − cal_min): 2000 → 0.5, 2100 → 0.55, ... */
+  for (int k = 0; k < 5; k++) assert_true(fabs(r.values[k] - (0.5 + 0.05 * k)) < 1e-12);
+  assert_true(r.device_t == 5.0 && r.host_t == now);
+  assert_true(fabs(mr_glove_clock_offset(g) - 5.0) < 1e-12);
+  mr_glove_describe(g, now, line, sizeof line);
+  assert_non_null(strstr(line, ": live, uid 00C0FFEE, left hand, 100 Hz"));
+
+  /* Unplugged: the read side hangs up, the glove is lost, its last values
+   * held. */
+  unplug(&p);
+  for (int i = 0; i < 50 && mr_glove_state_get(g) != MR_GLOVE_LOST; i++)
+    mr_glove_poll(g, now + 0.1, 10);
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LOST);
+  mr_glove_latest(g, &r);
+  assert_true(fabs(r.values[0] - 0.5) < 1e-12);
+  mr_glove_describe(g, now + 0.6, line, sizeof line);
+  assert_non_null(strstr(line, ": lost 0.5 s ago"));
+
+  /* Retried every 0.5 s of the caller's clock while nothing is there. */
+  mr_glove_counters c0, c1;
+  mr_glove_counters_get(g, &c0);
+  for (int i = 1; i <= 8; i++) mr_glove_poll(g, now + 0.1 + 0.25 * i, 0);
+  mr_glove_counters_get(g, &c1);
+  assert_int_equal(c1.open_failures - c0.open_failures, 4); /* 2 s: four tries */
+
+  /* Plugged in again on a new pty: the stream resumes. */
+  plug(&p);
+  now += 3.0;
+  int resumed = 0;
+  for (int i = 0; i < 20 && !resumed; i++) {
+    mr_glove_poll(g, now + 0.5 * i, 0);
+    send_sample(&p, 2, 8000000, 2400);
+    resumed = poll_for_samples(g, now + 0.5 * i) > 0;
+  }
+  assert_true(resumed);
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  mr_glove_latest(g, &r);
+  assert_true(fabs(r.values[0] - 0.7) < 1e-12);
+  mr_glove_counters_get(g, &c1);
+  assert_int_equal(c1.opens, 2);
+  assert_int_equal(c1.losses, 1);
+
+  /* Silent for longer than lost_after while the port stays: lost too. */
+  mr_glove_poll(g, now + 20.0, 0);
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LOST);
+  mr_glove_destroy(g);
+  unplug(&p);
+  rmdir(p.dir);
+}
+
+/* A glove built from another definition: shown with both hashes. */
+static void a_foreign_glove_is_a_spec_mismatch(void **state) {
+  (void)state;
+  port p;
+  make_port(&p);
+  plug(&p);
+  char source[128], line[300];
+  snprintf(source, sizeof source, "pty:%s", p.link);
+  mr_glove *g = glove_on(source);
+  mr_glove_poll(g, 1.0, 0);
+  send_info(&p, 0x12345678u);
+  int seen = 0;
+  for (int i = 0; i < 100 && !seen; i++) {
+    mr_glove_poll(g, 1.0, 10);
+    seen = mr_glove_state_get(g) == MR_GLOVE_MISMATCH;
+  }
+  assert_true(seen);
+  mr_glove_describe(g, 1.0, line, sizeof line);
+  char want[300];
+  snprintf(want, sizeof want,
+           "glove on %s was built from protocol 0x12345678, this host speaks 0x%08X: reflash it",
+           source, (unsigned)GP_SPEC_HASH);
+  assert_string_equal(line, want);
+  mr_glove_destroy(g);
+  unplug(&p);
+  rmdir(p.dir);
+}
+
+static void bad_sources_are_refused_by_name(void **state) {
+  (void)state;
+  mr_glove_def d = mr_default_glove_def();
+  mr_glove *g = NULL;
+  char msg[200];
+  snprintf(d.source, sizeof d.source, "pty:");
+  assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);
+  assert_null(g);
+  assert_string_equal(msg, "glove source 'pty:': expected serial:DEV, pty:PATH, file:PATH, -, "
+                           "tcp:HOST:PORT or tcp-listen:PORT");
+  d = mr_default_glove_def();
+  d.retry_every = 5;
+  assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);
+  /* A port that is not there: connecting, and it says why. */
+  g = glove_on("pty:/nonexistent/glove");
+  mr_glove_poll(g, 0.0, 0);
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_CONNECTING);
+  char line[300];
+  mr_glove_describe(g, 0.0, line, sizeof line);
+  assert_non_null(strstr(line, "glove on pty:/nonexistent/glove: connecting ("));
+  mr_glove_destroy(g);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(a_live_glove_is_read_calibrated_lost_and_found_again),
+    cmocka_unit_test(a_foreign_glove_is_a_spec_mismatch),
+    cmocka_unit_test(bad_sources_are_refused_by_name),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
