@@ -6,11 +6,14 @@
 /* Exit statuses shared by every subcommand. */
 enum {
   MR_EXIT_OK = 0,
-  MR_EXIT_FAIL = 1, /* the scene failed to load, to run, or its check */
-  MR_EXIT_USAGE = 2 /* bad command line */
+  MR_EXIT_FAIL = 1,    /* the scene failed to load, to run, or its check */
+  MR_EXIT_USAGE = 2,   /* bad command line */
+  MR_EXIT_MISMATCH = 3 /* a glove built from another protocol definition */
 };
 
 int mr_cmd_sim(int argc, char **argv);
 void mr_cmd_sim_usage(void);
+int mr_cmd_run(int argc, char **argv);
+void mr_cmd_run_usage(void);
 
 #endif

@@ -1,5 +1,5 @@
-/* marionette: the theater's program. `sim` runs a scene headless; the
- * theater itself (`run`) comes as another subcommand. */
+/* marionette: the theater's program. `sim` runs a scene headless; `run`
+ * is the theater, a glove driving the puppet in real time. */
 #include <stdio.h>
 #include <string.h>
 
@@ -14,6 +14,9 @@ static void usage(FILE *f) {
              "  sim SCENE   run a scene without rendering, as fast as possible, and\n"
              "              print a summary (steps, time steps, deviations, resets,\n"
              "              pass counters, state hash); see `marionette sim --help`\n"
+             "  run SCENE --glove SOURCE\n"
+             "              the theater: a glove drives the puppet in real time; see\n"
+             "              `marionette run --help`\n"
              "\n"
              "options:\n"
              "  -h, --help  show this help\n");
@@ -22,7 +25,7 @@ static void usage(FILE *f) {
 int main(int argc, char **argv) {
   if (argc < 2) {
     /* Bad usage is one line, like every other usage error; --help has the rest. */
-    fprintf(stderr, "marionette: expected a command: sim (see marionette --help)\n");
+    fprintf(stderr, "marionette: expected a command: sim or run (see marionette --help)\n");
     return MR_EXIT_USAGE;
   }
   const char *cmd = argv[1];
@@ -31,6 +34,8 @@ int main(int argc, char **argv) {
     return MR_EXIT_OK;
   }
   if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);
-  fprintf(stderr, "marionette: unknown command '%s'; expected one of: sim (see --help)\n", cmd);
+  if (strcmp(cmd, "run") == 0) return mr_cmd_run(argc - 1, argv + 1);
+  fprintf(stderr, "marionette: unknown command '%s'; expected one of: sim, run (see --help)\n",
+          cmd);
   return MR_EXIT_USAGE;
 }

@@ -1,0 +1,152 @@
+/* `marionette run SCENE --glove SRC`: the theater. A glove drives the
+ * scene's puppet in real time on the wall clock; until the stage exists,
+ * a status line a second shows the show, and a summary ends it. Ctrl-C
+ * ends it cleanly. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <inttypes.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+#include "mr_scene.h"
+#include "mr_show.h"
+
+static volatile sig_atomic_t stop_asked;
+
+static void on_signal(int sig) {
+  (void)sig;
+  stop_asked = 1;
+}
+
+void mr_cmd_run_usage(void) {
+  printf("usage: marionette run [OPTIONS] SCENE --glove SOURCE\n"
+         "\n"
+         "The theater: the glove at SOURCE drives the puppet of the scene file SCENE\n"
+         "in real time. Its five values move the control frame through the scene's\n"
+         "mapping (host/scenes/FORMAT.md, \"mapping\"); the strings do the rest. The\n"
+         "frame rate is the scene's sim.fps, else 60. Under load renders are skipped\n"
+         "and simulated time keeps to wall time (--policy skip), or simulated time\n"
+         "slows and nothing is skipped (--policy slow). Until the stage exists, one\n"
+         "status line a second shows frames, skipped frames, steps, resets and the\n"
+         "glove; a summary ends the show. Ctrl-C ends it cleanly.\n"
+         "\n"
+         "options:\n"
+         "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], pty:PATH, file:PATH, -,\n"
+         "                      tcp:HOST:PORT or tcp-listen:PORT (required)\n"
+         "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
+         "  -t, --time SECONDS  end after this much show (default: until Ctrl-C)\n"
+         "  -q, --quiet         no status lines, only the summary and errors\n"
+         "  -h, --help          show this help\n"
+         "\n"
+         "exit status: 0 the show ended, 1 the scene or the glove source failed,\n"
+         "2 bad usage, 3 the glove was built from another protocol definition.\n");
+}
+
+typedef struct status {
+  int quiet;
+  double next_line;
+} status;
+
+static void present(void *user, const mr_show_frame *f) {
+  status *st = user;
+  if (st->quiet || f->t < st->next_line) return;
+  st->next_line = floor(f->t) + 1.0;
+  mr_scheduler_stats s;
+  mr_scheduler_stats_get(f->scheduler, &s);
+  char glove[400];
+  mr_glove_describe(f->glove, s.wall_time, glove, sizeof glove);
+  printf("t %.0f s: %" PRIu64 " frames shown, %" PRIu64 " skipped, %" PRIu64 " steps, %" PRIu64
+         " resets; %s\n",
+         f->t, s.frames_presented, s.frames_skipped, s.steps, s.resets, glove);
+  fflush(stdout);
+}
+
+static int stop(void *user) {
+  (void)user;
+  return stop_asked != 0;
+}
+
+static void summary(const mr_show_result *r) {
+  printf("frames simulated: %" PRIu64 "\n", r->frames.frames_simulated);
+  printf("frames shown: %" PRIu64 "\n", r->frames.frames_presented);
+  printf("frames skipped: %" PRIu64 "\n", r->frames.frames_skipped);
+  printf("steps: %" PRIu64 "\n", r->frames.steps);
+  printf("resets: %" PRIu64 "\n", r->frames.resets);
+  printf("simulated: %.3f s\n", r->frames.sim_time);
+  printf("real-time factor: %.3f\n", r->frames.real_time_factor);
+  printf("glove: %s\n", mr_glove_state_name(r->glove_state));
+  printf("glove samples: %" PRIu64 "\n", r->samples);
+  printf("glove losses: %" PRIu64 "\n", r->glove.losses);
+  printf("glove crc errors: %" PRIu32 "\n", r->glove.decoder.crc_errors);
+}
+
+static int bad_usage(const char *fmt, const char *arg) {
+  fprintf(stderr, "marionette run: ");
+  fprintf(stderr, fmt, arg);
+  fprintf(stderr, " (see marionette run --help)\n");
+  return MR_EXIT_USAGE;
+}
+
+int mr_cmd_run(int argc, char **argv) {
+  const char *scene_path = NULL, *glove = NULL;
+  mr_show_def def = mr_default_show_def();
+  status st = { 0, 0.0 };
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+      mr_cmd_run_usage();
+      return MR_EXIT_OK;
+    } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
+      st.quiet = 1;
+    } else if (strcmp(a, "--glove") == 0 || strcmp(a, "--policy") == 0 || strcmp(a, "-t") == 0 ||
+               strcmp(a, "--time") == 0) {
+      if (i + 1 >= argc) return bad_usage("option '%s' needs a value", a);
+      const char *v = argv[++i];
+      if (strcmp(a, "--glove") == 0) {
+        glove = v;
+      } else if (strcmp(a, "--policy") == 0) {
+        if (mr_policy_parse(v, &def.policy) != 0)
+          return bad_usage("expected --policy skip or slow, got '%s'", v);
+      } else {
+        char *end = NULL;
+        def.duration = strtod(v, &end);
+        if (end == v || *end != '\0' || !(def.duration > 0) || !isfinite(def.duration))
+          return bad_usage("expected a positive number of seconds for --time, got '%s'", v);
+      }
+    } else if (a[0] == '-') {
+      return bad_usage("unknown option '%s'", a);
+    } else if (scene_path == NULL) {
+      scene_path = a;
+    } else {
+      return bad_usage("expected one scene, got a second: '%s'", a);
+    }
+  }
+  if (scene_path == NULL) return bad_usage("expected a scene file%s", "");
+  if (glove == NULL) return bad_usage("expected --glove SOURCE%s", "");
+  mr_scene scene;
+  mr_scene_error err;
+  if (mr_scene_load(scene_path, &scene, &err) != MR_SCENE_OK) {
+    fprintf(stderr, "marionette: %s\n", err.text);
+    return MR_EXIT_FAIL;
+  }
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  mr_clock clock = mr_clock_wall();
+  mr_show_hooks hooks = { present, stop, &st };
+  mr_show_result r;
+  mr_scene_status rc = mr_show_run(&scene, glove, &def, &clock, &hooks, &r, &err);
+  mr_scene_free(&scene);
+  if (rc != MR_SCENE_OK) {
+    fprintf(stderr, "marionette: %s\n", err.text);
+    return MR_EXIT_FAIL;
+  }
+  summary(&r);
+  return r.glove_state == MR_GLOVE_MISMATCH ? MR_EXIT_MISMATCH : MR_EXIT_OK;
+}
