@@ -23,7 +23,7 @@ static void on_signal(int sig) {
 }
 
 void mr_cmd_run_usage(void) {
-  printf("usage: marionette run [OPTIONS] SCENE --glove SOURCE\n"
+  printf("usage: marionette run [OPTIONS] SCENE (--glove SOURCE | --replay TAKE)\n"
          "\n"
          "The theater: the glove at SOURCE drives the puppet of the scene file SCENE\n"
          "in real time. Its five values move the control frame through the scene's\n"
@@ -37,6 +37,15 @@ void mr_cmd_run_usage(void) {
          "options:\n"
          "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], pty:PATH, file:PATH, -,\n"
          "                      tcp:HOST:PORT or tcp-listen:PORT (required)\n"
+         "  --record TAKE       record every byte the glove sends, with the frame\n"
+         "                      that read it, into TAKE (.mrec); a take stays\n"
+         "                      readable up to its last whole chunk if the show is\n"
+         "                      killed\n"
+         "  --replay TAKE       play a take instead of a glove, on a virtual clock as\n"
+         "                      fast as it goes: every frame gets the bytes it got\n"
+         "                      live, so the states match the show's bit for bit\n"
+         "  --real-time         with --replay: at real speed on the wall clock\n"
+         "  --hashes FILE       write each frame's time and state hash to FILE\n"
          "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
          "  -t, --time SECONDS  end after this much show (default: until Ctrl-C)\n"
          "  -q, --quiet         no status lines, only the summary and errors\n"
@@ -49,7 +58,15 @@ void mr_cmd_run_usage(void) {
 typedef struct status {
   int quiet;
   double next_line;
+  FILE *hashes; /* --hashes: one line a frame */
+  int hash_failed;
 } status;
+
+static void frame_done(void *user, double t, uint64_t hash) {
+  status *st = user;
+  if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", t, hash) < 0)
+    st->hash_failed = 1;
+}
 
 static void present(void *user, const mr_show_frame *f) {
   status *st = user;
@@ -92,9 +109,10 @@ static int bad_usage(const char *fmt, const char *arg) {
 }
 
 int mr_cmd_run(int argc, char **argv) {
-  const char *scene_path = NULL, *glove = NULL;
+  const char *scene_path = NULL, *glove = NULL, *replay = NULL, *hashes = NULL;
+  int real_time = 0;
   mr_show_def def = mr_default_show_def();
-  status st = { 0, 0.0 };
+  status st = { 0, 0.0, NULL, 0 };
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
@@ -102,12 +120,21 @@ int mr_cmd_run(int argc, char **argv) {
       return MR_EXIT_OK;
     } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
       st.quiet = 1;
+    } else if (strcmp(a, "--real-time") == 0) {
+      real_time = 1;
     } else if (strcmp(a, "--glove") == 0 || strcmp(a, "--policy") == 0 || strcmp(a, "-t") == 0 ||
-               strcmp(a, "--time") == 0) {
+               strcmp(a, "--time") == 0 || strcmp(a, "--record") == 0 ||
+               strcmp(a, "--replay") == 0 || strcmp(a, "--hashes") == 0) {
       if (i + 1 >= argc) return bad_usage("option '%s' needs a value", a);
       const char *v = argv[++i];
       if (strcmp(a, "--glove") == 0) {
         glove = v;
+      } else if (strcmp(a, "--record") == 0) {
+        def.record_path = v;
+      } else if (strcmp(a, "--replay") == 0) {
+        replay = v;
+      } else if (strcmp(a, "--hashes") == 0) {
+        hashes = v;
       } else if (strcmp(a, "--policy") == 0) {
         if (mr_policy_parse(v, &def.policy) != 0)
           return bad_usage("expected --policy skip or slow, got '%s'", v);
@@ -126,7 +153,16 @@ int mr_cmd_run(int argc, char **argv) {
     }
   }
   if (scene_path == NULL) return bad_usage("expected a scene file%s", "");
-  if (glove == NULL) return bad_usage("expected --glove SOURCE%s", "");
+  if ((glove == NULL) == (replay == NULL))
+    return bad_usage("expected --glove SOURCE or --replay TAKE, one of the two%s", "");
+  if (replay != NULL && def.record_path != NULL)
+    return bad_usage("expected --record with a glove, not with --replay%s", "");
+  if (real_time && replay == NULL) return bad_usage("expected --real-time with --replay%s", "");
+  char take_source[MR_GLOVE_SOURCE_MAX];
+  if (replay != NULL) {
+    snprintf(take_source, sizeof take_source, "file:%s", replay);
+    glove = take_source;
+  }
   mr_scene scene;
   mr_scene_error err;
   if (mr_scene_load(scene_path, &scene, &err) != MR_SCENE_OK) {
@@ -138,11 +174,22 @@ int mr_cmd_run(int argc, char **argv) {
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
-  mr_clock clock = mr_clock_wall();
-  mr_show_hooks hooks = { present, stop, &st };
+  if (hashes != NULL && (st.hashes = fopen(hashes, "w")) == NULL) {
+    fprintf(stderr, "marionette run: cannot write %s\n", hashes);
+    mr_scene_free(&scene);
+    return MR_EXIT_FAIL;
+  }
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock clock = replay != NULL && !real_time ? mr_clock_virtual(&vc) : mr_clock_wall();
+  if (replay != NULL && !real_time) st.quiet = 1; /* as fast as it goes: no seconds to mark */
+  mr_show_hooks hooks = { present, stop, frame_done, &st };
   mr_show_result r;
   mr_scene_status rc = mr_show_run(&scene, glove, &def, &clock, &hooks, &r, &err);
   mr_scene_free(&scene);
+  if (st.hashes != NULL && (fclose(st.hashes) != 0 || st.hash_failed) && rc == MR_SCENE_OK) {
+    fprintf(stderr, "marionette run: could not write all of %s\n", hashes);
+    return MR_EXIT_FAIL;
+  }
   if (rc != MR_SCENE_OK) {
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;

@@ -9,9 +9,11 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "proc.h"
 
@@ -111,14 +113,83 @@ static void a_foreign_glove_ends_with_status_3(void **state) {
   free(dir);
 }
 
+/* A take recorded live replays on a virtual clock to the same state at
+ * every one of its 121 frames, bit for bit. */
+static void a_take_replays_to_identical_frames(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300];
+  pid_t gen = start_glove(dir, "4", NULL, source, sizeof source);
+  const char *take = tt_path(dir, "take.mrec");
+  char take_path[300], live[300], again[300];
+  snprintf(take_path, sizeof take_path, "%s", take);
+  snprintf(live, sizeof live, "%s", tt_path(dir, "live.hashes"));
+  snprintf(again, sizeof again, "%s", tt_path(dir, "replay.hashes"));
+  char *rec[] = { (char *)marionette, "run",     PUPPET,     "--glove", source, "--time", "2", "-q",
+                  "--record",         take_path, "--hashes", live,      NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(rec, &o), 0);
+  if (o.status != 0) fail_msg("live: status %d: %s", o.status, o.err);
+  tt_output_free(&o);
+  tt_wait(gen, 30);
+  char *play[] = { (char *)marionette, "run", PUPPET, "--replay", take_path, "--time", "2", "-q",
+                   "--hashes",         again, NULL };
+  assert_int_equal(tt_capture(play, &o), 0);
+  if (o.status != 0) fail_msg("replay: status %d: %s", o.status, o.err);
+  assert_true(field(o.out, "glove samples") >= 250);
+  tt_output_free(&o);
+  size_t n1 = 0, n2 = 0;
+  char *a = tt_read_file(live, &n1), *b = tt_read_file(again, &n2);
+  assert_non_null(a);
+  assert_non_null(b);
+  int lines = 0;
+  for (size_t i = 0; i < n1; i++) lines += a[i] == '\n';
+  assert_true(lines >= 100); /* a frame a line */
+  assert_int_equal(n1, n2);
+  assert_memory_equal(a, b, n1);
+  free(a);
+  free(b);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* A show killed mid-take (SIGKILL: nothing is flushed or closed) leaves a
+ * take that replays up to its last whole chunk. */
+static void a_killed_show_leaves_a_playable_take(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300];
+  pid_t gen = start_glove(dir, "10", NULL, source, sizeof source);
+  char take_path[300];
+  snprintf(take_path, sizeof take_path, "%s", tt_path(dir, "cut.mrec"));
+  const char *rec[] = { marionette, "run", PUPPET,     "--glove", source, "--time",
+                        "10",       "-q",  "--record", take_path, NULL };
+  pid_t show = tt_spawn(rec, NULL, tt_path(dir, "show.err"));
+  assert_true(show > 0);
+  usleep(1500000);
+  kill(show, SIGKILL);
+  assert_int_equal(tt_wait(show, 10), 128 + SIGKILL);
+  kill(gen, SIGTERM);
+  tt_wait(gen, 10);
+  char *play[] = { (char *)marionette, "run", PUPPET, "--replay", take_path, "-q", NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(play, &o), 0);
+  if (o.status != 0) fail_msg("replay: status %d: %s", o.status, o.err);
+  assert_true(field(o.out, "glove samples") >= 100);
+  char glove[64];
+  assert_int_equal(tt_field(o.out, "glove", glove, sizeof glove), 0);
+  assert_string_equal(glove, "lost"); /* the take ended: the show ends there */
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 static void bad_usage_exits_2_with_one_line(void **state) {
   (void)state;
   char *argv[] = { (char *)marionette, "run", PUPPET, NULL };
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   assert_int_equal(o.status, 2);
-  assert_string_equal(o.err,
-                      "marionette run: expected --glove SOURCE (see marionette run --help)\n");
+  assert_string_equal(o.err, "marionette run: expected --glove SOURCE or --replay TAKE, one of "
+                             "the two (see marionette run --help)\n");
   tt_output_free(&o);
   char *bad[] = { (char *)marionette, "run", PUPPET, "--glove", "pty:", NULL };
   assert_int_equal(tt_capture(bad, &o), 0);
@@ -134,6 +205,8 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_glove_drives_the_puppet_in_real_time),
     cmocka_unit_test(a_glove_lost_mid_show_does_not_stop_it),
     cmocka_unit_test(a_foreign_glove_ends_with_status_3),
+    cmocka_unit_test(a_take_replays_to_identical_frames),
+    cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(bad_usage_exits_2_with_one_line),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -42,7 +42,9 @@ const char *mr_glove_state_name(mr_glove_state s);
 typedef struct mr_glove_def {
   uint32_t cookie;                  /* MR_GLOVE_COOKIE, set by mr_default_glove_def() */
   char source[MR_GLOVE_SOURCE_MAX]; /* serial:DEV[@BAUD], pty:PATH, file:PATH, -,
-                                       tcp:HOST:PORT, tcp-listen:[HOST:]PORT */
+                                       tcp:HOST:PORT, tcp-listen:[HOST:]PORT; a
+                                       file that is a take (.mrec) plays its
+                                       bytes at their recorded times */
   double lost_after;  /* s without a sample before a live glove is lost; default 0.5 */
   double retry_every; /* s between attempts to reopen; default 0.5, at most 1 */
 } mr_glove_def;
@@ -70,10 +72,18 @@ typedef enum mr_glove_status {
 
 typedef struct mr_glove mr_glove;
 
+/* Every chunk of bytes the glove reads, with the `now` it was read at: a
+ * take records them (mr_rec_writer) so that a replay feeds the same bytes
+ * at the same times. */
+typedef void (*mr_glove_tap_fn)(void *user, double now, const uint8_t *bytes, size_t len);
+
 /* Checks the definition; the source is opened at the first poll. */
 mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *msg,
                                 size_t msg_size);
 void mr_glove_destroy(mr_glove *g);
+void mr_glove_set_tap(mr_glove *g, mr_glove_tap_fn tap, void *user);
+/* For a take: true once every chunk has been fed (the take is over). */
+bool mr_glove_take_done(const mr_glove *g);
 
 /* Reads what the source has (waiting up to timeout_ms for the first byte),
  * decodes it and updates the state, at the caller's time `now`. Opens or

@@ -28,6 +28,14 @@ struct mr_glove {
   uint32_t mismatch_hash;
   mr_glove_counters counters;
   char last_error[sizeof(((mr_io_err *)0)->msg)];
+  mr_glove_tap_fn tap;
+  void *tap_user;
+  /* A take: chunks fed at their recorded times instead of a live source. */
+  bool is_take, take_open, take_done, have_chunk;
+  mr_rec_reader take;
+  uint64_t chunk_t_ns;
+  const uint8_t *chunk;
+  size_t chunk_len;
 };
 
 const char *mr_glove_state_name(mr_glove_state s) {
@@ -67,6 +75,20 @@ static int to_io_spec(const char *source, char *out, size_t size) {
     known = strncmp(source, prefixes[i], n) == 0 && source[n] != '\0';
   }
   return known && snprintf(out, size, "%s", source) < (int)size ? 0 : -1;
+}
+
+/* A file source that starts with the recording magic is a take. */
+static bool file_is_take(const char *source) {
+  const char *path = strncmp(source, "file:", 5) == 0 ? source + 5
+                     : source[0] == '/'               ? source
+                                                      : NULL;
+  if (path == NULL) return false;
+  FILE *f = fopen(path, "rb");
+  if (f == NULL) return false;
+  char magic[8];
+  size_t n = fread(magic, 1, sizeof magic, f);
+  fclose(f);
+  return mr_rec_is_recording(magic, n) != 0;
 }
 
 mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *msg,
@@ -112,14 +134,29 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   gp_decoder_init(&g->dec, GP_SPEC_HASH);
   g->offset = NAN;
   g->next_open = -INFINITY;
+  g->is_take = file_is_take(g->def.source);
   *out = g;
   return MR_GLOVE_OK;
 }
 
 static void close_source(mr_glove *g) {
+  if (g->take_open) {
+    mr_rec_reader_close(&g->take);
+    g->take_open = false;
+  }
   if (!g->open) return;
   mr_io_close(&g->io);
   g->open = false;
+}
+
+void mr_glove_set_tap(mr_glove *g, mr_glove_tap_fn tap, void *user) {
+  if (g == NULL) return;
+  g->tap = tap;
+  g->tap_user = user;
+}
+
+bool mr_glove_take_done(const mr_glove *g) {
+  return g != NULL && g->is_take && g->take_done;
 }
 
 void mr_glove_destroy(mr_glove *g) {
@@ -137,6 +174,48 @@ static void mark_lost(mr_glove *g, double now, const char *why) {
   if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LOST;
   snprintf(g->last_error, sizeof g->last_error, "%s", why);
   g->next_open = now + g->def.retry_every;
+}
+
+/* A take's chunks whose recorded time has come, fed in order. */
+static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now);
+static int play_take(mr_glove *g, double now) {
+  int taken = 0;
+  if (!g->take_open) {
+    if (g->take_done) return 0;
+    mr_io_err err;
+    const char *path = strncmp(g->def.source, "file:", 5) == 0 ? g->def.source + 5 : g->def.source;
+    if (mr_rec_reader_open(&g->take, path, &err) != 0) {
+      snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
+      g->take_done = true;
+      return 0;
+    }
+    g->take_open = true;
+    g->counters.opens++;
+    g->last_bytes = now;
+  }
+  for (;;) {
+    if (!g->have_chunk) {
+      mr_io_err err;
+      int rc = mr_rec_reader_next(&g->take, &g->chunk_t_ns, &g->chunk, &g->chunk_len, &err);
+      if (rc != 1) {
+        /* The end, or a take cut short (a show killed mid-chunk): what was
+         * whole has been played. */
+        if (rc < 0) snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
+        g->take_done = true;
+        mr_rec_reader_close(&g->take);
+        g->take_open = false;
+        return taken;
+      }
+      g->have_chunk = true;
+    }
+    /* In whole ns, rounded as a recorder rounds `now`, so a chunk read at
+     * a frame's time plays at that frame, not the next. */
+    if (g->chunk_t_ns > (uint64_t)llround(fmax(now, 0.0) * 1e9)) return taken;
+    g->have_chunk = false;
+    g->last_bytes = now;
+    if (g->tap != NULL) g->tap(g->tap_user, now, g->chunk, g->chunk_len);
+    taken += feed(g, g->chunk, g->chunk_len, now);
+  }
 }
 
 static void try_open(mr_glove *g, double now) {
@@ -207,6 +286,13 @@ static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
 
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   if (g == NULL || !isfinite(now)) return 0;
+  if (g->is_take) {
+    int taken = play_take(g, now);
+    if (now - g->last_bytes > g->def.lost_after && g->state != MR_GLOVE_MISMATCH &&
+        g->state != MR_GLOVE_LOST)
+      mark_lost(g, now, g->take_done ? "the take ended" : "no bytes for longer than lost_after");
+    return taken;
+  }
   try_open(g, now);
   if (!g->open) return 0;
   uint8_t buf[4096];
@@ -217,6 +303,7 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
     mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
     if (got > 0) {
       g->last_bytes = now;
+      if (g->tap != NULL) g->tap(g->tap_user, now, buf, got);
       taken += feed(g, buf, got, now);
     }
     if (st == MR_IO_TIMEOUT) break;

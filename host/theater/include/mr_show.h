@@ -1,6 +1,10 @@
 /* A live show: a glove drives a scene's puppet through the control
  * mapping, paced by the frame scheduler on a clock (`marionette run`).
  *
+ * The glove runs on show time (the frame's simulated time), so a take
+ * records each byte with the frame that read it, and a replay on a virtual
+ * clock gives every frame the same bytes: the same states, bit for bit.
+ *
  * Each frame: the glove is read (without waiting), its five values go
  * through the scene's mapping (host/control) to a pose, the control frame
  * heads there no faster than the scene's limits (mr_pose_approach), and the
@@ -21,8 +25,12 @@ extern "C" {
 typedef struct mr_show_def {
   uint32_t cookie;  /* MR_SHOW_COOKIE, set by mr_default_show_def() */
   mr_policy policy; /* default skip */
-  double duration;  /* s of show, <= 0: until stopped */
+  double duration;  /* s of show, <= 0: until stopped (or a take's end) */
   double fps;       /* <= 0: the scene's sim.fps, else 60 */
+  /* A take: every byte the glove sends, with the show time it was read at,
+   * into this .mrec file (NULL: none). Replaying it (the glove's source a
+   * file: take) feeds the same bytes to the same frames. */
+  const char *record_path;
 } mr_show_def;
 #define MR_SHOW_COOKIE 0x6d725368u
 mr_show_def mr_default_show_def(void);
@@ -40,6 +48,9 @@ typedef struct mr_show_hooks {
   void (*present)(void *user, const mr_show_frame *frame); /* may be NULL */
   /* Polled once a frame: nonzero ends the show (Ctrl-C). May be NULL. */
   int (*stop)(void *user);
+  /* After each frame is simulated: its time and the world's state hash,
+   * which a replay of the take reproduces bit for bit. May be NULL. */
+  void (*frame_done)(void *user, double t, uint64_t hash);
   void *user;
 } mr_show_hooks;
 

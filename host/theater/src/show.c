@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "mr_control.h"
+#include "mr_io.h"
 
 typedef struct show {
   const mr_scene *scene;
@@ -20,12 +21,15 @@ typedef struct show {
   mr_pose target; /* where the control frame heads */
   double duration;
   uint64_t samples_seen;
+  mr_rec_writer take;
+  bool recording, take_open;
+  char take_error[320];
   mr_scene_error *err;
   mr_scene_status rc;
 } show;
 
 mr_show_def mr_default_show_def(void) {
-  mr_show_def d = { MR_SHOW_COOKIE, MR_POLICY_SKIP, 0.0, 0.0 };
+  mr_show_def d = { MR_SHOW_COOKIE, MR_POLICY_SKIP, 0.0, 0.0, NULL };
   return d;
 }
 
@@ -49,10 +53,22 @@ static void read_glove(show *s, double now) {
     s->target = pose;
 }
 
+/* The glove's bytes into the take, stamped with show time. */
+static void record(void *user, double now, const uint8_t *bytes, size_t len) {
+  show *s = user;
+  if (!s->recording) return;
+  mr_io_err err;
+  uint64_t t_ns = now > 0 ? (uint64_t)llround(now * 1e9) : 0;
+  if (mr_rec_writer_add(&s->take, t_ns, bytes, len, &err) != 0) {
+    snprintf(s->take_error, sizeof s->take_error, "%s", err.msg);
+    s->recording = false;
+  }
+}
+
 static int advance(void *user, double t, mr_frame_work *work) {
   show *s = user;
   if (s->hooks != NULL && s->hooks->stop != NULL && s->hooks->stop(s->hooks->user)) return 1;
-  read_glove(s, s->clock.now(s->clock.self));
+  read_glove(s, t);
   mr_world *w = s->sw.world;
   if (t > mr_world_time(w)) {
     if (s->sw.frame >= 0) {
@@ -78,7 +94,10 @@ static int advance(void *user, double t, mr_frame_work *work) {
     work->rejected = (uint64_t)rep.rejected;
     work->resets = (uint64_t)rep.divergences;
   }
-  return s->duration > 0 && t >= s->duration;
+  if (s->hooks != NULL && s->hooks->frame_done != NULL)
+    s->hooks->frame_done(s->hooks->user, t, mr_world_state_hash(w));
+  if (s->duration > 0) return t >= s->duration;
+  return mr_glove_take_done(s->glove) && mr_glove_state_get(s->glove) == MR_GLOVE_LOST;
 }
 
 static void present(void *user, double t) {
@@ -117,6 +136,15 @@ static int open_parts(show *s, const char *source, const mr_show_def *def) {
     return -1;
   }
   if (make_control(s) != 0) return -1;
+  if (def->record_path != NULL) {
+    mr_io_err err;
+    if (mr_rec_writer_open(&s->take, def->record_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0) {
+      fail(s, MR_SCENE_ERR_IO, err.msg);
+      return -1;
+    }
+    s->recording = s->take_open = true;
+    mr_glove_set_tap(s->glove, record, s);
+  }
   mr_scheduler_def sd = mr_default_scheduler_def();
   sd.policy = def->policy;
   sd.fps = def->fps > 0 ? def->fps : s->scene->fps > 0 ? s->scene->fps : 60.0;
@@ -129,6 +157,12 @@ static int open_parts(show *s, const char *source, const mr_show_def *def) {
 }
 
 static void close_parts(show *s) {
+  if (s->take_open) {
+    mr_io_err err;
+    if (mr_rec_writer_close(&s->take, &err) != 0 && s->rc == MR_SCENE_OK)
+      fail(s, MR_SCENE_ERR_IO, err.msg);
+    s->take_open = s->recording = false;
+  }
   mr_scheduler_destroy(s->sch);
   mr_control_destroy(s->control);
   mr_glove_destroy(s->glove);
@@ -164,5 +198,6 @@ mr_scene_status mr_show_run(const mr_scene *scene, const char *glove_source, con
     result->samples = r.samples;
   }
   close_parts(&s);
+  if (s.rc == MR_SCENE_OK && s.take_error[0] != '\0') fail(&s, MR_SCENE_ERR_IO, s.take_error);
   return s.rc != MR_SCENE_OK ? s.rc : err->status;
 }
