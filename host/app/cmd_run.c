@@ -6,6 +6,7 @@
 
 #include <inttypes.h>
 #include <math.h>
+#include <stdbool.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -108,64 +109,89 @@ static int bad_usage(const char *fmt, const char *arg) {
   return MR_EXIT_USAGE;
 }
 
-int mr_cmd_run(int argc, char **argv) {
-  const char *scene_path = NULL, *glove = NULL, *replay = NULL, *hashes = NULL;
-  int real_time = 0;
-  mr_show_def def = mr_default_show_def();
-  status st = { 0, 0.0, NULL, 0 };
+/* The command line, read. */
+typedef struct args {
+  const char *scene, *glove, *replay, *hashes;
+  int real_time, quiet, help;
+  mr_show_def def;
+  char take_source[MR_GLOVE_SOURCE_MAX];
+} args;
+
+/* An option's value into a; -1 (after the message) on a bad one. */
+static int take_value(args *a, const char *opt, const char *v) {
+  if (strcmp(opt, "--glove") == 0) {
+    a->glove = v;
+  } else if (strcmp(opt, "--record") == 0) {
+    a->def.record_path = v;
+  } else if (strcmp(opt, "--replay") == 0) {
+    a->replay = v;
+  } else if (strcmp(opt, "--hashes") == 0) {
+    a->hashes = v;
+  } else if (strcmp(opt, "--policy") == 0) {
+    if (mr_policy_parse(v, &a->def.policy) != 0)
+      return bad_usage("expected --policy skip or slow, got '%s'", v), -1;
+  } else {
+    char *end = NULL;
+    a->def.duration = strtod(v, &end);
+    if (end == v || *end != '\0' || !(a->def.duration > 0) || !isfinite(a->def.duration))
+      return bad_usage("expected a positive number of seconds for --time, got '%s'", v), -1;
+  }
+  return 0;
+}
+
+static int parse(int argc, char **argv, args *a) {
+  static const char *const valued[] = { "--glove",  "--policy", "-t",       "--time",
+                                        "--record", "--replay", "--hashes", NULL };
   for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-      mr_cmd_run_usage();
-      return MR_EXIT_OK;
-    } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
-      st.quiet = 1;
-    } else if (strcmp(a, "--real-time") == 0) {
-      real_time = 1;
-    } else if (strcmp(a, "--glove") == 0 || strcmp(a, "--policy") == 0 || strcmp(a, "-t") == 0 ||
-               strcmp(a, "--time") == 0 || strcmp(a, "--record") == 0 ||
-               strcmp(a, "--replay") == 0 || strcmp(a, "--hashes") == 0) {
-      if (i + 1 >= argc) return bad_usage("option '%s' needs a value", a);
-      const char *v = argv[++i];
-      if (strcmp(a, "--glove") == 0) {
-        glove = v;
-      } else if (strcmp(a, "--record") == 0) {
-        def.record_path = v;
-      } else if (strcmp(a, "--replay") == 0) {
-        replay = v;
-      } else if (strcmp(a, "--hashes") == 0) {
-        hashes = v;
-      } else if (strcmp(a, "--policy") == 0) {
-        if (mr_policy_parse(v, &def.policy) != 0)
-          return bad_usage("expected --policy skip or slow, got '%s'", v);
-      } else {
-        char *end = NULL;
-        def.duration = strtod(v, &end);
-        if (end == v || *end != '\0' || !(def.duration > 0) || !isfinite(def.duration))
-          return bad_usage("expected a positive number of seconds for --time, got '%s'", v);
-      }
-    } else if (a[0] == '-') {
-      return bad_usage("unknown option '%s'", a);
-    } else if (scene_path == NULL) {
-      scene_path = a;
+    const char *o = argv[i];
+    bool takes_value = false;
+    for (int k = 0; valued[k] != NULL; k++) takes_value |= strcmp(o, valued[k]) == 0;
+    if (strcmp(o, "-h") == 0 || strcmp(o, "--help") == 0) {
+      a->help = 1;
+    } else if (strcmp(o, "-q") == 0 || strcmp(o, "--quiet") == 0) {
+      a->quiet = 1;
+    } else if (strcmp(o, "--real-time") == 0) {
+      a->real_time = 1;
+    } else if (takes_value) {
+      if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
+      if (take_value(a, o, argv[++i]) != 0) return MR_EXIT_USAGE;
+    } else if (o[0] == '-') {
+      return bad_usage("unknown option '%s'", o);
+    } else if (a->scene == NULL) {
+      a->scene = o;
     } else {
-      return bad_usage("expected one scene, got a second: '%s'", a);
+      return bad_usage("expected one scene, got a second: '%s'", o);
     }
   }
-  if (scene_path == NULL) return bad_usage("expected a scene file%s", "");
-  if ((glove == NULL) == (replay == NULL))
+  if (a->help) return 0;
+  if (a->scene == NULL) return bad_usage("expected a scene file%s", "");
+  if ((a->glove == NULL) == (a->replay == NULL))
     return bad_usage("expected --glove SOURCE or --replay TAKE, one of the two%s", "");
-  if (replay != NULL && def.record_path != NULL)
+  if (a->replay != NULL && a->def.record_path != NULL)
     return bad_usage("expected --record with a glove, not with --replay%s", "");
-  if (real_time && replay == NULL) return bad_usage("expected --real-time with --replay%s", "");
-  char take_source[MR_GLOVE_SOURCE_MAX];
-  if (replay != NULL) {
-    snprintf(take_source, sizeof take_source, "file:%s", replay);
-    glove = take_source;
+  if (a->real_time && a->replay == NULL)
+    return bad_usage("expected --real-time with --replay%s", "");
+  if (a->replay != NULL) {
+    snprintf(a->take_source, sizeof a->take_source, "file:%s", a->replay);
+    a->glove = a->take_source;
   }
+  return 0;
+}
+
+int mr_cmd_run(int argc, char **argv) {
+  args a;
+  memset(&a, 0, sizeof a);
+  a.def = mr_default_show_def();
+  int rc_usage = parse(argc, argv, &a);
+  if (rc_usage != 0) return rc_usage;
+  if (a.help) {
+    mr_cmd_run_usage();
+    return MR_EXIT_OK;
+  }
+  status st = { a.quiet, 0.0, NULL, 0 };
   mr_scene scene;
   mr_scene_error err;
-  if (mr_scene_load(scene_path, &scene, &err) != MR_SCENE_OK) {
+  if (mr_scene_load(a.scene, &scene, &err) != MR_SCENE_OK) {
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;
   }
@@ -174,20 +200,21 @@ int mr_cmd_run(int argc, char **argv) {
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
-  if (hashes != NULL && (st.hashes = fopen(hashes, "w")) == NULL) {
-    fprintf(stderr, "marionette run: cannot write %s\n", hashes);
+  if (a.hashes != NULL && (st.hashes = fopen(a.hashes, "w")) == NULL) {
+    fprintf(stderr, "marionette run: cannot write %s\n", a.hashes);
     mr_scene_free(&scene);
     return MR_EXIT_FAIL;
   }
+  bool virtual_time = a.replay != NULL && !a.real_time;
   mr_virtual_clock vc = { 0.0 };
-  mr_clock clock = replay != NULL && !real_time ? mr_clock_virtual(&vc) : mr_clock_wall();
-  if (replay != NULL && !real_time) st.quiet = 1; /* as fast as it goes: no seconds to mark */
+  mr_clock clock = virtual_time ? mr_clock_virtual(&vc) : mr_clock_wall();
+  if (virtual_time) st.quiet = 1; /* as fast as it goes: no seconds to mark */
   mr_show_hooks hooks = { present, stop, frame_done, &st };
   mr_show_result r;
-  mr_scene_status rc = mr_show_run(&scene, glove, &def, &clock, &hooks, &r, &err);
+  mr_scene_status rc = mr_show_run(&scene, a.glove, &a.def, &clock, &hooks, &r, &err);
   mr_scene_free(&scene);
   if (st.hashes != NULL && (fclose(st.hashes) != 0 || st.hash_failed) && rc == MR_SCENE_OK) {
-    fprintf(stderr, "marionette run: could not write all of %s\n", hashes);
+    fprintf(stderr, "marionette run: could not write all of %s\n", a.hashes);
     return MR_EXIT_FAIL;
   }
   if (rc != MR_SCENE_OK) {
