@@ -78,8 +78,8 @@ static void present(void *user, const mr_show_frame *f) {
   char glove[400];
   mr_glove_describe(f->glove, s.wall_time, glove, sizeof glove);
   printf("t %.0f s: %" PRIu64 " frames shown, %" PRIu64 " skipped, %" PRIu64 " steps, %" PRIu64
-         " resets; %s\n",
-         f->t, s.frames_presented, s.frames_skipped, s.steps, s.resets, glove);
+         " resets, latency p50 %.1f ms; %s\n",
+         f->t, s.frames_presented, s.frames_skipped, s.steps, s.resets, s.latency_p50 * 1e3, glove);
   fflush(stdout);
 }
 
@@ -96,6 +96,8 @@ static void summary(const mr_show_result *r) {
   printf("resets: %" PRIu64 "\n", r->frames.resets);
   printf("simulated: %.3f s\n", r->frames.sim_time);
   printf("real-time factor: %.3f\n", r->frames.real_time_factor);
+  printf("latency p50: %.1f ms\n", r->frames.latency_p50 * 1e3);
+  printf("latency p99: %.1f ms\n", r->frames.latency_p99 * 1e3);
   printf("glove: %s\n", mr_glove_state_name(r->glove_state));
   printf("glove samples: %" PRIu64 "\n", r->samples);
   printf("glove losses: %" PRIu64 "\n", r->glove.losses);

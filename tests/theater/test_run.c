@@ -72,6 +72,10 @@ static void a_glove_drives_the_puppet_in_real_time(void **state) {
   assert_true(field(o.out, "glove samples") >= 250); /* 250 Hz for 2 s, less the start */
   assert_int_equal(field(o.out, "glove losses"), 0);
   assert_int_equal(field(o.out, "resets"), 0);
+  /* Read at a frame's start, shown at the next: within two periods. */
+  char lat[32];
+  assert_int_equal(tt_field(o.out, "latency p99", lat, sizeof lat), 0);
+  assert_true(strtod(lat, NULL) > 0 && strtod(lat, NULL) <= 2e3 / 60 + 1);
   tt_output_free(&o);
   tt_wait(gen, 30);
   tt_rmdir(dir);
@@ -107,6 +111,26 @@ static void a_foreign_glove_ends_with_status_3(void **state) {
   run_show(source, "1.5", &o);
   assert_int_equal(o.status, 3);
   assert_non_null(strstr(o.out, "glove: spec mismatch\n"));
+  tt_output_free(&o);
+  tt_wait(gen, 30);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* A faulty stream (every fault glove-gen knows, 10 % of frames: flipped
+ * bits, cut frames, garbage, duplicates, reordering, foreign frames, stalls)
+ * does not stop the show: the faults are counted and the glove read on. */
+static void a_faulty_stream_is_counted_and_the_show_goes_on(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300];
+  pid_t gen = start_glove(dir, "4", "--faults=0.1", source, sizeof source);
+  tt_output o;
+  run_show(source, "2", &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_true(field(o.out, "glove samples") >= 150);
+  assert_true(field(o.out, "glove crc errors") > 0);
+  assert_int_equal(field(o.out, "resets"), 0);
+  assert_true(field(o.out, "frames simulated") >= 100);
   tt_output_free(&o);
   tt_wait(gen, 30);
   tt_rmdir(dir);
@@ -205,6 +229,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_glove_drives_the_puppet_in_real_time),
     cmocka_unit_test(a_glove_lost_mid_show_does_not_stop_it),
     cmocka_unit_test(a_foreign_glove_ends_with_status_3),
+    cmocka_unit_test(a_faulty_stream_is_counted_and_the_show_goes_on),
     cmocka_unit_test(a_take_replays_to_identical_frames),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(bad_usage_exits_2_with_one_line),

@@ -16,7 +16,7 @@ import tempfile
 
 SRC, BUILD = sys.argv[1], sys.argv[2]
 PREFIX = "/usr/local"
-PROGRAMS = {"marionette": [["--help"], ["sim", "--help"]],
+PROGRAMS = {"marionette": [["--help"], ["sim", "--help"], ["run", "--help"]],
             "glove-gen": [["--help"]],
             "glove-dump": [["--help"]]}
 failures = []
@@ -94,8 +94,11 @@ def main():
         check(r.returncode == 0 and os.path.isfile(udev) and open(udev).read() == rule,
               "MR_UDEV_RULES_DIR=/etc/udev/rules.d puts the rule there, under DESTDIR")
         listing = run(["find", dest, "-type", "f"]).stdout.split()
-        check(len(listing) == 8, "install puts exactly 3 programs, 3 man pages and the rule "
-              "(twice here): " + " ".join(sorted(listing)))
+        check(len(listing) == 9, "install puts exactly 3 programs, 3 man pages, the systemd "
+              "unit and the rule (twice here): " + " ".join(sorted(listing)))
+        unit = dest + PREFIX + "/lib/systemd/system/marionette-theater@.service"
+        check(os.path.isfile(unit) and "ExecStart=/usr/local/bin/marionette run" in open(unit).read(),
+              "the theater box's systemd unit is installed in PREFIX/lib/systemd/system")
         for prog, helps in PROGRAMS.items():
             exe = os.path.join(root, "bin", prog)
             page = os.path.join(root, "share/man/man1", prog + ".1")

@@ -259,7 +259,9 @@ static void take_sample(mr_glove *g, const gp_sample *s, double now) {
   r->samples++;
   double off = now - r->device_t;
   if (!(g->offset <= off)) g->offset = off;
-  if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LIVE;
+  /* A frame that passed our CRC comes from a glove of our definition: a
+   * stray foreign frame in the stream was noise, not the glove. */
+  g->state = MR_GLOVE_LIVE;
 }
 
 static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {

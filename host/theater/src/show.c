@@ -48,6 +48,9 @@ static void read_glove(show *s, double now) {
   mr_glove_latest(s->glove, &r);
   if (r.samples == s->samples_seen || mr_glove_state_get(s->glove) != MR_GLOVE_LIVE) return;
   s->samples_seen = r.samples;
+  /* Read at the start of this frame's work: the latency counters run from
+   * here to the frame's presentation, on the show's clock. */
+  mr_scheduler_note_input(s->sch, s->clock.now(s->clock.self));
   mr_pose pose;
   if (mr_control_update(s->control, r.values, r.host_t, &pose, NULL) == MR_CONTROL_OK)
     s->target = pose;
