@@ -15,5 +15,7 @@ int mr_cmd_sim(int argc, char **argv);
 void mr_cmd_sim_usage(void);
 int mr_cmd_run(int argc, char **argv);
 void mr_cmd_run_usage(void);
+int mr_cmd_ports(int argc, char **argv);
+void mr_cmd_ports_usage(void);
 
 #endif

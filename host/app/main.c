@@ -17,6 +17,7 @@ static void usage(FILE *f) {
              "  run SCENE --glove SOURCE\n"
              "              the theater: a glove drives the puppet in real time; see\n"
              "              `marionette run --help`\n"
+             "  list-ports  the serial ports, and the gloves on them\n"
              "\n"
              "options:\n"
              "  -h, --help  show this help\n");
@@ -25,7 +26,8 @@ static void usage(FILE *f) {
 int main(int argc, char **argv) {
   if (argc < 2) {
     /* Bad usage is one line, like every other usage error; --help has the rest. */
-    fprintf(stderr, "marionette: expected a command: sim or run (see marionette --help)\n");
+    fprintf(stderr,
+            "marionette: expected a command: sim, run or list-ports (see marionette --help)\n");
     return MR_EXIT_USAGE;
   }
   const char *cmd = argv[1];
@@ -35,7 +37,9 @@ int main(int argc, char **argv) {
   }
   if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);
   if (strcmp(cmd, "run") == 0) return mr_cmd_run(argc - 1, argv + 1);
-  fprintf(stderr, "marionette: unknown command '%s'; expected one of: sim, run (see --help)\n",
+  if (strcmp(cmd, "list-ports") == 0) return mr_cmd_ports(argc - 1, argv + 1);
+  fprintf(stderr,
+          "marionette: unknown command '%s'; expected one of: sim, run, list-ports (see --help)\n",
           cmd);
   return MR_EXIT_USAGE;
 }

@@ -206,6 +206,30 @@ static void a_killed_show_leaves_a_playable_take(void **state) {
   free(dir);
 }
 
+/* The ports are listed whatever this machine has (none is a fine answer),
+ * and a glove looked for on every USB port when there is none is a state
+ * the show runs through, saying why. */
+static void ports_are_listed_and_auto_finds_no_glove_clearly(void **state) {
+  (void)state;
+  char *argv[] = { (char *)marionette, "list-ports", "--no-probe", NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  assert_int_equal(o.status, 0);
+  assert_true(strncmp(o.out, "no serial ports\n", 16) == 0 || strncmp(o.out, "port ", 5) == 0);
+  tt_output_free(&o);
+  char *bad[] = { (char *)marionette, "list-ports", "--wait", "-1", NULL };
+  assert_int_equal(tt_capture(bad, &o), 0);
+  assert_int_equal(o.status, 2);
+  tt_output_free(&o);
+  char *show[] = { (char *)marionette, "run",    PUPPET, "--glove",
+                   "serial:auto",      "--time", "1.2",  NULL };
+  assert_int_equal(tt_capture(show, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.out, "glove on serial:auto: connecting (no glove on any of "));
+  assert_non_null(strstr(o.out, "glove: connecting\n"));
+  tt_output_free(&o);
+}
+
 static void bad_usage_exits_2_with_one_line(void **state) {
   (void)state;
   char *argv[] = { (char *)marionette, "run", PUPPET, NULL };
@@ -232,6 +256,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_faulty_stream_is_counted_and_the_show_goes_on),
     cmocka_unit_test(a_take_replays_to_identical_frames),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
+    cmocka_unit_test(ports_are_listed_and_auto_finds_no_glove_clearly),
     cmocka_unit_test(bad_usage_exits_2_with_one_line),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

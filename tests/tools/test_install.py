@@ -16,7 +16,8 @@ import tempfile
 
 SRC, BUILD = sys.argv[1], sys.argv[2]
 PREFIX = "/usr/local"
-PROGRAMS = {"marionette": [["--help"], ["sim", "--help"], ["run", "--help"]],
+PROGRAMS = {"marionette": [["--help"], ["sim", "--help"], ["run", "--help"],
+                           ["list-ports", "--help"]],
             "glove-gen": [["--help"]],
             "glove-dump": [["--help"]]}
 failures = []

@@ -104,6 +104,14 @@ double mr_glove_clock_offset(const mr_glove *g);
  * Returns out. */
 const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t size);
 
+/* Listens on source (as a glove source names it) for up to wait_s seconds
+ * of real time, writing nothing, and reports whether a glove announced
+ * itself: 1 with its INFO (a glove of another definition too: *foreign is
+ * then set), 0 when the port said nothing a glove would, −1 when it could
+ * not be opened (msg says why). Any other device is left alone. */
+int mr_glove_probe(const char *source, double wait_s, gp_info *info, bool *foreign, char *msg,
+                   size_t msg_size);
+
 #ifdef __cplusplus
 }
 #endif
