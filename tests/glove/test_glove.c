@@ -102,14 +102,19 @@ static void make_port(port *p) {
   snprintf(p->link, sizeof p->link, "%s/glove", p->dir);
 }
 
+/* A new port behind a link, and a glove reading it through the link. */
+static mr_glove *glove_on_new_port(port *p, char *source, size_t size) {
+  make_port(p);
+  plug(p);
+  snprintf(source, size, "pty:%s", p->link);
+  return glove_on(source);
+}
+
 static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
   (void)state;
   port p;
-  make_port(&p);
-  plug(&p);
   char source[128], line[300];
-  snprintf(source, sizeof source, "pty:%s", p.link);
-  mr_glove *g = glove_on(source);
+  mr_glove *g = glove_on_new_port(&p, source, sizeof source);
   double now = 10.0;
   mr_glove_poll(g, now, 0); /* opens the port */
   send_info(&p, GP_SPEC_HASH);
@@ -175,11 +180,8 @@ static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
 static void a_foreign_glove_is_a_spec_mismatch(void **state) {
   (void)state;
   port p;
-  make_port(&p);
-  plug(&p);
   char source[128], line[300];
-  snprintf(source, sizeof source, "pty:%s", p.link);
-  mr_glove *g = glove_on(source);
+  mr_glove *g = glove_on_new_port(&p, source, sizeof source);
   mr_glove_poll(g, 1.0, 0);
   send_info(&p, 0x12345678u);
   int seen = 0;

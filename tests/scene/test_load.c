@@ -468,6 +468,15 @@ static void glove_mappings_are_read(void **state) {
   mr_control_destroy(c);
   mr_scene_free(&s);
 
+  /* The frame's turn limit is read in degrees per second, kept in radians;
+   * its speed limit, not given, stays at the default. */
+  snprintf(text, sizeof text, "%s    max_turn_rate: 90\n", head);
+  if (mr_scene_load_text("t.yaml", text, strlen(text), &s, &e) != MR_SCENE_OK)
+    fail_msg("%s", e.text);
+  assert_true(fabs(s.control_max_turn - 3.14159265358979323846 / 2) < 1e-15);
+  assert_true(s.control_max_speed == MR_SCENE_CONTROL_MAX_SPEED);
+  mr_scene_free(&s);
+
   snprintf(text, sizeof text, "%smapping:\n  - name: m\n    axes:\n      fly: {channel: 1}\n",
            head);
   expect_error(text, MR_SCENE_ERR_SCHEMA,

@@ -132,10 +132,8 @@ int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = {
     "points", "pose", "track", "max_speed", "max_turn_rate", NULL
   };
-  static const mr_scene_field fields[] = {
-    { "max_speed", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, control_max_speed), 0, 0 },
-    { "max_turn_rate", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, control_max_turn), 0, 0 }
-  };
+  static const mr_scene_field speed = { "max_speed", MR_SCENE_FIELD_POSITIVE,
+                                        offsetof(mr_scene, control_max_speed), 0, 0 };
   static const char *const pose_keys[] = { "position", "rotation", NULL };
   mr_scene *s = r->scene;
   if (mr_scene_read_map(r, n, "physics.control", keys) != 0) return -1;
@@ -149,10 +147,15 @@ int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
        read_pose(r, v, &s->control_pose) != 0))
     return -1;
   if ((v = mr_scene_yaml_get(n, "track")) != NULL && read_track(r, v) != 0) return -1;
-  double turn_deg = s->control_max_turn * 180.0 / PI;
-  s->control_max_turn = turn_deg;
-  if (mr_scene_read_fields(r, n, fields, 2, s) != 0) return -1;
-  s->control_max_turn *= PI / 180.0; /* read in degrees */
+  if (mr_scene_read_field(r, n, &speed, s) != 0) return -1;
+  if ((v = mr_scene_yaml_get(n, "max_turn_rate")) == NULL) return 0;
+  double deg; /* read in degrees, kept in radians */
+  if (mr_scene_read_quantity(r, v, "max_turn_rate", &deg) != 0) return -1;
+  if (!(deg > 0))
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected a positive number for max_turn_rate, got %g", deg);
+  if (mr_scene_range_check(r, v, "max_turn_rate", deg) != 0) return -1;
+  s->control_max_turn = deg * PI / 180.0;
   return 0;
 }
 

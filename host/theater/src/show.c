@@ -9,6 +9,7 @@
 
 #include "mr_control.h"
 #include "mr_io.h"
+#include "theater_internal.h"
 
 typedef struct show {
   const mr_scene *scene;
@@ -70,19 +71,10 @@ static void record(void *user, double now, const uint8_t *bytes, size_t len) {
 
 static int advance(void *user, double t, mr_frame_work *work) {
   show *s = user;
-  if (s->hooks != NULL && s->hooks->stop != NULL && s->hooks->stop(s->hooks->user)) return 1;
   read_glove(s, t);
   mr_world *w = s->sw.world;
   if (t > mr_world_time(w)) {
-    if (s->sw.frame >= 0) {
-      /* No faster than the scene allows, from where the frame is (§7). */
-      mr_pose now, goal = s->target;
-      double dt = t - mr_world_time(w);
-      if (mr_world_frame_pose(w, s->sw.frame, &now) == MR_OK)
-        goal = mr_pose_approach(&now, &goal, s->scene->control_max_speed * dt,
-                                s->scene->control_max_turn * dt);
-      mr_world_set_frame_target(w, s->sw.frame, &goal, t);
-    }
+    if (s->sw.frame >= 0) mr_theater_head_frame(s->scene, &s->sw, s->target, t);
     mr_step_report rep;
     memset(&rep, 0, sizeof rep);
     mr_status st = mr_world_step_to(w, t, &rep);
@@ -99,6 +91,9 @@ static int advance(void *user, double t, mr_frame_work *work) {
   }
   if (s->hooks != NULL && s->hooks->frame_done != NULL)
     s->hooks->frame_done(s->hooks->user, t, mr_world_state_hash(w));
+  /* Stopping ends the show after this frame: the scheduler counts it as
+   * simulated, and it was. */
+  if (s->hooks != NULL && s->hooks->stop != NULL && s->hooks->stop(s->hooks->user)) return 1;
   if (s->duration > 0) return t >= s->duration;
   return mr_glove_take_done(s->glove) && mr_glove_state_get(s->glove) == MR_GLOVE_LOST;
 }

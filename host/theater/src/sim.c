@@ -3,6 +3,7 @@
  * numbers `marionette sim` prints gathered on the way. */
 #include "mr_sim.h"
 #include "mr_theater.h"
+#include "theater_internal.h"
 
 #include <inttypes.h>
 #include <math.h>
@@ -85,18 +86,11 @@ static void watch(watcher *w, double t, mr_sim_result *r) {
   w->anchored = true;
 }
 
-/* The frame heads for the track's pose at time t, reached at t (§6.2),
- * but from where it is now no faster than control.max_speed and
- * max_turn_rate allow: a jump is spread over the frames that follow.
- * Measured from the frame's pose at the world's time, the rule holds
- * whether a step lands on t or stops short of it. */
+/* The frame heads for the track's pose at time t (§6.2). */
 static void place_frame(const mr_scene *s, mr_scene_world *sw, double t) {
-  mr_pose goal, now;
+  mr_pose goal;
   mr_scene_control_pose_at(s, t, &goal);
-  double dt = fmax(t - mr_world_time(sw->world), 0.0);
-  if (mr_world_frame_pose(sw->world, sw->frame, &now) == MR_OK)
-    goal = mr_pose_approach(&now, &goal, s->control_max_speed * dt, s->control_max_turn * dt);
-  mr_world_set_frame_target(sw->world, sw->frame, &goal, t);
+  mr_theater_head_frame(s, sw, goal, t);
 }
 
 static mr_scene_status run_fail(const mr_scene *s, mr_scene_error *err, mr_scene_status st,
