@@ -1,7 +1,8 @@
 /* The firmware in the loop: the glove's own firmware image, booted in QEMU
- * (netduinoplus2) with its USART on a pty, drives `marionette run`. The
- * theater reads its INFO and takes its samples as from a glove on a
- * serial port. The image comes from `make firmware`; the test fails, never
+ * (netduinoplus2) with its USART on a pty, is read by `marionette run`: the
+ * theater reads its INFO and takes its samples as from a glove on a serial
+ * port. (QEMU never completes an ADC conversion, so the samples hold still
+ * and the frame does not move; only the reading is tested here.) The image comes from `make firmware`; the test fails, never
  * skips, when it is missing. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -41,7 +42,7 @@ static int pty_of(const char *err_path, char *out, size_t size) {
   return -1;
 }
 
-static void the_firmware_image_drives_the_theater(void **state) {
+static void the_firmware_image_is_read_as_a_glove_by_the_theater(void **state) {
   (void)state;
   assert_int_equal(access(IMAGE, R_OK), 0); /* run `make firmware` first */
   char *dir = tt_tmpdir();
@@ -93,7 +94,7 @@ static void the_firmware_image_drives_the_theater(void **state) {
 int main(int argc, char **argv) {
   marionette = argc > 1 ? argv[1] : "marionette";
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(the_firmware_image_drives_the_theater),
+    cmocka_unit_test(the_firmware_image_is_read_as_a_glove_by_the_theater),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
