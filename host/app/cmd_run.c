@@ -1,5 +1,5 @@
-/* `marionette run SCENE --glove SRC`: the theater. A glove drives the
- * scene's puppet in real time on the wall clock; until the stage exists,
+/* `marionette run SCENE --glove SRC...`: the theater. Gloves drive the
+ * scene's puppets in real time on the wall clock; until the stage exists,
  * a status line a second shows the show, and a summary ends it. Ctrl-C
  * ends it cleanly. */
 #define _POSIX_C_SOURCE 200809L
@@ -24,11 +24,14 @@ static void on_signal(int sig) {
 }
 
 void mr_cmd_run_usage(void) {
-  printf("usage: marionette run [OPTIONS] SCENE (--glove SOURCE | --replay TAKE)\n"
+  printf("usage: marionette run [OPTIONS] SCENE (--glove SOURCE | --replay TAKE)...\n"
          "\n"
          "The theater: the glove at SOURCE drives the puppet of the scene file SCENE\n"
          "in real time. Its five values move the control frame through the scene's\n"
-         "mapping (host/scenes/FORMAT.md, \"mapping\"); the strings do the rest. The\n"
+         "mapping (host/scenes/FORMAT.md, \"mapping\"); the strings do the rest.\n"
+         "Give --glove (or --replay) once per glove: a scene whose puppets have\n"
+         "control frames of their own binds each to a glove by order, uid or hand\n"
+         "(FORMAT.md, \"puppets\"); by default the k-th frame takes the k-th glove. The\n"
          "frame rate is the scene's sim.fps, else 60. Under load renders are skipped\n"
          "and simulated time keeps to wall time (--policy skip), or simulated time\n"
          "slows and nothing is skipped (--policy slow). Until the stage exists, one\n"
@@ -36,37 +39,51 @@ void mr_cmd_run_usage(void) {
          "glove; a summary ends the show. Ctrl-C ends it cleanly.\n"
          "\n"
          "options:\n"
-         "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], pty:PATH, file:PATH, -,\n"
-         "                      tcp:HOST:PORT or tcp-listen:PORT (required)\n"
-         "  --record TAKE       record every byte the glove sends, with the frame\n"
-         "                      that read it, into TAKE (.mrec); a take stays\n"
-         "                      readable up to its last whole chunk if the show is\n"
-         "                      killed\n"
+         "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], serial:auto, pty:PATH,\n"
+         "                      file:PATH, -, tcp:HOST:PORT or tcp-listen:PORT;\n"
+         "                      repeat for several gloves (up to 8)\n"
+         "  --record TAKE       record every byte a glove sends, with the frame that\n"
+         "                      read it, into TAKE (.mrec): the first --record for\n"
+         "                      the first glove, and so on; a take stays readable up\n"
+         "                      to its last whole chunk if the show is killed\n"
          "  --replay TAKE       play a take instead of a glove, on a virtual clock as\n"
          "                      fast as it goes: every frame gets the bytes it got\n"
-         "                      live, so the states match the show's bit for bit\n"
+         "                      live, so the states match the show's bit for bit;\n"
+         "                      repeat for the takes of several gloves\n"
          "  --real-time         with --replay: at real speed on the wall clock\n"
          "  --hashes FILE       write each frame's time and state hash to FILE\n"
+         "  --poses FILE        write each frame's time and, for each control frame,\n"
+         "                      its position (m) and orientation (w x y z)\n"
          "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
          "  -t, --time SECONDS  end after this much show (default: until Ctrl-C)\n"
          "  -q, --quiet         no status lines, only the summary and errors\n"
          "  -h, --help          show this help\n"
          "\n"
-         "exit status: 0 the show ended, 1 the scene or the glove source failed,\n"
-         "2 bad usage, 3 the glove was built from another protocol definition.\n");
+         "exit status: 0 the show ended, 1 the scene or a glove source failed,\n"
+         "2 bad usage, 3 a glove was built from another protocol definition.\n");
 }
 
 typedef struct status {
   int quiet;
   double next_line;
   FILE *hashes; /* --hashes: one line a frame */
+  FILE *poses;  /* --poses: one line a frame */
   int hash_failed;
 } status;
 
-static void frame_done(void *user, double t, uint64_t hash) {
+static void frame_done(void *user, const mr_show_frame *f, uint64_t hash) {
   status *st = user;
-  if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", t, hash) < 0)
+  if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", f->t, hash) < 0)
     st->hash_failed = 1;
+  if (st->poses == NULL) return;
+  int bad = fprintf(st->poses, "%.6f", f->t) < 0;
+  for (size_t k = 0; k < f->n_frames; k++) {
+    const mr_pose *p = &f->pose[k];
+    bad |= fprintf(st->poses, "  %.6f %.6f %.6f %.7f %.7f %.7f %.7f", p->position[0],
+                   p->position[1], p->position[2], p->orientation[0], p->orientation[1],
+                   p->orientation[2], p->orientation[3]) < 0;
+  }
+  if (bad || fputc('\n', st->poses) == EOF) st->hash_failed = 1;
 }
 
 static void present(void *user, const mr_show_frame *f) {
@@ -75,11 +92,14 @@ static void present(void *user, const mr_show_frame *f) {
   st->next_line = floor(f->t) + 1.0;
   mr_scheduler_stats s;
   mr_scheduler_stats_get(f->scheduler, &s);
-  char glove[400];
-  mr_glove_describe(f->glove, s.wall_time, glove, sizeof glove);
   printf("t %.0f s: %" PRIu64 " frames shown, %" PRIu64 " skipped, %" PRIu64 " steps, %" PRIu64
-         " resets, latency p50 %.1f ms; %s\n",
-         f->t, s.frames_presented, s.frames_skipped, s.steps, s.resets, s.latency_p50 * 1e3, glove);
+         " resets, latency p50 %.1f ms",
+         f->t, s.frames_presented, s.frames_skipped, s.steps, s.resets, s.latency_p50 * 1e3);
+  for (size_t g = 0; g < f->n_gloves; g++) {
+    char glove[400];
+    printf("; %s", mr_glove_describe(f->gloves[g], s.wall_time, glove, sizeof glove));
+  }
+  printf("\n");
   fflush(stdout);
 }
 
@@ -88,7 +108,20 @@ static int stop(void *user) {
   return stop_asked != 0;
 }
 
-static void summary(const mr_show_result *r) {
+/* Glove 1's lines are "glove: ...", as with one glove; glove k's
+ * "glove k: ...". */
+static void glove_summary(const mr_show_result *r, size_t g) {
+  char key[32] = "glove";
+  if (g > 0) snprintf(key, sizeof key, "glove %zu", g + 1);
+  const mr_show_glove_result *o = &r->glove[g];
+  printf("%s: %s\n", key, mr_glove_state_name(o->state));
+  printf("%s samples: %" PRIu64 "\n", key, o->samples);
+  printf("%s losses: %" PRIu64 "\n", key, o->counters.losses);
+  printf("%s crc errors: %" PRIu32 "\n", key, o->counters.decoder.crc_errors);
+  if (o->state != MR_GLOVE_LIVE) printf("%s state: %s\n", key, o->describe);
+}
+
+static void summary(const mr_scene *scene, const mr_show_result *r) {
   printf("frames simulated: %" PRIu64 "\n", r->frames.frames_simulated);
   printf("frames shown: %" PRIu64 "\n", r->frames.frames_presented);
   printf("frames skipped: %" PRIu64 "\n", r->frames.frames_skipped);
@@ -98,10 +131,14 @@ static void summary(const mr_show_result *r) {
   printf("real-time factor: %.3f\n", r->frames.real_time_factor);
   printf("latency p50: %.1f ms\n", r->frames.latency_p50 * 1e3);
   printf("latency p99: %.1f ms\n", r->frames.latency_p99 * 1e3);
-  printf("glove: %s\n", mr_glove_state_name(r->glove_state));
-  printf("glove samples: %" PRIu64 "\n", r->samples);
-  printf("glove losses: %" PRIu64 "\n", r->glove.losses);
-  printf("glove crc errors: %" PRIu32 "\n", r->glove.decoder.crc_errors);
+  for (size_t g = 0; g < r->n_gloves; g++) glove_summary(r, g);
+  for (size_t k = 0; k < scene->n_frames && k < 16; k++) {
+    const char *who = scene->frames[k].puppet[0] ? scene->frames[k].puppet : "the scene";
+    if (r->glove_of[k] >= 0)
+      printf("control frame of %s: glove %d\n", who, r->glove_of[k] + 1);
+    else
+      printf("control frame of %s: no glove (held at its start pose)\n", who);
+  }
 }
 
 static int bad_usage(const char *fmt, const char *arg) {
@@ -113,22 +150,39 @@ static int bad_usage(const char *fmt, const char *arg) {
 
 /* The command line, read. */
 typedef struct args {
-  const char *scene, *glove, *replay, *hashes;
+  const char *scene, *hashes, *poses;
+  size_t n_live, n_replay, n_record;
   int real_time, quiet, help;
   mr_show_def def;
-  char take_source[MR_GLOVE_SOURCE_MAX];
+  char take_source[MR_SHOW_MAX_GLOVES][MR_GLOVE_SOURCE_MAX];
 } args;
+
+/* A glove's source into the show's list; -1 (after the message) past 8. */
+static int add_glove(args *a, const char *source) {
+  if (a->def.n_gloves == MR_SHOW_MAX_GLOVES)
+    return bad_usage("expected at most 8 gloves, got another: '%s'", source), -1;
+  a->def.gloves[a->def.n_gloves++] = source;
+  return 0;
+}
 
 /* An option's value into a; -1 (after the message) on a bad one. */
 static int take_value(args *a, const char *opt, const char *v) {
   if (strcmp(opt, "--glove") == 0) {
-    a->glove = v;
+    a->n_live++;
+    return add_glove(a, v);
   } else if (strcmp(opt, "--record") == 0) {
-    a->def.record_path = v;
+    if (a->n_record == MR_SHOW_MAX_GLOVES)
+      return bad_usage("expected at most 8 takes, got another: '%s'", v), -1;
+    a->def.record[a->n_record++] = v;
   } else if (strcmp(opt, "--replay") == 0) {
-    a->replay = v;
+    char *src = a->take_source[a->def.n_gloves < MR_SHOW_MAX_GLOVES ? a->def.n_gloves : 0];
+    snprintf(src, MR_GLOVE_SOURCE_MAX, "file:%s", v);
+    a->n_replay++;
+    return add_glove(a, src);
   } else if (strcmp(opt, "--hashes") == 0) {
     a->hashes = v;
+  } else if (strcmp(opt, "--poses") == 0) {
+    a->poses = v;
   } else if (strcmp(opt, "--policy") == 0) {
     if (mr_policy_parse(v, &a->def.policy) != 0)
       return bad_usage("expected --policy skip or slow, got '%s'", v), -1;
@@ -142,8 +196,8 @@ static int take_value(args *a, const char *opt, const char *v) {
 }
 
 static int parse(int argc, char **argv, args *a) {
-  static const char *const valued[] = { "--glove",  "--policy", "-t",       "--time",
-                                        "--record", "--replay", "--hashes", NULL };
+  static const char *const valued[] = { "--glove",  "--policy", "-t",      "--time", "--record",
+                                        "--replay", "--hashes", "--poses", NULL };
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     bool takes_value = false;
@@ -167,17 +221,37 @@ static int parse(int argc, char **argv, args *a) {
   }
   if (a->help) return 0;
   if (a->scene == NULL) return bad_usage("expected a scene file%s", "");
-  if ((a->glove == NULL) == (a->replay == NULL))
-    return bad_usage("expected --glove SOURCE or --replay TAKE, one of the two%s", "");
-  if (a->replay != NULL && a->def.record_path != NULL)
+  if (a->def.n_gloves == 0) return bad_usage("expected --glove SOURCE or --replay TAKE%s", "");
+  if (a->n_live > 0 && a->n_replay > 0)
+    return bad_usage("expected gloves or takes, not both: a take replays on show time%s", "");
+  if (a->n_replay > 0 && a->n_record > 0)
     return bad_usage("expected --record with a glove, not with --replay%s", "");
-  if (a->real_time && a->replay == NULL)
+  if (a->n_record > a->n_live) return bad_usage("expected at most one --record per --glove%s", "");
+  if (a->real_time && a->n_replay == 0)
     return bad_usage("expected --real-time with --replay%s", "");
-  if (a->replay != NULL) {
-    snprintf(a->take_source, sizeof a->take_source, "file:%s", a->replay);
-    a->glove = a->take_source;
+  return 0;
+}
+
+/* --hashes and --poses, opened; -1 (after the message) when one cannot be. */
+static int open_outputs(const args *a, status *st) {
+  if (a->hashes != NULL && (st->hashes = fopen(a->hashes, "w")) == NULL) {
+    fprintf(stderr, "marionette run: cannot write %s\n", a->hashes);
+    return -1;
+  }
+  if (a->poses != NULL && (st->poses = fopen(a->poses, "w")) == NULL) {
+    fprintf(stderr, "marionette run: cannot write %s\n", a->poses);
+    if (st->hashes != NULL) fclose(st->hashes);
+    return -1;
   }
   return 0;
+}
+
+/* Closes them; -1 when a line was lost. */
+static int close_outputs(status *st) {
+  int bad = st->hash_failed;
+  if (st->hashes != NULL) bad |= fclose(st->hashes) != 0;
+  if (st->poses != NULL) bad |= fclose(st->poses) != 0;
+  return bad ? -1 : 0;
 }
 
 int mr_cmd_run(int argc, char **argv) {
@@ -190,7 +264,7 @@ int mr_cmd_run(int argc, char **argv) {
     mr_cmd_run_usage();
     return MR_EXIT_OK;
   }
-  status st = { a.quiet, 0.0, NULL, 0 };
+  status st = { a.quiet, 0.0, NULL, NULL, 0 };
   mr_scene scene;
   mr_scene_error err;
   if (mr_scene_load(a.scene, &scene, &err) != MR_SCENE_OK) {
@@ -202,27 +276,32 @@ int mr_cmd_run(int argc, char **argv) {
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
-  if (a.hashes != NULL && (st.hashes = fopen(a.hashes, "w")) == NULL) {
-    fprintf(stderr, "marionette run: cannot write %s\n", a.hashes);
+  if (open_outputs(&a, &st) != 0) {
     mr_scene_free(&scene);
     return MR_EXIT_FAIL;
   }
-  bool virtual_time = a.replay != NULL && !a.real_time;
+  bool virtual_time = a.n_replay > 0 && !a.real_time;
   mr_virtual_clock vc = { 0.0 };
   mr_clock clock = virtual_time ? mr_clock_virtual(&vc) : mr_clock_wall();
   if (virtual_time) st.quiet = 1; /* as fast as it goes: no seconds to mark */
   mr_show_hooks hooks = { present, stop, frame_done, &st };
   mr_show_result r;
-  mr_scene_status rc = mr_show_run(&scene, a.glove, &a.def, &clock, &hooks, &r, &err);
+  mr_scene_status rc = mr_show_run(&scene, &a.def, &clock, &hooks, &r, &err);
+  if (rc == MR_SCENE_OK) summary(&scene, &r);
   mr_scene_free(&scene);
-  if (st.hashes != NULL && (fclose(st.hashes) != 0 || st.hash_failed) && rc == MR_SCENE_OK) {
-    fprintf(stderr, "marionette run: could not write all of %s\n", a.hashes);
+  if (close_outputs(&st) != 0 && rc == MR_SCENE_OK) {
+    fprintf(stderr, "marionette run: could not write all of %s\n",
+            a.hashes != NULL ? a.hashes : a.poses);
     return MR_EXIT_FAIL;
   }
   if (rc != MR_SCENE_OK) {
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;
   }
-  summary(&r);
-  return r.glove_state == MR_GLOVE_MISMATCH ? MR_EXIT_MISMATCH : MR_EXIT_OK;
+  for (size_t g = 0; g < r.n_gloves; g++)
+    if (r.glove[g].state == MR_GLOVE_MISMATCH) {
+      fprintf(stderr, "marionette run: %s\n", r.glove[g].describe);
+      return MR_EXIT_MISMATCH;
+    }
+  return MR_EXIT_OK;
 }

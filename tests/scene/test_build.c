@@ -128,8 +128,8 @@ static void track_rotation_and_phase_reach_the_world(void **state) {
   mr_scene_error e;
   assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
   mr_pose at;
-  mr_scene_control_pose_at(&s, 1.0, &at);
-  assert_int_equal(mr_world_set_frame_target(sw.world, sw.frame, &at, 1.0), MR_OK);
+  mr_scene_frame_pose_at(&s, 0, 1.0, &at);
+  assert_int_equal(mr_world_set_frame_target(sw.world, sw.frames[0], &at, 1.0), MR_OK);
   assert_true(mr_world_step_to(sw.world, 1.0, NULL) >= 0);
   double got[3];
   mr_world_particle_state(sw.world, sw.control_ids[0], got, NULL);
@@ -148,11 +148,11 @@ static void track_rotation_and_phase_reach_the_world(void **state) {
                     "      oscillate: {amplitude: [0.2, 0, 0], frequency: 1, phase: 90}\n";
   load(osc, &s);
   mr_pose p;
-  mr_scene_control_pose_at(&s, 1e-9, &p);
+  mr_scene_frame_pose_at(&s, 0, 1e-9, &p);
   assert_true(fabs(p.position[0] - 0.2) < 1e-9); /* sin(0 + 90°) = 1 */
-  mr_scene_control_pose_at(&s, 0.25, &p);
+  mr_scene_frame_pose_at(&s, 0, 0.25, &p);
   assert_true(fabs(p.position[0]) < 1e-12); /* sin(90° + 90°) = 0 */
-  mr_scene_control_pose_at(&s, 0.5, &p);
+  mr_scene_frame_pose_at(&s, 0, 0.5, &p);
   assert_true(fabs(p.position[0] + 0.2) < 1e-12);
   mr_scene_free(&s);
 }

@@ -110,13 +110,13 @@ static void keyframes_ease_and_hold(void **state) {
   mr_scene_error e;
   assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
   mr_pose p;
-  mr_scene_control_pose_at(&s, 0.0, &p);
+  mr_scene_frame_pose_at(&s, 0, 0.0, &p);
   assert_true(p.position[0] == 0.0 && p.position[1] == 2.0);
-  mr_scene_control_pose_at(&s, 2.0, &p); /* halfway: smoothstep(0.5) = 0.5 */
+  mr_scene_frame_pose_at(&s, 0, 2.0, &p); /* halfway: smoothstep(0.5) = 0.5 */
   assert_true(fabs(p.position[0] - 1.0) < 1e-12);
-  mr_scene_control_pose_at(&s, 1.5, &p); /* smoothstep(0.25) = 0.15625 */
+  mr_scene_frame_pose_at(&s, 0, 1.5, &p); /* smoothstep(0.25) = 0.15625 */
   assert_true(fabs(p.position[0] - 2 * 0.15625) < 1e-12);
-  mr_scene_control_pose_at(&s, 10.0, &p);
+  mr_scene_frame_pose_at(&s, 0, 10.0, &p);
   static const double zero[3] = { 0, 0, 0 }, z90[3] = { 0, 0, 90 };
   mr_pose want = mr_pose_from_euler_deg(zero, z90);
   assert_true(p.position[0] == 2.0 &&
@@ -141,7 +141,7 @@ static void oscillation_follows_the_sine(void **state) {
   mr_scene_error e;
   assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
   mr_pose p;
-  mr_scene_control_pose_at(&s, 1.0 / 12.0, &p); /* a quarter period at 3 Hz */
+  mr_scene_frame_pose_at(&s, 0, 1.0 / 12.0, &p); /* a quarter period at 3 Hz */
   assert_true(fabs(p.position[0] - 0.3) < 1e-12);
   assert_true(p.position[1] == 2.0);
   mr_scene_free(&s);
@@ -473,8 +473,8 @@ static void glove_mappings_are_read(void **state) {
   snprintf(text, sizeof text, "%s    max_turn_rate: 90\n", head);
   if (mr_scene_load_text("t.yaml", text, strlen(text), &s, &e) != MR_SCENE_OK)
     fail_msg("%s", e.text);
-  assert_true(fabs(s.control_max_turn - 3.14159265358979323846 / 2) < 1e-15);
-  assert_true(s.control_max_speed == MR_SCENE_CONTROL_MAX_SPEED);
+  assert_true(fabs(s.frames[0].max_turn - 3.14159265358979323846 / 2) < 1e-15);
+  assert_true(s.frames[0].max_speed == MR_SCENE_CONTROL_MAX_SPEED);
   mr_scene_free(&s);
 
   snprintf(text, sizeof text, "%smapping:\n  - name: m\n    axes:\n      fly: {channel: 1}\n",

@@ -170,7 +170,8 @@ static void puppet_errors_name_the_place(void **state) {
                "name to its parts'");
   snprintf(text, sizeof text, "%s%s", base, "      legs: 2\n");
   expect_error(text, "t.yaml:6:7: unknown key 'legs' in a puppet; expected one of: name, offset, "
-                     "particles, constraints, groups, parts, springs, strings, sine_springs, "
+                     "particles, constraints, groups, parts, control, springs, strings, "
+                     "sine_springs, "
                      "antigravity, triggered");
   expect_error("physics:\n  effects: [gravity]\n  puppets: []\n",
                "t.yaml:3:12: expected at least one puppet");
@@ -200,12 +201,109 @@ static void puppet_errors_name_the_place(void **state) {
                "distinct positions");
 }
 
+/* A puppet's own control frame: its points named with it and placed with
+ * its offset, its binding to a glove read, and built as a frame of its own
+ * that moves its points alone. */
+#define OWN_FRAME                                                       \
+  "physics:\n"                                                          \
+  "  effects: [gravity, constraints, strings, control]\n"               \
+  "  puppets:\n"                                                        \
+  "    - name: alice\n"                                                 \
+  "      offset: [-1, 0, 0]\n"                                          \
+  "      particles: [{name: head, position: [0, 1, 0], mass: 1}]\n"     \
+  "      control:\n"                                                    \
+  "        glove: %s\n"                                                 \
+  "        pose: {position: [0, 2, 0]}\n"                               \
+  "        points: [{name: bar, offset: [0, 0, 0]}]\n"                  \
+  "        track: {keyframes: [{t: 0}, {t: 1, position: [0, 2, 1]}]}\n" \
+  "      strings: [{from: bar, to: head}]\n"                            \
+  "    - name: bob\n"                                                   \
+  "      offset: [1, 0, 0]\n"                                           \
+  "      particles: [{name: head, position: [0, 1, 0], mass: 1}]\n"     \
+  "      control:\n"                                                    \
+  "        points: [{name: bar, offset: [0, 0.5, 0]}]\n"                \
+  "      strings: [{from: bar, to: head}]\n"
+
+static void each_puppet_has_its_own_control_frame(void **state) {
+  (void)state;
+  char text[2048];
+  snprintf(text, sizeof text, OWN_FRAME, "{hand: left}");
+  mr_scene s;
+  load(text, &s);
+  assert_int_equal(s.n_frames, 2);
+  assert_int_equal(s.n_control_points, 2);
+  assert_string_equal(s.control_points[0].name, "alice.bar");
+  assert_string_equal(s.control_points[1].name, "bob.bar");
+  assert_int_equal((int)s.control_points[1].frame, 1);
+  assert_string_equal(s.frames[0].puppet, "alice");
+  assert_true(s.frames[0].pose.position[0] == -1 && s.frames[0].pose.position[1] == 2);
+  assert_true(s.frames[1].pose.position[0] == 1 && s.frames[1].pose.position[1] == 0);
+  assert_int_equal(s.frames[0].glove.by, MR_SCENE_BIND_HAND);
+  assert_int_equal(s.frames[0].glove.hand, 0);
+  /* Unbound: the second frame takes the second glove. */
+  assert_int_equal(s.frames[1].glove.by, MR_SCENE_BIND_ORDER);
+  assert_int_equal(s.frames[1].glove.order, 1);
+  /* Strings name their own puppet's bar: control ids 2 and 3. */
+  assert_int_equal(s.forces[0].def.string.frame_particle, 2);
+  assert_int_equal(s.forces[1].def.string.frame_particle, 3);
+  mr_pose p;
+  mr_scene_frame_pose_at(&s, 0, 1.0, &p); /* the track moves with the puppet */
+  assert_true(p.position[0] == -1 && p.position[2] == 1);
+  mr_scene_world sw;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_build(&s, &sw, &e), MR_SCENE_OK);
+  assert_int_equal(sw.n_frames, 2);
+  mr_pose to = mr_pose_identity();
+  to.position[1] = 3;
+  assert_int_equal(mr_world_set_frame_target(sw.world, sw.frames[1], &to, 0.5), MR_OK);
+  mr_status st = mr_world_step_to(sw.world, 0.5, NULL);
+  assert_true(st == MR_OK || st == MR_DEPENDENT);
+  double a[3], b[3];
+  mr_world_particle_state(sw.world, sw.control_ids[0], a, NULL);
+  mr_world_particle_state(sw.world, sw.control_ids[1], b, NULL);
+  assert_true(fabs(b[1] - 3.5) < 1e-9); /* bob's bar went with bob's frame */
+  assert_true(fabs(a[1] - 2.0) < 1e-9); /* alice's stayed with hers */
+  mr_scene_world_free(&sw);
+  mr_scene_free(&s);
+
+  snprintf(text, sizeof text, OWN_FRAME, "{uid: 0x1234abcd}");
+  load(text, &s);
+  assert_int_equal(s.frames[0].glove.by, MR_SCENE_BIND_UID);
+  assert_int_equal(s.frames[0].glove.uid_words, 1);
+  assert_true(s.frames[0].glove.uid[0] == 0x1234abcdu);
+  mr_scene_free(&s);
+  snprintf(text, sizeof text, OWN_FRAME, "{order: 2}");
+  load(text, &s);
+  assert_int_equal(s.frames[0].glove.order, 1);
+  mr_scene_free(&s);
+}
+
+static void glove_bindings_refuse_what_they_cannot_mean(void **state) {
+  (void)state;
+  char text[2048];
+  snprintf(text, sizeof text, OWN_FRAME, "{uid: 12ab}");
+  expect_error(text, "t.yaml:8:22: expected a glove uid of 8 or 24 hex digits (as marionette "
+                     "list-ports prints it), got '12ab'");
+  snprintf(text, sizeof text, OWN_FRAME, "{hand: left, order: 1}");
+  expect_error(text, "t.yaml:8:16: expected one of order, uid or hand in control.glove, got 2 "
+                     "keys");
+  snprintf(text, sizeof text, OWN_FRAME, "{order: 0}");
+  expect_error(text, "t.yaml:8:24: expected order between 1 and 64 (the first glove is 1), got 0");
+  snprintf(text, sizeof text, OWN_FRAME, "{hand: middle}");
+  expect_error(text, "t.yaml:8:23: expected hand left or right");
+  snprintf(text, sizeof text, OWN_FRAME, "{foot: left}");
+  expect_error(text, "t.yaml:8:17: unknown key 'foot' in control.glove; expected one of: order, "
+                     "uid, hand");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(names_are_qualified_and_puppets_placed),
     cmocka_unit_test(each_puppet_carries_its_own_mass),
     cmocka_unit_test(puppet_collision_is_an_effect_a_scene_lists),
     cmocka_unit_test(puppet_errors_name_the_place),
+    cmocka_unit_test(each_puppet_has_its_own_control_frame),
+    cmocka_unit_test(glove_bindings_refuse_what_they_cannot_mean),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

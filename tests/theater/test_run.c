@@ -248,8 +248,21 @@ static void bad_usage_exits_2_with_one_line(void **state) {
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   assert_int_equal(o.status, 2);
-  assert_string_equal(o.err, "marionette run: expected --glove SOURCE or --replay TAKE, one of "
-                             "the two (see marionette run --help)\n");
+  assert_string_equal(o.err,
+                      "marionette run: expected --glove SOURCE or --replay TAKE (see marionette "
+                      "run --help)\n");
+  tt_output_free(&o);
+  char *mixed[] = { (char *)marionette, "run",      PUPPET,   "--glove",
+                    "pty:/x",           "--replay", "t.mrec", NULL };
+  assert_int_equal(tt_capture(mixed, &o), 0);
+  assert_int_equal(o.status, 2);
+  assert_non_null(strstr(o.err, "expected gloves or takes, not both"));
+  tt_output_free(&o);
+  char *takes[] = { (char *)marionette, "run",    PUPPET,     "--glove", "pty:/x",
+                    "--record",         "a.mrec", "--record", "b.mrec",  NULL };
+  assert_int_equal(tt_capture(takes, &o), 0);
+  assert_int_equal(o.status, 2);
+  assert_non_null(strstr(o.err, "expected at most one --record per --glove"));
   tt_output_free(&o);
   char *bad[] = { (char *)marionette, "run", PUPPET, "--glove", "pty:", NULL };
   assert_int_equal(tt_capture(bad, &o), 0);

@@ -116,11 +116,12 @@ typedef struct mr_scene_floor {
   mr_scene_pos pos;
 } mr_scene_floor;
 
-/* The control frame (§6.1-6.2): kinematic points the strings hang from,
- * moved by setting its pose. */
+/* A control frame's point (§6.1-6.2): a kinematic particle the strings
+ * hang from, moved by setting the frame's pose. */
 typedef struct mr_scene_control_point {
   char name[MR_SCENE_NAME_MAX];
   double offset[3]; /* in the frame's own coordinates */
+  size_t frame;     /* index into mr_scene.frames */
   mr_scene_pos pos;
 } mr_scene_control_point;
 
@@ -151,6 +152,37 @@ typedef struct mr_scene_track {
   double start; /* s */
   double ramp;  /* s over which the amplitude grows linearly */
 } mr_scene_track;
+
+/* Which glove drives a control frame (`control.glove`): the k-th glove the
+ * theater was given, the glove with a uid, or the first glove of a hand. */
+typedef enum mr_scene_bind {
+  MR_SCENE_BIND_ORDER = 0,
+  MR_SCENE_BIND_UID,
+  MR_SCENE_BIND_HAND
+} mr_scene_bind;
+
+typedef struct mr_scene_glove_bind {
+  mr_scene_bind by;
+  int order;       /* BIND_ORDER: 0-based */
+  uint32_t uid[3]; /* BIND_UID: the INFO's uid words */
+  int uid_words;   /* 1: uid[0] only (as a status line shows it); 3: all */
+  int hand;        /* BIND_HAND: 0 left, 1 right (the protocol's GP_HAND_*) */
+} mr_scene_glove_bind;
+
+/* A control frame: the scene's own (physics.control) or a puppet's. Its
+ * points are control_points[first_point .. first_point + n_points). */
+typedef struct mr_scene_frame {
+  char puppet[MR_SCENE_NAME_MAX]; /* the puppet it belongs to, "" for the scene's */
+  size_t first_point, n_points;
+  mr_pose pose; /* at t = 0 before the track */
+  /* How fast the frame may follow its track or glove (max_speed, m/s;
+   * max_turn_rate, read in deg/s, kept in rad/s): a jump in the input is
+   * spread over as many frames as these allow (mr_pose_approach). */
+  double max_speed, max_turn;
+  mr_scene_track track;
+  mr_scene_glove_bind glove;
+  mr_scene_pos pos;
+} mr_scene_frame;
 
 /* Expected outcome, checked by `marionette sim --check`. Unset numbers are
  * NaN, unset counts -1. */
@@ -213,14 +245,10 @@ typedef struct mr_scene {
   mr_scene_mapping *mappings; /* none: the default mapping (mr_default_mapping_def) */
   size_t n_mappings;
 
-  mr_scene_control_point *control_points;
+  mr_scene_frame *frames; /* physics.control first, then the puppets' */
+  size_t n_frames;
+  mr_scene_control_point *control_points; /* every frame's, frame by frame */
   size_t n_control_points;
-  mr_pose control_pose; /* at t = 0 before the track */
-  /* How fast the frame may follow its track (control.max_speed, m/s;
-   * control.max_turn_rate, read in deg/s, kept in rad/s): a jump in the
-   * input is spread over as many frames as these allow (mr_pose_approach). */
-  double control_max_speed, control_max_turn;
-  mr_scene_track track;
 
   mr_scene_expect expect;
 } mr_scene;
@@ -243,8 +271,9 @@ int mr_scene_expected_load_error(const char *path, char *out, size_t size);
 size_t mr_scene_find_particle(const mr_scene *scene, const char *name);
 size_t mr_scene_find_control_point(const mr_scene *scene, const char *name);
 
-/* The control frame's pose at time t from the scene's track. */
-void mr_scene_control_pose_at(const mr_scene *scene, double t, mr_pose *out);
+/* Control frame k's pose at time t from its track (its start pose when it
+ * has none; the identity when the scene has no frame k). */
+void mr_scene_frame_pose_at(const mr_scene *scene, size_t k, double t, mr_pose *out);
 
 /* World position of control point i under pose. */
 void mr_scene_control_point_world(const mr_scene *scene, size_t i, const mr_pose *pose,

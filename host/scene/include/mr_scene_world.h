@@ -15,7 +15,8 @@ extern "C" {
 
 typedef struct mr_scene_world {
   mr_world *world;
-  int frame;         /* control frame id, -1 without one */
+  int *frames; /* scene frame k -> world frame id */
+  size_t n_frames;
   int *particle_ids; /* scene particle i -> world particle id (i) */
   int *control_ids;  /* control point j -> world particle id (n_particles + j) */
   size_t n_particles, n_control;

@@ -64,21 +64,24 @@ static mr_scene_status add_particles(const mr_scene *s, mr_scene_world *sw, mr_s
   return rc;
 }
 
-/* The frame at its pose at t = 0, and its points as kinematic particles. */
+/* Each frame at its pose at t = 0, and its points as kinematic particles. */
 static mr_scene_status add_control(const mr_scene *s, mr_scene_world *sw, mr_scene_error *err) {
-  if (s->n_control_points == 0) return MR_SCENE_OK;
-  mr_frame_def fd = mr_default_frame_def();
-  mr_scene_control_pose_at(s, 0.0, &fd.pose);
-  mr_scene_status rc = added(s, sw, err, s->control_points[0].pos, "the control frame",
-                             mr_world_add_frame(sw->world, &fd, &sw->frame));
-  for (size_t i = 0; i < s->n_control_points && rc == MR_SCENE_OK; i++) {
-    const mr_scene_control_point *c = &s->control_points[i];
-    mr_particle_def d = mr_default_particle_def();
-    d.frame = sw->frame;
-    mr_scene_control_point_world(s, i, &fd.pose, d.position);
-    rc = added(s, sw, err, c->pos, "the control point",
-               mr_world_add_particle(sw->world, &d, &sw->control_ids[i]));
-    if (rc == MR_SCENE_OK) rc = numbered(s, err, c->pos, sw->control_ids[i], s->n_particles + i);
+  mr_scene_status rc = MR_SCENE_OK;
+  for (size_t k = 0; k < s->n_frames && rc == MR_SCENE_OK; k++) {
+    const mr_scene_frame *f = &s->frames[k];
+    mr_frame_def fd = mr_default_frame_def();
+    mr_scene_frame_pose_at(s, k, 0.0, &fd.pose);
+    rc = added(s, sw, err, f->pos, "the control frame",
+               mr_world_add_frame(sw->world, &fd, &sw->frames[k]));
+    for (size_t i = f->first_point; i < f->first_point + f->n_points && rc == MR_SCENE_OK; i++) {
+      const mr_scene_control_point *c = &s->control_points[i];
+      mr_particle_def d = mr_default_particle_def();
+      d.frame = sw->frames[k];
+      mr_scene_control_point_world(s, i, &fd.pose, d.position);
+      rc = added(s, sw, err, c->pos, "the control point",
+                 mr_world_add_particle(sw->world, &d, &sw->control_ids[i]));
+      if (rc == MR_SCENE_OK) rc = numbered(s, err, c->pos, sw->control_ids[i], s->n_particles + i);
+    }
   }
   return rc;
 }
@@ -122,10 +125,13 @@ static mr_scene_status create_world(const mr_scene *s, mr_scene_world *sw, mr_sc
   mr_scene_pos top = { 0, 0 };
   sw->particle_ids = calloc(s->n_particles ? s->n_particles : 1, sizeof *sw->particle_ids);
   sw->control_ids = calloc(s->n_control_points ? s->n_control_points : 1, sizeof *sw->control_ids);
-  if (sw->particle_ids == NULL || sw->control_ids == NULL)
+  sw->frames = malloc((s->n_frames ? s->n_frames : 1) * sizeof *sw->frames);
+  if (sw->particle_ids == NULL || sw->control_ids == NULL || sw->frames == NULL)
     return fail(s, err, top, MR_SCENE_ERR_NOMEM, "out of memory");
   sw->n_particles = s->n_particles;
   sw->n_control = s->n_control_points;
+  sw->n_frames = s->n_frames;
+  for (size_t k = 0; k < s->n_frames; k++) sw->frames[k] = -1;
   char msg[256] = "";
   if (mr_world_create(&s->world, &sw->world, msg, sizeof msg) != MR_OK)
     return fail(s, err, top, MR_SCENE_ERR_BUILD, "the physics refused the world settings: %s", msg);
@@ -141,7 +147,6 @@ mr_scene_status mr_scene_build(const mr_scene *s, mr_scene_world *sw, mr_scene_e
                                         add_constraints, add_forces,    add_collisions };
   memset(sw, 0, sizeof *sw);
   memset(err, 0, sizeof *err);
-  sw->frame = -1;
   mr_scene_status rc = MR_SCENE_OK;
   for (size_t i = 0; i < sizeof stages / sizeof stages[0] && rc == MR_SCENE_OK; i++)
     rc = stages[i](s, sw, err);
@@ -153,6 +158,6 @@ void mr_scene_world_free(mr_scene_world *sw) {
   if (sw->world != NULL) mr_world_destroy(sw->world);
   free(sw->particle_ids);
   free(sw->control_ids);
+  free(sw->frames);
   memset(sw, 0, sizeof *sw);
-  sw->frame = -1;
 }

@@ -1,16 +1,25 @@
-/* The control frame (§6.1-6.2): points the strings hang from, its start
- * pose, and a scripted track that stands in for the glove. The frame is
- * moved by setting its pose (§6.2, approach 1), so the track only has to
- * give a pose for every time. Rotations in the file are x-y-z Euler
- * degrees; they become quaternions here, once, as they are read. */
+/* Control frames (§6.1-6.2): points the strings hang from, a start pose,
+ * a scripted track that stands in for the glove, and which glove drives it
+ * in the theater. The scene may have one (physics.control) and each puppet
+ * its own. A frame is moved by setting its pose (§6.2, approach 1), so the
+ * track only has to give a pose for every time. Rotations in the file are
+ * x-y-z Euler degrees; they become quaternions here, once, as they are
+ * read. */
 #include "scene_read.h"
 
+#include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 static const double PI = 3.14159265358979323846;
+
+/* The frame being read: the last one added. */
+static mr_scene_frame *cur(mr_reader *r) {
+  return &r->scene->frames[r->scene->n_frames - 1];
+}
 
 /* position and rotation keys of n over *p; a key left out keeps p's. */
 static int read_pose(mr_reader *r, const mr_ynode *n, mr_pose *p) {
@@ -32,9 +41,15 @@ static int read_point(mr_reader *r, const mr_ynode *it, void *slot) {
   const mr_scene *s = r->scene;
   mr_scene_control_point *c = slot;
   const mr_ynode *v;
-  if ((v = mr_scene_read_named(r, it, "a control point", keys, "control point name", c->name)) ==
-      NULL)
+  char bare[MR_SCENE_NAME_MAX];
+  if ((v = mr_scene_read_named(r, it, "a control point", keys, "control point name", bare)) == NULL)
     return -1;
+  if (mr_scene_qualify(r, bare, c->name) != 0)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected '%s.%s' to fit in %d characters; shorten the puppet's or "
+                              "the control point's name",
+                              r->puppet, bare, MR_SCENE_NAME_MAX - 1);
+  c->frame = s->n_frames - 1;
   if (mr_scene_lookup_particle(r, c->name) != (size_t)-1)
     return mr_scene_read_fail(
         r, v, MR_SCENE_ERR_VALUE,
@@ -52,7 +67,7 @@ static int read_point(mr_reader *r, const mr_ynode *it, void *slot) {
 
 static int read_keyframe(mr_reader *r, const mr_ynode *it, void *slot) {
   static const char *const keys[] = { "t", "position", "rotation", NULL };
-  const mr_scene_track *tr = &r->scene->track;
+  const mr_scene_track *tr = &cur(r)->track;
   mr_scene_keyframe *k = slot;
   const mr_ynode *v;
   if (mr_scene_read_map(r, it, "a keyframe", keys) != 0 ||
@@ -65,13 +80,17 @@ static int read_keyframe(mr_reader *r, const mr_ynode *it, void *slot) {
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                               "expected keyframe times in increasing order, got %g after %g", k->t,
                               k[-1].t);
-  k->pose = r->scene->control_pose;
+  k->pose = cur(r)->pose;
   k->pos = mr_scene_read_pos(it);
-  return read_pose(r, it, &k->pose);
+  if (read_pose(r, it, &k->pose) != 0) return -1;
+  /* A puppet's track moves with the puppet, as its particles do. */
+  if (mr_scene_yaml_get(it, "position") != NULL)
+    for (int i = 0; i < 3; i++) k->pose.position[i] += r->offset[i];
+  return 0;
 }
 
 static int read_keyframes(mr_reader *r, const mr_ynode *n) {
-  mr_scene_track *tr = &r->scene->track;
+  mr_scene_track *tr = &cur(r)->track;
   if (n->kind == MR_YNODE_SEQ && n->count == 0)
     return mr_scene_read_fail(r, n, MR_SCENE_ERR_VALUE, "expected at least one keyframe");
   tr->kind = MR_SCENE_TRACK_KEYFRAMES;
@@ -90,7 +109,7 @@ static int read_oscillate(mr_reader *r, const mr_ynode *n) {
     { "start", MR_SCENE_FIELD_NONNEG, offsetof(mr_scene_track, start), 0, 0 },
     { "ramp", MR_SCENE_FIELD_NONNEG, offsetof(mr_scene_track, ramp), 0, 0 }
   };
-  mr_scene_track *tr = &r->scene->track;
+  mr_scene_track *tr = &cur(r)->track;
   mr_pose turn = mr_pose_identity();
   if (mr_scene_read_map(r, n, "control.track.oscillate", keys) != 0 ||
       mr_scene_read_need(r, n, "frequency", "control.track.oscillate") == NULL ||
@@ -120,7 +139,7 @@ static int read_track(mr_reader *r, const mr_ynode *n) {
       return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA,
                                 "interpolation applies to keyframes only");
     if (v->kind == MR_YNODE_SCALAR && strcmp(v->text, "linear") == 0)
-      r->scene->track.linear = true;
+      cur(r)->track.linear = true;
     else if (!(v->kind == MR_YNODE_SCALAR && strcmp(v->text, "smooth") == 0))
       return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                                 "expected interpolation linear or smooth");
@@ -128,26 +147,100 @@ static int read_track(mr_reader *r, const mr_ynode *n) {
   return k != NULL ? read_keyframes(r, k) : read_oscillate(r, o);
 }
 
+/* A glove's uid as list-ports and the status line print it: 8 hex digits
+ * (the first word) or 24 (all three), with or without 0x. */
+static int read_uid(mr_reader *r, const mr_ynode *v, mr_scene_glove_bind *b) {
+  const char *t = v->kind == MR_YNODE_SCALAR ? v->text : "";
+  if (t[0] == '0' && (t[1] == 'x' || t[1] == 'X')) t += 2;
+  size_t len = strlen(t);
+  bool hex = len == 8 || len == 24;
+  for (size_t i = 0; i < len && hex; i++) hex = isxdigit((unsigned char)t[i]) != 0;
+  if (!hex)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                              "expected a glove uid of 8 or 24 hex digits (as marionette "
+                              "list-ports prints it), got '%s'",
+                              v->kind == MR_YNODE_SCALAR ? v->text : "a collection");
+  b->by = MR_SCENE_BIND_UID;
+  b->uid_words = (int)(len / 8);
+  for (int w = 0; w < b->uid_words; w++) {
+    char word[9];
+    memcpy(word, t + 8 * w, 8);
+    word[8] = '\0';
+    b->uid[w] = (uint32_t)strtoul(word, NULL, 16);
+  }
+  return 0;
+}
+
+/* control.glove: which of the theater's gloves drives this frame. */
+static int read_glove(mr_reader *r, const mr_ynode *n) {
+  static const char *const keys[] = { "order", "uid", "hand", NULL };
+  mr_scene_glove_bind *b = &cur(r)->glove;
+  if (mr_scene_read_map(r, n, "control.glove", keys) != 0) return -1;
+  if (n->count != 1)
+    return mr_scene_read_fail(r, n, MR_SCENE_ERR_SCHEMA,
+                              "expected one of order, uid or hand in control.glove, got %zu keys",
+                              n->count);
+  const mr_ynode *v;
+  if ((v = mr_scene_yaml_get(n, "order")) != NULL) {
+    long k;
+    if (mr_scene_read_long(r, v, "order", &k) != 0) return -1;
+    if (k < 1 || k > 64)
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
+                                "expected order between 1 and 64 (the first glove is 1), got %ld",
+                                k);
+    b->by = MR_SCENE_BIND_ORDER;
+    b->order = (int)k - 1;
+    return 0;
+  }
+  if ((v = mr_scene_yaml_get(n, "hand")) != NULL) {
+    bool left = v->kind == MR_YNODE_SCALAR && strcmp(v->text, "left") == 0;
+    if (!left && !(v->kind == MR_YNODE_SCALAR && strcmp(v->text, "right") == 0))
+      return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected hand left or right");
+    b->by = MR_SCENE_BIND_HAND;
+    b->hand = left ? 0 : 1;
+    return 0;
+  }
+  return read_uid(r, mr_scene_yaml_get(n, "uid"), b);
+}
+
+/* physics.control, or a puppet's control: a new frame, its points, start
+ * pose, track, speed limits and glove. */
 int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = {
-    "points", "pose", "track", "max_speed", "max_turn_rate", NULL
-  };
+  static const char *const keys[] = { "points",        "pose",  "track", "max_speed",
+                                      "max_turn_rate", "glove", NULL };
   static const mr_scene_field speed = { "max_speed", MR_SCENE_FIELD_POSITIVE,
-                                        offsetof(mr_scene, control_max_speed), 0, 0 };
+                                        offsetof(mr_scene_frame, max_speed), 0, 0 };
   static const char *const pose_keys[] = { "position", "rotation", NULL };
   mr_scene *s = r->scene;
-  if (mr_scene_read_map(r, n, "physics.control", keys) != 0) return -1;
+  if (mr_scene_read_map(r, n, r->puppet ? "a puppet's control" : "physics.control", keys) != 0)
+    return -1;
+  mr_scene_frame *fs = realloc(s->frames, (s->n_frames + 1) * sizeof *fs);
+  if (fs == NULL) return mr_scene_read_fail(r, n, MR_SCENE_ERR_NOMEM, "out of memory");
+  s->frames = fs;
+  mr_scene_frame *f = &fs[s->n_frames];
+  mr_scene_frame_defaults(f);
+  f->glove.order = (int)s->n_frames; /* unbound: the k-th frame takes the k-th glove */
+  snprintf(f->puppet, sizeof f->puppet, "%s", r->puppet ? r->puppet : "");
+  f->pos = mr_scene_read_pos(n);
+  f->first_point = s->n_control_points;
+  s->n_frames++;
+  memcpy(f->pose.position, r->offset, sizeof r->offset);
   const mr_ynode *v = mr_scene_read_need(r, n, "points", "physics.control");
   if (v == NULL ||
       mr_scene_read_items(r, v, "control.points", 0, NULL, sizeof *s->control_points,
                           (void **)&s->control_points, &s->n_control_points, read_point) != 0)
     return -1;
-  if ((v = mr_scene_yaml_get(n, "pose")) != NULL &&
-      (mr_scene_read_map(r, v, "control.pose", pose_keys) != 0 ||
-       read_pose(r, v, &s->control_pose) != 0))
-    return -1;
+  f = cur(r); /* the points' realloc leaves frames alone, but be plain about it */
+  f->n_points = s->n_control_points - f->first_point;
+  if ((v = mr_scene_yaml_get(n, "pose")) != NULL) {
+    if (mr_scene_read_map(r, v, "control.pose", pose_keys) != 0 || read_pose(r, v, &f->pose) != 0)
+      return -1;
+    if (mr_scene_yaml_get(v, "position") != NULL)
+      for (int i = 0; i < 3; i++) f->pose.position[i] += r->offset[i];
+  }
   if ((v = mr_scene_yaml_get(n, "track")) != NULL && read_track(r, v) != 0) return -1;
-  if (mr_scene_read_field(r, n, &speed, s) != 0) return -1;
+  if ((v = mr_scene_yaml_get(n, "glove")) != NULL && read_glove(r, v) != 0) return -1;
+  if (mr_scene_read_field(r, n, &speed, f) != 0) return -1;
   if ((v = mr_scene_yaml_get(n, "max_turn_rate")) == NULL) return 0;
   double deg; /* read in degrees, kept in radians */
   if (mr_scene_read_quantity(r, v, "max_turn_rate", &deg) != 0) return -1;
@@ -155,8 +248,16 @@ int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                               "expected a positive number for max_turn_rate, got %g", deg);
   if (mr_scene_range_check(r, v, "max_turn_rate", deg) != 0) return -1;
-  s->control_max_turn = deg * PI / 180.0;
+  f->max_turn = deg * PI / 180.0;
   return 0;
+}
+
+void mr_scene_frame_defaults(mr_scene_frame *f) {
+  memset(f, 0, sizeof *f);
+  f->pose = mr_pose_identity();
+  memcpy(f->track.turn, f->pose.orientation, sizeof f->track.turn);
+  f->max_speed = MR_SCENE_CONTROL_MAX_SPEED;
+  f->max_turn = MR_SCENE_CONTROL_MAX_TURN_DEG * PI / 180.0;
 }
 
 /* Between keys: smoothstep eases in and out of each key so the frame's
@@ -191,14 +292,19 @@ static mr_pose oscillate_at(const mr_scene_track *tr, const mr_pose *start, doub
   return o;
 }
 
-void mr_scene_control_pose_at(const mr_scene *s, double t, mr_pose *out) {
-  const mr_scene_track *tr = &s->track;
+void mr_scene_frame_pose_at(const mr_scene *s, size_t k, double t, mr_pose *out) {
+  if (k >= s->n_frames) {
+    *out = mr_pose_identity();
+    return;
+  }
+  const mr_scene_frame *f = &s->frames[k];
+  const mr_scene_track *tr = &f->track;
   if (tr->kind == MR_SCENE_TRACK_KEYFRAMES && tr->n_keys > 0)
     *out = keyframes_at(tr, t);
   else if (tr->kind == MR_SCENE_TRACK_OSCILLATE)
-    *out = oscillate_at(tr, &s->control_pose, t);
+    *out = oscillate_at(tr, &f->pose, t);
   else
-    *out = s->control_pose;
+    *out = f->pose;
 }
 
 void mr_scene_control_point_world(const mr_scene *s, size_t i, const mr_pose *pose, double out[3]) {

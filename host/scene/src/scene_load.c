@@ -17,13 +17,9 @@ static void defaults(mr_scene *s) {
   memset(s, 0, sizeof *s);
   s->world = mr_default_world_def();
   s->floor.def = mr_default_plane_def();
-  s->control_pose = mr_pose_identity();
-  memcpy(s->track.turn, s->control_pose.orientation, sizeof s->track.turn);
   s->duration = 10.0;
   s->fps = 0.0;
   s->max_steps = MR_SCENE_MAX_STEPS;
-  s->control_max_speed = MR_SCENE_CONTROL_MAX_SPEED;
-  s->control_max_turn = MR_SCENE_CONTROL_MAX_TURN_DEG * 3.14159265358979323846 / 180.0;
   mr_scene_expect *e = &s->expect;
   e->finite = true;
   e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
@@ -225,7 +221,8 @@ void mr_scene_free(mr_scene *s) {
   free(s->mappings);
   free(s->forces);
   free(s->control_points);
-  free(s->track.keys);
+  for (size_t k = 0; k < s->n_frames; k++) free(s->frames[k].track.keys);
+  free(s->frames);
   free(s->expect.watch);
   memset(s, 0, sizeof *s);
 }

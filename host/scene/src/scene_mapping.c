@@ -1,9 +1,10 @@
 /* The `mapping:` section: how a glove's five values move the control frame
  * (host/control). A list of named mappings, the first used at the start;
  * without the section a scene with a control frame gets the paper's default
- * mapping (mr_default_mapping_def). Every mapping's neutral pose is the
- * control frame's start pose (control.pose), so a relaxed hand holds the
- * puppet where the scene put it. */
+ * mapping (mr_default_mapping_def). A mapping's neutral pose is the start
+ * pose of the frame it moves (control.pose; the first frame's here, each
+ * frame's own in the theater), so a relaxed hand holds the puppet where the
+ * scene put it. */
 #include "scene_read.h"
 
 #include <stddef.h>
@@ -79,7 +80,7 @@ static int read_mapping(mr_reader *r, const mr_ynode *it, void *slot) {
   mr_scene_mapping *sm = slot;
   mr_mapping_def *m = &sm->def;
   *m = mr_default_mapping_def();
-  m->neutral = r->scene->control_pose;
+  m->neutral = r->scene->n_frames > 0 ? r->scene->frames[0].pose : mr_pose_identity();
   char name[MR_SCENE_NAME_MAX];
   const mr_ynode *v = mr_scene_read_named(r, it, "a mapping", keys, "mapping name", name);
   if (v == NULL) return -1;

@@ -367,6 +367,7 @@ int mr_scene_read_physics(mr_reader *r, const mr_ynode *n) {
     return mr_scene_read_need(r, n, "particles", "physics") ? 0 : -1;
   if (puppets != NULL && mr_scene_read_puppet_particles(r, puppets) != 0) return -1;
   if (mr_scene_read_optional(r, n, "control", read_control) != 0 ||
+      (puppets != NULL && mr_scene_read_puppet_controls(r, puppets) != 0) ||
       mr_scene_read_optional(r, n, "constraints", mr_scene_read_constraints) != 0 ||
       mr_scene_read_optional(r, n, "groups", mr_scene_read_groups) != 0 ||
       mr_scene_read_forces(r, n) != 0 ||

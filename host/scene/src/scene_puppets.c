@@ -11,8 +11,8 @@
 
 /* The sections a puppet may hold besides its name and placement. */
 static void puppet_keys(const char **keys, size_t max) {
-  static const char *const head[] = { "name",        "offset", "particles",
-                                      "constraints", "groups", "parts" };
+  static const char *const head[] = { "name",   "offset", "particles", "constraints",
+                                      "groups", "parts",  "control" };
   enum { N_HEAD = sizeof head / sizeof head[0] };
   size_t n = 0;
   for (; n < N_HEAD; n++) keys[n] = head[n];
@@ -41,6 +41,17 @@ static int read_head(mr_reader *r, const mr_ynode *it, mr_scene_puppet *p, size_
     return -1;
   r->puppet = p->name;
   return 0;
+}
+
+/* Inside puppet p; placed by its offset where what is read has a place
+ * (its control frame), else unmoved. */
+static void enter(mr_reader *r, const mr_scene_puppet *p, const mr_ynode *it, bool placed) {
+  r->puppet = p->name;
+  r->puppet_id = p->id;
+  memset(r->offset, 0, sizeof r->offset);
+  const mr_ynode *v = mr_scene_yaml_get(it, "offset");
+  if (placed && v != NULL)
+    (void)mr_scene_read_vec3(r, v, "offset", r->offset); /* read_head checked it */
 }
 
 static void leave(mr_reader *r) {
@@ -74,12 +85,29 @@ int mr_scene_read_puppet_particles(mr_reader *r, const mr_ynode *n) {
   return 0;
 }
 
+/* A puppet's control is read as the scene's is, its point names and its
+ * pose placed with the puppet ("alice.bar", moved by offset). */
+int mr_scene_read_puppet_controls(mr_reader *r, const mr_ynode *n) {
+  mr_scene *s = r->scene;
+  for (size_t i = 0; i < n->count && i < s->n_puppets; i++) {
+    const mr_ynode *v = mr_scene_yaml_get(n->items[i], "control");
+    if (v == NULL) continue;
+    enter(r, &s->puppets[i], n->items[i], true);
+    int rc = mr_scene_read_need_effect(r, v, MR_EFFECT_FRAMES, "a control frame is") != 0 ||
+                     mr_scene_read_control(r, v) != 0
+                 ? -1
+                 : 0;
+    leave(r);
+    if (rc != 0) return -1;
+  }
+  return 0;
+}
+
 int mr_scene_read_puppet_items(mr_reader *r, const mr_ynode *n) {
   mr_scene *s = r->scene;
   for (size_t i = 0; i < n->count && i < s->n_puppets; i++) {
     const mr_ynode *it = n->items[i];
-    r->puppet = s->puppets[i].name;
-    r->puppet_id = s->puppets[i].id;
+    enter(r, &s->puppets[i], it, false);
     int rc = mr_scene_read_optional(r, it, "constraints", mr_scene_read_constraints) != 0 ||
                      mr_scene_read_optional(r, it, "groups", mr_scene_read_groups) != 0 ||
                      mr_scene_read_forces(r, it) != 0 ||

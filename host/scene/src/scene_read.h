@@ -148,7 +148,9 @@ int mr_scene_read_optional(mr_reader *r, const mr_ynode *n, const char *key,
 
 /* Sections, one file each. */
 int mr_scene_read_physics(mr_reader *r, const mr_ynode *physics);
+/* A control frame: the scene's, or the puppet being read's. */
 int mr_scene_read_control(mr_reader *r, const mr_ynode *control);
+void mr_scene_frame_defaults(mr_scene_frame *f);
 int mr_scene_read_expect(mr_reader *r, const mr_ynode *expect);
 int mr_scene_read_mappings(mr_reader *r, const mr_ynode *mapping);
 int mr_scene_read_groups(mr_reader *r, const mr_ynode *groups);
@@ -160,6 +162,9 @@ int mr_scene_read_constraints(mr_reader *r, const mr_ynode *constraints);
  * constraints, groups, forces and parts. */
 int mr_scene_read_puppet_particles(mr_reader *r, const mr_ynode *puppets);
 int mr_scene_read_puppet_items(mr_reader *r, const mr_ynode *puppets);
+/* Each puppet's own control frame, after the scene's, before any force
+ * names a control point. */
+int mr_scene_read_puppet_controls(mr_reader *r, const mr_ynode *puppets);
 int mr_scene_read_forces(mr_reader *r, const mr_ynode *physics);
 /* Adds one force to a world with its kind's add call; *what names the item
  * for a refusal ("the spring"). */

@@ -364,10 +364,9 @@ const char *mr_scene_point_name(const mr_scene *s, int id) {
 }
 
 /* A name resolved to a world id among the particles, the control points,
- * or both; `expected` completes "expected the name of ...". */
-/* A name resolved to a world id among the particles, the control points,
  * or both; `expected` completes "expected the name of ...". Inside a
- * puppet its own particles come first: "hand" is "alice.hand" there. */
+ * puppet its own particles and points come first: "hand" is "alice.hand"
+ * there. */
 static int resolve(mr_reader *r, const mr_ynode *node, const char *what, bool particles,
                    bool controls, const char *expected, int *id) {
   char name[MR_SCENE_NAME_MAX], own[MR_SCENE_NAME_MAX];
@@ -377,8 +376,13 @@ static int resolve(mr_reader *r, const mr_ynode *node, const char *what, bool pa
   if (particles && r->puppet != NULL && mr_scene_qualify(r, name, own) == 0)
     i = mr_scene_lookup_particle(r, own);
   if (particles && i == (size_t)-1) i = mr_scene_lookup_particle(r, name);
-  if (i == (size_t)-1 && controls && (i = mr_scene_find_control_point(s, name)) != (size_t)-1)
-    i += s->n_particles;
+  if (i == (size_t)-1 && controls) {
+    size_t j = (size_t)-1;
+    if (r->puppet != NULL && mr_scene_qualify(r, name, own) == 0)
+      j = mr_scene_find_control_point(s, own);
+    if (j == (size_t)-1) j = mr_scene_find_control_point(s, name);
+    if (j != (size_t)-1) i = j + s->n_particles;
+  }
   if (i == (size_t)-1)
     return mr_scene_read_fail(r, node, MR_SCENE_ERR_VALUE, "expected the name of %s, got '%s'",
                               expected, name);

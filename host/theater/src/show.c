@@ -1,5 +1,5 @@
-/* A live show: glove → control mapping → control frame → physics, paced by
- * the frame scheduler (§4.6, §6.2). */
+/* A live show: gloves → control mapping → control frames → physics, paced
+ * by the frame scheduler (§4.6, §6.2). */
 #include "mr_show.h"
 
 #include <math.h>
@@ -11,26 +11,42 @@
 #include "mr_io.h"
 #include "theater_internal.h"
 
-typedef struct show {
-  const mr_scene *scene;
-  mr_scene_world sw;
+/* One glove and its take. */
+typedef struct show_glove {
   mr_glove *glove;
-  mr_control *control;
-  mr_scheduler *sch;
-  mr_clock clock;
-  const mr_show_hooks *hooks;
-  mr_pose target; /* where the control frame heads */
-  double duration;
-  uint64_t samples_seen;
   mr_rec_writer take;
   bool recording, take_open;
   char take_error[320];
+} show_glove;
+
+/* One control frame: its glove, its mapping and where it heads. */
+typedef struct show_frame {
+  int glove; /* index into gloves, -1 until bound */
+  mr_control *control;
+  mr_pose target;
+  uint64_t samples_seen;
+} show_frame;
+
+typedef struct show {
+  const mr_scene *scene;
+  mr_scene_world sw;
+  show_glove gloves[MR_SHOW_MAX_GLOVES];
+  size_t n_gloves;
+  show_frame *frames;
+  size_t n_frames;
+  mr_scheduler *sch;
+  mr_clock clock;
+  const mr_show_hooks *hooks;
+  double duration;
   mr_scene_error *err;
   mr_scene_status rc;
 } show;
 
 mr_show_def mr_default_show_def(void) {
-  mr_show_def d = { MR_SHOW_COOKIE, MR_POLICY_SKIP, 0.0, 0.0, NULL };
+  mr_show_def d;
+  memset(&d, 0, sizeof d);
+  d.cookie = MR_SHOW_COOKIE;
+  d.policy = MR_POLICY_SKIP;
   return d;
 }
 
@@ -42,39 +58,109 @@ static mr_scene_status fail(show *s, mr_scene_status st, const char *msg) {
   return st;
 }
 
-/* The glove's newest values, if any came, through the mapping. */
-static void read_glove(show *s, double now) {
-  mr_glove_poll(s->glove, now, 0);
-  mr_glove_reading r;
-  mr_glove_latest(s->glove, &r);
-  if (r.samples == s->samples_seen || mr_glove_state_get(s->glove) != MR_GLOVE_LIVE) return;
-  s->samples_seen = r.samples;
-  /* Read at the start of this frame's work: the latency counters run from
-   * here to the frame's presentation, on the show's clock. */
-  mr_scheduler_note_input(s->sch, s->clock.now(s->clock.self));
-  mr_pose pose;
-  if (mr_control_update(s->control, r.values, r.host_t, &pose, NULL) == MR_CONTROL_OK)
-    s->target = pose;
+static bool uid_matches(const mr_scene_glove_bind *b, const gp_info *info) {
+  for (int w = 0; w < b->uid_words && w < 3; w++)
+    if (info->uid[w] != b->uid[w]) return false;
+  return true;
 }
 
-/* The glove's bytes into the take, stamped with show time. */
+static bool claimed(const show *s, int g) {
+  for (size_t k = 0; k < s->n_frames; k++)
+    if (s->frames[k].glove == g) return true;
+  return false;
+}
+
+/* Frame k's glove under its binding, or -1 while none matches. By hand, a
+ * glove no other frame took is preferred, so two right-hand puppets take
+ * two right-hand gloves. */
+static int find_glove(const show *s, size_t k) {
+  const mr_scene_glove_bind *b = &s->scene->frames[k].glove;
+  if (b->by == MR_SCENE_BIND_ORDER) return b->order < (int)s->n_gloves ? b->order : -1;
+  int any = -1;
+  for (size_t g = 0; g < s->n_gloves; g++) {
+    const gp_info *info = mr_glove_info(s->gloves[g].glove);
+    if (info == NULL) continue;
+    bool match = b->by == MR_SCENE_BIND_UID ? uid_matches(b, info) : info->hand == b->hand;
+    if (!match) continue;
+    if (!claimed(s, (int)g)) return (int)g;
+    if (any < 0) any = (int)g;
+  }
+  return any;
+}
+
+/* Frame k's glove's newest values, if any came, through its mapping. */
+static bool read_frame(show *s, size_t k) {
+  show_frame *f = &s->frames[k];
+  if (f->glove < 0 && (f->glove = find_glove(s, k)) < 0) return false;
+  const mr_glove *g = s->gloves[f->glove].glove;
+  mr_glove_reading r;
+  mr_glove_latest(g, &r);
+  if (r.samples == f->samples_seen || mr_glove_state_get(g) != MR_GLOVE_LIVE) return false;
+  f->samples_seen = r.samples;
+  mr_pose pose;
+  if (mr_control_update(f->control, r.values, r.host_t, &pose, NULL) == MR_CONTROL_OK)
+    f->target = pose;
+  return true;
+}
+
+static void read_gloves(show *s, double now) {
+  for (size_t g = 0; g < s->n_gloves; g++) mr_glove_poll(s->gloves[g].glove, now, 0);
+  bool fresh = false;
+  for (size_t k = 0; k < s->n_frames; k++) fresh |= read_frame(s, k);
+  /* Read at the start of this frame's work: the latency counters run from
+   * here to the frame's presentation, on the show's clock. */
+  if (fresh) mr_scheduler_note_input(s->sch, s->clock.now(s->clock.self));
+}
+
+/* A glove's bytes into its take, stamped with show time. */
 static void record(void *user, double now, const uint8_t *bytes, size_t len) {
-  show *s = user;
-  if (!s->recording) return;
+  show_glove *g = user;
+  if (!g->recording) return;
   mr_io_err err;
   uint64_t t_ns = now > 0 ? (uint64_t)llround(now * 1e9) : 0;
-  if (mr_rec_writer_add(&s->take, t_ns, bytes, len, &err) != 0) {
-    snprintf(s->take_error, sizeof s->take_error, "%s", err.msg);
-    s->recording = false;
+  if (mr_rec_writer_add(&g->take, t_ns, bytes, len, &err) != 0) {
+    snprintf(g->take_error, sizeof g->take_error, "%s", err.msg);
+    g->recording = false;
   }
+}
+
+/* Over when every glove is a take that has ended. */
+static bool takes_over(const show *s) {
+  for (size_t g = 0; g < s->n_gloves; g++) {
+    const mr_glove *gl = s->gloves[g].glove;
+    if (!mr_glove_take_done(gl) || mr_glove_state_get(gl) != MR_GLOVE_LOST) return false;
+  }
+  return true;
+}
+
+/* The frame as the hooks see it; targets and poses live in *buf. */
+typedef struct frame_view {
+  mr_pose target[16], pose[16];
+  int glove_of[16];
+  const mr_glove *gloves[MR_SHOW_MAX_GLOVES];
+} frame_view;
+
+static mr_show_frame view(const show *s, double t, frame_view *buf) {
+  size_t n = s->n_frames < 16 ? s->n_frames : 16;
+  for (size_t k = 0; k < n; k++) {
+    buf->target[k] = s->frames[k].target;
+    buf->glove_of[k] = s->frames[k].glove;
+    if (mr_world_frame_pose(s->sw.world, s->sw.frames[k], &buf->pose[k]) != MR_OK)
+      buf->pose[k] = s->frames[k].target;
+  }
+  for (size_t g = 0; g < s->n_gloves; g++) buf->gloves[g] = s->gloves[g].glove;
+  mr_show_frame f = { t,           buf->target, buf->pose, buf->glove_of, n,
+                      buf->gloves, s->n_gloves, s->sch,    s->sw.world };
+  return f;
 }
 
 static int advance(void *user, double t, mr_frame_work *work) {
   show *s = user;
-  read_glove(s, t);
+  read_gloves(s, t);
   mr_world *w = s->sw.world;
   if (t > mr_world_time(w)) {
-    if (s->sw.frame >= 0) mr_theater_head_frame(s->scene, &s->sw, s->target, t);
+    for (size_t k = 0; k < s->n_frames; k++)
+      mr_theater_head_frame(s->scene, &s->sw, k, s->frames[k].target, t);
     mr_step_report rep;
     memset(&rep, 0, sizeof rep);
     mr_status st = mr_world_step_to(w, t, &rep);
@@ -89,60 +175,72 @@ static int advance(void *user, double t, mr_frame_work *work) {
     work->rejected = (uint64_t)rep.rejected;
     work->resets = (uint64_t)rep.divergences;
   }
-  if (s->hooks != NULL && s->hooks->frame_done != NULL)
-    s->hooks->frame_done(s->hooks->user, t, mr_world_state_hash(w));
+  if (s->hooks != NULL && s->hooks->frame_done != NULL) {
+    frame_view buf;
+    mr_show_frame f = view(s, t, &buf);
+    s->hooks->frame_done(s->hooks->user, &f, mr_world_state_hash(w));
+  }
   /* Stopping ends the show after this frame: the scheduler counts it as
    * simulated, and it was. */
   if (s->hooks != NULL && s->hooks->stop != NULL && s->hooks->stop(s->hooks->user)) return 1;
   if (s->duration > 0) return t >= s->duration;
-  return mr_glove_take_done(s->glove) && mr_glove_state_get(s->glove) == MR_GLOVE_LOST;
+  return takes_over(s);
 }
 
 static void present(void *user, double t) {
   show *s = user;
   if (s->hooks == NULL || s->hooks->present == NULL) return;
-  mr_show_frame f = { t, s->target, s->glove, s->sch, s->sw.world };
+  frame_view buf;
+  mr_show_frame f = view(s, t, &buf);
   s->hooks->present(s->hooks->user, &f);
 }
 
-/* The scene's mappings, or the paper's default about its start pose. */
-static int make_control(show *s) {
-  mr_mapping_def defs[MR_CONTROL_MAX_MAPPINGS];
-  int n = 0;
-  for (size_t i = 0; i < s->scene->n_mappings && n < MR_CONTROL_MAX_MAPPINGS; i++)
-    defs[n++] = s->scene->mappings[i].def;
-  if (n == 0) {
-    defs[0] = mr_default_mapping_def();
-    defs[0].neutral = s->scene->control_pose;
-    n = 1;
-  }
-  char msg[200];
-  if (mr_control_create(defs, n, &s->control, msg, sizeof msg) != MR_CONTROL_OK) {
-    fail(s, MR_SCENE_ERR_VALUE, msg);
-    return -1;
+/* Each frame's control: the scene's mappings, or the paper's default, about
+ * that frame's start pose. */
+static int make_controls(show *s) {
+  s->n_frames = s->scene->n_frames;
+  s->frames = calloc(s->n_frames ? s->n_frames : 1, sizeof *s->frames);
+  if (s->frames == NULL) return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
+  for (size_t k = 0; k < s->n_frames; k++) {
+    mr_mapping_def defs[MR_CONTROL_MAX_MAPPINGS];
+    int n = 0;
+    for (size_t i = 0; i < s->scene->n_mappings && n < MR_CONTROL_MAX_MAPPINGS; i++)
+      defs[n++] = s->scene->mappings[i].def;
+    if (n == 0) defs[n++] = mr_default_mapping_def();
+    for (int i = 0; i < n; i++) defs[i].neutral = s->scene->frames[k].pose;
+    s->frames[k].glove = -1;
+    s->frames[k].target = s->scene->frames[k].pose;
+    char msg[200];
+    if (mr_control_create(defs, n, &s->frames[k].control, msg, sizeof msg) != MR_CONTROL_OK)
+      return fail(s, MR_SCENE_ERR_VALUE, msg), -1;
   }
   return 0;
 }
 
-static int open_parts(show *s, const char *source, const mr_show_def *def) {
+static int open_glove(show *s, size_t i, const char *source, const char *take_path) {
   char msg[400];
-  if (mr_scene_build(s->scene, &s->sw, s->err) != MR_SCENE_OK) return -1;
+  show_glove *g = &s->gloves[i];
   mr_glove_def gd = mr_default_glove_def();
   snprintf(gd.source, sizeof gd.source, "%s", source);
-  if (mr_glove_create(&gd, &s->glove, msg, sizeof msg) != MR_GLOVE_OK) {
-    fail(s, MR_SCENE_ERR_VALUE, msg);
-    return -1;
+  if (mr_glove_create(&gd, &g->glove, msg, sizeof msg) != MR_GLOVE_OK)
+    return fail(s, MR_SCENE_ERR_VALUE, msg), -1;
+  if (take_path == NULL) return 0;
+  mr_io_err err;
+  if (mr_rec_writer_open(&g->take, take_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0)
+    return fail(s, MR_SCENE_ERR_IO, err.msg), -1;
+  g->recording = g->take_open = true;
+  mr_glove_set_tap(g->glove, record, g);
+  return 0;
+}
+
+static int open_parts(show *s, const mr_show_def *def) {
+  char msg[400];
+  if (mr_scene_build(s->scene, &s->sw, s->err) != MR_SCENE_OK) return -1;
+  for (size_t i = 0; i < def->n_gloves; i++) {
+    s->n_gloves = i + 1;
+    if (open_glove(s, i, def->gloves[i], def->record[i]) != 0) return -1;
   }
-  if (make_control(s) != 0) return -1;
-  if (def->record_path != NULL) {
-    mr_io_err err;
-    if (mr_rec_writer_open(&s->take, def->record_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0) {
-      fail(s, MR_SCENE_ERR_IO, err.msg);
-      return -1;
-    }
-    s->recording = s->take_open = true;
-    mr_glove_set_tap(s->glove, record, s);
-  }
+  if (make_controls(s) != 0) return -1;
   mr_scheduler_def sd = mr_default_scheduler_def();
   sd.policy = def->policy;
   sd.fps = def->fps > 0 ? def->fps : s->scene->fps > 0 ? s->scene->fps : 60.0;
@@ -155,21 +253,44 @@ static int open_parts(show *s, const char *source, const mr_show_def *def) {
 }
 
 static void close_parts(show *s) {
-  if (s->take_open) {
-    mr_io_err err;
-    if (mr_rec_writer_close(&s->take, &err) != 0 && s->rc == MR_SCENE_OK)
-      fail(s, MR_SCENE_ERR_IO, err.msg);
-    s->take_open = s->recording = false;
+  for (size_t i = 0; i < s->n_gloves; i++) {
+    show_glove *g = &s->gloves[i];
+    if (g->take_open) {
+      mr_io_err err;
+      if (mr_rec_writer_close(&g->take, &err) != 0 && s->rc == MR_SCENE_OK)
+        fail(s, MR_SCENE_ERR_IO, err.msg);
+      g->take_open = g->recording = false;
+    }
+    if (s->rc == MR_SCENE_OK && g->take_error[0] != '\0') fail(s, MR_SCENE_ERR_IO, g->take_error);
+    mr_glove_destroy(g->glove);
   }
+  for (size_t k = 0; k < s->n_frames; k++) mr_control_destroy(s->frames[k].control);
+  free(s->frames);
   mr_scheduler_destroy(s->sch);
-  mr_control_destroy(s->control);
-  mr_glove_destroy(s->glove);
   mr_scene_world_free(&s->sw);
 }
 
-mr_scene_status mr_show_run(const mr_scene *scene, const char *glove_source, const mr_show_def *def,
-                            const mr_clock *clock, const mr_show_hooks *hooks,
-                            mr_show_result *result, mr_scene_error *err) {
+static void gather(const show *s, mr_show_result *result) {
+  if (s->sch != NULL) mr_scheduler_stats_get(s->sch, &result->frames);
+  result->n_gloves = s->n_gloves;
+  for (size_t i = 0; i < s->n_gloves; i++) {
+    const mr_glove *g = s->gloves[i].glove;
+    mr_show_glove_result *o = &result->glove[i];
+    if (g == NULL) continue;
+    mr_glove_counters_get(g, &o->counters);
+    o->state = mr_glove_state_get(g);
+    mr_glove_reading r;
+    mr_glove_latest(g, &r);
+    o->samples = r.samples;
+    /* The gloves run on show time. */
+    mr_glove_describe(g, result->frames.sim_time, o->describe, sizeof o->describe);
+  }
+  for (size_t k = 0; k < 16; k++) result->glove_of[k] = k < s->n_frames ? s->frames[k].glove : -1;
+}
+
+mr_scene_status mr_show_run(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
+                            const mr_show_hooks *hooks, mr_show_result *result,
+                            mr_scene_error *err) {
   show s;
   memset(&s, 0, sizeof s);
   memset(result, 0, sizeof *result);
@@ -177,25 +298,19 @@ mr_scene_status mr_show_run(const mr_scene *scene, const char *glove_source, con
   s.scene = scene;
   s.err = err;
   s.hooks = hooks;
-  s.target = scene->control_pose;
-  if (def == NULL || def->cookie != MR_SHOW_COOKIE || clock == NULL || glove_source == NULL) {
-    fail(&s, MR_SCENE_ERR_VALUE, "expected a show definition, a clock and a glove source");
+  if (def == NULL || def->cookie != MR_SHOW_COOKIE || clock == NULL || def->n_gloves == 0 ||
+      def->n_gloves > MR_SHOW_MAX_GLOVES) {
+    fail(&s, MR_SCENE_ERR_VALUE, "expected a show definition with 1 to 8 gloves, and a clock");
     return s.rc;
   }
+  for (size_t i = 0; i < def->n_gloves; i++)
+    if (def->gloves[i] == NULL) return fail(&s, MR_SCENE_ERR_VALUE, "expected a glove source");
   s.clock = *clock;
   s.duration = def->duration;
-  if (open_parts(&s, glove_source, def) == 0)
+  if (open_parts(&s, def) == 0)
     while (mr_scheduler_tick(s.sch) == MR_THEATER_OK) {
     }
-  if (s.sch != NULL) mr_scheduler_stats_get(s.sch, &result->frames);
-  if (s.glove != NULL) {
-    mr_glove_counters_get(s.glove, &result->glove);
-    result->glove_state = mr_glove_state_get(s.glove);
-    mr_glove_reading r;
-    mr_glove_latest(s.glove, &r);
-    result->samples = r.samples;
-  }
+  gather(&s, result);
   close_parts(&s);
-  if (s.rc == MR_SCENE_OK && s.take_error[0] != '\0') fail(&s, MR_SCENE_ERR_IO, s.take_error);
   return s.rc != MR_SCENE_OK ? s.rc : err->status;
 }

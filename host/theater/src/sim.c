@@ -86,11 +86,13 @@ static void watch(watcher *w, double t, mr_sim_result *r) {
   w->anchored = true;
 }
 
-/* The frame heads for the track's pose at time t (§6.2). */
-static void place_frame(const mr_scene *s, mr_scene_world *sw, double t) {
-  mr_pose goal;
-  mr_scene_control_pose_at(s, t, &goal);
-  mr_theater_head_frame(s, sw, goal, t);
+/* Each frame heads for its track's pose at time t (§6.2). */
+static void place_frames(const mr_scene *s, mr_scene_world *sw, double t) {
+  for (size_t k = 0; k < sw->n_frames; k++) {
+    mr_pose goal;
+    mr_scene_frame_pose_at(s, k, t, &goal);
+    mr_theater_head_frame(s, sw, k, goal, t);
+  }
 }
 
 static mr_scene_status run_fail(const mr_scene *s, mr_scene_error *err, mr_scene_status st,
@@ -219,7 +221,7 @@ static mr_scene_status step_to(run *u, double *t, double end, bool sample_each,
     double target = *t + mr_world_next_dt(u->sw.world);
     bool land = target > end - LAND_S;
     if (land) target = end;
-    if (sample_each && u->sw.frame >= 0) place_frame(u->s, &u->sw, target);
+    if (sample_each) place_frames(u->s, &u->sw, target);
     rc = step_once(u, target, land, t, err);
   }
   return rc;
@@ -234,7 +236,7 @@ static int advance_frame(void *user, double t, mr_frame_work *work) {
   double now = mr_world_time(u->sw.world), t_frame = fmin(t, u->duration);
   uint64_t steps = u->r->steps, rejected = u->r->rejected, resets = u->r->resets;
   if (t_frame > now + LAND_S) {
-    if (u->sw.frame >= 0) place_frame(u->s, &u->sw, t_frame);
+    place_frames(u->s, &u->sw, t_frame);
     u->rc = step_to(u, &now, t_frame, false, u->err);
   }
   work->steps = u->r->steps - steps;
