@@ -103,6 +103,11 @@ static void present(void *user, const mr_show_frame *f) {
   fflush(stdout);
 }
 
+static void note(void *user, const char *line) {
+  (void)user;
+  fprintf(stderr, "marionette run: %s\n", line);
+}
+
 static int stop(void *user) {
   (void)user;
   return stop_asked != 0;
@@ -284,7 +289,7 @@ int mr_cmd_run(int argc, char **argv) {
   mr_virtual_clock vc = { 0.0 };
   mr_clock clock = virtual_time ? mr_clock_virtual(&vc) : mr_clock_wall();
   if (virtual_time) st.quiet = 1; /* as fast as it goes: no seconds to mark */
-  mr_show_hooks hooks = { present, stop, frame_done, &st };
+  mr_show_hooks hooks = { present, stop, frame_done, note, &st };
   mr_show_result r;
   mr_scene_status rc = mr_show_run(&scene, &a.def, &clock, &hooks, &r, &err);
   if (rc == MR_SCENE_OK) summary(&scene, &r);

@@ -149,6 +149,37 @@ static void a_faulty_stream_is_counted_and_the_show_goes_on(void **state) {
   free(dir);
 }
 
+/* A sensor that reads 0 throughout (torn off, or unplugged inside the
+ * glove) is held at neutral after the mapping's stuck_after (2 s), told in
+ * one line naming the glove, its source and the finger, and the show goes
+ * on with the other four fingers. */
+static void a_stuck_channel_is_named_and_the_show_goes_on(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300], script[600];
+  const char *path = tt_path(dir, "stuck.txt");
+  FILE *f = fopen(path, "w");
+  assert_non_null(f);
+  fputs("index const value=0\n", f);
+  fclose(f);
+  snprintf(script, sizeof script, "--script=%s", path);
+  pid_t gen = start_glove(dir, "5", script, source, sizeof source);
+  tt_output o;
+  run_show(source, "3.5", &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  char want[512];
+  snprintf(want, sizeof want,
+           "marionette run: glove 1 on %s: channel 1 (index finger) is stuck at 0 or at full "
+           "scale: held at neutral",
+           source);
+  if (strstr(o.err, want) == NULL) fail_msg("expected '%s' in:\n%s", want, o.err);
+  assert_null(strstr(o.err, "channel 0")); /* the others read on */
+  assert_true(field(o.out, "frames simulated") >= 200);
+  tt_output_free(&o);
+  tt_wait(gen, 30);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* A take recorded live replays on a virtual clock to the same state at
  * every one of its 121 frames, bit for bit. */
 static void a_take_replays_to_identical_frames(void **state) {
@@ -279,6 +310,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_glove_lost_mid_show_does_not_stop_it),
     cmocka_unit_test(a_foreign_glove_ends_with_status_3),
     cmocka_unit_test(a_faulty_stream_is_counted_and_the_show_goes_on),
+    cmocka_unit_test(a_stuck_channel_is_named_and_the_show_goes_on),
     cmocka_unit_test(a_take_replays_to_identical_frames),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(ports_are_listed_and_auto_finds_no_glove_clearly),

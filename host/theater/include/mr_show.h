@@ -68,6 +68,10 @@ typedef struct mr_show_hooks {
    * world's state hash, which a replay of the take reproduces bit for bit.
    * May be NULL. */
   void (*frame_done)(void *user, const mr_show_frame *frame, uint64_t hash);
+  /* One line for the user when a glove's channel goes bad (NaN, or stuck
+   * at an end past the mapping's stuck_after: held at neutral) or
+   * recovers, naming the glove, its source and the finger. May be NULL. */
+  void (*note)(void *user, const char *line);
   void *user;
 } mr_show_hooks;
 

@@ -25,12 +25,14 @@ typedef struct show_frame {
   mr_control *control;
   mr_pose target;
   uint64_t samples_seen;
+  mr_channel_state states[MR_CONTROL_CHANNELS]; /* as last told to the user */
 } show_frame;
 
 typedef struct show {
   const mr_scene *scene;
   mr_scene_world sw;
   show_glove gloves[MR_SHOW_MAX_GLOVES];
+  const char *sources[MR_SHOW_MAX_GLOVES];
   size_t n_gloves;
   show_frame *frames;
   size_t n_frames;
@@ -88,6 +90,26 @@ static int find_glove(const show *s, size_t k) {
   return any;
 }
 
+/* A channel that went bad or came back, told once, not every frame. */
+static void tell_states(show *s, show_frame *f, const mr_channel_state now[MR_CONTROL_CHANNELS]) {
+  static const char *const finger[MR_CONTROL_CHANNELS] = { "thumb", "index", "middle", "ring",
+                                                           "little" };
+  for (int c = 0; c < MR_CONTROL_CHANNELS; c++) {
+    if (now[c] == f->states[c]) continue;
+    f->states[c] = now[c];
+    if (s->hooks == NULL || s->hooks->note == NULL) continue;
+    char line[400];
+    const char *what = now[c] == MR_CHANNEL_NOT_FINITE ? "is not a finite number: held at neutral"
+                       : now[c] == MR_CHANNEL_STUCK
+                           ? "is stuck at 0 or at full scale: held at neutral (a broken or "
+                             "unplugged sensor?)"
+                           : "reads again";
+    snprintf(line, sizeof line, "glove %d on %.200s: channel %d (%s finger) %s", f->glove + 1,
+             s->sources[f->glove], c, finger[c], what);
+    s->hooks->note(s->hooks->user, line);
+  }
+}
+
 /* Frame k's glove's newest values, if any came, through its mapping. */
 static bool read_frame(show *s, size_t k) {
   show_frame *f = &s->frames[k];
@@ -98,8 +120,11 @@ static bool read_frame(show *s, size_t k) {
   if (r.samples == f->samples_seen || mr_glove_state_get(g) != MR_GLOVE_LIVE) return false;
   f->samples_seen = r.samples;
   mr_pose pose;
-  if (mr_control_update(f->control, r.values, r.host_t, &pose, NULL) == MR_CONTROL_OK)
+  mr_channel_state states[MR_CONTROL_CHANNELS];
+  if (mr_control_update(f->control, r.values, r.host_t, &pose, states) == MR_CONTROL_OK) {
     f->target = pose;
+    tell_states(s, f, states);
+  }
   return true;
 }
 
@@ -238,6 +263,7 @@ static int open_parts(show *s, const mr_show_def *def) {
   if (mr_scene_build(s->scene, &s->sw, s->err) != MR_SCENE_OK) return -1;
   for (size_t i = 0; i < def->n_gloves; i++) {
     s->n_gloves = i + 1;
+    s->sources[i] = def->gloves[i];
     if (open_glove(s, i, def->gloves[i], def->record[i]) != 0) return -1;
   }
   if (make_controls(s) != 0) return -1;
