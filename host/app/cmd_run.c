@@ -55,6 +55,11 @@ void mr_cmd_run_usage(void) {
          "  --poses FILE        write each frame's time and, for each control frame,\n"
          "                      its position (m) and orientation (w x y z)\n"
          "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
+         "  --present MODE      land (each frame's last step lands on its time, the\n"
+         "                      paper's) or interpolate (steps at the ATS's own dt,\n"
+         "                      each frame interpolated between the steps around\n"
+         "                      it: fewer steps, up to one step more input lag);\n"
+         "                      default the scene's sim.present, else land\n"
          "  -t, --time SECONDS  end after this much show (default: until Ctrl-C)\n"
          "  -q, --quiet         no status lines, only the summary and errors\n"
          "  -h, --help          show this help\n"
@@ -136,6 +141,10 @@ static void summary(const mr_scene *scene, const mr_show_result *r) {
   printf("real-time factor: %.3f\n", r->frames.real_time_factor);
   printf("latency p50: %.1f ms\n", r->frames.latency_p50 * 1e3);
   printf("latency p99: %.1f ms\n", r->frames.latency_p99 * 1e3);
+  printf("present: %s\n", r->interpolated ? "interpolate" : "land");
+  if (r->interpolated)
+    printf("physics ahead of frames: mean %.1f ms, max %.1f ms (input lag added)\n",
+           r->lead_mean * 1e3, r->lead_max * 1e3);
   for (size_t g = 0; g < r->n_gloves; g++) glove_summary(r, g);
   for (size_t k = 0; k < scene->n_frames && k < 16; k++) {
     const char *who = scene->frames[k].puppet[0] ? scene->frames[k].puppet : "the scene";
@@ -188,6 +197,9 @@ static int take_value(args *a, const char *opt, const char *v) {
     a->hashes = v;
   } else if (strcmp(opt, "--poses") == 0) {
     a->poses = v;
+  } else if (strcmp(opt, "--present") == 0) {
+    if (mr_present_mode_parse(v, &a->def.present) != 0)
+      return bad_usage("expected --present land or interpolate, got '%s'", v), -1;
   } else if (strcmp(opt, "--policy") == 0) {
     if (mr_policy_parse(v, &a->def.policy) != 0)
       return bad_usage("expected --policy skip or slow, got '%s'", v), -1;
@@ -201,8 +213,8 @@ static int take_value(args *a, const char *opt, const char *v) {
 }
 
 static int parse(int argc, char **argv, args *a) {
-  static const char *const valued[] = { "--glove",  "--policy", "-t",      "--time", "--record",
-                                        "--replay", "--hashes", "--poses", NULL };
+  static const char *const valued[] = { "--glove",  "--policy", "-t",      "--time",    "--record",
+                                        "--replay", "--hashes", "--poses", "--present", NULL };
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     bool takes_value = false;

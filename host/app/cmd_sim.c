@@ -31,6 +31,13 @@ void mr_cmd_sim_usage(void) {
          "options:\n"
          "  -t, --time SECONDS  simulated time (default: the scene's sim.duration,\n"
          "                      10 s when the scene gives none)\n"
+         "  --fps HZ            pace the run in frames at this rate, as the theater\n"
+         "                      does (default: the scene's sim.fps)\n"
+         "  --present MODE      with frames: land (the last step before each frame\n"
+         "                      lands on its time, the paper's) or interpolate\n"
+         "                      (steps at the ATS's own dt, each frame the state\n"
+         "                      interpolated between the steps around it); default\n"
+         "                      the scene's sim.present, else land\n"
          "  --csv FILE          write a per-step trace to FILE ('-' for stdout):\n"
          "                      t,dt,error,accepted,rejected,reset,max_speed\n"
          "  --check             verify the scene's expect: section (finite state,\n"
@@ -70,7 +77,10 @@ static void print_summary(const mr_scene *scene, const mr_sim_result *r, double 
   printf("scene: %s (%s)\n", scene->name, scene->path);
   printf("simulated: %.3f s\n", r->sim_time);
   printf("wall: %.3f s\n", wall);
-  if (r->frames > 0) printf("frames: %" PRIu64 " at %g fps\n", r->frames, scene->fps);
+  if (r->frames > 0) printf("frames: %" PRIu64 " at %g fps\n", r->frames, r->fps);
+  if (r->frames > 0) printf("present: %s\n", r->interpolated ? "interpolate" : "land");
+  if (r->interpolated)
+    printf("physics ahead of frames: mean %.4g s, max %.4g s\n", r->lead_mean, r->lead_max);
   printf("steps: %" PRIu64 "\n", r->steps);
   printf("rejected: %" PRIu64 "\n", r->rejected);
   printf("dt mean: %.4g s\n", r->dt_mean);
@@ -130,13 +140,33 @@ static int parse_seconds(const char *s, double *out) {
 
 typedef struct sim_args {
   const char *path, *csv_path;
-  double duration;
+  double duration, fps;
+  mr_present_mode present;
   int check, quiet, print_hash;
 } sim_args;
+
+/* --fps and --present; -1 when s is neither, else the exit status (-2:
+ * good). */
+static int frame_option(int argc, char **argv, int *i, sim_args *a) {
+  const char *s = argv[*i];
+  bool fps = strcmp(s, "--fps") == 0;
+  if (!fps && strcmp(s, "--present") != 0) return -1;
+  const char *v = *i + 1 < argc ? argv[++*i] : NULL;
+  if (fps && (v == NULL || parse_seconds(v, &a->fps) != 0 || a->fps < 1 || a->fps > 1e4)) {
+    fprintf(stderr, "marionette: sim: --fps expects a frame rate between 1 and 10000 Hz\n");
+    return MR_EXIT_USAGE;
+  }
+  if (!fps && (v == NULL || mr_present_mode_parse(v, &a->present) != 0)) {
+    fprintf(stderr, "marionette: sim: --present expects land or interpolate\n");
+    return MR_EXIT_USAGE;
+  }
+  return -2;
+}
 
 /* Returns -1 when the arguments are good, else the exit status. */
 static int parse_args(int argc, char **argv, sim_args *a) {
   memset(a, 0, sizeof *a);
+  int rc;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
     if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
@@ -154,6 +184,8 @@ static int parse_args(int argc, char **argv, sim_args *a) {
         return MR_EXIT_USAGE;
       }
       a->csv_path = argv[++i];
+    } else if ((rc = frame_option(argc, argv, &i, a)) != -1) {
+      if (rc != -2) return rc;
     } else if (strcmp(s, "--check") == 0) {
       a->check = 1;
     } else if (strcmp(s, "--print-hash") == 0) {
@@ -231,7 +263,12 @@ static int report(const sim_args *a, const mr_scene *scene, const mr_sim_result 
 static int run_scene(const sim_args *a, mr_scene *scene) {
   csv_sink sink;
   if (csv_open(a->csv_path, &sink) != 0) return MR_EXIT_FAIL;
-  mr_sim_opts opts = { a->duration, a->csv_path ? on_step : NULL, &sink };
+  mr_sim_opts opts = mr_default_sim_opts();
+  opts.duration = a->duration;
+  opts.on_step = a->csv_path ? on_step : NULL;
+  opts.user = &sink;
+  opts.fps = a->fps;
+  opts.present = a->present;
   mr_sim_result result;
   mr_scene_error err;
   double t0 = wall_seconds();

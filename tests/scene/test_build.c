@@ -320,7 +320,9 @@ static void run_reports_every_step_to_the_callback(void **state) {
   mr_scene s;
   load(text, &s);
   tally t = { 0, 0, 0, 1 };
-  mr_sim_opts o = { 0, count_step, &t };
+  mr_sim_opts o = mr_default_sim_opts();
+  o.on_step = count_step;
+  o.user = &t;
   mr_sim_result r;
   mr_scene_error e;
   assert_int_equal(mr_sim_run(&s, &o, &r, &e), MR_SCENE_OK);
@@ -353,7 +355,8 @@ static void unset_settings_are_the_papers(void **state) {
   assert_true(d.deviation_low == 1e-4 && d.deviation_high == 1e-2);
   assert_int_equal(d.integrator, MR_INTEGRATOR_RK4);
   /* The run's steps stay inside those bounds. */
-  mr_sim_opts o = { 1.0, NULL, NULL };
+  mr_sim_opts o = mr_default_sim_opts();
+  o.duration = 1.0;
   mr_sim_result r;
   mr_scene_error e;
   assert_int_equal(mr_sim_run(&s, &o, &r, &e), MR_SCENE_OK);
@@ -398,7 +401,9 @@ static void steps_land_on_frame_times_with_fps(void **state) {
   mr_scene s;
   load(text, &s);
   frames f = { 30.0, 0.0, 0, 0 };
-  mr_sim_opts o = { 0, check_frame_landing, &f };
+  mr_sim_opts o = mr_default_sim_opts();
+  o.on_step = check_frame_landing;
+  o.user = &f;
   mr_sim_result r;
   mr_scene_error e;
   assert_int_equal(mr_sim_run(&s, &o, &r, &e), MR_SCENE_OK);

@@ -129,7 +129,8 @@ static void same_scene_same_state_hash(void **state) {
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load(scene_path, &s, &e), MR_SCENE_OK);
-  mr_sim_opts opts = { 4.0, NULL, NULL };
+  mr_sim_opts opts = mr_default_sim_opts();
+  opts.duration = 4.0;
   mr_sim_result r;
   assert_int_equal(mr_sim_run(&s, &opts, &r, &e), MR_SCENE_OK);
   char lib[64];

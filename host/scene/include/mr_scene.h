@@ -224,7 +224,11 @@ typedef struct mr_scene {
   mr_world_def world; /* effects, gravity, drag, ATS, solver, contacts */
   double duration;    /* default simulated time for `marionette sim` */
   double fps;         /* rate at which the control track is sampled; 0: every step */
-  long max_steps;     /* a run stops past this many step tries (accepted and
+  /* sim.present: frames shown from steps landed on each frame time (the
+   * paper's, false), or from steps at the ATS's own Δt with the state
+   * interpolated between the two around each frame time (true). */
+  bool interpolate;
+  long max_steps; /* a run stops past this many step tries (accepted and
                          rejected): MR_SCENE_MAX_STEPS unless sim.max_steps */
 
   mr_scene_particle *particles;

@@ -28,8 +28,18 @@ static void defaults(mr_scene *s) {
   e->resets_min = e->resets_max = -1;
 }
 
+/* sim.present: land (the paper's) or interpolate. */
+static int read_present(mr_reader *r, const mr_ynode *v) {
+  bool land = v->kind == MR_YNODE_SCALAR && strcmp(v->text, "land") == 0;
+  bool interpolate = v->kind == MR_YNODE_SCALAR && strcmp(v->text, "interpolate") == 0;
+  if (!land && !interpolate)
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected present land or interpolate");
+  r->scene->interpolate = interpolate;
+  return 0;
+}
+
 static int read_sim(mr_reader *r, const mr_ynode *sim) {
-  static const char *const keys[] = { "duration", "fps", "max_steps", NULL };
+  static const char *const keys[] = { "duration", "fps", "max_steps", "present", NULL };
   static const mr_scene_field fields[] = {
     { "duration", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, duration), 0, 0 },
     { "fps", MR_SCENE_FIELD_POSITIVE, offsetof(mr_scene, fps), 0, 0 }
@@ -37,8 +47,9 @@ static int read_sim(mr_reader *r, const mr_ynode *sim) {
   if (mr_scene_read_map(r, sim, "sim", keys) != 0 ||
       mr_scene_read_fields(r, sim, fields, 2, r->scene) != 0)
     return -1;
-  const mr_ynode *v = mr_scene_yaml_get(sim, "max_steps");
-  if (v == NULL) return 0;
+  const mr_ynode *v = mr_scene_yaml_get(sim, "present");
+  if (v != NULL && read_present(r, v) != 0) return -1;
+  if ((v = mr_scene_yaml_get(sim, "max_steps")) == NULL) return 0;
   long n;
   if (mr_scene_read_long(r, v, "max_steps", &n) != 0) return -1;
   if (n < 1 || n > 1000000000L)

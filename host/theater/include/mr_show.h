@@ -23,6 +23,7 @@
 
 #include "mr_glove.h"
 #include "mr_scene_world.h"
+#include "mr_sim.h"
 #include "mr_theater.h"
 
 #ifdef __cplusplus
@@ -36,6 +37,9 @@ typedef struct mr_show_def {
   mr_policy policy; /* default skip */
   double duration;  /* s of show, <= 0: until stopped (or the takes' end) */
   double fps;       /* <= 0: the scene's sim.fps, else 60 */
+  /* Frames landed on (the paper's) or interpolated between steps at the
+   * ATS's own Δt; MR_PRESENT_SCENE (default): the scene's sim.present. */
+  mr_present_mode present;
   /* The gloves, each a source as mr_glove takes it; at least one. */
   const char *gloves[MR_SHOW_MAX_GLOVES];
   size_t n_gloves;
@@ -58,6 +62,10 @@ typedef struct mr_show_frame {
   size_t n_gloves;
   const mr_scheduler *scheduler;
   const mr_world *world;
+  /* Every particle's position as the frame shows it (3 n): the world's at
+   * t, or interpolated to t between the steps around it. */
+  const double *xyz;
+  int n_particles;
 } mr_show_frame;
 
 typedef struct mr_show_hooks {
@@ -87,6 +95,11 @@ typedef struct mr_show_result {
   mr_show_glove_result glove[MR_SHOW_MAX_GLOVES];
   size_t n_gloves;
   int glove_of[16]; /* the first 16 control frames' gloves at the end, -1 unbound */
+  /* Interpolated frames: how far the physics had run past each frame when
+   * it was shown, mean and max, s: input read at a frame moves the puppet
+   * only from there on, so this adds to the latency counters. */
+  bool interpolated;
+  double lead_mean, lead_max;
 } mr_show_result;
 
 /* Runs scene with def's gloves on clock until the duration passes or

@@ -5,7 +5,10 @@
  * gathers what `marionette sim` prints. With sim.fps the frames are paced
  * by the theater's scheduler on a virtual clock (mr_theater.h), the same
  * loop a show runs on the wall clock; without it the track is sampled at
- * the end of every step and the ATS alone chooses Δt. */
+ * the end of every step and the ATS alone chooses Δt. Frames land the last
+ * step on their time (the paper's), or, with sim.present: interpolate,
+ * the physics steps at its own Δt and each frame shows the state
+ * interpolated between the two steps around its time. */
 #ifndef MR_SIM_H
 #define MR_SIM_H
 
@@ -29,15 +32,37 @@ typedef struct mr_sim_step {
 
 typedef void (*mr_sim_step_fn)(void *user, const mr_sim_step *step);
 
+/* How frames are presented (with sim.fps). */
+typedef enum mr_present_mode {
+  MR_PRESENT_SCENE = 0,  /* as the scene's sim.present says */
+  MR_PRESENT_LAND,       /* the paper's: the last step before each frame lands on it */
+  MR_PRESENT_INTERPOLATE /* steps at the ATS's Δt; frames interpolated between them */
+} mr_present_mode;
+const char *mr_present_mode_name(mr_present_mode m);
+int mr_present_mode_parse(const char *name, mr_present_mode *out);
+
+/* A frame as presented: its time and every particle's position (3 n), the
+ * world's state at t, or the state interpolated to t. */
+typedef void (*mr_sim_frame_fn)(void *user, double t, const double *xyz, int n);
+
 typedef struct mr_sim_opts {
-  double duration;        /* simulated seconds; <= 0: the scene's */
-  mr_sim_step_fn on_step; /* may be NULL */
-  void *user;
+  double duration;          /* simulated seconds; <= 0 (default): the scene's */
+  double fps;               /* frames per second; <= 0 (default): the scene's sim.fps */
+  mr_sim_step_fn on_step;   /* may be NULL (default) */
+  void *user;               /* for the hooks */
+  mr_present_mode present;  /* with sim.fps; default MR_PRESENT_SCENE */
+  mr_sim_frame_fn on_frame; /* with sim.fps; may be NULL (default) */
 } mr_sim_opts;
+mr_sim_opts mr_default_sim_opts(void);
 
 typedef struct mr_sim_result {
   double sim_time;
-  uint64_t frames; /* frames the scheduler paced (sim.fps), 0 without */
+  uint64_t frames;   /* frames the scheduler paced (sim.fps), 0 without */
+  double fps;        /* their rate */
+  bool interpolated; /* frames presented by interpolation between steps */
+  /* With interpolation: how far the physics had run past each frame's
+   * time when it was presented (the input lag the mode adds), s. */
+  double lead_mean, lead_max;
   uint64_t steps, rejected, resets, collisions;
   double dt_mean, dt_min, dt_max; /* dt_min: the ATS's choice (mr_stats.min_dt) */
   double dt_min_landing;          /* shortest step cut to land on a frame; 0 if none */

@@ -40,6 +40,10 @@ typedef struct show {
   mr_clock clock;
   const mr_show_hooks *hooks;
   double duration;
+  bool interpolate;
+  double sum_lead, lead_max;
+  uint64_t frames_stepped;
+  mr_interp ip; /* the frame's positions, interpolated or the world's */
   mr_scene_error *err;
   mr_scene_status rc;
 } show;
@@ -49,6 +53,7 @@ mr_show_def mr_default_show_def(void) {
   memset(&d, 0, sizeof d);
   d.cookie = MR_SHOW_COOKIE;
   d.policy = MR_POLICY_SKIP;
+  d.present = MR_PRESENT_SCENE;
   return d;
 }
 
@@ -174,36 +179,51 @@ static mr_show_frame view(const show *s, double t, frame_view *buf) {
       buf->pose[k] = s->frames[k].target;
   }
   for (size_t g = 0; g < s->n_gloves; g++) buf->gloves[g] = s->gloves[g].glove;
-  mr_show_frame f = { t,           buf->target, buf->pose, buf->glove_of, n,
-                      buf->gloves, s->n_gloves, s->sch,    s->sw.world };
+  mr_show_frame f = { t,           buf->target, buf->pose,   buf->glove_of, n,      buf->gloves,
+                      s->n_gloves, s->sch,      s->sw.world, s->ip.frame,   s->ip.n };
   return f;
 }
 
-static int advance(void *user, double t, mr_frame_work *work) {
-  show *s = user;
-  read_gloves(s, t);
+/* The world to time t: the frames head for their gloves' poses and the
+ * last step lands on t (the paper's), or, interpolating, steps at the
+ * ATS's own Δt run until one passes t, the frames heading for their
+ * poses at each step's end. Fails only when the physics stopped. */
+static int step_world(show *s, double t, mr_frame_work *work) {
   mr_world *w = s->sw.world;
-  if (t > mr_world_time(w)) {
+  while (t > mr_world_time(w) + 1e-9) {
+    double end = s->interpolate ? mr_world_time(w) + mr_world_next_dt(w) : t;
     for (size_t k = 0; k < s->n_frames; k++)
-      mr_theater_head_frame(s->scene, &s->sw, k, s->frames[k].target, t);
+      mr_theater_head_frame(s->scene, &s->sw, k, s->frames[k].target, end);
+    mr_interp_mark(&s->ip, w);
     mr_step_report rep;
     memset(&rep, 0, sizeof rep);
-    mr_status st = mr_world_step_to(w, t, &rep);
+    mr_status st = s->interpolate ? mr_world_step(w, &rep) : mr_world_step_to(w, t, &rep);
     if (st < 0) {
       char msg[400];
       snprintf(msg, sizeof msg, "the physics stopped (%s): %s at t = %.3f s", mr_status_name(st),
                mr_world_last_error(w), t);
       fail(s, MR_SCENE_ERR_BUILD, msg);
-      return 1;
+      return -1;
     }
-    work->steps = (uint64_t)rep.steps;
-    work->rejected = (uint64_t)rep.rejected;
-    work->resets = (uint64_t)rep.divergences;
+    work->steps += (uint64_t)rep.steps;
+    work->rejected += (uint64_t)rep.rejected;
+    work->resets += (uint64_t)rep.divergences;
   }
+  mr_interp_at(&s->ip, w, t);
+  s->sum_lead += s->ip.lead;
+  s->lead_max = fmax(s->lead_max, s->ip.lead);
+  s->frames_stepped++;
+  return 0;
+}
+
+static int advance(void *user, double t, mr_frame_work *work) {
+  show *s = user;
+  read_gloves(s, t);
+  if (step_world(s, t, work) != 0) return 1;
   if (s->hooks != NULL && s->hooks->frame_done != NULL) {
     frame_view buf;
     mr_show_frame f = view(s, t, &buf);
-    s->hooks->frame_done(s->hooks->user, &f, mr_world_state_hash(w));
+    s->hooks->frame_done(s->hooks->user, &f, mr_world_state_hash(s->sw.world));
   }
   /* Stopping ends the show after this frame: the scheduler counts it as
    * simulated, and it was. */
@@ -261,6 +281,12 @@ static int open_glove(show *s, size_t i, const char *source, const char *take_pa
 static int open_parts(show *s, const mr_show_def *def) {
   char msg[400];
   if (mr_scene_build(s->scene, &s->sw, s->err) != MR_SCENE_OK) return -1;
+  s->interpolate = def->present == MR_PRESENT_INTERPOLATE ||
+                   (def->present == MR_PRESENT_SCENE && s->scene->interpolate);
+  if (mr_interp_open(&s->ip, mr_world_particle_count(s->sw.world)) != 0)
+    return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
+  mr_interp_mark(&s->ip, s->sw.world);
+  mr_interp_at(&s->ip, s->sw.world, 0.0);
   for (size_t i = 0; i < def->n_gloves; i++) {
     s->n_gloves = i + 1;
     s->sources[i] = def->gloves[i];
@@ -293,11 +319,15 @@ static void close_parts(show *s) {
   for (size_t k = 0; k < s->n_frames; k++) mr_control_destroy(s->frames[k].control);
   free(s->frames);
   mr_scheduler_destroy(s->sch);
+  mr_interp_close(&s->ip);
   mr_scene_world_free(&s->sw);
 }
 
 static void gather(const show *s, mr_show_result *result) {
   if (s->sch != NULL) mr_scheduler_stats_get(s->sch, &result->frames);
+  result->interpolated = s->interpolate;
+  result->lead_mean = s->frames_stepped > 0 ? s->sum_lead / (double)s->frames_stepped : 0.0;
+  result->lead_max = s->lead_max;
   result->n_gloves = s->n_gloves;
   for (size_t i = 0; i < s->n_gloves; i++) {
     const mr_glove *g = s->gloves[i].glove;

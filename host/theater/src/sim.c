@@ -15,6 +15,35 @@
  * sliver of a step behind. */
 #define LAND_S 1e-9
 
+mr_sim_opts mr_default_sim_opts(void) {
+  mr_sim_opts o;
+  memset(&o, 0, sizeof o);
+  o.present = MR_PRESENT_SCENE;
+  return o;
+}
+
+const char *mr_present_mode_name(mr_present_mode m) {
+  switch (m) {
+  case MR_PRESENT_LAND:
+    return "land";
+  case MR_PRESENT_INTERPOLATE:
+    return "interpolate";
+  default:
+    return "scene";
+  }
+}
+
+int mr_present_mode_parse(const char *name, mr_present_mode *out) {
+  if (name == NULL || out == NULL) return -1;
+  if (strcmp(name, "land") == 0)
+    *out = MR_PRESENT_LAND;
+  else if (strcmp(name, "interpolate") == 0)
+    *out = MR_PRESENT_INTERPOLATE;
+  else
+    return -1;
+  return 0;
+}
+
 static bool state_finite(const double *xyz, int n) {
   for (int i = 0; i < 3 * n; i++)
     if (!isfinite(xyz[i])) return false;
@@ -117,7 +146,10 @@ typedef struct run {
   watcher w;
   double sum_dt, sum_err2;
   uint64_t at_upper;
-  double t;            /* world time reached */
+  double t;         /* world time reached */
+  bool interpolate; /* frames between steps (sim.present) */
+  mr_interp ip;
+  double sum_lead;
   mr_scene_error *err; /* where a failure inside a frame goes */
   mr_scene_status rc;  /* a failure inside a frame */
 } run;
@@ -127,10 +159,16 @@ static mr_scene_status run_open(run *u, mr_scene_error *err) {
   mr_scene_status rc = mr_scene_build(s, &u->sw, err);
   if (rc != MR_SCENE_OK) return rc;
   u->duration = u->opts && u->opts->duration > 0 ? u->opts->duration : s->duration;
-  u->fps = s->fps;
+  u->fps = u->opts && u->opts->fps > 0 ? u->opts->fps : s->fps;
   u->dt_max = s->world.dt_max;
+  mr_present_mode mode = u->opts ? u->opts->present : MR_PRESENT_SCENE;
+  u->interpolate = u->fps > 0 &&
+                   (mode == MR_PRESENT_INTERPOLATE || (mode == MR_PRESENT_SCENE && s->interpolate));
   u->n = mr_world_particle_count(u->sw.world);
-  u->xyz = malloc((size_t)(u->n > 0 ? u->n : 1) * 3 * sizeof *u->xyz);
+  u->xyz = calloc((size_t)(u->n > 0 ? u->n : 1) * 3, sizeof *u->xyz);
+  if (u->xyz != NULL) mr_world_positions(u->sw.world, u->xyz, u->n);
+  if (mr_interp_open(&u->ip, u->n) != 0)
+    return run_fail(s, err, MR_SCENE_ERR_NOMEM, "out of memory", 0);
   u->rest = calloc(s->n_forces ? s->n_forces : 1, sizeof *u->rest);
   if (u->rest != NULL) string_rests(s, &u->sw, u->rest);
   double *anchor = calloc(s->expect.n_watch ? 3 * s->expect.n_watch : 1, sizeof *anchor);
@@ -141,6 +179,7 @@ static mr_scene_status run_open(run *u, mr_scene_error *err) {
 }
 
 static void run_close(run *u) {
+  mr_interp_close(&u->ip);
   free(u->xyz);
   free(u->rest);
   free(u->w.anchor);
@@ -227,23 +266,55 @@ static mr_scene_status step_to(run *u, double *t, double end, bool sample_each,
   return rc;
 }
 
+/* Steps from *t at the ATS's own Δt until a step passes `end` (the
+ * interpolated presentation), the frames heading for the track's pose at
+ * each step's end; only the run's own end is landed on. */
+static mr_scene_status step_past(run *u, double *t, double end, mr_scene_error *err) {
+  mr_scene_status rc = MR_SCENE_OK;
+  while (*t < end - LAND_S && rc == MR_SCENE_OK) {
+    double target = *t + mr_world_next_dt(u->sw.world);
+    bool land = target > u->duration - LAND_S;
+    if (land) target = u->duration;
+    place_frames(u->s, &u->sw, target);
+    mr_interp_mark(&u->ip, u->sw.world);
+    rc = step_once(u, target, land, t, err);
+  }
+  return rc;
+}
+
+/* The frame at t as presented, to the caller's hook. */
+static void frame_out(run *u, double t) {
+  const double *xyz = u->xyz;
+  if (u->interpolate) {
+    xyz = mr_interp_at(&u->ip, u->sw.world, t);
+    u->sum_lead += u->ip.lead;
+    u->r->lead_max = fmax(u->r->lead_max, u->ip.lead);
+  }
+  if (u->opts != NULL && u->opts->on_frame != NULL) u->opts->on_frame(u->opts->user, t, xyz, u->n);
+}
+
 /* The scheduler's advance hook: the frame at time t (k/fps, §4.6) is
  * sampled from the track and the world stepped to land on it, as in the
- * theater. Nonzero ends the run: its end reached, or a failure (kept in
- * u->rc). */
+ * theater, or past it when frames are interpolated. Nonzero ends the run:
+ * its end reached, or a failure (kept in u->rc). */
 static int advance_frame(void *user, double t, mr_frame_work *work) {
   run *u = user;
   double now = mr_world_time(u->sw.world), t_frame = fmin(t, u->duration);
   uint64_t steps = u->r->steps, rejected = u->r->rejected, resets = u->r->resets;
-  if (t_frame > now + LAND_S) {
+  if (u->interpolate) {
+    u->rc = step_past(u, &now, t_frame, u->err);
+  } else if (t_frame > now + LAND_S) {
     place_frames(u->s, &u->sw, t_frame);
     u->rc = step_to(u, &now, t_frame, false, u->err);
   }
+  if (u->rc == MR_SCENE_OK) frame_out(u, t_frame);
   work->steps = u->r->steps - steps;
   work->rejected = u->r->rejected - rejected;
   work->resets = u->r->resets - resets;
   u->t = now;
-  return u->rc != MR_SCENE_OK || !(now < u->duration - LAND_S);
+  /* Ends with the frame at the run's end: interpolated frames may find
+   * the physics there before them. */
+  return u->rc != MR_SCENE_OK || !(t_frame < u->duration - LAND_S);
 }
 
 static void present_nothing(void *user, double t) {
@@ -267,6 +338,10 @@ static mr_scene_status run_frames(run *u) {
   mr_scheduler_stats st;
   mr_scheduler_stats_get(sch, &st);
   u->r->frames = st.frames_simulated;
+  u->r->fps = u->fps;
+  u->r->interpolated = u->interpolate;
+  if (u->interpolate && st.frames_simulated > 0)
+    u->r->lead_mean = u->sum_lead / (double)st.frames_simulated;
   mr_scheduler_destroy(sch);
   return u->rc;
 }

@@ -12,4 +12,18 @@
  * whether a step lands on t or stops short of it. */
 void mr_theater_head_frame(const mr_scene *s, mr_scene_world *sw, size_t k, mr_pose goal, double t);
 
+/* Interpolated presentation (interp.c): mark the world's state before the
+ * steps that pass a frame time, then ask for the state at that time. */
+typedef struct mr_interp {
+  int n;                  /* particles */
+  double *before, *after; /* positions at the two ends of the last step */
+  double *frame;          /* the interpolated positions, 3 n */
+  double t_before;
+  double lead; /* how far the physics ran past the frame time, s */
+} mr_interp;
+int mr_interp_open(mr_interp *ip, int n); /* -1: out of memory */
+void mr_interp_close(mr_interp *ip);
+void mr_interp_mark(mr_interp *ip, const mr_world *w);
+const double *mr_interp_at(mr_interp *ip, const mr_world *w, double t);
+
 #endif
