@@ -15,6 +15,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
 #include "proc.h"
 
 static const char *glove_gen, *marionette;
@@ -142,6 +146,12 @@ static void a_faulty_stream_is_counted_and_the_show_goes_on(void **state) {
   assert_true(field(o.out, "glove samples") >= 150);
   assert_true(field(o.out, "glove crc errors") > 0);
   assert_int_equal(field(o.out, "resets"), 0);
+  char want[400];
+  snprintf(want, sizeof want, "marionette run: glove on %s: ", source);
+  const char *line = strstr(o.err, want);
+  assert_non_null(line);
+  line = strstr(o.err, " corrupt frames in ");
+  if (line == NULL) fail_msg("no corrupt frames line in:\n%s", o.err);
   assert_true(field(o.out, "frames simulated") >= 100);
   tt_output_free(&o);
   tt_wait(gen, 30);
@@ -149,8 +159,8 @@ static void a_faulty_stream_is_counted_and_the_show_goes_on(void **state) {
   free(dir);
 }
 
-/* A sensor that reads 0 throughout (torn off, or unplugged inside the
- * glove) is held at neutral after the mapping's stuck_after (2 s), told in
+/* A sensor that reads 0 throughout (torn off), and one at full scale
+ * (shorted) is held at neutral after the mapping's stuck_after (2 s), told in
  * one line naming the glove, its source and the finger, and the show goes
  * on with the other four fingers. */
 static void a_stuck_channel_is_named_and_the_show_goes_on(void **state) {
@@ -159,7 +169,7 @@ static void a_stuck_channel_is_named_and_the_show_goes_on(void **state) {
   const char *path = tt_path(dir, "stuck.txt");
   FILE *f = fopen(path, "w");
   assert_non_null(f);
-  fputs("index const value=0\n", f);
+  fputs("index const value=0\nlittle const value=1\n", f);
   fclose(f);
   snprintf(script, sizeof script, "--script=%s", path);
   pid_t gen = start_glove(dir, "5", script, source, sizeof source);
@@ -172,12 +182,39 @@ static void a_stuck_channel_is_named_and_the_show_goes_on(void **state) {
            "scale: held at neutral",
            source);
   if (strstr(o.err, want) == NULL) fail_msg("expected '%s' in:\n%s", want, o.err);
+  assert_non_null(strstr(o.err, "channel 4 (little finger) is stuck at 0 or at full scale"));
   assert_null(strstr(o.err, "channel 0")); /* the others read on */
   assert_true(field(o.out, "frames simulated") >= 200);
   tt_output_free(&o);
   tt_wait(gen, 30);
   tt_rmdir(dir);
   free(dir);
+}
+
+/* A source that never answers (a TCP peer that takes the connection and
+ * sends nothing) is named, with what is wrong, and the show goes on. */
+static void a_silent_source_is_named_and_the_show_goes_on(void **state) {
+  (void)state;
+  int ls = socket(AF_INET, SOCK_STREAM, 0);
+  assert_true(ls >= 0);
+  struct sockaddr_in a = { .sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK) };
+  socklen_t len = sizeof a;
+  assert_int_equal(bind(ls, (struct sockaddr *)&a, sizeof a), 0);
+  assert_int_equal(listen(ls, 4), 0);
+  assert_int_equal(getsockname(ls, (struct sockaddr *)&a, &len), 0);
+  char source[64];
+  snprintf(source, sizeof source, "tcp:127.0.0.1:%d", ntohs(a.sin_port));
+  tt_output o;
+  run_show(source, "2.5", &o);
+  close(ls);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  char want[200];
+  snprintf(want, sizeof want, "marionette run: glove on %s: lost ", source);
+  if (strstr(o.err, want) == NULL) fail_msg("expected '%s' in:\n%s", want, o.err);
+  assert_non_null(strstr(o.err, "(no bytes for longer than lost_after); retrying every 0.5 s"));
+  assert_true(field(o.out, "frames simulated") >= 140);
+  assert_int_equal(field(o.out, "glove samples"), 0);
+  tt_output_free(&o);
 }
 
 /* A take recorded live replays on a virtual clock to the same state at
@@ -311,6 +348,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_foreign_glove_ends_with_status_3),
     cmocka_unit_test(a_faulty_stream_is_counted_and_the_show_goes_on),
     cmocka_unit_test(a_stuck_channel_is_named_and_the_show_goes_on),
+    cmocka_unit_test(a_silent_source_is_named_and_the_show_goes_on),
     cmocka_unit_test(a_take_replays_to_identical_frames),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(ports_are_listed_and_auto_finds_no_glove_clearly),

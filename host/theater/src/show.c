@@ -11,12 +11,17 @@
 #include "mr_io.h"
 #include "theater_internal.h"
 
-/* One glove and its take. */
+/* One glove, its take, and what the user was last told of it. */
 typedef struct show_glove {
   mr_glove *glove;
   mr_rec_writer take;
   bool recording, take_open;
   char take_error[320];
+  mr_glove_state told_state, seen_state;
+  double seen_since; /* show time seen_state began */
+  bool told_silent;
+  gp_counters told; /* the decoder's counters when corrupt frames were last told */
+  double told_at;   /* show time of that */
 } show_glove;
 
 /* One control frame: its glove, its mapping and where it heads. */
@@ -95,6 +100,10 @@ static int find_glove(const show *s, size_t k) {
   return any;
 }
 
+static void note(const show *s, const char *line) {
+  if (s->hooks != NULL && s->hooks->note != NULL) s->hooks->note(s->hooks->user, line);
+}
+
 /* A channel that went bad or came back, told once, not every frame. */
 static void tell_states(show *s, show_frame *f, const mr_channel_state now[MR_CONTROL_CHANNELS]) {
   static const char *const finger[MR_CONTROL_CHANNELS] = { "thumb", "index", "middle", "ring",
@@ -102,7 +111,6 @@ static void tell_states(show *s, show_frame *f, const mr_channel_state now[MR_CO
   for (int c = 0; c < MR_CONTROL_CHANNELS; c++) {
     if (now[c] == f->states[c]) continue;
     f->states[c] = now[c];
-    if (s->hooks == NULL || s->hooks->note == NULL) continue;
     char line[400];
     const char *what = now[c] == MR_CHANNEL_NOT_FINITE ? "is not a finite number: held at neutral"
                        : now[c] == MR_CHANNEL_STUCK
@@ -111,8 +119,58 @@ static void tell_states(show *s, show_frame *f, const mr_channel_state now[MR_CO
                            : "reads again";
     snprintf(line, sizeof line, "glove %d on %.200s: channel %d (%s finger) %s", f->glove + 1,
              s->sources[f->glove], c, finger[c], what);
-    s->hooks->note(s->hooks->user, line);
+    note(s, line);
   }
+}
+
+/* A state must hold this long to be told: one foreign frame in a noisy
+ * stream flips a glove to a mismatch until the next good frame, which is
+ * noise, not news. */
+#define TELL_AFTER_S 0.25
+
+/* Corrupt frames since the last telling, at most once a second. */
+static void tell_errors(show *s, size_t g, double now) {
+  show_glove *sg = &s->gloves[g];
+  mr_glove_counters c;
+  mr_glove_counters_get(sg->glove, &c);
+  const gp_counters *n = &c.decoder, *o = &sg->told;
+  uint32_t crc = n->crc_errors - o->crc_errors, framing = n->framing_errors - o->framing_errors,
+           big = n->oversize - o->oversize, unknown = n->unknown_type - o->unknown_type,
+           foreign = n->spec_mismatch - o->spec_mismatch;
+  uint64_t bad = (uint64_t)crc + framing + big + unknown + foreign;
+  if (bad == 0 || now - sg->told_at < 1.0) return;
+  char line[600];
+  snprintf(line, sizeof line,
+           "glove on %.200s: %llu corrupt frames in %.1f s (%u bad crc, %u cut short, %u "
+           "oversize, %u of unknown type, %u foreign); the show reads on: a loose cable, "
+           "noise or the wrong baud?",
+           s->sources[g], (unsigned long long)bad, now - sg->told_at, crc, framing, big, unknown,
+           foreign);
+  note(s, line);
+  sg->told = *n;
+  sg->told_at = now;
+}
+
+/* What changed about glove g, told once: its state (live, lost, a spec
+ * mismatch) once it has held a moment, and silence since it was opened. */
+static void tell_glove(show *s, size_t g, double now) {
+  show_glove *sg = &s->gloves[g];
+  char line[600], said[420];
+  mr_glove_state st = mr_glove_state_get(sg->glove);
+  if (st != sg->seen_state) {
+    sg->seen_state = st;
+    sg->seen_since = now;
+  }
+  mr_glove_describe(sg->glove, now, said, sizeof said);
+  if (st != sg->told_state && now - sg->seen_since >= TELL_AFTER_S) {
+    sg->told_state = st;
+    note(s, said);
+  } else if (st == MR_GLOVE_CONNECTING && now >= 2.0 && !sg->told_silent) {
+    sg->told_silent = true;
+    snprintf(line, sizeof line, "%s; nothing a glove sends has come in %.0f s", said, now);
+    note(s, line);
+  }
+  tell_errors(s, g, now);
 }
 
 /* Frame k's glove's newest values, if any came, through its mapping. */
@@ -134,7 +192,10 @@ static bool read_frame(show *s, size_t k) {
 }
 
 static void read_gloves(show *s, double now) {
-  for (size_t g = 0; g < s->n_gloves; g++) mr_glove_poll(s->gloves[g].glove, now, 0);
+  for (size_t g = 0; g < s->n_gloves; g++) {
+    mr_glove_poll(s->gloves[g].glove, now, 0);
+    tell_glove(s, g, now);
+  }
   bool fresh = false;
   for (size_t k = 0; k < s->n_frames; k++) fresh |= read_frame(s, k);
   /* Read at the start of this frame's work: the latency counters run from
