@@ -8,7 +8,8 @@
  * mapping gives for glove-gen's truth samples (the intact ones, at their
  * device times): after the best time shift (the path's latency), each
  * frame is within a degree of its own glove's poses and far from the other
- * glove's. The samples taken and the errors counted equal the truth's. */
+ * glove's. The samples taken and the errors counted equal the truth's.
+ * Each glove's take, replayed with the other's, gives the show's states. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -220,16 +221,45 @@ static void counters_match(const char *out, const char *key, int h) {
   free(truth);
 }
 
+/* The two takes of the show replay, on a virtual clock, to the same state
+ * at every frame. */
+static void takes_replay_identically(const char *dir, const char *live_hashes) {
+  char take0[300], take1[300], hashes[300];
+  snprintf(take0, sizeof take0, "%s", tt_path(dir, "right.mrec"));
+  snprintf(take1, sizeof take1, "%s", tt_path(dir, "left.mrec"));
+  snprintf(hashes, sizeof hashes, "%s", tt_path(dir, "replay.hashes"));
+  char *argv[] = { (char *)marionette, "run",  DUET,       "--replay", take0, "--replay", take1,
+                   "--time",           "12.5", "--hashes", hashes,     "-q",  NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("replay: status %d: %s", o.status, o.err);
+  tt_output_free(&o);
+  size_t n1 = 0, n2 = 0;
+  char *a = tt_read_file(live_hashes, &n1), *b = tt_read_file(hashes, &n2);
+  assert_non_null(a);
+  assert_non_null(b);
+  assert_true(n1 > 750 * 18);
+  assert_int_equal(n1, n2);
+  assert_memory_equal(a, b, n1);
+  free(a);
+  free(b);
+}
+
 static void two_gloves_drive_two_puppets_each_its_own(void **state) {
   (void)state;
-  char *dir = tt_tmpdir(), poses[300];
+  char *dir = tt_tmpdir(), poses[300], take0[300], take1[300], hashes[300];
   snprintf(poses, sizeof poses, "%s", tt_path(dir, "poses"));
+  snprintf(take0, sizeof take0, "%s", tt_path(dir, "right.mrec"));
+  snprintf(take1, sizeof take1, "%s", tt_path(dir, "left.mrec"));
+  snprintf(hashes, sizeof hashes, "%s", tt_path(dir, "live.hashes"));
   /* Right hand first: by order, glove 1 would drive alice. */
   pid_t right = start_hand(dir, 1, "right", "--seed=7");
   pid_t left = start_hand(dir, 0, "left", "--faults=0.1");
-  char *argv[] = { (char *)marionette, "run",         DUET,     "--glove", pty_source[1],
-                   "--glove",          pty_source[0], "--time", "12.5",    "-q",
-                   "--poses",          poses,         NULL };
+  char *argv[] = {
+    (char *)marionette, "run",  DUET,       "--glove", pty_source[1], "--glove",  pty_source[0],
+    "--time",           "12.5", "-q",       "--poses", poses,         "--record", take0,
+    "--record",         take1,  "--hashes", hashes,    NULL
+  };
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
@@ -263,6 +293,7 @@ static void two_gloves_drive_two_puppets_each_its_own(void **state) {
   }
   mr_scene_free(&s);
   tt_output_free(&o);
+  takes_replay_identically(dir, hashes);
   tt_rmdir(dir);
   free(dir);
 }
