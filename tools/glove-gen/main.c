@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "gg_motion.h"
+#include "gg_answer.h"
 #include "gg_stream.h"
 #include "gp.h"
 #include "mr_io.h"
@@ -70,6 +71,10 @@ static void usage(FILE *f) {
           "      --unknown RATE      frame of an undefined type first    -> unknown_type\n"
           "      --stall RATE        unplug/replug: nothing sent for a while -> lost\n"
           "      --stall-frames MIN[:MAX]  frames lost per stall (default 10:100)\n"
+          "Commands (on a pty, tcp or serial output the host may send them):\n"
+          "      --ignore-commands K leave the host's first K commands unanswered, to\n"
+          "                          see it retry; the rest are answered as the firmware\n"
+          "                          answers them (SET_RATE only keeps --rate)\n"
           "Records:\n"
           "      --truth FILE        expected decoder counters (key=value) and the intact\n"
           "                          SAMPLEs (sample SEQ T_US CH0..CH4), one per -o, in order\n"
@@ -129,6 +134,8 @@ typedef struct glove {
   int open;
   gg_motion motion;
   gg_stream stream;
+  gg_answer answer; /* to the host's commands, on a two-way output */
+  int duplex;
   FILE *truth;
   mr_rec_writer rec;
   int recording;
@@ -167,6 +174,27 @@ static int send_bytes(glove *g, int idx, const uint8_t *buf, size_t len, uint64_
   return 0;
 }
 
+/* Outputs that carry bytes both ways: there the host may send commands. */
+static int is_duplex(const char *spec) {
+  return strcmp(spec, "pty") == 0 || strncmp(spec, "tcp:", 4) == 0 ||
+         strncmp(spec, "tcp-listen:", 11) == 0 || strncmp(spec, "serial:", 7) == 0;
+}
+
+/* The host's commands that have arrived, answered at once. */
+static void answer_host(glove *g, int idx, uint64_t t_ns) {
+  uint8_t in[512], out[4 * 4 * GP_MAX_WIRE];
+  for (int round = 0; round < 4 && !g->gone; round++) {
+    size_t got = 0;
+    mr_io_err err;
+    mr_io_status st = mr_io_read(&g->io, in, sizeof in, 0, &got, &err);
+    if (got > 0) {
+      size_t n = gg_answer_feed(&g->answer, &g->stream, in, got, out, sizeof out);
+      if (n > 0 && send_bytes(g, idx, out, n, t_ns) != 0) return;
+    }
+    if (st != MR_IO_OK || got < sizeof in) return;
+  }
+}
+
 int main(int argc, char **argv) {
   enum {
     O_PATH_FILE = 256,
@@ -183,6 +211,7 @@ int main(int argc, char **argv) {
     O_TRUTH,
     O_RECORD,
     O_PROGRESS,
+    O_IGNORE,
     O_FAULT0
   };
   static const struct option opts[] = {
@@ -214,6 +243,7 @@ int main(int argc, char **argv) {
     { "truth", required_argument, 0, O_TRUTH },
     { "record", required_argument, 0, O_RECORD },
     { "progress", no_argument, 0, O_PROGRESS },
+    { "ignore-commands", required_argument, 0, O_IGNORE },
     { "quiet", no_argument, 0, 'q' },
     { "help", no_argument, 0, 'h' },
     { 0, 0, 0, 0 }
@@ -229,6 +259,7 @@ int main(int argc, char **argv) {
   uint32_t stall_min = 10, stall_max = 100;
   int have_count = 0, fast = 0, progress = isatty(STDERR_FILENO), quiet = 0, c, rc = 0;
   int have_uid = 0;
+  uint64_t ignore_cmds = 0;
   uint64_t t0, next_progress;
   uint8_t buf[GG_SLOT_MAX];
 
@@ -282,6 +313,10 @@ int main(int argc, char **argv) {
         hands[n_hand++] = GP_HAND_RIGHT;
       else
         return die_usage("--hand '%s' is not left or right", optarg);
+      break;
+    case O_IGNORE:
+      if (!parse_u64(optarg, &ignore_cmds, 10) || ignore_cmds > 1000000)
+        return die_usage("--ignore-commands '%s' is not a count of commands", optarg);
       break;
     case O_UID:
       if (!parse_u64(optarg, &uid0, 16) || uid0 > 0xFFFFFFFFu)
@@ -396,7 +431,9 @@ int main(int argc, char **argv) {
     glove *g = &gloves[i];
     mr_io_err err;
     gg_stream_config cfg;
-    if (mr_io_open(&g->io, g->spec, MR_IO_WRITE, &err) != 0) {
+    g->duplex = is_duplex(g->spec);
+    if (mr_io_open(&g->io, g->spec, g->duplex ? MR_IO_READ | MR_IO_WRITE : MR_IO_WRITE, &err) !=
+        0) {
       /* An output spec that does not parse is the user's usage. */
       fprintf(stderr, "glove-gen: %s%s\n", err.msg,
               err.status == MR_IO_ERR_SPEC ? " (see --help)" : "");
@@ -438,6 +475,7 @@ int main(int argc, char **argv) {
       g->recording = 1;
     }
     gg_stream_init(&g->stream, &cfg, &g->motion, g->truth);
+    gg_answer_init(&g->answer, (unsigned)ignore_cmds);
   }
   if (path_file) {
     /* Written whole and renamed into place, so a script polling for it
@@ -497,11 +535,14 @@ int main(int argc, char **argv) {
       n = gg_stream_next(&g->stream, buf, &done);
       if (done) continue;
       all_done = 0;
+      gg_answer_observe(&g->answer, &g->stream);
       /* Recordings carry stream time when fast, so a replay keeps the pace. */
-      if (n && send_bytes(g, i, buf, n, fast ? t_slot - t0 : mr_io_monotonic_ns() - t0) != 0) {
+      uint64_t t_rec = fast ? t_slot - t0 : mr_io_monotonic_ns() - t0;
+      if (n && send_bytes(g, i, buf, n, t_rec) != 0) {
         if (g_stop) break;
         rc = 1;
       }
+      if (g->duplex) answer_host(g, i, t_rec);
     }
     if (all_done) break;
     if (progress && mr_io_monotonic_ns() >= next_progress) {

@@ -20,6 +20,9 @@ void gg_stream_init(gg_stream *s, const gg_stream_config *cfg, gg_motion *motion
   do {
     s->foreign_hash = (uint32_t)gg_rng_u64(&s->rng);
   } while (s->foreign_hash == GP_SPEC_HASH || s->foreign_hash == cfg->spec_hash);
+  s->streaming = 1;
+  s->cal_state = GP_CAL_DEFAULTS;
+  for (int i = 0; i < GG_CHANNELS; i++) s->cal_max[i] = GG_ADC_MAX;
 }
 
 static size_t put_msg(const gp_msg *m, uint32_t hash, uint8_t *out) {
@@ -42,12 +45,27 @@ static size_t put_info(const gg_stream *s, uint32_t announced, uint8_t *out) {
   m.u.info.frame_rate_hz = s->cfg.rate_hz >= 65535 ? 65535 : (uint16_t)lround(s->cfg.rate_hz);
   m.u.info.sample_rate_hz = m.u.info.frame_rate_hz;
   m.u.info.baud = s->cfg.baud;
-  m.u.info.cal_state = GP_CAL_DEFAULTS;
-  for (int i = 0; i < GG_CHANNELS; i++) {
-    m.u.info.cal_min[i] = 0;
-    m.u.info.cal_max[i] = GG_ADC_MAX;
-  }
+  m.u.info.cal_state = s->cal_state;
+  memcpy(m.u.info.cal_min, s->cal_min, sizeof m.u.info.cal_min);
+  memcpy(m.u.info.cal_max, s->cal_max, sizeof m.u.info.cal_max);
   return put_msg(&m, announced, out);
+}
+
+/* An INFO sent, as the decoder will count it. */
+static size_t info_sent(gg_stream *s, uint8_t *out) {
+  size_t n = put_info(s, s->cfg.spec_hash, out);
+  s->infos++;
+  if (s->cfg.spec_hash == GP_SPEC_HASH)
+    s->expect.frames++;
+  else
+    s->expect.spec_mismatch++;
+  return n;
+}
+
+size_t gg_stream_info(gg_stream *s, uint8_t *out) {
+  size_t n = info_sent(s, out);
+  s->expect.bytes += n;
+  return n;
 }
 
 static void truth_line(gg_stream *s, const gp_sample *x) {
@@ -165,11 +183,21 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
     *done = 1;
     return 0;
   }
+  if (!s->streaming) {
+    /* STREAM_OFF: time passes, INFO keeps the host seeing the glove, and
+     * the sequence waits, as the firmware's does. */
+    n = info_due(s) ? info_sent(s, out) : 0;
+    s->expect.bytes += n;
+    s->slot++;
+    return n;
+  }
   memset(&m, 0, sizeof m);
   m.type = GP_SAMPLE;
-  m.u.sample.seq = (uint16_t)s->slot;
+  m.u.sample.seq = s->seq;
   m.u.sample.t_us = (uint32_t)llround(t_s * 1e6);
   gg_motion_eval(s->motion, t_s, m.u.sample.ch);
+  memcpy(s->last_ch, m.u.sample.ch, sizeof s->last_ch);
+  if (s->cal_state == GP_CAL_VALID) m.u.sample.flags |= GP_SAMPLE_F_CALIBRATED;
   for (int i = 0; i < GG_CHANNELS; i++)
     if (m.u.sample.ch[i] == 0 || m.u.sample.ch[i] == GG_ADC_MAX)
       m.u.sample.flags |= GP_SAMPLE_F_CLIPPED;
@@ -179,6 +207,7 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
   if (s->stall_left) {
     s->stall_left--;
     s->slot++;
+    s->seq++;
     return 0;
   }
   fault = pick_fault(s);
@@ -192,16 +221,10 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
     s->lost_pending += k;
     s->stall_left = k - 1;
     s->slot++;
+    s->seq++;
     return 0;
   }
-  if (info_due(s)) {
-    n += put_info(s, s->cfg.spec_hash, out + n);
-    s->infos++;
-    if (s->cfg.spec_hash == GP_SPEC_HASH)
-      s->expect.frames++;
-    else
-      s->expect.spec_mismatch++;
-  }
+  if (info_due(s)) n += info_sent(s, out + n);
   if (fault >= 0) s->injected[fault]++;
   switch (fault) {
   case GG_F_DROP:
@@ -264,6 +287,7 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
   }
   s->expect.bytes += n;
   s->slot++;
+  s->seq++;
   return n;
 }
 

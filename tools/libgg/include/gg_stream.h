@@ -50,7 +50,12 @@ typedef struct gg_stream {
   gg_motion *motion; /* borrowed */
   FILE *truth;       /* intact SAMPLE lines go here as they are sent */
   gg_rng rng;        /* faults only, so motion does not depend on them */
-  uint64_t slot;     /* the next SAMPLE slot */
+  uint64_t slot;     /* the next SAMPLE slot: time, in frame periods */
+  uint16_t seq;      /* the next SAMPLE's sequence number: slots streamed */
+  int streaming;     /* SAMPLEs go out (STREAM_ON, the default); INFO always */
+  uint8_t cal_state; /* GP_CAL_*, as INFO announces it */
+  uint16_t cal_min[GG_CHANNELS], cal_max[GG_CHANNELS];
+  uint16_t last_ch[GG_CHANNELS]; /* the newest SAMPLE's channels */
   uint64_t stall_left;
   int force_intact; /* the slot after a reorder must go out intact */
   int held;         /* a reordered SAMPLE waits to go after the next */
@@ -71,6 +76,10 @@ typedef struct gg_stream {
 #define GG_SLOT_MAX (6u * GP_MAX_WIRE + 4u * GP_MAX_WIRE + 16u)
 
 void gg_stream_init(gg_stream *s, const gg_stream_config *cfg, gg_motion *motion, FILE *truth);
+
+/* The INFO frame this glove would send now, into out (GP_MAX_WIRE bytes),
+ * counted as sent; its length. */
+size_t gg_stream_info(gg_stream *s, uint8_t *out);
 
 /* The wire bytes of the next slot into out (GG_SLOT_MAX bytes); returns how
  * many (0 in a stall or for a dropped frame). *done is set after the last
