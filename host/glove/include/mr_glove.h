@@ -47,6 +47,8 @@ typedef struct mr_glove_def {
                                        bytes at their recorded times */
   double lost_after;  /* s without a sample before a live glove is lost; default 0.5 */
   double retry_every; /* s between attempts to reopen; default 0.5, at most 1 */
+  double cmd_timeout; /* s before an unanswered command is sent again; default 0.25 */
+  int cmd_tries;      /* sends before a command is given up; default 5 */
 } mr_glove_def;
 #define MR_GLOVE_COOKIE 0x6d72476cu
 mr_glove_def mr_default_glove_def(void);
@@ -103,6 +105,46 @@ double mr_glove_clock_offset(const mr_glove *g);
 /* One line for the user: the source, the state and what to do about it.
  * Returns out. */
 const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t size);
+
+/* ------------------------------------------------------------ commands */
+
+enum { MR_GLOVE_MAX_PENDING = 16 };
+
+typedef struct mr_glove_cmd {
+  uint8_t type;           /* GP_PING, GP_GET_INFO, GP_SET_RATE, GP_STREAM_ON, GP_STREAM_OFF,
+                             GP_CAL_START, GP_CAL_SAVE, GP_CAL_CLEAR or GP_GET_STATUS */
+  uint16_t frame_rate_hz; /* SET_RATE */
+  uint32_t baud;          /* SET_RATE; 0 keeps the baud */
+} mr_glove_cmd;
+
+typedef enum mr_glove_cmd_state {
+  MR_GLOVE_CMD_UNKNOWN = 0, /* no command with that tag is remembered */
+  MR_GLOVE_CMD_PENDING,     /* sent (or waiting for the port), no answer yet */
+  MR_GLOVE_CMD_ACKED,
+  MR_GLOVE_CMD_NACKED,   /* refused: nack_reason says why (GP_NACK_*) */
+  MR_GLOVE_CMD_TIMED_OUT /* cmd_tries sends, no answer */
+} mr_glove_cmd_state;
+const char *mr_glove_cmd_state_name(mr_glove_cmd_state s);
+
+typedef struct mr_glove_cmd_result {
+  mr_glove_cmd_state state;
+  uint8_t type, tag, nack_reason;
+  int sends; /* how many times it went out */
+} mr_glove_cmd_result;
+
+/* Queues cmd under a fresh tag and sends it at once when the port is open.
+ * Returns the tag (1..255) to follow it by, or −1 with msg naming the
+ * glove and why (a take, a file or stdin carries no commands; a type that
+ * is not a command). The oldest answered commands make room for new ones;
+ * at most MR_GLOVE_MAX_PENDING wait at once. */
+int mr_glove_command(mr_glove *g, const mr_glove_cmd *cmd, double now, char *msg, size_t msg_size);
+/* Where the command sent under tag stands. */
+mr_glove_cmd_result mr_glove_command_result(const mr_glove *g, int tag);
+/* "GET_INFO", ...; "BAD_ARGUMENT", ... */
+const char *mr_glove_cmd_name(uint8_t type);
+const char *mr_glove_nack_reason_name(uint8_t reason);
+/* The latest STATUS frame, or NULL before one arrived. */
+const gp_status *mr_glove_status_frame(const mr_glove *g);
 
 /* Listens on source (as a glove source names it) for up to wait_s seconds
  * of real time, writing nothing, and reports whether a glove announced

@@ -1,46 +1,11 @@
 /* A glove as a live object: source, decoder, INFO, calibrated values,
  * loss and reconnection (protocol/SPEC.md, "Receiver rules"). */
-#include "mr_glove.h"
-
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "mr_io.h"
-
-struct mr_glove {
-  mr_glove_def def;
-  char spec[MR_GLOVE_SOURCE_MAX + 16]; /* the source as mr_io reads it */
-  mr_glove_state state;
-  bool open, have_info;
-  mr_io io;
-  gp_decoder dec;
-  gp_info info;
-  mr_glove_reading latest;
-  double last_bytes; /* when bytes last arrived */
-  double next_open;  /* when to try the source again */
-  double lost_since;
-  double offset;      /* min(host − device), NAN before a sample */
-  uint32_t last_t_us; /* for unwrapping device time */
-  double device_base; /* s added for the wraps seen */
-  bool have_t;
-  uint32_t mismatch_hash;
-  mr_glove_counters counters;
-  char last_error[sizeof(((mr_io_err *)0)->msg)];
-  mr_glove_tap_fn tap;
-  void *tap_user;
-  /* A take: chunks fed at their recorded times instead of a live source. */
-  bool is_take, take_open, take_done, have_chunk;
-  /* serial:auto: every serial port probed for a glove's INFO; once one
-   * was found, only a glove of the same uid is taken again. */
-  bool is_auto, have_uid;
-  uint32_t uid[3];
-  mr_rec_reader take;
-  uint64_t chunk_t_ns;
-  const uint8_t *chunk;
-  size_t chunk_len;
-};
+#include "glove_internal.h"
 
 const char *mr_glove_state_name(mr_glove_state s) {
   switch (s) {
@@ -63,6 +28,8 @@ mr_glove_def mr_default_glove_def(void) {
   snprintf(d.source, sizeof d.source, "serial:auto");
   d.lost_after = 0.5;
   d.retry_every = 0.5;
+  d.cmd_timeout = 0.25;
+  d.cmd_tries = 5;
   return d;
 }
 
@@ -113,6 +80,13 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
              def->source, def->lost_after, def->retry_every);
     return MR_GLOVE_ERR_ARG;
   }
+  if (!(def->cmd_timeout > 0 && def->cmd_timeout <= 60) || def->cmd_tries < 1 ||
+      def->cmd_tries > 100) {
+    snprintf(msg, msg_size,
+             "glove %s: expected cmd_timeout in (0, 60] s and cmd_tries in 1..100, got %g and %d",
+             def->source, def->cmd_timeout, def->cmd_tries);
+    return MR_GLOVE_ERR_ARG;
+  }
   mr_glove *g = calloc(1, sizeof *g);
   if (g == NULL) {
     snprintf(msg, msg_size, "out of memory");
@@ -133,6 +107,11 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->offset = NAN;
   g->next_open = -INFINITY;
   g->is_take = file_is_take(g->def.source);
+  g->writable = !g->is_take &&
+                (g->is_auto || strncmp(g->def.source, "serial:", 7) == 0 ||
+                 strncmp(g->def.source, "pty:", 4) == 0 || strncmp(g->def.source, "tcp:", 4) == 0 ||
+                 strncmp(g->def.source, "tcp-listen:", 11) == 0);
+  g->next_tag = 1;
   *out = g;
   return MR_GLOVE_OK;
 }
@@ -254,7 +233,7 @@ static void try_open(mr_glove *g, double now) {
     return;
   }
   mr_io_err err;
-  if (mr_io_open(&g->io, g->spec, MR_IO_READ, &err) != 0) {
+  if (mr_io_open(&g->io, g->spec, g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err) != 0) {
     g->counters.open_failures++;
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
     g->next_open = now + g->def.retry_every;
@@ -314,9 +293,26 @@ static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
     } else if ((ev == GP_EV_FRAME) && m.type == GP_SAMPLE) {
       take_sample(g, &m.u.sample, now);
       taken++;
+    } else if (ev == GP_EV_FRAME) {
+      mr_glove_cmd_reply(g, &m);
     }
   }
   return taken;
+}
+
+/* After SET_RATE's ACK the glove talks at the new baud: the port is
+ * reopened at it, at once. A TCP link has no baud to follow. */
+static void follow_baud(mr_glove *g, double now) {
+  uint32_t baud = g->follow_baud;
+  g->follow_baud = 0;
+  if (strncmp(g->spec, "serial:", 7) != 0) return;
+  char *at = strchr(g->spec + 7, '@');
+  if (at != NULL) *at = '\0';
+  size_t len = strlen(g->spec);
+  snprintf(g->spec + len, sizeof g->spec - len, "@%u", (unsigned)baud);
+  close_source(g);
+  g->next_open = now;
+  try_open(g, now);
 }
 
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
@@ -329,6 +325,7 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
     return taken;
   }
   try_open(g, now);
+  mr_glove_cmd_poll(g, now);
   if (!g->open) return 0;
   uint8_t buf[4096];
   int taken = 0;
@@ -351,7 +348,10 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
     }
     if (got < sizeof buf) break;
   }
-  if (now - g->last_bytes > g->def.lost_after && g->state != MR_GLOVE_MISMATCH)
+  if (g->follow_baud != 0) follow_baud(g, now);
+  /* With the stream off a glove sends INFO once a second, no more. */
+  double quiet = g->stream_off ? fmax(g->def.lost_after, 1.5) : g->def.lost_after;
+  if (now - g->last_bytes > quiet && g->state != MR_GLOVE_MISMATCH)
     mark_lost(g, now, "no bytes for longer than lost_after");
   return taken;
 }

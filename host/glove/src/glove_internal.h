@@ -1,0 +1,66 @@
+/* The glove's state, shared by its files. Private to mr_glove. */
+#ifndef GLOVE_INTERNAL_H
+#define GLOVE_INTERNAL_H
+
+#include "mr_glove.h"
+#include "mr_io.h"
+
+/* A command in flight or answered: its bytes, so a retry resends them. */
+typedef struct mr_glove_pending {
+  bool used;
+  uint64_t serial;
+  mr_glove_cmd cmd;
+  mr_glove_cmd_result result;
+  uint8_t wire[GP_MAX_WIRE];
+  size_t len;
+  double next_send;
+} mr_glove_pending;
+
+struct mr_glove {
+  mr_glove_def def;
+  char spec[MR_GLOVE_SOURCE_MAX + 16]; /* the source as mr_io reads it */
+  mr_glove_state state;
+  bool open, have_info;
+  mr_io io;
+  gp_decoder dec;
+  gp_info info;
+  mr_glove_reading latest;
+  double last_bytes; /* when bytes last arrived */
+  double next_open;  /* when to try the source again */
+  double lost_since;
+  double offset;      /* min(host − device), NAN before a sample */
+  uint32_t last_t_us; /* for unwrapping device time */
+  double device_base; /* s added for the wraps seen */
+  bool have_t;
+  uint32_t mismatch_hash;
+  mr_glove_counters counters;
+  char last_error[sizeof(((mr_io_err *)0)->msg)];
+  mr_glove_tap_fn tap;
+  void *tap_user;
+  /* A take: chunks fed at their recorded times instead of a live source. */
+  bool is_take, take_open, take_done, have_chunk;
+  /* serial:auto: every serial port probed for a glove's INFO; once one
+   * was found, only a glove of the same uid is taken again. */
+  bool is_auto, have_uid;
+  uint32_t uid[3];
+  mr_rec_reader take;
+  uint64_t chunk_t_ns;
+  const uint8_t *chunk;
+  size_t chunk_len;
+  /* Commands (glove_cmd.c). */
+  bool writable;        /* the source carries bytes both ways */
+  uint32_t follow_baud; /* a SET_RATE's new baud, to reopen the port at */
+  bool stream_off;      /* STREAM_OFF acknowledged: only INFO, once a second */
+  mr_glove_pending cmds[MR_GLOVE_MAX_PENDING];
+  uint8_t next_tag;
+  uint64_t cmd_serial; /* orders the table's entries, oldest first */
+  bool have_status;
+  gp_status status;
+};
+
+/* glove_cmd.c: sends what is due and retires what timed out (each poll);
+ * takes an ACK, NACK or STATUS that arrived. */
+void mr_glove_cmd_poll(mr_glove *g, double now);
+void mr_glove_cmd_reply(mr_glove *g, const gp_msg *m);
+
+#endif
