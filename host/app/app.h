@@ -17,5 +17,7 @@ int mr_cmd_run(int argc, char **argv);
 void mr_cmd_run_usage(void);
 int mr_cmd_ports(int argc, char **argv);
 void mr_cmd_ports_usage(void);
+int mr_cmd_calibrate(int argc, char **argv);
+void mr_cmd_calibrate_usage(void);
 
 #endif

@@ -18,6 +18,9 @@ static void usage(FILE *f) {
              "              the theater: a glove drives the puppet in real time; see\n"
              "              `marionette run --help`\n"
              "  list-ports  the serial ports, and the gloves on them\n"
+             "  calibrate --glove SOURCE\n"
+             "              walk through a glove's calibration and save it on\n"
+             "              the glove; see `marionette calibrate --help`\n"
              "\n"
              "options:\n"
              "  -h, --help  show this help\n");
@@ -27,7 +30,8 @@ int main(int argc, char **argv) {
   if (argc < 2) {
     /* Bad usage is one line, like every other usage error; --help has the rest. */
     fprintf(stderr,
-            "marionette: expected a command: sim, run or list-ports (see marionette --help)\n");
+            "marionette: expected a command: sim, run, list-ports or calibrate (see marionette "
+            "--help)\n");
     return MR_EXIT_USAGE;
   }
   const char *cmd = argv[1];
@@ -38,8 +42,10 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);
   if (strcmp(cmd, "run") == 0) return mr_cmd_run(argc - 1, argv + 1);
   if (strcmp(cmd, "list-ports") == 0) return mr_cmd_ports(argc - 1, argv + 1);
+  if (strcmp(cmd, "calibrate") == 0) return mr_cmd_calibrate(argc - 1, argv + 1);
   fprintf(stderr,
-          "marionette: unknown command '%s'; expected one of: sim, run, list-ports (see --help)\n",
+          "marionette: unknown command '%s'; expected one of: sim, run, list-ports, calibrate (see "
+          "--help)\n",
           cmd);
   return MR_EXIT_USAGE;
 }

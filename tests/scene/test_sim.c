@@ -48,15 +48,16 @@ static void help_lists_subcommands_and_flags(void **state) {
   tt_output_free(&p);
   run(&p, "sim", "--help", NULL);
   assert_int_equal(p.status, 0);
-  const char *flags[] = { "--time SECONDS", "--csv FILE", "--check", "--quiet", "--help" };
+  const char *flags[] = { "--time SECONDS", "--csv FILE", "--check",       "--quiet",
+                          "--help",         "--fps HZ",   "--present MODE" };
   for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
     assert_non_null(strstr(p.out, flags[i]));
   tt_output_free(&p);
   run(&p, "dance", NULL);
   assert_int_equal(p.status, 2);
-  assert_string_equal(
-      p.err, "marionette: unknown command 'dance'; expected one of: sim, run, list-ports (see "
-             "--help)\n");
+  assert_string_equal(p.err,
+                      "marionette: unknown command 'dance'; expected one of: sim, run, list-ports, "
+                      "calibrate (see --help)\n");
   tt_output_free(&p);
 }
 

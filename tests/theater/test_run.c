@@ -217,6 +217,43 @@ static void a_silent_source_is_named_and_the_show_goes_on(void **state) {
   tt_output_free(&o);
 }
 
+/* `marionette calibrate` walks through the seven steps on a glove-gen
+ * glove, saves the capture on it, and prints the range it stored; a glove
+ * that never answers ends it with one line, status 1. */
+static void calibrate_saves_the_range_on_the_glove(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300];
+  pid_t gen = start_glove(dir, "6", NULL, source, sizeof source);
+  char *argv[] = { (char *)marionette, "calibrate", "--glove", source, "--step-time", "0.3", NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.out, "7/7  Bend the little finger alone"));
+  const char *saved = strstr(o.out, "saved on the glove (raw ADC counts):\n");
+  assert_non_null(saved);
+  unsigned lo = 0, hi = 0;
+  assert_int_equal(sscanf(strstr(saved, "thumb"), "thumb %u .. %u", &lo, &hi), 2);
+  assert_true(lo < hi && hi <= 4095);
+  tt_output_free(&o);
+  tt_wait(gen, 30);
+  gen = start_glove(dir, "6", "--ignore-commands=1000", source, sizeof source);
+  argv[3] = source;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  assert_int_equal(o.status, 1);
+  if (strstr(o.err, "marionette calibrate: CAL_START was not answered after 5 tries (glove on ") ==
+      NULL)
+    fail_msg("got: %s", o.err);
+  tt_output_free(&o);
+  kill(gen, SIGTERM);
+  tt_wait(gen, 30);
+  char *bad[] = { (char *)marionette, "calibrate", "--step-time", "-1", NULL };
+  assert_int_equal(tt_capture(bad, &o), 0);
+  assert_int_equal(o.status, 2);
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* A take recorded live replays on a virtual clock to the same state at
  * every one of its 121 frames, bit for bit. */
 static void a_take_replays_to_identical_frames(void **state) {
@@ -349,6 +386,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_faulty_stream_is_counted_and_the_show_goes_on),
     cmocka_unit_test(a_stuck_channel_is_named_and_the_show_goes_on),
     cmocka_unit_test(a_silent_source_is_named_and_the_show_goes_on),
+    cmocka_unit_test(calibrate_saves_the_range_on_the_glove),
     cmocka_unit_test(a_take_replays_to_identical_frames),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(ports_are_listed_and_auto_finds_no_glove_clearly),
