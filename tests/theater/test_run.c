@@ -30,6 +30,7 @@ static const char *glove_gen, *marionette;
 static pid_t start_glove(const char *dir, const char *secs, const char *extra, char *source,
                          size_t size) {
   const char *pf = tt_path(dir, "pty.path");
+  unlink(pf); /* a glove started before in the same folder left its path */
   const char *argv[] = { glove_gen, "-o", "pty",      "--path-file", pf,   "--duration", secs,
                          "--wait",  "30", "--linger", "0",           "-q", extra,        NULL };
   if (extra == NULL) argv[12] = NULL;
