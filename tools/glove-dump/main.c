@@ -1,6 +1,7 @@
 /* glove-dump: decodes a glove stream from a file, a recording, stdin, a pty,
  * TCP or a serial device, and accounts for every byte. See --help and
- * tools/README.md. */
+ * tools/README.md. The glove is the host's own (mr_glove): its source,
+ * decoder, takes and reconnection; this program prints what it meets. */
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -14,6 +15,7 @@
 
 #include "gd_print.h"
 #include "gp.h"
+#include "mr_glove.h"
 #include "mr_io.h"
 
 enum { EXIT_USAGE = 2, EXIT_MISMATCH = 3, EXIT_SIGINT = 130 };
@@ -100,15 +102,21 @@ static int list_ports(void) {
 }
 
 typedef struct dump {
-  gp_decoder dec;
-  int csv, quiet, events, keep_going;
-  int mismatch;
+  mr_glove *g;
+  int csv, quiet, events, keep_going, realtime;
+  int mismatch, stop;
   uint64_t max_frames;
+  double reconnect, idle;
   mr_rec_writer rec;
   int recording;
   uint64_t t0_ns;
-  int out_errno; /* set when stdout refused the lines: they would be lost */
+  int out_errno;   /* set when stdout refused the lines: they would be lost */
+  char where[300]; /* the source as last open, for messages after it closed */
 } dump;
+
+static double now_s(const dump *D) {
+  return (double)(mr_io_monotonic_ns() - D->t0_ns) * 1e-9;
+}
 
 /* Lines that cannot be written (a full disk, a reader that went away) are
  * lost: stop and say so instead of decoding on into nothing. */
@@ -117,98 +125,43 @@ static int stdout_failed(dump *D) {
   return D->out_errno != 0;
 }
 
-/* Feeds bytes through the decoder; returns 1 when dumping should stop. */
-static int feed(dump *D, const uint8_t *p, size_t n) {
-  while (n) {
-    gp_msg m;
-    gp_event ev;
-    size_t used = gp_decoder_feed(&D->dec, p, n, &m, &ev);
-    p += used;
-    n -= used;
-    switch (ev) {
-    case GP_EV_NONE:
-      break;
-    case GP_EV_FRAME:
-    case GP_EV_FRAME_LATE:
-      if (D->quiet) break;
-      if (D->csv) {
-        if (m.type == GP_SAMPLE) gd_print_csv_sample(stdout, &m.u.sample, ev == GP_EV_FRAME_LATE);
-      } else {
-        gd_print_msg(stdout, &m, ev == GP_EV_FRAME_LATE ? " late" : NULL);
-      }
-      break;
-    case GP_EV_SPEC_MISMATCH:
-      if (!D->mismatch) {
-        fprintf(stderr, "glove-dump: spec mismatch (device 0x%08X, host 0x%08X)\n",
-                (unsigned)D->dec.peer_hash, (unsigned)GP_SPEC_HASH);
-        fflush(stderr);
-        D->mismatch = 1;
-      }
-      if (D->events && !D->quiet && !D->csv)
-        printf("! spec mismatch at byte %llu\n", (unsigned long long)D->dec.c.bytes);
-      if (!D->keep_going) return 1;
-      break;
-    case GP_EV_DUPLICATE:
-      if (D->events && !D->quiet && !D->csv)
-        printf("! duplicate seq=%u at byte %llu\n", m.u.sample.seq,
-               (unsigned long long)D->dec.c.bytes);
-      break;
-    default:
-      if (D->events && !D->quiet && !D->csv)
-        printf("! %s at byte %llu\n", gp_event_name(ev), (unsigned long long)D->dec.c.bytes);
-      break;
+/* Every frame and error the glove's decoder meets, as a line. */
+static void on_event(void *user, gp_event ev, const gp_msg *m, uint64_t byte) {
+  dump *D = user;
+  bool lines = D->events && !D->quiet && !D->csv;
+  if ((ev == GP_EV_FRAME || ev == GP_EV_FRAME_LATE) && !D->quiet) {
+    if (!D->csv)
+      gd_print_msg(stdout, m, ev == GP_EV_FRAME_LATE ? " late" : NULL);
+    else if (m->type == GP_SAMPLE)
+      gd_print_csv_sample(stdout, &m->u.sample, ev == GP_EV_FRAME_LATE);
+  } else if (ev == GP_EV_SPEC_MISMATCH) {
+    if (!D->mismatch) {
+      uint32_t peer = m != NULL ? m->u.info.spec_hash : mr_glove_foreign_hash(D->g);
+      fprintf(stderr, "glove-dump: spec mismatch (device 0x%08X, host 0x%08X)\n", (unsigned)peer,
+              (unsigned)GP_SPEC_HASH);
+      fflush(stderr);
+      D->mismatch = 1;
     }
-    if (D->max_frames && D->dec.c.frames >= D->max_frames) return 1;
+    if (lines) printf("! spec mismatch at byte %llu\n", (unsigned long long)byte);
+    if (!D->keep_going) D->stop = 1;
+  } else if (ev == GP_EV_DUPLICATE && lines) {
+    printf("! duplicate seq=%u at byte %llu\n", m->u.sample.seq, (unsigned long long)byte);
+  } else if (ev != GP_EV_FRAME && ev != GP_EV_FRAME_LATE && ev != GP_EV_DUPLICATE && lines) {
+    printf("! %s at byte %llu\n", gp_event_name(ev), (unsigned long long)byte);
   }
-  return stdout_failed(D);
+  if (stdout_failed(D)) D->stop = 1;
 }
 
-static int record(dump *D, const uint8_t *p, size_t n) {
+/* The raw input, as read, with the time it was read. */
+static void on_bytes(void *user, double now, const uint8_t *bytes, size_t len) {
+  dump *D = user;
+  (void)now;
   mr_io_err err;
-  if (!D->recording || !n) return 0;
-  if (mr_rec_writer_add(&D->rec, mr_io_monotonic_ns() - D->t0_ns, p, n, &err) != 0) {
+  if (!D->recording) return;
+  if (mr_rec_writer_add(&D->rec, mr_io_monotonic_ns() - D->t0_ns, bytes, len, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     D->recording = 0;
-    return -1;
   }
-  return 0;
-}
-
-static void sleep_ns(uint64_t ns) {
-  struct timespec ts = { (time_t)(ns / 1000000000ull), (long)(ns % 1000000000ull) };
-  while (!g_stop && nanosleep(&ts, &ts) == -1 && errno == EINTR) {
-  }
-}
-
-/* A .mrec source: chunks in order, optionally at their recorded pace. */
-static int dump_recording(dump *D, mr_io *io, const uint8_t *prefix, size_t prefix_len,
-                          int realtime) {
-  mr_rec_reader r;
-  mr_io_err err;
-  uint64_t t_ns, start = mr_io_monotonic_ns();
-  const uint8_t *data;
-  size_t len;
-  int rc;
-  if (mr_rec_reader_open_fd(&r, io->fd, mr_io_path(io), prefix, prefix_len, &err) != 0) {
-    fprintf(stderr, "glove-dump: %s\n", err.msg);
-    return 1;
-  }
-  while (!g_stop && (rc = mr_rec_reader_next(&r, &t_ns, &data, &len, &err)) == 1) {
-    if (realtime) {
-      uint64_t now = mr_io_monotonic_ns() - start;
-      if (t_ns > now) sleep_ns(t_ns - now);
-    }
-    record(D, data, len);
-    if (feed(D, data, len)) break;
-  }
-  mr_rec_reader_close(&r);
-  if (!g_stop && rc < 0) {
-    fprintf(stderr, "glove-dump: %s\n", err.msg);
-    /* The chunks before a cut-short end were decoded: a recorder that was
-     * killed leaves such a file, and that is not an error. */
-    return err.status == MR_IO_ERR_TRUNCATED ? 0 : 1;
-  }
-  return 0;
 }
 
 /* Written whole and renamed into place, so a script polling for it never
@@ -230,26 +183,122 @@ static int write_path_file(const char *path, const char *what) {
   return 0;
 }
 
-static int reopen(mr_io *io, const char *spec, double secs) {
-  uint64_t start = mr_io_monotonic_ns();
-  mr_io_err err;
-  fprintf(stderr, "glove-dump: %s: waiting for it to come back%s\n", spec,
-          secs > 0 ? "" : " (Ctrl-C to stop)");
-  while (!g_stop) {
-    if (mr_io_open(io, spec, MR_IO_READ, &err) == 0) {
-      fprintf(stderr, "glove-dump: %s: reopened\n", spec);
-      return 0;
-    }
-    if (secs > 0 && (double)(mr_io_monotonic_ns() - start) / 1e9 >= secs) {
-      fprintf(stderr, "glove-dump: %s: not back within %g s: %s\n", spec, secs, err.msg);
-      return -1;
-    }
-    sleep_ns(250000000ull);
+/* What the source did since the last look: a hang-up, a return. */
+static void tell(dump *D, mr_glove_counters *seen) {
+  mr_glove_counters c;
+  mr_glove_counters_get(D->g, &c);
+  if (c.losses > seen->losses && !mr_glove_ended(D->g)) {
+    fprintf(stderr,
+            "glove-dump: %s: hang-up after %llu bytes (device unplugged or the other end "
+            "closed)\n",
+            D->where, (unsigned long long)c.decoder.bytes);
+    if (mr_glove_io_path(D->g)[0] != '\0')
+      fprintf(stderr, "glove-dump: %s: waiting for the next peer\n", D->where);
+    else
+      fprintf(stderr, "glove-dump: %s: waiting for it to come back%s\n", D->where,
+              D->reconnect > 0 ? "" : " (Ctrl-C to stop)");
   }
-  return -1;
+  if (c.opens > seen->opens && seen->opens > 0)
+    fprintf(stderr, "glove-dump: %s: reopened\n", D->where);
+  *seen = c;
 }
 
-int main(int argc, char **argv) {
+/* Reads until the stream ends, a limit is reached or a signal comes. */
+static int run(dump *D, const char *path_file) {
+  mr_glove_counters seen;
+  memset(&seen, 0, sizeof seen);
+  uint64_t last_bytes = 0;
+  double last_data = 0;
+  int rc = 0;
+  while (!D->stop && !g_stop) {
+    /* A take plays at once unless --realtime: its chunks are all due. */
+    double now = mr_glove_is_take(D->g) && !D->realtime ? 1e9 : now_s(D);
+    mr_glove_poll(D->g, now, 200);
+    const char *at = mr_glove_io_path(D->g);
+    if (at[0] != '\0' && D->where[0] == '\0' && path_file && write_path_file(path_file, at) != 0)
+      return 1;
+    if (at[0] != '\0') snprintf(D->where, sizeof D->where, "%s", at);
+    tell(D, &seen);
+    if (seen.opens == 0 && seen.open_failures > 0) return -1; /* never opened */
+    if (D->max_frames && seen.decoder.frames >= D->max_frames) break;
+    if (mr_glove_ended(D->g)) break;
+    if (seen.decoder.bytes != last_bytes) {
+      last_bytes = seen.decoder.bytes;
+      last_data = now_s(D);
+    } else if (D->idle >= 0 && now_s(D) - last_data >= D->idle) {
+      fprintf(stderr, "glove-dump: %s: nothing for %g s, stopping\n", D->where, D->idle);
+      break;
+    }
+  }
+  return rc;
+}
+
+/* The end: what the source said last, the counters, the recording. */
+static int finish(dump *D, int rc, const char *spec, const char *counters_path) {
+  mr_io_status st;
+  const char *why = mr_glove_last_error(D->g, &st);
+  mr_glove_counters c;
+  mr_glove_counters_get(D->g, &c);
+  if (rc < 0) {
+    /* A SOURCE that does not parse is the user's usage, not a failure. */
+    fprintf(stderr, "glove-dump: %s%s\n", why, st == MR_IO_ERR_SPEC ? " (see --help)" : "");
+    return st == MR_IO_ERR_SPEC ? EXIT_USAGE : 1;
+  }
+  if (mr_glove_ended(D->g) && c.losses > 0 && !mr_glove_is_take(D->g) &&
+      strstr(why, "ended") == NULL)
+    fprintf(stderr,
+            "glove-dump: %s: hang-up after %llu bytes (device unplugged or the other end "
+            "closed)%s%s\n",
+            D->where[0] ? D->where : spec, (unsigned long long)c.decoder.bytes,
+            D->reconnect >= 0 ? ": " : "", D->reconnect >= 0 ? why : "");
+  if (mr_glove_is_take(D->g) && (st == MR_IO_ERR_TRUNCATED || st == MR_IO_ERR_FORMAT)) {
+    fprintf(stderr, "glove-dump: %s\n", why);
+    /* The chunks before a cut-short end were decoded: a recorder that was
+     * killed leaves such a file, and that is not an error. */
+    if (st == MR_IO_ERR_FORMAT) rc = 1;
+  }
+  /* Bytes after the last delimiter are a frame that never ended: the
+   * decoder holds them, and no event will ever name them. */
+  size_t held = mr_glove_unfinished(D->g);
+  if (mr_glove_ended(D->g) && held > 0)
+    fprintf(stderr,
+            "glove-dump: %s: the stream ended inside a frame: its last %zu bytes (from byte "
+            "%llu) were not decoded\n",
+            spec, held, (unsigned long long)(c.decoder.bytes - held));
+  if (fflush(stdout) != 0 && !D->out_errno) D->out_errno = errno ? errno : EIO;
+  if (stdout_failed(D)) {
+    fprintf(stderr, "glove-dump: stdout: cannot write the decoded frames: %s\n",
+            strerror(D->out_errno));
+    rc = 1;
+  }
+  fprintf(stderr, "glove-dump: counters\n");
+  gd_print_counters(stderr, &c.decoder);
+  if (counters_path) {
+    FILE *f = fopen(counters_path, "w");
+    if (!f) {
+      fprintf(stderr, "glove-dump: %s: cannot create: %s\n", counters_path, strerror(errno));
+      rc = 1;
+    } else {
+      gd_print_counters(f, &c.decoder);
+      if (fclose(f) != 0) rc = 1;
+    }
+  }
+  mr_io_err err;
+  if (D->recording && mr_rec_writer_close(&D->rec, &err) != 0) {
+    fprintf(stderr, "glove-dump: %s\n", err.msg);
+    rc = 1;
+  }
+  return rc;
+}
+
+/* The command line, read. */
+typedef struct args {
+  const char *spec, *counters_path, *record_path, *path_file;
+  char spec_buf[512];
+} args;
+
+/* Options into D and a; -1 when the run goes on, else the exit status. */
+static int parse(int argc, char **argv, dump *D, args *a) {
   enum {
     O_CSV = 256,
     O_NO_EVENTS,
@@ -278,35 +327,30 @@ int main(int argc, char **argv) {
                                         { "path-file", required_argument, 0, O_PATH_FILE },
                                         { "help", no_argument, 0, 'h' },
                                         { 0, 0, 0, 0 } };
-  static dump D;
-  const char *spec = "-", *counters_path = NULL, *record_path = NULL, *path_file = NULL;
-  char spec_buf[512];
-  double reconnect = -1, idle = -1;
   long baud = 0;
-  int realtime = 0, c, rc = 0, hung_up = 0, ended = 0;
-  mr_io io;
-  mr_io_err err;
-  struct sigaction sa;
-
-  D.events = 1;
+  int c;
+  a->spec = "-";
+  D->reconnect = -1;
+  D->idle = -1;
+  D->events = 1;
   opterr = 0; /* bad_option says it in one line, without the program's path */
   while ((c = getopt_long(argc, argv, ":qn:h", opts, NULL)) != -1) {
     char *end;
     switch (c) {
     case O_CSV:
-      D.csv = 1;
+      D->csv = 1;
       break;
     case 'q':
-      D.quiet = 1;
+      D->quiet = 1;
       break;
     case O_NO_EVENTS:
-      D.events = 0;
+      D->events = 0;
       break;
     case O_COUNTERS:
-      counters_path = optarg;
+      a->counters_path = optarg;
       break;
     case O_RECORD:
-      record_path = optarg;
+      a->record_path = optarg;
       break;
     case O_BAUD:
       baud = strtol(optarg, &end, 10);
@@ -316,7 +360,7 @@ int main(int argc, char **argv) {
       }
       break;
     case O_REALTIME:
-      realtime = 1;
+      D->realtime = 1;
       break;
     case O_RECONNECT:
     case O_IDLE: {
@@ -327,9 +371,9 @@ int main(int argc, char **argv) {
         return EXIT_USAGE;
       }
       if (c == O_IDLE)
-        idle = v;
+        D->idle = v;
       else
-        reconnect = v;
+        D->reconnect = v;
       break;
     }
     case 'n': {
@@ -338,14 +382,14 @@ int main(int argc, char **argv) {
         fprintf(stderr, "glove-dump: --count '%s' is not a positive integer\n", optarg);
         return EXIT_USAGE;
       }
-      D.max_frames = v;
+      D->max_frames = v;
       break;
     }
     case O_KEEP_GOING:
-      D.keep_going = 1;
+      D->keep_going = 1;
       break;
     case O_PATH_FILE:
-      path_file = optarg;
+      a->path_file = optarg;
       break;
     case O_LIST:
       return list_ports();
@@ -356,20 +400,33 @@ int main(int argc, char **argv) {
       return bad_option(c, argv);
     }
   }
-  if (optind < argc) spec = argv[optind++];
+  if (optind < argc) a->spec = argv[optind++];
   if (optind < argc) {
     fprintf(stderr, "glove-dump: one SOURCE only, got also '%s' (see --help)\n", argv[optind]);
     return EXIT_USAGE;
   }
-  if (baud && !strchr(spec, '@')) {
+  if (baud && !strchr(a->spec, '@')) {
     struct stat st;
-    int is_dev = strncmp(spec, "serial:", 7) == 0 || (stat(spec, &st) == 0 && S_ISCHR(st.st_mode));
+    int is_dev =
+        strncmp(a->spec, "serial:", 7) == 0 || (stat(a->spec, &st) == 0 && S_ISCHR(st.st_mode));
     if (is_dev) {
-      snprintf(spec_buf, sizeof spec_buf, "%s%s@%ld",
-               strncmp(spec, "serial:", 7) == 0 ? "" : "serial:", spec, baud);
-      spec = spec_buf;
+      snprintf(a->spec_buf, sizeof a->spec_buf, "%s%s@%ld",
+               strncmp(a->spec, "serial:", 7) == 0 ? "" : "serial:", a->spec, baud);
+      a->spec = a->spec_buf;
     }
   }
+  return -1;
+}
+
+int main(int argc, char **argv) {
+  static dump D;
+  static args A;
+  mr_io_err err;
+  struct sigaction sa;
+  int rc = parse(argc, argv, &D, &A);
+  if (rc >= 0) return rc;
+  const char *spec = A.spec, *counters_path = A.counters_path, *record_path = A.record_path,
+             *path_file = A.path_file;
 
   /* No SA_RESTART: a signal must cut a blocking wait short. */
   memset(&sa, 0, sizeof sa);
@@ -378,144 +435,35 @@ int main(int argc, char **argv) {
   sigaction(SIGTERM, &sa, NULL);
   signal(SIGPIPE, SIG_IGN);
 
-  gp_decoder_init(&D.dec, GP_SPEC_HASH);
+  mr_glove_def gd = mr_default_glove_def();
+  if (strlen(spec) >= sizeof gd.source) {
+    fprintf(stderr, "glove-dump: SOURCE is longer than %zu characters\n", sizeof gd.source - 1);
+    return EXIT_USAGE;
+  }
+  memcpy(gd.source, spec, strlen(spec) + 1);
+  /* A dump waits as long as it is asked to: silence is not a loss, and a
+   * hang-up ends it unless --reconnect says how long to wait. */
+  gd.lost_after = 1e9;
+  gd.reconnect = D.reconnect < 0 ? -1 : D.reconnect;
+  char msg[400];
+  if (mr_glove_create(&gd, &D.g, msg, sizeof msg) != MR_GLOVE_OK) {
+    fprintf(stderr, "glove-dump: %s (see --help)\n", msg);
+    return EXIT_USAGE;
+  }
+  mr_glove_set_observer(D.g, on_event, &D);
   D.t0_ns = mr_io_monotonic_ns();
-  if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
-    /* A SOURCE that does not parse is the user's usage, not a failure. */
-    fprintf(stderr, "glove-dump: %s%s\n", err.msg,
-            err.status == MR_IO_ERR_SPEC ? " (see --help)" : "");
-    return err.status == MR_IO_ERR_SPEC ? EXIT_USAGE : 1;
-  }
-  if (path_file && write_path_file(path_file, mr_io_path(&io)) != 0) {
-    mr_io_close(&io);
-    return 1;
-  }
   if (record_path) {
     if (mr_rec_writer_open(&D.rec, record_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0) {
       fprintf(stderr, "glove-dump: %s\n", err.msg);
-      mr_io_close(&io);
+      mr_glove_destroy(D.g);
       return 1;
     }
     D.recording = 1;
+    mr_glove_set_tap(D.g, on_bytes, &D);
   }
   if (D.csv && !D.quiet) gd_print_csv_header(stdout);
-
-  {
-    uint8_t buf[4096];
-    size_t have = 0;
-    uint64_t last_data = mr_io_monotonic_ns(), back_by = 0;
-    int sniffing = io.kind == MR_IO_FILE || io.kind == MR_IO_FIFO || io.kind == MR_IO_STDIO;
-    int stop = 0;
-    while (!stop && !g_stop) {
-      size_t got = 0;
-      mr_io_status st = mr_io_read(&io, buf + have, sizeof buf - have, 200, &got, &err);
-      if (st == MR_IO_OK) {
-        last_data = mr_io_monotonic_ns();
-        back_by = 0;
-        have += got;
-        if (sniffing) {
-          /* A recording starts with its magic; look before decoding. */
-          if (have < 8 && memcmp(buf, MR_REC_MAGIC, have) == 0) continue;
-          sniffing = 0;
-          if (mr_rec_is_recording(buf, have)) {
-            rc = dump_recording(&D, &io, buf, have, realtime);
-            have = 0;
-            break;
-          }
-        }
-        record(&D, buf, have);
-        stop = feed(&D, buf, have);
-        have = 0;
-        continue;
-      }
-      if (st == MR_IO_TIMEOUT) {
-        /* A listening socket reopens at once; the device is back only when
-         * bytes arrive. */
-        if (back_by && mr_io_monotonic_ns() >= back_by) {
-          fprintf(stderr, "glove-dump: %s: nothing came back within %g s\n", spec, reconnect);
-          break;
-        }
-        if (idle >= 0 && (double)(mr_io_monotonic_ns() - last_data) / 1e9 >= idle) {
-          fprintf(stderr, "glove-dump: %s: nothing for %g s, stopping\n", mr_io_path(&io), idle);
-          break;
-        }
-        continue;
-      }
-      if (have) {
-        record(&D, buf, have);
-        stop = feed(&D, buf, have);
-        have = 0;
-      }
-      if (st == MR_IO_EOF) {
-        ended = 1;
-        break;
-      }
-      if (mr_io_failed(st)) {
-        fprintf(stderr, "glove-dump: %s\n", err.msg);
-        rc = 1;
-        break;
-      }
-      /* Hang-up: what was read is decoded already; say so, then maybe wait. */
-      fprintf(stderr,
-              "glove-dump: %s: hang-up after %llu bytes (device unplugged or the other "
-              "end closed)\n",
-              mr_io_path(&io), (unsigned long long)D.dec.c.bytes);
-      if (reconnect < 0 || stop) {
-        hung_up = 1;
-        mr_io_close(&io);
-        break;
-      }
-      /* A frame cut by the unplug ends here, as one error, instead of
-       * fusing with the first bytes after the replug. The delimiter is ours,
-       * not the device's, so it is not counted as received. */
-      if (D.dec.len || D.dec.overflow) {
-        stop = feed(&D, (const uint8_t *)"\0", 1);
-        D.dec.c.bytes--;
-      }
-      if (mr_io_rearm(&io) == 0) {
-        fprintf(stderr, "glove-dump: %s: waiting for the next peer\n", mr_io_path(&io));
-      } else {
-        mr_io_close(&io);
-        if (reopen(&io, spec, reconnect) != 0) {
-          hung_up = 1;
-          break;
-        }
-      }
-      last_data = mr_io_monotonic_ns();
-      if (reconnect > 0) back_by = last_data + (uint64_t)(reconnect * 1e9);
-    }
-    if (!hung_up) mr_io_close(&io);
-  }
-
-  /* Bytes after the last delimiter are a frame that never ended: the
-   * decoder holds them, and no event will ever name them. */
-  if ((ended || hung_up) && D.dec.len && !D.dec.overflow)
-    fprintf(stderr,
-            "glove-dump: %s: the stream ended inside a frame: its last %zu bytes (from "
-            "byte %llu) were not decoded\n",
-            spec, D.dec.len, (unsigned long long)(D.dec.c.bytes - D.dec.len));
-  if (fflush(stdout) != 0 && !D.out_errno) D.out_errno = errno ? errno : EIO;
-  if (stdout_failed(&D)) {
-    fprintf(stderr, "glove-dump: stdout: cannot write the decoded frames: %s\n",
-            strerror(D.out_errno));
-    rc = 1;
-  }
-  fprintf(stderr, "glove-dump: counters\n");
-  gd_print_counters(stderr, &D.dec.c);
-  if (counters_path) {
-    FILE *f = fopen(counters_path, "w");
-    if (!f) {
-      fprintf(stderr, "glove-dump: %s: cannot create: %s\n", counters_path, strerror(errno));
-      rc = 1;
-    } else {
-      gd_print_counters(f, &D.dec.c);
-      if (fclose(f) != 0) rc = 1;
-    }
-  }
-  if (D.recording && mr_rec_writer_close(&D.rec, &err) != 0) {
-    fprintf(stderr, "glove-dump: %s\n", err.msg);
-    rc = 1;
-  }
+  rc = finish(&D, run(&D, path_file), spec, counters_path);
+  mr_glove_destroy(D.g);
   if (g_stop) return EXIT_SIGINT;
   if (D.mismatch) return EXIT_MISMATCH;
   return rc;

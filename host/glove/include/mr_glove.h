@@ -24,6 +24,7 @@
 #include <stdint.h>
 
 #include "gp.h"
+#include "mr_io.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -41,12 +42,18 @@ const char *mr_glove_state_name(mr_glove_state s);
 
 typedef struct mr_glove_def {
   uint32_t cookie;                  /* MR_GLOVE_COOKIE, set by mr_default_glove_def() */
-  char source[MR_GLOVE_SOURCE_MAX]; /* serial:DEV[@BAUD], pty:PATH, file:PATH, -,
-                                       tcp:HOST:PORT, tcp-listen:[HOST:]PORT; a
-                                       file that is a take (.mrec) plays its
+  char source[MR_GLOVE_SOURCE_MAX]; /* serial:DEV[@BAUD], serial:auto, pty:PATH,
+                                       pty (a new one, for a writer to open),
+                                       file:PATH, PATH, -, tcp:HOST:PORT,
+                                       tcp-listen:[HOST:]PORT; a take (.mrec),
+                                       as a file or on a stream, plays its
                                        bytes at their recorded times */
   double lost_after;  /* s without a sample before a live glove is lost; default 0.5 */
   double retry_every; /* s between attempts to reopen; default 0.5, at most 1 */
+  /* After a hang-up: < 0 the glove ends there; 0 (default) its port is
+   * retried for ever; > 0 retried this long, then the glove ends. A stream
+   * that comes to its end (a file, stdin, a FIFO) ends the glove. */
+  double reconnect;
   double cmd_timeout; /* s before an unanswered command is sent again; default 0.25 */
   int cmd_tries;      /* sends before a command is given up; default 5 */
 } mr_glove_def;
@@ -145,6 +152,31 @@ const char *mr_glove_cmd_name(uint8_t type);
 const char *mr_glove_nack_reason_name(uint8_t reason);
 /* The latest STATUS frame, or NULL before one arrived. */
 const gp_status *mr_glove_status_frame(const mr_glove *g);
+
+/* ------------------------------------------------------- for a stream dump */
+
+/* Every frame and every error the decoder meets, as it meets it: the
+ * event, the message for the events that carry one (else NULL), and the
+ * count of bytes fed when it ended. */
+typedef void (*mr_glove_observer_fn)(void *user, gp_event ev, const gp_msg *m, uint64_t byte);
+void mr_glove_set_observer(mr_glove *g, mr_glove_observer_fn fn, void *user);
+/* True once the source has ended for good (def.reconnect, a stream's end,
+ * a take played out): polling reads nothing more. */
+bool mr_glove_ended(const mr_glove *g);
+/* Where the open source is (a created pty's slave path, a listening
+ * socket's HOST:PORT); "" before it opened. */
+const char *mr_glove_io_path(const mr_glove *g);
+/* Bytes of a frame the decoder holds, begun but not ended. */
+size_t mr_glove_unfinished(const mr_glove *g);
+/* The last thing that went wrong with the source, "" if nothing, and in
+ * *status (if given) its kind: an open's failure (MR_IO_ERR_SPEC for a
+ * source that does not parse), a take's early end (MR_IO_ERR_FORMAT,
+ * MR_IO_ERR_TRUNCATED); MR_IO_OK when nothing failed. */
+const char *mr_glove_last_error(const mr_glove *g, mr_io_status *status);
+/* True when the source turned out to be a take (by name or by its magic). */
+bool mr_glove_is_take(const mr_glove *g);
+/* The hash a foreign glove announced, 0 before one did. */
+uint32_t mr_glove_foreign_hash(const mr_glove *g);
 
 /* Listens on source (as a glove source names it) for up to wait_s seconds
  * of real time, writing nothing, and reports whether a glove announced

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "glove_internal.h"
 
@@ -40,7 +41,10 @@ static int to_io_spec(const char *source, char *out, size_t size) {
   if (strncmp(source, "pty:", 4) == 0)
     return source[4] != '\0' && snprintf(out, size, "serial:%s", source + 4) < (int)size ? 0 : -1;
   if (strcmp(source, "serial:auto") == 0) return -1; /* probing comes with the port list */
-  bool known = strcmp(source, "-") == 0 || source[0] == '/';
+  if (strcmp(source, "pty") == 0) return snprintf(out, size, "pty") < (int)size ? 0 : -1;
+  /* A bare path (no prefix) is a file or a device, as mr_io takes it. */
+  bool known = strcmp(source, "-") == 0 || source[0] == '/' ||
+               (source[0] != '\0' && strchr(source, ':') == NULL);
   for (int i = 0; prefixes[i] != NULL && !known; i++) {
     size_t n = strlen(prefixes[i]);
     known = strncmp(source, prefixes[i], n) == 0 && source[n] != '\0';
@@ -50,10 +54,11 @@ static int to_io_spec(const char *source, char *out, size_t size) {
 
 /* A file source that starts with the recording magic is a take. */
 static bool file_is_take(const char *source) {
-  const char *path = strncmp(source, "file:", 5) == 0 ? source + 5
-                     : source[0] == '/'               ? source
-                                                      : NULL;
-  if (path == NULL) return false;
+  bool bare = source[0] == '/' || (strchr(source, ':') == NULL && strcmp(source, "-") != 0);
+  const char *path = strncmp(source, "file:", 5) == 0 ? source + 5 : bare ? source : NULL;
+  struct stat st;
+  /* Regular files only: reading a device to look would take its bytes. */
+  if (path == NULL || stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return false;
   FILE *f = fopen(path, "rb");
   if (f == NULL) return false;
   char magic[8];
@@ -80,6 +85,10 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
              def->source, def->lost_after, def->retry_every);
     return MR_GLOVE_ERR_ARG;
   }
+  if (!isfinite(def->reconnect)) {
+    snprintf(msg, msg_size, "glove %s: expected a finite reconnect time", def->source);
+    return MR_GLOVE_ERR_ARG;
+  }
   if (!(def->cmd_timeout > 0 && def->cmd_timeout <= 60) || def->cmd_tries < 1 ||
       def->cmd_tries > 100) {
     snprintf(msg, msg_size,
@@ -97,8 +106,8 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->is_auto = strcmp(g->def.source, "serial:auto") == 0;
   if (!g->is_auto && to_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
     snprintf(msg, msg_size,
-             "glove source '%s': expected serial:DEV, pty:PATH, file:PATH, -, tcp:HOST:PORT or "
-             "tcp-listen:PORT",
+             "glove source '%s': expected serial:DEV, serial:auto, pty:PATH, pty, file:PATH, -, "
+             "tcp:HOST:PORT or tcp-listen:PORT",
              g->def.source);
     free(g);
     return MR_GLOVE_ERR_ARG;
@@ -107,10 +116,11 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->offset = NAN;
   g->next_open = -INFINITY;
   g->is_take = file_is_take(g->def.source);
-  g->writable = !g->is_take &&
-                (g->is_auto || strncmp(g->def.source, "serial:", 7) == 0 ||
-                 strncmp(g->def.source, "pty:", 4) == 0 || strncmp(g->def.source, "tcp:", 4) == 0 ||
-                 strncmp(g->def.source, "tcp-listen:", 11) == 0);
+  g->writable =
+      !g->is_take &&
+      (g->is_auto || strncmp(g->def.source, "serial:", 7) == 0 ||
+       strncmp(g->def.source, "pty:", 4) == 0 || strncmp(g->def.source, "tcp:", 4) == 0 ||
+       strncmp(g->def.source, "tcp-listen:", 11) == 0 || strcmp(g->def.source, "pty") == 0);
   g->next_tag = 1;
   *out = g;
   return MR_GLOVE_OK;
@@ -132,67 +142,40 @@ void mr_glove_set_tap(mr_glove *g, mr_glove_tap_fn tap, void *user) {
   g->tap_user = user;
 }
 
-bool mr_glove_take_done(const mr_glove *g) {
-  return g != NULL && g->is_take && g->take_done;
-}
-
 void mr_glove_destroy(mr_glove *g) {
   if (g == NULL) return;
   close_source(g);
+  free(g->take_prefix);
   free(g);
 }
 
-static void mark_lost(mr_glove *g, double now, const char *why) {
-  close_source(g);
+static bool is_stream(const mr_glove *g) {
+  return g->io.kind == MR_IO_FILE || g->io.kind == MR_IO_FIFO || g->io.kind == MR_IO_STDIO;
+}
+
+/* The source hung up (or ended, when at_end). A frame cut short by it ends
+ * here, as one error, rather than fusing with the first bytes after the
+ * replug; the delimiter is the host's, not the glove's, so it is not
+ * counted as received. A listening socket waits for the next peer on the
+ * same port; anything else is closed and retried, or the glove ends, as
+ * def.reconnect says. */
+static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
+  bool ends = at_end || g->def.reconnect < 0;
+  if (!ends && g->open && (g->dec.len > 0 || g->dec.overflow)) {
+    mr_glove_feed(g, (const uint8_t *)"", 1, now);
+    g->dec.c.bytes--;
+  }
+  bool rearmed = !ends && g->open && mr_io_rearm(&g->io) == 0;
+  if (!rearmed) close_source(g);
   if (g->state != MR_GLOVE_LOST) {
     g->counters.losses++;
     g->lost_since = now;
+    if (g->def.reconnect > 0) g->give_up_at = now + g->def.reconnect;
   }
   if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LOST;
   snprintf(g->last_error, sizeof g->last_error, "%s", why);
   g->next_open = now + g->def.retry_every;
-}
-
-/* A take's chunks whose recorded time has come, fed in order. */
-static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now);
-static int play_take(mr_glove *g, double now) {
-  int taken = 0;
-  if (!g->take_open) {
-    if (g->take_done) return 0;
-    mr_io_err err;
-    const char *path = strncmp(g->def.source, "file:", 5) == 0 ? g->def.source + 5 : g->def.source;
-    if (mr_rec_reader_open(&g->take, path, &err) != 0) {
-      snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
-      g->take_done = true;
-      return 0;
-    }
-    g->take_open = true;
-    g->counters.opens++;
-    g->last_bytes = now;
-  }
-  for (;;) {
-    if (!g->have_chunk) {
-      mr_io_err err;
-      int rc = mr_rec_reader_next(&g->take, &g->chunk_t_ns, &g->chunk, &g->chunk_len, &err);
-      if (rc != 1) {
-        /* The end, or a take cut short (a show killed mid-chunk): what was
-         * whole has been played. */
-        if (rc < 0) snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
-        g->take_done = true;
-        mr_rec_reader_close(&g->take);
-        g->take_open = false;
-        return taken;
-      }
-      g->have_chunk = true;
-    }
-    /* In whole ns, rounded as a recorder rounds `now`, so a chunk read at
-     * a frame's time plays at that frame, not the next. */
-    if (g->chunk_t_ns > (uint64_t)llround(fmax(now, 0.0) * 1e9)) return taken;
-    g->have_chunk = false;
-    g->last_bytes = now;
-    if (g->tap != NULL) g->tap(g->tap_user, now, g->chunk, g->chunk_len);
-    taken += feed(g, g->chunk, g->chunk_len, now);
-  }
+  if (ends) g->ended = true;
 }
 
 /* serial:auto: the first serial port whose glove announces itself (with
@@ -226,7 +209,12 @@ static int find_glove(mr_glove *g) {
 }
 
 static void try_open(mr_glove *g, double now) {
-  if (g->open || now < g->next_open) return;
+  if (g->ended || g->open || now < g->next_open) return;
+  if (g->give_up_at > 0 && now >= g->give_up_at) {
+    snprintf(g->last_error, sizeof g->last_error, "not back within %g s", g->def.reconnect);
+    g->ended = true;
+    return;
+  }
   if (g->is_auto && find_glove(g) != 0) {
     g->counters.open_failures++;
     g->next_open = now + g->def.retry_every;
@@ -236,17 +224,19 @@ static void try_open(mr_glove *g, double now) {
   if (mr_io_open(&g->io, g->spec, g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err) != 0) {
     g->counters.open_failures++;
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
+    g->take_error = err.status;
     g->next_open = now + g->def.retry_every;
     return;
   }
+  g->take_error = MR_IO_OK;
   g->open = true;
   g->counters.opens++;
   g->last_bytes = now;
-  /* A new connection starts a new byte stream: the decoder resynchronises
-   * on the next delimiter, its counters carry on. */
-  gp_counters keep = g->dec.c;
-  gp_decoder_init(&g->dec, GP_SPEC_HASH);
-  g->dec.c = keep;
+  g->sniffing = !g->is_take && is_stream(g);
+  g->sniffed = 0;
+  /* The decoder carries on: the loss ended any frame it held (mark_lost),
+   * so the new stream's first frame is read whole, and a glove that kept
+   * its sequence through the unplug shows what it lost meanwhile. */
 }
 
 /* Raw ADC counts to 0..1: by the glove's own calibrated range when its INFO
@@ -276,7 +266,7 @@ static void take_sample(mr_glove *g, const gp_sample *s, double now) {
   g->state = MR_GLOVE_LIVE;
 }
 
-static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
+int mr_glove_feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
   int taken = 0;
   while (n > 0) {
     gp_msg m;
@@ -284,6 +274,11 @@ static int feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
     size_t used = gp_decoder_feed(&g->dec, buf, n, &m, &ev);
     buf += used;
     n -= used;
+    if (ev != GP_EV_NONE && g->observer != NULL) {
+      bool carries = ev == GP_EV_FRAME || ev == GP_EV_FRAME_LATE || ev == GP_EV_DUPLICATE ||
+                     (ev == GP_EV_SPEC_MISMATCH && m.type == GP_INFO);
+      g->observer(g->observer_user, ev, carries ? &m : NULL, g->dec.c.bytes);
+    }
     if (ev == GP_EV_SPEC_MISMATCH) {
       g->state = MR_GLOVE_MISMATCH;
       g->mismatch_hash = g->dec.peer_known ? g->dec.peer_hash : 0;
@@ -315,13 +310,51 @@ static void follow_baud(mr_glove *g, double now) {
   try_open(g, now);
 }
 
+/* A stream's first bytes: a take's magic makes it a take (1); a part of
+ * the magic waits for more (−1); anything else is a glove's bytes, the
+ * ones held back first (0, with them fed). */
+static int sniff(mr_glove *g, const uint8_t *buf, size_t got, double now) {
+  size_t k = got < sizeof g->sniff - g->sniffed ? got : sizeof g->sniff - g->sniffed;
+  memcpy(g->sniff + g->sniffed, buf, k);
+  g->sniffed += k;
+  if (memcmp(g->sniff, MR_REC_MAGIC, g->sniffed) == 0 && g->sniffed < sizeof g->sniff && k == got)
+    return -1;
+  g->sniffing = false;
+  if (mr_rec_is_recording(g->sniff, g->sniffed)) {
+    /* The take's reader goes on from here; what came after the magic in
+     * this read is the start of its header. */
+    uint8_t head[4096 + 8];
+    memcpy(head, g->sniff, g->sniffed);
+    memcpy(head + g->sniffed, buf + k, got - k);
+    return mr_glove_take_from_stream(g, head, g->sniffed + got - k, now) == 0 ? 1 : -1;
+  }
+  size_t held = g->sniffed - k;
+  if (held > 0) {
+    if (g->tap != NULL) g->tap(g->tap_user, now, g->sniff, held);
+    mr_glove_feed(g, g->sniff, held, now);
+  }
+  return 0;
+}
+
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   if (g == NULL || !isfinite(now)) return 0;
+  if (g->ended && !g->is_take) return 0;
+  /* A listener waiting for its next peer gives up as def.reconnect says. */
+  if (g->open && g->give_up_at > 0 && now >= g->give_up_at) {
+    snprintf(g->last_error, sizeof g->last_error, "nothing came back within %g s",
+             g->def.reconnect);
+    close_source(g);
+    g->ended = true;
+    return 0;
+  }
   if (g->is_take) {
-    int taken = play_take(g, now);
+    int taken = mr_glove_take_play(g, now);
+    /* Lost only after lost_after, as a live glove: the frame that read the
+     * last chunk must take its samples, as it did live. */
     if (now - g->last_bytes > g->def.lost_after && g->state != MR_GLOVE_MISMATCH &&
         g->state != MR_GLOVE_LOST)
-      mark_lost(g, now, g->take_done ? "the take ended" : "no bytes for longer than lost_after");
+      mark_lost(g, now, g->take_done ? "the take ended" : "no bytes for longer than lost_after",
+                g->take_done);
     return taken;
   }
   try_open(g, now);
@@ -335,15 +368,22 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
     mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
     if (got > 0) {
       g->last_bytes = now;
+      g->give_up_at = 0;
+      if (g->sniffing) {
+        int k = sniff(g, buf, got, now);
+        if (k < 0) continue;
+        if (k > 0) return taken + mr_glove_take_play(g, now);
+      }
       if (g->tap != NULL) g->tap(g->tap_user, now, buf, got);
-      taken += feed(g, buf, got, now);
+      taken += mr_glove_feed(g, buf, got, now);
     }
     if (st == MR_IO_TIMEOUT) break;
     if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) {
       mark_lost(g, now,
                 st == MR_IO_EOF      ? "the stream ended"
                 : st == MR_IO_HANGUP ? "the port went away"
-                                     : err.msg);
+                                     : err.msg,
+                st == MR_IO_EOF && is_stream(g));
       return taken;
     }
     if (got < sizeof buf) break;
@@ -352,7 +392,7 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   /* With the stream off a glove sends INFO once a second, no more. */
   double quiet = g->stream_off ? fmax(g->def.lost_after, 1.5) : g->def.lost_after;
   if (now - g->last_bytes > quiet && g->state != MR_GLOVE_MISMATCH)
-    mark_lost(g, now, "no bytes for longer than lost_after");
+    mark_lost(g, now, "no bytes for longer than lost_after", false);
   return taken;
 }
 
@@ -455,4 +495,35 @@ int mr_glove_probe(const char *source, double wait_s, gp_info *info, bool *forei
   mr_io_close(&io);
   if (!found) snprintf(msg, msg_size, "%s: no glove announced itself in %.1f s", source, wait_s);
   return found;
+}
+
+void mr_glove_set_observer(mr_glove *g, mr_glove_observer_fn fn, void *user) {
+  if (g == NULL) return;
+  g->observer = fn;
+  g->observer_user = user;
+}
+
+bool mr_glove_ended(const mr_glove *g) {
+  return g != NULL && (g->ended || (g->is_take && g->take_done));
+}
+
+const char *mr_glove_io_path(const mr_glove *g) {
+  return g != NULL && g->open ? mr_io_path(&g->io) : "";
+}
+
+size_t mr_glove_unfinished(const mr_glove *g) {
+  return g != NULL && !g->dec.overflow ? g->dec.len : 0;
+}
+
+const char *mr_glove_last_error(const mr_glove *g, mr_io_status *status) {
+  if (status != NULL) *status = g != NULL ? g->take_error : MR_IO_OK;
+  return g != NULL ? g->last_error : "";
+}
+
+bool mr_glove_is_take(const mr_glove *g) {
+  return g != NULL && g->is_take;
+}
+
+uint32_t mr_glove_foreign_hash(const mr_glove *g) {
+  return g != NULL && g->dec.peer_known ? g->dec.peer_hash : 0;
 }

@@ -44,6 +44,15 @@ struct mr_glove {
   bool is_auto, have_uid;
   uint32_t uid[3];
   mr_rec_reader take;
+  mr_io_status take_error; /* the last open's or take's failure, MR_IO_OK if none */
+  bool sniffing;           /* a stream source's first bytes: is it a take? */
+  uint8_t sniff[8];
+  uint8_t *take_prefix; /* a stream take's first bytes, read by the sniff */
+  size_t sniffed;
+  bool ended;        /* the source ended, or was not back in time: no more retries */
+  double give_up_at; /* def.reconnect > 0: the end of the wait for the source */
+  mr_glove_observer_fn observer;
+  void *observer_user;
   uint64_t chunk_t_ns;
   const uint8_t *chunk;
   size_t chunk_len;
@@ -57,6 +66,14 @@ struct mr_glove {
   bool have_status;
   gp_status status;
 };
+
+/* glove.c: decodes bytes into the glove's state; how many SAMPLEs. */
+int mr_glove_feed(mr_glove *g, const uint8_t *buf, size_t n, double now);
+
+/* glove_take.c: plays what is due of a take; takes the stream the source
+ * opened on as a take whose first len bytes were read already. */
+int mr_glove_take_play(mr_glove *g, double now);
+int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, double now);
 
 /* glove_cmd.c: sends what is due and retires what timed out (each poll);
  * takes an ACK, NACK or STATUS that arrived. */
