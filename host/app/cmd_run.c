@@ -16,11 +16,23 @@
 #include "mr_scene.h"
 #include "mr_show.h"
 
-static volatile sig_atomic_t stop_asked;
+static volatile sig_atomic_t stop_asked, mappings_asked;
 
 static void on_signal(int sig) {
-  (void)sig;
-  stop_asked = 1;
+  if (sig == SIGUSR1)
+    mappings_asked++;
+  else
+    stop_asked = 1;
+}
+
+/* SIGUSR1: the next mapping (a theater box's operator sends it with
+ * `systemctl kill -s USR1`). */
+static int next_mapping(void *user) {
+  static sig_atomic_t done;
+  (void)user;
+  if (done == mappings_asked) return 0;
+  done++;
+  return 1;
 }
 
 void mr_cmd_run_usage(void) {
@@ -54,6 +66,8 @@ void mr_cmd_run_usage(void) {
          "  --hashes FILE       write each frame's time and state hash to FILE\n"
          "  --poses FILE        write each frame's time and, for each control frame,\n"
          "                      its position (m) and orientation (w x y z)\n"
+         "  --mapping NAME      start with the scene's mapping NAME (default: its\n"
+         "                      first); SIGUSR1 moves to the next one during the show\n"
          "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
          "  --present MODE      land (each frame's last step lands on its time, the\n"
          "                      paper's) or interpolate (steps at the ATS's own dt,\n"
@@ -136,12 +150,16 @@ static void summary(const mr_scene *scene, const mr_show_result *r) {
   printf("frames shown: %" PRIu64 "\n", r->frames.frames_presented);
   printf("frames skipped: %" PRIu64 "\n", r->frames.frames_skipped);
   printf("steps: %" PRIu64 "\n", r->frames.steps);
+  printf("rejected steps: %" PRIu64 "\n", r->frames.rejected);
   printf("resets: %" PRIu64 "\n", r->frames.resets);
   printf("simulated: %.3f s\n", r->frames.sim_time);
   printf("real-time factor: %.3f\n", r->frames.real_time_factor);
+  if (r->frames.dropped_time > 0)
+    printf("time given up to catch up: %.3f s\n", r->frames.dropped_time);
   printf("latency p50: %.1f ms\n", r->frames.latency_p50 * 1e3);
   printf("latency p99: %.1f ms\n", r->frames.latency_p99 * 1e3);
   printf("present: %s\n", r->interpolated ? "interpolate" : "land");
+  printf("mapping: %s\n", r->mapping);
   if (r->interpolated)
     printf("physics ahead of frames: mean %.1f ms, max %.1f ms (input lag added)\n",
            r->lead_mean * 1e3, r->lead_max * 1e3);
@@ -197,6 +215,8 @@ static int take_value(args *a, const char *opt, const char *v) {
     a->hashes = v;
   } else if (strcmp(opt, "--poses") == 0) {
     a->poses = v;
+  } else if (strcmp(opt, "--mapping") == 0) {
+    a->def.mapping = v;
   } else if (strcmp(opt, "--present") == 0) {
     if (mr_present_mode_parse(v, &a->def.present) != 0)
       return bad_usage("expected --present land or interpolate, got '%s'", v), -1;
@@ -213,8 +233,9 @@ static int take_value(args *a, const char *opt, const char *v) {
 }
 
 static int parse(int argc, char **argv, args *a) {
-  static const char *const valued[] = { "--glove",  "--policy", "-t",      "--time",    "--record",
-                                        "--replay", "--hashes", "--poses", "--present", NULL };
+  static const char *const valued[] = { "--glove",   "--policy",  "-t",       "--time",
+                                        "--record",  "--replay",  "--hashes", "--poses",
+                                        "--present", "--mapping", NULL };
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     bool takes_value = false;
@@ -293,6 +314,7 @@ int mr_cmd_run(int argc, char **argv) {
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
+  sigaction(SIGUSR1, &sa, NULL);
   if (open_outputs(&a, &st) != 0) {
     mr_scene_free(&scene);
     return MR_EXIT_FAIL;
@@ -301,7 +323,7 @@ int mr_cmd_run(int argc, char **argv) {
   mr_virtual_clock vc = { 0.0 };
   mr_clock clock = virtual_time ? mr_clock_virtual(&vc) : mr_clock_wall();
   if (virtual_time) st.quiet = 1; /* as fast as it goes: no seconds to mark */
-  mr_show_hooks hooks = { present, stop, frame_done, note, &st };
+  mr_show_hooks hooks = { present, stop, frame_done, next_mapping, note, &st };
   mr_show_result r;
   mr_scene_status rc = mr_show_run(&scene, &a.def, &clock, &hooks, &r, &err);
   if (rc == MR_SCENE_OK) summary(&scene, &r);

@@ -224,8 +224,48 @@ static void bad_sources_are_refused_by_name(void **state) {
   mr_glove_destroy(g);
 }
 
+/* An INFO whose numbers would make the calibration divide by zero or by
+ * a negative span, or shift by 40 bits: the glove falls back to the ADC's
+ * full scale, and every value stays a finite number. */
+static void an_info_that_would_make_nan_is_not_believed(void **state) {
+  (void)state;
+  port p;
+  char source[128];
+  mr_glove *g = glove_on_new_port(&p, source, sizeof source);
+  mr_glove_poll(g, 1.0, 0);
+  static const uint16_t spans[][2] = { { 2000, 2000 }, { 3000, 1000 } };
+  static const uint8_t bits[] = { 0, 40 };
+  for (int c = 0; c < 2; c++) {
+    gp_msg m;
+    memset(&m, 0, sizeof m);
+    m.type = GP_INFO;
+    m.u.info.proto_major = 1;
+    m.u.info.spec_hash = GP_SPEC_HASH;
+    m.u.info.n_channels = 5;
+    m.u.info.adc_bits = bits[c];
+    m.u.info.cal_state = GP_CAL_VALID;
+    for (int k = 0; k < 5; k++) {
+      m.u.info.cal_min[k] = spans[c][0];
+      m.u.info.cal_max[k] = spans[c][1];
+    }
+    send(&p, &m, GP_SPEC_HASH);
+    send_sample(&p, (uint16_t)(c + 1), 1000u * (uint32_t)(c + 1), 2000);
+    assert_true(poll_for_samples(g, 1.0 + c) > 0);
+    mr_glove_reading r;
+    mr_glove_latest(g, &r);
+    for (int k = 0; k < 5; k++) {
+      assert_true(isfinite(r.values[k]));
+      assert_true(fabs(r.values[k] - (2000.0 + 100 * k) / 4095.0) < 1e-12);
+    }
+  }
+  mr_glove_destroy(g);
+  unplug(&p);
+  rmdir(p.dir);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
+    cmocka_unit_test(an_info_that_would_make_nan_is_not_believed),
     cmocka_unit_test(a_live_glove_is_read_calibrated_lost_and_found_again),
     cmocka_unit_test(a_foreign_glove_is_a_spec_mismatch),
     cmocka_unit_test(bad_sources_are_refused_by_name),

@@ -255,6 +255,52 @@ static void calibrate_saves_the_range_on_the_glove(void **state) {
   free(dir);
 }
 
+/* A scene with two mappings starts on the one asked for, moves to the
+ * next on SIGUSR1 during the show and says so; a name the scene lacks is
+ * refused with the names it has. */
+static void mappings_switch_during_the_show(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300], scene[300], out[300], err[300];
+  char *text = tt_read_file(PUPPET, NULL);
+  assert_non_null(text);
+  snprintf(scene, sizeof scene, "%s", tt_path(dir, "two.yaml"));
+  FILE *f = fopen(scene, "w");
+  assert_non_null(f);
+  fprintf(f,
+          "%s\nmapping:\n  - name: walk\n  - name: head-only\n    axes:\n"
+          "      turn_y: {channel: 2}\n",
+          text);
+  fclose(f);
+  free(text);
+  pid_t gen = start_glove(dir, "4", NULL, source, sizeof source);
+  snprintf(out, sizeof out, "%s", tt_path(dir, "show.out"));
+  snprintf(err, sizeof err, "%s", tt_path(dir, "show.err"));
+  const char *argv[] = { marionette, "run",       scene,       "--glove", source, "--time",
+                         "3",        "--mapping", "head-only", "-q",      NULL };
+  pid_t show = tt_spawn(argv, out, err);
+  assert_true(show > 0);
+  usleep(1500000);
+  kill(show, SIGUSR1);
+  assert_int_equal(tt_wait(show, 30), 0);
+  char *said = tt_read_file(err, NULL), *summary = tt_read_file(out, NULL);
+  assert_non_null(said);
+  assert_non_null(summary);
+  if (strstr(said, "marionette run: mapping 'walk' (1 of 2)\n") == NULL) fail_msg("%s", said);
+  assert_non_null(strstr(summary, "mapping: walk\n"));
+  free(said);
+  free(summary);
+  tt_wait(gen, 30);
+  char *bad[] = { (char *)marionette, "run",       scene,   "--glove",
+                  "pty:/nonexistent", "--mapping", "dance", NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(bad, &o), 0);
+  assert_int_equal(o.status, 1);
+  assert_non_null(strstr(o.err, "no mapping 'dance' in the scene; it has: walk, head-only"));
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* A take recorded live replays on a virtual clock to the same state at
  * every one of its 121 frames, bit for bit. */
 static void a_take_replays_to_identical_frames(void **state) {
@@ -388,6 +434,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_stuck_channel_is_named_and_the_show_goes_on),
     cmocka_unit_test(a_silent_source_is_named_and_the_show_goes_on),
     cmocka_unit_test(calibrate_saves_the_range_on_the_glove),
+    cmocka_unit_test(mappings_switch_during_the_show),
     cmocka_unit_test(a_take_replays_to_identical_frames),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(ports_are_listed_and_auto_finds_no_glove_clearly),

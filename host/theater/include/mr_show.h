@@ -40,6 +40,9 @@ typedef struct mr_show_def {
   /* Frames landed on (the paper's) or interpolated between steps at the
    * ATS's own Δt; MR_PRESENT_SCENE (default): the scene's sim.present. */
   mr_present_mode present;
+  /* The mapping to start with, by name (the scene's `mapping:`); NULL:
+   * the first. */
+  const char *mapping;
   /* The gloves, each a source as mr_glove takes it; at least one. */
   const char *gloves[MR_SHOW_MAX_GLOVES];
   size_t n_gloves;
@@ -76,6 +79,10 @@ typedef struct mr_show_hooks {
    * world's state hash, which a replay of the take reproduces bit for bit.
    * May be NULL. */
   void (*frame_done)(void *user, const mr_show_frame *frame, uint64_t hash);
+  /* Polled once a frame: nonzero moves every control frame to the scene's
+   * next mapping (after the last, the first), the filters kept. May be
+   * NULL. */
+  int (*next_mapping)(void *user);
   /* One line for the user when a glove's channel goes bad (NaN, or stuck
    * at an end past the mapping's stuck_after: held at neutral) or
    * recovers, naming the glove, its source and the finger. May be NULL. */
@@ -100,6 +107,7 @@ typedef struct mr_show_result {
    * only from there on, so this adds to the latency counters. */
   bool interpolated;
   double lead_mean, lead_max;
+  char mapping[32]; /* the mapping in use at the end */
 } mr_show_result;
 
 /* Runs scene with def's gloves on clock until the duration passes or

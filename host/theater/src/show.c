@@ -277,8 +277,25 @@ static int step_world(show *s, double t, mr_frame_work *work) {
   return 0;
 }
 
+/* The next mapping for every frame, told once. */
+static void switch_mapping(show *s) {
+  char line[120];
+  for (size_t k = 0; k < s->n_frames; k++) {
+    mr_control *c = s->frames[k].control;
+    int n = s->scene->n_mappings > 0 ? (int)s->scene->n_mappings : 1;
+    mr_control_select(c, (mr_control_selected(c) + 1) % n);
+  }
+  int i = s->n_frames > 0 ? mr_control_selected(s->frames[0].control) : 0;
+  snprintf(line, sizeof line, "mapping '%s' (%d of %zu)",
+           s->scene->n_mappings > 0 ? s->scene->mappings[i].def.name : "default", i + 1,
+           s->scene->n_mappings > 0 ? s->scene->n_mappings : 1);
+  note(s, line);
+}
+
 static int advance(void *user, double t, mr_frame_work *work) {
   show *s = user;
+  if (s->hooks != NULL && s->hooks->next_mapping != NULL && s->hooks->next_mapping(s->hooks->user))
+    switch_mapping(s);
   read_gloves(s, t);
   if (step_world(s, t, work) != 0) return 1;
   if (s->hooks != NULL && s->hooks->frame_done != NULL) {
@@ -303,7 +320,21 @@ static void present(void *user, double t) {
 
 /* Each frame's control: the scene's mappings, or the paper's default, about
  * that frame's start pose. */
-static int make_controls(show *s) {
+static int make_controls(show *s, const char *mapping) {
+  int start = -1;
+  if (mapping != NULL) {
+    for (size_t i = 0; i < s->scene->n_mappings && start < 0; i++)
+      if (strcmp(s->scene->mappings[i].def.name, mapping) == 0) start = (int)i;
+    if (start < 0) {
+      char msg[400];
+      int n = snprintf(msg, sizeof msg, "no mapping '%.40s' in the scene; it has:", mapping);
+      for (size_t i = 0; i < s->scene->n_mappings && n > 0 && (size_t)n < sizeof msg; i++)
+        n += snprintf(msg + n, sizeof msg - (size_t)n, "%s %s", i ? "," : "",
+                      s->scene->mappings[i].def.name);
+      if (s->scene->n_mappings == 0) snprintf(msg + n, sizeof msg - (size_t)n, " only the default");
+      return fail(s, MR_SCENE_ERR_VALUE, msg), -1;
+    }
+  }
   s->n_frames = s->scene->n_frames;
   s->frames = calloc(s->n_frames ? s->n_frames : 1, sizeof *s->frames);
   if (s->frames == NULL) return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
@@ -319,6 +350,7 @@ static int make_controls(show *s) {
     char msg[200];
     if (mr_control_create(defs, n, &s->frames[k].control, msg, sizeof msg) != MR_CONTROL_OK)
       return fail(s, MR_SCENE_ERR_VALUE, msg), -1;
+    if (start >= 0) mr_control_select(s->frames[k].control, start);
   }
   return 0;
 }
@@ -353,7 +385,7 @@ static int open_parts(show *s, const mr_show_def *def) {
     s->sources[i] = def->gloves[i];
     if (open_glove(s, i, def->gloves[i], def->record[i]) != 0) return -1;
   }
-  if (make_controls(s) != 0) return -1;
+  if (make_controls(s, def->mapping) != 0) return -1;
   mr_scheduler_def sd = mr_default_scheduler_def();
   sd.policy = def->policy;
   sd.fps = def->fps > 0 ? def->fps : s->scene->fps > 0 ? s->scene->fps : 60.0;
@@ -403,6 +435,9 @@ static void gather(const show *s, mr_show_result *result) {
     mr_glove_describe(g, result->frames.sim_time, o->describe, sizeof o->describe);
   }
   for (size_t k = 0; k < 16; k++) result->glove_of[k] = k < s->n_frames ? s->frames[k].glove : -1;
+  int m = s->n_frames > 0 && s->frames[0].control ? mr_control_selected(s->frames[0].control) : 0;
+  snprintf(result->mapping, sizeof result->mapping, "%s",
+           s->scene->n_mappings > 0 ? s->scene->mappings[m].def.name : "default");
 }
 
 mr_scene_status mr_show_run(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
