@@ -54,7 +54,7 @@ typedef struct trajectory {
   size_t n;
 } trajectory;
 
-static char pty_source[2][300], truth_path[2][300], link_path[2][300];
+static char pty_source[2][320], truth_path[2][300], link_path[2][300];
 
 /* glove-gen for one hand, streaming for `secs` once marionette opens it. */
 static pid_t start_hand(const char *dir, int h, const char *hand, const char *faults) {
