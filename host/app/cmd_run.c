@@ -116,7 +116,14 @@ static void present(void *user, const mr_show_frame *f) {
          f->t, s.frames_presented, s.frames_skipped, s.steps, s.resets, s.latency_p50 * 1e3);
   for (size_t g = 0; g < f->n_gloves; g++) {
     char glove[400];
-    printf("; %s", mr_glove_describe(f->gloves[g], s.wall_time, glove, sizeof glove));
+    printf("; %s", mr_glove_describe(f->gloves[g], f->t, glove, sizeof glove));
+    /* The newest sample's delay past the fastest one seen: the link's
+     * jitter, which the clock offset leaves when it takes out the fixed
+     * part. */
+    mr_glove_reading r;
+    mr_glove_latest(f->gloves[g], &r);
+    double late = r.host_t - r.device_t - mr_glove_clock_offset(f->gloves[g]);
+    if (r.samples > 0 && isfinite(late)) printf(", %.1f ms late", late * 1e3);
   }
   printf("\n");
   fflush(stdout);
