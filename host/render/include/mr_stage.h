@@ -1,0 +1,291 @@
+/* mr_stage: what the stage shows, and where, without a line of GL.
+ *
+ * A scene's `models:`, `lights:`, `stage:` and `camera:` sections are read
+ * (host/scene) into an mr_stage_def: models bound to particles in one of
+ * the paper's four display modes (§3.3), lights, scenery, the day knob and
+ * cameras. Each frame, an mr_stage turns the particles' positions (world
+ * ids index them: scene particles first, then control points) into a draw
+ * list of poses: this is all the renderer (mr_render.h) ever sees, so the
+ * renderer never links the physics and the physics never links GL.
+ *
+ * Manners as elsewhere: definition structs from default makers, one
+ * prefix, no printing, no aborting. */
+#ifndef MR_STAGE_H
+#define MR_STAGE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "mr_pose.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define MR_STAGE_COOKIE 0x6d725374u
+enum { MR_STAGE_NAME_MAX = 48, MR_STAGE_PATH_MAX = 512 };
+
+/* Where an item starts in its scene file (0, 0: not from a file). */
+typedef struct mr_stage_pos {
+  int line, column;
+} mr_stage_pos;
+
+/* A surface. base_color and roughness are the metal-rough model (glTF);
+ * a Phong material (OBJ, 3DS, FBX) is kept as diffuse -> base_color and
+ * shininess s -> roughness sqrt(2 / (s + 2)). Colours are linear RGB(A). */
+typedef struct mr_material_def {
+  float base_color[4]; /* default (0.8, 0.8, 0.8, 1) */
+  float roughness;     /* 0..1, default 0.6 */
+  float metallic;      /* 0..1, default 0 */
+  float emissive[3];   /* default 0 */
+} mr_material_def;
+mr_material_def mr_default_material_def(void);
+
+/* The mesh a model draws: a file through the model loader, or a built-in
+ * shape of unit size (sphere and capsule radius 0.5; box and cylinder 1 m
+ * across; link shapes run from y = 0 to y = 1, see below). */
+typedef enum mr_shape {
+  MR_SHAPE_FILE = 0,
+  MR_SHAPE_SPHERE,
+  MR_SHAPE_BOX,
+  MR_SHAPE_CYLINDER, /* axis y, from y = 0 to y = 1, radius 0.5 */
+  MR_SHAPE_CAPSULE,  /* axis y, from y = 0 to y = 1, radius 0.5, caps inside */
+  MR_SHAPE_CONE      /* axis y, base at y = 0, tip at y = 1, radius 0.5 */
+} mr_shape;
+const char *mr_shape_name(mr_shape s);
+int mr_shape_parse(const char *name, mr_shape *out);
+
+/* The paper's display modes (§3.3). */
+typedef enum mr_display_mode {
+  /* A model at one particle, unturned: its origin on the particle. */
+  MR_DISPLAY_PARTICLE = 0,
+  /* A model stretched between two particles: its +y axis from y = 0 to
+   * y = 1 (after placement) is laid from the first particle to the second,
+   * and scaled along y to their distance; x and z keep their size. */
+  MR_DISPLAY_LINK,
+  /* A model oriented by three particles (a rigid group). */
+  MR_DISPLAY_RIGID,
+  /* A skinned mesh deformed by many particles (linear blend skinning). */
+  MR_DISPLAY_FREEFORM
+} mr_display_mode;
+const char *mr_display_mode_name(mr_display_mode m);
+int mr_display_mode_parse(const char *name, mr_display_mode *out);
+
+/* How a rigid-group model is turned (§3.3). */
+typedef enum mr_rigid_orient {
+  /* From the three particles' configuration: the model's axes are the
+   * frame x = unit(p1 - p0), y = unit of p2 - p0 made normal to x,
+   * z = x × y, its origin on p0. The model is authored in that frame. */
+  MR_RIGID_CONFIGURATION = 0,
+  /* From the initial orientation: the model is placed in world
+   * coordinates at the start and moves with the rotation and translation
+   * that take the three particles' start frame to their frame now. */
+  MR_RIGID_INITIAL
+} mr_rigid_orient;
+
+enum { MR_STAGE_MAX_MATERIALS = 8, MR_SKIN_MAX_INFLUENCES = 4 };
+
+typedef struct mr_model_def {
+  char name[MR_STAGE_NAME_MAX];
+  mr_shape shape;
+  char path[MR_STAGE_PATH_MAX]; /* MR_SHAPE_FILE: the model file, as the
+                                   scene resolved it (relative to the scene
+                                   file's folder) */
+  /* Placement, applied to the mesh at load: scale first, then the turn,
+   * then the move. */
+  double scale[3]; /* default (1, 1, 1) */
+  mr_pose place;   /* default identity */
+  /* The materials it can wear; materials[0] at the start. None: the
+   * file's own materials (a shape then wears the default material). The
+   * material worn can change while the show runs (mr_stage_set_material). */
+  mr_material_def materials[MR_STAGE_MAX_MATERIALS];
+  int n_materials;
+  mr_display_mode display;
+  int particles[3]; /* world ids: PARTICLE [0], LINK [0] [1], RIGID [0..2] */
+  mr_rigid_orient orient;
+  /* FREEFORM: the particles the mesh follows (world ids) and where they
+   * were when the mesh was placed (3 n, world coordinates): each vertex is
+   * bound at load to at most `influences` of the nearest, weighted by
+   * distance (mr_stage_skin_bind). The mesh's placement is in world
+   * coordinates. Both arrays belong to the def's owner. */
+  const int *bones;
+  const double *bones_rest;
+  int n_bones;
+  int influences; /* 1..MR_SKIN_MAX_INFLUENCES, default 4 */
+  bool cast_shadow; /* default true */
+  mr_stage_pos pos;
+} mr_model_def;
+mr_model_def mr_default_model_def(void);
+
+typedef struct mr_spot_def {
+  double position[3], target[3];
+  double angle_deg; /* half-angle of the cone, default 25 */
+  float color[3];   /* default white */
+  double intensity; /* default 1 */
+  mr_stage_pos pos;
+} mr_spot_def;
+mr_spot_def mr_default_spot_def(void);
+
+enum { MR_STAGE_MAX_SPOTS = 8, MR_STAGE_MAX_CAMERAS = 8 };
+
+typedef struct mr_lights_def {
+  float ambient[3];    /* default (0.25, 0.25, 0.3) at noon; the day knob dims it */
+  float sun_color[3];  /* default (1, 0.96, 0.9) */
+  double sun_intensity; /* default 1 */
+  bool shadows;        /* the sun casts shadows through a shadow map; default true */
+  int shadow_size;     /* shadow map texels a side, default 2048 */
+  mr_spot_def spots[MR_STAGE_MAX_SPOTS];
+  int n_spots;
+} mr_lights_def;
+
+/* A camera the scene names: `marionette render --camera NAME`, and the
+ * window's number keys. */
+typedef struct mr_camera_def {
+  char name[MR_STAGE_NAME_MAX];
+  double position[3], target[3];
+  double fov_deg; /* vertical, default 45 */
+  mr_stage_pos pos;
+} mr_camera_def;
+mr_camera_def mr_default_camera_def(void);
+
+/* A star of the night sky: a direction (need not be unit; y up) and a
+ * brightness 0..1. */
+typedef struct mr_star {
+  float dir[3];
+  float brightness;
+} mr_star;
+
+typedef struct mr_stage_def {
+  uint32_t cookie; /* MR_STAGE_COOKIE, set by mr_default_stage_def() */
+  mr_model_def *models; /* belongs to the def's owner */
+  size_t n_models;
+  mr_lights_def lights;
+  /* Scenery: a floor at floor_height (a checkerboard of two colours,
+   * floor_size m a side) and a backdrop wall behind the stage. */
+  bool floor;           /* default true */
+  double floor_height;  /* default 0 */
+  double floor_size;    /* default 8 */
+  float floor_color[3], floor_color2[3];
+  bool backdrop;        /* default true */
+  double backdrop_distance; /* m behind the origin along -z, default 3 */
+  float backdrop_color[3];
+  /* Day and night (§3.3: "day can turn into night at the turn of a knob").
+   * time_of_day 0..1: 0 and 1 midnight, 0.5 noon. It sets the sun's
+   * height, the sky's colour between sky_day and sky_night, and how
+   * bright the stars are. */
+  double time_of_day;   /* default 0.5 */
+  float sky_day[3], sky_night[3];
+  /* The constellations: the scene's, or none (n_stars 0, stars true): the
+   * built-in ones (mr_stage_builtin_stars). */
+  bool stars;           /* default true */
+  const mr_star *star_list; /* belongs to the def's owner */
+  size_t n_stars;
+  /* Rigging: strings as thin lines from their control point to their
+   * particle, and each control frame as lines between its points. */
+  bool show_strings;    /* default true */
+  float string_color[3];
+  const int *strings;   /* 2 n_strings world ids: from, to */
+  size_t n_strings;
+  bool show_frames;     /* default true */
+  float frame_color[3];
+  const int *frame_points; /* per control frame, its points' world ids,
+                              frame_point_count[k] of them in order */
+  const int *frame_point_count;
+  size_t n_frames;
+  /* Cameras: the orbit camera's start, and the scene's named ones. */
+  double orbit_target[3];  /* default (0, 0.6, 0) */
+  double orbit_distance;   /* default 2.5 */
+  double orbit_azimuth_deg, orbit_elevation_deg; /* default 0, 12 */
+  double fov_deg;          /* default 45 */
+  mr_camera_def cameras[MR_STAGE_MAX_CAMERAS];
+  int n_cameras;
+  /* The picture (the scene's `stage.size`): default 1280 x 720. */
+  int width, height;
+  mr_stage_pos pos;
+} mr_stage_def;
+mr_stage_def mr_default_stage_def(void);
+
+/* The built-in constellations: a few recognisable patterns and a field of
+ * faint stars, fixed (no randomness at run time), so frames are
+ * reproducible. */
+const mr_star *mr_stage_builtin_stars(size_t *count);
+
+/* ------------------------------------------------------------ draw list */
+
+/* One model drawn: its mesh as loaded (placement applied), scaled in its
+ * own axes, then moved by pose. */
+typedef struct mr_draw_item {
+  int model;       /* index into the stage's models */
+  mr_pose pose;
+  double scale[3];
+  int material;    /* index into the model's materials; -1: the file's own */
+} mr_draw_item;
+
+/* A freeform model's bones this frame: bone i moves the points bound to
+ * it by pose[i] (world at rest -> world now), and the vertices blend the
+ * moves by their weights. */
+typedef struct mr_draw_skin {
+  int model;
+  const mr_pose *bones;
+  int n_bones;
+  int material;
+} mr_draw_skin;
+
+typedef struct mr_draw_line {
+  double a[3], b[3];
+  float rgb[3];
+} mr_draw_line;
+
+typedef struct mr_draw_list {
+  const mr_draw_item *items;
+  size_t n_items;
+  const mr_draw_skin *skins;
+  size_t n_skins;
+  const mr_draw_line *lines; /* strings and control frames */
+  size_t n_lines;
+} mr_draw_list;
+
+/* ---------------------------------------------------------------- stage */
+
+typedef enum mr_stage_status {
+  MR_STAGE_OK = 0,
+  MR_STAGE_ERR_ARG = -1,   /* NULL, def not from its maker, a world id out of range */
+  MR_STAGE_ERR_VALUE = -2, /* NaN or coincident particles where a frame is needed */
+  MR_STAGE_ERR_NOMEM = -3
+} mr_stage_status;
+
+typedef struct mr_stage mr_stage;
+
+/* A stage for def over n points whose start positions are rest_xyz (3 n):
+ * the rest frames of rigid groups and skins are taken from them. def is
+ * copied, with every array it points to. msg names what is wrong. */
+mr_stage_status mr_stage_create(const mr_stage_def *def, const double *rest_xyz, size_t n,
+                                mr_stage **out, char *msg, size_t msg_size);
+void mr_stage_destroy(mr_stage *s);
+const mr_stage_def *mr_stage_get_def(const mr_stage *s);
+
+/* The draw list for points at xyz (3 n, the same n as at create). The list
+ * and what it points to belong to the stage and stay valid until the next
+ * call. Points that are not finite leave their models where they were
+ * last drawn, so a bad frame never reaches the GPU. */
+mr_stage_status mr_stage_update(mr_stage *s, const double *xyz, size_t n,
+                                const mr_draw_list **out);
+
+/* Model `model` wears its material k from now on (§3.3). */
+mr_stage_status mr_stage_set_material(mr_stage *s, size_t model, int k);
+
+/* Binds n_vertices vertices (3 n, world coordinates at rest) to the n_bones
+ * bones at bones_rest (3 n_bones): per vertex, the `influences` nearest
+ * bones, weighted by inverse square distance and normalised to sum 1 (a
+ * vertex on a bone takes it alone). Writes influences entries per vertex
+ * into index and weight (unused entries: index 0, weight 0). */
+mr_stage_status mr_stage_skin_bind(const float *vertices, size_t n_vertices,
+                                   const double *bones_rest, int n_bones, int influences,
+                                   int *index, float *weight);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MR_STAGE_H */
