@@ -9,6 +9,12 @@ PACKAGES=(
   libcmocka-dev libserialport-dev libfyaml-dev libeigen3-dev
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   qemu-system-arm clang-format groff-base
+  # The stage: an SDL2 window, OSMesa and EGL surfaceless with Mesa's
+  # software rasteriser, Assimp for models, cglm for the render maths, stb
+  # for images and the on-screen font, Xvfb for the window's tests, ffmpeg
+  # for video.
+  libsdl2-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
+  libassimp-dev libcglm-dev libstb-dev fonts-dejavu-core xvfb xauth ffmpeg
 )
 
 missing=()
