@@ -1,0 +1,23 @@
+/* The built-in shapes as meshes, and the mesh helpers the model loader
+ * shares with them. Private to mr_render. */
+#ifndef MR_RENDER_SHAPES_H
+#define MR_RENDER_SHAPES_H
+
+#include <stddef.h>
+
+#include "model.h"
+
+/* Fills out with shape s of unit size (mr_stage.h), wearing no material
+ * (the caller sets it): smooth normals, uvs (v = 0 on the texture's top
+ * row), front faces counter-clockwise seen from outside. Returns 0, or -1
+ * when s is not a built-in shape or memory runs out (out left empty). */
+int mr_shape_mesh(mr_shape s, mr_mesh *out);
+
+/* Allocates a mesh's arrays for n_vertices and n_triangles (uvs too when
+ * with_uvs). Returns 0, or -1 with the mesh left empty. */
+int mr_mesh_alloc(mr_mesh *m, size_t n_vertices, size_t n_triangles, int with_uvs);
+
+/* Frees a mesh's arrays and empties it. */
+void mr_mesh_release(mr_mesh *m);
+
+#endif

@@ -1,0 +1,109 @@
+/* The built-in shapes: their sizes, counts, normals and winding, and
+ * placement applied to them (scale, then turn, then move). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "model.h"
+#include "mr_pose.h"
+
+static mr_model_def shape_def(mr_shape s) {
+  mr_model_def d;
+  memset(&d, 0, sizeof d);
+  d.shape = s;
+  d.scale[0] = d.scale[1] = d.scale[2] = 1;
+  d.place = mr_pose_identity();
+  return d;
+}
+
+typedef struct shape_case {
+  mr_shape shape;
+  size_t vertices, triangles;
+  float lo[3], hi[3];
+} shape_case;
+
+/* 32 segments; the sphere has 16 rings, the capsule 8 per cap, the cone
+ * 4 bands; poles make fans; seams repeat a column (33 per ring). */
+static const shape_case cases[] = {
+  { MR_SHAPE_SPHERE, 17 * 33, 2 * 32 * 15, { -0.5f, -0.5f, -0.5f }, { 0.5f, 0.5f, 0.5f } },
+  { MR_SHAPE_BOX, 24, 12, { -0.5f, -0.5f, -0.5f }, { 0.5f, 0.5f, 0.5f } },
+  { MR_SHAPE_CYLINDER, 2 * 33 + 2 * 33, 64 + 2 * 32, { -0.5f, 0, -0.5f }, { 0.5f, 1, 0.5f } },
+  { MR_SHAPE_CAPSULE, 18 * 33, 17 * 64 - 64, { -0.5f, 0, -0.5f }, { 0.5f, 1, 0.5f } },
+  { MR_SHAPE_CONE, 5 * 33 + 33, 4 * 64 - 32 + 32, { -0.5f, 0, -0.5f }, { 0.5f, 1, 0.5f } },
+};
+
+static void check_shape(const shape_case *c) {
+  mr_model_def d = shape_def(c->shape);
+  mr_model m;
+  char msg[256] = "";
+  assert_int_equal(mr_model_load(&d, &m, msg, sizeof msg), 0);
+  assert_int_equal(m.n_meshes, 1);
+  const mr_mesh *mesh = &m.meshes[0];
+  assert_int_equal(mesh->n_vertices, c->vertices);
+  assert_int_equal(mesh->n_indices, 3 * c->triangles);
+  assert_non_null(mesh->uvs);
+  assert_null(mesh->texture);
+  for (int i = 0; i < 3; i++) {
+    assert_float_equal(m.bounds_min[i], c->lo[i], 1e-6);
+    assert_float_equal(m.bounds_max[i], c->hi[i], 1e-6);
+  }
+  /* The default surface until a scene gives one. */
+  assert_float_equal(mesh->material.base_color[0], 0.8, 1e-6);
+  assert_float_equal(mesh->material.roughness, 0.6, 1e-6);
+  for (size_t v = 0; v < mesh->n_vertices; v++) {
+    const float *n = &mesh->normals[3 * v];
+    assert_float_equal(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), 1.0, 1e-5);
+    assert_true(mesh->uvs[2 * v] >= 0 && mesh->uvs[2 * v] <= 1);
+    assert_true(mesh->uvs[2 * v + 1] >= 0 && mesh->uvs[2 * v + 1] <= 1);
+  }
+  /* Counter-clockwise seen from outside: every triangle's own normal
+   * (b - a) × (c - a) leans the way its corners' normals point. */
+  for (size_t t = 0; t < mesh->n_indices; t += 3) {
+    const float *a = &mesh->positions[3 * mesh->indices[t]];
+    const float *b = &mesh->positions[3 * mesh->indices[t + 1]];
+    const float *cc = &mesh->positions[3 * mesh->indices[t + 2]];
+    double e1[3], e2[3], f[3], nsum[3] = { 0, 0, 0 };
+    for (int i = 0; i < 3; i++) e1[i] = b[i] - a[i], e2[i] = cc[i] - a[i];
+    f[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    f[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    f[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    assert_true(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] > 1e-12); /* no degenerate ones */
+    for (int k = 0; k < 3; k++)
+      for (int i = 0; i < 3; i++) nsum[i] += mesh->normals[3 * mesh->indices[t + k] + i];
+    assert_true(f[0] * nsum[0] + f[1] * nsum[1] + f[2] * nsum[2] > 0);
+  }
+  mr_model_free(&m);
+  assert_null(m.meshes);
+}
+
+static void test_each_shape_has_its_counts_bounds_unit_normals_and_outward_faces(void **state) {
+  (void)state;
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_shape(&cases[i]);
+}
+
+static void test_the_sphere_is_smooth_with_normals_along_its_radius(void **state) {
+  (void)state;
+  mr_model_def d = shape_def(MR_SHAPE_SPHERE);
+  mr_model m;
+  char msg[256];
+  assert_int_equal(mr_model_load(&d, &m, msg, sizeof msg), 0);
+  const mr_mesh *mesh = &m.meshes[0];
+  for (size_t v = 0; v < mesh->n_vertices; v++)
+    for (int i = 0; i < 3; i++) {
+      assert_float_equal(mesh->normals[3 * v + i], 2 * mesh->positions[3 * v + i], 1e-5);
+    }
+  mr_model_free(&m);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(test_each_shape_has_its_counts_bounds_unit_normals_and_outward_faces),
+    cmocka_unit_test(test_the_sphere_is_smooth_with_normals_along_its_radius),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
