@@ -37,6 +37,25 @@ static const shape_case cases[] = {
   { MR_SHAPE_CONE, 5 * 33 + 33, 4 * 64 - 32 + 32, { -0.5f, 0, -0.5f }, { 0.5f, 1, 0.5f } },
 };
 
+/* Counter-clockwise seen from outside: every triangle's own normal
+ * (b - a) × (c - a) leans the way its corners' normals point. */
+static void assert_faces_outward(const mr_mesh *mesh) {
+  for (size_t t = 0; t < mesh->n_indices; t += 3) {
+    const float *a = &mesh->positions[3 * mesh->indices[t]];
+    const float *b = &mesh->positions[3 * mesh->indices[t + 1]];
+    const float *cc = &mesh->positions[3 * mesh->indices[t + 2]];
+    double e1[3], e2[3], f[3], nsum[3] = { 0, 0, 0 };
+    for (int i = 0; i < 3; i++) e1[i] = b[i] - a[i], e2[i] = cc[i] - a[i];
+    f[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    f[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    f[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    assert_true(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] > 1e-12); /* no degenerate ones */
+    for (int k = 0; k < 3; k++)
+      for (int i = 0; i < 3; i++) nsum[i] += mesh->normals[3 * mesh->indices[t + k] + i];
+    assert_true(f[0] * nsum[0] + f[1] * nsum[1] + f[2] * nsum[2] > 0);
+  }
+}
+
 static void check_shape(const shape_case *c) {
   mr_model_def d = shape_def(c->shape);
   mr_model m;
@@ -61,22 +80,7 @@ static void check_shape(const shape_case *c) {
     assert_true(mesh->uvs[2 * v] >= 0 && mesh->uvs[2 * v] <= 1);
     assert_true(mesh->uvs[2 * v + 1] >= 0 && mesh->uvs[2 * v + 1] <= 1);
   }
-  /* Counter-clockwise seen from outside: every triangle's own normal
-   * (b - a) × (c - a) leans the way its corners' normals point. */
-  for (size_t t = 0; t < mesh->n_indices; t += 3) {
-    const float *a = &mesh->positions[3 * mesh->indices[t]];
-    const float *b = &mesh->positions[3 * mesh->indices[t + 1]];
-    const float *cc = &mesh->positions[3 * mesh->indices[t + 2]];
-    double e1[3], e2[3], f[3], nsum[3] = { 0, 0, 0 };
-    for (int i = 0; i < 3; i++) e1[i] = b[i] - a[i], e2[i] = cc[i] - a[i];
-    f[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    f[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    f[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    assert_true(f[0] * f[0] + f[1] * f[1] + f[2] * f[2] > 1e-12); /* no degenerate ones */
-    for (int k = 0; k < 3; k++)
-      for (int i = 0; i < 3; i++) nsum[i] += mesh->normals[3 * mesh->indices[t + k] + i];
-    assert_true(f[0] * nsum[0] + f[1] * nsum[1] + f[2] * nsum[2] > 0);
-  }
+  assert_faces_outward(mesh);
   mr_model_free(&m);
   assert_null(m.meshes);
 }
@@ -100,10 +104,70 @@ static void test_the_sphere_is_smooth_with_normals_along_its_radius(void **state
   mr_model_free(&m);
 }
 
+/* A sphere of radius 0.5 scaled by (2, 1, 1) is the ellipsoid
+ * x² + 4 y² + 4 z² = 1: its normals are the gradient (x, 4 y, 4 z) made
+ * unit, which only the inverse transpose gives. Turned a quarter about y
+ * ((x, y, z) -> (z, y, -x)) and moved, the gradient turns with it. */
+static void test_a_stretched_turned_sphere_has_the_ellipsoids_normals(void **state) {
+  (void)state;
+  mr_model_def d = shape_def(MR_SHAPE_SPHERE);
+  const double at[3] = { 1, 2, 3 }, turn[3] = { 0, 90, 0 };
+  d.scale[0] = 2;
+  d.place = mr_pose_from_euler_deg(at, turn);
+  mr_model m;
+  char msg[256] = "";
+  assert_int_equal(mr_model_load(&d, &m, msg, sizeof msg), 0);
+  static const float lo[3] = { 0.5f, 1.5f, 2 }, hi[3] = { 1.5f, 2.5f, 4 };
+  for (int i = 0; i < 3; i++) {
+    assert_float_equal(m.bounds_min[i], lo[i], 1e-5);
+    assert_float_equal(m.bounds_max[i], hi[i], 1e-5);
+  }
+  const mr_mesh *mesh = &m.meshes[0];
+  for (size_t v = 0; v < mesh->n_vertices; v++) {
+    const float *p = &mesh->positions[3 * v], *n = &mesh->normals[3 * v];
+    /* Back in the ellipsoid's own axes: x = -(pz - 3), y = py - 2, z = px - 1. */
+    double x = -(p[2] - 3), y = p[1] - 2, z = p[0] - 1;
+    double g[3] = { 4 * z, 4 * y, -x }; /* (x, 4y, 4z) turned: (4z, 4y, -x) */
+    double len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    for (int i = 0; i < 3; i++) assert_float_equal(n[i], g[i] / len, 1e-4);
+  }
+  assert_faces_outward(mesh);
+  mr_model_free(&m);
+}
+
+/* A mirroring scale would turn the faces inside out; the loader turns
+ * their winding round so they still face out. */
+static void test_a_mirroring_scale_keeps_faces_outward(void **state) {
+  (void)state;
+  for (mr_shape s = MR_SHAPE_SPHERE; s <= MR_SHAPE_CONE; s++) {
+    mr_model_def d = shape_def(s);
+    d.scale[0] = -1;
+    d.scale[2] = 0.5;
+    mr_model m;
+    char msg[256] = "";
+    assert_int_equal(mr_model_load(&d, &m, msg, sizeof msg), 0);
+    assert_faces_outward(&m.meshes[0]);
+    mr_model_free(&m);
+  }
+}
+
+static void test_a_shape_that_is_not_built_in_is_refused(void **state) {
+  (void)state;
+  mr_model_def d = shape_def((mr_shape)99);
+  mr_model m;
+  char msg[256] = "";
+  assert_int_equal(mr_model_load(&d, &m, msg, sizeof msg), -1);
+  assert_string_equal(msg, "not a built-in shape, or out of memory");
+  assert_null(m.meshes);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_each_shape_has_its_counts_bounds_unit_normals_and_outward_faces),
     cmocka_unit_test(test_the_sphere_is_smooth_with_normals_along_its_radius),
+    cmocka_unit_test(test_a_stretched_turned_sphere_has_the_ellipsoids_normals),
+    cmocka_unit_test(test_a_mirroring_scale_keeps_faces_outward),
+    cmocka_unit_test(test_a_shape_that_is_not_built_in_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

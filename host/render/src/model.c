@@ -102,17 +102,29 @@ static uint8_t *decode_embedded(const struct aiTexture *t, int *w, int *h) {
 }
 
 /* A texture file named by the model: relative to the model's folder,
- * with any Windows separators turned round. */
-static uint8_t *load_texture_file(const char *model_path, const char *name, int *w, int *h) {
+ * with any Windows separators turned round. *why says what went wrong. */
+static uint8_t *load_texture_file(const char *model_path, const char *name, int *w, int *h,
+                                  const char **why) {
   char path[2 * MR_STAGE_PATH_MAX];
   const char *slash = strrchr(model_path, '/');
   int dir_len = (name[0] == '/' || !slash) ? 0 : (int)(slash - model_path + 1);
   int n = snprintf(path, sizeof path, "%.*s%s", dir_len, model_path, name);
-  if (n < 0 || (size_t)n >= sizeof path) return NULL;
+  if (n < 0 || (size_t)n >= sizeof path) {
+    *why = "path too long";
+    return NULL;
+  }
   for (char *p = path + dir_len; *p; p++)
     if (*p == '\\') *p = '/';
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    *why = strerror(errno);
+    return NULL;
+  }
   int comp;
-  return stbi_load(path, w, h, &comp, 4);
+  uint8_t *px = stbi_load_from_file(f, w, h, &comp, 4);
+  fclose(f);
+  if (!px) *why = stbi_failure_reason();
+  return px;
 }
 
 /* The material's base-colour (else diffuse) texture, if it has one. */
@@ -126,12 +138,16 @@ static int read_texture(const struct aiScene *sc, const struct aiMaterial *am,
     return 0;
   const struct aiTexture *t = embedded_texture(sc, name.data);
   int w = 0, h = 0;
-  uint8_t *px = t ? decode_embedded(t, &w, &h) : load_texture_file(model_path, name.data, &w, &h);
-  if (!px) {
-    const char *why = stbi_failure_reason();
-    if (!t && errno == ENOENT) why = strerror(ENOENT);
-    return fail(msg, msg_size, "texture '%s': %s", name.data, why ? why : "cannot be read");
+  const char *why = NULL;
+  uint8_t *px;
+  if (t) {
+    px = decode_embedded(t, &w, &h);
+    if (!px) why = stbi_failure_reason();
+  } else {
+    px = load_texture_file(model_path, name.data, &w, &h, &why);
   }
+  if (!px)
+    return fail(msg, msg_size, "texture '%s': %s", name.data, why ? why : "cannot be read");
   mesh->texture = px;
   mesh->texture_width = w;
   mesh->texture_height = h;
