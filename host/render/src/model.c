@@ -146,8 +146,7 @@ static int read_texture(const struct aiScene *sc, const struct aiMaterial *am,
   } else {
     px = load_texture_file(model_path, name.data, &w, &h, &why);
   }
-  if (!px)
-    return fail(msg, msg_size, "texture '%s': %s", name.data, why ? why : "cannot be read");
+  if (!px) return fail(msg, msg_size, "texture '%s': %s", name.data, why ? why : "cannot be read");
   mesh->texture = px;
   mesh->texture_width = w;
   mesh->texture_height = h;
