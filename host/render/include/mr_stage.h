@@ -211,6 +211,11 @@ mr_stage_def mr_default_stage_def(void);
  * reproducible. */
 const mr_star *mr_stage_builtin_stars(size_t *count);
 
+/* The star at azimuth (degrees from straight ahead, -z, towards +x) and
+ * elevation (degrees above the horizon; 90 overhead): a unit direction,
+ * brightness clamped to 0..1. The scene's constellations use it. */
+mr_star mr_stage_star_at(double azimuth_deg, double elevation_deg, double brightness);
+
 /* ------------------------------------------------------------ draw list */
 
 /* One model drawn: its mesh as loaded (placement applied), scaled in its
