@@ -367,6 +367,32 @@ static void test_vertices_that_are_not_numbers_are_refused(void **state) {
   (void)state;
   mr_model_def d = file_def(write_glb("nan.glb", NAN));
   expect_error(&d, "vertex 0 of mesh 0 is not a finite number");
+  d = file_def(scratch("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 nan 0\nf 1 2 3\nf 2 4 3\n"));
+  expect_error(&d, "vertex ");
+}
+
+/* A normal that is not a number costs only its shading: it becomes +y,
+ * and the model loads. */
+static void test_normals_that_are_not_numbers_become_up(void **state) {
+  (void)state;
+  mr_model_def d = file_def(scratch("nan-normals.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                                       "vn nan nan nan\nf 1//1 2//1 3//1\n"));
+  mr_model m;
+  char msg[256] = "";
+  assert_int_equal(mr_model_load(&d, &m, msg, sizeof msg), 0);
+  for (size_t v = 0; v < m.meshes[0].n_vertices; v++) {
+    assert_float_equal(m.meshes[0].normals[3 * v], 0, 0);
+    assert_float_equal(m.meshes[0].normals[3 * v + 1], 1, 0);
+    assert_float_equal(m.meshes[0].normals[3 * v + 2], 0, 0);
+  }
+  mr_model_free(&m);
+}
+
+static void test_a_path_that_fills_its_field_unended_is_refused(void **state) {
+  (void)state;
+  mr_model_def d = file_def("");
+  memset(d.path, 'a', sizeof d.path);
+  expect_error(&d, "path longer than 511 bytes");
 }
 
 static void test_a_placement_that_is_not_finite_or_flat_is_refused(void **state) {
@@ -393,6 +419,8 @@ int main(void) {
     cmocka_unit_test(test_a_model_of_lines_only_has_no_triangles),
     cmocka_unit_test(test_a_texture_that_cannot_be_read_names_it_and_why),
     cmocka_unit_test(test_vertices_that_are_not_numbers_are_refused),
+    cmocka_unit_test(test_normals_that_are_not_numbers_become_up),
+    cmocka_unit_test(test_a_path_that_fills_its_field_unended_is_refused),
     cmocka_unit_test(test_a_placement_that_is_not_finite_or_flat_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -37,6 +37,14 @@ static float clamp01(float x) {
   return x > 0 ? (x < 1 ? x : 1) : 0; /* NaN too goes to 0 */
 }
 
+/* One float of a material. Assimp's own aiGetMaterialFloat is a C99
+ * inline definition with no external one, which links only when the
+ * compiler chooses to inline it (not at -O0). */
+static int get_float(const struct aiMaterial *am, const char *key, unsigned type, unsigned index,
+                     ai_real *out) {
+  return aiGetMaterialFloatArray(am, key, type, index, out, NULL) == aiReturn_SUCCESS;
+}
+
 /* The metal-rough model when the file has it (glTF), else Phong's diffuse
  * and shininess kept as mr_stage.h says. */
 static void read_material(const struct aiMaterial *am, mr_material_def *out) {
@@ -50,14 +58,13 @@ static void read_material(const struct aiMaterial *am, mr_material_def *out) {
     out->base_color[2] = clamp01(c.b);
     out->base_color[3] = clamp01(c.a);
   }
-  if (aiGetMaterialFloat(am, AI_MATKEY_OPACITY, &f) == aiReturn_SUCCESS)
+  if (get_float(am, AI_MATKEY_OPACITY, &f))
     out->base_color[3] = clamp01((float)f) * out->base_color[3];
-  if (aiGetMaterialFloat(am, AI_MATKEY_ROUGHNESS_FACTOR, &f) == aiReturn_SUCCESS)
+  if (get_float(am, AI_MATKEY_ROUGHNESS_FACTOR, &f))
     out->roughness = clamp01((float)f);
-  else if (aiGetMaterialFloat(am, AI_MATKEY_SHININESS, &f) == aiReturn_SUCCESS && f >= 0)
+  else if (get_float(am, AI_MATKEY_SHININESS, &f) && f >= 0)
     out->roughness = clamp01((float)sqrt(2.0 / (f + 2.0)));
-  if (aiGetMaterialFloat(am, AI_MATKEY_METALLIC_FACTOR, &f) == aiReturn_SUCCESS)
-    out->metallic = clamp01((float)f);
+  if (get_float(am, AI_MATKEY_METALLIC_FACTOR, &f)) out->metallic = clamp01((float)f);
   if (aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS) {
     out->emissive[0] = clamp01(c.r);
     out->emissive[1] = clamp01(c.g);
@@ -228,12 +235,21 @@ static int load_file(const char *path, mr_model *out, char *msg, size_t msg_size
   return rc;
 }
 
-static int check_finite(const mr_model *m, char *msg, size_t msg_size) {
+/* Positions that are not numbers are refused: nothing sensible can be
+ * drawn from them. A normal that is not one (Assimp makes NaN for a
+ * triangle of no area) only loses its shading: it is set to +y. */
+static int check_finite(mr_model *m, char *msg, size_t msg_size) {
   for (size_t k = 0; k < m->n_meshes; k++) {
-    const mr_mesh *mesh = &m->meshes[k];
-    for (size_t i = 0; i < 3 * mesh->n_vertices; i++)
-      if (!isfinite(mesh->positions[i]) || !isfinite(mesh->normals[i]))
-        return fail(msg, msg_size, "vertex %zu of mesh %zu is not a finite number", i / 3, k);
+    mr_mesh *mesh = &m->meshes[k];
+    for (size_t v = 0; v < mesh->n_vertices; v++) {
+      const float *p = &mesh->positions[3 * v];
+      float *n = &mesh->normals[3 * v];
+      if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+        return fail(msg, msg_size, "vertex %zu of mesh %zu is not a finite number", v, k);
+      if (!isfinite(n[0]) || !isfinite(n[1]) || !isfinite(n[2]) ||
+          n[0] * n[0] + n[1] * n[1] + n[2] * n[2] < 1e-12f)
+        n[0] = 0, n[1] = 1, n[2] = 0;
+    }
     for (size_t i = 0; i < mesh->n_indices; i++)
       if (mesh->indices[i] >= mesh->n_vertices)
         return fail(msg, msg_size, "mesh %zu names vertex %u of %zu", k, mesh->indices[i],
@@ -295,6 +311,8 @@ int mr_model_load(const mr_model_def *def, mr_model *out, char *msg, size_t msg_
   if (!out) return fail(msg, msg_size, "no model to load into");
   memset(out, 0, sizeof *out);
   if (!def) return fail(msg, msg_size, "no model definition");
+  if (def->shape == MR_SHAPE_FILE && !memchr(def->path, '\0', sizeof def->path))
+    return fail(msg, msg_size, "path longer than %d bytes", MR_STAGE_PATH_MAX - 1);
   mr_pose pose;
   if (check_placement(def, &pose, msg, msg_size) != 0) return -1;
   int rc;
