@@ -12,7 +12,7 @@
 typedef struct mr_mesh {
   float *positions; /* 3 n_vertices */
   float *normals;   /* 3 n_vertices, unit */
-  float *uvs;       /* 2 n_vertices, or NULL */
+  float *uvs;       /* 2 n_vertices, or NULL; v = 0 on the texture's top row */
   size_t n_vertices;
   uint32_t *indices; /* 3 per triangle */
   size_t n_indices;
