@@ -29,7 +29,7 @@ typedef struct mesh_case {
 static const mesh_case meshes[] = {
   { "stick_head", { -0.1f, -0.11f, -0.1f }, { 0.1f, 0.11f, 0.1015f } },
   { "stick_torso", { -0.0295f, -0.2f, -0.0295f }, { 0.0295f, 0.2f, 0.0295f } },
-  { "humanoid_head", { -0.0864f, -0.095f, -0.0939f }, { 0.0864f, 0.102f, 0.101f } },
+  { "humanoid_head", { -0.0864f, -0.095f, -0.0955f }, { 0.0864f, 0.1006f, 0.101f } },
   { "humanoid_torso", { -0.17f, -0.26f, -0.1054f }, { 0.17f, 0.3f, 0.1054f } },
   { "dragon_head", { -0.1f, -0.09f, -0.12f }, { 0.1f, 0.1812f, 0.26f } },
   { "dragon_wing", { 0, -0.001f, -0.3194f }, { 0.45f, 0.06f, 0.12f } },

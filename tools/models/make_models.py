@@ -40,7 +40,7 @@ The meshes, their origin and size (x by y by z, metres):
                       z = -0.20, head top at y = +0.085. About 0.14 x 0.14
                       x 0.40 (the tail fans out to 0.14 across).
   bird_wing.obj       a left wing, flat in the x-z plane: root along z at
-                      x = 0 (z from +0.05 to -0.07), rounded tip at
+                      x = 0 (z from +0.05 to -0.07), tapering to a tip at
                       x = +0.25. 12 x 6 quads a side. Mirror for the right.
   ghost.obj           the ghost's cloth for the freeform display mode: a
                       bell-shaped sheet facing +z, a round head widening
@@ -229,7 +229,10 @@ def stick_torso():
 def humanoid_head():
     return [
         ellipsoid("skull", "skin", (0, 0, 0), (0.075, 0.095, 0.085)),
-        cap("hair", "hair", (0, 0.004, -0.004), (0.08, 0.098, 0.09)),
+        # The hair: the top of a slightly larger ellipsoid, tipped back so
+        # it clears the brow in front and comes down behind.
+        cap("hair", "hair", (0, 0.004, -0.004), (0.08, 0.098, 0.09), 0.38)
+        .moved(turn_x(-25, (0, 0.004, -0.004))),
         ellipsoid("nose", "skin", (0, -0.01, 0.087), (0.012, 0.02, 0.014), 10, 6),
         ellipsoid("ear_l", "skin", (0.075, 0, 0), (0.012, 0.025, 0.018), 10, 6),
         ellipsoid("ear_r", "skin", (-0.075, 0, 0), (0.012, 0.025, 0.018), 10, 6),
