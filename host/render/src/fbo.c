@@ -1,0 +1,125 @@
+/* The frame's own framebuffers: every backend draws into a multisampled
+ * one (headless contexts have no multisampled default framebuffer), which
+ * is resolved with glBlitFramebuffer into a single-sampled one, then read
+ * back or blitted to the window. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render_internal.h"
+
+static int fbo_check(mr_render *r, const char *which, char *msg, size_t msg_size) {
+  GLenum st = r->gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (st == GL_FRAMEBUFFER_COMPLETE) return 0;
+  snprintf(msg, msg_size, "the %s framebuffer is incomplete (0x%x)", which, (unsigned)st);
+  return -1;
+}
+
+int mr_fbo_create(mr_render *r, char *msg, size_t msg_size) {
+  const mr_gl *gl = &r->gl;
+  GLint max_samples = 1;
+  gl->GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  if (r->samples > max_samples) r->samples = max_samples;
+  GLsizei samples = r->samples > 1 ? r->samples : 0;
+
+  gl->GenRenderbuffers(1, &r->rb_color_ms);
+  gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_color_ms);
+  gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, r->width, r->height);
+  gl->GenRenderbuffers(1, &r->rb_depth_ms);
+  gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_depth_ms);
+  gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, r->width,
+                                     r->height);
+  gl->GenFramebuffers(1, &r->fbo_ms);
+  gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_ms);
+  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              r->rb_color_ms);
+  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->rb_depth_ms);
+  if (fbo_check(r, "multisampled", msg, msg_size) != 0) return -1;
+
+  gl->GenRenderbuffers(1, &r->rb_color_out);
+  gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_color_out);
+  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, r->width, r->height);
+  gl->GenFramebuffers(1, &r->fbo_out);
+  gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_out);
+  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              r->rb_color_out);
+  if (fbo_check(r, "resolve", msg, msg_size) != 0) return -1;
+  gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+  return 0;
+}
+
+void mr_fbo_destroy(mr_render *r) {
+  const mr_gl *gl = &r->gl;
+  if (r->fbo_ms) gl->DeleteFramebuffers(1, &r->fbo_ms);
+  if (r->fbo_out) gl->DeleteFramebuffers(1, &r->fbo_out);
+  if (r->rb_color_ms) gl->DeleteRenderbuffers(1, &r->rb_color_ms);
+  if (r->rb_depth_ms) gl->DeleteRenderbuffers(1, &r->rb_depth_ms);
+  if (r->rb_color_out) gl->DeleteRenderbuffers(1, &r->rb_color_out);
+  r->fbo_ms = r->fbo_out = r->rb_color_ms = r->rb_depth_ms = r->rb_color_out = 0;
+}
+
+void mr_fbo_bind_draw(mr_render *r) {
+  r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->fbo_ms);
+  r->gl.Viewport(0, 0, r->width, r->height);
+}
+
+void mr_fbo_resolve(mr_render *r) {
+  const mr_gl *gl = &r->gl;
+  gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
+  gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_out);
+  gl->BlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
+  gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+/* Reads the bound read framebuffer's w x h as RGB, top row first (GL's
+ * rows run bottom up). */
+static void read_rgb_flipped(mr_render *r, int w, int h, uint8_t *rgb) {
+  const mr_gl *gl = &r->gl;
+  uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
+  if (!rgba) return;
+  gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  for (int y = 0; y < h; y++) {
+    const uint8_t *src = rgba + (size_t)(h - 1 - y) * (size_t)w * 4;
+    uint8_t *dst = rgb + (size_t)y * (size_t)w * 3;
+    for (int x = 0; x < w; x++) memcpy(dst + 3 * x, src + 4 * x, 3);
+  }
+  free(rgba);
+}
+
+void mr_fbo_read_rgb(mr_render *r, uint8_t *rgb) {
+  r->gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_out);
+  read_rgb_flipped(r, r->width, r->height, rgb);
+  r->gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+/* The frame scaled to fit the window, its aspect kept, black around. */
+void mr_fbo_blit_to_window(mr_render *r, int w, int h) {
+  const mr_gl *gl = &r->gl;
+  gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  gl->DrawBuffer(GL_BACK);
+  gl->Viewport(0, 0, w, h);
+  gl->ClearColor(0, 0, 0, 1);
+  gl->Clear(GL_COLOR_BUFFER_BIT);
+  double sx = (double)w / r->width, sy = (double)h / r->height;
+  double s = sx < sy ? sx : sy;
+  int dw = (int)(r->width * s + 0.5), dh = (int)(r->height * s + 0.5);
+  int x0 = (w - dw) / 2, y0 = (h - dh) / 2;
+  gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_out);
+  gl->BlitFramebuffer(0, 0, r->width, r->height, x0, y0, x0 + dw, y0 + dh, GL_COLOR_BUFFER_BIT,
+                      dw == r->width && dh == r->height ? GL_NEAREST : GL_LINEAR);
+  gl->BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+int mr_render_read_window_rgb(mr_render *r, uint8_t *rgb, size_t size, int *w, int *h) {
+  if (!r || r->backend != MR_RENDER_WINDOW || !r->drawn) return -1;
+  if (r->ops->make_current(r) != 0) return -1;
+  mr_sdl_drawable_size(r, w, h);
+  if ((size_t)*w * (size_t)*h * 3 > size) return -1;
+  mr_fbo_blit_to_window(r, *w, *h);
+  r->gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  r->gl.ReadBuffer(GL_BACK);
+  read_rgb_flipped(r, *w, *h, rgb);
+  return 0;
+}

@@ -1,0 +1,287 @@
+/* Meshes on the GPU: each model of the stage loaded once at create
+ * (mr_model_load) and uploaded, with, for a freeform model, each vertex's
+ * bones and weights (mr_stage_skin_bind); the floor and the backdrop are
+ * meshes too. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "model.h"
+#include "render_internal.h"
+
+enum { BUF_POS, BUF_NORMAL, BUF_UV, BUF_BONES, BUF_WEIGHTS, BUF_INDEX };
+
+static void upload_floats(mr_render *r, mr_gpu_mesh *g, int slot, const float *data, size_t n,
+                          int per) {
+  const mr_gl *gl = &r->gl;
+  gl->GenBuffers(1, &g->buffers[slot]);
+  gl->BindBuffer(GL_ARRAY_BUFFER, g->buffers[slot]);
+  gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(n * (size_t)per * sizeof(float)), data,
+                 GL_STATIC_DRAW);
+  gl->VertexAttribPointer((GLuint)slot, per, GL_FLOAT, GL_FALSE, 0, NULL);
+  gl->EnableVertexAttribArray((GLuint)slot);
+}
+
+static void upload_texture(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m) {
+  const mr_gl *gl = &r->gl;
+  gl->GenTextures(1, &g->texture);
+  gl->BindTexture(GL_TEXTURE_2D, g->texture);
+  gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  /* The loader's rows run top first; glTF and OBJ texture coordinates put
+   * v = 0 at the top row too, so the rows go up as they come. */
+  gl->TexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, m->texture_width, m->texture_height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, m->texture);
+  gl->GenerateMipmap(GL_TEXTURE_2D);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+}
+
+/* A mesh's buffers; bones and weights are 4 per vertex, or NULL. */
+static void upload_mesh(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m, const int *bones,
+                        const float *weights) {
+  const mr_gl *gl = &r->gl;
+  gl->GenVertexArrays(1, &g->vao);
+  gl->BindVertexArray(g->vao);
+  upload_floats(r, g, BUF_POS, m->positions, m->n_vertices, 3);
+  upload_floats(r, g, BUF_NORMAL, m->normals, m->n_vertices, 3);
+  if (m->uvs) upload_floats(r, g, BUF_UV, m->uvs, m->n_vertices, 2);
+  if (bones) {
+    gl->GenBuffers(1, &g->buffers[BUF_BONES]);
+    gl->BindBuffer(GL_ARRAY_BUFFER, g->buffers[BUF_BONES]);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->n_vertices * 4 * sizeof(int)), bones,
+                   GL_STATIC_DRAW);
+    gl->VertexAttribIPointer(BUF_BONES, 4, GL_INT, 0, NULL);
+    gl->EnableVertexAttribArray(BUF_BONES);
+    upload_floats(r, g, BUF_WEIGHTS, weights, m->n_vertices, 4);
+  }
+  gl->GenBuffers(1, &g->buffers[BUF_INDEX]);
+  gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->buffers[BUF_INDEX]);
+  gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m->n_indices * sizeof(uint32_t)), m->indices,
+                 GL_STATIC_DRAW);
+  g->n_indices = (GLsizei)m->n_indices;
+  gl->BindVertexArray(0);
+  g->material = m->material;
+  if (m->texture && m->uvs) upload_texture(r, g, m);
+}
+
+static void mesh_free(mr_render *r, mr_gpu_mesh *g) {
+  const mr_gl *gl = &r->gl;
+  for (int i = 0; i < 6; i++)
+    if (g->buffers[i]) gl->DeleteBuffers(1, &g->buffers[i]);
+  if (g->vao) gl->DeleteVertexArrays(1, &g->vao);
+  if (g->texture) gl->DeleteTextures(1, &g->texture);
+  memset(g, 0, sizeof *g);
+}
+
+/* Each vertex's bones: `influences` nearest, padded to 4 with weight 0. */
+static int skin_mesh(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m, const mr_model_def *def) {
+  int k = def->influences < 1 ? 1 : def->influences;
+  if (k > MR_SKIN_MAX_INFLUENCES) k = MR_SKIN_MAX_INFLUENCES;
+  size_t n = m->n_vertices;
+  int *idx = calloc(n * (size_t)k, sizeof *idx), *idx4 = calloc(n * 4, sizeof *idx4);
+  float *w = calloc(n * (size_t)k, sizeof *w), *w4 = calloc(n * 4, sizeof *w4);
+  int rc = -1;
+  if (idx && idx4 && w && w4 &&
+      mr_stage_skin_bind(m->positions, n, def->bones_rest, def->n_bones, k, idx, w) ==
+          MR_STAGE_OK) {
+    for (size_t v = 0; v < n; v++) {
+      for (int j = 0; j < k; j++) {
+        idx4[v * 4 + (size_t)j] = idx[v * (size_t)k + (size_t)j];
+        w4[v * 4 + (size_t)j] = w[v * (size_t)k + (size_t)j];
+      }
+    }
+    upload_mesh(r, g, m, idx4, w4);
+    rc = 0;
+  }
+  free(idx);
+  free(idx4);
+  free(w);
+  free(w4);
+  return rc;
+}
+
+static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
+                        const mr_model_def *def, char *why, size_t why_size) {
+  gm->meshes = calloc(model->n_meshes ? model->n_meshes : 1, sizeof *gm->meshes);
+  if (!gm->meshes) {
+    snprintf(why, why_size, "out of memory");
+    return -1;
+  }
+  gm->n_meshes = model->n_meshes;
+  gm->skinned = def->display == MR_DISPLAY_FREEFORM;
+  gm->cast_shadow = def->cast_shadow;
+  gm->n_bones = def->n_bones;
+  gm->n_materials = def->n_materials;
+  memcpy(gm->materials, def->materials, sizeof gm->materials);
+  for (size_t i = 0; i < model->n_meshes; i++) {
+    if (!gm->skinned) {
+      upload_mesh(r, &gm->meshes[i], &model->meshes[i], NULL, NULL);
+    } else if (!def->bones_rest || def->n_bones < 1 ||
+               skin_mesh(r, &gm->meshes[i], &model->meshes[i], def) != 0) {
+      snprintf(why, why_size, "cannot bind the mesh to its %d bones", def->n_bones);
+      return -1;
+    }
+  }
+  return 0;
+}
+
+/* "SCENE:LINE:COLUMN: model 'NAME': PATH: why". */
+static void model_error(char *msg, size_t msg_size, const char *scene_path, const mr_model_def *def,
+                        const char *why) {
+  const char *what = def->shape == MR_SHAPE_FILE ? def->path : mr_shape_name(def->shape);
+  if (scene_path && def->pos.line > 0)
+    snprintf(msg, msg_size, "%s:%d:%d: model '%s': %s: %s", scene_path, def->pos.line,
+             def->pos.column, def->name, what, why);
+  else if (scene_path)
+    snprintf(msg, msg_size, "%s: model '%s': %s: %s", scene_path, def->name, what, why);
+  else
+    snprintf(msg, msg_size, "model '%s': %s: %s", def->name, what, why);
+}
+
+/* A flat rectangle: centre c, half-extents along unit axes u and v,
+ * facing n. */
+static void upload_quad(mr_render *r, mr_gpu_mesh *g, const float c[3], const float u[3],
+                        const float v[3], const float n[3]) {
+  float pos[12], nor[12];
+  const float su[4] = { -1, 1, 1, -1 }, sv[4] = { -1, -1, 1, 1 };
+  for (int i = 0; i < 4; i++) {
+    for (int k = 0; k < 3; k++) {
+      pos[3 * i + k] = c[k] + su[i] * u[k] + sv[i] * v[k];
+      nor[3 * i + k] = n[k];
+    }
+  }
+  uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+  mr_mesh m;
+  memset(&m, 0, sizeof m);
+  m.positions = pos;
+  m.normals = nor;
+  m.n_vertices = 4;
+  m.indices = idx;
+  m.n_indices = 6;
+  m.material = mr_default_material_def();
+  upload_mesh(r, g, &m, NULL, NULL);
+}
+
+/* The floor, floor_size a side at floor_height; the backdrop, a wall as
+ * wide as the floor and 1.6 m tall, backdrop_distance behind the origin,
+ * low enough that the sky shows above it from the orbit camera. */
+static void scenery_create(mr_render *r, const mr_stage_def *s) {
+  const float h = (float)(s->floor_size * 0.5);
+  if (s->floor) {
+    const float c[3] = { 0, (float)s->floor_height, 0 }, u[3] = { h, 0, 0 }, v[3] = { 0, 0, h },
+                n[3] = { 0, 1, 0 };
+    upload_quad(r, &r->floor, c, u, v, n);
+  }
+  if (s->backdrop) {
+    const float half_h = 0.8f;
+    const float c[3] = { 0, (float)s->floor_height + half_h, (float)-s->backdrop_distance },
+                u[3] = { h, 0, 0 }, v[3] = { 0, half_h, 0 }, n[3] = { 0, 0, 1 };
+    upload_quad(r, &r->backdrop, c, u, v, n);
+  }
+}
+
+static int bone_texture_create(mr_render *r, const mr_stage_def *stage, char *msg,
+                               size_t msg_size) {
+  GLint max_side = 0;
+  r->gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+  for (size_t i = 0; i < stage->n_models; i++) {
+    const mr_model_def *d = &stage->models[i];
+    if (d->display == MR_DISPLAY_FREEFORM && d->n_bones > max_side) {
+      model_error(msg, msg_size, NULL, d, "more bones than a texture holds");
+      return -1;
+    }
+  }
+  r->gl.GenTextures(1, &r->bone_tex);
+  r->gl.BindTexture(GL_TEXTURE_2D, r->bone_tex);
+  r->gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  r->gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  return 0;
+}
+
+int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_path, char *msg,
+                     size_t msg_size, mr_render_status *status) {
+  *status = MR_RENDER_ERR_GL;
+  if (bone_texture_create(r, stage, msg, msg_size) != 0) return -1;
+  scenery_create(r, stage);
+  r->models = calloc(stage->n_models ? stage->n_models : 1, sizeof *r->models);
+  if (!r->models) {
+    *status = MR_RENDER_ERR_NOMEM;
+    snprintf(msg, msg_size, "out of memory");
+    return -1;
+  }
+  r->n_models = stage->n_models;
+  for (size_t i = 0; i < stage->n_models; i++) {
+    const mr_model_def *def = &stage->models[i];
+    mr_model model;
+    char why[384] = "";
+    memset(&model, 0, sizeof model);
+    if (mr_model_load(def, &model, why, sizeof why) != 0) {
+      *status = MR_RENDER_ERR_MODEL;
+      model_error(msg, msg_size, scene_path, def, why);
+      return -1;
+    }
+    int rc = upload_model(r, &r->models[i], &model, def, why, sizeof why);
+    mr_model_free(&model);
+    if (rc != 0) {
+      *status = MR_RENDER_ERR_MODEL;
+      model_error(msg, msg_size, scene_path, def, why);
+      return -1;
+    }
+  }
+  return 0;
+}
+
+void mr_meshes_destroy(mr_render *r) {
+  for (size_t i = 0; i < r->n_models; i++) {
+    for (size_t k = 0; k < r->models[i].n_meshes; k++) mesh_free(r, &r->models[i].meshes[k]);
+    free(r->models[i].meshes);
+  }
+  free(r->models);
+  r->models = NULL;
+  r->n_models = 0;
+  mesh_free(r, &r->floor);
+  mesh_free(r, &r->backdrop);
+  if (r->bone_tex) r->gl.DeleteTextures(1, &r->bone_tex);
+  r->bone_tex = 0;
+}
+
+void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m) {
+  if (!m->vao) return;
+  r->gl.BindVertexArray(m->vao);
+  r->gl.DrawElements(GL_TRIANGLES, m->n_indices, GL_UNSIGNED_INT, NULL);
+  r->gl.BindVertexArray(0);
+}
+
+/* mr_pose (double, w x y z) to a cglm matrix (float; cglm's quaternions
+ * are x y z w). */
+static void pose_matrix(const mr_pose *p, mat4 out) {
+  versor q;
+  glm_quat_init(q, (float)p->orientation[1], (float)p->orientation[2], (float)p->orientation[3],
+                (float)p->orientation[0]);
+  glm_quat_mat4(q, out);
+  out[3][0] = (float)p->position[0];
+  out[3][1] = (float)p->position[1];
+  out[3][2] = (float)p->position[2];
+}
+
+void mr_item_matrix(const mr_draw_item *item, mat4 out) {
+  pose_matrix(&item->pose, out);
+  vec3 s = { (float)item->scale[0], (float)item->scale[1], (float)item->scale[2] };
+  glm_scale(out, s);
+}
+
+void mr_bones_upload(mr_render *r, const mr_draw_skin *skin) {
+  float *data = malloc((size_t)skin->n_bones * 16 * sizeof(float));
+  if (!data) return;
+  for (int i = 0; i < skin->n_bones; i++) {
+    mat4 m;
+    pose_matrix(&skin->bones[i], m);
+    memcpy(data + 16 * i, m, sizeof m);
+  }
+  r->gl.BindTexture(GL_TEXTURE_2D, r->bone_tex);
+  r->gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  r->gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 4, skin->n_bones, 0, GL_RGBA, GL_FLOAT, data);
+  free(data);
+}

@@ -1,0 +1,173 @@
+/* The renderer's life: a backend chosen and started, the GL objects made,
+ * and the frame handed out (read back, or shown in the window). What a
+ * frame holds is drawn in draw.c. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render_internal.h"
+
+static const mr_backend_ops *backend_ops(mr_render_backend b) {
+  switch (b) {
+  case MR_RENDER_WINDOW:
+    return &mr_backend_sdl_ops;
+  case MR_RENDER_OSMESA:
+    return &mr_backend_osmesa_ops;
+  case MR_RENDER_EGL:
+    return &mr_backend_egl_ops;
+  default:
+    return NULL;
+  }
+}
+
+/* AUTO: a window when a display is there (and headless was not asked),
+ * else EGL, else OSMesa. Returns how many backends to try, in order. */
+static int backend_order(const mr_render_def *def, mr_render_backend order[3]) {
+  if (def->backend != MR_RENDER_AUTO) {
+    order[0] = def->backend;
+    return 1;
+  }
+  int n = 0;
+  const char *x11 = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
+  if (!def->headless && ((x11 && *x11) || (wl && *wl))) order[n++] = MR_RENDER_WINDOW;
+  order[n++] = MR_RENDER_EGL;
+  order[n++] = MR_RENDER_OSMESA;
+  return n;
+}
+
+/* Starts the first backend that will; msg lists why each one before it
+ * failed. */
+static int backend_start(mr_render *r, const mr_render_def *def, char *msg, size_t msg_size) {
+  mr_render_backend order[3];
+  int n = backend_order(def, order);
+  size_t used = 0;
+  msg[0] = '\0';
+  for (int i = 0; i < n; i++) {
+    const mr_backend_ops *ops = backend_ops(order[i]);
+    char why[256] = "";
+    if (ops && ops->start(r, def, why, sizeof why) == 0) {
+      r->ops = ops;
+      r->backend = order[i];
+      return 0;
+    }
+    if (!ops) snprintf(why, sizeof why, "no such backend");
+    int k = snprintf(msg + used, msg_size - used, "%s%s: %s",
+                     i ? "; " : "no backend started: ", mr_render_backend_name(order[i]), why);
+    if (k > 0 && used + (size_t)k < msg_size) used += (size_t)k;
+  }
+  return -1;
+}
+
+static void describe(mr_render *r) {
+  const char *renderer = (const char *)r->gl.GetString(GL_RENDERER);
+  const char *version = (const char *)r->gl.GetString(GL_VERSION);
+  snprintf(r->description, sizeof r->description, "%s, OpenGL %s", renderer ? renderer : "?",
+           version ? version : "?");
+}
+
+/* Every GL object the renderer keeps, made once. */
+static mr_render_status gl_objects_create(mr_render *r, const mr_render_def *def,
+                                          const mr_stage_def *stage, const char *scene_path,
+                                          char *msg, size_t msg_size) {
+  r->gl.Disable(GL_DITHER);
+  if (mr_fbo_create(r, msg, msg_size) != 0 || mr_shaders_create(r, msg, msg_size) != 0 ||
+      mr_shadow_create(r, msg, msg_size) != 0 || mr_sky_create(r, msg, msg_size) != 0 ||
+      mr_lines_create(r) != 0)
+    return MR_RENDER_ERR_GL;
+  if (mr_text_create(r, def->font_path, msg, msg_size) != 0) return MR_RENDER_ERR_ARG;
+  mr_render_status st = MR_RENDER_ERR_GL;
+  if (mr_meshes_create(r, stage, scene_path, msg, msg_size, &st) != 0) return st;
+  return r->gl.GetError() == GL_NO_ERROR ? MR_RENDER_OK : MR_RENDER_ERR_GL;
+}
+
+mr_render_status mr_render_create(const mr_render_def *def, const mr_stage_def *stage,
+                                  const char *scene_path, mr_render **out, char *msg,
+                                  size_t msg_size) {
+  char scratch[8];
+  if (!msg || msg_size == 0) {
+    msg = scratch;
+    msg_size = sizeof scratch;
+  }
+  if (out) *out = NULL;
+  if (!def || def->cookie != MR_RENDER_COOKIE || !stage || stage->cookie != MR_STAGE_COOKIE ||
+      !out) {
+    snprintf(msg, msg_size, "mr_render_create: a def not from its default maker, or NULL");
+    return MR_RENDER_ERR_ARG;
+  }
+  mr_render *r = calloc(1, sizeof *r);
+  if (!r) {
+    snprintf(msg, msg_size, "out of memory");
+    return MR_RENDER_ERR_NOMEM;
+  }
+  r->stage = *stage;
+  r->width = def->width > 0 ? def->width : (stage->width > 0 ? stage->width : 1280);
+  r->height = def->height > 0 ? def->height : (stage->height > 0 ? stage->height : 720);
+  r->samples = def->samples > 0 ? def->samples : 1;
+  if (backend_start(r, def, msg, msg_size) != 0) {
+    free(r);
+    return MR_RENDER_ERR_BACKEND;
+  }
+  describe(r);
+  mr_render_status st = gl_objects_create(r, def, stage, scene_path, msg, msg_size);
+  if (st != MR_RENDER_OK) {
+    if (st == MR_RENDER_ERR_GL && !msg[0]) snprintf(msg, msg_size, "a GL call failed at create");
+    mr_render_destroy(r);
+    return st;
+  }
+  *out = r;
+  return MR_RENDER_OK;
+}
+
+void mr_render_destroy(mr_render *r) {
+  if (!r) return;
+  if (r->ops && r->ops->make_current(r) == 0) {
+    mr_meshes_destroy(r);
+    mr_text_destroy(r);
+    mr_lines_destroy(r);
+    mr_sky_destroy(r);
+    mr_shadow_destroy(r);
+    mr_shaders_destroy(r);
+    mr_fbo_destroy(r);
+  }
+  if (r->ops) r->ops->stop(r);
+  free(r);
+}
+
+mr_render_backend mr_render_backend_of(const mr_render *r) {
+  return r ? r->backend : MR_RENDER_AUTO;
+}
+
+const char *mr_render_gl_description(const mr_render *r) {
+  return r ? r->description : "";
+}
+
+void mr_render_size(const mr_render *r, int *width, int *height) {
+  if (width) *width = r ? r->width : 0;
+  if (height) *height = r ? r->height : 0;
+}
+
+mr_render_status mr_render_read_rgb(mr_render *r, uint8_t *rgb, size_t size) {
+  if (!r || !rgb || size < (size_t)r->width * (size_t)r->height * 3) return MR_RENDER_ERR_ARG;
+  if (r->ops->make_current(r) != 0) return MR_RENDER_ERR_GL;
+  mr_fbo_read_rgb(r, rgb);
+  return r->gl.GetError() == GL_NO_ERROR ? MR_RENDER_OK : MR_RENDER_ERR_GL;
+}
+
+void mr_render_present(mr_render *r) {
+  if (!r || r->backend != MR_RENDER_WINDOW || r->ops->make_current(r) != 0) return;
+  int w = 0, h = 0;
+  mr_sdl_drawable_size(r, &w, &h);
+  if (w > 0 && h > 0) mr_fbo_blit_to_window(r, w, h);
+  mr_sdl_swap(r);
+}
+
+mr_render_status mr_render_set_fullscreen(mr_render *r, bool on) {
+  if (!r) return MR_RENDER_ERR_ARG;
+  if (r->backend != MR_RENDER_WINDOW) return MR_RENDER_OK;
+  return mr_sdl_set_fullscreen(r, on) == 0 ? MR_RENDER_OK : MR_RENDER_ERR_BACKEND;
+}
+
+int mr_render_poll(mr_render *r, mr_event *ev) {
+  if (!r || !ev || r->backend != MR_RENDER_WINDOW) return 0;
+  return mr_sdl_poll(r, ev);
+}

@@ -1,0 +1,151 @@
+/* The renderer's insides, shared by its files (never by callers). */
+#ifndef MR_RENDER_INTERNAL_H
+#define MR_RENDER_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cglm/cglm.h>
+
+#include "gl.h"
+#include "mr_render.h"
+
+typedef struct mr_render mr_render;
+
+/* A backend: starts a context (and a window), makes it current, shows a
+ * frame, stops. start fills r->gl through its get-proc-address. */
+typedef struct mr_backend_ops {
+  mr_render_backend kind;
+  int (*start)(mr_render *r, const mr_render_def *def, char *msg, size_t msg_size);
+  int (*make_current)(mr_render *r);
+  void (*stop)(mr_render *r);
+} mr_backend_ops;
+
+extern const mr_backend_ops mr_backend_osmesa_ops;
+extern const mr_backend_ops mr_backend_egl_ops;
+extern const mr_backend_ops mr_backend_sdl_ops;
+
+/* The window backend's extras (backend_sdl.c). */
+void mr_sdl_swap(mr_render *r);
+void mr_sdl_drawable_size(mr_render *r, int *w, int *h);
+int mr_sdl_set_fullscreen(mr_render *r, bool on);
+int mr_sdl_poll(mr_render *r, mr_event *ev);
+
+/* One mesh on the GPU. Attribute slots: 0 position, 1 normal, 2 uv,
+ * 3 bone indices (ivec4), 4 bone weights (vec4). */
+typedef struct mr_gpu_mesh {
+  GLuint vao, buffers[6];
+  GLsizei n_indices;
+  GLuint texture;           /* base colour, 0: none */
+  mr_material_def material; /* the file's own */
+} mr_gpu_mesh;
+
+typedef struct mr_gpu_model {
+  mr_gpu_mesh *meshes;
+  size_t n_meshes;
+  mr_material_def materials[MR_STAGE_MAX_MATERIALS];
+  int n_materials;
+  bool skinned, cast_shadow;
+  int n_bones;
+} mr_gpu_model;
+
+/* What one frame is drawn with, worked out once per draw (draw.c). */
+typedef struct mr_frame {
+  mat4 view, proj, view_proj, light_vp;
+  vec3 eye, sun_dir, sun_color, ambient, sky;
+  float day;    /* 1 in daylight, 0 at night */
+  bool shadows; /* the shadow map holds this frame's sun */
+} mr_frame;
+
+struct mr_text; /* text.c */
+
+struct mr_render {
+  mr_render_backend backend;
+  const mr_backend_ops *ops;
+  void *bk; /* the backend's own state */
+  mr_gl gl;
+  int width, height, samples;
+  char description[256];
+  mr_stage_def stage; /* a copy; its pointers are not used after create */
+  /* The frame's targets (fbo.c): multisampled, then resolved. */
+  GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out;
+  bool drawn;
+  /* Programs (shaders.c). */
+  GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text;
+  /* The sun's shadow map (shadow.c). */
+  GLuint shadow_fbo, shadow_tex;
+  int shadow_size;
+  /* Meshes (meshes.c). */
+  mr_gpu_model *models;
+  size_t n_models;
+  mr_gpu_mesh floor, backdrop;
+  GLuint bone_tex;
+  /* Stars and lines (sky.c, lines.c). */
+  GLuint star_vao, star_vbo, line_vao, line_vbo;
+  GLsizei n_stars;
+  struct mr_text *text;
+};
+
+/* fbo.c */
+int mr_fbo_create(mr_render *r, char *msg, size_t msg_size);
+void mr_fbo_destroy(mr_render *r);
+void mr_fbo_bind_draw(mr_render *r);
+void mr_fbo_resolve(mr_render *r);
+void mr_fbo_read_rgb(mr_render *r, uint8_t *rgb);
+/* Window: the last frame blitted into the window's back buffer. */
+void mr_fbo_blit_to_window(mr_render *r, int w, int h);
+
+/* shaders.c */
+int mr_shaders_create(mr_render *r, char *msg, size_t msg_size);
+void mr_shaders_destroy(mr_render *r);
+/* Uniform setters by name, on the program in use. */
+void mr_uniform_i(mr_render *r, GLuint prog, const char *name, int v);
+void mr_uniform_f(mr_render *r, GLuint prog, const char *name, float v);
+void mr_uniform_v3(mr_render *r, GLuint prog, const char *name, const float *v);
+void mr_uniform_v4(mr_render *r, GLuint prog, const char *name, const float *v);
+void mr_uniform_m4(mr_render *r, GLuint prog, const char *name, mat4 m);
+
+/* meshes.c */
+int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_path, char *msg,
+                     size_t msg_size, mr_render_status *status);
+void mr_meshes_destroy(mr_render *r);
+void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m);
+/* The model matrix of a draw item: scale, then pose. */
+void mr_item_matrix(const mr_draw_item *item, mat4 out);
+/* Uploads a skin's bone matrices into the bone texture. */
+void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
+
+/* scene.c: the lit scene, and the shadow pass's casters. */
+void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f);
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, GLuint prog);
+
+/* shadow.c */
+int mr_shadow_create(mr_render *r, char *msg, size_t msg_size);
+void mr_shadow_destroy(mr_render *r);
+void mr_shadow_draw(mr_render *r, const mr_draw_list *list, mr_frame *f);
+
+/* sky.c */
+void mr_sky_light(const mr_stage_def *s, double time_of_day, mr_frame *f);
+int mr_sky_create(mr_render *r, char *msg, size_t msg_size);
+void mr_sky_destroy(mr_render *r);
+void mr_sky_draw_stars(mr_render *r, const mr_frame *f);
+/* Linear to sRGB, as the shaders do it. */
+float mr_srgb(float linear);
+
+/* lines.c */
+int mr_lines_create(mr_render *r);
+void mr_lines_destroy(mr_render *r);
+void mr_lines_draw(mr_render *r, const mr_draw_line *lines, size_t n, const mr_frame *f);
+
+/* text.c */
+int mr_text_create(mr_render *r, const char *font_path, char *msg, size_t msg_size);
+void mr_text_destroy(mr_render *r);
+void mr_text_draw(mr_render *r, const char *const *lines, size_t n);
+
+/* For tests of the window path: the last frame as the window shows it
+ * (blitted into its back buffer and read from there), RGB, top row first,
+ * at the window's drawable size (w, h). -1 when not a window. */
+int mr_render_read_window_rgb(mr_render *r, uint8_t *rgb, size_t size, int *w, int *h);
+
+#endif

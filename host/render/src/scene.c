@@ -1,0 +1,143 @@
+/* The lit scene: floor, backdrop, the draw list's items and skins, each
+ * wearing its material under ambient, sun (with its shadow) and spots;
+ * and the same items again as the sun's shadow casters. */
+#include <math.h>
+#include <stdio.h>
+
+#include "render_internal.h"
+
+enum { UNIT_TEXTURE = 0, UNIT_SHADOW = 1, UNIT_BONES = 2 };
+
+static void set_material(mr_render *r, const mr_material_def *m, const mr_gpu_mesh *mesh) {
+  GLuint p = r->prog_mesh;
+  mr_uniform_v4(r, p, "u_color", m->base_color);
+  mr_uniform_f(r, p, "u_roughness", m->roughness);
+  mr_uniform_f(r, p, "u_metallic", m->metallic);
+  mr_uniform_v3(r, p, "u_emissive", m->emissive);
+  mr_uniform_i(r, p, "u_textured", mesh->texture ? 1 : 0);
+  if (mesh->texture) {
+    r->gl.ActiveTexture(GL_TEXTURE0 + UNIT_TEXTURE);
+    r->gl.BindTexture(GL_TEXTURE_2D, mesh->texture);
+  }
+}
+
+/* The material worn: the model's k-th, or (k < 0, or none given) the
+ * mesh's own. */
+static const mr_material_def *worn(const mr_gpu_model *gm, const mr_gpu_mesh *mesh, int k) {
+  if (k >= 0 && gm->n_materials > 0) return &gm->materials[k < gm->n_materials ? k : 0];
+  return &mesh->material;
+}
+
+static void set_lights(mr_render *r, const mr_frame *f) {
+  GLuint p = r->prog_mesh;
+  const mr_lights_def *L = &r->stage.lights;
+  mr_uniform_v3(r, p, "u_eye", f->eye);
+  mr_uniform_v3(r, p, "u_ambient", f->ambient);
+  mr_uniform_v3(r, p, "u_sun_dir", f->sun_dir);
+  mr_uniform_v3(r, p, "u_sun_color", f->sun_color);
+  int n = L->n_spots < 8 ? L->n_spots : 8;
+  mr_uniform_i(r, p, "u_n_spots", n);
+  for (int i = 0; i < n; i++) {
+    const mr_spot_def *s = &L->spots[i];
+    char name[32];
+    vec3 pos = { (float)s->position[0], (float)s->position[1], (float)s->position[2] };
+    vec3 dir = { (float)(s->target[0] - s->position[0]), (float)(s->target[1] - s->position[1]),
+                 (float)(s->target[2] - s->position[2]) };
+    glm_vec3_normalize(dir);
+    vec3 col;
+    glm_vec3_scale((float *)s->color, (float)s->intensity, col);
+    /* The cone's edge softens over its outer fifth. */
+    double a = s->angle_deg * GLM_PI / 180.0;
+    snprintf(name, sizeof name, "u_spot_pos[%d]", i);
+    mr_uniform_v3(r, p, name, pos);
+    snprintf(name, sizeof name, "u_spot_dir[%d]", i);
+    mr_uniform_v3(r, p, name, dir);
+    snprintf(name, sizeof name, "u_spot_color[%d]", i);
+    mr_uniform_v3(r, p, name, col);
+    snprintf(name, sizeof name, "u_spot_cos[%d]", i);
+    r->gl.Uniform2f(r->gl.GetUniformLocation(p, name), (float)cos(a), (float)cos(a * 0.8));
+  }
+  mr_uniform_i(r, p, "u_shadows", f->shadows ? 1 : 0);
+  mr_uniform_m4(r, p, "u_light_vp", (vec4 *)f->light_vp);
+  mr_uniform_f(r, p, "u_shadow_texel", r->shadow_size > 0 ? 1.0f / (float)r->shadow_size : 0);
+  mr_uniform_i(r, p, "u_texture", UNIT_TEXTURE);
+  mr_uniform_i(r, p, "u_shadow_map", UNIT_SHADOW);
+  mr_uniform_i(r, p, "u_bones", UNIT_BONES);
+  r->gl.ActiveTexture(GL_TEXTURE0 + UNIT_SHADOW);
+  r->gl.BindTexture(GL_TEXTURE_2D, r->shadow_tex);
+  r->gl.ActiveTexture(GL_TEXTURE0 + UNIT_BONES);
+  r->gl.BindTexture(GL_TEXTURE_2D, r->bone_tex);
+}
+
+static void draw_scenery(mr_render *r) {
+  GLuint p = r->prog_mesh;
+  const mr_stage_def *s = &r->stage;
+  mat4 id = GLM_MAT4_IDENTITY_INIT;
+  mr_uniform_m4(r, p, "u_model", id);
+  mr_uniform_i(r, p, "u_skinned", 0);
+  mr_material_def m = mr_default_material_def();
+  m.roughness = 0.9f;
+  if (s->floor) {
+    for (int k = 0; k < 3; k++) m.base_color[k] = s->floor_color[k];
+    set_material(r, &m, &r->floor);
+    mr_uniform_i(r, p, "u_checker", 1);
+    mr_uniform_v3(r, p, "u_color2", s->floor_color2);
+    /* 16 squares a side. */
+    mr_uniform_f(r, p, "u_cell", (float)(s->floor_size / 16.0));
+    mr_mesh_draw(r, &r->floor);
+    mr_uniform_i(r, p, "u_checker", 0);
+  }
+  if (s->backdrop) {
+    for (int k = 0; k < 3; k++) m.base_color[k] = s->backdrop_color[k];
+    set_material(r, &m, &r->backdrop);
+    mr_mesh_draw(r, &r->backdrop);
+  }
+}
+
+/* Items and skins; prog is the lit or the shadow program; lit sets each
+ * mesh's material, and casters draws only the models that cast. */
+static void draw_list(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit, bool casters) {
+  mr_uniform_i(r, prog, "u_skinned", 0);
+  for (size_t i = 0; i < list->n_items; i++) {
+    const mr_draw_item *it = &list->items[i];
+    if (it->model < 0 || (size_t)it->model >= r->n_models) continue;
+    const mr_gpu_model *gm = &r->models[it->model];
+    if (gm->skinned || (casters && !gm->cast_shadow)) continue;
+    mat4 m;
+    mr_item_matrix(it, m);
+    mr_uniform_m4(r, prog, "u_model", m);
+    for (size_t k = 0; k < gm->n_meshes; k++) {
+      if (lit) set_material(r, worn(gm, &gm->meshes[k], it->material), &gm->meshes[k]);
+      mr_mesh_draw(r, &gm->meshes[k]);
+    }
+  }
+  for (size_t i = 0; i < list->n_skins; i++) {
+    const mr_draw_skin *sk = &list->skins[i];
+    if (sk->model < 0 || (size_t)sk->model >= r->n_models) continue;
+    const mr_gpu_model *gm = &r->models[sk->model];
+    if (!gm->skinned || sk->n_bones < gm->n_bones || !sk->bones) continue;
+    if (casters && !gm->cast_shadow) continue;
+    r->gl.ActiveTexture(GL_TEXTURE0 + UNIT_BONES);
+    mr_bones_upload(r, sk);
+    mr_uniform_i(r, prog, "u_skinned", 1);
+    for (size_t k = 0; k < gm->n_meshes; k++) {
+      if (lit) set_material(r, worn(gm, &gm->meshes[k], sk->material), &gm->meshes[k]);
+      mr_mesh_draw(r, &gm->meshes[k]);
+    }
+    mr_uniform_i(r, prog, "u_skinned", 0);
+  }
+}
+
+void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
+  r->gl.UseProgram(r->prog_mesh);
+  mr_uniform_m4(r, r->prog_mesh, "u_view_proj", (vec4 *)f->view_proj);
+  set_lights(r, f);
+  draw_scenery(r);
+  if (list) draw_list(r, list, r->prog_mesh, true, false);
+  r->gl.UseProgram(0);
+}
+
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, GLuint prog) {
+  mr_uniform_i(r, prog, "u_bones", UNIT_BONES);
+  draw_list(r, list, prog, false, true);
+}

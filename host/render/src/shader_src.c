@@ -1,0 +1,174 @@
+/* The shaders, GLSL 3.30 core (the oldest core profile every backend here
+ * gives; Mesa's OSMesa and EGL give 4.5). Every fragment shader writes
+ * sRGB itself (mr_to_srgb): the framebuffers are plain RGBA8, because
+ * SDL's sRGB framebuffer flag is unreliable and headless backends have no
+ * default framebuffer to ask it of. */
+#include "shader_src.h"
+
+#define MR_GLSL_VERSION "#version 330 core\n"
+#define MR_GLSL_SRGB                                                   \
+  "vec3 mr_to_srgb(vec3 c) {\n"                                        \
+  "  c = clamp(c, 0.0, 1.0);\n"                                        \
+  "  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055,\n" \
+  "             step(vec3(0.0031308), c));\n"                          \
+  "}\n"
+
+/* Meshes: an item's model matrix, or (skinned) the blend of its bones'
+ * matrices, read from a 4 x n_bones float texture, one column a texel:
+ * linear blend skinning, p' = sum_k w_k M_k p (§3.3, freeform). Normals
+ * go through the inverse transpose, since links stretch along y. */
+const char mr_src_mesh_vs[] = MR_GLSL_VERSION
+    "layout(location = 0) in vec3 a_pos;\n"
+    "layout(location = 1) in vec3 a_normal;\n"
+    "layout(location = 2) in vec2 a_uv;\n"
+    "layout(location = 3) in ivec4 a_bones;\n"
+    "layout(location = 4) in vec4 a_weights;\n"
+    "uniform mat4 u_model, u_view_proj, u_light_vp;\n"
+    "uniform int u_skinned;\n"
+    "uniform sampler2D u_bones;\n"
+    "out vec3 v_world, v_normal;\n"
+    "out vec2 v_uv;\n"
+    "out vec4 v_light;\n"
+    "mat4 bone(int i) {\n"
+    "  return mat4(texelFetch(u_bones, ivec2(0, i), 0), texelFetch(u_bones, ivec2(1, i), 0),\n"
+    "              texelFetch(u_bones, ivec2(2, i), 0), texelFetch(u_bones, ivec2(3, i), 0));\n"
+    "}\n"
+    "void main() {\n"
+    "  mat4 m = u_model;\n"
+    "  if (u_skinned != 0)\n"
+    "    m = a_weights.x * bone(a_bones.x) + a_weights.y * bone(a_bones.y) +\n"
+    "        a_weights.z * bone(a_bones.z) + a_weights.w * bone(a_bones.w);\n"
+    "  vec4 w = m * vec4(a_pos, 1.0);\n"
+    "  v_world = w.xyz;\n"
+    "  v_normal = transpose(inverse(mat3(m))) * a_normal;\n"
+    "  v_uv = a_uv;\n"
+    "  v_light = u_light_vp * w;\n"
+    "  gl_Position = u_view_proj * w;\n"
+    "}\n";
+
+/* Lighting: ambient, the sun (Lambert and a normalised Blinn-Phong lobe
+ * whose exponent is the roughness's, s = 2 / r^2 - 2, the inverse of the
+ * loader's r = sqrt(2 / (s + 2))), its shadow from the shadow map (3 x 3
+ * percentage-closer filtering), and up to 8 spots: a cone with a smooth
+ * edge and 1 / (1 + k d^2) falloff. The floor's checkerboard is worked
+ * out here from world x and z. */
+const char mr_src_mesh_fs[] = MR_GLSL_VERSION MR_GLSL_SRGB
+    "in vec3 v_world, v_normal;\n"
+    "in vec2 v_uv;\n"
+    "in vec4 v_light;\n"
+    "uniform vec4 u_color;\n"
+    "uniform vec3 u_emissive, u_color2, u_eye, u_ambient, u_sun_dir, u_sun_color;\n"
+    "uniform float u_roughness, u_metallic, u_cell, u_shadow_texel;\n"
+    "uniform int u_textured, u_checker, u_shadows, u_n_spots;\n"
+    "uniform sampler2D u_texture;\n"
+    "uniform sampler2DShadow u_shadow_map;\n"
+    "uniform vec3 u_spot_pos[8], u_spot_dir[8], u_spot_color[8];\n"
+    "uniform vec2 u_spot_cos[8];\n"
+    "out vec4 o_color;\n"
+    "float sun_shadow(float ndl) {\n"
+    "  if (u_shadows == 0) return 1.0;\n"
+    "  vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;\n"
+    "  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;\n"
+    "  float z = p.z - max(0.0015 * (1.0 - ndl), 0.0004);\n"
+    "  float lit = 0.0;\n"
+    "  for (int i = -1; i <= 1; i++)\n"
+    "    for (int j = -1; j <= 1; j++)\n"
+    "      lit += texture(u_shadow_map, vec3(p.xy + vec2(i, j) * u_shadow_texel, z));\n"
+    "  return lit / 9.0;\n"
+    "}\n"
+    "vec3 light(vec3 n, vec3 v, vec3 l, vec3 base, vec3 f0, float shin) {\n"
+    "  float ndl = max(dot(n, l), 0.0);\n"
+    "  vec3 h = normalize(l + v);\n"
+    "  float spec = pow(max(dot(n, h), 0.0), shin) * (shin + 8.0) / 25.13;\n"
+    "  return (base * (1.0 - u_metallic) + f0 * spec) * ndl;\n"
+    "}\n"
+    "void main() {\n"
+    "  vec3 base = u_color.rgb;\n"
+    "  if (u_textured != 0) base *= texture(u_texture, v_uv).rgb;\n"
+    "  if (u_checker != 0) {\n"
+    "    vec2 c = floor(v_world.xz / u_cell);\n"
+    "    if (mod(c.x + c.y, 2.0) >= 1.0) base = u_color2;\n"
+    "  }\n"
+    "  vec3 n = normalize(v_normal);\n"
+    "  if (!gl_FrontFacing) n = -n;\n"
+    "  vec3 v = normalize(u_eye - v_world);\n"
+    "  float r = clamp(u_roughness, 0.05, 1.0);\n"
+    "  float shin = clamp(2.0 / (r * r) - 2.0, 1.0, 1024.0);\n"
+    "  vec3 f0 = mix(vec3(0.04), base, u_metallic);\n"
+    "  vec3 c = u_ambient * base + u_emissive;\n"
+    "  float ndl = max(dot(n, u_sun_dir), 0.0);\n"
+    "  c += u_sun_color * light(n, v, u_sun_dir, base, f0, shin) * sun_shadow(ndl);\n"
+    "  for (int i = 0; i < u_n_spots; i++) {\n"
+    "    vec3 d = u_spot_pos[i] - v_world;\n"
+    "    float dist = length(d);\n"
+    "    vec3 l = d / dist;\n"
+    "    float cone = smoothstep(u_spot_cos[i].x, u_spot_cos[i].y, dot(-l, u_spot_dir[i]));\n"
+    "    c += u_spot_color[i] * cone / (1.0 + 0.05 * dist * dist) * light(n, v, l, base, f0, "
+    "shin);\n"
+    "  }\n"
+    "  o_color = vec4(mr_to_srgb(c), 1.0);\n"
+    "}\n";
+
+/* The shadow pass writes depth only. */
+const char mr_src_depth_fs[] = MR_GLSL_VERSION "void main() {}\n";
+
+const char mr_src_line_vs[] = MR_GLSL_VERSION "layout(location = 0) in vec3 a_pos;\n"
+                                              "layout(location = 1) in vec3 a_color;\n"
+                                              "uniform mat4 u_view_proj;\n"
+                                              "out vec3 v_color;\n"
+                                              "void main() {\n"
+                                              "  v_color = a_color;\n"
+                                              "  gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
+                                              "}\n";
+
+const char mr_src_line_fs[] =
+    MR_GLSL_VERSION MR_GLSL_SRGB "in vec3 v_color;\n"
+                                 "out vec4 o_color;\n"
+                                 "void main() { o_color = vec4(mr_to_srgb(v_color), 1.0); }\n";
+
+/* Stars: points on a sphere about the eye, inside the far plane, so the
+ * floor and the backdrop hide them; they fade in as the sun sets. */
+const char mr_src_star_vs[] =
+    MR_GLSL_VERSION "layout(location = 0) in vec3 a_dir;\n"
+                    "layout(location = 1) in float a_bright;\n"
+                    "uniform mat4 u_view_proj;\n"
+                    "uniform vec3 u_eye;\n"
+                    "uniform float u_night, u_point_scale;\n"
+                    "out float v_alpha;\n"
+                    "void main() {\n"
+                    "  v_alpha = clamp(a_bright, 0.0, 1.0) * u_night;\n"
+                    "  gl_PointSize = (1.5 + 2.5 * clamp(a_bright, 0.0, 1.0)) * u_point_scale;\n"
+                    "  gl_Position = u_view_proj * vec4(u_eye + normalize(a_dir) * 50.0, 1.0);\n"
+                    "}\n";
+
+const char mr_src_star_fs[] =
+    MR_GLSL_VERSION "in float v_alpha;\n"
+                    "out vec4 o_color;\n"
+                    "void main() {\n"
+                    "  float r = length(gl_PointCoord * 2.0 - 1.0);\n"
+                    "  o_color = vec4(1.0, 1.0, 0.95, v_alpha * (1.0 - smoothstep(0.5, 1.0, r)));\n"
+                    "}\n";
+
+/* The on-screen display: pixel coordinates, top left origin; glyphs take
+ * their coverage from the font atlas, the box behind them is solid. Its
+ * colours are already sRGB. */
+const char mr_src_text_vs[] = MR_GLSL_VERSION "layout(location = 0) in vec2 a_pos;\n"
+                                              "layout(location = 1) in vec2 a_uv;\n"
+                                              "uniform vec2 u_screen;\n"
+                                              "out vec2 v_uv;\n"
+                                              "void main() {\n"
+                                              "  v_uv = a_uv;\n"
+                                              "  vec2 p = a_pos / u_screen * 2.0 - 1.0;\n"
+                                              "  gl_Position = vec4(p.x, -p.y, 0.0, 1.0);\n"
+                                              "}\n";
+
+const char mr_src_text_fs[] =
+    MR_GLSL_VERSION "in vec2 v_uv;\n"
+                    "uniform vec4 u_color;\n"
+                    "uniform int u_solid;\n"
+                    "uniform sampler2D u_font;\n"
+                    "out vec4 o_color;\n"
+                    "void main() {\n"
+                    "  float a = u_solid != 0 ? 1.0 : texture(u_font, v_uv).r;\n"
+                    "  o_color = vec4(u_color.rgb, u_color.a * a);\n"
+                    "}\n";

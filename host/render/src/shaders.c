@@ -1,0 +1,89 @@
+/* The renderer's programs, compiled and linked once at create, and
+ * uniforms set by name. */
+#include <stdio.h>
+
+#include "render_internal.h"
+#include "shader_src.h"
+
+static GLuint compile(mr_render *r, GLenum kind, const char *src, const char *what, char *msg,
+                      size_t msg_size) {
+  const mr_gl *gl = &r->gl;
+  GLuint s = gl->CreateShader(kind);
+  gl->ShaderSource(s, 1, &src, NULL);
+  gl->CompileShader(s);
+  GLint ok = 0;
+  gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (ok) return s;
+  char log[512] = "";
+  gl->GetShaderInfoLog(s, sizeof log, NULL, log);
+  snprintf(msg, msg_size, "the %s shader does not compile: %s", what, log);
+  gl->DeleteShader(s);
+  return 0;
+}
+
+static GLuint program(mr_render *r, const char *vs_src, const char *fs_src, const char *what,
+                      char *msg, size_t msg_size) {
+  const mr_gl *gl = &r->gl;
+  GLuint vs = compile(r, GL_VERTEX_SHADER, vs_src, what, msg, msg_size);
+  if (!vs) return 0;
+  GLuint fs = compile(r, GL_FRAGMENT_SHADER, fs_src, what, msg, msg_size);
+  if (!fs) {
+    gl->DeleteShader(vs);
+    return 0;
+  }
+  GLuint p = gl->CreateProgram();
+  gl->AttachShader(p, vs);
+  gl->AttachShader(p, fs);
+  gl->LinkProgram(p);
+  gl->DeleteShader(vs);
+  gl->DeleteShader(fs);
+  GLint ok = 0;
+  gl->GetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (ok) return p;
+  char log[512] = "";
+  gl->GetProgramInfoLog(p, sizeof log, NULL, log);
+  snprintf(msg, msg_size, "the %s program does not link: %s", what, log);
+  gl->DeleteProgram(p);
+  return 0;
+}
+
+int mr_shaders_create(mr_render *r, char *msg, size_t msg_size) {
+  r->prog_mesh = program(r, mr_src_mesh_vs, mr_src_mesh_fs, "mesh", msg, msg_size);
+  if (!r->prog_mesh) return -1;
+  r->prog_depth = program(r, mr_src_mesh_vs, mr_src_depth_fs, "shadow", msg, msg_size);
+  if (!r->prog_depth) return -1;
+  r->prog_line = program(r, mr_src_line_vs, mr_src_line_fs, "line", msg, msg_size);
+  if (!r->prog_line) return -1;
+  r->prog_star = program(r, mr_src_star_vs, mr_src_star_fs, "star", msg, msg_size);
+  if (!r->prog_star) return -1;
+  r->prog_text = program(r, mr_src_text_vs, mr_src_text_fs, "text", msg, msg_size);
+  return r->prog_text ? 0 : -1;
+}
+
+void mr_shaders_destroy(mr_render *r) {
+  GLuint *progs[] = { &r->prog_mesh, &r->prog_depth, &r->prog_line, &r->prog_star, &r->prog_text };
+  for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) {
+    if (*progs[i]) r->gl.DeleteProgram(*progs[i]);
+    *progs[i] = 0;
+  }
+}
+
+void mr_uniform_i(mr_render *r, GLuint prog, const char *name, int v) {
+  r->gl.Uniform1i(r->gl.GetUniformLocation(prog, name), v);
+}
+
+void mr_uniform_f(mr_render *r, GLuint prog, const char *name, float v) {
+  r->gl.Uniform1f(r->gl.GetUniformLocation(prog, name), v);
+}
+
+void mr_uniform_v3(mr_render *r, GLuint prog, const char *name, const float *v) {
+  r->gl.Uniform3fv(r->gl.GetUniformLocation(prog, name), 1, v);
+}
+
+void mr_uniform_v4(mr_render *r, GLuint prog, const char *name, const float *v) {
+  r->gl.Uniform4fv(r->gl.GetUniformLocation(prog, name), 1, v);
+}
+
+void mr_uniform_m4(mr_render *r, GLuint prog, const char *name, mat4 m) {
+  r->gl.UniformMatrix4fv(r->gl.GetUniformLocation(prog, name), 1, GL_FALSE, (const GLfloat *)m);
+}
