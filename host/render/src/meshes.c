@@ -152,7 +152,17 @@ static void upload_quad(mr_render *r, mr_gpu_mesh *g, const float c[3], const fl
       nor[3 * i + k] = n[k];
     }
   }
+  /* Counter-clockwise seen from where n points: the lit shader turns the
+   * normal of a back face round. */
+  vec3 uxv;
+  glm_vec3_cross((float *)u, (float *)v, uxv);
   uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+  if (glm_vec3_dot(uxv, (float *)n) < 0) {
+    idx[1] = 2;
+    idx[2] = 1;
+    idx[4] = 3;
+    idx[5] = 2;
+  }
   mr_mesh m;
   memset(&m, 0, sizeof m);
   m.positions = pos;
