@@ -19,5 +19,7 @@ int mr_cmd_ports(int argc, char **argv);
 void mr_cmd_ports_usage(void);
 int mr_cmd_calibrate(int argc, char **argv);
 void mr_cmd_calibrate_usage(void);
+int mr_cmd_render(int argc, char **argv);
+void mr_cmd_render_usage(void);
 
 #endif

@@ -1,5 +1,6 @@
 /* marionette: the theater's program. `sim` runs a scene headless; `run`
- * is the theater, a glove driving the puppet in real time. */
+ * is the theater, a glove driving the puppet in real time; `render` draws
+ * a scene's track or a take into pictures. */
 #include <stdio.h>
 #include <string.h>
 
@@ -14,9 +15,14 @@ static void usage(FILE *f) {
              "  sim SCENE   run a scene without rendering, as fast as possible, and\n"
              "              print a summary (steps, time steps, deviations, resets,\n"
              "              pass counters, state hash); see `marionette sim --help`\n"
-             "  run SCENE --glove SOURCE\n"
-             "              the theater: a glove drives the puppet in real time; see\n"
-             "              `marionette run --help`\n"
+             "  run SCENE [--glove SOURCE]\n"
+             "              the theater: a glove (or, in a window, the keyboard,\n"
+             "              mouse or a gamepad) drives the puppet in real time, on\n"
+             "              the stage; see `marionette run --help`\n"
+             "  render SCENE\n"
+             "              draw the scene's track, or a take, headless into PNG\n"
+             "              frames, an MP4 and a contact sheet; see\n"
+             "              `marionette render --help`\n"
              "  list-ports  the serial ports, and the gloves on them\n"
              "  calibrate --glove SOURCE\n"
              "              walk through a glove's calibration and save it on\n"
@@ -30,8 +36,8 @@ int main(int argc, char **argv) {
   if (argc < 2) {
     /* Bad usage is one line, like every other usage error; --help has the rest. */
     fprintf(stderr,
-            "marionette: expected a command: sim, run, list-ports or calibrate (see marionette "
-            "--help)\n");
+            "marionette: expected a command: sim, run, render, list-ports or calibrate (see "
+            "marionette --help)\n");
     return MR_EXIT_USAGE;
   }
   const char *cmd = argv[1];
@@ -41,11 +47,12 @@ int main(int argc, char **argv) {
   }
   if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);
   if (strcmp(cmd, "run") == 0) return mr_cmd_run(argc - 1, argv + 1);
+  if (strcmp(cmd, "render") == 0) return mr_cmd_render(argc - 1, argv + 1);
   if (strcmp(cmd, "list-ports") == 0) return mr_cmd_ports(argc - 1, argv + 1);
   if (strcmp(cmd, "calibrate") == 0) return mr_cmd_calibrate(argc - 1, argv + 1);
   fprintf(stderr,
-          "marionette: unknown command '%s'; expected one of: sim, run, list-ports, calibrate (see "
-          "--help)\n",
+          "marionette: unknown command '%s'; expected one of: sim, run, render, list-ports, "
+          "calibrate (see --help)\n",
           cmd);
   return MR_EXIT_USAGE;
 }

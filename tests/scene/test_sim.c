@@ -56,8 +56,8 @@ static void help_lists_subcommands_and_flags(void **state) {
   run(&p, "dance", NULL);
   assert_int_equal(p.status, 2);
   assert_string_equal(p.err,
-                      "marionette: unknown command 'dance'; expected one of: sim, run, list-ports, "
-                      "calibrate (see --help)\n");
+                      "marionette: unknown command 'dance'; expected one of: sim, run, render, "
+                      "list-ports, calibrate (see --help)\n");
   tt_output_free(&p);
 }
 

@@ -1,0 +1,147 @@
+/* Options for what is drawn and where it goes, shared by render and run. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "stage_opts.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char mr_stage_opts_help[] =
+    "  -o, --output DIR    write the frames as DIR/frame_000000.png ..., an MP4\n"
+    "                      (DIR/show.mp4, when ffmpeg is installed) and a contact\n"
+    "                      sheet (DIR/sheet.png)\n"
+    "  --every N           a PNG every N frames (default 1; the MP4 and the\n"
+    "                      sheet still see every frame)\n"
+    "  --mp4 FILE          the MP4 here instead; --no-mp4: none\n"
+    "  --sheet FILE        the contact sheet here instead; --no-sheet: none\n"
+    "  --size WxH          the picture's size in pixels (default: the scene's\n"
+    "                      stage.size, else 1280x720)\n"
+    "  --camera NAME       look through the scene's camera NAME (camera.views)\n"
+    "                      instead of the orbit camera\n"
+    "  --day X             the day knob, 0..1: 0 and 1 midnight, 0.5 noon\n"
+    "                      (default: the scene's stage.time_of_day)\n";
+
+void mr_stage_opts_init(mr_stage_opts *o) {
+  memset(o, 0, sizeof *o);
+  o->every = 1;
+  o->day = NAN;
+  o->backend = MR_RENDER_AUTO;
+}
+
+static int bad(const char *cmd, const char *what, const char *v) {
+  fprintf(stderr, "marionette %s: %s, got '%s' (see marionette %s --help)\n", cmd, what, v, cmd);
+  return -1;
+}
+
+static int parse_size(const char *v, int *w, int *h) {
+  char *end = NULL;
+  errno = 0;
+  long a = strtol(v, &end, 10);
+  if (end == v || (*end != 'x' && *end != 'X')) return -1;
+  const char *s = end + 1;
+  long b = strtol(s, &end, 10);
+  if (end == s || *end != '\0' || errno != 0 || a < 16 || b < 16 || a > 8192 || b > 8192) return -1;
+  *w = (int)a;
+  *h = (int)b;
+  return 0;
+}
+
+/* An option with a value; -1 after the message on a bad one. */
+static int take_value(mr_stage_opts *o, const char *cmd, const char *opt, const char *v,
+                      bool allow_window) {
+  char *end = NULL;
+  if (strcmp(opt, "-o") == 0 || strcmp(opt, "--output") == 0) {
+    o->out = v;
+  } else if (strcmp(opt, "--every") == 0) {
+    long n = strtol(v, &end, 10);
+    if (end == v || *end != '\0' || n < 1 || n > 1000000)
+      return bad(cmd, "expected --every a whole number of frames, at least 1", v);
+    o->every = (int)n;
+  } else if (strcmp(opt, "--mp4") == 0) {
+    o->mp4 = v;
+  } else if (strcmp(opt, "--sheet") == 0) {
+    o->sheet = v;
+  } else if (strcmp(opt, "--size") == 0) {
+    if (parse_size(v, &o->width, &o->height) != 0)
+      return bad(cmd, "expected --size WxH, each 16 to 8192 pixels", v);
+  } else if (strcmp(opt, "--camera") == 0) {
+    o->camera = v;
+  } else if (strcmp(opt, "--day") == 0) {
+    o->day = strtod(v, &end);
+    if (end == v || *end != '\0' || !(o->day >= 0 && o->day <= 1))
+      return bad(cmd, "expected --day a number from 0 to 1", v);
+  } else {
+    bool ok = mr_render_backend_parse(v, &o->backend) == 0;
+    if (!ok || (!allow_window && o->backend == MR_RENDER_WINDOW))
+      return bad(cmd,
+                 allow_window ? "expected --backend auto, window, egl or osmesa"
+                              : "expected --backend auto, egl or osmesa",
+                 v);
+  }
+  return 1;
+}
+
+int mr_stage_opts_take(mr_stage_opts *o, const char *cmd, int argc, char **argv, int *i,
+                       bool allow_window) {
+  static const char *const valued[] = { "-o",     "--output", "--every", "--mp4",     "--sheet",
+                                        "--size", "--camera", "--day",   "--backend", NULL };
+  const char *opt = argv[*i];
+  if (strcmp(opt, "--no-mp4") == 0) return o->no_mp4 = true, 1;
+  if (strcmp(opt, "--no-sheet") == 0) return o->no_sheet = true, 1;
+  for (int k = 0; valued[k] != NULL; k++) {
+    if (strcmp(opt, valued[k]) != 0) continue;
+    if (*i + 1 >= argc) {
+      fprintf(stderr, "marionette %s: option '%s' needs a value (see marionette %s --help)\n", cmd,
+              opt, cmd);
+      return -1;
+    }
+    *i += 1;
+    return take_value(o, cmd, opt, argv[*i], allow_window);
+  }
+  return 0;
+}
+
+mr_frames_out_def mr_stage_opts_outputs(mr_stage_opts *o, double fps, int width, int height,
+                                        char *note, size_t note_size) {
+  mr_frames_out_def d = mr_default_frames_out_def();
+  note[0] = '\0';
+  d.dir = o->out;
+  d.every = o->every;
+  d.fps = fps;
+  d.width = width;
+  d.height = height;
+  if (!o->no_mp4 && o->mp4 == NULL && o->out != NULL) {
+    if (mr_on_path("ffmpeg")) {
+      snprintf(o->mp4_buf, sizeof o->mp4_buf, "%s/show.mp4", o->out);
+      o->mp4 = o->mp4_buf;
+    } else {
+      snprintf(note, note_size, "no MP4: ffmpeg is not installed (apt-get install ffmpeg)");
+    }
+  }
+  if (!o->no_sheet && o->sheet == NULL && o->out != NULL) {
+    snprintf(o->sheet_buf, sizeof o->sheet_buf, "%s/sheet.png", o->out);
+    o->sheet = o->sheet_buf;
+  }
+  d.mp4 = o->no_mp4 ? NULL : o->mp4;
+  d.sheet = o->no_sheet ? NULL : o->sheet;
+  return d;
+}
+
+int mr_stage_opts_apply(const mr_stage_opts *o, const char *cmd, mr_stageview *sv) {
+  if (!isnan(o->day)) mr_stageview_set_day(sv, o->day);
+  if (o->camera == NULL) return 0;
+  int k = mr_stageview_find_camera(sv, o->camera);
+  if (k >= 0) {
+    mr_stageview_pick_camera(sv, k);
+    return 0;
+  }
+  const mr_stage_def *d = &sv->scene->stage;
+  fprintf(stderr, "marionette %s: expected --camera one of the scene's cameras", cmd);
+  for (int i = 0; i < d->n_cameras; i++)
+    fprintf(stderr, "%s%s", i == 0 ? " (" : ", ", d->cameras[i].name);
+  fprintf(stderr, "%s, got '%s'\n", d->n_cameras > 0 ? ")" : " (it has none)", o->camera);
+  return -1;
+}

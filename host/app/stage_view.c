@@ -1,0 +1,198 @@
+/* A scene on the stage (issue 10, items 4 and 6): frames' positions become
+ * a draw list (mr_stage), drawn by the renderer with a camera, the day knob
+ * and the on-screen display. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "stage_view.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mr_scene_world.h"
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+/* The positions the stage takes its rest frames from: the scene's world as
+ * built, before any step (the same start a run has). */
+static double *start_positions(const mr_scene *scene, size_t *n, char *msg, size_t msg_size) {
+  mr_scene_world sw;
+  mr_scene_error err;
+  if (mr_scene_build(scene, &sw, &err) != MR_SCENE_OK) {
+    snprintf(msg, msg_size, "%s", err.text);
+    return NULL;
+  }
+  int count = mr_world_particle_count(sw.world);
+  double *xyz = calloc((size_t)(count > 0 ? count : 1) * 3, sizeof *xyz);
+  if (xyz != NULL) mr_world_positions(sw.world, xyz, count);
+  mr_scene_world_free(&sw);
+  if (xyz == NULL) snprintf(msg, msg_size, "out of memory");
+  *n = (size_t)count;
+  return xyz;
+}
+
+static void start_camera(mr_stageview *sv) {
+  const mr_stage_def *d = &sv->scene->stage;
+  sv->camera = -1;
+  memcpy(sv->target, d->orbit_target, sizeof sv->target);
+  sv->distance = d->orbit_distance;
+  sv->azimuth = d->orbit_azimuth_deg;
+  sv->elevation = d->orbit_elevation_deg;
+  sv->fov = d->fov_deg;
+  sv->time_of_day = d->time_of_day;
+  sv->show_osd = true;
+  sv->show_rigging = true;
+}
+
+int mr_stageview_open(mr_stageview *sv, const mr_scene *scene, const mr_render_def *rdef, char *msg,
+                      size_t msg_size) {
+  memset(sv, 0, sizeof *sv);
+  sv->scene = scene;
+  start_camera(sv);
+  double *xyz = start_positions(scene, &sv->n_points, msg, msg_size);
+  if (xyz == NULL) return -1;
+  char why[400];
+  mr_stage_status ss =
+      mr_stage_create(&scene->stage, xyz, sv->n_points, &sv->stage, why, sizeof why);
+  free(xyz);
+  if (ss != MR_STAGE_OK) {
+    snprintf(msg, msg_size, "%s: the stage: %s", scene->path, why);
+    return -1;
+  }
+  if (mr_render_create(rdef, &scene->stage, scene->path, &sv->render, msg, msg_size) !=
+      MR_RENDER_OK) {
+    mr_stage_destroy(sv->stage);
+    sv->stage = NULL;
+    return -1;
+  }
+  mr_render_size(sv->render, &sv->width, &sv->height);
+  sv->rgb = malloc((size_t)sv->width * (size_t)sv->height * 3);
+  if (sv->rgb == NULL) {
+    snprintf(msg, msg_size, "out of memory");
+    mr_stageview_close(sv);
+    return -1;
+  }
+  return 0;
+}
+
+void mr_stageview_close(mr_stageview *sv) {
+  mr_render_destroy(sv->render);
+  mr_stage_destroy(sv->stage);
+  free(sv->rgb);
+  sv->render = NULL;
+  sv->stage = NULL;
+  sv->rgb = NULL;
+}
+
+static mr_render_view current_view(const mr_stageview *sv) {
+  mr_render_view v = mr_default_render_view(&sv->scene->stage);
+  if (sv->camera >= 0) {
+    const mr_camera_def *c = &sv->scene->stage.cameras[sv->camera];
+    memcpy(v.eye, c->position, sizeof v.eye);
+    memcpy(v.target, c->target, sizeof v.target);
+    v.fov_deg = c->fov_deg;
+  } else {
+    mr_render_view_orbit(&v, sv->target, sv->distance, sv->azimuth, sv->elevation);
+    v.fov_deg = sv->fov;
+  }
+  v.time_of_day = sv->time_of_day;
+  v.show_rigging = sv->show_rigging;
+  return v;
+}
+
+static int draw_list(mr_stageview *sv, const mr_draw_list *list, char *msg, size_t msg_size) {
+  mr_render_view v = current_view(sv);
+  const char *lines[MR_OSD_LINES];
+  if (sv->show_osd) {
+    for (size_t i = 0; i < sv->n_osd; i++) lines[i] = sv->osd[i];
+    v.osd = lines;
+    v.n_osd = sv->n_osd;
+  }
+  if (mr_render_draw(sv->render, list, &v) != MR_RENDER_OK) {
+    snprintf(msg, msg_size, "the renderer failed to draw a frame");
+    return -1;
+  }
+  return 0;
+}
+
+int mr_stageview_draw(mr_stageview *sv, const double *xyz, size_t n, char *msg, size_t msg_size) {
+  const mr_draw_list *list = NULL;
+  size_t use = n < sv->n_points ? n : sv->n_points;
+  if (use == sv->n_points && mr_stage_update(sv->stage, xyz, use, &list) == MR_STAGE_OK)
+    sv->last = list;
+  /* A frame the stage refused (NaN) keeps the last good list on screen. */
+  if (sv->last == NULL) {
+    snprintf(msg, msg_size, "the stage refused the first frame's positions");
+    return -1;
+  }
+  return draw_list(sv, sv->last, msg, msg_size);
+}
+
+int mr_stageview_redraw(mr_stageview *sv, char *msg, size_t msg_size) {
+  if (sv->last == NULL) return 0;
+  return draw_list(sv, sv->last, msg, msg_size);
+}
+
+const uint8_t *mr_stageview_read(mr_stageview *sv) {
+  size_t size = (size_t)sv->width * (size_t)sv->height * 3;
+  if (mr_render_read_rgb(sv->render, sv->rgb, size) != MR_RENDER_OK) return NULL;
+  return sv->rgb;
+}
+
+int mr_stageview_find_camera(const mr_stageview *sv, const char *name) {
+  for (int k = 0; k < sv->scene->stage.n_cameras; k++)
+    if (strcmp(sv->scene->stage.cameras[k].name, name) == 0) return k;
+  return -1;
+}
+
+void mr_stageview_pick_camera(mr_stageview *sv, int k) {
+  if (k >= -1 && k < sv->scene->stage.n_cameras) sv->camera = k;
+}
+
+/* From a scene camera, the orbit starts where that camera stands. */
+static void leave_scene_camera(mr_stageview *sv) {
+  if (sv->camera < 0) return;
+  const mr_camera_def *c = &sv->scene->stage.cameras[sv->camera];
+  double d[3];
+  for (int i = 0; i < 3; i++) d[i] = c->position[i] - c->target[i];
+  double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (r > 1e-9) {
+    memcpy(sv->target, c->target, sizeof sv->target);
+    sv->distance = r;
+    sv->azimuth = atan2(d[0], d[2]) / DEG;
+    sv->elevation = asin(d[1] / r) / DEG;
+    sv->fov = c->fov_deg;
+  }
+  sv->camera = -1;
+}
+
+void mr_stageview_orbit(mr_stageview *sv, double d_azimuth, double d_elevation) {
+  leave_scene_camera(sv);
+  sv->azimuth = fmod(sv->azimuth + d_azimuth, 360.0);
+  sv->elevation = fmin(89.0, fmax(-89.0, sv->elevation + d_elevation));
+}
+
+void mr_stageview_zoom(mr_stageview *sv, double steps) {
+  leave_scene_camera(sv);
+  /* Each wheel step 10 % nearer (up) or farther. */
+  sv->distance = fmin(100.0, fmax(0.05, sv->distance * pow(0.9, steps)));
+}
+
+void mr_stageview_set_day(mr_stageview *sv, double time_of_day) {
+  double d = fmod(time_of_day, 1.0);
+  sv->time_of_day = d < 0 ? d + 1.0 : d;
+}
+
+void mr_stageview_osd_clear(mr_stageview *sv) {
+  sv->n_osd = 0;
+}
+
+void mr_stageview_osd(mr_stageview *sv, const char *fmt, ...) {
+  if (sv->n_osd >= MR_OSD_LINES) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(sv->osd[sv->n_osd++], MR_OSD_LINE_MAX, fmt, ap);
+  va_end(ap);
+}
