@@ -151,14 +151,15 @@ static void unknown_top_level_key(void **state) {
   (void)state;
   expect_error(BASE "bogus: 1\n", MR_SCENE_ERR_SCHEMA,
                "t.yaml:6:1: unknown key 'bogus' in the scene; expected one of: format, name, "
-               "sim, physics, mapping, expect");
+               "sim, physics, mapping, expect, models, lights, stage, camera");
 }
 
 static void theater_section_is_reserved(void **state) {
   (void)state;
-  expect_error("lights: []\n" BASE, MR_SCENE_ERR_SCHEMA,
-               "t.yaml:1:1: section 'lights' is reserved for the theater and not supported by "
-               "this version; expected one of: format, name, sim, physics, mapping, expect");
+  expect_error("glove: []\n" BASE, MR_SCENE_ERR_SCHEMA,
+               "t.yaml:1:1: section 'glove' is reserved for the theater and not supported by "
+               "this version; expected one of: format, name, sim, physics, mapping, expect, "
+               "models, lights, stage, camera");
 }
 
 static void unknown_particle_key(void **state) {

@@ -21,6 +21,7 @@
 #include "mr_control.h"
 #include "mr_physics.h"
 #include "mr_pose.h"
+#include "mr_stage.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -255,6 +256,12 @@ typedef struct mr_scene {
   size_t n_control_points;
 
   mr_scene_expect expect;
+
+  /* What the stage shows (the scene's models:, lights:, stage: and
+   * camera:, host/scenes/FORMAT.md), its world ids as above. Every array
+   * it points to belongs to the scene. Without a models: section: a thin
+   * capsule per distance constraint and a small sphere per particle. */
+  mr_stage_def stage;
 } mr_scene;
 
 /* Reads and checks path. On failure returns non-zero, fills *err and leaves

@@ -10,8 +10,7 @@
 
 /* Sections the theater will add to the same files; refusing them now keeps a
  * newer file from being half-understood by this version. */
-static const char *const theater_sections[] = { "models", "lights", "camera", "stage",
-                                                "glove",  "render", "audio",  NULL };
+static const char *const theater_sections[] = { "glove", "render", "audio", NULL };
 
 static void defaults(mr_scene *s) {
   memset(s, 0, sizeof *s);
@@ -20,6 +19,7 @@ static void defaults(mr_scene *s) {
   s->duration = 10.0;
   s->fps = 0.0;
   s->max_steps = MR_SCENE_MAX_STEPS;
+  s->stage = mr_default_stage_def();
   mr_scene_expect *e = &s->expect;
   e->finite = true;
   e->max_deviation = e->min_mean_dt = e->min_string_stretch = NAN;
@@ -112,12 +112,12 @@ static int read_root(mr_reader *r, const mr_ynode *root) {
         return mr_scene_read_fail(
             r, key, MR_SCENE_ERR_SCHEMA,
             "section '%s' is reserved for the theater and not supported "
-            "by this version; expected one of: format, name, sim, physics, mapping, expect",
+            "by this version; expected one of: format, name, sim, physics, mapping, expect, "
+            "models, lights, stage, camera",
             key->text);
   }
-  static const char *const keys[] = {
-    "format", "name", "sim", "physics", "mapping", "expect", NULL
-  };
+  static const char *const keys[] = { "format", "name",   "sim",   "physics", "mapping", "expect",
+                                      "models", "lights", "stage", "camera",  NULL };
   if (mr_scene_read_map(r, root, "the scene", keys) != 0) return -1;
   const mr_ynode *v = mr_scene_yaml_get(root, "format");
   if (v != NULL) {
@@ -139,7 +139,7 @@ static int read_root(mr_reader *r, const mr_ynode *root) {
   if (mr_scene_read_physics(r, physics) != 0 || check_mass_ratios(r) != 0) return -1;
   if (mr_scene_read_optional(r, root, "mapping", mr_scene_read_mappings) != 0) return -1;
   if ((v = mr_scene_yaml_get(root, "expect")) != NULL && mr_scene_read_expect(r, v) != 0) return -1;
-  return 0;
+  return mr_scene_read_stage(r, root);
 }
 
 mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t len, mr_scene *scene,
@@ -235,6 +235,7 @@ void mr_scene_free(mr_scene *s) {
   for (size_t k = 0; k < s->n_frames; k++) free(s->frames[k].track.keys);
   free(s->frames);
   free(s->expect.watch);
+  mr_scene_stage_free(s);
   memset(s, 0, sizeof *s);
 }
 

@@ -75,6 +75,29 @@ static const mr_scene_range ranges[] = {
   { "settle", 0, 1e6, "s" },
   { "creep", 0, 1e6, "m" },
   { "jitter", 0, 1e8, "m/s" },
+  /* models (position and rotation as above) */
+  { "scale", 1e-6, 1e6, "" },
+  { "color", 0, 1, "" },
+  { "roughness", 0, 1, "" },
+  { "metallic", 0, 1, "" },
+  { "emissive", 0, 100, "" },
+  /* lights */
+  { "ambient", 0, 1, "" },
+  { "intensity", 0, 1e3, "" },
+  { "angle", 0.1, 89, "°" },
+  { "target", -1e6, 1e6, "m" },
+  /* stage */
+  { "time_of_day", 0, 1, "" },
+  { "size", 1e-3, 1e6, "m" },
+  { "color2", 0, 1, "" },
+  { "distance", 1e-3, 1e6, "m" },
+  { "day", 0, 1, "" },
+  { "night", 0, 1, "" },
+  { "azimuth", -360, 360, "°" },
+  { "elevation", -90, 90, "°" },
+  { "brightness", 0, 1, "" },
+  /* camera */
+  { "fov", 1, 170, "°" },
 };
 enum { N_RANGES = sizeof ranges / sizeof ranges[0] };
 

@@ -172,4 +172,19 @@ mr_status mr_scene_force_add(mr_world *w, const mr_scene_force *f, int *id, cons
 /* The keys under physics: that the force table reads, in table order. */
 size_t mr_scene_force_keys(const char **out, size_t max);
 
+/* The stage (models:, lights:, stage:, camera:) into scene->stage, after
+ * physics, so every name is known (scene_stage.c). */
+int mr_scene_read_stage(mr_reader *r, const mr_ynode *root);
+void mr_scene_stage_free(mr_scene *scene);
+/* models: into scene->stage.models (scene_models.c). */
+int mr_scene_read_models(mr_reader *r, const mr_ynode *models);
+/* [r, g, b], each 0..1 as the range of `key` says. */
+int mr_scene_read_rgb(mr_reader *r, const mr_ynode *node, const char *key, float out[3]);
+/* Appends a model to scene->stage.models; NULL when out of memory. */
+mr_model_def *mr_scene_stage_add_model(mr_reader *r, const mr_ynode *at);
+/* What the physics implies for the stage: strings and control frames as
+ * lines, collision spheres, models when the file has none, the floor's
+ * height, a camera that frames the puppets (scene_rigging.c). */
+int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root);
+
 #endif

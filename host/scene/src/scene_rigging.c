@@ -1,0 +1,158 @@
+/* What the physics implies for the stage: the strings and the control
+ * frames drawn as lines (the rigging the puppeteer sees), the collision
+ * spheres on request (the sphere tree's leaves, §4.4), the floor where
+ * the physics has it, and, for a scene without models:, models that show
+ * every particle and constraint, so that every scene draws. */
+#include "scene_read.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int strings_as_lines(mr_reader *r) {
+  mr_scene *s = r->scene;
+  size_t n = 0;
+  for (size_t i = 0; i < s->n_forces; i++) n += s->forces[i].kind == MR_EFFECT_STRINGS;
+  int *pairs = malloc((2 * n + 1) * sizeof *pairs);
+  if (pairs == NULL) return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  s->stage.strings = pairs;
+  for (size_t i = 0; i < s->n_forces; i++) {
+    if (s->forces[i].kind != MR_EFFECT_STRINGS) continue;
+    *pairs++ = s->forces[i].def.string.frame_particle;
+    *pairs++ = s->forces[i].def.string.puppet_particle;
+  }
+  s->stage.n_strings = n;
+  return 0;
+}
+
+static int frames_as_lines(mr_reader *r) {
+  mr_scene *s = r->scene;
+  int *count = malloc((s->n_frames + 1) * sizeof *count);
+  int *pts = malloc((s->n_control_points + 1) * sizeof *pts);
+  s->stage.frame_point_count = count;
+  s->stage.frame_points = pts;
+  if (count == NULL || pts == NULL)
+    return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  for (size_t k = 0; k < s->n_frames; k++) {
+    const mr_scene_frame *f = &s->frames[k];
+    count[k] = (int)f->n_points;
+    for (size_t i = 0; i < f->n_points; i++) *pts++ = (int)(s->n_particles + f->first_point + i);
+  }
+  s->stage.n_frames = s->n_frames;
+  return 0;
+}
+
+/* A model of the stage's own making: its name carries a ':' that no
+ * scene name can, so it never meets one of the file's. */
+static mr_model_def *own_model(mr_reader *r, const char *kind, const char *a, const char *b,
+                               mr_shape shape, const float rgb[3]) {
+  mr_model_def *m = mr_scene_stage_add_model(r, NULL);
+  if (m == NULL) return NULL;
+  char name[3 * MR_SCENE_NAME_MAX];
+  snprintf(name, sizeof name, "%s:%s%s%s", kind, a, b ? "-" : "", b ? b : "");
+  snprintf(m->name, sizeof m->name, "%.*s", (int)sizeof m->name - 1, name);
+  m->shape = shape;
+  m->n_materials = 1;
+  memcpy(m->materials[0].base_color, rgb, 3 * sizeof(float));
+  return m;
+}
+
+/* No models: section: a thin capsule for each distance constraint and a
+ * small sphere for each particle (its collision size when it has one). */
+static int default_models(mr_reader *r) {
+  static const float wood[3] = { 0.55f, 0.42f, 0.3f }, joint[3] = { 0.8f, 0.66f, 0.5f };
+  mr_scene *s = r->scene;
+  for (size_t i = 0; i < s->n_distances; i++) {
+    int a = s->distances[i].def.a, b = s->distances[i].def.b;
+    mr_model_def *m = own_model(r, "link", mr_scene_point_name(s, a), mr_scene_point_name(s, b),
+                                MR_SHAPE_CAPSULE, wood);
+    if (m == NULL) return -1;
+    m->display = MR_DISPLAY_LINK;
+    m->particles[0] = a;
+    m->particles[1] = b;
+    m->scale[0] = m->scale[2] = 0.02;
+  }
+  for (size_t i = 0; i < s->n_particles; i++) {
+    const mr_scene_particle *p = &s->particles[i];
+    mr_model_def *m = own_model(r, "joint", p->name, NULL, MR_SHAPE_SPHERE, joint);
+    if (m == NULL) return -1;
+    m->particles[0] = (int)i;
+    double d = p->def.radius > 0 ? 2 * p->def.radius : 0.05;
+    m->scale[0] = m->scale[1] = m->scale[2] = d;
+  }
+  return 0;
+}
+
+/* stage.spheres: every collision particle's leaf sphere, as the sphere
+ * tree sizes it: the larger of the particle's radius and its part's. */
+static int collision_spheres(mr_reader *r) {
+  static const float glass[3] = { 0.55f, 0.7f, 0.9f };
+  mr_scene *s = r->scene;
+  double *radius = calloc(s->n_particles + 1, sizeof *radius);
+  if (radius == NULL) return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  for (size_t k = 0; k < s->n_parts; k++) {
+    const mr_part_def *d = &s->parts[k].def;
+    for (int j = 0; j < d->count; j++) {
+      int p = d->particles[j];
+      double rad = fmax(s->particles[p].def.radius, d->radius);
+      if (rad > radius[p]) radius[p] = rad;
+    }
+  }
+  int rc = 0;
+  for (size_t i = 0; i < s->n_particles && rc == 0; i++) {
+    if (!(radius[i] > 0)) continue;
+    mr_model_def *m = own_model(r, "sphere", s->particles[i].name, NULL, MR_SHAPE_SPHERE, glass);
+    if (m == NULL) {
+      rc = -1;
+      break;
+    }
+    m->particles[0] = (int)i;
+    m->scale[0] = m->scale[1] = m->scale[2] = 2 * radius[i];
+  }
+  free(radius);
+  return rc;
+}
+
+/* No camera: section: the orbit camera looks at the middle of every
+ * point's start place, from far enough to see them all. */
+static void frame_the_points(mr_scene *s) {
+  size_t n = s->n_particles + s->n_control_points;
+  if (n == 0) return;
+  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+  for (size_t i = 0; i < n; i++) {
+    double p[3];
+    if (i < s->n_particles) {
+      memcpy(p, s->particles[i].def.position, sizeof p);
+    } else {
+      size_t j = i - s->n_particles;
+      mr_pose pose;
+      mr_scene_frame_pose_at(s, s->control_points[j].frame, 0, &pose);
+      mr_scene_control_point_world(s, j, &pose, p);
+    }
+    for (int c = 0; c < 3; c++) {
+      lo[c] = fmin(lo[c], p[c]);
+      hi[c] = fmax(hi[c], p[c]);
+    }
+  }
+  double half = 0;
+  for (int c = 0; c < 3; c++) {
+    s->stage.orbit_target[c] = (lo[c] + hi[c]) / 2;
+    half += (hi[c] - lo[c]) * (hi[c] - lo[c]) / 4;
+  }
+  /* A sphere of radius R fills a vertical field of view f from R / sin(f/2). */
+  double d = 1.2 * sqrt(half) / sin(s->stage.fov_deg * 3.14159265358979323846 / 360.0);
+  s->stage.orbit_distance = fmin(fmax(d, 1.0), 1e5);
+}
+
+int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root) {
+  mr_scene *s = r->scene;
+  if (s->floor.present) s->stage.floor_height = s->floor.def.offset;
+  if (strings_as_lines(r) != 0 || frames_as_lines(r) != 0) return -1;
+  if (mr_scene_yaml_get(root, "models") == NULL && default_models(r) != 0) return -1;
+  const mr_ynode *stage = mr_scene_yaml_get(root, "stage");
+  const mr_ynode *spheres = stage ? mr_scene_yaml_get(stage, "spheres") : NULL;
+  if (spheres != NULL && strcmp(spheres->text, "true") == 0 && collision_spheres(r) != 0) return -1;
+  if (mr_scene_yaml_get(root, "camera") == NULL) frame_the_points(s);
+  return 0;
+}
