@@ -1,0 +1,72 @@
+/* The window path, run under Xvfb (ctest starts it through xvfb-run):
+ * an SDL window opens, 60 frames are drawn and shown, and the window's
+ * own pixels (the frame blitted into its back buffer, read from there)
+ * match the headless EGL frame of the same draw list. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "fixture.h"
+#include "golden.h"
+#include "render_internal.h"
+
+static void test_a_window_shows_the_frame_the_headless_backends_draw(void **state) {
+  (void)state;
+  const char *display = getenv("DISPLAY");
+  if (!display || !*display) fail_msg("no DISPLAY: run under xvfb-run -a");
+  fx_scene s;
+  fx_scene_init(&s);
+  mr_render_def def = mr_default_render_def();
+  def.width = FX_W;
+  def.height = FX_H;
+  def.vsync = false;
+  def.title = "marionette test";
+  mr_render *win = NULL;
+  char msg[1024] = "";
+  /* AUTO with a display is the window. */
+  if (mr_render_create(&def, &s.stage, NULL, &win, msg, sizeof msg) != MR_RENDER_OK)
+    fail_msg("%s", msg);
+  assert_int_equal(mr_render_backend_of(win), MR_RENDER_WINDOW);
+  for (int i = 0; i < 60; i++) {
+    s.items[0].pose.position[0] = 0.3 * (i - 59) / 59.0; /* ends at 0 */
+    assert_int_equal(mr_render_draw(win, &s.list, &s.view), MR_RENDER_OK);
+    mr_render_present(win);
+    mr_event ev;
+    while (mr_render_poll(win, &ev)) assert_int_not_equal(ev.kind, MR_EVENT_NONE);
+  }
+  int w = 0, h = 0;
+  uint8_t *shown = malloc((size_t)4096 * 4096 * 3);
+  assert_int_equal(mr_render_read_window_rgb(win, shown, (size_t)4096 * 4096 * 3, &w, &h), 0);
+  assert_int_equal(w, FX_W);
+  assert_int_equal(h, FX_H);
+  uint8_t *fbo = malloc((size_t)FX_W * FX_H * 3);
+  assert_int_equal(mr_render_read_rgb(win, fbo, (size_t)FX_W * FX_H * 3), MR_RENDER_OK);
+  assert_memory_equal(shown, fbo, (size_t)FX_W * FX_H * 3);
+  assert_int_equal(mr_render_set_fullscreen(win, false), MR_RENDER_OK);
+  mr_render_destroy(win);
+
+  mr_render *egl = fx_render(MR_RENDER_EGL, &s);
+  uint8_t *headless = fx_draw(egl, &s);
+  mr_render_destroy(egl);
+  int worst = 0;
+  double agree = mr_frames_agreement(shown, headless, FX_W, FX_H, MR_GOLDEN_TOLERANCE, &worst);
+  if (agree < MR_GOLDEN_FRACTION) {
+    fx_save("window_shown", shown);
+    fail_msg("window and EGL: %.4f%% agree, worst %d", agree * 100, worst);
+  }
+  free(shown);
+  free(fbo);
+  free(headless);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(test_a_window_shows_the_frame_the_headless_backends_draw),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
