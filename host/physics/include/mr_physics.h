@@ -302,15 +302,31 @@ typedef struct mr_spring_def {
 mr_spring_def mr_default_spring_def(void);
 mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id);
 
+/* How a string holds its length.
+ *  - MR_STRING_SPRING (default, the paper's §6.2): a spring/damper that
+ *    only pulls, stretching under load (held back, if declared, by
+ *    MR_EFFECT_STRING_CORRECTION).
+ *  - MR_STRING_TAUT: a unilateral length limit |x_p − x_f| ≤ rest, a row of
+ *    the same complementarity solve as a resting contact (§5.4): active
+ *    only when taut, released when it would push, an inelastic impulse
+ *    (eq. 9) when it snaps taut. stiffness and damping are not used; the
+ *    ATS holds its over-length to the deviation thresholds. */
+typedef enum mr_string_mode { MR_STRING_SPRING, MR_STRING_TAUT } mr_string_mode;
+/* "spring", "taut"; parse gives −1 for an unknown name. */
+const char *mr_string_mode_name(mr_string_mode m);
+int mr_string_mode_parse(const char *name, mr_string_mode *out);
+
 /* A string from a control-frame particle to a puppet particle (§6.1, §6.2):
- * a spring/damper that only pulls (slack when shorter than rest_length).
- * Needs MR_EFFECT_STRINGS; corrected by MR_EFFECT_STRING_CORRECTION. */
+ * a spring/damper that only pulls (slack when shorter than rest_length), or
+ * a length limit (mode). Needs MR_EFFECT_STRINGS; spring strings are
+ * corrected by MR_EFFECT_STRING_CORRECTION. */
 typedef struct mr_string_def {
   uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_string_def() */
   int frame_particle, puppet_particle;
-  double rest_length; /* < 0 (default) = current distance */
-  double stiffness;   /* default 500 */
-  double damping;     /* default 5 */
+  double rest_length;  /* < 0 (default) = current distance */
+  double stiffness;    /* default 500 (spring mode) */
+  double damping;      /* default 5 (spring mode) */
+  mr_string_mode mode; /* default MR_STRING_SPRING */
 } mr_string_def;
 mr_string_def mr_default_string_def(void);
 mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id);
@@ -540,6 +556,9 @@ double mr_world_penetration(mr_world *w);
  * trees). For tests: a tree whose parents miss part of a child misses the
  * contacts inside it. */
 double mr_world_tree_slack(mr_world *w);
+/* The largest L/rest − 1 over the world's strings in the current state
+ * (negative when all are slack; 0 without strings). */
+double mr_world_string_stretch(const mr_world *w);
 /* FNV-1a (64-bit) over the bytes of time, positions and velocities. */
 uint64_t mr_world_state_hash(const mr_world *w);
 

@@ -93,14 +93,14 @@ int mr_collide_build_passes(mr_world *w) {
 }
 
 int mr_colliders(const mr_world *w) {
-  return w->n_detect_passes > 0;
+  return w->n_detect_passes > 0 || w->n_taut > 0;
 }
 
 int mr_contacts_detect(mr_world *w, const double *x, double gap, mr_contact_list *out) {
   out->n = 0;
   for (int p = 0; p < w->n_detect_passes; p++)
     if (w->detect_passes[p](w, x, gap, out) != 0) return -1;
-  return 0;
+  return w->n_taut > 0 ? mr_taut_detect(w, x, gap, out) : 0;
 }
 
 double mr_world_penetration(mr_world *w) {
@@ -112,7 +112,8 @@ double mr_world_penetration(mr_world *w) {
   double deepest = 0.0;
   if (mr_contacts_detect(w, w->x, 0.0, list) != 0) deepest = NAN;
   for (int i = 0; i < list->n && !isnan(deepest); i++)
-    deepest = fmax(deepest, -mr_contact_gap(w, &list->c[i], w->x));
+    if (list->c[i].kind != MR_CONTACT_STRING) /* an over-length, not a depth */
+      deepest = fmax(deepest, -mr_contact_gap(w, &list->c[i], w->x));
   return deepest;
 }
 
@@ -126,6 +127,7 @@ static void sphere_geometry(const mr_world *w, const mr_contact *c, const double
 }
 
 double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x) {
+  if (c->kind == MR_CONTACT_STRING) return mr_taut_gap(w, c->a, x);
   if (c->kind == MR_CONTACT_PLANE) return plane_gap(w, c->a, &MR_AT(w->planes, mr_plane, c->b), x);
   double d[3], len;
   sphere_geometry(w, c, x, d, &len);
@@ -149,6 +151,7 @@ static int leaf_jac(mr_world *w, const mr_leaf *l, const double n[3], double s) 
 }
 
 double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v) {
+  if (c->kind == MR_CONTACT_STRING) return mr_taut_rate(w, c->a, x, v);
   if (c->kind == MR_CONTACT_PLANE) {
     const double *n = MR_AT(w->planes, mr_plane, c->b).n, *q = &v[3 * c->a];
     return n[0] * q[0] + n[1] * q[1] + n[2] * q[2];
@@ -163,6 +166,7 @@ double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, 
 
 int mr_contact_row(mr_world *w, const mr_contact *c, const double *x, const double *v, double *chi,
                    double *chidot, double *jdqd) {
+  if (c->kind == MR_CONTACT_STRING) return mr_taut_row(w, c->a, x, v, chi, chidot, jdqd);
   if (mr_jac_begin_row(&w->J) < 0) return -1;
   if (c->kind == MR_CONTACT_PLANE) {
     const mr_plane *pl = &MR_AT(w->planes, mr_plane, c->b);
@@ -227,6 +231,8 @@ double mr_contact_slip(const mr_world *w, const mr_contact *c, const double *x, 
                        double out[3]) {
   int p[4];
   double wt[4], n[3], rel[3] = { 0, 0, 0 }, inv = 0.0;
+  out[0] = out[1] = out[2] = 0.0;
+  if (c->kind == MR_CONTACT_STRING) return 0.0; /* a string has no friction */
   int np = carriers(w, c, p, wt);
   for (int i = 0; i < np; i++) {
     for (int k = 0; k < 3; k++) rel[k] += wt[i] * q[3 * p[i] + k];
@@ -242,6 +248,7 @@ void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3]
                        int by_mass, double *out) {
   int p[4];
   double wt[4];
+  if (c->kind == MR_CONTACT_STRING) return;
   int np = carriers(w, c, p, wt);
   for (int i = 0; i < np; i++) {
     double k = s * wt[i] * (by_mass ? w->inv_mass[p[i]] : 1.0);

@@ -270,7 +270,8 @@ static void add_constraint_forces(mr_world *w, int rows, double *a) {
 }
 
 int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a) {
-  mr_frames_place(w, t, x, v);   /* 1 */
+  mr_frames_place(w, t, x, v); /* 1 */
+  mr_taut_set_time(w, t);
   applied_forces(w, t, x, v, a); /* 2 */
   if (!w->has_solve) return 0;
   select_resting_contacts(w, x, v);

@@ -96,6 +96,7 @@ static void strings_pass(mr_world *w, double t, const double *x, const double *v
   const mr_list *l = MR_FORCES(w, STRINGS);
   for (int i = 0; i < l->n; i++) {
     const mr_string *s = &MR_AT(*l, mr_string, i);
+    if (s->taut) continue; /* a contact row, not a force (taut_string.c) */
     double u[3], rate;
     double len = line(x, v, s->puppet_particle, s->frame_particle, u, &rate);
     if (len <= s->rest) continue;
@@ -237,6 +238,7 @@ static int links(mr_world *w, double *sum, double floor) {
   l = MR_FORCES(w, STRINGS);
   for (int i = 0; i < l->n; i++) {
     mr_string *s = &MR_AT(*l, mr_string, i);
+    if (s->taut) continue;
     softened += soften(w, s->puppet_particle, s->frame_particle, &s->ks, &s->kd, floor);
     add_link(w, sum, s->puppet_particle, s->frame_particle, s->ks, s->kd);
   }
@@ -323,7 +325,11 @@ mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id
 
 mr_string_def mr_default_string_def(void) {
   return (mr_string_def){
-    .cookie = MR_DEF_COOKIE, .rest_length = -1.0, .stiffness = 500.0, .damping = 5.0
+    .cookie = MR_DEF_COOKIE,
+    .rest_length = -1.0,
+    .stiffness = 500.0,
+    .damping = 5.0,
+    .mode = MR_STRING_SPRING,
   };
 }
 
@@ -342,8 +348,19 @@ mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id
   s = check_rest(w, what, def->rest_length, len, &rest);
   if (s == MR_OK) s = check_gains(w, what, def->stiffness, def->damping);
   if (s != MR_OK) return s;
-  mr_string e = { def->frame_particle, def->puppet_particle, rest, def->stiffness, def->damping };
-  return mr_add_push(w, MR_FORCES(w, STRINGS), &e, sizeof e, out_id, what);
+  if (def->mode != MR_STRING_SPRING && def->mode != MR_STRING_TAUT)
+    return mr_fail(w, MR_ERR_ARG, "%s: mode %d is neither spring nor taut", what, (int)def->mode);
+  int taut = def->mode == MR_STRING_TAUT;
+  if (taut && !(rest > 0))
+    return mr_fail(w, MR_ERR_DEGENERATE, "%s: a taut string needs a rest length above 0", what);
+  mr_string e = { def->frame_particle, def->puppet_particle, rest,
+                  def->stiffness,      def->damping,         taut };
+  s = mr_add_push(w, MR_FORCES(w, STRINGS), &e, sizeof e, out_id, what);
+  if (s == MR_OK && taut) {
+    w->n_taut++;
+    w->has_solve = 1; /* its rows go through the solve of eq. 8 */
+  }
+  return s;
 }
 
 mr_antigravity_def mr_default_antigravity_def(void) {

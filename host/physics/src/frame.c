@@ -25,15 +25,14 @@ static mr_status pose_check(mr_world *w, const mr_pose *p, const char *what, mr_
   return mr_fail(w, MR_ERR_DEGENERATE, "%s: orientation quaternion is zero", what);
 }
 
-/* The frame's pose at t, and its velocity and angular velocity: the
- * interpolation from `from` at t0 to `to` at t1, held outside [t0, t1]. */
-void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]) {
+/* The frame's velocity and angular velocity at t: those of the
+ * interpolation from `from` at t0 to `to` at t1 inside it, 0 outside.
+ * `ends` counts t0 and t1 as inside (a taut string's frame end, whose
+ * step from t0 to t1 moves with the segment at both of its ends). */
+void mr_frame_rates(const mr_frame *fr, double t, int ends, double vel[3], double omega[3]) {
   double span = fr->t1 - fr->t0;
   double s = span > 0 ? (t - fr->t0) / span : 1.0;
-  int moving = span > 0 && s > 0 && s < 1;
-  if (s <= 0) s = 0;
-  if (s >= 1) s = 1;
-  *pose = mr_pose_interpolate(&fr->from, &fr->to, s);
+  int moving = span > 0 && (ends ? s >= 0 && s <= 1 : s > 0 && s < 1);
   for (int k = 0; k < 3; k++) {
     vel[k] = moving ? (fr->to.position[k] - fr->from.position[k]) / span : 0.0;
     omega[k] = 0.0;
@@ -45,6 +44,17 @@ void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], d
     if (angle > 0)
       for (int k = 0; k < 3; k++) omega[k] = axis[k] * (angle / span);
   }
+}
+
+/* The frame's pose at t, and its velocity and angular velocity: the
+ * interpolation from `from` at t0 to `to` at t1, held outside [t0, t1]. */
+void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]) {
+  double span = fr->t1 - fr->t0;
+  double s = span > 0 ? (t - fr->t0) / span : 1.0;
+  if (s <= 0) s = 0;
+  if (s >= 1) s = 1;
+  *pose = mr_pose_interpolate(&fr->from, &fr->to, s);
+  mr_frame_rates(fr, t, 0, vel, omega);
 }
 
 void mr_frames_place(mr_world *w, double t, double *x, double *v) {

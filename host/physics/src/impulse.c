@@ -116,6 +116,7 @@ static int solve_eq9(mr_world *w, double t, const double *x, const double *v) {
 int mr_impulses_apply(mr_world *w, double t, int *collided) {
   *collided = 0;
   if (w->contacts.n == 0) return 0;
+  mr_taut_set_time(w, t);
   if (!approach_rates(w, w->x, w->v, collided)) return 0;
   impact_friction(w, w->x, w->v);
   if (solve_eq9(w, t, w->x, w->v) != 0) return -1;

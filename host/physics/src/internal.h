@@ -20,6 +20,7 @@ typedef struct mr_frame {
 typedef struct mr_string {
   int frame_particle, puppet_particle;
   double rest, ks, kd;
+  int taut; /* MR_STRING_TAUT: a contact row (taut_string.c), no force */
 } mr_string;
 
 typedef struct mr_distance {
@@ -61,7 +62,12 @@ typedef struct mr_tree {
   int puppet, first_node, node_count, root;
 } mr_tree;
 
-typedef enum mr_contact_kind { MR_CONTACT_PLANE, MR_CONTACT_SPHERES } mr_contact_kind;
+/* A string contact (taut_string.c): a, the string; b unused. */
+typedef enum mr_contact_kind {
+  MR_CONTACT_PLANE,
+  MR_CONTACT_SPHERES,
+  MR_CONTACT_STRING
+} mr_contact_kind;
 typedef struct mr_contact {
   mr_contact_kind kind;
   int a, b; /* plane: particle a, plane b; spheres: leaves a, b */
@@ -148,6 +154,8 @@ struct mr_world {
   mr_detect_pass detect_passes[4];
   mr_pass detect_pass_ids[4];
   int has_frames, has_solve, has_string_correction;
+  int n_taut;    /* strings in MR_STRING_TAUT mode */
+  double taut_t; /* the time their frame ends are evaluated at */
   uint64_t pass_calls[MR_PASS_COUNT];
 
   /* contacts: found before a step and held during it (resting set), and a
@@ -224,6 +232,7 @@ int mr_require(mr_world *w, uint32_t effect, const char *what);
 
 /* frame.c */
 void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]);
+void mr_frame_rates(const mr_frame *fr, double t, int ends, double vel[3], double omega[3]);
 void mr_frames_place(mr_world *w, double t, double *x, double *v);
 
 /* curve.c */
@@ -305,6 +314,20 @@ void mr_project_apply(mr_world *w, double *q);
  * of the applied forces (and eq. 8's feedback); links too stiff for a step
  * of dt_min/100 are softened to it first (counted in stats). */
 double mr_forces_stable_dt(mr_world *w);
+
+/* taut_string.c: strings in MR_STRING_TAUT mode as contacts (§5.4) with
+ * the gap χ = rest − |x_p − x_f|, J = −uᵀ at the puppet particle. */
+int mr_taut_detect(mr_world *w, const double *x, double gap, mr_contact_list *out);
+double mr_taut_gap(const mr_world *w, int string, const double *x);
+double mr_taut_rate(const mr_world *w, int string, const double *x, const double *v);
+int mr_taut_row(mr_world *w, int string, const double *x, const double *v, double *chi,
+                double *chidot, double *jdqd);
+/* The time the frame ends of taut strings move at: rates are taken from
+ * the frame segment under way at it, ends included (mr_frame_rates). */
+void mr_taut_set_time(mr_world *w, double t);
+/* The largest relative over-length (L − rest)/rest of the taut strings in
+ * x, 0 when none is over: held to the ATS thresholds with the deviation. */
+double mr_taut_overlength(const mr_world *w, const double *x);
 
 /* string_correction.c */
 void mr_strings_correct(mr_world *w);

@@ -109,7 +109,7 @@ static int reserve_contacts(mr_world *w) {
   for (int i = 0; i < w->n; i++) dynamic += w->inv_mass[i] > 0.0;
   long plane_pairs = (long)w->planes.n * dynamic;
   long sphere_pairs = (long)w->leaves.n * (w->leaves.n - 1) / 2;
-  long most = plane_pairs + sphere_pairs;
+  long most = plane_pairs + sphere_pairs + w->n_taut;
   int cap = most < MR_CONTACT_RESERVE_MAX ? (int)most : MR_CONTACT_RESERVE_MAX;
   if (cap > 0 &&
       (mr_grow((void **)&w->contacts.c, &w->contacts.cap, cap, sizeof(mr_contact)) != 0 ||
@@ -365,6 +365,9 @@ static void plan(mr_world *w, mr_step_ctx *c) {
 
 /* 6a: contacts at the start state; impulses for the colliding ones. */
 static mr_status impacts(mr_world *w, mr_step_ctx *c) {
+  /* A taut string's frame end moves with the velocity of the frame's new
+   * segment from now on: its snap is judged against that one. */
+  if (w->n_taut > 0) mr_frames_place(w, c->t, w->x, w->v);
   if (mr_contacts_detect(w, w->x, w->def.contact_slop, &w->contacts) != 0 ||
       contact_capacity(w, w->contacts.n) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
@@ -392,6 +395,15 @@ static enum verdict divergence_check(mr_world *w, mr_step_ctx *c) {
   c->rep.divergences++;
   c->result = MR_DIVERGED;
   return TRY_DIVERGED;
+}
+
+/* The relative deviation of an end state (§4.5): the constraints', and
+ * the over-length of taut strings, which the rule holds the same way. */
+static double end_error(const mr_world *w, double t, const double *x) {
+  double e = mr_constraints_deviation(w, t, x);
+  if (w->n_taut == 0) return e;
+  double o = mr_taut_overlength(w, x);
+  return (o > e || o != o) ? o : e;
 }
 
 /* 7: the §4.5 rule; a rejected try is retried with the Δt it gives. */
@@ -422,7 +434,7 @@ static mr_status integrate_until_accepted(mr_world *w, mr_step_ctx *c, enum verd
   for (;;) {
     if (mr_integrate(w, c->t, c->h, w->scratch.x0, w->scratch.v0, w->x1, w->v1, &c->int_error) != 0)
       return inner_failure(w, "solve");
-    c->error = mr_constraints_deviation(w, c->t + c->h, w->x1);
+    c->error = end_error(w, c->t + c->h, w->x1);
     *v = divergence_check(w, c);
     if (*v == TRY_AGAIN) continue;
     if (*v == TRY_DIVERGED) return MR_OK;
@@ -448,7 +460,7 @@ static mr_status penetration(mr_world *w, mr_step_ctx *c) {
     c->located = 1;
     c->h = hc;
     c->landing = 0;
-    c->error = mr_constraints_deviation(w, c->t + c->h, w->x1);
+    c->error = end_error(w, c->t + c->h, w->x1);
     if (mr_contacts_detect(w, w->x1, -w->def.contact_slop, &w->probe) != 0 ||
         contact_capacity(w, w->probe.n) != 0)
       return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
@@ -484,7 +496,7 @@ static mr_status correct(mr_world *w, mr_step_ctx *c) {
   int rounds = mr_project_positions(w, t1, w->x1, w->v1, w->def.deviation_low, 20);
   if (rounds < 0 && w->fail != MR_OK) return inner_failure(w, "projection");
   if (mr_project_velocities(w, t1, w->x1, w->v1) != 0) return inner_failure(w, "projection");
-  c->error = mr_constraints_deviation(w, t1, w->x1);
+  c->error = end_error(w, t1, w->x1);
   w->stats.corrections++;
   c->rep.corrections++;
   return MR_OK;
@@ -551,7 +563,7 @@ static mr_status step_once(mr_world *w, mr_step_ctx *c) {
   if (colliders && (st = penetration(w, c)) != MR_OK) return st;
   if ((st = correct(w, c)) != MR_OK) return st;
   accept(w, c);
-  if (w->has_string_correction) mr_strings_correct(w);
+  if (w->has_string_correction || w->n_taut > 0) mr_strings_correct(w);
   next_dt(w, c);
   return MR_OK;
 }

@@ -51,6 +51,17 @@ static int read_spring(mr_reader *r, const mr_ynode *it, mr_scene_force *f) {
   return mr_scene_read_fields(r, it, fields, 3, d);
 }
 
+/* The physics' string modes (spring, taut), typed for mr_scene_read_choice. */
+static const char *string_mode_at(int i) {
+  return mr_string_mode_name((mr_string_mode)i);
+}
+static int parse_string_mode(const char *word, int *out) {
+  mr_string_mode m;
+  int rc = mr_string_mode_parse(word, &m);
+  *out = rc == 0 ? (int)m : *out;
+  return rc;
+}
+
 static int read_string(mr_reader *r, const mr_ynode *it, mr_scene_force *f) {
   static const mr_scene_field fields[] = {
     { "rest", MR_SCENE_FIELD_NONNEG, FIELD(mr_string_def, rest_length), 0, 0 },
@@ -60,11 +71,14 @@ static int read_string(mr_reader *r, const mr_ynode *it, mr_scene_force *f) {
   mr_string_def *d = &f->def.string;
   *d = mr_default_string_def();
   const mr_ynode *v;
+  int mode = (int)d->mode;
   if ((v = mr_scene_read_need(r, it, "from", "a string")) == NULL ||
       mr_scene_read_control_point(r, v, &d->frame_particle) != 0 ||
       (v = mr_scene_read_need(r, it, "to", "a string")) == NULL ||
-      mr_scene_read_particle(r, v, &d->puppet_particle) != 0)
+      mr_scene_read_particle(r, v, &d->puppet_particle) != 0 ||
+      mr_scene_read_choice(r, it, "mode", parse_string_mode, string_mode_at, &mode) != 0)
     return -1;
+  d->mode = (mr_string_mode)mode;
   return mr_scene_read_fields(r, it, fields, 3, d);
 }
 
@@ -151,7 +165,7 @@ static const force_kind kinds[] = {
     "strings",
     "a string",
     "strings are",
-    { "from", "to", "rest", "stiffness", "damping", NULL },
+    { "from", "to", "rest", "stiffness", "damping", "mode", NULL },
     read_string,
     add_string,
     "the string" },

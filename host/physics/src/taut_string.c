@@ -1,0 +1,144 @@
+/* Strings that hold their length (MR_STRING_TAUT): a real marionette
+ * string does not stretch, it goes slack or taut. The paper's strings are
+ * springs (§6.2); holding a spring to 1 % takes stiff springs and tiny
+ * steps. Here a taut-mode string is a unilateral constraint
+ *
+ *   χ = rest − |x_p − x_f| ≥ 0,
+ *
+ * handled exactly as a contact (§5.4, eq. 13): found when χ ≤ slop, a
+ * resting row of eq. 8 that pulls and never pushes (a negative λ releases
+ * it), an inelastic impulse of eq. 9 when it snaps taut (χ̇ < 0 at the start
+ * of a step), and a step that overshoots the snap is located in time and
+ * cut there (§4.5). With d = x_p − x_f, L = |d|, u = d/L:
+ *
+ *   J = −uᵀ at the puppet particle (the frame end is kinematic),
+ *   χ̇ = −u·(v_p − v_f),
+ *   J̇q̇ + ∂²χ/∂t² = −(|ḋ|² − L̇²)/L + u·a_f,
+ *
+ * with a_f = ω × (ω × r) the frame end's acceleration inside one frame
+ * segment (linear motion at constant velocity, a turn at constant rate). */
+#include "internal.h"
+
+#include <math.h>
+#include <string.h>
+
+static const mr_string *string_at(const mr_world *w, int i) {
+  return &MR_AT(*MR_FORCES(w, STRINGS), mr_string, i);
+}
+
+/* d = x_p − x_f and its length. */
+static double geometry(const mr_string *s, const double *x, double d[3]) {
+  const double *xp = &x[3 * s->puppet_particle], *xf = &x[3 * s->frame_particle];
+  for (int k = 0; k < 3; k++) d[k] = xp[k] - xf[k];
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+void mr_taut_set_time(mr_world *w, double t) {
+  w->taut_t = t;
+}
+
+/* The velocity and acceleration ω × (ω × r) of frame particle i (r from
+ * the frame's origin as mr_frames_place last placed it), from the rates of
+ * the frame segment under way at w->taut_t, ends included: the frames'
+ * own velocity is 0 at a segment's ends, where a step begins and ends. */
+static void frame_end_motion(const mr_world *w, int i, const double *x, double v[3], double a[3]) {
+  const double *p = &w->frame_state[13 * w->frame[i]];
+  double vel[3], om[3];
+  mr_frame_rates(&MR_AT(w->frames, mr_frame, w->frame[i]), w->taut_t, 1, vel, om);
+  double r[3] = { x[3 * i] - p[0], x[3 * i + 1] - p[1], x[3 * i + 2] - p[2] };
+  double wr[3] = { om[1] * r[2] - om[2] * r[1], om[2] * r[0] - om[0] * r[2],
+                   om[0] * r[1] - om[1] * r[0] };
+  for (int k = 0; k < 3; k++) v[k] = vel[k] + wr[k];
+  a[0] = om[1] * wr[2] - om[2] * wr[1];
+  a[1] = om[2] * wr[0] - om[0] * wr[2];
+  a[2] = om[0] * wr[1] - om[1] * wr[0];
+}
+
+int mr_taut_detect(mr_world *w, const double *x, double gap, mr_contact_list *out) {
+  const mr_list *l = MR_FORCES(w, STRINGS);
+  for (int i = 0; i < l->n; i++) {
+    const mr_string *s = string_at(w, i);
+    if (!s->taut) continue;
+    double d[3], chi = s->rest - geometry(s, x, d);
+    if (chi <= gap || chi != chi)
+      if (mr_contact_push(out, MR_CONTACT_STRING, i, -1, 0.0, 0.0) != 0) return -1;
+  }
+  return 0;
+}
+
+double mr_taut_gap(const mr_world *w, int string, const double *x) {
+  double d[3];
+  const mr_string *s = string_at(w, string);
+  return s->rest - geometry(s, x, d);
+}
+
+double mr_taut_rate(const mr_world *w, int string, const double *x, const double *v) {
+  const mr_string *s = string_at(w, string);
+  double d[3], len = geometry(s, x, d), vf[3], af[3];
+  if (!(len > 1e-12)) return 0.0;
+  const double *vp = &v[3 * s->puppet_particle];
+  frame_end_motion(w, s->frame_particle, x, vf, af);
+  return -(d[0] * (vp[0] - vf[0]) + d[1] * (vp[1] - vf[1]) + d[2] * (vp[2] - vf[2])) / len;
+}
+
+int mr_taut_row(mr_world *w, int string, const double *x, const double *v, double *chi,
+                double *chidot, double *jdqd) {
+  const mr_string *s = string_at(w, string);
+  double d[3], len = geometry(s, x, d), u[3] = { 0, 0, 0 }, g[3];
+  if (len > 1e-12)
+    for (int k = 0; k < 3; k++) u[k] = d[k] / len;
+  for (int k = 0; k < 3; k++) g[k] = -u[k];
+  if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, s->puppet_particle, g) != 0) return -1;
+  const double *vp = &v[3 * s->puppet_particle];
+  double vf[3], af[3];
+  frame_end_motion(w, s->frame_particle, x, vf, af);
+  double dv[3] = { vp[0] - vf[0], vp[1] - vf[1], vp[2] - vf[2] };
+  double rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
+  *chi = s->rest - len;
+  *chidot = -rate;
+  *jdqd =
+      (len > 1e-12 ? -(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) / len : 0.0) +
+      u[0] * af[0] + u[1] * af[1] + u[2] * af[2];
+  return 0;
+}
+
+double mr_taut_overlength(const mr_world *w, const double *x) {
+  double worst = 0.0;
+  if (w->n_taut == 0) return worst;
+  const mr_list *l = MR_FORCES(w, STRINGS);
+  for (int i = 0; i < l->n; i++) {
+    const mr_string *s = string_at(w, i);
+    if (!s->taut || !(s->rest > 0)) continue;
+    double d[3], over = (geometry(s, x, d) - s->rest) / s->rest;
+    if (over > worst || over != over) worst = over;
+  }
+  return worst;
+}
+
+double mr_world_string_stretch(const mr_world *w) {
+  if (w == NULL || MR_FORCES(w, STRINGS)->n == 0) return 0.0;
+  const mr_list *l = MR_FORCES(w, STRINGS);
+  double worst = -INFINITY;
+  for (int i = 0; i < l->n; i++) {
+    const mr_string *s = string_at(w, i);
+    if (!(s->rest > 0)) continue;
+    double d[3], r = geometry(s, w->x, d) / s->rest - 1.0;
+    if (r > worst) worst = r;
+  }
+  return worst == -INFINITY ? 0.0 : worst;
+}
+
+static const char *const mode_names[] = { "spring", "taut" };
+
+const char *mr_string_mode_name(mr_string_mode m) {
+  return (unsigned)m < 2 ? mode_names[m] : "unknown";
+}
+
+int mr_string_mode_parse(const char *name, mr_string_mode *out) {
+  for (int m = 0; name && m < 2; m++)
+    if (strcmp(name, mode_names[m]) == 0) {
+      if (out) *out = (mr_string_mode)m;
+      return 0;
+    }
+  return -1;
+}

@@ -1,0 +1,145 @@
+/* Strings in MR_STRING_TAUT mode: a length limit solved with the resting
+ * contacts, slack below its rest length and never longer than it by more
+ * than the ATS's threshold. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "mr_physics.h"
+
+typedef struct rig {
+  mr_world *w;
+  int frame, anchor, bob;
+} rig;
+
+/* A frame at the origin with one point, and a 1 kg bob at `at` on a taut
+ * string of length `rest` from it. */
+static void make_rig(rig *r, const double at[3], double rest, uint32_t extra) {
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_STRINGS | MR_EFFECT_FRAMES | extra;
+  char msg[200];
+  assert_int_equal(mr_world_create(&def, &r->w, msg, sizeof msg), MR_OK);
+  mr_frame_def fd = mr_default_frame_def();
+  assert_int_equal(mr_world_add_frame(r->w, &fd, &r->frame), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.frame = r->frame;
+  assert_int_equal(mr_world_add_particle(r->w, &p, &r->anchor), MR_OK);
+  p = mr_default_particle_def();
+  for (int k = 0; k < 3; k++) p.position[k] = at[k];
+  assert_int_equal(mr_world_add_particle(r->w, &p, &r->bob), MR_OK);
+  mr_string_def s = mr_default_string_def();
+  s.frame_particle = r->anchor;
+  s.puppet_particle = r->bob;
+  s.rest_length = rest;
+  s.mode = MR_STRING_TAUT;
+  assert_int_equal(mr_world_add_string(r->w, &s, NULL), MR_OK);
+}
+
+static double length(const rig *r) {
+  double a[3], b[3];
+  mr_world_particle_state(r->w, r->anchor, a, NULL);
+  mr_world_particle_state(r->w, r->bob, b, NULL);
+  double d[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+static void spring_is_the_default_and_bad_modes_are_refused(void **state) {
+  (void)state;
+  assert_int_equal(mr_default_string_def().mode, MR_STRING_SPRING);
+  mr_string_mode m;
+  assert_int_equal(mr_string_mode_parse("taut", &m), 0);
+  assert_int_equal(m, MR_STRING_TAUT);
+  assert_string_equal(mr_string_mode_name(MR_STRING_SPRING), "spring");
+  assert_int_equal(mr_string_mode_parse("rope", &m), -1);
+  rig r;
+  const double at[3] = { 0, -1, 0 };
+  make_rig(&r, at, 1.0, 0);
+  mr_string_def s = mr_default_string_def();
+  s.frame_particle = r.anchor;
+  s.puppet_particle = r.bob;
+  s.mode = (mr_string_mode)7;
+  assert_int_equal(mr_world_add_string(r.w, &s, NULL), MR_ERR_ARG);
+  s.mode = MR_STRING_TAUT;
+  s.rest_length = 0.0;
+  assert_int_equal(mr_world_add_string(r.w, &s, NULL), MR_ERR_DEGENERATE);
+  mr_world_destroy(r.w);
+}
+
+/* A bob held 0.5 m from the anchor on a 1 m string falls freely (the
+ * string is slack and does nothing), then the string snaps taut: an
+ * inelastic impulse (eq. 9), after which the bob swings on the string
+ * without stretching it past 1 %. */
+static void slack_string_falls_free_then_snaps_taut(void **state) {
+  (void)state;
+  rig r;
+  const double at[3] = { 0.5, 0, 0 };
+  make_rig(&r, at, 1.0, 0);
+  mr_world_step_to(r.w, 0.2, NULL);
+  double x[3];
+  mr_world_particle_state(r.w, r.bob, x, NULL);
+  assert_true(fabs(x[1] - -0.5 * 9.81 * 0.04) < 1e-9); /* still free: ½ g t² */
+  double worst = 0.0, shortest = INFINITY;
+  for (int f = 13; f <= 300; f++) {
+    mr_world_step_to(r.w, f / 60.0, NULL);
+    worst = fmax(worst, length(&r) - 1.0);
+    if (f > 60) shortest = fmin(shortest, length(&r));
+  }
+  mr_stats st;
+  mr_world_stats(r.w, &st);
+  assert_true(st.collisions >= 1); /* the snap */
+  assert_true(worst < 1e-2);
+  assert_true(shortest > 0.99); /* it swings taut after the snap */
+  assert_int_equal(st.divergences, 0);
+  mr_world_destroy(r.w);
+}
+
+/* A taut string only pulls: a bob thrown towards the anchor moves in
+ * freely, and the string holds it when it swings back out. */
+static void taut_string_never_pushes(void **state) {
+  (void)state;
+  rig r;
+  const double at[3] = { 0, -1, 0 }, in[3] = { 0, 3, 0 };
+  make_rig(&r, at, 1.0, 0);
+  mr_world_set_particle_state(r.w, r.bob, at, in);
+  mr_world_step_to(r.w, 0.1, NULL);
+  assert_true(length(&r) < 0.8); /* moved in, unresisted */
+  mr_world_destroy(r.w);
+}
+
+/* The anchor swings 0.3 m at 3 Hz (the paper's Fig. 10 rhythm): the
+ * string stays within 1 % of its length (the ATS holds its over-length as
+ * it holds a deviation), and mr_world_string_stretch reports it. */
+static void shaken_taut_string_holds_its_length(void **state) {
+  (void)state;
+  rig r;
+  const double at[3] = { 0, -1, 0 };
+  make_rig(&r, at, 1.0, MR_EFFECT_DRAG);
+  double worst = 0.0;
+  for (int f = 1; f <= 600; f++) {
+    mr_pose p = mr_pose_identity();
+    p.position[0] = 0.3 * sin(6.283185307179586 * 3 * f / 60.0) * fmin(1.0, f / 60.0);
+    mr_world_set_frame_target(r.w, r.frame, &p, f / 60.0);
+    mr_world_step_to(r.w, f / 60.0, NULL);
+    worst = fmax(worst, length(&r) - 1.0);
+    assert_true(fabs(mr_world_string_stretch(r.w) - (length(&r) - 1.0)) < 1e-12);
+  }
+  assert_true(worst < 1e-2);
+  mr_stats st;
+  mr_world_stats(r.w, &st);
+  assert_int_equal(st.divergences, 0);
+  mr_world_destroy(r.w);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(spring_is_the_default_and_bad_modes_are_refused),
+    cmocka_unit_test(slack_string_falls_free_then_snaps_taut),
+    cmocka_unit_test(taut_string_never_pushes),
+    cmocka_unit_test(shaken_taut_string_holds_its_length),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
