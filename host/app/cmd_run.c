@@ -1,7 +1,9 @@
 /* `marionette run SCENE --glove SRC...`: the theater. Gloves drive the
- * scene's puppets in real time on the wall clock; until the stage exists,
- * a status line a second shows the show, and a summary ends it. Ctrl-C
- * ends it cleanly. */
+ * scene's puppets in real time on the wall clock, drawn on the stage: in a
+ * window when there is a display, else headless into frames. Without a
+ * glove, in a window, the keyboard, mouse and a gamepad play one. A status
+ * line a second shows the show, and a summary ends it. Ctrl-C ends it
+ * cleanly. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <inttypes.h>
@@ -15,6 +17,8 @@
 #include "app.h"
 #include "mr_scene.h"
 #include "mr_show.h"
+#include "stage_opts.h"
+#include "window.h"
 
 static volatile sig_atomic_t stop_asked, mappings_asked;
 
@@ -36,19 +40,31 @@ static int next_mapping(void *user) {
 }
 
 void mr_cmd_run_usage(void) {
-  printf("usage: marionette run [OPTIONS] SCENE (--glove SOURCE | --replay TAKE)...\n"
+  printf("usage: marionette run [OPTIONS] SCENE [--glove SOURCE | --replay TAKE]...\n"
          "\n"
          "The theater: the glove at SOURCE drives the puppet of the scene file SCENE\n"
-         "in real time. Its five values move the control frame through the scene's\n"
+         "in real time, on the stage. Its five values move the control frame through the scene's\n"
          "mapping (host/scenes/FORMAT.md, \"mapping\"); the strings do the rest.\n"
          "Give --glove (or --replay) once per glove: a scene whose puppets have\n"
          "control frames of their own binds each to a glove by order, uid or hand\n"
          "(FORMAT.md, \"puppets\"); by default the k-th frame takes the k-th glove. The\n"
          "frame rate is the scene's sim.fps, else 60. Under load renders are skipped\n"
          "and simulated time keeps to wall time (--policy skip), or simulated time\n"
-         "slows and nothing is skipped (--policy slow). Until the stage exists, one\n"
-         "status line a second shows frames, skipped frames, steps, resets and the\n"
-         "glove; a summary ends the show. Ctrl-C ends it cleanly.\n"
+         "slows and nothing is skipped (--policy slow). One status line a second\n"
+         "shows frames, skipped frames, steps, resets and the glove; a summary ends\n"
+         "the show. Ctrl-C ends it cleanly.\n"
+         "\n"
+         "The stage: with a display (DISPLAY set) the show is drawn in a window, its\n"
+         "on-screen display showing fps, skipped renders, dt, resets and each\n"
+         "glove's state and latency. Without a display, or with --headless, it is\n"
+         "drawn offscreen and written as with marionette render (-o DIR); without a\n"
+         "display and without -o nothing is drawn. Without --glove, in a window\n"
+         "(or with --keys), the keyboard, the mouse and a gamepad play a glove on a\n"
+         "pty of its own, through the same mapping (see the man page for the keys).\n"
+         "Keys: space pause, . single step, s slow motion, r reset, n day/night,\n"
+         "[ ] turn the day knob, h or F1 the OSD, p or F12 a screenshot (-o DIR,\n"
+         "else here), f or F11 fullscreen, q or Esc quit, 1-8 the scene's cameras,\n"
+         "0 the orbit camera; drag to orbit, the wheel zooms.\n"
          "\n"
          "options:\n"
          "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], serial:auto, pty:PATH,\n"
@@ -75,11 +91,23 @@ void mr_cmd_run_usage(void) {
          "                      it: fewer steps, up to one step more input lag);\n"
          "                      default the scene's sim.present, else land\n"
          "  -t, --time SECONDS  end after this much show (default: until Ctrl-C)\n"
+         "  --headless          draw offscreen even with a display\n"
+         "  --fullscreen        the window fills the screen (the theater box)\n"
+         "  --no-osd            start with the on-screen display hidden (h shows it)\n"
+         "  --backend B         auto (default), window, egl or osmesa\n"
+         "  --keys LIST         press keys at show times, T:KEY[/HOLD],... (KEY a\n"
+         "                      character or space, esc, left, right, up, down,\n"
+         "                      pgup, pgdn, f1, f11, f12; HOLD seconds, default\n"
+         "                      0.05): for demos and tests; without --glove the\n"
+         "                      keyboard's glove plays, headless too\n"
+         "%s"
          "  -q, --quiet         no status lines, only the summary and errors\n"
          "  -h, --help          show this help\n"
          "\n"
-         "exit status: 0 the show ended, 1 the scene or a glove source failed,\n"
-         "2 bad usage, 3 a glove was built from another protocol definition.\n");
+         "exit status: 0 the show ended, 1 the scene, a model, the stage or a glove\n"
+         "source failed, 2 bad usage, 3 a glove was built from another protocol\n"
+         "definition.\n",
+         mr_stage_opts_help);
 }
 
 typedef struct status {
@@ -88,6 +116,7 @@ typedef struct status {
   FILE *hashes; /* --hashes: one line a frame */
   FILE *poses;  /* --poses: one line a frame */
   int hash_failed;
+  mr_live *lv; /* the stage, or NULL */
 } status;
 
 static void frame_done(void *user, const mr_show_frame *f, uint64_t hash) {
@@ -107,6 +136,7 @@ static void frame_done(void *user, const mr_show_frame *f, uint64_t hash) {
 
 static void present(void *user, const mr_show_frame *f) {
   status *st = user;
+  if (st->lv != NULL) mr_live_present(st->lv, f);
   if (st->quiet || f->t < st->next_line) return;
   st->next_line = floor(f->t) + 1.0;
   mr_scheduler_stats s;
@@ -135,8 +165,17 @@ static void note(void *user, const char *line) {
 }
 
 static int stop(void *user) {
-  (void)user;
-  return stop_asked != 0;
+  const status *st = user;
+  if (st->lv != NULL) mr_live_pump(st->lv);
+  return stop_asked != 0 || (st->lv != NULL && st->lv->quit);
+}
+
+/* The window's reset key. */
+static int reset(void *user) {
+  status *st = user;
+  if (st->lv == NULL || !st->lv->reset_asked) return 0;
+  st->lv->reset_asked = false;
+  return 1;
 }
 
 /* Glove 1's lines are "glove: ...", as with one glove; glove k's
@@ -189,9 +228,10 @@ static int bad_usage(const char *fmt, const char *arg) {
 
 /* The command line, read. */
 typedef struct args {
-  const char *scene, *hashes, *poses;
+  const char *scene, *hashes, *poses, *keys;
   size_t n_live, n_replay, n_record;
-  int real_time, quiet, help;
+  int real_time, quiet, help, headless, fullscreen, no_osd;
+  mr_stage_opts so;
   mr_show_def def;
   char take_source[MR_SHOW_MAX_GLOVES][MR_GLOVE_SOURCE_MAX];
 } args;
@@ -239,12 +279,21 @@ static int take_value(args *a, const char *opt, const char *v) {
   return 0;
 }
 
+/* A window: a display, and no --headless. */
+static bool window_wanted(const args *a) {
+  const char *d = getenv("DISPLAY");
+  return !a->headless && d != NULL && d[0] != '\0';
+}
+
 static int parse(int argc, char **argv, args *a) {
   static const char *const valued[] = { "--glove",   "--policy",  "-t",       "--time",
                                         "--record",  "--replay",  "--hashes", "--poses",
                                         "--present", "--mapping", NULL };
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
+    int staged = mr_stage_opts_take(&a->so, "run", argc, argv, &i, true);
+    if (staged < 0) return MR_EXIT_USAGE;
+    if (staged > 0) continue;
     bool takes_value = false;
     for (int k = 0; valued[k] != NULL; k++) takes_value |= strcmp(o, valued[k]) == 0;
     if (strcmp(o, "-h") == 0 || strcmp(o, "--help") == 0) {
@@ -253,6 +302,15 @@ static int parse(int argc, char **argv, args *a) {
       a->quiet = 1;
     } else if (strcmp(o, "--real-time") == 0) {
       a->real_time = 1;
+    } else if (strcmp(o, "--headless") == 0) {
+      a->headless = 1;
+    } else if (strcmp(o, "--fullscreen") == 0) {
+      a->fullscreen = 1;
+    } else if (strcmp(o, "--no-osd") == 0) {
+      a->no_osd = 1;
+    } else if (strcmp(o, "--keys") == 0) {
+      if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
+      a->keys = argv[++i];
     } else if (takes_value) {
       if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
       if (take_value(a, o, argv[++i]) != 0) return MR_EXIT_USAGE;
@@ -266,7 +324,8 @@ static int parse(int argc, char **argv, args *a) {
   }
   if (a->help) return 0;
   if (a->scene == NULL) return bad_usage("expected a scene file%s", "");
-  if (a->def.n_gloves == 0) return bad_usage("expected --glove SOURCE or --replay TAKE%s", "");
+  if (a->def.n_gloves == 0 && !window_wanted(a) && a->keys == NULL)
+    return bad_usage("expected --glove SOURCE or --replay TAKE%s", "");
   if (a->n_live > 0 && a->n_replay > 0)
     return bad_usage("expected gloves or takes, not both: a take replays on show time%s", "");
   if (a->n_replay > 0 && a->n_record > 0)
@@ -299,17 +358,81 @@ static int close_outputs(status *st) {
   return bad ? -1 : 0;
 }
 
+/* The stage for this run: in a window (a display, live time), headless
+ * (--headless, -o or --keys), or none (the status line only). 0, or the
+ * exit status after one line. */
+static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live *lv,
+                      mr_clock *clock, status *st) {
+  bool window = window_wanted(a) && !virtual_time;
+  if (!window && !a->headless && a->so.out == NULL && a->keys == NULL) return 0;
+  mr_live_def d = { window, a->fullscreen, a->def.n_gloves == 0, a->keys, 60.0, a->no_osd != 0 };
+  if (a->def.fps > 0)
+    d.fps = a->def.fps;
+  else if (scene->fps > 0)
+    d.fps = scene->fps;
+  if (!virtual_time) *clock = mr_live_clock(lv);
+  int usage = 0;
+  char msg[700];
+  if (mr_live_open(lv, scene, &d, &a->so, &usage, msg, sizeof msg) != 0) {
+    if (usage) return bad_usage("%s", msg);
+    fprintf(stderr, "marionette: %s\n", msg);
+    return MR_EXIT_FAIL;
+  }
+  if (d.manual) add_glove(a, lv->glove_source);
+  st->lv = lv;
+  return 0;
+}
+
+/* The show's end: what the gloves say, and whether all was written. */
+static int show_status(const args *a, status *st, mr_scene_status rc, const mr_show_result *r,
+                       const mr_scene_error *err) {
+  int stage_rc = st->lv != NULL ? mr_live_close(st->lv, false) : 0;
+  if (close_outputs(st) != 0 && rc == MR_SCENE_OK) {
+    fprintf(stderr, "marionette run: could not write all of %s\n",
+            a->hashes != NULL ? a->hashes : a->poses);
+    return MR_EXIT_FAIL;
+  }
+  if (rc != MR_SCENE_OK) {
+    fprintf(stderr, "marionette: %s\n", err->text);
+    return MR_EXIT_FAIL;
+  }
+  for (size_t g = 0; g < r->n_gloves; g++)
+    if (r->glove[g].state == MR_GLOVE_MISMATCH) {
+      fprintf(stderr, "marionette run: %s\n", r->glove[g].describe);
+      return MR_EXIT_MISMATCH;
+    }
+  return stage_rc != 0 ? MR_EXIT_FAIL : MR_EXIT_OK;
+}
+
+static int run_show(args *a, mr_scene *scene, status *st) {
+  bool virtual_time = a->n_replay > 0 && !a->real_time;
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock clock = virtual_time ? mr_clock_virtual(&vc) : mr_clock_wall();
+  if (virtual_time) st->quiet = 1; /* as fast as it goes: no seconds to mark */
+  static mr_live lv;               /* large, and its address is the clock's */
+  memset(&lv, 0, sizeof lv);
+  int rc_stage = open_stage(a, scene, virtual_time, &lv, &clock, st);
+  if (rc_stage != 0) return rc_stage;
+  mr_show_hooks hooks = { present, stop, frame_done, next_mapping, note, st, reset };
+  mr_show_result r;
+  mr_scene_error err;
+  mr_scene_status rc = mr_show_run(scene, &a->def, &clock, &hooks, &r, &err);
+  if (rc == MR_SCENE_OK) summary(scene, &r);
+  return show_status(a, st, rc, &r, &err);
+}
+
 int mr_cmd_run(int argc, char **argv) {
   args a;
   memset(&a, 0, sizeof a);
   a.def = mr_default_show_def();
+  mr_stage_opts_init(&a.so);
   int rc_usage = parse(argc, argv, &a);
   if (rc_usage != 0) return rc_usage;
   if (a.help) {
     mr_cmd_run_usage();
     return MR_EXIT_OK;
   }
-  status st = { a.quiet, 0.0, NULL, NULL, 0 };
+  status st = { a.quiet, 0.0, NULL, NULL, 0, NULL };
   mr_scene scene;
   mr_scene_error err;
   if (mr_scene_load(a.scene, &scene, &err) != MR_SCENE_OK) {
@@ -326,28 +449,7 @@ int mr_cmd_run(int argc, char **argv) {
     mr_scene_free(&scene);
     return MR_EXIT_FAIL;
   }
-  bool virtual_time = a.n_replay > 0 && !a.real_time;
-  mr_virtual_clock vc = { 0.0 };
-  mr_clock clock = virtual_time ? mr_clock_virtual(&vc) : mr_clock_wall();
-  if (virtual_time) st.quiet = 1; /* as fast as it goes: no seconds to mark */
-  mr_show_hooks hooks = { present, stop, frame_done, next_mapping, note, &st };
-  mr_show_result r;
-  mr_scene_status rc = mr_show_run(&scene, &a.def, &clock, &hooks, &r, &err);
-  if (rc == MR_SCENE_OK) summary(&scene, &r);
+  int rc = run_show(&a, &scene, &st);
   mr_scene_free(&scene);
-  if (close_outputs(&st) != 0 && rc == MR_SCENE_OK) {
-    fprintf(stderr, "marionette run: could not write all of %s\n",
-            a.hashes != NULL ? a.hashes : a.poses);
-    return MR_EXIT_FAIL;
-  }
-  if (rc != MR_SCENE_OK) {
-    fprintf(stderr, "marionette: %s\n", err.text);
-    return MR_EXIT_FAIL;
-  }
-  for (size_t g = 0; g < r.n_gloves; g++)
-    if (r.glove[g].state == MR_GLOVE_MISMATCH) {
-      fprintf(stderr, "marionette run: %s\n", r.glove[g].describe);
-      return MR_EXIT_MISMATCH;
-    }
-  return MR_EXIT_OK;
+  return rc;
 }

@@ -56,7 +56,7 @@ bool mr_on_path(const char *program) {
 }
 
 /* A folder and its parents, as mkdir -p. */
-static int make_dir(const char *dir) {
+int mr_make_dir(const char *dir) {
   char buf[512];
   snprintf(buf, sizeof buf, "%s", dir);
   for (char *p = buf + 1; *p != '\0'; p++) {
@@ -142,7 +142,7 @@ int mr_frames_out_open(const mr_frames_out_def *def, mr_frames_out **out, char *
   if (def->dir != NULL) snprintf(fo->dir, sizeof fo->dir, "%s", def->dir);
   if (def->mp4 != NULL) snprintf(fo->mp4, sizeof fo->mp4, "%s", def->mp4);
   if (def->sheet != NULL) snprintf(fo->sheet, sizeof fo->sheet, "%s", def->sheet);
-  if (fo->dir[0] != '\0' && make_dir(fo->dir) != 0) {
+  if (fo->dir[0] != '\0' && mr_make_dir(fo->dir) != 0) {
     snprintf(msg, msg_size, "cannot make the folder %s: %s", fo->dir, strerror(errno));
     free(fo);
     return -1;

@@ -43,6 +43,9 @@ int mr_frames_out_close(mr_frames_out *fo, mr_frames_out_summary *sum, char *msg
 /* One PNG; 0 or -1. */
 int mr_png_write(const char *path, const uint8_t *rgb, int width, int height);
 
+/* A folder and its parents, as mkdir -p; 0 or -1 (errno set). */
+int mr_make_dir(const char *dir);
+
 /* Whether an executable of this name is on PATH. */
 bool mr_on_path(const char *program);
 

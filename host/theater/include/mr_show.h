@@ -88,6 +88,11 @@ typedef struct mr_show_hooks {
    * recovers, naming the glove, its source and the finger. May be NULL. */
   void (*note)(void *user, const char *line);
   void *user;
+  /* Polled once a frame: nonzero puts every puppet back where it started
+   * (positions, at rest) and each control frame at its start pose; the
+   * gloves then move them on from there (the window's reset key). May be
+   * NULL. */
+  int (*reset)(void *user);
 } mr_show_hooks;
 
 typedef struct mr_show_glove_result {

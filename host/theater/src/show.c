@@ -48,7 +48,8 @@ typedef struct show {
   bool interpolate;
   double sum_lead, lead_max;
   uint64_t frames_stepped;
-  mr_interp ip; /* the frame's positions, interpolated or the world's */
+  mr_interp ip;      /* the frame's positions, interpolated or the world's */
+  double *start_xyz; /* every particle where it started, for a reset */
   mr_scene_error *err;
   mr_scene_status rc;
 } show;
@@ -292,8 +293,27 @@ static void switch_mapping(show *s) {
   note(s, line);
 }
 
+/* The reset hook: the scene's particles back at their start, at rest,
+ * and each frame placed at its start pose at once. A particle the physics
+ * holds (pinned, on a frame) refuses the new state and stays as it is. */
+static void reset_puppets(show *s) {
+  mr_world *w = s->sw.world;
+  const double rest[3] = { 0, 0, 0 };
+  for (size_t i = 0; i < s->sw.n_particles; i++) {
+    int id = s->sw.particle_ids[i];
+    mr_world_set_particle_state(w, id, &s->start_xyz[3 * (size_t)id], rest);
+  }
+  for (size_t k = 0; k < s->n_frames; k++) {
+    s->frames[k].target = s->scene->frames[k].pose;
+    mr_world_set_frame_target(w, s->sw.frames[k], &s->scene->frames[k].pose, mr_world_time(w));
+  }
+  note(s, "reset: the puppets are back where they started");
+}
+
 static int advance(void *user, double t, mr_frame_work *work) {
   show *s = user;
+  if (s->hooks != NULL && s->hooks->reset != NULL && s->hooks->reset(s->hooks->user))
+    reset_puppets(s);
   if (s->hooks != NULL && s->hooks->next_mapping != NULL && s->hooks->next_mapping(s->hooks->user))
     switch_mapping(s);
   read_gloves(s, t);
@@ -380,6 +400,10 @@ static int open_parts(show *s, const mr_show_def *def) {
     return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
   mr_interp_mark(&s->ip, s->sw.world);
   mr_interp_at(&s->ip, s->sw.world, 0.0);
+  int n = mr_world_particle_count(s->sw.world);
+  if ((s->start_xyz = calloc((size_t)(n > 0 ? n : 1) * 3, sizeof(double))) == NULL)
+    return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
+  mr_world_positions(s->sw.world, s->start_xyz, n);
   for (size_t i = 0; i < def->n_gloves; i++) {
     s->n_gloves = i + 1;
     s->sources[i] = def->gloves[i];
@@ -413,6 +437,7 @@ static void close_parts(show *s) {
   free(s->frames);
   mr_scheduler_destroy(s->sch);
   mr_interp_close(&s->ip);
+  free(s->start_xyz);
   mr_scene_world_free(&s->sw);
 }
 

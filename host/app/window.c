@@ -1,0 +1,383 @@
+/* A live show on the stage: the window's keys, mouse and gamepad, the
+ * on-screen display, and the show's clock that pause, single step and slow
+ * motion act on (issue 10, items 4 and 5). */
+#define _POSIX_C_SOURCE 200809L
+
+#include "window.h"
+
+#include "stage_opts.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define SLOW_RATE 0.25
+#define ORBIT_DEG 0.3 /* degrees of orbit per pixel dragged */
+#define DAY_STEP  0.02
+#define TICK_S    0.004 /* how often a wait looks at events */
+
+static double wall(const mr_live *lv) {
+  return lv->wall.now(lv->wall.self);
+}
+
+static double live_now(void *self) {
+  const mr_live *lv = self;
+  if (lv->paused) return lv->show_base;
+  return lv->show_base + lv->rate * (wall(lv) - lv->wall_base);
+}
+
+/* Show time and wall time tied anew before the rate changes. */
+static void rebase(mr_live *lv) {
+  lv->show_base = live_now(lv);
+  lv->wall_base = wall(lv);
+}
+
+static void sleep_s(double s) {
+  if (s <= 0) return;
+  struct timespec ts = { (time_t)s, (long)((s - floor(s)) * 1e9) };
+  nanosleep(&ts, NULL);
+}
+
+/* The scheduler waits here for its next tick: events are handled as it
+ * waits; paused, show time stands still until a step or the end. */
+static void live_wait(void *self, double t) {
+  mr_live *lv = self;
+  for (;;) {
+    mr_live_pump(lv);
+    if (lv->quit) return;
+    double now = live_now(lv);
+    if (now >= t) return;
+    if (lv->paused) {
+      if (lv->step_asked) {
+        lv->step_asked = false;
+        lv->show_base = t;
+        return;
+      }
+      /* The view still answers: orbit, zoom, cameras, the OSD. */
+      if (lv->window && mr_stageview_redraw(&lv->sv, lv->msg, sizeof lv->msg) == 0) {
+        if (lv->shot_asked) mr_live_screenshot(lv);
+        lv->shot_asked = false;
+        mr_render_present(lv->sv.render);
+      }
+      sleep_s(1.0 / 30);
+      continue;
+    }
+    double left = (t - now) / lv->rate;
+    sleep_s(left < TICK_S ? left : TICK_S);
+  }
+}
+
+mr_clock mr_live_clock(mr_live *lv) {
+  lv->wall = mr_clock_wall();
+  lv->rate = 1.0;
+  lv->wall_base = wall(lv);
+  lv->show_base = 0;
+  mr_clock c = { live_now, live_wait, lv };
+  return c;
+}
+
+static int key_named(const char *name) {
+  static const struct {
+    const char *name;
+    int key;
+  } names[] = { { "space", MR_KEY_SPACE },  { "esc", MR_KEY_ESCAPE },     { "left", MR_KEY_LEFT },
+                { "right", MR_KEY_RIGHT },  { "up", MR_KEY_UP },          { "down", MR_KEY_DOWN },
+                { "pgup", MR_KEY_PAGE_UP }, { "pgdn", MR_KEY_PAGE_DOWN }, { "f1", MR_KEY_F1 },
+                { "f11", MR_KEY_F11 },      { "f12", MR_KEY_F12 } };
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+    if (strcmp(name, names[i].name) == 0) return names[i].key;
+  if (strlen(name) == 1 && name[0] > ' ' && name[0] < 127) return name[0];
+  return -1;
+}
+
+int mr_live_parse_keys(mr_live *lv, const char *list) {
+  char buf[1024];
+  snprintf(buf, sizeof buf, "%s", list);
+  for (char *save = NULL, *item = strtok_r(buf, ",", &save); item != NULL;
+       item = strtok_r(NULL, ",", &save)) {
+    char *colon = strchr(item, ':'), *end = NULL;
+    if (colon == NULL || lv->n_keys == MR_KEYS_MAX) return -1;
+    *colon = '\0';
+    mr_key_press k = { strtod(item, &end), 0.05, 0, false, false };
+    if (end == item || *end != '\0' || !(k.t >= 0)) return -1;
+    char *slash = strchr(colon + 1, '/');
+    if (slash != NULL) {
+      *slash = '\0';
+      k.hold = strtod(slash + 1, &end);
+      if (end == slash + 1 || *end != '\0' || !(k.hold > 0)) return -1;
+    }
+    if ((k.key = key_named(colon + 1)) < 0) return -1;
+    lv->keys[lv->n_keys++] = k;
+  }
+  return lv->n_keys > 0 ? 0 : -1;
+}
+
+static void toggle_pause(mr_live *lv) {
+  rebase(lv);
+  lv->paused = !lv->paused;
+}
+
+static void toggle_slow(mr_live *lv) {
+  rebase(lv);
+  lv->rate = lv->rate < 1.0 ? 1.0 : SLOW_RATE;
+}
+
+/* The stage's keys (the man page's table). */
+static void stage_key(mr_live *lv, int key) {
+  mr_stageview *sv = &lv->sv;
+  if (key == ' ') {
+    toggle_pause(lv);
+  } else if (key == '.') {
+    if (!lv->paused) toggle_pause(lv);
+    lv->step_asked = true;
+  } else if (key == 's') {
+    toggle_slow(lv);
+  } else if (key == 'r') {
+    lv->reset_asked = true;
+  } else if (key == 'n') {
+    mr_stageview_set_day(sv, sv->time_of_day + 0.5);
+  } else if (key == '[' || key == ']') {
+    mr_stageview_set_day(sv, sv->time_of_day + (key == ']' ? DAY_STEP : -DAY_STEP));
+  } else if (key == 'h' || key == MR_KEY_F1) {
+    sv->show_osd = !sv->show_osd;
+  } else if (key == 'p' || key == MR_KEY_F12) {
+    lv->shot_asked = true;
+  } else if ((key == 'f' || key == MR_KEY_F11) && lv->window) {
+    if (mr_render_set_fullscreen(sv->render, !lv->fullscreen) == MR_RENDER_OK)
+      lv->fullscreen = !lv->fullscreen;
+  } else if (key == 'q' || key == MR_KEY_ESCAPE) {
+    lv->quit = true;
+  } else if (key >= '0' && key <= '9') {
+    mr_stageview_pick_camera(sv, key - '1'); /* 0: -1, the orbit camera */
+  }
+}
+
+void mr_live_event(mr_live *lv, const mr_event *ev) {
+  if (lv->manual_on && mr_manual_event(&lv->manual, ev)) return;
+  switch (ev->kind) {
+  case MR_EVENT_QUIT:
+    lv->quit = true;
+    break;
+  case MR_EVENT_KEY:
+    if (ev->down) stage_key(lv, ev->key);
+    break;
+  case MR_EVENT_MOUSE_BUTTON:
+    if (ev->button == 1) lv->dragging = ev->down;
+    break;
+  case MR_EVENT_MOUSE_MOVE:
+    if (ev->buttons & 1) mr_stageview_orbit(&lv->sv, -ev->dx * ORBIT_DEG, ev->dy * ORBIT_DEG);
+    break;
+  case MR_EVENT_MOUSE_WHEEL:
+    mr_stageview_zoom(&lv->sv, ev->dy);
+    break;
+  default:
+    break;
+  }
+}
+
+/* Scripted keys whose time has come, on show time. */
+static void play_keys(mr_live *lv) {
+  double now = live_now(lv);
+  for (int i = 0; i < lv->n_keys; i++) {
+    mr_key_press *k = &lv->keys[i];
+    mr_event ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = MR_EVENT_KEY;
+    ev.key = k->key;
+    if (!k->down_sent && now >= k->t) {
+      k->down_sent = ev.down = true;
+      mr_live_event(lv, &ev);
+    }
+    if (k->down_sent && !k->up_sent && now >= k->t + k->hold) {
+      k->up_sent = true;
+      mr_live_event(lv, &ev);
+    }
+  }
+}
+
+void mr_live_pump(mr_live *lv) {
+  mr_event ev;
+  if (lv->window)
+    while (mr_render_poll(lv->sv.render, &ev) != 0) mr_live_event(lv, &ev);
+  play_keys(lv);
+  if (!lv->manual_on) return;
+  double w = wall(lv);
+  mr_manual_update(&lv->manual, lv->last_pump > 0 ? w - lv->last_pump : 0);
+  lv->last_pump = w;
+  /* Paused, the show reads nothing: samples would only pile up. */
+  if (!lv->paused) mr_pty_glove_pump(&lv->glove, lv->manual.values, w);
+}
+
+int mr_live_screenshot(mr_live *lv) {
+  const uint8_t *rgb = mr_stageview_read(&lv->sv);
+  char path[700];
+  snprintf(path, sizeof path, "%s/shot_%03d.png", lv->shot_dir[0] ? lv->shot_dir : ".", lv->shots);
+  if (rgb == NULL || mr_png_write(path, rgb, lv->sv.width, lv->sv.height) != 0) {
+    fprintf(stderr, "marionette run: could not write the screenshot %s\n", path);
+    return -1;
+  }
+  lv->shots++;
+  fprintf(stderr, "marionette run: screenshot %s\n", path);
+  return 0;
+}
+
+/* The figures of the status line, over the latest second. */
+static void osd_rates(mr_live *lv, const mr_scheduler_stats *s) {
+  double w = wall(lv);
+  if (lv->osd_wall == 0) {
+    lv->osd_wall = w;
+    lv->osd_presented = s->frames_presented;
+    lv->osd_sim = s->sim_time;
+    lv->osd_steps = s->steps;
+    return;
+  }
+  if (w - lv->osd_wall < 1.0) return;
+  lv->fps = (double)(s->frames_presented - lv->osd_presented) / (w - lv->osd_wall);
+  if (s->steps > lv->osd_steps)
+    lv->dt_mean = (s->sim_time - lv->osd_sim) / (double)(s->steps - lv->osd_steps);
+  lv->osd_wall = w;
+  lv->osd_presented = s->frames_presented;
+  lv->osd_sim = s->sim_time;
+  lv->osd_steps = s->steps;
+}
+
+static void osd_lines(mr_live *lv, const mr_show_frame *f) {
+  mr_stageview *sv = &lv->sv;
+  mr_scheduler_stats s;
+  mr_scheduler_stats_get(f->scheduler, &s);
+  osd_rates(lv, &s);
+  mr_stageview_osd_clear(sv);
+  mr_stageview_osd(sv, "t %.2f s  fps %.1f  skipped %llu  dt %.2f ms  resets %llu%s%s", f->t,
+                   lv->fps, (unsigned long long)s.frames_skipped, lv->dt_mean * 1e3,
+                   (unsigned long long)s.resets, lv->paused ? "  PAUSED" : "",
+                   lv->rate < 1.0 ? "  SLOW x0.25" : "");
+  mr_stageview_osd(sv, "latency p50 %.1f ms  p99 %.1f ms", s.latency_p50 * 1e3,
+                   s.latency_p99 * 1e3);
+  for (size_t g = 0; g < f->n_gloves && g < MR_OSD_LINES - 4; g++) {
+    mr_glove_reading r;
+    mr_glove_latest(f->gloves[g], &r);
+    double late = r.host_t - r.device_t - mr_glove_clock_offset(f->gloves[g]);
+    char lateness[48] = "";
+    if (r.samples > 0 && isfinite(late))
+      snprintf(lateness, sizeof lateness, ", %.1f ms late", late * 1e3);
+    mr_stageview_osd(sv, "glove %zu%s: %s%s, %llu samples", g + 1,
+                     lv->manual_on && g == 0 ? " (keys, mouse, pad)" : "",
+                     mr_glove_state_name(mr_glove_state_get(f->gloves[g])), lateness,
+                     (unsigned long long)r.samples);
+  }
+  const char *cam = sv->camera >= 0 ? sv->scene->stage.cameras[sv->camera].name : "orbit";
+  mr_stageview_osd(sv, "camera %s  day %.2f  (h: hide, q: quit)", cam, sv->time_of_day);
+}
+
+void mr_live_present(mr_live *lv, const mr_show_frame *f) {
+  if (lv->failed) return;
+  /* A slow frame must not starve the keyboard's glove. */
+  mr_live_pump(lv);
+  osd_lines(lv, f);
+  if (mr_stageview_draw(&lv->sv, f->xyz, (size_t)f->n_particles, lv->msg, sizeof lv->msg) != 0) {
+    lv->failed = lv->quit = true;
+    return;
+  }
+  lv->drawn++;
+  if (lv->shot_asked) {
+    lv->shot_asked = false;
+    mr_live_screenshot(lv);
+  }
+  if (lv->window) {
+    mr_render_present(lv->sv.render);
+    return;
+  }
+  if (lv->fo == NULL) return;
+  const uint8_t *rgb = mr_stageview_read(&lv->sv);
+  if (rgb == NULL || mr_frames_out_add(lv->fo, rgb, f->t, lv->msg, sizeof lv->msg) != 0) {
+    if (rgb == NULL) snprintf(lv->msg, sizeof lv->msg, "could not read a frame back");
+    lv->failed = lv->quit = true;
+  }
+}
+
+static int open_outputs(mr_live *lv, const mr_live_def *def, mr_stage_opts *so, char *msg,
+                        size_t msg_size) {
+  lv->out = so->out;
+  snprintf(lv->shot_dir, sizeof lv->shot_dir, "%s", so->out != NULL ? so->out : ".");
+  if (so->out != NULL && mr_make_dir(so->out) != 0) {
+    snprintf(msg, msg_size, "cannot make the folder %s", so->out);
+    return -1;
+  }
+  if (lv->window || so->out == NULL) return 0;
+  char note[200];
+  mr_frames_out_def od =
+      mr_stage_opts_outputs(so, def->fps, lv->sv.width, lv->sv.height, note, sizeof note);
+  if (note[0] != '\0') fprintf(stderr, "marionette run: %s\n", note);
+  return mr_frames_out_open(&od, &lv->fo, msg, msg_size);
+}
+
+int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
+                 struct mr_stage_opts *so, int *usage, char *msg, size_t msg_size) {
+  *usage = 0;
+  lv->window = def->window;
+  lv->fullscreen = def->fullscreen;
+  if (def->keys != NULL && mr_live_parse_keys(lv, def->keys) != 0) {
+    snprintf(msg, msg_size,
+             "expected --keys T:KEY[/HOLD],... (KEY a character, space, esc, left, right, up, "
+             "down, pgup, pgdn, f1, f11 or f12), got '%s'",
+             def->keys);
+    return *usage = 1, -1;
+  }
+  mr_render_def rd = mr_default_render_def();
+  rd.headless = !def->window;
+  rd.backend = def->window ? MR_RENDER_WINDOW : so->backend;
+  if (def->window && so->backend != MR_RENDER_AUTO && so->backend != MR_RENDER_WINDOW)
+    rd.backend = so->backend;
+  rd.width = so->width;
+  rd.height = so->height;
+  rd.fullscreen = def->fullscreen;
+  rd.title = "marionette";
+  if (mr_stageview_open(&lv->sv, scene, &rd, msg, msg_size) != 0) return -1;
+  if (mr_stage_opts_apply(so, "run", &lv->sv) != 0) {
+    mr_stageview_close(&lv->sv);
+    snprintf(msg, msg_size, "no such camera");
+    return *usage = 1, -1;
+  }
+  if (open_outputs(lv, def, so, msg, msg_size) != 0) {
+    mr_stageview_close(&lv->sv);
+    return -1;
+  }
+  lv->sv.show_osd = !def->no_osd;
+  lv->manual_on = def->manual;
+  mr_manual_init(&lv->manual);
+  if (def->manual) {
+    if (mr_pty_glove_open(&lv->glove, 100, wall(lv), msg, msg_size) != 0) {
+      mr_live_close(lv, true);
+      return -1;
+    }
+    snprintf(lv->glove_source, sizeof lv->glove_source, "pty:%s", mr_io_path(&lv->glove.io));
+  }
+  return 0;
+}
+
+int mr_live_close(mr_live *lv, bool quiet) {
+  mr_frames_out_summary s;
+  char msg[700] = "";
+  int rc = mr_frames_out_close(lv->fo, &s, msg, sizeof msg);
+  lv->fo = NULL;
+  if (!quiet || rc != 0) {
+    printf("stage: %s, %s, %dx%d, %llu frames drawn\n", lv->window ? "window" : "headless",
+           mr_render_backend_name(mr_render_backend_of(lv->sv.render)), lv->sv.width, lv->sv.height,
+           (unsigned long long)lv->drawn);
+    if (s.frames > 0 || s.pngs > 0) {
+      printf("png frames: %llu in %s\n", (unsigned long long)s.pngs, lv->out);
+      if (s.sheet_cells > 0) printf("sheet: %d thumbnails\n", s.sheet_cells);
+      if (s.encoded > 0) printf("mp4: %llu frames\n", (unsigned long long)s.encoded);
+    }
+    if (lv->shots > 0) printf("screenshots: %d in %s\n", lv->shots, lv->shot_dir);
+    if (lv->manual_on)
+      printf("keys glove: %llu samples sent\n", (unsigned long long)lv->glove.samples);
+  }
+  if (rc != 0) fprintf(stderr, "marionette run: %s\n", msg);
+  if (lv->failed) fprintf(stderr, "marionette run: %s\n", lv->msg);
+  mr_pty_glove_close(&lv->glove);
+  mr_stageview_close(&lv->sv);
+  return rc != 0 || lv->failed ? -1 : 0;
+}
