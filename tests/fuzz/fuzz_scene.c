@@ -1,5 +1,5 @@
 /* libFuzzer target for scene files: load, and when the file loads, build
- * its world and take a few steps. Besides the sanitizers it checks the
+ * its world and take a few steps, and make its stage and one draw list. Besides the sanitizers it checks the
  * loader's promises: a refusal is one line that names the file, and no
  * input hangs it (libFuzzer's -timeout catches a loop). The seeds are
  * every scene in the repository plus the inputs that once hung or
@@ -11,6 +11,7 @@
 
 #include "mr_scene.h"
 #include "mr_scene_world.h"
+#include "mr_stage.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -24,6 +25,32 @@ static void check_error(const mr_scene_error *e) {
   check(strchr(e->text, '\n') == NULL);
 }
 
+/* The stage takes every def the loader makes: its ids and counts are
+ * always in range (a rigid model's points on a hair's breadth of one line
+ * may still be refused as a value). */
+static void check_stage(const mr_scene *s) {
+  size_t n = s->n_particles + s->n_control_points;
+  double *xyz = malloc((3 * n + 3) * sizeof *xyz);
+  check(xyz != NULL);
+  for (size_t i = 0; i < s->n_particles; i++)
+    memcpy(&xyz[3 * i], s->particles[i].def.position, 3 * sizeof(double));
+  for (size_t j = 0; j < s->n_control_points; j++) {
+    mr_pose pose;
+    mr_scene_frame_pose_at(s, s->control_points[j].frame, 0, &pose);
+    mr_scene_control_point_world(s, j, &pose, &xyz[3 * (s->n_particles + j)]);
+  }
+  mr_stage *st = NULL;
+  char msg[256];
+  mr_stage_status rc = mr_stage_create(&s->stage, xyz, n, &st, msg, sizeof msg);
+  check(rc == MR_STAGE_OK || rc == MR_STAGE_ERR_VALUE);
+  if (rc == MR_STAGE_OK) {
+    const mr_draw_list *list;
+    check(mr_stage_update(st, xyz, n, &list) == MR_STAGE_OK);
+    mr_stage_destroy(st);
+  }
+  free(xyz);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   mr_scene s;
   mr_scene_error e;
@@ -31,6 +58,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     check_error(&e);
     return 0;
   }
+  check_stage(&s);
   mr_scene_world sw;
   if (mr_scene_build(&s, &sw, &e) != MR_SCENE_OK) {
     check_error(&e);
