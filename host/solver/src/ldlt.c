@@ -219,8 +219,8 @@ static void solve_factored(const mr_ldlt *f, const double *b, double *x) {
   for (int k = 0; k < n; k++) x[perm[k]] = z[k];
 }
 
-int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
-                  mr_solve_result *r) {
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
+                  double b_norm, double *x, mr_solve_result *r) {
   const int n = A->n;
   if (!mr_pattern_same(&f->pattern, A)) {
     int st = analyse(f, A);
@@ -238,10 +238,20 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const doub
   unsigned char *skip = BUF(f, skip, unsigned char);
   const unsigned char *dropped = BUF(f, dropped, unsigned char);
   const int *perm = BUF(f, perm, int);
-  for (int k = 0; k < n; k++) skip[perm[k]] = dropped[k] != 0;
+  int skipped = 0;
+  for (int k = 0; k < n; k++) {
+    skip[perm[k]] = dropped[k] != 0;
+    skipped |= dropped[k] != 0;
+  }
   double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
-  const double stop = o->tol * mr_norm2(n, b);
-  for (int step = 0; step < 2 && mr_residual_norm(A, b, x, skip) > stop; step++) {
+  const double stop = o->tol * b_norm;
+  f->res_known = 0;
+  for (int step = 0; step < 2; step++) {
+    f->res_norm = mr_residual_norm(A, b, x, skip);
+    if (!(f->res_norm > stop)) {
+      f->res_known = !skipped; /* measured over every row: the answer's */
+      break;
+    }
     mr_residual(A, b, x, res);
     /* Refining a regularised row would undo its compliance. */
     for (int i = 0; i < n; i++)

@@ -59,6 +59,11 @@ typedef struct mr_ldlt {
   mr_buf skip, res, dx; /* refinement: dropped rows by old index, r, δλ */
   mr_buf cand, bits;    /* a candidate ordering; minimum degree's graph */
   size_t nnz_l;
+  /* ‖Aλ − b‖ of the last solve's answer, when its refinement test
+   * measured it over every row (res_known): the caller reports it
+   * instead of measuring it again. */
+  double res_norm;
+  int res_known;
 } mr_ldlt;
 
 struct mr_solver {
@@ -95,8 +100,9 @@ int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const 
 #define MR_CG_HIDDEN_DEPENDENCY 100
 int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
           mr_solve_result *r);
-int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b, double *x,
-                  mr_solve_result *r);
+/* b_norm: ‖b‖₂ (mr_norm2), which the caller has measured already. */
+int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
+                  double b_norm, double *x, mr_solve_result *r);
 void mr_ldlt_free(mr_ldlt *f);
 /* The fill-reducing ordering the LDLᵀ uses, into f->perm (new → old) and
  * f->iperm, and the nonzeros of L below the diagonal it gives; uses only
