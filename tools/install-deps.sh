@@ -15,6 +15,9 @@ PACKAGES=(
   # for video.
   libsdl2-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libassimp-dev libcglm-dev libstb-dev fonts-dejavu-core xvfb xauth ffmpeg
+  # marionette-bench: its plots (SVG and PNG), and the instruction counts
+  # of `make bench-count`.
+  gnuplot-nox valgrind
 )
 
 missing=()
