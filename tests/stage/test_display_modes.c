@@ -329,6 +329,40 @@ static void materials_change_while_the_show_runs(void **state) {
   mr_stage_destroy(s);
 }
 
+/* Bones on one line know no twist about it: each takes the shortest turn
+ * of the line, exact for a turn normal to it; a lone bone only moves. */
+static void bones_on_a_line_take_its_shortest_turn_and_a_lone_bone_only_moves(void **state) {
+  (void)state;
+  double rest[12] = { 0, 1, 0, 0.5, 1, 0, 1, 1, 0, 5, 5, 5 };
+  int line[3] = { 0, 1, 2 }, lone[1] = { 3 };
+  mr_model_def m[2] = { mr_default_model_def(), mr_default_model_def() };
+  m[0].display = m[1].display = MR_DISPLAY_FREEFORM;
+  m[0].bones = line;
+  m[0].n_bones = 3;
+  m[1].bones = lone;
+  m[1].n_bones = 1;
+  mr_stage *s = make(m, 2, rest, 4);
+  /* 40° about z (normal to the line along x), then a move. */
+  double h = 40.0 * 3.14159265358979323846 / 360.0;
+  mr_pose mo = { { 0.2, 0.1, -0.3 }, { cos(h), 0, 0, sin(h) } };
+  double now[12];
+  moved(rest, 4, &mo, now);
+  const mr_draw_list *l;
+  assert_int_equal(mr_stage_update(s, now, 4, &l), MR_STAGE_OK);
+  double probe[3] = { 0.4, 1.3, 0.2 }, want[3], got[3];
+  mr_pose_apply(&mo, probe, want);
+  for (int b = 0; b < 3; b++) {
+    mr_pose_apply(&l->skins[0].bones[b], probe, got);
+    near3(got, want, 1e-12);
+  }
+  /* The lone bone: no turn, its move only. */
+  const mr_pose *p = &l->skins[1].bones[0];
+  assert_true(p->orientation[0] == 1 && p->orientation[1] == 0 && p->orientation[3] == 0);
+  double d[3] = { now[9] - rest[9], now[10] - rest[10], now[11] - rest[11] };
+  near3(p->position, d, 1e-12);
+  mr_stage_destroy(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(particle_model_sits_on_its_particle_unturned),
@@ -339,6 +373,7 @@ int main(void) {
     cmocka_unit_test(a_point_not_finite_leaves_its_models_where_they_were),
     cmocka_unit_test(strings_and_control_frames_are_lines_in_their_colours),
     cmocka_unit_test(materials_change_while_the_show_runs),
+    cmocka_unit_test(bones_on_a_line_take_its_shortest_turn_and_a_lone_bone_only_moves),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
