@@ -121,6 +121,7 @@ typedef struct status {
 
 static void frame_done(void *user, const mr_show_frame *f, uint64_t hash) {
   status *st = user;
+  if (st->lv != NULL) st->lv->show_t = f->t;
   if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", f->t, hash) < 0)
     st->hash_failed = 1;
   if (st->poses == NULL) return;

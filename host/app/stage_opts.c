@@ -19,6 +19,8 @@ const char mr_stage_opts_help[] =
     "  --sheet FILE        the contact sheet here instead; --no-sheet: none\n"
     "  --size WxH          the picture's size in pixels (default: the scene's\n"
     "                      stage.size, else 1280x720)\n"
+    "  --samples N         multisampling: samples a pixel, 1 (none) to 16\n"
+    "                      (default 4); fewer draw faster in software\n"
     "  --camera NAME       look through the scene's camera NAME (camera.views)\n"
     "                      instead of the orbit camera\n"
     "  --day X             the day knob, 0..1: 0 and 1 midnight, 0.5 noon\n"
@@ -67,6 +69,11 @@ static int take_value(mr_stage_opts *o, const char *cmd, const char *opt, const 
   } else if (strcmp(opt, "--size") == 0) {
     if (parse_size(v, &o->width, &o->height) != 0)
       return bad(cmd, "expected --size WxH, each 16 to 8192 pixels", v);
+  } else if (strcmp(opt, "--samples") == 0) {
+    long n = strtol(v, &end, 10);
+    if (end == v || *end != '\0' || n < 1 || n > 16)
+      return bad(cmd, "expected --samples a whole number from 1 to 16", v);
+    o->samples = (int)n;
   } else if (strcmp(opt, "--camera") == 0) {
     o->camera = v;
   } else if (strcmp(opt, "--day") == 0) {
@@ -86,8 +93,9 @@ static int take_value(mr_stage_opts *o, const char *cmd, const char *opt, const 
 
 int mr_stage_opts_take(mr_stage_opts *o, const char *cmd, int argc, char **argv, int *i,
                        bool allow_window) {
-  static const char *const valued[] = { "-o",     "--output", "--every", "--mp4",     "--sheet",
-                                        "--size", "--camera", "--day",   "--backend", NULL };
+  static const char *const valued[] = { "-o",        "--output",  "--every",  "--mp4",
+                                        "--sheet",   "--size",    "--camera", "--day",
+                                        "--backend", "--samples", NULL };
   const char *opt = argv[*i];
   if (strcmp(opt, "--no-mp4") == 0) return o->no_mp4 = true, 1;
   if (strcmp(opt, "--no-sheet") == 0) return o->no_sheet = true, 1;

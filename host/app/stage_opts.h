@@ -15,6 +15,7 @@ typedef struct mr_stage_opts {
   const char *mp4, *sheet;
   bool no_mp4, no_sheet;
   int width, height; /* --size WxH; 0: the scene's */
+  int samples;       /* --samples N; 0: the renderer's default */
   const char *camera;
   double day; /* --day, NaN: the scene's */
   mr_render_backend backend;

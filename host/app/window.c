@@ -177,9 +177,11 @@ void mr_live_event(mr_live *lv, const mr_event *ev) {
   }
 }
 
-/* Scripted keys whose time has come, on show time. */
+/* Scripted keys whose time has come, on show time (the frames' own,
+ * which falls behind the clock when renders are skipped and lag is given
+ * up). */
 static void play_keys(mr_live *lv) {
-  double now = live_now(lv);
+  double now = lv->show_t;
   for (int i = 0; i < lv->n_keys; i++) {
     mr_key_press *k = &lv->keys[i];
     mr_event ev;
@@ -332,6 +334,7 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
     rd.backend = so->backend;
   rd.width = so->width;
   rd.height = so->height;
+  if (so->samples > 0) rd.samples = so->samples;
   rd.fullscreen = def->fullscreen;
   rd.title = "marionette";
   if (mr_stageview_open(&lv->sv, scene, &rd, msg, msg_size) != 0) return -1;

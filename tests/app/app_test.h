@@ -1,0 +1,24 @@
+/* Helpers of the stage's program tests: PNG headers and pixels, programs
+ * on PATH, and small scene files. */
+#ifndef APP_TEST_H
+#define APP_TEST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* A PNG's width and height from its IHDR; 0 or -1 (not a PNG). */
+int at_png_size(const char *path, int *width, int *height);
+
+/* The RGB pixels of a PNG (stb_image), free() them; NULL on failure. */
+uint8_t *at_png_rgb(const char *path, int *width, int *height);
+
+/* The full path of program on PATH in out; 0 or -1. */
+int at_which(const char *program, char *out, size_t size);
+
+/* The files in dir whose names start with prefix. */
+int at_count_files(const char *dir, const char *prefix);
+
+/* The lines of text (a trailing line without a newline counts). */
+int at_lines(const char *text);
+
+#endif

@@ -1,0 +1,192 @@
+/* `marionette render` as a maker meets it: it writes the frames asked for,
+ * of the size asked for, with a contact sheet and an MP4 whose frame count
+ * ffprobe confirms; the same scene and options give the same PNG bytes;
+ * bad usage is one line and status 2; a missing model is one line naming
+ * the scene's file:line:column and the model's path, status 1. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app_test.h"
+#include "proc.h"
+
+static char *marionette;
+
+#define PUPPET MR_SOURCE_DIR "/host/scenes/puppet.yaml"
+
+/* A second of the example puppet at 10 frames/s, 160 x 96, into dir,
+ * with up to two more arguments. */
+static void render_into(const char *dir, const char *extra, const char *extra2, tt_output *o) {
+  char *argv[] = { marionette, "render", PUPPET,        "-o",           (char *)dir,
+                   "--time",   "1",      "--fps",       "10",           "--size",
+                   "160x96",   "-q",     (char *)extra, (char *)extra2, NULL };
+  assert_int_equal(tt_capture(argv, o), 0);
+  if (o->status != 0) fail_msg("status %d: %s", o->status, o->err);
+}
+
+static void frames_of_the_size_asked_a_sheet_and_a_video_are_written(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  tt_output o;
+  render_into(dir, NULL, NULL, &o);
+  /* Frames at 0, 0.1, ... 1.0 s: eleven. */
+  assert_int_equal(at_count_files(dir, "frame_"), 11);
+  int w = 0, h = 0;
+  assert_int_equal(at_png_size(tt_path(dir, "frame_000010.png"), &w, &h), 0);
+  assert_int_equal(w, 160);
+  assert_int_equal(h, 96);
+  assert_int_equal(at_png_size(tt_path(dir, "sheet.png"), &w, &h), 0);
+  assert_true(w > 160 && h >= 96); /* a grid of thumbnails */
+  assert_non_null(strstr(o.out, "frames: 11 at 10 fps"));
+  char ffprobe[512];
+  if (at_which("ffprobe", ffprobe, sizeof ffprobe) == 0) {
+    char *argv[] = { ffprobe,
+                     "-v",
+                     "error",
+                     "-count_frames",
+                     "-select_streams",
+                     "v:0",
+                     "-show_entries",
+                     "stream=nb_read_frames,width,height",
+                     "-of",
+                     "csv=p=0",
+                     (char *)tt_path(dir, "show.mp4"),
+                     NULL };
+    tt_output p;
+    assert_int_equal(tt_capture(argv, &p), 0);
+    assert_int_equal(p.status, 0);
+    assert_string_equal(p.out, "160,96,11\n");
+    tt_output_free(&p);
+  } else {
+    print_message("ffprobe is not installed: the MP4's frames are not counted\n");
+  }
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+static int same_file(const char *a, const char *b) {
+  size_t na = 0, nb = 0;
+  char *x = tt_read_file(a, &na), *y = tt_read_file(b, &nb);
+  int same = x != NULL && y != NULL && na == nb && memcmp(x, y, na) == 0;
+  free(x);
+  free(y);
+  return same;
+}
+
+static void the_same_scene_and_options_give_the_same_png_bytes(void **state) {
+  (void)state;
+  char *a = tt_tmpdir(), *b = tt_tmpdir();
+  tt_output o;
+  render_into(a, "--no-mp4", NULL, &o);
+  tt_output_free(&o);
+  render_into(b, "--no-mp4", NULL, &o);
+  tt_output_free(&o);
+  char name[64];
+  for (int i = 0; i <= 10; i++) {
+    snprintf(name, sizeof name, "frame_%06d.png", i);
+    char pa[600];
+    snprintf(pa, sizeof pa, "%s", tt_path(a, name));
+    if (!same_file(pa, tt_path(b, name))) fail_msg("%s differs between two runs", name);
+  }
+  /* The frames are of the show, not one picture eleven times. */
+  assert_false(same_file(tt_path(a, "frame_000000.png"), tt_path(a, "frame_000010.png")));
+  tt_rmdir(a);
+  tt_rmdir(b);
+  free(a);
+  free(b);
+}
+
+/* --every 3 keeps frames 0, 3, 6, 9; --frame 0.45 draws the frame at
+ * 0.5 s alone, the same picture as the sixth of the whole run. */
+static void every_and_frame_choose_which_frames_are_written(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), *one = tt_tmpdir();
+  tt_output o;
+  render_into(dir, "--every", "3", &o);
+  assert_int_equal(at_count_files(dir, "frame_"), 4);
+  tt_output_free(&o);
+  render_into(dir, "--no-mp4", NULL, &o);
+  tt_output_free(&o);
+  char png[600];
+  snprintf(png, sizeof png, "%s", tt_path(one, "half.png"));
+  render_into(png, "--frame", "0.45", &o);
+  assert_non_null(strstr(o.out, "frame: t 0.500 s"));
+  assert_true(same_file(png, tt_path(dir, "frame_000005.png")));
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  tt_rmdir(one);
+  free(dir);
+  free(one);
+}
+
+static void expect_usage(const char *a, const char *b) {
+  char *argv[] = { marionette, "render", PUPPET, (char *)a, (char *)b, NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  assert_int_equal(o.status, 2);
+  assert_int_equal(at_lines(o.err), 1);
+  assert_non_null(strstr(o.err, "marionette render: "));
+  tt_output_free(&o);
+}
+
+static void bad_usage_is_one_line_and_status_2(void **state) {
+  (void)state;
+  expect_usage("--bogus", NULL);
+  expect_usage("--size", "12x8");
+  expect_usage("--fps", "0");
+  expect_usage("--backend", "window"); /* render is headless */
+  expect_usage("--camera", "nowhere");
+}
+
+/* The loader only resolves a model's path; the renderer finds it missing
+ * and says where the scene asked for it. */
+static void a_missing_model_names_its_place_and_path_with_status_1(void **state) {
+  (void)state;
+  const char text[] = "format: 1\n"
+                      "name: missing model\n"
+                      "physics:\n"
+                      "  effects: [gravity]\n"
+                      "  particles:\n"
+                      "    - {name: a, position: [0, 1, 0], mass: 1}\n"
+                      "models:\n"
+                      "  - name: head\n"
+                      "    file: models/not_there.obj\n"
+                      "    particle: a\n";
+  const char *path = tt_tmp_file("app_missing_model.yaml", text, sizeof text - 1);
+  char *dir = tt_tmpdir();
+  char *argv[] = { marionette, "render", (char *)path, "-o", dir, "--time", "0.2", NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  assert_int_equal(o.status, 1);
+  assert_int_equal(at_lines(o.err), 1);
+  char want[700];
+  snprintf(want, sizeof want, "%s:8:5: model 'head': ", path);
+  if (strstr(o.err, want) == NULL) fail_msg("expected '%s' in: %s", want, o.err);
+  assert_non_null(strstr(o.err, "models/not_there.obj"));
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: %s MARIONETTE\n", argv[0]);
+    return 2;
+  }
+  marionette = argv[1];
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(frames_of_the_size_asked_a_sheet_and_a_video_are_written),
+    cmocka_unit_test(the_same_scene_and_options_give_the_same_png_bytes),
+    cmocka_unit_test(every_and_frame_choose_which_frames_are_written),
+    cmocka_unit_test(bad_usage_is_one_line_and_status_2),
+    cmocka_unit_test(a_missing_model_names_its_place_and_path_with_status_1),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,197 @@
+/* `marionette run` on the stage: headless, glove-gen on a real pty drives
+ * the puppet and the frames follow the glove; in a window under Xvfb the
+ * show opens, draws and takes a screenshot through its key; without a
+ * glove, the keyboard's glove moves the control frame through the
+ * mapping. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app_test.h"
+#include "proc.h"
+
+static const char *glove_gen;
+static char *marionette;
+
+#define STICK MR_SOURCE_DIR "/host/scenes/stick.yaml"
+
+/* glove-gen on a new pty, every finger held at value (a script), for secs;
+ * the source in source. */
+static pid_t start_glove(const char *dir, const char *value, char *source, size_t size) {
+  char script[600], arg[640];
+  snprintf(script, sizeof script, "%s", tt_path(dir, "motion.txt"));
+  FILE *f = fopen(script, "w");
+  assert_non_null(f);
+  static const char *const fingers[] = { "thumb", "index", "middle", "ring", "little" };
+  for (int i = 0; i < 5; i++) fprintf(f, "%s const value=%s\n", fingers[i], value);
+  fclose(f);
+  snprintf(arg, sizeof arg, "--script=%s", script);
+  const char *pf = tt_path(dir, "pty.path");
+  unlink(pf);
+  const char *argv[] = { glove_gen, "-o", "pty",      "--path-file", pf,   "--duration", "8",
+                         "--wait",  "30", "--linger", "0",           "-q", arg,          NULL };
+  pid_t gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
+  assert_true(gen > 0);
+  assert_int_equal(tt_await_file(gen, pf, tt_path(dir, "gen.err"), 30), 0);
+  char *path = tt_read_file(pf, NULL);
+  assert_non_null(path);
+  path[strcspn(path, "\n")] = '\0';
+  snprintf(source, size, "pty:%s", path);
+  free(path);
+  return gen;
+}
+
+/* Two seconds of headless show at 160 x 96 with the glove held at value;
+ * the last frame's pixels (free them). */
+static uint8_t *show_with_glove_at(const char *value, const char *out, int *frames) {
+  char *dir = tt_tmpdir(), source[300];
+  pid_t gen = start_glove(dir, value, source, sizeof source);
+  char *argv[] = { marionette,  "run",        STICK,      "--glove",   source,   "--time",
+                   "2",         "--headless", "-o",       (char *)out, "--size", "160x96",
+                   "--samples", "1",          "--no-mp4", "-q",        NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  char state[64];
+  assert_int_equal(tt_field(o.out, "glove", state, sizeof state), 0);
+  assert_string_equal(state, "live");
+  tt_output_free(&o);
+  tt_wait(gen, 30);
+  tt_rmdir(dir);
+  free(dir);
+  *frames = at_count_files(out, "frame_");
+  assert_true(*frames >= 3);
+  char name[64];
+  snprintf(name, sizeof name, "frame_%06d.png", *frames - 1);
+  int w = 0, h = 0;
+  uint8_t *rgb = at_png_rgb(tt_path(out, name), &w, &h);
+  assert_non_null(rgb);
+  assert_int_equal(w, 160);
+  assert_int_equal(h, 96);
+  return rgb;
+}
+
+/* The glove held at 0.15 and at 0.85 turns, tilts and moves the bar to
+ * opposite ends of the mapping: the puppet is drawn elsewhere. */
+static void a_headless_show_draws_what_the_glove_on_a_pty_does(void **state) {
+  (void)state;
+  char *a = tt_tmpdir(), *b = tt_tmpdir();
+  int na = 0, nb = 0;
+  uint8_t *low = show_with_glove_at("0.15", a, &na), *high = show_with_glove_at("0.85", b, &nb);
+  int differ = 0;
+  for (int i = 0; i < 160 * 96; i++) {
+    int d = 0;
+    for (int c = 0; c < 3; c++) d += abs((int)low[3 * i + c] - (int)high[3 * i + c]);
+    differ += d > 30;
+  }
+  /* The stick figure is a small part of the picture; a few dozen pixels
+   * at least must have changed. */
+  if (differ < 40) fail_msg("only %d pixels differ between the two glove poses", differ);
+  assert_true(at_count_files(a, "sheet.png") == 1);
+  free(low);
+  free(high);
+  tt_rmdir(a);
+  tt_rmdir(b);
+  free(a);
+  free(b);
+}
+
+/* The control frame's yaw from a --poses line: 2 atan2(y, w) of its
+ * orientation (w x y z), in degrees. */
+static double yaw_at(const char *poses, double t) {
+  const char *p = poses;
+  while (p != NULL && *p != '\0') {
+    double lt, x, y, z, qw, qx, qy, qz;
+    if (sscanf(p, "%lf %lf %lf %lf %lf %lf %lf %lf", &lt, &x, &y, &z, &qw, &qx, &qy, &qz) == 8 &&
+        lt >= t - 1e-9)
+      return 2 * atan2(qy, qw) * 180 / M_PI;
+    p = strchr(p, '\n');
+    if (p != NULL) p++;
+  }
+  fail_msg("no pose at %g s", t);
+  return NAN;
+}
+
+/* Without --glove, --keys holds the right arrow from 0.5 s to 2 s: the
+ * keyboard's glove (a pty of its own, the protocol's frames) turns the bar
+ * towards the default mapping's +45 degrees, and it comes back after. */
+static void the_keyboards_glove_turns_the_control_frame(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  char poses[600];
+  snprintf(poses, sizeof poses, "%s", tt_path(dir, "poses.txt"));
+  char *argv[] = { marionette, "run",        STICK, "--keys", "0.5:right/1.5", "--time",
+                   "3.5",      "--poses",    poses, "--size", "160x96",        "--samples",
+                   "1",        "--headless", "-q",  NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.out, "keys glove: "));
+  char *text = tt_read_file(poses, NULL);
+  assert_non_null(text);
+  double before = yaw_at(text, 0.3), held = yaw_at(text, 1.8), after = yaw_at(text, 3.4);
+  print_message("yaw before %.1f, held %.1f, after %.1f degrees\n", before, held, after);
+  assert_true(fabs(before) < 1.0);
+  assert_true(fabs(held) > 30.0 && fabs(held) < 45.5); /* 0.9 of 45, eased */
+  assert_true(fabs(after) < 5.0);
+  free(text);
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* Under Xvfb: the window opens, draws, the p key takes a screenshot of
+ * the size asked, and q ends the show with status 0. */
+static void the_window_opens_draws_and_takes_a_screenshot_under_xvfb(void **state) {
+  (void)state;
+  char xvfb[512];
+  if (at_which("xvfb-run", xvfb, sizeof xvfb) != 0) {
+    print_message("xvfb-run is not installed: the window is not tried\n");
+    skip();
+  }
+  char *dir = tt_tmpdir();
+  char *argv[] = { xvfb,       "-a",     "-s",      "-screen 0 640x480x24",
+                   marionette, "run",    STICK,     "--keys",
+                   "2:p,3:q",  "--size", "320x180", "-o",
+                   dir,        "--time", "20",      NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.out, "stage: window, window, 320x180, "));
+  char drawn[64];
+  assert_int_equal(tt_field(o.out, "stage", drawn, sizeof drawn), 0);
+  int w = 0, h = 0;
+  assert_int_equal(at_png_size(tt_path(dir, "shot_000.png"), &w, &h), 0);
+  assert_int_equal(w, 320);
+  assert_int_equal(h, 180);
+  /* q at 3 s ended a 20 s show. */
+  char sim[64];
+  assert_int_equal(tt_field(o.out, "simulated", sim, sizeof sim), 0);
+  assert_true(strtod(sim, NULL) < 10.0);
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 3) {
+    fprintf(stderr, "usage: %s GLOVE_GEN MARIONETTE\n", argv[0]);
+    return 2;
+  }
+  glove_gen = argv[1];
+  marionette = argv[2];
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(a_headless_show_draws_what_the_glove_on_a_pty_does),
+    cmocka_unit_test(the_keyboards_glove_turns_the_control_frame),
+    cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
