@@ -26,7 +26,7 @@ typedef enum mr_render_backend {
                          headless (def.headless): EGL, else OSMesa */
   MR_RENDER_WINDOW,   /* SDL2 */
   MR_RENDER_OSMESA,
-  MR_RENDER_EGL       /* surfaceless */
+  MR_RENDER_EGL /* surfaceless */
 } mr_render_backend;
 const char *mr_render_backend_name(mr_render_backend b);
 int mr_render_backend_parse(const char *name, mr_render_backend *out);
@@ -34,12 +34,12 @@ int mr_render_backend_parse(const char *name, mr_render_backend *out);
 typedef struct mr_render_def {
   uint32_t cookie; /* MR_RENDER_COOKIE, set by mr_default_render_def() */
   mr_render_backend backend;
-  bool headless;   /* AUTO picks only headless backends */
-  int width, height; /* <= 0: the stage's size */
-  int samples;     /* multisampling, default 4; 1: none */
-  bool fullscreen; /* window only */
-  bool vsync;      /* window only, default true */
-  const char *title; /* window only */
+  bool headless;         /* AUTO picks only headless backends */
+  int width, height;     /* <= 0: the stage's size */
+  int samples;           /* multisampling, default 4; 1: none */
+  bool fullscreen;       /* window only */
+  bool vsync;            /* window only, default true */
+  const char *title;     /* window only */
   const char *font_path; /* NULL: the DejaVu Sans Mono the system ships */
 } mr_render_def;
 mr_render_def mr_default_render_def(void);
@@ -86,8 +86,7 @@ void mr_render_view_orbit(mr_render_view *v, const double target[3], double dist
                           double azimuth_deg, double elevation_deg);
 
 /* Draws one frame into the renderer's framebuffer. */
-mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list,
-                                const mr_render_view *view);
+mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list, const mr_render_view *view);
 /* The last frame drawn as 8-bit RGB, top row first: size >= 3 w h. */
 mr_render_status mr_render_read_rgb(mr_render *r, uint8_t *rgb, size_t size);
 /* Window: shows the last frame drawn. Headless: nothing. */
@@ -105,9 +104,9 @@ typedef enum mr_event_kind {
   MR_EVENT_MOUSE_WHEEL,  /* dy: steps, up positive */
   MR_EVENT_PAD_ADDED,    /* a game controller plugged in (pad: its id) */
   MR_EVENT_PAD_REMOVED,
-  MR_EVENT_PAD_AXIS,     /* axis, value: sticks -1..1, triggers 0..1 */
-  MR_EVENT_PAD_BUTTON,   /* button, down */
-  MR_EVENT_RESIZE        /* width, height */
+  MR_EVENT_PAD_AXIS,   /* axis, value: sticks -1..1, triggers 0..1 */
+  MR_EVENT_PAD_BUTTON, /* button, down */
+  MR_EVENT_RESIZE      /* width, height */
 } mr_event_kind;
 
 /* Keys: printable keys are their lower-case ASCII code; the rest these. */
@@ -129,20 +128,24 @@ enum {
 
 /* Game controller axes and buttons, as SDL's game controller names them. */
 enum {
-  MR_PAD_LEFT_X = 0, MR_PAD_LEFT_Y, MR_PAD_RIGHT_X, MR_PAD_RIGHT_Y,
-  MR_PAD_TRIGGER_LEFT, MR_PAD_TRIGGER_RIGHT
+  MR_PAD_LEFT_X = 0,
+  MR_PAD_LEFT_Y,
+  MR_PAD_RIGHT_X,
+  MR_PAD_RIGHT_Y,
+  MR_PAD_TRIGGER_LEFT,
+  MR_PAD_TRIGGER_RIGHT
 };
 
 typedef struct mr_event {
   mr_event_kind kind;
-  int key;       /* MR_EVENT_KEY */
-  bool down;     /* KEY, MOUSE_BUTTON, PAD_BUTTON */
-  int button;    /* mouse: 1 left, 2 middle, 3 right; pad: SDL's number */
-  int buttons;   /* MOUSE_MOVE: held, bit 0 left, 1 middle, 2 right */
+  int key;     /* MR_EVENT_KEY */
+  bool down;   /* KEY, MOUSE_BUTTON, PAD_BUTTON */
+  int button;  /* mouse: 1 left, 2 middle, 3 right; pad: SDL's number */
+  int buttons; /* MOUSE_MOVE: held, bit 0 left, 1 middle, 2 right */
   double x, y, dx, dy;
-  int axis;      /* PAD_AXIS */
-  double value;  /* PAD_AXIS */
-  int pad;       /* PAD_*: which controller */
+  int axis;          /* PAD_AXIS */
+  double value;      /* PAD_AXIS */
+  int pad;           /* PAD_*: which controller */
   int width, height; /* RESIZE */
 } mr_event;
 

@@ -112,7 +112,7 @@ typedef struct mr_model_def {
   const int *bones;
   const double *bones_rest;
   int n_bones;
-  int influences; /* 1..MR_SKIN_MAX_INFLUENCES, default 4 */
+  int influences;   /* 1..MR_SKIN_MAX_INFLUENCES, default 4 */
   bool cast_shadow; /* default true */
   mr_stage_pos pos;
 } mr_model_def;
@@ -130,11 +130,11 @@ mr_spot_def mr_default_spot_def(void);
 enum { MR_STAGE_MAX_SPOTS = 8, MR_STAGE_MAX_CAMERAS = 8 };
 
 typedef struct mr_lights_def {
-  float ambient[3];    /* default (0.25, 0.25, 0.3) at noon; the day knob dims it */
-  float sun_color[3];  /* default (1, 0.96, 0.9) */
+  float ambient[3];     /* default (0.25, 0.25, 0.3) at noon; the day knob dims it */
+  float sun_color[3];   /* default (1, 0.96, 0.9) */
   double sun_intensity; /* default 1 */
-  bool shadows;        /* the sun casts shadows through a shadow map; default true */
-  int shadow_size;     /* shadow map texels a side, default 2048 */
+  bool shadows;         /* the sun casts shadows through a shadow map; default true */
+  int shadow_size;      /* shadow map texels a side, default 2048 */
   mr_spot_def spots[MR_STAGE_MAX_SPOTS];
   int n_spots;
 } mr_lights_def;
@@ -157,47 +157,47 @@ typedef struct mr_star {
 } mr_star;
 
 typedef struct mr_stage_def {
-  uint32_t cookie; /* MR_STAGE_COOKIE, set by mr_default_stage_def() */
+  uint32_t cookie;      /* MR_STAGE_COOKIE, set by mr_default_stage_def() */
   mr_model_def *models; /* belongs to the def's owner */
   size_t n_models;
   mr_lights_def lights;
   /* Scenery: a floor at floor_height (a checkerboard of two colours,
    * floor_size m a side) and a backdrop wall behind the stage. */
-  bool floor;           /* default true */
-  double floor_height;  /* default 0 */
-  double floor_size;    /* default 8 */
+  bool floor;          /* default true */
+  double floor_height; /* default 0 */
+  double floor_size;   /* default 8 */
   float floor_color[3], floor_color2[3];
-  bool backdrop;        /* default true */
+  bool backdrop;            /* default true */
   double backdrop_distance; /* m behind the origin along -z, default 3 */
   float backdrop_color[3];
   /* Day and night (§3.3: "day can turn into night at the turn of a knob").
    * time_of_day 0..1: 0 and 1 midnight, 0.5 noon. It sets the sun's
    * height, the sky's colour between sky_day and sky_night, and how
    * bright the stars are. */
-  double time_of_day;   /* default 0.5 */
+  double time_of_day; /* default 0.5 */
   float sky_day[3], sky_night[3];
   /* The constellations: the scene's, or none (n_stars 0, stars true): the
    * built-in ones (mr_stage_builtin_stars). */
-  bool stars;           /* default true */
+  bool stars;               /* default true */
   const mr_star *star_list; /* belongs to the def's owner */
   size_t n_stars;
   /* Rigging: strings as thin lines from their control point to their
    * particle, and each control frame as lines between its points. */
-  bool show_strings;    /* default true */
+  bool show_strings; /* default true */
   float string_color[3];
-  const int *strings;   /* 2 n_strings world ids: from, to */
+  const int *strings; /* 2 n_strings world ids: from, to */
   size_t n_strings;
-  bool show_frames;     /* default true */
+  bool show_frames; /* default true */
   float frame_color[3];
   const int *frame_points; /* per control frame, its points' world ids,
                               frame_point_count[k] of them in order */
   const int *frame_point_count;
   size_t n_frames;
   /* Cameras: the orbit camera's start, and the scene's named ones. */
-  double orbit_target[3];  /* default (0, 0.6, 0) */
-  double orbit_distance;   /* default 2.5 */
+  double orbit_target[3];                        /* default (0, 0.6, 0) */
+  double orbit_distance;                         /* default 2.5 */
   double orbit_azimuth_deg, orbit_elevation_deg; /* default 0, 12 */
-  double fov_deg;          /* default 45 */
+  double fov_deg;                                /* default 45 */
   mr_camera_def cameras[MR_STAGE_MAX_CAMERAS];
   int n_cameras;
   /* The picture (the scene's `stage.size`): default 1280 x 720. */
@@ -221,10 +221,10 @@ mr_star mr_stage_star_at(double azimuth_deg, double elevation_deg, double bright
 /* One model drawn: its mesh as loaded (placement applied), scaled in its
  * own axes, then moved by pose. */
 typedef struct mr_draw_item {
-  int model;       /* index into the stage's models */
+  int model; /* index into the stage's models */
   mr_pose pose;
   double scale[3];
-  int material;    /* index into the model's materials; -1: the file's own */
+  int material; /* index into the model's materials; -1: the file's own */
 } mr_draw_item;
 
 /* A freeform model's bones this frame: bone i moves the points bound to
@@ -274,8 +274,7 @@ const mr_stage_def *mr_stage_get_def(const mr_stage *s);
  * and what it points to belong to the stage and stay valid until the next
  * call. Points that are not finite leave their models where they were
  * last drawn, so a bad frame never reaches the GPU. */
-mr_stage_status mr_stage_update(mr_stage *s, const double *xyz, size_t n,
-                                const mr_draw_list **out);
+mr_stage_status mr_stage_update(mr_stage *s, const double *xyz, size_t n, const mr_draw_list **out);
 
 /* Model `model` wears its material k from now on (§3.3). */
 mr_stage_status mr_stage_set_material(mr_stage *s, size_t model, int k);
