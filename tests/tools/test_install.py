@@ -17,7 +17,7 @@ import tempfile
 SRC, BUILD = sys.argv[1], sys.argv[2]
 PREFIX = "/usr/local"
 PROGRAMS = {"marionette": [["--help"], ["sim", "--help"], ["run", "--help"],
-                           ["list-ports", "--help"]],
+                           ["render", "--help"], ["list-ports", "--help"]],
             "glove-gen": [["--help"]],
             "glove-dump": [["--help"]]}
 failures = []
