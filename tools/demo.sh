@@ -32,8 +32,11 @@ window=0
 if [ -n "${DISPLAY:-}" ] && [ "${MR_DEMO_HEADLESS:-0}" != 1 ]; then window=1; fi
 secs=${MR_DEMO_SECONDS:-$([ $window = 1 ] && echo 20 || echo 8)}
 
-# The glove: a pty of its own, waiting for the show to open it.
-"$GEN" -o pty --path-file "$tmp/pty" --duration $((secs + 10)) --wait 30 --linger 0 -q \
+# The glove: a pty of its own, waiting for the show to open it. It plays
+# longer than the show may take on a slow machine (a software renderer
+# skips renders and gives up lag, so show time runs behind the clock) and
+# is stopped when the show ends.
+"$GEN" -o pty --path-file "$tmp/pty" --duration $((secs * 10 + 30)) --wait 30 --linger 0 -q \
   2>"$tmp/gen.err" &
 gen_pid=$!
 for _ in $(seq 100); do [ -s "$tmp/pty" ] && break; sleep 0.1; done
