@@ -1,7 +1,7 @@
 # The front door. Native code builds with CMake into build/ (and build-asan/
 # for the sanitizer run, build-fuzz/ for libFuzzer); the firmware cross-builds
 # with its own Makefile into build/firmware/.
-.PHONY: all deps build build-asan firmware test test-native test-asan fuzz demo bench \
+.PHONY: all deps build build-asan firmware test test-native test-asan fuzz demo bench bench-count \
         install format clean
 
 JOBS      ?= $(shell nproc)
@@ -78,11 +78,19 @@ format:
 	@find protocol firmware host tools tests \( -name '*.c' -o -name '*.h' -o -name '*.cpp' \) \
 	  -type f -exec clang-format -i {} +
 
-# The decoder's throughput and the wire cost of a SAMPLE frame; the time to
-# load and build scenes of up to 100 000 particles.
+# The decoder's throughput and the wire cost of a SAMPLE frame; then what
+# accuracy costs in time (marionette-bench: the accuracy-cost sweep with its
+# plots, the paper's sec. 7 run, capacity, scene load times up to 100 000
+# particles, latency), its CSV files and plots in $(BUILD)/bench/.
+# BENCH_FLAGS=--quick for a run of about a minute.
 bench: build
 	@$(BUILD)/tools/protocol-bench/protocol-bench
-	@$(BUILD)/tools/scene-bench/scene-bench
+	@$(BUILD)/tools/marionette-bench/marionette-bench --out $(BUILD)/bench $(BENCH_FLAGS)
+
+# Stable figures for regressions: instruction counts (callgrind) of fixed
+# runs, the puppet for 10 s and 10 000 decoded frames.
+bench-count: build
+	@tools/marionette-bench/count.sh $(BUILD)
 
 # The programs, their man pages and the udev rule, under $(DESTDIR)$(PREFIX)
 # (the udev rule under $(DESTDIR)$(UDEV_RULES_DIR)): `make`, then

@@ -1,0 +1,117 @@
+/* marionette-bench runs end to end: --help, bad options, the fixed runs of
+ * `make bench-count`, and a --quick run that writes every output it
+ * documents, stamped with the machine. It asserts that the figures exist
+ * and are sane, never what they are: timings are the benchmark's to print. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "proc.h"
+
+#define BENCH MR_BINARY_DIR "/tools/marionette-bench/marionette-bench"
+
+static tt_output run(const char *a1, const char *a2, const char *a3, const char *a4) {
+  char *argv[] = { BENCH, (char *)a1, (char *)a2, (char *)a3, (char *)a4, NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  return o;
+}
+
+static void help_names_every_section_and_option(void **state) {
+  (void)state;
+  tt_output o = run("--help", NULL, NULL, NULL);
+  assert_int_equal(o.status, 0);
+  const char *words[] = { "sweep",   "sec7",  "capacity", "load",  "latency",
+                          "--quick", "--out", "--count",  "--only" };
+  for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
+    assert_non_null(strstr(o.out, words[i]));
+  tt_output_free(&o);
+  o = run("--fast", NULL, NULL, NULL);
+  assert_int_equal(o.status, 2);
+  assert_non_null(strstr(o.err, "--fast"));
+  tt_output_free(&o);
+}
+
+static void count_runs_are_fixed_work(void **state) {
+  (void)state;
+  tt_output o = run("--count", "decode", NULL, NULL);
+  assert_int_equal(o.status, 0);
+  tt_output_free(&o);
+  o = run("--count", "nothing", NULL, NULL);
+  assert_int_equal(o.status, 1);
+  assert_non_null(strstr(o.err, "puppet or decode"));
+  tt_output_free(&o);
+}
+
+/* Rows of sweep.csv for a puppet, each with a finite, positive cost. */
+static int sweep_rows(const char *csv, const char *puppet) {
+  int rows = 0;
+  size_t n = strlen(puppet);
+  for (const char *l = csv; l != NULL && *l; l = strchr(l, '\n'), l = l ? l + 1 : NULL) {
+    if (strncmp(l, puppet, n) != 0 || l[n] != ',' || strncmp(l + n, ",group,", 7) == 0)
+      continue; /* another puppet's row, or the header */
+    const char *last = l;
+    for (int comma = 0; comma < 26 && last; comma++) last = strchr(last + 1, ',');
+    assert_non_null(last); /* column 27: cpu_ms_per_sim_s */
+    double cost = strtod(last + 1, NULL);
+    assert_true(isfinite(cost) && cost > 0);
+    rows++;
+  }
+  return rows;
+}
+
+static void quick_run_writes_every_output_with_the_machine(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  assert_non_null(dir);
+  tt_output o = run("--quick", "--out", dir, NULL);
+  assert_int_equal(o.status, 0);
+  assert_non_null(strstr(o.out, "machine: "));
+  assert_non_null(strstr(o.out, "cores"));
+  assert_non_null(strstr(o.out, "default on the front: "));
+  assert_non_null(strstr(o.out, "real-time puppets"));
+  assert_non_null(strstr(o.out, "sample to frame: p50"));
+  assert_non_null(strstr(o.err, "[sweep] ")); /* progress */
+  char *csv = tt_read_file(tt_path(dir, "sweep.csv"), NULL);
+  assert_non_null(csv);
+  assert_non_null(strstr(csv, "puppet,group,setting,default,"));
+  assert_true(sweep_rows(csv, "stick-fig10") >= 10);
+  assert_true(sweep_rows(csv, "puppet") >= 10);
+  char *cap = tt_read_file(tt_path(dir, "capacity.csv"), NULL);
+  assert_non_null(cap);
+  assert_non_null(strstr(cap, "\n1000,"));
+  char *summary = tt_read_file(tt_path(dir, "summary.txt"), NULL);
+  assert_non_null(summary);
+  assert_non_null(strstr(summary, "machine: "));
+  if (system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    size_t len = 0;
+    char *svg = tt_read_file(tt_path(dir, "sweep_puppet.svg"), &len);
+    assert_non_null(svg);
+    assert_non_null(strstr(svg, "<svg"));
+    free(svg);
+    assert_int_equal(access(tt_path(dir, "sweep_stick-fig10.png"), R_OK), 0);
+  }
+  free(csv);
+  free(cap);
+  free(summary);
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(help_names_every_section_and_option),
+    cmocka_unit_test(count_runs_are_fixed_work),
+    cmocka_unit_test(quick_run_writes_every_output_with_the_machine),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,64 @@
+/* marionette-bench: what accuracy costs in time. A thin client of the host
+ * libraries (mr_scene, mr_theater, mr_physics): it loads the shipped scenes,
+ * changes their settings the way a scene file could, runs them with
+ * mr_sim_run and prints figures. Nothing here is needed by a program. */
+#ifndef MARIONETTE_BENCH_H
+#define MARIONETTE_BENCH_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "mr_scene.h"
+#include "mr_sim.h"
+
+typedef struct bench {
+  bool quick;        /* about a minute in all */
+  const char *out;   /* folder for the CSV files and plots */
+  const char *root;  /* the source tree, for host/scenes */
+  char machine[256]; /* "Linux 6.1.0 x86_64, AMD EPYC 7B13, 2 cores" */
+  FILE *summary;     /* summary.txt in out: every figure printed */
+} bench;
+
+/* machine.c */
+void bench_machine(char *out, size_t size);
+double bench_cpu_seconds(void);
+/* printf to stdout and to the summary file. */
+void bench_say(bench *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Progress on stderr: "[section] what" (a line per run, so a long run
+ * shows it is alive). */
+void bench_progress(const char *section, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+/* Opens out/name for writing (NULL with a message on stderr). */
+FILE *bench_open(const bench *b, const char *name);
+/* Loads root/rel into scene; 0, or −1 with a message on stderr. */
+int bench_load(const bench *b, const char *rel, mr_scene *scene);
+
+/* One run of a scene as it stands, its track at 60 frames a second
+ * presented by interpolation (so frames do not cut the ATS's steps), the
+ * end effector's position recorded at every frame up to `horizon`. */
+typedef struct bench_run {
+  mr_sim_result r;
+  double cpu;   /* CPU seconds of the run */
+  double *ee;   /* 3 per frame, up to the horizon */
+  int ee_count; /* frames recorded */
+  int ee_cap;
+  size_t ee_index; /* the end effector's particle */
+  double horizon;
+} bench_run;
+int bench_run_scene(const mr_scene *scene, double duration, size_t ee_index, double horizon,
+                    bench_run *out);
+void bench_run_free(bench_run *r);
+/* Largest and RMS distance between two runs' end-effector tracks, m. */
+void bench_ee_error(const bench_run *a, const bench_run *ref, double *max, double *rms);
+
+/* The sections, each printing its figures and writing its CSV. 0 or −1. */
+int bench_sweep(bench *b);
+int bench_paper_run(bench *b);
+int bench_capacity(bench *b);
+int bench_load_time(bench *b);
+int bench_latency(bench *b);
+/* The fixed runs `make bench-count` counts under callgrind: "puppet"
+ * (host/scenes/puppet.yaml for 10 s) or "decode" (10 000 SAMPLE frames). */
+int bench_count_run(bench *b, const char *which);
+
+#endif

@@ -1,0 +1,294 @@
+/* The benchmark's other sections: the paper's §7 run (item 7), capacity
+ * (item 3), scene load time (item 3), latency (item 4), and the fixed
+ * runs `make bench-count` counts (item 6). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <valgrind/callgrind.h>
+
+#include "bench.h"
+#include "gp.h"
+#include "mr_scene_world.h"
+
+/* §7: bounds 0.01–0.05 s, thresholds 0.01 %–1 %, the walking tracks. */
+int bench_paper_run(bench *b) {
+  static const char *const scenes[] = { "host/scenes/puppet.yaml", "host/scenes/stick.yaml" };
+  bench_say(b, "\n== the paper's sec. 7 run (item 7): bounds 0.01-0.05 s, thresholds "
+               "0.01 %%-1 %% ==\n");
+  bench_say(b, "%-26s %-22s %7s %9s %8s %9s %9s\n", "scene", "error control", "steps", "mean dt",
+            "upper", "max dev", "ms/sim-s");
+  for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
+    mr_scene sc;
+    if (bench_load(b, scenes[i], &sc) != 0) return -1;
+    mr_world_def *d = &sc.world;
+    d->dt_min = 0.01, d->dt_max = 0.05, d->deviation_low = 1e-4, d->deviation_high = 1e-2;
+    for (int paper = 0; paper < 2; paper++) {
+      if (paper) d->error_length = d->error_speed = 0.0;
+      bench_progress("sec7", "%s%s", scenes[i], paper ? " (deviation only)" : "");
+      bench_run run;
+      if (bench_run_scene(&sc, 0, 0, 0, &run) != 0) break;
+      const mr_sim_result *r = &run.r;
+      bench_say(b, "%-26s %-22s %7llu %9.5f %7.1f%% %9.2e %9.3f\n", scenes[i] + 12,
+                paper ? "deviation (paper)" : "deviation + estimate", (unsigned long long)r->steps,
+                r->dt_mean, 100 * r->at_upper_fraction, r->max_deviation,
+                1000 * run.cpu / r->sim_time);
+      bench_run_free(&run);
+    }
+    mr_scene_free(&sc);
+  }
+  bench_say(b, "the paper: mean dt about 0.02 s, \"most of the movements\" at the upper bound\n");
+  return 0;
+}
+
+/* One stick puppet of Fig. 10 (hard case 01) as a unit of a `puppets:`
+ * list, at (x, 0, z), with its own control frame swaying at 0.5 Hz. */
+static const char stick_puppet[] =
+    "  - name: p%d\n    offset: [%.2f, 0, %.2f]\n    particles:\n"
+    "      - {name: neck, position: [0.00, 0.62, 0.00], mass: 0.08}\n"
+    "      - {name: head_top, position: [0.00, 0.80, 0.00], mass: 0.10}\n"
+    "      - {name: nose, position: [0.00, 0.71, 0.07], mass: 0.06}\n"
+    "      - {name: ear_l, position: [-0.06, 0.71, 0.00], mass: 0.06}\n"
+    "      - {name: shoulder_l, position: [-0.12, 0.56, 0.00], mass: 0.15}\n"
+    "      - {name: shoulder_r, position: [0.12, 0.56, 0.00], mass: 0.15}\n"
+    "      - {name: chest, position: [0.00, 0.46, 0.06], mass: 0.15}\n"
+    "      - {name: hip_l, position: [-0.08, 0.32, 0.00], mass: 0.12}\n"
+    "      - {name: hip_r, position: [0.08, 0.32, 0.00], mass: 0.12}\n"
+    "      - {name: elbow_l, position: [-0.15, 0.42, 0.00], mass: 0.06}\n"
+    "      - {name: hand_l, position: [-0.16, 0.28, 0.02], mass: 0.08}\n"
+    "      - {name: elbow_r, position: [0.15, 0.42, 0.00], mass: 0.06}\n"
+    "      - {name: hand_r, position: [0.16, 0.28, 0.02], mass: 0.08}\n"
+    "      - {name: knee_l, position: [-0.08, 0.18, 0.01], mass: 0.08}\n"
+    "      - {name: foot_l, position: [-0.08, 0.04, 0.00], mass: 0.08}\n"
+    "      - {name: knee_r, position: [0.08, 0.18, 0.01], mass: 0.08}\n"
+    "      - {name: foot_r, position: [0.08, 0.04, 0.00], mass: 0.08}\n"
+    "    groups:\n"
+    "      - {name: head, particles: [neck, head_top, nose, ear_l]}\n"
+    "      - {name: torso, particles: [shoulder_l, shoulder_r, chest, hip_l, hip_r]}\n"
+    "    constraints:\n"
+    "      - {between: [neck, shoulder_l]}\n      - {between: [neck, shoulder_r]}\n"
+    "      - {between: [shoulder_l, elbow_l]}\n      - {between: [elbow_l, hand_l]}\n"
+    "      - {between: [shoulder_r, elbow_r]}\n      - {between: [elbow_r, hand_r]}\n"
+    "      - {between: [hip_l, knee_l]}\n      - {between: [knee_l, foot_l]}\n"
+    "      - {between: [hip_r, knee_r]}\n      - {between: [knee_r, foot_r]}\n"
+    "    control:\n      pose: {position: [0, 1.25, 0]}\n      points:\n"
+    "        - {name: bar_head, offset: [0.00, 0, 0.00]}\n"
+    "        - {name: bar_shoulder_l, offset: [-0.12, 0, 0.00]}\n"
+    "        - {name: bar_shoulder_r, offset: [0.12, 0, 0.00]}\n"
+    "        - {name: bar_hand_l, offset: [-0.25, 0, 0.06]}\n"
+    "        - {name: bar_hand_r, offset: [0.25, 0, 0.06]}\n"
+    "        - {name: bar_knee_l, offset: [-0.08, 0, 0.15]}\n"
+    "        - {name: bar_knee_r, offset: [0.08, 0, 0.15]}\n"
+    "      track: {oscillate: {amplitude: [0.05, 0.03, 0], rotation: [0, 0, 10], "
+    "frequency: 0.5, ramp: 1}}\n"
+    "    strings:\n"
+    "      - {from: bar_head, to: head_top, stiffness: 60, damping: 1.0}\n"
+    "      - {from: bar_shoulder_l, to: shoulder_l, stiffness: 60, damping: 1.0}\n"
+    "      - {from: bar_shoulder_r, to: shoulder_r, stiffness: 60, damping: 1.0}\n"
+    "      - {from: bar_hand_l, to: hand_l, stiffness: 30, damping: 0.5}\n"
+    "      - {from: bar_hand_r, to: hand_r, stiffness: 30, damping: 0.5}\n"
+    "      - {from: bar_knee_l, to: knee_l, stiffness: 30, damping: 0.5}\n"
+    "      - {from: bar_knee_r, to: knee_r, stiffness: 30, damping: 0.5}\n"
+    "    antigravity:\n"
+    "      - {acted: shoulder_l, trigger: bar_shoulder_l, fraction: 0.35}\n"
+    "      - {acted: shoulder_r, trigger: bar_shoulder_r, fraction: 0.35}\n"
+    "      - {acted: head_top, trigger: bar_head, fraction: 0.15}\n";
+
+/* A scene of n stick puppets on a grid 1 m apart. */
+static char *stick_crowd(int n, size_t *len) {
+  size_t cap = (size_t)n * (sizeof stick_puppet + 64) + 512, used = 0;
+  char *t = malloc(cap);
+  if (t == NULL) return NULL;
+  used += (size_t)snprintf(t, cap,
+                           "format: 1\nname: crowd\nphysics:\n"
+                           "  effects: [gravity, drag, constraints, strings, antigravity, "
+                           "control]\n  drag: 0.2\n  puppets:\n");
+  int side = (int)ceil(sqrt((double)n));
+  for (int i = 0; i < n; i++)
+    used += (size_t)snprintf(t + used, cap - used, stick_puppet, i, (double)(i % side),
+                             (double)(i / side));
+  *len = used;
+  return t;
+}
+
+/* CPU seconds per simulated second of n stick puppets, each on its own
+ * control frame (physics only), over `seconds` of track. */
+static int crowd_cost(int n, double seconds, double *cost) {
+  size_t len;
+  char *text = stick_crowd(n, &len);
+  mr_scene sc;
+  mr_scene_error err;
+  if (text == NULL || mr_scene_load_text("crowd", text, len, &sc, &err) != MR_SCENE_OK) {
+    fprintf(stderr, "marionette-bench: crowd of %d: %s\n", n, text ? err.text : "no memory");
+    free(text);
+    return -1;
+  }
+  free(text);
+  bench_run run;
+  int rc = bench_run_scene(&sc, seconds, 0, 0, &run);
+  if (rc == 0) *cost = run.cpu / run.r.sim_time;
+  if (rc == 0 && (run.r.resets > 0 || !run.r.finite))
+    fprintf(stderr, "marionette-bench: crowd of %d reset %llu times\n", n,
+            (unsigned long long)run.r.resets);
+  bench_run_free(&run);
+  mr_scene_free(&sc);
+  return rc;
+}
+
+int bench_capacity(bench *b) {
+  static const int counts[] = { 1, 10, 100, 1000 };
+  FILE *csv = bench_open(b, "capacity.csv");
+  if (csv == NULL) return -1;
+  fprintf(csv, "# %s\npuppets,sim_s,cpu_s_per_sim_s,cpu_ms_per_puppet_s,realtime_puppets\n",
+          b->machine);
+  bench_say(b, "\n== capacity (item 3): stick puppets of Fig. 10, each on its own frame, "
+               "physics only, one core ==\n");
+  bench_say(b, "%8s %14s %18s %12s %18s\n", "puppets", "CPU s/sim s", "ms per puppet-s", "growth",
+            "real-time puppets");
+  double last = 0;
+  int n_counts = 4;
+  for (int i = 0; i < n_counts; i++) {
+    int n = counts[i];
+    double seconds = b->quick ? (n >= 100 ? 0.5 : 2.0) : (n >= 1000 ? 3.0 : 10.0), cost = 0;
+    bench_progress("capacity", "%d puppets for %g s", n, seconds);
+    if (crowd_cost(n, seconds, &cost) != 0) break;
+    double per = 1000.0 * cost / n, realtime = n / cost;
+    char growth[32] = "-";
+    if (last > 0) snprintf(growth, sizeof growth, "%.2fx", cost / last);
+    bench_say(b, "%8d %14.4f %18.4f %12s %18.0f\n", n, cost, per, growth, realtime);
+    fprintf(csv, "%d,%g,%.6g,%.6g,%.0f\n", n, seconds, cost, per, realtime);
+    last = cost;
+  }
+  bench_say(b, "real-time puppets: n / (CPU s per sim s) at that n; linear cost shows as "
+               "growth 10x per row\n");
+  fclose(csv);
+  return 0;
+}
+
+int bench_load_time(bench *b) {
+  bench_say(b, "\n== scene load time (item 3), by scene-bench ==\n");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "'%s' --max %d", SCENE_BENCH_PATH, b->quick ? 10000 : 100000);
+  FILE *p = popen(cmd, "r");
+  if (p == NULL) return -1;
+  char line[512];
+  while (fgets(line, sizeof line, p) != NULL) bench_say(b, "%s", line);
+  return pclose(p) == 0 ? 0 : -1;
+}
+
+/* Per-frame CPU time of a paced run: the time between frames presented. */
+typedef struct frame_clock {
+  double last, *cost;
+  int n, cap;
+} frame_clock;
+
+static void on_frame_clock(void *user, double t, const double *xyz, int n) {
+  (void)t, (void)xyz, (void)n;
+  frame_clock *c = user;
+  double now = bench_cpu_seconds();
+  if (c->n < c->cap) c->cost[c->n++] = now - c->last;
+  c->last = now;
+}
+
+static int by_value(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Glove sample to the first frame that shows it, headless: the theater
+ * reads the newest sample at each frame tick and the frame is shown when
+ * its steps are done, so a sample waits for the next tick (arrivals spread
+ * evenly over the frame period, 16 per frame) and then for that frame's
+ * compute, measured frame by frame on puppet.yaml at 60 fps (landing, as
+ * the theater presents). */
+int bench_latency(bench *b) {
+  mr_scene sc;
+  if (bench_load(b, "host/scenes/puppet.yaml", &sc) != 0) return -1;
+  const double period = 1.0 / 60.0;
+  frame_clock c = { 0 };
+  c.cap = 60 * 13;
+  c.cost = calloc((size_t)c.cap, sizeof *c.cost);
+  double *lat = calloc((size_t)c.cap * 16, sizeof *lat);
+  mr_sim_opts o = mr_default_sim_opts();
+  o.fps = 60;
+  o.present = MR_PRESENT_LAND;
+  o.on_frame = on_frame_clock;
+  o.user = &c;
+  mr_sim_result r;
+  mr_scene_error err;
+  bench_progress("latency", "puppet.yaml at 60 fps");
+  c.last = bench_cpu_seconds();
+  int rc = c.cost && lat && mr_sim_run(&sc, &o, &r, &err) == MR_SCENE_OK ? 0 : -1;
+  int n = 0;
+  for (int f = 0; rc == 0 && f < c.n; f++)
+    for (int k = 0; k < 16; k++) lat[n++] = period * (k + 0.5) / 16.0 + c.cost[f];
+  if (rc == 0 && n > 0) {
+    qsort(lat, (size_t)n, sizeof *lat, by_value);
+    qsort(c.cost, (size_t)c.n, sizeof *c.cost, by_value);
+    double wire = (double)GP_MAX_WIRE * 10.0 / 115200.0;
+    bench_say(b, "\n== latency (item 4), headless, puppet.yaml at 60 fps ==\n");
+    bench_say(b, "frame compute: p50 %.3f ms, p99 %.3f ms, max %.3f ms (%d frames)\n",
+              1e3 * c.cost[c.n / 2], 1e3 * c.cost[(c.n * 99) / 100], 1e3 * c.cost[c.n - 1], c.n);
+    bench_say(b,
+              "sample to frame: p50 %.2f ms, p99 %.2f ms; target p99 <= %.2f ms (one frame "
+              "%.2f ms + a SAMPLE's wire time at 115200 8N1, at most %.2f ms)\n",
+              1e3 * lat[n / 2], 1e3 * lat[(n * 99) / 100], 1e3 * (period + wire), 1e3 * period,
+              1e3 * wire);
+  }
+  free(c.cost);
+  free(lat);
+  mr_scene_free(&sc);
+  return rc;
+}
+
+static int count_decode(void) {
+  enum { FRAMES = 10000 };
+  size_t cap = (size_t)FRAMES * GP_MAX_WIRE, len = 0;
+  uint8_t *stream = malloc(cap);
+  if (stream == NULL) return -1;
+  uint32_t r = 1;
+  for (long i = 0; i < FRAMES; i++) {
+    gp_msg m;
+    memset(&m, 0, sizeof m);
+    m.type = GP_SAMPLE;
+    m.u.sample.seq = (uint16_t)i;
+    m.u.sample.t_us = (uint32_t)(i * 4000);
+    for (unsigned c = 0; c < GP_SAMPLE_CH_COUNT; c++) {
+      r = r * 1664525u + 1013904223u;
+      m.u.sample.ch[c] = (uint16_t)(r >> 20);
+    }
+    len += gp_encode(&m, GP_SPEC_HASH, stream + len, cap - len);
+  }
+  gp_decoder d;
+  gp_decoder_init(&d, GP_SPEC_HASH);
+  CALLGRIND_START_INSTRUMENTATION;
+  for (size_t off = 0; off < len;) {
+    gp_msg out;
+    gp_event ev;
+    off += gp_decoder_feed(&d, stream + off, len - off, &out, &ev);
+  }
+  CALLGRIND_STOP_INSTRUMENTATION;
+  free(stream);
+  return d.c.frames == FRAMES ? 0 : -1;
+}
+
+int bench_count_run(bench *b, const char *which) {
+  if (strcmp(which, "decode") == 0) return count_decode();
+  if (strcmp(which, "puppet") != 0) {
+    fprintf(stderr, "marionette-bench: --count expects puppet or decode, got '%s'\n", which);
+    return -1;
+  }
+  mr_scene sc;
+  if (bench_load(b, "host/scenes/puppet.yaml", &sc) != 0) return -1;
+  mr_sim_opts o = mr_default_sim_opts();
+  o.duration = 10.0;
+  mr_sim_result r;
+  mr_scene_error err;
+  CALLGRIND_START_INSTRUMENTATION;
+  mr_scene_status st = mr_sim_run(&sc, &o, &r, &err);
+  CALLGRIND_STOP_INSTRUMENTATION;
+  mr_scene_free(&sc);
+  if (st != MR_SCENE_OK) fprintf(stderr, "marionette-bench: %s\n", err.text);
+  return st == MR_SCENE_OK ? 0 : -1;
+}
