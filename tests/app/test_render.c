@@ -16,6 +16,11 @@
 #include "app_test.h"
 #include "proc.h"
 
+/* The backend the stage is drawn with (OSMesa under the sanitizers). */
+#ifndef MR_APP_TEST_BACKEND
+#define MR_APP_TEST_BACKEND "auto"
+#endif
+
 static char *marionette;
 
 #define PUPPET MR_SOURCE_DIR "/host/scenes/puppet.yaml"
@@ -23,9 +28,10 @@ static char *marionette;
 /* A second of the example puppet at 10 frames/s, 160 x 96, into dir,
  * with up to two more arguments. */
 static void render_into(const char *dir, const char *extra, const char *extra2, tt_output *o) {
-  char *argv[] = { marionette, "render", PUPPET,        "-o",           (char *)dir,
-                   "--time",   "1",      "--fps",       "10",           "--size",
-                   "160x96",   "-q",     (char *)extra, (char *)extra2, NULL };
+  char *argv[] = { marionette,     "render",    PUPPET,   "--backend", MR_APP_TEST_BACKEND,
+                   "-o",           (char *)dir, "--time", "1",         "--fps",
+                   "10",           "--size",    "160x96", "-q",        (char *)extra,
+                   (char *)extra2, NULL };
   assert_int_equal(tt_capture(argv, o), 0);
   if (o->status != 0) fail_msg("status %d: %s", o->status, o->err);
 }
@@ -127,7 +133,9 @@ static void every_and_frame_choose_which_frames_are_written(void **state) {
 }
 
 static void expect_usage(const char *a, const char *b) {
-  char *argv[] = { marionette, "render", PUPPET, (char *)a, (char *)b, NULL };
+  /* The test's backend first: a bad --backend after it is the one read. */
+  char *argv[] = { marionette,          "render",  PUPPET,    "--backend",
+                   MR_APP_TEST_BACKEND, (char *)a, (char *)b, NULL };
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   assert_int_equal(o.status, 2);
@@ -161,7 +169,8 @@ static void a_missing_model_names_its_place_and_path_with_status_1(void **state)
                       "    particle: a\n";
   const char *path = tt_tmp_file("app_missing_model.yaml", text, sizeof text - 1);
   char *dir = tt_tmpdir();
-  char *argv[] = { marionette, "render", (char *)path, "-o", dir, "--time", "0.2", NULL };
+  char *argv[] = { marionette, "render", "--backend", MR_APP_TEST_BACKEND, (char *)path, "-o", dir,
+                   "--time",   "0.2",    NULL };
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   assert_int_equal(o.status, 1);
