@@ -117,6 +117,7 @@ int mr_live_parse_keys(mr_live *lv, const char *list) {
 static void toggle_pause(mr_live *lv) {
   rebase(lv);
   lv->paused = !lv->paused;
+  lv->pause_wall = wall(lv);
 }
 
 static void toggle_slow(mr_live *lv) {
@@ -179,9 +180,10 @@ void mr_live_event(mr_live *lv, const mr_event *ev) {
 
 /* Scripted keys whose time has come, on show time (the frames' own,
  * which falls behind the clock when renders are skipped and lag is given
- * up). */
+ * up). Paused, show time stands still, so the script's time runs on the
+ * wall clock from the pause: a script can let go of its own pause. */
 static void play_keys(mr_live *lv) {
-  double now = lv->show_t;
+  double now = lv->show_t + (lv->paused ? wall(lv) - lv->pause_wall : 0.0);
   for (int i = 0; i < lv->n_keys; i++) {
     mr_key_press *k = &lv->keys[i];
     mr_event ev;

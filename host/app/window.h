@@ -43,7 +43,8 @@ typedef struct mr_live {
   double last_pump;
   mr_key_press keys[MR_KEYS_MAX];
   int n_keys;
-  double show_t; /* the latest frame's show time: --keys run on it */
+  double show_t;     /* the latest frame's show time: --keys run on it */
+  double pause_wall; /* wall time the pause began */
   /* For the OSD: rates over the latest second. */
   double osd_wall, osd_sim;
   uint64_t osd_presented, osd_steps;

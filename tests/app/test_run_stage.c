@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "app_test.h"
@@ -155,6 +156,45 @@ static void the_keyboards_glove_turns_the_control_frame(void **state) {
   free(dir);
 }
 
+static double wall_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+/* 1.5 s of show with the keys given, headless and small; the wall time it
+ * took. */
+static double show_with_keys(const char *keys, tt_output *o) {
+  char *argv[] = { marionette,  "run",        "--backend",  MR_APP_TEST_BACKEND,
+                   STICK,       "--keys",     (char *)keys, "--time",
+                   "1.5",       "--headless", "--size",     "64x64",
+                   "--samples", "1",          "-q",         NULL };
+  double t0 = wall_s();
+  assert_int_equal(tt_capture(argv, o), 0);
+  double wall = wall_s() - t0;
+  if (o->status != 0) fail_msg("status %d: %s", o->status, o->err);
+  assert_non_null(strstr(o->out, "simulated: 1.500 s"));
+  return wall;
+}
+
+/* The keys act on show time: space stops it (2 s of pause make 1.5 s of
+ * show last 3.5 s), s slows it to a quarter (6 s), r puts the puppets
+ * back and says so. */
+static void pause_slow_motion_and_reset_act_on_the_show(void **state) {
+  (void)state;
+  tt_output o;
+  double paused = show_with_keys("0.5:space,2.5:space", &o);
+  tt_output_free(&o);
+  double slow = show_with_keys("0:s", &o);
+  tt_output_free(&o);
+  double plain = show_with_keys("1:r", &o);
+  print_message("wall: plain %.2f s, paused %.2f s, slow %.2f s\n", plain, paused, slow);
+  assert_non_null(strstr(o.err, "marionette run: reset: the puppets are back where they started"));
+  tt_output_free(&o);
+  assert_true(paused >= plain + 1.8);
+  assert_true(slow >= 5.5);
+}
+
 /* Under Xvfb: the window opens, draws, the p key takes a screenshot of
  * the size asked, and q ends the show with status 0. */
 static void the_window_opens_draws_and_takes_a_screenshot_under_xvfb(void **state) {
@@ -204,6 +244,7 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_headless_show_draws_what_the_glove_on_a_pty_does),
     cmocka_unit_test(the_keyboards_glove_turns_the_control_frame),
+    cmocka_unit_test(pause_slow_motion_and_reset_act_on_the_show),
     cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
