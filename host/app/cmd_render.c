@@ -38,7 +38,8 @@ void mr_cmd_render_usage(void) {
          "                      seconds: -o FILE.png, or DIR/frame_T.png\n"
          "  -t, --time SECONDS  how much show (default: the scene's sim.duration,\n"
          "                      10 s when it gives none; with --take, the take)\n"
-         "  --fps HZ            frames per second (default: the scene's, else 30)\n"
+         "  --fps HZ            frames per second (default: the scene's, else 30;\n"
+         "                      with --take, else 60, as the show it recorded)\n"
          "  --take TAKE         play a take (.mrec) instead of the scene's track;\n"
          "                      repeat for the takes of several gloves\n"
          "  --backend B         auto (default), egl or osmesa\n"
@@ -391,7 +392,9 @@ int mr_cmd_render(int argc, char **argv) {
   job j;
   memset(&j, 0, sizeof j);
   j.a = &a;
-  j.fps = a.fps > 0 ? a.fps : scene.fps > 0 ? scene.fps : 30.0;
+  /* A take replays at the live show's rate (the scene's, else 60, as
+   * marionette run), so its frames are the show's frames. */
+  j.fps = a.fps > 0 ? a.fps : scene.fps > 0 ? scene.fps : a.n_takes > 0 ? 60.0 : 30.0;
   j.tty = isatty(2) != 0;
   j.last_tenth = 0;
   rc = render_scene(&j, &scene);

@@ -195,6 +195,49 @@ static void pause_slow_motion_and_reset_act_on_the_show(void **state) {
   assert_true(slow >= 5.5);
 }
 
+/* A take recorded by run --record from glove-gen renders to the same
+ * frames twice: the replay runs on a virtual clock, byte for byte. */
+static void a_recorded_take_renders_the_same_frames_twice(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300], take[600], out[2][600];
+  pid_t gen = start_glove(dir, "0.8", source, sizeof source);
+  snprintf(take, sizeof take, "%s", tt_path(dir, "show.mrec"));
+  char *rec[] = { marionette, "run",    STICK, "--glove", source, "--record",
+                  take,       "--time", "1",   "-q",      NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(rec, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  tt_output_free(&o);
+  tt_wait(gen, 30);
+  for (int k = 0; k < 2; k++) {
+    snprintf(out[k], sizeof out[k], "%s", tt_path(dir, k == 0 ? "one" : "two"));
+    char *argv[] = { marionette, "render",   "--backend", MR_APP_TEST_BACKEND,
+                     STICK,      "--take",   take,        "-o",
+                     out[k],     "--size",   "64x48",     "--samples",
+                     "1",        "--no-mp4", "-q",        NULL };
+    assert_int_equal(tt_capture(argv, &o), 0);
+    if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+    tt_output_free(&o);
+  }
+  int n = at_count_files(out[0], "frame_");
+  assert_true(n >= 55); /* a second of show at 60 frames/s, and the take's tail */
+  assert_int_equal(at_count_files(out[1], "frame_"), n);
+  for (int i = 0; i < n; i += 7) {
+    char name[64], a[700];
+    snprintf(name, sizeof name, "frame_%06d.png", i);
+    snprintf(a, sizeof a, "%s/%s", out[0], name);
+    size_t la = 0, lb = 0;
+    char *x = tt_read_file(a, &la), *y = tt_read_file(tt_path(out[1], name), &lb);
+    assert_true(x != NULL && y != NULL && la == lb && memcmp(x, y, la) == 0);
+    free(x);
+    free(y);
+  }
+  tt_rmdir(out[0]);
+  tt_rmdir(out[1]);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* Under Xvfb: the window opens, draws, the p key takes a screenshot of
  * the size asked, and q ends the show with status 0. */
 static void the_window_opens_draws_and_takes_a_screenshot_under_xvfb(void **state) {
@@ -245,6 +288,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_headless_show_draws_what_the_glove_on_a_pty_does),
     cmocka_unit_test(the_keyboards_glove_turns_the_control_frame),
     cmocka_unit_test(pause_slow_motion_and_reset_act_on_the_show),
+    cmocka_unit_test(a_recorded_take_renders_the_same_frames_twice),
     cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
