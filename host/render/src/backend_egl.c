@@ -18,9 +18,11 @@ typedef struct egl_state {
   EGLContext ctx;
 } egl_state;
 
-/* The surfaceless display is shared by every renderer of the process, so
- * it is terminated only when the last of them stops. */
-static int egl_users;
+/* The surfaceless display is one per process, shared by every renderer,
+ * and is never terminated: eglTerminate lets Mesa unload its driver, which
+ * leaves behind allocations no one can free or even name (the code that
+ * made them is gone), at every create-destroy cycle; kept loaded, the
+ * driver is loaded once. */
 
 static mr_gl_proc egl_get(const char *name) {
   __eglMustCastToProperFunctionPointerType p = eglGetProcAddress(name);
@@ -40,10 +42,6 @@ static void egl_stop(mr_render *r) {
   if (s->ctx != EGL_NO_CONTEXT) {
     eglMakeCurrent(s->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(s->dpy, s->ctx);
-  }
-  if (s->dpy != EGL_NO_DISPLAY && --egl_users == 0) {
-    eglTerminate(s->dpy);
-    eglReleaseThread();
   }
   free(s);
   r->bk = NULL;
@@ -92,7 +90,6 @@ static int egl_start(mr_render *r, const mr_render_def *def, char *msg, size_t m
   if (!eglInitialize(dpy, &major, &minor))
     return egl_fail(r, msg, msg_size, "eglInitialize failed");
   s->dpy = dpy;
-  egl_users++;
   if (!eglBindAPI(EGL_OPENGL_API)) return egl_fail(r, msg, msg_size, "no desktop OpenGL");
   const EGLint attribs[] = { EGL_CONTEXT_MAJOR_VERSION,
                              3,
