@@ -368,8 +368,9 @@ int mr_live_close(mr_live *lv, bool quiet) {
   int rc = mr_frames_out_close(lv->fo, &s, msg, sizeof msg);
   lv->fo = NULL;
   if (!quiet || rc != 0) {
-    printf("stage: %s, %s, %dx%d, %llu frames drawn\n", lv->window ? "window" : "headless",
-           mr_render_backend_name(mr_render_backend_of(lv->sv.render)), lv->sv.width, lv->sv.height,
+    mr_render_backend b = mr_render_backend_of(lv->sv.render);
+    printf("stage: %s (%s), %dx%d, %llu frames drawn\n", lv->window ? "in a window" : "headless",
+           b == MR_RENDER_WINDOW ? "SDL" : mr_render_backend_name(b), lv->sv.width, lv->sv.height,
            (unsigned long long)lv->drawn);
     if (s.frames > 0 || s.pngs > 0) {
       printf("png frames: %llu in %s\n", (unsigned long long)s.pngs, lv->out);

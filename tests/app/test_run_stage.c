@@ -261,9 +261,11 @@ static void the_window_opens_draws_and_takes_a_screenshot_under_xvfb(void **stat
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
-  assert_non_null(strstr(o.out, "stage: window, window, 320x180, "));
-  char drawn[64];
-  assert_int_equal(tt_field(o.out, "stage", drawn, sizeof drawn), 0);
+  const char *stage = strstr(o.out, "stage: in a window (SDL), 320x180, ");
+  assert_non_null(stage);
+  long drawn = strtol(stage + strlen("stage: in a window (SDL), 320x180, "), NULL, 10);
+  print_message("%ld frames drawn in the window\n", drawn);
+  assert_true(drawn >= 2);
   int w = 0, h = 0;
   assert_int_equal(at_png_size(tt_path(dir, "shot_000.png"), &w, &h), 0);
   assert_int_equal(w, 320);
