@@ -375,7 +375,7 @@ static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live
   int usage = 0;
   char msg[700];
   if (mr_live_open(lv, scene, &d, &a->so, &usage, msg, sizeof msg) != 0) {
-    if (usage) return bad_usage("%s", msg);
+    if (usage) return msg[0] != '\0' ? bad_usage("%s", msg) : MR_EXIT_USAGE;
     fprintf(stderr, "marionette: %s\n", msg);
     return MR_EXIT_FAIL;
   }

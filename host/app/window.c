@@ -342,7 +342,7 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
   if (mr_stageview_open(&lv->sv, scene, &rd, msg, msg_size) != 0) return -1;
   if (mr_stage_opts_apply(so, "run", &lv->sv) != 0) {
     mr_stageview_close(&lv->sv);
-    snprintf(msg, msg_size, "no such camera");
+    msg[0] = '\0'; /* the line is out */
     return *usage = 1, -1;
   }
   if (open_outputs(lv, def, so, msg, msg_size) != 0) {
