@@ -132,6 +132,30 @@ static void every_and_frame_choose_which_frames_are_written(void **state) {
   free(one);
 }
 
+/* Without ffmpeg on PATH: frames and the sheet, no MP4, and a note. */
+static void without_ffmpeg_there_is_a_note_and_no_video(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  char *path = getenv("PATH") != NULL ? strdup(getenv("PATH")) : NULL;
+  setenv("PATH", "/nonexistent", 1);
+  tt_output o;
+  char *argv[] = { marionette, "render", "--backend", MR_APP_TEST_BACKEND,
+                   PUPPET,     "-o",     dir,         "--time",
+                   "0.2",      "--size", "64x48",     NULL };
+  int rc = tt_capture(argv, &o);
+  if (path != NULL) setenv("PATH", path, 1);
+  free(path);
+  assert_int_equal(rc, 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.err, "marionette render: no MP4: ffmpeg is not installed"));
+  assert_non_null(strstr(o.out, "mp4: none (ffmpeg is not installed"));
+  assert_int_equal(at_count_files(dir, "show.mp4"), 0);
+  assert_int_equal(at_count_files(dir, "sheet.png"), 1);
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 static void expect_usage(const char *a, const char *b) {
   /* The test's backend first: a bad --backend after it is the one read. */
   char *argv[] = { marionette,          "render",  PUPPET,    "--backend",
@@ -194,6 +218,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(frames_of_the_size_asked_a_sheet_and_a_video_are_written),
     cmocka_unit_test(the_same_scene_and_options_give_the_same_png_bytes),
     cmocka_unit_test(every_and_frame_choose_which_frames_are_written),
+    cmocka_unit_test(without_ffmpeg_there_is_a_note_and_no_video),
     cmocka_unit_test(bad_usage_is_one_line_and_status_2),
     cmocka_unit_test(a_missing_model_names_its_place_and_path_with_status_1),
   };
