@@ -79,6 +79,7 @@ static void quick_run_writes_every_output_with_the_machine(void **state) {
   assert_non_null(strstr(o.out, "default on the front: "));
   assert_non_null(strstr(o.out, "real-time puppets"));
   assert_non_null(strstr(o.out, "sample to frame: p50"));
+  assert_non_null(strstr(o.out, "MuJoCo"));   /* the peer, or why it is not built */
   assert_non_null(strstr(o.err, "[sweep] ")); /* progress */
   char *csv = tt_read_file(tt_path(dir, "sweep.csv"), NULL);
   assert_non_null(csv);

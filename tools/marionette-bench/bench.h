@@ -57,6 +57,8 @@ int bench_paper_run(bench *b);
 int bench_capacity(bench *b);
 int bench_load_time(bench *b);
 int bench_latency(bench *b);
+/* Item 2: ours against MuJoCo (peer.c), or a line saying it is not built. */
+int bench_peer(bench *b);
 /* The fixed runs `make bench-count` counts under callgrind: "puppet"
  * (host/scenes/puppet.yaml for 10 s) or "decode" (10 000 SAMPLE frames). */
 int bench_count_run(bench *b, const char *which);

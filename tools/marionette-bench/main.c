@@ -24,6 +24,8 @@ static void usage(FILE *f) {
              "  capacity  1, 10, 100, 1000 stick puppets, physics only, one core\n"
              "  load      loading scenes of up to 100 000 particles (scene-bench)\n"
              "  latency   glove sample to frame, headless, p50 and p99\n"
+             "  peer      the stick marionette in MuJoCo and ours, at matched accuracy (built\n"
+             "            only where libmujoco-dev is)\n"
              "\n"
              "  --quick       a run of about a minute (fewer settings, shorter tracks)\n"
              "  --out DIR     where sweep.csv, capacity.csv, the plots and summary.txt go\n"
@@ -57,11 +59,9 @@ static int run_sections(bench *b, const char *only) {
   static const struct {
     const char *name;
     int (*run)(bench *b);
-  } sections[] = { { "sweep", bench_sweep },
-                   { "sec7", bench_paper_run },
-                   { "capacity", bench_capacity },
-                   { "load", bench_load_time },
-                   { "latency", bench_latency } };
+  } sections[] = { { "sweep", bench_sweep },       { "sec7", bench_paper_run },
+                   { "capacity", bench_capacity }, { "load", bench_load_time },
+                   { "latency", bench_latency },   { "peer", bench_peer } };
   int rc = 0;
   for (size_t i = 0; i < sizeof sections / sizeof sections[0]; i++) {
     if (!wanted(only, sections[i].name)) continue;

@@ -228,8 +228,18 @@ static void run_setting(const mr_scene *base, const setting *s, size_t ee, doubl
   if (s->taut) set_strings(&sc, MR_STRING_TAUT);
   memset(w, 0, sizeof *w);
   w->s = s;
-  if (bench_run_scene(&sc, duration, ee, horizon, &w->run) != 0) return;
-  if (s->taut) set_strings(&sc, MR_STRING_SPRING);
+  int rc = bench_run_scene(&sc, duration, ee, horizon, &w->run);
+  /* One timed run on a shared machine is noisy (two runs of the same
+   * steps measured 50 % apart): the same run again, up to 5 times or
+   * 0.5 s of CPU in all, keeps its fastest, the least disturbed. */
+  for (int k = 1; rc == 0 && k < 5 && w->run.cpu * k < 0.5; k++) {
+    bench_run again;
+    if (bench_run_scene(&sc, duration, ee, horizon, &again) != 0) break;
+    w->run.cpu = fmin(w->run.cpu, again.cpu);
+    bench_run_free(&again);
+  }
+  if (s->taut) set_strings(&sc, MR_STRING_SPRING); /* sc shares base's forces */
+  if (rc != 0) return;
   bench_ee_error(&w->run, ref, &w->ee_max, &w->ee_rms);
   w->cost_ms = w->run.r.sim_time > 0 ? 1000.0 * w->run.cpu / w->run.r.sim_time : NAN;
   w->ok = w->run.r.finite && w->run.r.resets == 0 && isfinite(w->ee_rms);
