@@ -43,9 +43,9 @@ void mr_cmd_run_usage(void) {
   printf("usage: marionette run [OPTIONS] SCENE [--glove SOURCE | --replay TAKE]...\n"
          "\n"
          "The theater: the glove at SOURCE drives the puppet of the scene file SCENE\n"
-         "in real time, on the stage. Its five values move the control frame through the scene's\n"
-         "mapping (host/scenes/FORMAT.md, \"mapping\"); the strings do the rest.\n"
-         "Give --glove (or --replay) once per glove: a scene whose puppets have\n"
+         "in real time, on the stage. Its five values move the control frame through\n"
+         "the scene's mapping (host/scenes/FORMAT.md, \"mapping\"); the strings do the\n"
+         "rest. Give --glove (or --replay) once per glove: a scene whose puppets have\n"
          "control frames of their own binds each to a glove by order, uid or hand\n"
          "(FORMAT.md, \"puppets\"); by default the k-th frame takes the k-th glove. The\n"
          "frame rate is the scene's sim.fps, else 60. Under load renders are skipped\n"
@@ -54,13 +54,14 @@ void mr_cmd_run_usage(void) {
          "shows frames, skipped frames, steps, resets and the glove; a summary ends\n"
          "the show. Ctrl-C ends it cleanly.\n"
          "\n"
-         "The stage: with a display (DISPLAY set) the show is drawn in a window, its\n"
-         "on-screen display showing fps, skipped renders, dt, resets and each\n"
-         "glove's state and latency. Without a display, or with --headless, it is\n"
-         "drawn offscreen and written as with marionette render (-o DIR); without a\n"
-         "display and without -o nothing is drawn. Without --glove, in a window\n"
-         "(or with --keys), the keyboard, the mouse and a gamepad play a glove on a\n"
-         "pty of its own, through the same mapping (see the man page for the keys).\n"
+         "The stage: with a display (DISPLAY or WAYLAND_DISPLAY set, or --fullscreen)\n"
+         "the show is drawn in a window, its on-screen display showing fps, skipped\n"
+         "renders, dt, resets and each glove's state and latency. Without a display,\n"
+         "or with --headless, it is drawn offscreen and written as with marionette\n"
+         "render (-o DIR); without a display and without -o nothing is drawn.\n"
+         "Without --glove, in a window (or with --keys), the keyboard, the mouse and\n"
+         "a gamepad play a glove on a pty of its own, through the same mapping (see\n"
+         "the man page for the keys).\n"
          "Keys: space pause, . single step, s slow motion, r reset, n day/night,\n"
          "[ ] turn the day knob, h or F1 the OSD, p or F12 a screenshot (-o DIR,\n"
          "else here), f or F11 fullscreen, q or Esc quit, 1-8 the scene's cameras,\n"
@@ -92,7 +93,8 @@ void mr_cmd_run_usage(void) {
          "                      default the scene's sim.present, else land\n"
          "  -t, --time SECONDS  end after this much show (default: until Ctrl-C)\n"
          "  --headless          draw offscreen even with a display\n"
-         "  --fullscreen        the window fills the screen (the theater box)\n"
+         "  --fullscreen        the window fills the screen, with or without DISPLAY\n"
+         "                      (the theater box: SDL finds the console's screen)\n"
          "  --no-osd            start with the on-screen display hidden (h shows it)\n"
          "  --backend B         auto (default), window, egl or osmesa\n"
          "  --keys LIST         press keys at show times, T:KEY[/HOLD],... (KEY a\n"
@@ -280,10 +282,14 @@ static int take_value(args *a, const char *opt, const char *v) {
   return 0;
 }
 
-/* A window: a display, and no --headless. */
+/* A window: a display (X11 or Wayland), and no --headless. --fullscreen
+ * asks for one anyway: a theater box started at boot has no DISPLAY, and
+ * SDL finds the screen through the console (KMS) itself. */
 static bool window_wanted(const args *a) {
-  const char *d = getenv("DISPLAY");
-  return !a->headless && d != NULL && d[0] != '\0';
+  if (a->headless) return false;
+  if (a->fullscreen) return true;
+  const char *x = getenv("DISPLAY"), *w = getenv("WAYLAND_DISPLAY");
+  return (x != NULL && x[0] != '\0') || (w != NULL && w[0] != '\0');
 }
 
 static int parse(int argc, char **argv, args *a) {
