@@ -55,9 +55,10 @@ firmware: deps
 test-native: build firmware
 	@cd $(BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS)
 
-# tests/lsan.supp: a leak inside libfyaml, with its upstream report.
+# tests/lsan.supp: allocations made inside libfyaml and the GL drivers,
+# matched by library name, each with its reason.
 test-asan: build-asan firmware
-	@cd $(BUILD)-asan && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
+	@cd $(BUILD)-asan && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 	  ctest --output-on-failure --no-tests=error -j $(JOBS)
 
 # Bounded libFuzzer runs over the committed seed corpora (a scratch copy, so
