@@ -178,8 +178,10 @@ static double show_with_keys(const char *keys, tt_output *o) {
 }
 
 /* The keys act on show time: space stops it (2 s of pause make 1.5 s of
- * show last 3.5 s), s slows it to a quarter (6 s), r puts the puppets
- * back and says so. */
+ * show last at least 3.5 s), s slows it to a quarter (at least 6 s), r puts
+ * the puppets back and says so. Only lower bounds are asserted: a loaded
+ * machine makes every run longer, never shorter, so a comparison with the
+ * plain run would fail when that run alone is slowed. */
 static void pause_slow_motion_and_reset_act_on_the_show(void **state) {
   (void)state;
   tt_output o;
@@ -191,7 +193,7 @@ static void pause_slow_motion_and_reset_act_on_the_show(void **state) {
   print_message("wall: plain %.2f s, paused %.2f s, slow %.2f s\n", plain, paused, slow);
   assert_non_null(strstr(o.err, "marionette run: reset: the puppets are back where they started"));
   tt_output_free(&o);
-  assert_true(paused >= plain + 1.8);
+  assert_true(paused >= 3.4);
   assert_true(slow >= 5.5);
 }
 
