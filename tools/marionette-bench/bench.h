@@ -59,6 +59,8 @@ int bench_load_time(bench *b);
 int bench_latency(bench *b);
 /* Item 2: ours against MuJoCo (peer.c), or a line saying it is not built. */
 int bench_peer(bench *b);
+/* Item 5: milliseconds a frame for each example scene (render_cost.c). */
+int bench_render(bench *b);
 /* The fixed runs `make bench-count` counts under callgrind: "puppet"
  * (host/scenes/puppet.yaml for 10 s) or "decode" (10 000 SAMPLE frames). */
 int bench_count_run(bench *b, const char *which);

@@ -1,0 +1,132 @@
+/* Item 5: what a frame costs to draw. Each example scene runs its track
+ * and its first frames are drawn headless at 1280x720 (EGL, else OSMesa;
+ * on a machine without a GPU both are Mesa's llvmpipe), each drawn and read
+ * back, on the wall clock (llvmpipe draws on threads of its own). A frame
+ * dearer than the 60 fps period cannot be shown on time: the theater's
+ * scheduler then skips renders to keep the physics on time, and the share
+ * it must skip is 1 − period/cost. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bench.h"
+#include "mr_render.h"
+#include "mr_scene_world.h"
+
+static double wall_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+typedef struct drawing {
+  mr_stage *stage;
+  mr_render *render;
+  mr_render_view view;
+  uint8_t *rgb;
+  size_t rgb_size, n;
+  int frames, max_frames, failed;
+  double cost[64];
+} drawing;
+
+static void draw_frame(void *user, double t, const double *xyz, int n) {
+  (void)t;
+  drawing *d = user;
+  if (d->frames >= d->max_frames || d->failed || (size_t)n != d->n) return;
+  double t0 = wall_seconds();
+  const mr_draw_list *list;
+  d->failed = mr_stage_update(d->stage, xyz, d->n, &list) != MR_STAGE_OK ||
+              mr_render_draw(d->render, list, &d->view) != MR_RENDER_OK ||
+              mr_render_read_rgb(d->render, d->rgb, d->rgb_size) != MR_RENDER_OK;
+  d->cost[d->frames++] = wall_seconds() - t0;
+}
+
+/* The stage and the renderer for a scene, from its world's start. */
+static int open_drawing(const mr_scene *sc, drawing *d, char *msg, size_t size) {
+  mr_scene_world sw;
+  mr_scene_error err;
+  if (mr_scene_build(sc, &sw, &err) != MR_SCENE_OK) {
+    snprintf(msg, size, "%.500s", err.text);
+    return -1;
+  }
+  d->n = (size_t)mr_world_particle_count(sw.world);
+  double *xyz = calloc(d->n * 3 + 3, sizeof *xyz);
+  if (xyz != NULL) mr_world_positions(sw.world, xyz, (int)d->n);
+  mr_scene_world_free(&sw);
+  if (xyz == NULL || mr_stage_create(&sc->stage, xyz, d->n, &d->stage, msg, size) != MR_STAGE_OK) {
+    free(xyz);
+    return -1;
+  }
+  free(xyz);
+  mr_render_def def = mr_default_render_def();
+  def.headless = true;
+  def.width = 1280;
+  def.height = 720;
+  if (mr_render_create(&def, &sc->stage, sc->path, &d->render, msg, size) != MR_RENDER_OK)
+    return -1;
+  d->view = mr_default_render_view(&sc->stage);
+  d->rgb_size = (size_t)1280 * 720 * 3;
+  d->rgb = malloc(d->rgb_size);
+  return d->rgb ? 0 : -1;
+}
+
+static void close_drawing(drawing *d) {
+  if (d->render) mr_render_destroy(d->render);
+  if (d->stage) mr_stage_destroy(d->stage);
+  free(d->rgb);
+}
+
+static int by_cost(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static void one_scene(bench *b, const char *rel, int frames) {
+  mr_scene sc;
+  if (bench_load(b, rel, &sc) != 0) return;
+  drawing d = { .max_frames = frames };
+  char msg[1100] = "";
+  bench_progress("render", "%s: %d frames at 1280x720", rel, frames);
+  if (open_drawing(&sc, &d, msg, sizeof msg) == 0) {
+    mr_sim_opts o = mr_default_sim_opts();
+    o.fps = 30;
+    o.duration = (frames + 0.5) / 30.0;
+    o.on_frame = draw_frame;
+    o.user = &d;
+    mr_sim_result r;
+    mr_scene_error err;
+    if (mr_sim_run(&sc, &o, &r, &err) != MR_SCENE_OK) snprintf(msg, sizeof msg, "%s", err.text);
+  }
+  if (d.frames > 0 && !d.failed) {
+    qsort(d.cost, (size_t)d.frames, sizeof d.cost[0], by_cost);
+    double p50 = d.cost[d.frames / 2], period = 1.0 / 60.0;
+    bench_say(b, "%-28s %-7s %9.1f %9.1f %9.0f %%\n", rel + 12,
+              mr_render_backend_name(mr_render_backend_of(d.render)), 1e3 * p50,
+              1e3 * d.cost[d.frames - 1], p50 > period ? 100.0 * (1.0 - period / p50) : 0.0);
+  } else {
+    bench_say(b, "%-28s not drawn: %s\n", rel + 12, msg[0] ? msg : "the renderer failed");
+  }
+  close_drawing(&d);
+  mr_scene_free(&sc);
+}
+
+int bench_render(bench *b) {
+  static const char *const scenes[] = {
+    "host/scenes/stick.yaml",  "host/scenes/humanoid.yaml", "host/scenes/dragon.yaml",
+    "host/scenes/bird.yaml",   "host/scenes/clash.yaml",    "host/scenes/ghost.yaml",
+    "host/scenes/puppet.yaml", "host/scenes/duet.yaml",
+  };
+  bench_say(b, "\n== render cost (item 5): 1280x720, 4x multisampling, headless ==\n");
+  if (b->quick) { /* software GL takes seconds a frame: not a minute's run */
+    bench_say(b, "not measured with --quick\n");
+    return 0;
+  }
+  size_t count = sizeof scenes / sizeof scenes[0];
+  bench_say(b, "%-28s %-7s %9s %9s %10s\n", "scene", "backend", "p50 ms", "max ms",
+            "skipped at 60 fps");
+  for (size_t i = 0; i < count; i++) one_scene(b, scenes[i], 8);
+  bench_say(b, "skipped: the share of renders a 60 fps show must skip to keep the physics on "
+               "time, 1 - period / p50\n");
+  return 0;
+}
