@@ -88,7 +88,7 @@ static void quick_run_writes_every_output_with_the_machine(void **state) {
   assert_true(sweep_rows(csv, "puppet") >= 10);
   char *cap = tt_read_file(tt_path(dir, "capacity.csv"), NULL);
   assert_non_null(cap);
-  assert_non_null(strstr(cap, "\n1000,"));
+  assert_non_null(strstr(cap, "\n100,"));
   char *summary = tt_read_file(tt_path(dir, "summary.txt"), NULL);
   assert_non_null(summary);
   assert_non_null(strstr(summary, "machine: "));

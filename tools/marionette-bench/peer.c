@@ -323,8 +323,8 @@ int bench_peer(bench *b) {
             mj_versionString());
   const peer_track gentle = { { 0.1, 0, 0 }, 10, 0.5, 1 };
   const peer_track rapid = { { 0, 0.3, 0 }, 0, 3, 1 };
-  int rc = track(b, "gentle (0.5 Hz sway)", &gentle, b->quick ? 4 : 10, 1);
-  if (track(b, "rapid (Fig. 10: 3 Hz, 0.3 m vertical)", &rapid, b->quick ? 5 : 60, 0) != 0) rc = -1;
+  int rc = track(b, "gentle (0.5 Hz sway)", &gentle, b->quick ? 2 : 10, 1);
+  if (track(b, "rapid (Fig. 10: 3 Hz, 0.3 m vertical)", &rapid, b->quick ? 2 : 60, 0) != 0) rc = -1;
   return rc;
 #else
   bench_say(b, "\n== MuJoCo peer (item 2): not built (libmujoco-dev was not found) ==\n");
