@@ -57,6 +57,8 @@ int bench_paper_run(bench *b);
 int bench_capacity(bench *b);
 int bench_load_time(bench *b);
 int bench_latency(bench *b);
+/* Item 4, live: glove-gen through a pty, on the wall clock (latency_live.c). */
+int bench_latency_live(bench *b);
 /* Item 2: ours against MuJoCo (peer.c), or a line saying it is not built. */
 int bench_peer(bench *b);
 /* Item 5: milliseconds a frame for each example scene (render_cost.c). */

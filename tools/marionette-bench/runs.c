@@ -239,6 +239,7 @@ int bench_latency(bench *b) {
   free(c.cost);
   free(lat);
   mr_scene_free(&sc);
+  if (rc == 0 && bench_latency_live(b) != 0) rc = -1;
   return rc;
 }
 
