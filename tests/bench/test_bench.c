@@ -70,6 +70,9 @@ static int sweep_rows(const char *csv, const char *puppet) {
 
 static void quick_run_writes_every_output_with_the_machine(void **state) {
   (void)state;
+#ifdef MR_BENCH_NATIVE_ONLY
+  skip(); /* the native build runs it (tests/bench/CMakeLists.txt) */
+#endif
   char *dir = tt_tmpdir();
   assert_non_null(dir);
   tt_output o = run("--quick", "--out", dir, NULL);
