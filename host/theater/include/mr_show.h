@@ -16,8 +16,8 @@
  * pose about that frame's start pose, the frame heads there no faster than
  * its limits (mr_pose_approach), and the world is stepped to land on the
  * frame time. A glove that is lost leaves its frames where they were: the
- * puppets hold their pose. Until the stage exists, presenting a frame is
- * the caller's hook (a status line). */
+ * puppets hold their pose. Presenting a frame is the caller's hook: the
+ * program draws it on the stage (host/render) and prints a status line. */
 #ifndef MR_SHOW_H
 #define MR_SHOW_H
 
