@@ -185,6 +185,15 @@ void mr_stageview_set_day(mr_stageview *sv, double time_of_day) {
   sv->time_of_day = d < 0 ? d + 1.0 : d;
 }
 
+void mr_stageview_next_material(mr_stageview *sv) {
+  const mr_stage_def *def = mr_stage_get_def(sv->stage);
+  sv->material_turn++;
+  for (size_t i = 0; i < def->n_models; i++) {
+    int n = def->models[i].n_materials;
+    if (n > 1) mr_stage_set_material(sv->stage, i, sv->material_turn % n);
+  }
+}
+
 void mr_stageview_osd_clear(mr_stageview *sv) {
   sv->n_osd = 0;
 }

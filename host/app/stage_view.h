@@ -23,6 +23,7 @@ typedef struct mr_stageview {
   int camera;
   double target[3], distance, azimuth, elevation, fov;
   double time_of_day;
+  int material_turn; /* times the models were told to change materials */
   bool show_osd, show_rigging;
   char osd[MR_OSD_LINES][MR_OSD_LINE_MAX];
   size_t n_osd;
@@ -58,6 +59,10 @@ void mr_stageview_orbit(mr_stageview *sv, double d_azimuth, double d_elevation);
 void mr_stageview_zoom(mr_stageview *sv, double steps);
 /* The day knob, kept in 0..1 (wrapping: past midnight is a new day). */
 void mr_stageview_set_day(mr_stageview *sv, double time_of_day);
+/* Every model that can wear several materials puts on its next one,
+ * after its last the first again (§3.3: a material changes while the show
+ * runs); it shows from the next frame drawn or redrawn. */
+void mr_stageview_next_material(mr_stageview *sv);
 
 /* OSD lines (printf-like); cleared by mr_stageview_osd_clear. */
 void mr_stageview_osd_clear(mr_stageview *sv);

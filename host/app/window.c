@@ -139,6 +139,8 @@ static void stage_key(mr_live *lv, int key) {
     lv->reset_asked = true;
   } else if (key == 'n') {
     mr_stageview_set_day(sv, sv->time_of_day + 0.5);
+  } else if (key == 'm') {
+    mr_stageview_next_material(sv);
   } else if (key == '[' || key == ']') {
     mr_stageview_set_day(sv, sv->time_of_day + (key == ']' ? DAY_STEP : -DAY_STEP));
   } else if (key == 'h' || key == MR_KEY_F1) {
