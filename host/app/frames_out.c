@@ -1,11 +1,12 @@
 /* PNG frames, an MP4 through ffmpeg, and a contact sheet (issue 10, item
  * 6). Images are written by stb_image_write, whose PNG bytes depend only
  * on the pixels: the same frame gives the same file. */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* pipe2 */
 
 #include "frames_out.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,6 +59,7 @@ bool mr_on_path(const char *program) {
 /* A folder and its parents, as mkdir -p. */
 int mr_make_dir(const char *dir) {
   char buf[512];
+  if (strlen(dir) >= sizeof buf) return errno = ENAMETOOLONG, -1;
   snprintf(buf, sizeof buf, "%s", dir);
   for (char *p = buf + 1; *p != '\0'; p++) {
     if (*p != '/') continue;
@@ -74,7 +76,9 @@ int mr_make_dir(const char *dir) {
  * player takes; odd sizes padded to even, as yuv420p needs. */
 static int start_ffmpeg(mr_frames_out *fo, char *msg, size_t msg_size) {
   int fds[2];
-  if (pipe(fds) != 0) {
+  /* Close-on-exec: ffmpeg inherits only its stdin, not the pipe's write
+   * end (it would never see the end of its input). */
+  if (pipe2(fds, O_CLOEXEC) != 0) {
     snprintf(msg, msg_size, "cannot start ffmpeg: %s", strerror(errno));
     return -1;
   }

@@ -51,10 +51,19 @@ static int parse_size(const char *v, int *w, int *h) {
   return 0;
 }
 
+/* The longest -o, --mp4 or --sheet path: the file names made under it
+ * (DIR/frame_000000.png, DIR/show.mp4) then always fit their buffers, so
+ * no path is ever cut short and used as if whole. */
+#define MR_OUTPUT_PATH_MAX 400
+
 /* An option with a value; -1 after the message on a bad one. */
 static int take_value(mr_stage_opts *o, const char *cmd, const char *opt, const char *v,
                       bool allow_window) {
   char *end = NULL;
+  bool is_path = strcmp(opt, "-o") == 0 || strcmp(opt, "--output") == 0 ||
+                 strcmp(opt, "--mp4") == 0 || strcmp(opt, "--sheet") == 0;
+  if (is_path && strlen(v) > MR_OUTPUT_PATH_MAX)
+    return bad(cmd, "expected an output path of at most 400 bytes", v);
   if (strcmp(opt, "-o") == 0 || strcmp(opt, "--output") == 0) {
     o->out = v;
   } else if (strcmp(opt, "--every") == 0) {

@@ -94,6 +94,7 @@ static int key_named(const char *name) {
 
 int mr_live_parse_keys(mr_live *lv, const char *list) {
   char buf[1024];
+  if (strlen(list) >= sizeof buf) return -1; /* never parse a cut-short list */
   snprintf(buf, sizeof buf, "%s", list);
   for (char *save = NULL, *item = strtok_r(buf, ",", &save); item != NULL;
        item = strtok_r(NULL, ",", &save)) {

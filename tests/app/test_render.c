@@ -175,6 +175,13 @@ static void bad_usage_is_one_line_and_status_2(void **state) {
   expect_usage("--fps", "0");
   expect_usage("--backend", "window"); /* render is headless */
   expect_usage("--camera", "nowhere");
+  /* A path too long for the names made under it is refused whole, never
+   * cut short and written somewhere else. */
+  char longpath[460];
+  memset(longpath, 'x', sizeof longpath - 1);
+  longpath[0] = '/';
+  longpath[sizeof longpath - 1] = '\0';
+  expect_usage("-o", longpath);
 }
 
 /* The loader only resolves a model's path; the renderer finds it missing
