@@ -97,11 +97,76 @@ static void test_osmesa_and_egl_frames_agree(void **state) {
   free(b);
 }
 
+/* A buffer one byte short of 3 w h is refused before anything is read
+ * into it: not a byte of it changes. */
+static void test_a_read_into_a_buffer_too_small_is_refused_and_leaves_it_alone(void **state) {
+  (void)state;
+  fx_scene s;
+  fx_scene_init(&s);
+  mr_render *r = fx_render(MR_RENDER_OSMESA, &s);
+  uint8_t *first = fx_draw(r, &s);
+  const size_t n = (size_t)FX_W * FX_H * 3;
+  uint8_t *rgb = malloc(n);
+  assert_non_null(rgb);
+  memset(rgb, 0xab, n);
+  assert_int_equal(mr_render_read_rgb(r, rgb, n - 1), MR_RENDER_ERR_ARG);
+  assert_int_equal(mr_render_read_rgb(r, NULL, n), MR_RENDER_ERR_ARG);
+  for (size_t i = 0; i < n; i++) assert_int_equal(rgb[i], 0xab);
+  assert_int_equal(mr_render_read_rgb(r, rgb, n), MR_RENDER_OK);
+  assert_memory_equal(rgb, first, n);
+  free(rgb);
+  free(first);
+  mr_render_destroy(r);
+}
+
+/* A view with no direction (eye on its target) or one looking along its
+ * up vector has no camera basis: the draw is refused and the last frame
+ * stays as it was, not replaced by a picture of only sky. Looking down
+ * from 89 degrees still draws the sphere under the camera. */
+static void test_a_view_without_a_camera_basis_is_refused(void **state) {
+  (void)state;
+  fx_scene s;
+  fx_scene_init(&s);
+  mr_render *r = fx_render(MR_RENDER_OSMESA, &s);
+  uint8_t *before = fx_draw(r, &s);
+  const size_t n = (size_t)FX_W * FX_H * 3;
+  const double target[3] = { 0, 0.6, 0 };
+  mr_render_view v = s.view;
+  for (int k = 0; k < 3; k++) v.eye[k] = v.target[k];
+  assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_ERR_ARG);
+  v = s.view;
+  mr_render_view_orbit(&v, target, 2.5, 30, 90);
+  assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_ERR_ARG);
+  mr_render_view_orbit(&v, target, 2.5, 0, -90);
+  assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_ERR_ARG);
+  v = s.view;
+  v.up[0] = v.up[1] = v.up[2] = 0;
+  assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_ERR_ARG);
+  uint8_t *after = malloc(n);
+  assert_non_null(after);
+  assert_int_equal(mr_render_read_rgb(r, after, n), MR_RENDER_OK);
+  assert_memory_equal(before, after, n);
+
+  v = s.view;
+  mr_render_view_orbit(&v, target, 2.5, 30, 89);
+  assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_OK);
+  assert_int_equal(mr_render_read_rgb(r, after, n), MR_RENDER_OK);
+  double c[2];
+  size_t red = fx_count(after, fx_is_red, 0, 0, FX_W, FX_H, c);
+  assert_true(red > 200);
+  assert_true(fabs(c[0] - FX_W / 2.0) < 10 && fabs(c[1] - FX_H / 2.0) < 10);
+  free(before);
+  free(after);
+  mr_render_destroy(r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_an_items_colour_appears_where_it_should_and_nowhere_else),
     cmocka_unit_test(test_poses_differ_and_the_same_input_gives_the_same_frame),
     cmocka_unit_test(test_osmesa_and_egl_frames_agree),
+    cmocka_unit_test(test_a_read_into_a_buffer_too_small_is_refused_and_leaves_it_alone),
+    cmocka_unit_test(test_a_view_without_a_camera_basis_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

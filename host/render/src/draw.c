@@ -28,9 +28,25 @@ static int view_is_finite(const mr_render_view *v) {
   return isfinite(v->fov_deg) && isfinite(v->time_of_day);
 }
 
+/* lookAt needs a direction (eye != target) and an up vector not along it:
+ * otherwise its basis is zero or NaN and the frame is only sky, drawn
+ * without complaint. The bound is relative, so a view looking nearly
+ * straight down (elevation 89 degrees) still passes. */
+static int view_has_basis(const mr_render_view *v) {
+  double d[3], c[3];
+  for (int k = 0; k < 3; k++) d[k] = v->target[k] - v->eye[k];
+  c[0] = d[1] * v->up[2] - d[2] * v->up[1];
+  c[1] = d[2] * v->up[0] - d[0] * v->up[2];
+  c[2] = d[0] * v->up[1] - d[1] * v->up[0];
+  double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  double uu = v->up[0] * v->up[0] + v->up[1] * v->up[1] + v->up[2] * v->up[2];
+  double cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+  return dd > 0 && uu > 0 && cc > 1e-12 * dd * uu;
+}
+
 mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list,
                                 const mr_render_view *view) {
-  if (!r || !view || !view_is_finite(view)) return MR_RENDER_ERR_ARG;
+  if (!r || !view || !view_is_finite(view) || !view_has_basis(view)) return MR_RENDER_ERR_ARG;
   if (r->ops->make_current(r) != 0) return MR_RENDER_ERR_GL;
   const mr_gl *gl = &r->gl;
   mr_frame f;

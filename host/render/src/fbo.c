@@ -73,11 +73,12 @@ void mr_fbo_resolve(mr_render *r) {
 }
 
 /* Reads the bound read framebuffer's w x h as RGB, top row first (GL's
- * rows run bottom up). */
-static void read_rgb_flipped(mr_render *r, int w, int h, uint8_t *rgb) {
+ * rows run bottom up). -1 when the staging buffer cannot be had, so the
+ * caller never reports success over a buffer left unfilled. */
+static int read_rgb_flipped(mr_render *r, int w, int h, uint8_t *rgb) {
   const mr_gl *gl = &r->gl;
   uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
-  if (!rgba) return;
+  if (!rgba) return -1;
   gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
   gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
   for (int y = 0; y < h; y++) {
@@ -86,12 +87,14 @@ static void read_rgb_flipped(mr_render *r, int w, int h, uint8_t *rgb) {
     for (int x = 0; x < w; x++) memcpy(dst + 3 * x, src + 4 * x, 3);
   }
   free(rgba);
+  return 0;
 }
 
-void mr_fbo_read_rgb(mr_render *r, uint8_t *rgb) {
+int mr_fbo_read_rgb(mr_render *r, uint8_t *rgb) {
   r->gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_out);
-  read_rgb_flipped(r, r->width, r->height, rgb);
+  int ok = read_rgb_flipped(r, r->width, r->height, rgb);
   r->gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return ok;
 }
 
 /* The frame scaled to fit the window, its aspect kept, black around. */
@@ -120,6 +123,5 @@ int mr_render_read_window_rgb(mr_render *r, uint8_t *rgb, size_t size, int *w, i
   mr_fbo_blit_to_window(r, *w, *h);
   r->gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   r->gl.ReadBuffer(GL_BACK);
-  read_rgb_flipped(r, *w, *h, rgb);
-  return 0;
+  return read_rgb_flipped(r, *w, *h, rgb);
 }

@@ -149,7 +149,7 @@ void mr_render_size(const mr_render *r, int *width, int *height) {
 mr_render_status mr_render_read_rgb(mr_render *r, uint8_t *rgb, size_t size) {
   if (!r || !rgb || size < (size_t)r->width * (size_t)r->height * 3) return MR_RENDER_ERR_ARG;
   if (r->ops->make_current(r) != 0) return MR_RENDER_ERR_GL;
-  mr_fbo_read_rgb(r, rgb);
+  if (mr_fbo_read_rgb(r, rgb) != 0) return MR_RENDER_ERR_NOMEM;
   return r->gl.GetError() == GL_NO_ERROR ? MR_RENDER_OK : MR_RENDER_ERR_GL;
 }
 

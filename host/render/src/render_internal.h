@@ -92,7 +92,7 @@ int mr_fbo_create(mr_render *r, char *msg, size_t msg_size);
 void mr_fbo_destroy(mr_render *r);
 void mr_fbo_bind_draw(mr_render *r);
 void mr_fbo_resolve(mr_render *r);
-void mr_fbo_read_rgb(mr_render *r, uint8_t *rgb);
+int mr_fbo_read_rgb(mr_render *r, uint8_t *rgb); /* -1: out of memory */
 /* Window: the last frame blitted into the window's back buffer. */
 void mr_fbo_blit_to_window(mr_render *r, int w, int h);
 
@@ -145,7 +145,8 @@ void mr_text_draw(mr_render *r, const char *const *lines, size_t n);
 
 /* For tests of the window path: the last frame as the window shows it
  * (blitted into its back buffer and read from there), RGB, top row first,
- * at the window's drawable size (w, h). -1 when not a window. */
+ * at the window's drawable size (w, h). -1 when not a window, when size is
+ * too small, or when out of memory. */
 int mr_render_read_window_rgb(mr_render *r, uint8_t *rgb, size_t size, int *w, int *h);
 
 #endif
