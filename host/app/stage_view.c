@@ -15,21 +15,12 @@
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
-/* The positions the stage takes its rest frames from: the scene's world as
- * built, before any step (the same start a run has). */
+/* The positions the stage takes its rest frames from: the same start a
+ * run has. */
 static double *start_positions(const mr_scene *scene, size_t *n, char *msg, size_t msg_size) {
-  mr_scene_world sw;
   mr_scene_error err;
-  if (mr_scene_build(scene, &sw, &err) != MR_SCENE_OK) {
-    snprintf(msg, msg_size, "%s", err.text);
-    return NULL;
-  }
-  int count = mr_world_particle_count(sw.world);
-  double *xyz = calloc((size_t)(count > 0 ? count : 1) * 3, sizeof *xyz);
-  if (xyz != NULL) mr_world_positions(sw.world, xyz, count);
-  mr_scene_world_free(&sw);
-  if (xyz == NULL) snprintf(msg, msg_size, "out of memory");
-  *n = (size_t)count;
+  double *xyz = mr_scene_start_positions(scene, n, &err);
+  if (xyz == NULL) snprintf(msg, msg_size, "%s", err.text);
   return xyz;
 }
 

@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -104,6 +105,33 @@ static void control_points_sit_where_the_file_means(void **state) {
     mr_scene_world_free(&sw);
     mr_scene_free(&s);
   }
+}
+
+/* The start positions the stage takes its rest frames from: the scene's
+ * particles where the file puts them, then its control points where the
+ * frame's start pose puts their offsets (y by 90°: (x, y, z) -> (z, y, -x)). */
+static void start_positions_are_particles_then_control_points(void **state) {
+  (void)state;
+  mr_scene s;
+  load("physics:\n"
+       "  effects: [control]\n"
+       "  particles: [{name: a, position: [1, 2, 3], mass: 1},\n"
+       "              {name: b, position: [-1, 0.5, 0], mass: 1}]\n"
+       "  control:\n"
+       "    pose: {position: [0.5, 2, -1], rotation: [0, 90, 0]}\n"
+       "    points: [{name: p, offset: [0.3, 0.1, -0.2]}]\n",
+       &s);
+  size_t n = 0;
+  mr_scene_error e;
+  double *xyz = mr_scene_start_positions(&s, &n, &e);
+  assert_non_null(xyz);
+  assert_int_equal(n, 3);
+  const double want[9] = { 1, 2, 3, -1, 0.5, 0, 0.5 - 0.2, 2.1, -1.0 - 0.3 };
+  for (int k = 0; k < 9; k++)
+    if (!(fabs(xyz[k] - want[k]) < 1e-12))
+      fail_msg("xyz[%d] = %.9f, want %.9f", k, xyz[k], want[k]);
+  free(xyz);
+  mr_scene_free(&s);
 }
 
 /* A track's rotation reaches the physics as the frame moves: keyframes
@@ -419,6 +447,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(every_scene_effect_maps_to_its_own_physics_bit),
     cmocka_unit_test(control_points_sit_where_the_file_means),
+    cmocka_unit_test(start_positions_are_particles_then_control_points),
     cmocka_unit_test(track_rotation_and_phase_reach_the_world),
     cmocka_unit_test(settings_reach_the_built_world),
     cmocka_unit_test(loader_and_physics_agree_on_flat_groups),

@@ -44,17 +44,13 @@ static void draw_frame(void *user, double t, const double *xyz, int n) {
 
 /* The stage and the renderer for a scene, from its world's start. */
 static int open_drawing(const mr_scene *sc, drawing *d, char *msg, size_t size) {
-  mr_scene_world sw;
   mr_scene_error err;
-  if (mr_scene_build(sc, &sw, &err) != MR_SCENE_OK) {
+  double *xyz = mr_scene_start_positions(sc, &d->n, &err);
+  if (xyz == NULL) {
     snprintf(msg, size, "%.500s", err.text);
     return -1;
   }
-  d->n = (size_t)mr_world_particle_count(sw.world);
-  double *xyz = calloc(d->n * 3 + 3, sizeof *xyz);
-  if (xyz != NULL) mr_world_positions(sw.world, xyz, (int)d->n);
-  mr_scene_world_free(&sw);
-  if (xyz == NULL || mr_stage_create(&sc->stage, xyz, d->n, &d->stage, msg, size) != MR_STAGE_OK) {
+  if (mr_stage_create(&sc->stage, xyz, d->n, &d->stage, msg, size) != MR_STAGE_OK) {
     free(xyz);
     return -1;
   }

@@ -25,6 +25,13 @@ typedef struct mr_scene_world {
 mr_scene_status mr_scene_build(const mr_scene *scene, mr_scene_world *out, mr_scene_error *err);
 void mr_scene_world_free(mr_scene_world *sw);
 
+/* Every world particle's position as a run starts (3 n, world ids: the
+ * scene's particles, then its control points), from the world as built:
+ * the rest frames the stage takes its display modes from. NULL with err
+ * filled when the world cannot be built or memory runs out; else the
+ * caller frees it. */
+double *mr_scene_start_positions(const mr_scene *scene, size_t *n, mr_scene_error *err);
+
 #ifdef __cplusplus
 }
 #endif

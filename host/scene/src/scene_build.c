@@ -154,6 +154,24 @@ mr_scene_status mr_scene_build(const mr_scene *s, mr_scene_world *sw, mr_scene_e
   return rc;
 }
 
+double *mr_scene_start_positions(const mr_scene *s, size_t *n, mr_scene_error *err) {
+  mr_scene_world sw;
+  *n = 0;
+  if (mr_scene_build(s, &sw, err) != MR_SCENE_OK) return NULL;
+  int count = mr_world_particle_count(sw.world);
+  double *xyz = calloc((size_t)(count > 0 ? count : 1) * 3, sizeof *xyz);
+  if (xyz != NULL) {
+    mr_world_positions(sw.world, xyz, count);
+    *n = (size_t)count;
+  } else {
+    err->status = MR_SCENE_ERR_NOMEM;
+    snprintf(err->message, sizeof err->message, "out of memory");
+    snprintf(err->text, sizeof err->text, "%s: out of memory", s->path ? s->path : "scene");
+  }
+  mr_scene_world_free(&sw);
+  return xyz;
+}
+
 void mr_scene_world_free(mr_scene_world *sw) {
   if (sw->world != NULL) mr_world_destroy(sw->world);
   free(sw->particle_ids);
