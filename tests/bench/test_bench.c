@@ -46,9 +46,32 @@ static void count_runs_are_fixed_work(void **state) {
   assert_int_equal(o.status, 0);
   tt_output_free(&o);
   o = run("--count", "nothing", NULL, NULL);
-  assert_int_equal(o.status, 1);
+  assert_int_equal(o.status, 2); /* bad usage */
+  assert_non_null(strstr(o.err, "'nothing'"));
   assert_non_null(strstr(o.err, "puppet or decode"));
+  assert_int_equal(strlen(o.err), strcspn(o.err, "\n") + 1); /* one line */
   tt_output_free(&o);
+}
+
+/* A misspelt section would run nothing and exit 0, as if it had measured:
+ * bad usage, exit 2, one line naming the bad name, and no output written. */
+static void only_rejects_an_unknown_section(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  assert_non_null(dir);
+  const char *bad[] = { "bogus", "sweep,bogus", "sec7,", "" };
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    tt_output o = run("--only", bad[i], "--out", tt_path(dir, "out"));
+    assert_int_equal(o.status, 2);
+    assert_non_null(strstr(o.err, "unknown section"));
+    if (i < 2) assert_non_null(strstr(o.err, "'bogus'"));
+    assert_int_equal(strlen(o.err), strcspn(o.err, "\n") + 1); /* one line */
+    assert_int_equal(strlen(o.out), 0);
+    assert_int_not_equal(access(tt_path(dir, "out"), F_OK), 0); /* no work done */
+    tt_output_free(&o);
+  }
+  tt_rmdir(dir);
+  free(dir);
 }
 
 /* Rows of sweep.csv for a puppet, each with a finite, positive cost. */
@@ -115,6 +138,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(help_names_every_section_and_option),
     cmocka_unit_test(count_runs_are_fixed_work),
+    cmocka_unit_test(only_rejects_an_unknown_section),
     cmocka_unit_test(quick_run_writes_every_output_with_the_machine),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -57,16 +57,36 @@ static int make_dir(const char *path) {
   return -1;
 }
 
+static const struct {
+  const char *name;
+  int (*run)(bench *b);
+} sections[] = { { "sweep", bench_sweep },       { "sec7", bench_paper_run },
+                 { "capacity", bench_capacity }, { "load", bench_load_time },
+                 { "latency", bench_latency },   { "peer", bench_peer },
+                 { "render", bench_render } };
+#define N_SECTIONS (sizeof sections / sizeof sections[0])
+
+/* Every comma-separated name in --only must be a section: a misspelt name
+ * would otherwise run nothing and exit 0, as if it had measured. */
+static int only_is_valid(const char *only) {
+  for (const char *p = only;; p++) {
+    size_t n = strcspn(p, ",");
+    bool known = false;
+    for (size_t i = 0; i < N_SECTIONS && !known; i++)
+      known = strlen(sections[i].name) == n && strncmp(p, sections[i].name, n) == 0;
+    if (!known) {
+      fprintf(stderr, "marionette-bench: --only: unknown section '%.*s' in '%s' (see --help)\n",
+              (int)n, p, only);
+      return 0;
+    }
+    p += n;
+    if (*p == '\0') return 1;
+  }
+}
+
 static int run_sections(bench *b, const char *only) {
-  static const struct {
-    const char *name;
-    int (*run)(bench *b);
-  } sections[] = { { "sweep", bench_sweep },       { "sec7", bench_paper_run },
-                   { "capacity", bench_capacity }, { "load", bench_load_time },
-                   { "latency", bench_latency },   { "peer", bench_peer },
-                   { "render", bench_render } };
   int rc = 0;
-  for (size_t i = 0; i < sizeof sections / sizeof sections[0]; i++) {
+  for (size_t i = 0; i < N_SECTIONS; i++) {
     if (!wanted(only, sections[i].name)) continue;
     double t0 = bench_cpu_seconds();
     if (sections[i].run(b) != 0) {
@@ -101,6 +121,12 @@ int main(int argc, char **argv) {
       return 2;
     }
   }
+  /* Bad values are bad usage, like bad options: exit 2 before any work. */
+  if (count != NULL && strcmp(count, "puppet") != 0 && strcmp(count, "decode") != 0) {
+    fprintf(stderr, "marionette-bench: --count expects puppet or decode, got '%s'\n", count);
+    return 2;
+  }
+  if (only != NULL && !only_is_valid(only)) return 2;
   bench_machine(b.machine, sizeof b.machine);
   if (count != NULL) return bench_count_run(&b, count) == 0 ? 0 : 1;
   if (make_dir(b.out) != 0) return 1;
