@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -108,6 +109,52 @@ static void undeclared_elements_are_refused(void **state) {
   mr_world_destroy(w);
 }
 
+static double apart(mr_world *w, int a, int b) {
+  double x[3], y[3];
+  assert_int_equal(mr_world_particle_state(w, a, x, NULL), MR_OK);
+  assert_int_equal(mr_world_particle_state(w, b, y, NULL), MR_OK);
+  return sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+              (x[2] - y[2]) * (x[2] - y[2]));
+}
+
+/* Taut strings need only STRINGS: they hold their length without the
+ * string-length correction, whose counter stays 0 and which does not touch
+ * the world's spring string (a soft one, left stretched far past the 10 %
+ * the correction would bring it back to). */
+static void taut_strings_run_no_string_correction(void **state) {
+  (void)state;
+  mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_STRINGS | MR_EFFECT_FRAMES);
+  mr_frame_def fd = mr_default_frame_def();
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
+  int fa = add(w, 0, 0, 0, frame), fb = add(w, 1, 0, 0, frame);
+  int taut = add(w, 0, -1, 0, -1), soft = add(w, 1, -1, 0, -1);
+  mr_string_def str = mr_default_string_def();
+  str.frame_particle = fa;
+  str.puppet_particle = taut;
+  str.rest_length = 1.0;
+  str.mode = MR_STRING_TAUT;
+  assert_int_equal(mr_world_add_string(w, &str, NULL), MR_OK);
+  str = mr_default_string_def();
+  str.frame_particle = fb;
+  str.puppet_particle = soft;
+  str.rest_length = 1.0;
+  str.stiffness = 20.0; /* 1 kg hangs 0.49 m further */
+  assert_int_equal(mr_world_add_string(w, &str, NULL), MR_OK);
+  for (int f = 1; f <= 180; f++) {
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+    assert_true(apart(w, fa, taut) < 1.01);
+  }
+  assert_true(apart(w, fb, soft) > 1.2);
+  assert_true(mr_world_pass_calls(w, MR_PASS_STRINGS) > 0);
+  assert_true(mr_world_pass_calls(w, MR_PASS_FRAMES) > 0);
+  assert_int_equal(mr_world_pass_calls(w, MR_PASS_STRING_CORRECTION), 0);
+  for (int p = 0; p < MR_PASS_COUNT; p++)
+    if (p != MR_PASS_STRINGS && p != MR_PASS_FRAMES && p != MR_PASS_GRAVITY && p != MR_PASS_SOLVE)
+      assert_int_equal(mr_world_pass_calls(w, (mr_pass)p), 0);
+  mr_world_destroy(w);
+}
+
 /* Every effect declared and present: every pass runs. */
 static void every_declared_pass_runs(void **state) {
   (void)state;
@@ -170,6 +217,7 @@ int main(void) {
     cmocka_unit_test(gravity_only_world_runs_no_other_pass),
     cmocka_unit_test(world_without_colliders_does_no_collision_work),
     cmocka_unit_test(undeclared_elements_are_refused),
+    cmocka_unit_test(taut_strings_run_no_string_correction),
     cmocka_unit_test(every_declared_pass_runs),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -9,7 +9,36 @@
 
 #include <cmocka.h>
 
+#include <stdlib.h>
+#include <string.h>
+
 #include "mr_physics.h"
+
+/* ------------------------------------------- a realloc that can fail */
+
+/* The world's arrays grow through realloc (mr_grow). This binary's realloc
+ * fails on demand: once `reallocs_left` more calls have succeeded, the next
+ * returns NULL and `realloc_failed` is set. glibc's own entry point does
+ * the work; AddressSanitizer owns realloc in that build, so the failing
+ * test runs in the plain one. */
+#if !defined(__SANITIZE_ADDRESS__)
+void *__libc_realloc(void *p, size_t size);
+static long reallocs_left = -1; /* -1: never fail */
+static int realloc_failed;
+
+void *realloc(void *p, size_t size) {
+  if (reallocs_left == 0) {
+    reallocs_left = -1;
+    realloc_failed = 1;
+    return NULL;
+  }
+  if (reallocs_left > 0) reallocs_left--;
+  return __libc_realloc(p, size);
+}
+#define FAILING_REALLOC 1
+#else
+#define FAILING_REALLOC 0
+#endif
 
 typedef struct rig {
   mr_world *w;
@@ -78,13 +107,13 @@ static void slack_string_falls_free_then_snaps_taut(void **state) {
   rig r;
   const double at[3] = { 0.5, 0, 0 };
   make_rig(&r, at, 1.0, 0);
-  mr_world_step_to(r.w, 0.2, NULL);
+  assert_int_equal(mr_world_step_to(r.w, 0.2, NULL), MR_OK);
   double x[3];
   mr_world_particle_state(r.w, r.bob, x, NULL);
   assert_true(fabs(x[1] - -0.5 * 9.81 * 0.04) < 1e-9); /* still free: ½ g t² */
   double worst = 0.0, shortest = INFINITY;
   for (int f = 13; f <= 300; f++) {
-    mr_world_step_to(r.w, f / 60.0, NULL);
+    assert_int_equal(mr_world_step_to(r.w, f / 60.0, NULL), MR_OK);
     worst = fmax(worst, length(&r) - 1.0);
     if (f > 60) shortest = fmin(shortest, length(&r));
   }
@@ -98,15 +127,24 @@ static void slack_string_falls_free_then_snaps_taut(void **state) {
 }
 
 /* A taut string only pulls: a bob thrown towards the anchor moves in
- * freely, and the string holds it when it swings back out. */
+ * freely, and the string holds it when it swings back out. Thrown up at
+ * 3 m/s it rises 0.46 m and falls back through its start at 0.61 s, where
+ * the string catches it. */
 static void taut_string_never_pushes(void **state) {
   (void)state;
   rig r;
   const double at[3] = { 0, -1, 0 }, in[3] = { 0, 3, 0 };
   make_rig(&r, at, 1.0, 0);
-  mr_world_set_particle_state(r.w, r.bob, at, in);
-  mr_world_step_to(r.w, 0.1, NULL);
+  assert_int_equal(mr_world_set_particle_state(r.w, r.bob, at, in), MR_OK);
+  assert_int_equal(mr_world_step_to(r.w, 0.1, NULL), MR_OK);
   assert_true(length(&r) < 0.8); /* moved in, unresisted */
+  double longest = 0.0;
+  for (int f = 7; f <= 120; f++) {
+    assert_int_equal(mr_world_step_to(r.w, f / 60.0, NULL), MR_OK);
+    longest = fmax(longest, length(&r));
+  }
+  assert_true(longest > 0.99); /* out again, at its full length */
+  assert_true(longest < 1.01); /* and held there, never more than 1 % over */
   mr_world_destroy(r.w);
 }
 
@@ -122,8 +160,8 @@ static void shaken_taut_string_holds_its_length(void **state) {
   for (int f = 1; f <= 600; f++) {
     mr_pose p = mr_pose_identity();
     p.position[0] = 0.3 * sin(6.283185307179586 * 3 * f / 60.0) * fmin(1.0, f / 60.0);
-    mr_world_set_frame_target(r.w, r.frame, &p, f / 60.0);
-    mr_world_step_to(r.w, f / 60.0, NULL);
+    assert_int_equal(mr_world_set_frame_target(r.w, r.frame, &p, f / 60.0), MR_OK);
+    assert_int_equal(mr_world_step_to(r.w, f / 60.0, NULL), MR_OK);
     worst = fmax(worst, length(&r) - 1.0);
     assert_true(fabs(mr_world_string_stretch(r.w) - (length(&r) - 1.0)) < 1e-12);
   }
@@ -134,12 +172,44 @@ static void shaken_taut_string_holds_its_length(void **state) {
   mr_world_destroy(r.w);
 }
 
+/* Whichever of the step's reallocations fails (the taut string's work
+ * arrays among them, grown at its first hold), the step says so: never
+ * MR_OK after memory ran out, and a message naming memory. */
+static void out_of_memory_in_a_step_reaches_the_caller(void **state) {
+  (void)state;
+#if !FAILING_REALLOC
+  skip();
+#else
+  int fired = 0;
+  for (long n = 0; n < 200; n++) {
+    rig r;
+    const double at[3] = { 0, -1, 0 };
+    make_rig(&r, at, 1.0, 0);
+    realloc_failed = 0;
+    reallocs_left = n;
+    mr_status st = mr_world_step_to(r.w, 0.1, NULL);
+    reallocs_left = -1;
+    if (realloc_failed) {
+      fired++;
+      assert_int_equal(st, MR_ERR_NOMEM);
+      assert_non_null(strstr(mr_world_last_error(r.w), "out of memory"));
+    } else {
+      assert_int_equal(st, MR_OK);
+    }
+    mr_world_destroy(r.w);
+    if (!realloc_failed) break; /* n is past the step's last reallocation */
+  }
+  assert_true(fired >= 2); /* the taut string's two work arrays at least */
+#endif
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(spring_is_the_default_and_bad_modes_are_refused),
     cmocka_unit_test(slack_string_falls_free_then_snaps_taut),
     cmocka_unit_test(taut_string_never_pushes),
     cmocka_unit_test(shaken_taut_string_holds_its_length),
+    cmocka_unit_test(out_of_memory_in_a_step_reaches_the_caller),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

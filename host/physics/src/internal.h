@@ -330,7 +330,8 @@ void mr_taut_set_time(mr_world *w, double t);
 double mr_taut_overlength(const mr_world *w, const double *x);
 
 /* string_correction.c */
-void mr_strings_correct(mr_world *w);
+/* 0, or -1 when its work arrays cannot grow (out of memory). */
+int mr_strings_correct(mr_world *w);
 
 /* rigid_group.c */
 mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n);

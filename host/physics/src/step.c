@@ -563,7 +563,8 @@ static mr_status step_once(mr_world *w, mr_step_ctx *c) {
   if (colliders && (st = penetration(w, c)) != MR_OK) return st;
   if ((st = correct(w, c)) != MR_OK) return st;
   accept(w, c);
-  if (w->has_string_correction || w->n_taut > 0) mr_strings_correct(w);
+  if ((w->has_string_correction || w->n_taut > 0) && mr_strings_correct(w) != 0)
+    return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (string-length correction)");
   next_dt(w, c);
   return MR_OK;
 }

@@ -93,14 +93,20 @@ static int project(mr_world *w, double limit, int velocities) {
   return 0;
 }
 
-void mr_strings_correct(mr_world *w) {
-  w->pass_calls[MR_PASS_STRING_CORRECTION]++;
+int mr_strings_correct(mr_world *w) {
+  /* The pass counter is the string-correction effect's: it counts only when
+   * that effect is declared. A world of taut strings without it comes here
+   * too, to hold its taut strings at rest length, but that hold is the
+   * position half of the taut strings' own constraint (taut_string.c, the
+   * STRINGS effect, whose detection, rows and impulses count under no pass
+   * either): its spring strings are left uncorrected (string_rows). */
+  if (w->has_string_correction) w->pass_calls[MR_PASS_STRING_CORRECTION]++;
   int strings = MR_FORCES(w, STRINGS)->n, cap = w->cap_string_work;
-  if (strings == 0 ||
-      mr_grow((void **)&w->string_released, &cap, strings, sizeof *w->string_released) != 0)
-    return;
+  if (strings == 0) return 0;
+  if (mr_grow((void **)&w->string_released, &cap, strings, sizeof *w->string_released) != 0)
+    return -1;
   cap = w->cap_string_work;
-  if (mr_grow((void **)&w->string_of_row, &cap, strings, sizeof *w->string_of_row) != 0) return;
+  if (mr_grow((void **)&w->string_of_row, &cap, strings, sizeof *w->string_of_row) != 0) return -1;
   w->cap_string_work = cap;
   const double limit = 1.0 + w->def.string_max_stretch;
   int moved = 0;
@@ -109,4 +115,5 @@ void mr_strings_correct(mr_world *w) {
     moved = 1;
   }
   if (moved) project(w, limit, 1);
+  return 0;
 }
