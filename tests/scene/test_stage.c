@@ -344,7 +344,20 @@ static void mistakes_are_refused_at_their_place(void **state) {
     { SMALL "stage: {backdrop: {distance: 3, colour: [0, 0, 0]}}\n",
       "t.yaml:7:33: unknown key 'colour' in stage.backdrop; expected one of: distance, color" },
     { SMALL "stage: {constellations: [{name: k, stars: [[0, 95, 1]]}]}\n",
-      "t.yaml:7:48: expected elevation between -90 and 90 °, got 95" },
+      "t.yaml:7:48: expected star elevation between -90 and 90 °, got 95" },
+    { SMALL "camera: {orbit: {elevation: 90}}\n",
+      "t.yaml:7:29: expected elevation between -89 and 89 °, got 90" },
+    { SMALL "camera: {orbit: {elevation: -90}}\n",
+      "t.yaml:7:29: expected elevation between -89 and 89 °, got -90" },
+    { SMALL "camera: {views: [{name: a, position: [1, 2, 3], target: [1, 2, 3]}]}\n",
+      "t.yaml:7:57: view 'a' has its target at its position; expected a target away from the "
+      "camera" },
+    { SMALL "camera: {views: [{name: a, position: [0, 0.6, 0]}]}\n",
+      "t.yaml:7:38: view 'a' has its target at its position; expected a target away from the "
+      "camera" },
+    { SMALL "camera: {views: [{name: a, position: [0, 4, 0], target: [0, 1, 0]}]}\n",
+      "t.yaml:7:57: view 'a' looks straight down; expected a target off the vertical through "
+      "its position (a view's up is +y)" },
     { SMALL "stage: {constellations: [{name: k, stars: [[0, 45]]}]}\n",
       "t.yaml:7:44: expected a star as [azimuth, elevation, brightness]" },
     { SMALL "stage: {spheres: 1}\n", "t.yaml:7:18: expected true or false for spheres, got '1'" },

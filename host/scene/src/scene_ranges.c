@@ -94,7 +94,10 @@ static const mr_scene_range ranges[] = {
   { "day", 0, 1, "" },
   { "night", 0, 1, "" },
   { "azimuth", -360, 360, "°" },
-  { "elevation", -90, 90, "°" },
+  /* The orbit camera: at ±90 it would look along its up (+y) and draw
+   * only sky. A star may sit overhead. */
+  { "elevation", -89, 89, "°" },
+  { "star elevation", -90, 90, "°" },
   { "brightness", 0, 1, "" },
   /* camera */
   { "fov", 1, 170, "°" },

@@ -140,7 +140,7 @@ static int read_floor_and_backdrop(mr_reader *r, const mr_ynode *n) {
 
 /* [azimuth, elevation, brightness] into the scene's star list. */
 static int read_star(mr_reader *r, const mr_ynode *v, mr_star *out) {
-  static const char *const what[3] = { "azimuth", "elevation", "brightness" };
+  static const char *const what[3] = { "azimuth", "star elevation", "brightness" };
   if (v->kind != MR_YNODE_SEQ || v->count != 3)
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA,
                               "expected a star as [azimuth, elevation, brightness]");
@@ -234,6 +234,32 @@ static int read_orbit(mr_reader *r, const mr_ynode *n) {
   return mr_scene_read_fields(r, n, fields, 5, &r->scene->stage);
 }
 
+/* A view's up is +y: one standing on its target, or straight above or
+ * below it, gives the camera no direction or no sideways axis, and the
+ * renderer would refuse every frame of it. The bound is relative, as in
+ * the renderer's own check. */
+static int view_looks(mr_reader *r, const mr_ynode *n, const mr_camera_def *c) {
+  const mr_ynode *at = mr_scene_yaml_get(n, "target");
+  if (at == NULL) at = mr_scene_yaml_get(n, "position");
+  if (at == NULL) at = n;
+  double d[3], dd = 0;
+  for (int i = 0; i < 3; i++) {
+    d[i] = c->target[i] - c->position[i];
+    dd += d[i] * d[i];
+  }
+  if (dd == 0)
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
+                              "view '%s' has its target at its position; expected a target "
+                              "away from the camera",
+                              c->name);
+  if (d[0] * d[0] + d[2] * d[2] <= 1e-12 * dd)
+    return mr_scene_read_fail(r, at, MR_SCENE_ERR_VALUE,
+                              "view '%s' looks straight %s; expected a target off the vertical "
+                              "through its position (a view's up is +y)",
+                              c->name, d[1] > 0 ? "up" : "down");
+  return 0;
+}
+
 static int read_view(mr_reader *r, const mr_ynode *n, int k) {
   static const char *const keys[] = { "name", "position", "target", "fov", NULL };
   static const mr_scene_field fields[] = {
@@ -246,7 +272,8 @@ static int read_view(mr_reader *r, const mr_ynode *n, int k) {
   *c = mr_default_camera_def();
   c->pos = (mr_stage_pos){ n->line, n->column };
   const mr_ynode *name = mr_scene_read_named(r, n, "a camera view", keys, "a view", c->name);
-  if (name == NULL || mr_scene_read_fields(r, n, fields, 3, c) != 0) return -1;
+  if (name == NULL || mr_scene_read_fields(r, n, fields, 3, c) != 0 || view_looks(r, n, c) != 0)
+    return -1;
   for (int j = 0; j < k; j++)
     if (strcmp(d->cameras[j].name, c->name) == 0)
       return mr_scene_read_fail(r, name, MR_SCENE_ERR_VALUE,
