@@ -198,7 +198,10 @@ static void play_keys(mr_live *lv) {
       mr_live_event(lv, &ev);
     }
     if (k->down_sent && !k->up_sent && now >= k->t + k->hold) {
+      /* A press and its release may come in one pass: the release must
+       * not go out as a second press. */
       k->up_sent = true;
+      ev.down = false;
       mr_live_event(lv, &ev);
     }
   }
