@@ -20,7 +20,7 @@ The meshes, their origin and size (x by y by z, metres):
                       group (orientation: initial). Origin: the skull's
                       centre; chin at y = -0.095, crown (hair) at +0.10,
                       nose tip at z = +0.10. About 0.17 x 0.20 x 0.20.
-  humanoid_torso.obj  chest, waist and hips with a neck stub, oval in
+  humanoid_torso.obj  chest, waist and hips with a short neck, oval in
                       section, for a rigid group. Origin: mid-chest
                       height; hips' bottom at y = -0.26, neck top at
                       +0.30, shoulders 0.34 across at y = +0.18, 0.21 deep.
