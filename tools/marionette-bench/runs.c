@@ -9,6 +9,7 @@
 #include <valgrind/callgrind.h>
 
 #include "bench.h"
+#include "gg_stream.h"
 #include "gp.h"
 #include "mr_scene_world.h"
 
@@ -245,22 +246,9 @@ int bench_latency(bench *b) {
 
 static int count_decode(void) {
   enum { FRAMES = 10000 };
-  size_t cap = (size_t)FRAMES * GP_MAX_WIRE, len = 0;
-  uint8_t *stream = malloc(cap);
+  size_t len = 0;
+  uint8_t *stream = gg_sample_burst(FRAMES, &len);
   if (stream == NULL) return -1;
-  uint32_t r = 1;
-  for (long i = 0; i < FRAMES; i++) {
-    gp_msg m;
-    memset(&m, 0, sizeof m);
-    m.type = GP_SAMPLE;
-    m.u.sample.seq = (uint16_t)i;
-    m.u.sample.t_us = (uint32_t)(i * 4000);
-    for (unsigned c = 0; c < GP_SAMPLE_CH_COUNT; c++) {
-      r = r * 1664525u + 1013904223u;
-      m.u.sample.ch[c] = (uint16_t)(r >> 20);
-    }
-    len += gp_encode(&m, GP_SPEC_HASH, stream + len, cap - len);
-  }
   gp_decoder d;
   gp_decoder_init(&d, GP_SPEC_HASH);
   CALLGRIND_START_INSTRUMENTATION;

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "gg_stream.h"
 #include "gp.h"
 
 static double now_s(void) {
@@ -49,24 +50,11 @@ int main(int argc, char **argv) {
       return 2;
     }
   }
-  size_t cap = (size_t)frames * GP_MAX_WIRE, len = 0;
-  uint8_t *stream = malloc(cap);
+  size_t len = 0;
+  uint8_t *stream = gg_sample_burst(frames, &len);
   if (!stream) {
-    fprintf(stderr, "protocol-bench: cannot allocate %zu bytes for the stream\n", cap);
+    fprintf(stderr, "protocol-bench: cannot allocate the stream of %ld frames\n", frames);
     return 1;
-  }
-  uint32_t r = 1;
-  for (long i = 0; i < frames; i++) {
-    gp_msg m;
-    memset(&m, 0, sizeof m);
-    m.type = GP_SAMPLE;
-    m.u.sample.seq = (uint16_t)i;
-    m.u.sample.t_us = (uint32_t)(i * 4000);
-    for (unsigned c = 0; c < GP_SAMPLE_CH_COUNT; c++) {
-      r = r * 1664525u + 1013904223u;
-      m.u.sample.ch[c] = (uint16_t)(r >> 20);
-    }
-    len += gp_encode(&m, GP_SPEC_HASH, stream + len, cap - len);
   }
   double best = 1e30;
   uint32_t decoded = 0;

@@ -94,4 +94,10 @@ size_t gg_stream_finish(gg_stream *s, uint8_t *out);
 /* key=value lines of the expected counters and what was injected. */
 void gg_stream_write_expect(const gg_stream *s, FILE *f);
 
+/* `frames` intact SAMPLE frames back to back, 4 ms apart, with fixed
+ * pseudo-random channel values: the same bytes on every run, so the
+ * decoder's cost over them (the benchmarks' figure) is repeatable. NULL
+ * when memory runs out; else the caller frees it. */
+uint8_t *gg_sample_burst(long frames, size_t *len);
+
 #endif

@@ -3,6 +3,7 @@
  * expected counters are kept as the frames go out, so the truth file is what
  * the decoder must report, not an estimate. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "gg_stream.h"
@@ -334,4 +335,25 @@ void gg_stream_write_expect(const gg_stream *s, FILE *f) {
   fprintf(f, "injected.stall_frames=%llu\nslots=%llu\nsamples_intact=%llu\ninfos=%llu\n",
           (unsigned long long)s->stall_frames, (unsigned long long)s->slot,
           (unsigned long long)s->samples_intact, (unsigned long long)s->infos);
+}
+
+uint8_t *gg_sample_burst(long frames, size_t *len) {
+  size_t cap = (size_t)(frames > 0 ? frames : 1) * GP_MAX_WIRE;
+  uint8_t *stream = malloc(cap);
+  *len = 0;
+  if (stream == NULL) return NULL;
+  uint32_t r = 1; /* a linear congruential sequence: fixed, no seed */
+  for (long i = 0; i < frames; i++) {
+    gp_msg m;
+    memset(&m, 0, sizeof m);
+    m.type = GP_SAMPLE;
+    m.u.sample.seq = (uint16_t)i;
+    m.u.sample.t_us = (uint32_t)(i * 4000);
+    for (unsigned c = 0; c < GP_SAMPLE_CH_COUNT; c++) {
+      r = r * 1664525u + 1013904223u;
+      m.u.sample.ch[c] = (uint16_t)(r >> 20);
+    }
+    *len += gp_encode(&m, GP_SPEC_HASH, stream + *len, cap - *len);
+  }
+  return stream;
 }
