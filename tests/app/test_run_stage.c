@@ -40,18 +40,9 @@ static pid_t start_glove(const char *dir, const char *value, char *source, size_
   for (int i = 0; i < 5; i++) fprintf(f, "%s const value=%s\n", fingers[i], value);
   fclose(f);
   snprintf(arg, sizeof arg, "--script=%s", script);
-  const char *pf = tt_path(dir, "pty.path");
-  unlink(pf);
-  const char *argv[] = { glove_gen, "-o", "pty",      "--path-file", pf,   "--duration", "8",
-                         "--wait",  "30", "--linger", "0",           "-q", arg,          NULL };
-  pid_t gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
+  const char *const args[] = { "--duration", "8", arg, NULL };
+  pid_t gen = tt_glove_on_pty(glove_gen, dir, args, source, size);
   assert_true(gen > 0);
-  assert_int_equal(tt_await_file(gen, pf, tt_path(dir, "gen.err"), 30), 0);
-  char *path = tt_read_file(pf, NULL);
-  assert_non_null(path);
-  path[strcspn(path, "\n")] = '\0';
-  snprintf(source, size, "pty:%s", path);
-  free(path);
   return gen;
 }
 

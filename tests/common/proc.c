@@ -157,6 +157,27 @@ static void print_child_stderr(const char *err_path) {
   free(text);
 }
 
+pid_t tt_glove_on_pty(const char *glove_gen, const char *dir, const char *const extra[],
+                      char *source, size_t size) {
+  char pf[600], err[600];
+  snprintf(pf, sizeof pf, "%s", tt_path(dir, "pty.path"));
+  snprintf(err, sizeof err, "%s", tt_path(dir, "gen.err"));
+  unlink(pf); /* a glove started before in the same folder left its path */
+  const char *argv[32] = { glove_gen, "-o", "pty",      "--path-file", pf,
+                           "--wait",  "30", "--linger", "0",           "-q" };
+  size_t n = 10;
+  for (size_t i = 0; extra != NULL && extra[i] != NULL && n < 31; i++) argv[n++] = extra[i];
+  argv[n] = NULL;
+  pid_t gen = tt_spawn(argv, NULL, err);
+  if (gen <= 0 || tt_await_file(gen, pf, err, 30) != 0) return -1;
+  char *path = tt_read_file(pf, NULL);
+  if (path == NULL) return -1;
+  path[strcspn(path, "\n")] = '\0';
+  snprintf(source, size, "pty:%s", path);
+  free(path);
+  return gen;
+}
+
 int tt_await_file(pid_t pid, const char *path, const char *err_path, int timeout_s) {
   for (int waited = 0; waited <= timeout_s * 100; waited++) {
     siginfo_t info;

@@ -39,6 +39,13 @@ void tt_output_free(tt_output *o);
  * what it said. */
 int tt_await_file(pid_t pid, const char *path, const char *err_path, int timeout_s);
 
+/* glove-gen (its path) streaming on a pty of its own, reached as a glove:
+ * the arguments every test gives it (-o pty, a path file in dir, --wait 30,
+ * --linger 0, -q), then extra (NULL-terminated; may be NULL). On success
+ * its pid, with "pty:PATH" in source; -1 after printing why. */
+pid_t tt_glove_on_pty(const char *glove_gen, const char *dir, const char *const extra[],
+                      char *source, size_t size);
+
 /* --- files and text ------------------------------------------------------- */
 
 /* The whole file, NUL-terminated (free it); NULL if it cannot be read. */

@@ -29,19 +29,9 @@ static const char *glove_gen, *marionette;
  * the pty's path in path (static). */
 static pid_t start_glove(const char *dir, const char *secs, const char *extra, char *source,
                          size_t size) {
-  const char *pf = tt_path(dir, "pty.path");
-  unlink(pf); /* a glove started before in the same folder left its path */
-  const char *argv[] = { glove_gen, "-o", "pty",      "--path-file", pf,   "--duration", secs,
-                         "--wait",  "30", "--linger", "0",           "-q", extra,        NULL };
-  if (extra == NULL) argv[12] = NULL;
-  pid_t gen = tt_spawn(argv, NULL, tt_path(dir, "gen.err"));
+  const char *const args[] = { "--duration", secs, extra, NULL };
+  pid_t gen = tt_glove_on_pty(glove_gen, dir, args, source, size);
   assert_true(gen > 0);
-  assert_int_equal(tt_await_file(gen, pf, tt_path(dir, "gen.err"), 30), 0);
-  char *path = tt_read_file(pf, NULL);
-  assert_non_null(path);
-  path[strcspn(path, "\n")] = '\0';
-  snprintf(source, size, "pty:%s", path);
-  free(path);
   return gen;
 }
 
