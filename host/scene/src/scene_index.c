@@ -1,152 +1,196 @@
 /* Particles by name and by place. A scene of 100 000 particles must load
  * in well under a second, so neither the name lookups of every item nor
- * the checks for a repeated name or a shared place may compare all pairs:
- * names are sorted once per batch of particles and searched by bisection,
- * and places are bucketed in cells as wide as the coincidence distance, so
- * a point is compared only with points in its own and the 26 next cells. */
-#define _GNU_SOURCE /* qsort_r: a comparison with a context, no global */
+ * the checks for a repeated name or a shared place may compare all pairs,
+ * nor pay a bisection of string compares per lookup: names are hashed
+ * (open addressing), and places are bucketed in cells as wide as the
+ * coincidence distance, the cells hashed too, so a point is compared only
+ * with points in its own and the 26 next cells. Each batch of particles
+ * (the scene's, then each puppet's) is added to the tables as it is read;
+ * the batches before it were checked already, so only pairs with a new
+ * particle can fail. */
 #include "scene_read.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* By name; equal names by file order, so the later of a pair follows. */
-static int by_name(const void *a, const void *b, void *particles) {
-  const mr_scene_particle *p = particles;
-  size_t i = *(const size_t *)a, j = *(const size_t *)b;
-  int c = strcmp(p[i].name, p[j].name);
-  return c != 0 ? c : (i > j) - (i < j);
-}
-
+/* A cell of the place grid: its coordinates in units of the coincidence
+ * distance, and the last particle put in it (a list through next[]). */
 typedef struct cell {
   double c[3];
-  size_t i;
+  uint32_t last; /* particle index + 1; 0: the slot is empty */
 } cell;
 
-static int cell_cmp3(const double a[3], const double b[3]) {
-  for (int k = 0; k < 3; k++)
-    if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
+struct mr_scene_index {
+  size_t n;        /* particles indexed */
+  uint32_t *names; /* particle index + 1 per slot, 0 empty; cap slots */
+  cell *cells;     /* cap slots */
+  uint32_t *next;  /* the particle before it in its cell, + 1; 0 none */
+  size_t cap;      /* a power of two, at least twice n */
+};
+
+/* FNV-1a (64 bit): short names, no need for more. */
+static uint64_t hash_text(const char *s) {
+  uint64_t h = 0xcbf29ce484222325u;
+  for (; *s; s++) h = (h ^ (unsigned char)*s) * 0x100000001b3u;
+  return h;
+}
+
+static uint64_t hash_cell(const double c[3]) {
+  uint64_t h = 0xcbf29ce484222325u;
+  for (int k = 0; k < 3; k++) {
+    double v = c[k] + 0.0; /* -0 and +0 are one cell, as == says */
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    h = (h ^ bits) * 0x100000001b3u;
+    h ^= h >> 29;
+  }
+  return h;
+}
+
+static bool same_cell(const double a[3], const double b[3]) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
+/* The slot of name: where it is, or the empty slot where it would go. */
+static size_t name_slot(const mr_scene_index *x, const mr_scene *s, const char *name) {
+  size_t mask = x->cap - 1;
+  for (size_t k = (size_t)hash_text(name) & mask;; k = (k + 1) & mask)
+    if (x->names[k] == 0 || strcmp(s->particles[x->names[k] - 1].name, name) == 0) return k;
+}
+
+static size_t cell_slot(const mr_scene_index *x, const double c[3]) {
+  size_t mask = x->cap - 1;
+  for (size_t k = (size_t)hash_cell(c) & mask;; k = (k + 1) & mask)
+    if (x->cells[k].last == 0 || same_cell(x->cells[k].c, c)) return k;
+}
+
+static void cell_of(const mr_scene_particle *p, double c[3]) {
+  for (int k = 0; k < 3; k++) c[k] = floor(p->def.position[k] / MR_SCENE_COINCIDENT_M);
+}
+
+static void put_place(mr_scene_index *x, const mr_scene *s, size_t i) {
+  double c[3];
+  cell_of(&s->particles[i], c);
+  cell *e = &x->cells[cell_slot(x, c)];
+  if (e->last == 0) memcpy(e->c, c, sizeof e->c);
+  x->next[i] = e->last;
+  e->last = (uint32_t)i + 1;
+}
+
+/* Room for n particles; the tables grow by rehashing what they hold. */
+static int reserve(mr_scene_index *x, const mr_scene *s, size_t n) {
+  if (n >= UINT32_MAX / 2) return -1;
+  uint32_t *next = realloc(x->next, (n ? n : 1) * sizeof *next);
+  if (next == NULL) return -1;
+  x->next = next;
+  if (x->cap >= 2 * n) return 0;
+  size_t cap = 64;
+  while (cap < 2 * n) cap *= 2;
+  uint32_t *names = calloc(cap, sizeof *names);
+  cell *cells = calloc(cap, sizeof *cells);
+  if (names == NULL || cells == NULL) {
+    free(names);
+    free(cells);
+    return -1;
+  }
+  free(x->names);
+  free(x->cells);
+  x->names = names;
+  x->cells = cells;
+  x->cap = cap;
+  for (size_t i = 0; i < x->n; i++) {
+    x->names[name_slot(x, s, s->particles[i].name)] = (uint32_t)i + 1;
+    put_place(x, s, i);
+  }
   return 0;
 }
 
-static int by_cell(const void *a, const void *b) {
-  const cell *x = a, *y = b;
-  int c = cell_cmp3(x->c, y->c);
-  return c != 0 ? c : (x->i > y->i) - (x->i < y->i);
-}
-
-/* The first cell entry at or after key, by bisection. */
-static size_t lower_bound(const cell *cells, size_t n, const double key[3]) {
-  size_t lo = 0, hi = n;
-  while (lo < hi) {
-    size_t mid = lo + (hi - lo) / 2;
-    if (cell_cmp3(cells[mid].c, key) < 0)
-      lo = mid + 1;
-    else
-      hi = mid;
+/* Adds particles [x->n, n) by name; the first that repeats a name is the
+ * later one of the pair that comes first in the file: (size_t)-1 if none. */
+static size_t add_names(mr_scene_index *x, const mr_scene *s, size_t n) {
+  for (size_t i = x->n; i < n; i++) {
+    size_t k = name_slot(x, s, s->particles[i].name);
+    if (x->names[k] != 0) return i;
+    x->names[k] = (uint32_t)i + 1;
   }
-  return lo;
+  return (size_t)-1;
 }
 
-static double dist3(const double a[3], const double b[3]) {
-  double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return sqrt(dx * dx + dy * dy + dz * dz);
-}
-
-/* The pair (i, j), i later in the file, of coincident particles with the
- * smallest i; 0 when there is none. */
-static int find_coincident(const mr_scene *s, cell *cells, size_t *later, size_t *earlier) {
-  size_t n = s->n_particles;
-  for (size_t i = 0; i < n; i++) {
-    for (int k = 0; k < 3; k++)
-      cells[i].c[k] = floor(s->particles[i].def.position[k] / MR_SCENE_COINCIDENT_M);
-    cells[i].i = i;
-  }
-  qsort(cells, n, sizeof *cells, by_cell);
-  size_t best_i = n, best_j = n;
-  for (size_t a = 0; a < n; a++) {
-    const double *here = cells[a].c;
-    for (int d = 0; d < 27; d++) {
-      double key[3] = { here[0] + (d % 3 - 1), here[1] + (d / 3 % 3 - 1), here[2] + (d / 9 - 1) };
-      for (size_t b = lower_bound(cells, n, key); b < n && cell_cmp3(cells[b].c, key) == 0; b++) {
-        size_t i = cells[a].i, j = cells[b].i;
-        if (j >= i) continue;
-        if (dist3(s->particles[i].def.position, s->particles[j].def.position) <
-                MR_SCENE_COINCIDENT_M &&
-            (i < best_i || (i == best_i && j < best_j))) {
-          best_i = i;
-          best_j = j;
-        }
-      }
+/* The earliest particle before i within the coincidence distance of it,
+ * or (size_t)-1. */
+static size_t earliest_near(const mr_scene_index *x, const mr_scene *s, size_t i) {
+  const double *here = s->particles[i].def.position;
+  double c[3];
+  cell_of(&s->particles[i], c);
+  size_t best = (size_t)-1;
+  for (int d = 0; d < 27; d++) {
+    double key[3] = { c[0] + (d % 3 - 1), c[1] + (d / 3 % 3 - 1), c[2] + (d / 9 - 1) };
+    const cell *e = &x->cells[cell_slot(x, key)];
+    for (uint32_t j = e->last; j != 0; j = x->next[j - 1]) {
+      const double *there = s->particles[j - 1].def.position;
+      double dx = here[0] - there[0], dy = here[1] - there[1], dz = here[2] - there[2];
+      if (sqrt(dx * dx + dy * dy + dz * dz) < MR_SCENE_COINCIDENT_M && j - 1 < best) best = j - 1;
     }
   }
-  *later = best_i;
-  *earlier = best_j;
-  return best_i < n;
-}
-
-static int check_names(mr_reader *r) {
-  const mr_scene *s = r->scene;
-  size_t later = s->n_particles;
-  for (size_t k = 1; k < r->n_by_name; k++) {
-    size_t i = r->by_name[k - 1], j = r->by_name[k];
-    if (strcmp(s->particles[i].name, s->particles[j].name) == 0 && j < later) later = j;
-  }
-  if (later == s->n_particles) return 0;
-  const mr_scene_particle *p = &s->particles[later];
-  return mr_scene_read_fail_at(r, p->pos.line, p->pos.column, MR_SCENE_ERR_VALUE,
-                               "expected a unique particle name, '%s' is already declared",
-                               p->name);
+  return best;
 }
 
 int mr_scene_index_particles(mr_reader *r) {
   const mr_scene *s = r->scene;
   size_t n = s->n_particles;
-  size_t *idx = realloc(r->by_name, (n ? n : 1) * sizeof *idx);
-  cell *cells = malloc((n ? n : 1) * sizeof *cells);
-  if (idx == NULL || cells == NULL) {
-    free(cells);
-    if (idx != NULL) r->by_name = idx;
+  if (r->index == NULL && (r->index = calloc(1, sizeof *r->index)) == NULL)
     return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  mr_scene_index *x = r->index;
+  if (reserve(x, s, n) != 0)
+    return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  size_t later = add_names(x, s, n);
+  if (later != (size_t)-1) {
+    const mr_scene_particle *p = &s->particles[later];
+    return mr_scene_read_fail_at(r, p->pos.line, p->pos.column, MR_SCENE_ERR_VALUE,
+                                 "expected a unique particle name, '%s' is already declared",
+                                 p->name);
   }
-  r->by_name = idx;
-  for (size_t i = 0; i < n; i++) idx[i] = i;
-  qsort_r(idx, n, sizeof *idx, by_name, s->particles);
-  r->n_by_name = n;
-  size_t later, earlier;
-  int found = find_coincident(s, cells, &later, &earlier);
-  free(cells);
-  if (check_names(r) != 0) return -1;
-  if (!found) return 0;
-  const mr_scene_particle *p = &s->particles[later], *q = &s->particles[earlier];
-  return mr_scene_read_fail_at(r, p->pos.line, p->pos.column, MR_SCENE_ERR_VALUE,
-                               "particle '%s' coincides with particle '%s' (line %d); "
-                               "expected distinct positions",
-                               p->name, q->name, q->pos.line);
+  for (size_t i = x->n; i < n; i++) {
+    size_t j = earliest_near(x, s, i);
+    if (j != (size_t)-1) {
+      const mr_scene_particle *p = &s->particles[i], *q = &s->particles[j];
+      return mr_scene_read_fail_at(r, p->pos.line, p->pos.column, MR_SCENE_ERR_VALUE,
+                                   "particle '%s' coincides with particle '%s' (line %d); "
+                                   "expected distinct positions",
+                                   p->name, q->name, q->pos.line);
+    }
+    put_place(x, s, i);
+  }
+  x->n = n;
+  return 0;
 }
 
 size_t mr_scene_lookup_particle(const mr_reader *r, const char *name) {
-  const mr_scene *s = r->scene;
-  size_t lo = 0, hi = r->n_by_name;
-  while (lo < hi) {
-    size_t mid = lo + (hi - lo) / 2;
-    int c = strcmp(s->particles[r->by_name[mid]].name, name);
-    if (c == 0) return r->by_name[mid];
-    if (c < 0)
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  return (size_t)-1;
+  const mr_scene_index *x = r->index;
+  if (x == NULL || x->n == 0) return (size_t)-1;
+  uint32_t i = x->names[name_slot(x, r->scene, name)];
+  return i != 0 && i - 1 < x->n ? i - 1 : (size_t)-1;
+}
+
+void mr_scene_index_free(mr_reader *r) {
+  if (r->index == NULL) return;
+  free(r->index->names);
+  free(r->index->cells);
+  free(r->index->next);
+  free(r->index);
+  r->index = NULL;
 }
 
 int mr_scene_qualify(const mr_reader *r, const char *name, char out[MR_SCENE_NAME_MAX]) {
-  if (r->puppet == NULL) {
-    int n = snprintf(out, MR_SCENE_NAME_MAX, "%s", name);
-    return n >= 0 && n < MR_SCENE_NAME_MAX ? 0 : -1;
+  size_t a = r->puppet ? strlen(r->puppet) + 1 : 0, b = strlen(name);
+  if (a + b >= MR_SCENE_NAME_MAX) return -1;
+  if (r->puppet != NULL) {
+    memcpy(out, r->puppet, a - 1);
+    out[a - 1] = '.';
   }
-  int n = snprintf(out, MR_SCENE_NAME_MAX, "%s.%s", r->puppet, name);
-  return n >= 0 && n < MR_SCENE_NAME_MAX ? 0 : -1;
+  memcpy(out + a, name, b + 1);
+  return 0;
 }

@@ -164,7 +164,7 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
   }
   int rc = read_root(&r, doc.root);
   mr_scene_yaml_free(&doc);
-  free(r.by_name);
+  mr_scene_index_free(&r);
   if (rc != 0) {
     mr_scene_free(scene);
     return err->status ? err->status : MR_SCENE_ERR_SCHEMA;

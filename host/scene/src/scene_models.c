@@ -5,20 +5,31 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+int mr_scene_stage_reserve_models(mr_reader *r, const mr_ynode *at, size_t more) {
+  mr_stage_def *d = &r->scene->stage;
+  if (r->models_cap - d->n_models >= more) return 0;
+  size_t cap = d->n_models + more;
+  mr_model_def *m = cap <= SIZE_MAX / sizeof *m ? realloc(d->models, cap * sizeof *m) : NULL;
+  if (m == NULL) return mr_scene_read_fail(r, at, MR_SCENE_ERR_NOMEM, "out of memory");
+  d->models = m;
+  r->models_cap = cap;
+  return 0;
+}
+
 mr_model_def *mr_scene_stage_add_model(mr_reader *r, const mr_ynode *at) {
   mr_stage_def *d = &r->scene->stage;
-  mr_model_def *m = realloc(d->models, (d->n_models + 1) * sizeof *m);
-  if (m == NULL) {
-    mr_scene_read_fail(r, at, MR_SCENE_ERR_NOMEM, "out of memory");
+  /* A model is about a kilobyte: grown by half, not by one (a copy of
+   * the whole array per model), nor doubled (up to twice the memory). */
+  if (d->n_models == r->models_cap &&
+      mr_scene_stage_reserve_models(r, at, d->n_models < 8 ? 8 : d->n_models / 2) != 0)
     return NULL;
-  }
-  d->models = m;
-  m[d->n_models] = mr_default_model_def();
-  return &m[d->n_models++];
+  d->models[d->n_models] = mr_default_model_def();
+  return &d->models[d->n_models++];
 }
 
 /* The built-in shapes: a file is a key of its own, not a shape. */

@@ -109,7 +109,7 @@ static const mr_scene_range other = { "", -1e9, 1e9, "" };
 
 const mr_scene_range *mr_scene_range_of(const char *key) {
   for (int i = 0; i < N_RANGES; i++)
-    if (strcmp(ranges[i].key, key) == 0) return &ranges[i];
+    if (ranges[i].key[0] == key[0] && strcmp(ranges[i].key, key) == 0) return &ranges[i];
   return &other;
 }
 

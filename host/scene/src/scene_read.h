@@ -20,9 +20,11 @@ typedef struct mr_reader {
   const char *puppet;
   int puppet_id;
   double offset[3];
-  /* Particle indices sorted by name, for lookups in O(log n). */
-  size_t *by_name;
-  size_t n_by_name;
+  /* The particles read so far by name and by place, for lookups and
+   * checks in O(1) each (scene_index.c). */
+  struct mr_scene_index *index;
+  /* Room in scene->stage.models, which grows by more than one at a time. */
+  size_t models_cap;
 } mr_reader;
 
 #if defined(__GNUC__)
@@ -127,9 +129,12 @@ const mr_scene_range *mr_scene_range_at(int i);           /* NULL past the end *
 /* 0 when lo <= v <= hi for key, else fails at node naming the range. */
 int mr_scene_range_check(mr_reader *r, const mr_ynode *node, const char *key, double v);
 
-/* Indexes the particles read so far by name and checks that no two share
- * a name or a place; the error names the later one of a pair. */
+/* Indexes the particles read since the last call by name and checks that
+ * no two share a name or a place; the error names the later one of a
+ * pair. */
+typedef struct mr_scene_index mr_scene_index;
 int mr_scene_index_particles(mr_reader *r);
+void mr_scene_index_free(mr_reader *r);
 /* A particle's index by its full name, or (size_t)-1. */
 size_t mr_scene_lookup_particle(const mr_reader *r, const char *name);
 /* name qualified by the puppet being read ("alice.hand"); -1 when it does
@@ -182,6 +187,9 @@ int mr_scene_read_models(mr_reader *r, const mr_ynode *models);
 int mr_scene_read_rgb(mr_reader *r, const mr_ynode *node, const char *key, float out[3]);
 /* Appends a model to scene->stage.models; NULL when out of memory. */
 mr_model_def *mr_scene_stage_add_model(mr_reader *r, const mr_ynode *at);
+/* Room for `more` models beyond those held, in one step, for a batch of
+ * known size; fails at `at` when out of memory. */
+int mr_scene_stage_reserve_models(mr_reader *r, const mr_ynode *at, size_t more);
 /* What the physics implies for the stage: strings and control frames as
  * lines, collision spheres, models when the file has none, the floor's
  * height, a camera that frames the puppets (scene_rigging.c). */

@@ -100,8 +100,8 @@ int mr_scene_read_map(mr_reader *r, const mr_ynode *node, const char *what,
   for (size_t i = 0; i < node->count; i++) {
     const mr_ynode *key = node->items[2 * i];
     bool ok = false;
-    for (const char *const *a = allowed; *a != NULL; a++)
-      if (strcmp(key->text, *a) == 0) ok = true;
+    for (const char *const *a = allowed; *a != NULL && !ok; a++)
+      ok = key->text[0] == (*a)[0] && strcmp(key->text, *a) == 0;
     if (!ok) {
       char list[256] = "";
       size_t used = 0;
@@ -129,6 +129,7 @@ static bool is_nan_or_inf(const char *s) {
   const char *t = s;
   if (*t == '+' || *t == '-') t++;
   if (*t == '.') t++;
+  if (*t >= '0' && *t <= '9') return false; /* every number a scene holds */
   return strcasecmp(t, "nan") == 0 || strcasecmp(t, "inf") == 0 || strcasecmp(t, "infinity") == 0;
 }
 
@@ -145,7 +146,8 @@ static int read_number_unranged(mr_reader *r, const mr_ynode *node, const char *
   const char *s = node->text;
   /* Decimal only: strtod would also take hex floats and "nan(...)". */
   for (const char *p = s; *p; p++)
-    if (!(isdigit((unsigned char)*p) || strchr("+-.eE", *p)))
+    if (!((*p >= '0' && *p <= '9') || *p == '+' || *p == '-' || *p == '.' || *p == 'e' ||
+          *p == 'E'))
       return mr_scene_read_fail(r, node, MR_SCENE_ERR_SCHEMA, "expected a number for %s, got %s",
                                 what, shown(node, b, sizeof b));
   char *end = NULL;

@@ -498,7 +498,8 @@ void mr_scene_yaml_free(mr_ydoc *doc) {
 const mr_ynode *mr_scene_yaml_get(const mr_ynode *map, const char *key) {
   if (map == NULL || map->kind != MR_YNODE_MAP) return NULL;
   for (size_t i = 0; i < map->count; i++)
-    if (strcmp(map->items[2 * i]->text, key) == 0) return map->items[2 * i + 1];
+    if (map->items[2 * i]->text[0] == key[0] && strcmp(map->items[2 * i]->text, key) == 0)
+      return map->items[2 * i + 1];
   return NULL;
 }
 
