@@ -55,6 +55,9 @@ void bench_ee_error(const bench_run *a, const bench_run *ref, double *max, doubl
 int bench_sweep(bench *b);
 int bench_paper_run(bench *b);
 int bench_capacity(bench *b);
+/* n stick puppets of Fig. 10 on a grid 1 m apart, each on its own control
+ * frame swaying at 0.5 Hz (capacity.c); 0, or -1 with a message on stderr. */
+int bench_crowd_load(int n, mr_scene *sc);
 int bench_load_time(bench *b);
 int bench_latency(bench *b);
 /* Item 4, live: glove-gen through a pty, on the wall clock (latency_live.c). */
