@@ -21,6 +21,7 @@ struct mr_yarena {
  * must not build millions of open containers. */
 #define MR_YAML_MAX_DEPTH 64
 
+/* Uninitialised: every caller writes all of it. */
 static void *arena_alloc(mr_yarena **head, size_t size) {
   size = (size + alignof(max_align_t) - 1) & ~(alignof(max_align_t) - 1);
   mr_yarena *a = *head;
@@ -36,7 +37,6 @@ static void *arena_alloc(mr_yarena **head, size_t size) {
   }
   void *p = a->data + a->used;
   a->used += size;
-  memset(p, 0, size);
   return p;
 }
 
@@ -48,13 +48,13 @@ static void arena_free(mr_yarena *a) {
   }
 }
 
-/* A container under construction: children gather in a growable array and
- * move into the arena when the container ends. */
+/* A container under construction: its children gather on the builder's
+ * one stack of children, from `first` on, and move into the arena when
+ * the container ends; no allocation per container. */
 typedef struct frame {
   mr_ynode *node;
-  mr_ynode **tmp;
+  size_t first;
   size_t n;
-  size_t cap;
   char *anchor; /* registered when the container ends */
 } frame;
 
@@ -69,6 +69,9 @@ typedef struct builder {
   frame *stack;
   size_t depth;
   size_t stack_cap;
+  mr_ynode **kids; /* the open containers' children, innermost last */
+  size_t n_kids;
+  size_t kids_cap;
   anchor *anchors;
   size_t n_anchors;
   size_t anchors_cap;
@@ -146,25 +149,27 @@ static int attach(builder *b, mr_ynode *node) {
     return 0;
   }
   frame *f = &b->stack[b->depth - 1];
+  mr_ynode **kids = b->kids + f->first;
   if (f->node->kind == MR_YNODE_MAP && f->n % 2 == 0) {
     if (node->kind != MR_YNODE_SCALAR)
       return fail(b->err, node->line, node->column,
                   "expected a plain key, got a %s as a mapping key",
                   mr_scene_yaml_kind_name(node->kind));
     for (size_t i = 0; i < f->n; i += 2)
-      if (same_scalar(f->tmp[i], node))
+      if (same_scalar(kids[i], node))
         return fail(b->err, node->line, node->column,
-                    "duplicate key '%s' (first at line %d, column %d)", node->text, f->tmp[i]->line,
-                    f->tmp[i]->column);
+                    "duplicate key '%s' (first at line %d, column %d)", node->text, kids[i]->line,
+                    kids[i]->column);
   }
-  if (f->n == f->cap) {
-    size_t cap = f->cap ? 2 * f->cap : 8;
-    mr_ynode **t = realloc(f->tmp, cap * sizeof *t);
+  if (b->n_kids == b->kids_cap) {
+    size_t cap = b->kids_cap ? 2 * b->kids_cap : 64;
+    mr_ynode **t = realloc(b->kids, cap * sizeof *t);
     if (t == NULL) return fail(b->err, node->line, node->column, "out of memory");
-    f->tmp = t;
-    f->cap = cap;
+    b->kids = t;
+    b->kids_cap = cap;
   }
-  f->tmp[f->n++] = node;
+  b->kids[b->n_kids++] = node;
+  f->n++;
   return 0;
 }
 
@@ -174,10 +179,9 @@ static mr_ynode *new_node(builder *b, mr_ynode_kind kind, const struct fy_mark *
     fail(b->err, m ? m->line + 1 : 0, m ? m->column + 1 : 0, "out of memory");
     return NULL;
   }
-  n->kind = kind;
-  n->line = m ? m->line + 1 : 0;
-  n->column = m ? m->column + 1 : 0;
-  n->text = "";
+  *n = (mr_ynode){
+    .kind = kind, .line = m ? m->line + 1 : 0, .column = m ? m->column + 1 : 0, .text = ""
+  };
   return n;
 }
 
@@ -196,8 +200,7 @@ static int open_container(builder *b, mr_ynode_kind kind, struct fy_event *e,
     b->stack_cap = cap;
   }
   frame *f = &b->stack[b->depth++];
-  memset(f, 0, sizeof *f);
-  f->node = n;
+  *f = (frame){ .node = n, .first = b->n_kids };
   if (anchor_tok != NULL) {
     f->anchor = token_strdup(anchor_tok);
     if (f->anchor == NULL) return fail(b->err, n->line, n->column, "out of memory");
@@ -211,10 +214,10 @@ static int close_container(builder *b) {
   if (f->n > 0) {
     n->items = arena_alloc(&b->doc->arena, f->n * sizeof *n->items);
     if (n->items == NULL) return fail(b->err, n->line, n->column, "out of memory");
-    memcpy(n->items, f->tmp, f->n * sizeof *n->items);
+    memcpy(n->items, b->kids + f->first, f->n * sizeof *n->items);
   }
   n->count = n->kind == MR_YNODE_MAP ? f->n / 2 : f->n;
-  free(f->tmp);
+  b->n_kids = f->first;
   char *name = f->anchor;
   b->depth--;
   if (name != NULL && add_anchor(b, name, n) != 0) return -1;
@@ -252,7 +255,7 @@ static void empty_place(const builder *b, int *line, int *column) {
   if (b->depth == 0) return;
   const frame *f = &b->stack[b->depth - 1];
   if (f->node->kind == MR_YNODE_MAP && f->n % 2 == 1) {
-    const mr_ynode *key = f->tmp[f->n - 1];
+    const mr_ynode *key = b->kids[f->first + f->n - 1];
     *line = key->line;
     *column = key->column + (int)strlen(key->text) + (key->quoted ? 2 : 0);
   } else {
@@ -261,8 +264,7 @@ static void empty_place(const builder *b, int *line, int *column) {
   }
 }
 
-static int on_event(builder *b, struct fy_event *e) {
-  const struct fy_mark *m = fy_event_start_mark(e);
+static int on_event(builder *b, struct fy_event *e, const struct fy_mark *m) {
   int line = m ? m->line + 1 : 0;
   int column = m ? m->column + 1 : 0;
   switch (e->type) {
@@ -346,6 +348,12 @@ static bool find_nul(const char *text, size_t len, int *line, int *column) {
 static long bad_utf8(const unsigned char *s, size_t len) {
   size_t i = 0;
   while (i < len) {
+    /* Eight ASCII bytes at a time: nearly every byte of a scene file. */
+    uint64_t w;
+    if (len - i >= 8 && (memcpy(&w, s + i, 8), (w & 0x8080808080808080u) == 0)) {
+      i += 8;
+      continue;
+    }
     unsigned c = s[i];
     size_t n = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xe ? 2 : (c >> 3) == 0x1e ? 3 : 9;
     if (n == 9 || i + n >= len + (n == 0)) return (long)i;
@@ -368,9 +376,16 @@ static long bad_utf8(const unsigned char *s, size_t len) {
  * plain scalar holding that many brackets is refused too, a price no
  * scene pays. */
 static long too_deep(const char *s, size_t len, int max_depth) {
+  /* The bytes that matter outside quotes; every other one is skipped by
+   * one table look-up. */
+  static const bool marks[256] = { ['\''] = true, ['"'] = true, ['#'] = true, ['['] = true,
+                                   [']'] = true,  ['{'] = true, ['}'] = true };
   int depth = 0;
   char quote = 0;
   for (size_t i = 0; i < len; i++) {
+    if (!quote)
+      while (i < len && !marks[(unsigned char)s[i]]) i++;
+    if (i == len) break;
     char c = s[i];
     if (quote) {
       if (c == '\\' && quote == '"' && i + 1 < len)
@@ -436,7 +451,7 @@ static int build_tree(builder *b, struct fy_parser *fyp, struct fy_diag *diag) {
       last_line = m->line + 1;
       last_column = m->column + 1;
     }
-    rc = on_event(b, e);
+    rc = on_event(b, e, m);
     fy_parser_event_free(fyp, e);
   }
   if (rc != 0 || !fy_parser_get_stream_error(fyp)) return rc;
@@ -448,11 +463,9 @@ static int build_tree(builder *b, struct fy_parser *fyp, struct fy_diag *diag) {
 }
 
 static void builder_free(builder *b) {
-  for (size_t i = 0; i < b->depth; i++) {
-    free(b->stack[i].tmp);
-    free(b->stack[i].anchor);
-  }
+  for (size_t i = 0; i < b->depth; i++) free(b->stack[i].anchor);
   free(b->stack);
+  free(b->kids);
   for (size_t i = 0; i < b->n_anchors; i++) free(b->anchors[i].name);
   free(b->anchors);
 }
