@@ -90,6 +90,26 @@ static void ats_stays_within_bounds(void **state) {
   assert_true(rejects > 0);
 }
 
+/* The estimate's own controller: steered to low from both sides (no dead
+ * band), with the safety factor, the fivefold and twofold limits, and the
+ * bounds. */
+static void estimate_is_steered_to_low_from_both_sides(void **state) {
+  (void)state;
+  const double dt = 0.02;
+  near(mr_ats_aim(&paper, dt, 1e-4), dt * 0.9);                  /* on the aim */
+  near(mr_ats_aim(&paper, dt, 1e-3), dt * 0.9 * pow(0.1, 0.25)); /* in the band */
+  near(mr_ats_aim(&paper, dt, 5e-5), dt * 0.9 * pow(2.0, 0.25)); /* below */
+  near(mr_ats_aim(&paper, 0.02, 1e-2), 0.01);                    /* ×0.28: lower bound */
+  near(mr_ats_aim(&paper, 0.04, 0.5), 0.01);                     /* ×0.2 at most */
+  near(mr_ats_aim(&paper, 0.005, 1e-9), 0.025);                  /* ×5 at most */
+  near(mr_ats_aim(&paper, 0.04, 0.0), 0.05);                     /* clamped above */
+  const mr_ats_params wide = { 1e-4, 1.0, 1e-4, 1e-2 };
+  near(mr_ats_aim(&wide, 0.04, 0.5), 0.008); /* ×0.2 */
+  near(mr_ats_aim(&wide, 0.04, NAN), 0.008); /* NaN: cut hardest */
+  near(mr_ats_aim(&wide, 0.04, 1e-12), 0.2); /* ×5 */
+  assert_true(mr_ats_aim(NULL, 0.03, 1.0) == 0.03);
+}
+
 static mr_world *pendulum(double high, double low, int *bob) {
   mr_world_def def = mr_default_world_def();
   def.deviation_high = high;
@@ -228,6 +248,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(ats_follows_fourth_root_rule_on_scripted_errors),
     cmocka_unit_test(ats_stays_within_bounds),
+    cmocka_unit_test(estimate_is_steered_to_low_from_both_sides),
     cmocka_unit_test(world_rejects_and_follows_rule_step_by_step),
     cmocka_unit_test(dt_doubles_back_after_floor_impact),
     cmocka_unit_test(ats_growth_is_two_square_roots_to_the_bit),

@@ -576,6 +576,10 @@ typedef struct mr_ats_decision {
   double dt_next;
 } mr_ats_decision;
 mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error);
+/* The Δt the local error estimate asks for after an accepted step:
+ * Δt_old·0.9·(low/estimate)^¼, changed at most ×0.2 to ×5, clamped to
+ * [dt_min, dt_max]. */
+double mr_ats_aim(const mr_ats_params *p, double dt_old, double estimate);
 
 #ifdef __cplusplus
 }

@@ -47,3 +47,18 @@ mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error)
   d.dt_next = clamp(d.dt_next, p->dt_min, p->dt_max);
   return d;
 }
+
+/* The local error estimate's own rule, beside the §4.5 one: the estimate
+ * measures what each step adds to the trajectory's error, so it is steered
+ * towards `low` from both sides (the usual controller of embedded
+ * Runge–Kutta pairs, with its safety factor 0.9 and a step changed at most
+ * fivefold down or twofold up), where the deviation's dead band would keep
+ * any error up to `high`: a step whose estimate is 99 times the aim would
+ * be kept, and its errors piled up. The estimate is that of the embedded
+ * third-order solution, O(h⁴), hence the fourth root. */
+double mr_ats_aim(const mr_ats_params *p, double dt_old, double estimate) {
+  if (!p) return dt_old;
+  double f = 0.2; /* NaN: cut hardest */
+  if (estimate == estimate) f = estimate > 0 ? 0.9 * fourth_root(p->low / estimate) : 5.0;
+  return clamp(dt_old * clamp(f, 0.2, 5.0), p->dt_min, p->dt_max);
+}

@@ -413,6 +413,10 @@ static double step_error(const mr_step_ctx *c) {
   return (c->int_error > c->error || c->int_error != c->int_error) ? c->int_error : c->error;
 }
 
+static int estimating(const mr_world *w) {
+  return w->def.error_length > 0 || w->def.error_speed > 0;
+}
+
 /* The lower bound is the paper's for the deviation (§7: a real-time
  * budget). A mode it cannot resolve (a light joint between constraints,
  * a chain pulled taut, whose frequency grows with its tension) shows in
@@ -422,7 +426,13 @@ static enum verdict ats_decision(mr_world *w, mr_step_ctx *c) {
   mr_ats_params ats = ats_params(w);
   if (c->int_error > ats.high || c->asked < ats.dt_min) ats.dt_min = floor_dt(w);
   c->dec = mr_ats_next(&ats, c->asked, step_error(c));
-  if (c->dec.accept) return TRY_ACCEPT;
+  if (c->dec.accept) {
+    if (estimating(w)) {
+      mr_ats_params aim = ats_params(w);
+      c->dec.dt_next = fmin(c->dec.dt_next, mr_ats_aim(&aim, c->asked, c->int_error));
+    }
+    return TRY_ACCEPT;
+  }
   count_rejection(w, c);
   retry_with(c, c->dec.dt_next);
   return TRY_AGAIN;
