@@ -130,20 +130,72 @@ static void ee_error(const double *a, int na, const double *b, int nb, double *m
 #endif
 
 #ifdef MR_BENCH_MUJOCO
+/* Our settings, each one a scene could set (physics.time_step and
+ * physics.solver): the ATS thresholds (the lower is 1/100 of the upper),
+ * the local error estimate on or off, the bounds, the integrator, or a
+ * fixed step. As broad as MuJoCo's list below (steps, limit softness):
+ * an engine offered fewer settings cannot show its cheapest. */
 typedef struct ours_setting {
-  const char *label;
-  double high; /* upper threshold; the lower is 1/100 of it */
-  int estimate;
+  double high;           /* upper threshold */
+  int estimate;          /* the local error estimate (error_length, error_speed) */
+  double dt_min, dt_max; /* s; 0: the scene's (0.01–0.05 s, §7) */
+  double fixed;          /* s; > 0: fixed steps of this length */
+  mr_integrator integrator;
 } ours_setting;
+#define RK4 MR_INTEGRATOR_RK4
+#define SIE MR_INTEGRATOR_SEMI_IMPLICIT_EULER
+#define MID MR_INTEGRATOR_MIDPOINT
 static const ours_setting ours[] = {
-  { "thresholds 1e-3..1e-1, no error estimate", 1e-1, 0 },
-  { "thresholds 1e-3..1e-1", 1e-1, 1 },
-  { "no error estimate (the paper's)", 1e-2, 0 },
-  { "default", 1e-2, 1 },
-  { "thresholds 1e-5..1e-3", 1e-3, 1 },
-  { "thresholds 1e-6..1e-4", 1e-4, 1 },
+  /* the scene's bounds */
+  { 1e-1, 0, 0, 0, 0, RK4 },
+  { 1e-1, 1, 0, 0, 0, RK4 },
+  { 1e-2, 0, 0, 0, 0, RK4 }, /* the paper's */
+  { 1e-2, 1, 0, 0, 0, RK4 }, /* the default */
+  { 1e-3, 1, 0, 0, 0, RK4 },
+  { 1e-4, 1, 0, 0, 0, RK4 },
+  /* shorter bounds */
+  { 1e-1, 0, 0.005, 0.02, 0, RK4 },
+  { 1e-1, 1, 0.005, 0.02, 0, RK4 },
+  { 1e-2, 0, 0.005, 0.02, 0, RK4 },
+  { 1e-2, 1, 0.005, 0.02, 0, RK4 },
+  { 1e-3, 1, 0.005, 0.02, 0, RK4 },
+  { 1e-1, 0, 0.002, 0.01, 0, RK4 },
+  { 1e-1, 1, 0.002, 0.01, 0, RK4 },
+  { 1e-2, 0, 0.002, 0.01, 0, RK4 },
+  { 1e-2, 1, 0.002, 0.01, 0, RK4 },
+  { 1e-3, 1, 0.002, 0.01, 0, RK4 },
+  { 1e-1, 0, 0.001, 0.005, 0, RK4 },
+  { 1e-2, 0, 0.001, 0.005, 0, RK4 },
+  { 1e-2, 1, 0.001, 0.005, 0, RK4 },
+  /* fixed steps */
+  { 1e-2, 0, 0, 0, 0.02, RK4 },
+  { 1e-2, 0, 0, 0, 0.01, RK4 },
+  { 1e-2, 0, 0, 0, 0.005, RK4 },
+  { 1e-2, 0, 0, 0, 0.0025, RK4 },
+  { 1e-2, 0, 0, 0, 0.00125, RK4 },
+  /* the cheaper integrators */
+  { 1e-1, 0, 0.005, 0.02, 0, SIE },
+  { 1e-1, 0, 0.002, 0.01, 0, SIE },
+  { 1e-1, 0, 0.005, 0.02, 0, MID },
+  { 1e-1, 0, 0.002, 0.01, 0, MID },
 };
+#undef RK4
+#undef SIE
+#undef MID
 enum { N_OURS = sizeof ours / sizeof ours[0] };
+
+static void ours_label(const ours_setting *o, char *out, size_t n) {
+  const char *integ = mr_integrator_name(o->integrator);
+  if (o->fixed > 0) {
+    snprintf(out, n, "%s, fixed %g ms", integ, 1e3 * o->fixed);
+    return;
+  }
+  char bounds[48] = "";
+  if (o->dt_max > 0)
+    snprintf(bounds, sizeof bounds, ", %g-%g ms", 1e3 * o->dt_min, 1e3 * o->dt_max);
+  snprintf(out, n, "%s, thresholds %g..%g%s%s", integ, o->high / 100, o->high,
+           o->estimate ? "" : ", no estimate", bounds);
+}
 
 typedef struct pick {
   char label[96];
@@ -164,9 +216,17 @@ static int peer_scene_load(const peer_track *tr, mr_scene *sc) {
 static int ours_run(const mr_scene *base, const ours_setting *o, double duration, double horizon,
                     bench_run *run) {
   mr_scene sc = *base;
-  sc.world.deviation_high = o->high;
-  sc.world.deviation_low = o->high / 100.0;
-  if (!o->estimate) sc.world.error_length = sc.world.error_speed = 0.0;
+  mr_world_def *w = &sc.world;
+  w->deviation_high = o->high;
+  w->deviation_low = o->high / 100.0;
+  if (!o->estimate) w->error_length = w->error_speed = 0.0;
+  w->integrator = o->integrator;
+  if (o->dt_max > 0) {
+    w->dt_min = o->dt_min;
+    w->dt_max = o->dt_max;
+    w->dt_initial = fmin(fmax(w->dt_initial, o->dt_min), o->dt_max);
+  }
+  if (o->fixed > 0) w->dt_initial = w->dt_min = w->dt_max = w->dt_floor = o->fixed;
   return bench_run_scene(&sc, duration, (size_t)peer_effector(), horizon, run);
 }
 
@@ -229,13 +289,19 @@ static void search(bench *b, const mr_scene *sc, double T, int gentle, pick *po,
   }
   for (int i = 0; i < N_OURS; i++) {
     bench_run run;
-    bench_progress("peer", "%s: ours, %s", gentle ? "gentle" : "rapid", ours[i].label);
+    char label[96];
+    ours_label(&ours[i], label, sizeof label);
+    bench_progress("peer", "%s: ours, %s", gentle ? "gentle" : "rapid", label);
     if (ours_run(sc, &ours[i], T, gentle ? T : 0, &run) != 0) continue;
     double e = NAN, over = run.r.string_stretch - 1.0;
     if (gentle) bench_ee_error(&run, &ref, &e, &(double){ 0 });
     int ok = run.r.finite && run.r.resets == 0 &&
              (gentle ? e <= bar_o : over <= 0.01 && run.r.max_deviation <= 0.01);
-    keep_cheapest(po, ours[i].label, i, 1e3 * run.cpu / run.r.sim_time, gentle ? e : over,
+    bench_progress("peer",
+                   "  %.3f ms/sim-s, %d steps, %d rejected, hand error %.2e, over-length %.2e%s",
+                   1e3 * run.cpu / run.r.sim_time, (int)run.r.steps, (int)run.r.rejected, e, over,
+                   run.r.resets ? ", RESETS" : "");
+    keep_cheapest(po, label, i, 1e3 * run.cpu / run.r.sim_time, gentle ? e : over,
                   fmax(run.r.max_deviation, over), ok);
     bench_run_free(&run);
   }
