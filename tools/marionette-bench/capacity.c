@@ -228,10 +228,11 @@ static int physics_table(bench *b, FILE *csv, double *ms_per_frame) {
             rejected, per_step, build);
     last = cost;
   }
-  bench_say(b, "build s: scene to world, before the first frame (not in the rest); CPU s/sim s "
-               "and after: the frames after the first; real-time: n / (CPU s per sim s); linear "
-               "cost shows as growth 10x per row; steps/s, rejected/s: the one adaptive step the "
-               "whole crowd shares\n");
+  bench_say(
+      b, "build s: scene to world, before the first frame (not in the rest); CPU s/sim s "
+         "and after: the frames after the first; real-time puppets: n / (CPU s per sim s); linear "
+         "cost shows as growth 10x per row; steps/s, rejected/s: the one adaptive step the "
+         "whole crowd shares\n");
   return 0;
 }
 
