@@ -69,5 +69,8 @@ int bench_render(bench *b);
 /* The fixed runs `make bench-count` counts under callgrind: "puppet"
  * (host/scenes/puppet.yaml for 10 s) or "decode" (10 000 SAMPLE frames). */
 int bench_count_run(bench *b, const char *which);
+/* `make bench-count`'s sweep: the quick settings on every puppet, each run
+ * its own callgrind dump, a CSV line per run on stdout (sweep.c). */
+int bench_sweep_count(bench *b);
 
 #endif

@@ -2,7 +2,10 @@
 # Stable figures for regressions (`make bench-count`): the instruction
 # counts of fixed runs under callgrind, counted only inside each run
 # (marionette-bench --count starts and stops the instrumentation), so the
-# same build gives the same numbers on any machine.
+# same build gives the same numbers on any machine. The sweep's settings are
+# counted too (one callgrind dump per run), and the accuracy-cost front is
+# marked on those counts, which no load on the machine can move; the table
+# also goes to BUILD_DIR/bench/sweep_count.csv.
 #
 #   tools/marionette-bench/count.sh [BUILD_DIR]
 set -eu
@@ -25,3 +28,46 @@ for run in puppet decode; do
   total=$(sed -n 's/^totals: //p' "$scratch/$run.out" | head -1)
   printf '%-34s %15s instructions\n' "$what" "$total"
 done
+
+# The sweep: instructions per simulated second of each setting, and the
+# front on (instructions, end-effector error): a run is on it unless
+# another is no worse in both and better in one.
+mkdir -p "$build/bench"
+csv=$build/bench/sweep_count.csv
+echo "sweep, every setting on every puppet, 3 s of track each (about five minutes):"
+valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$scratch/sweep.out" \
+  "$bench" --count sweep >"$scratch/sweep.csv" 2>"$scratch/sweep.log" ||
+  { cat "$scratch/sweep.log" >&2; exit 1; }
+i=0
+while IFS= read -r line; do
+  i=$((i + 1))
+  n=$(sed -n 's/^totals: //p' "$scratch/sweep.out.$i" | head -1)
+  echo "$line,$n"
+done <"$scratch/sweep.csv" >"$scratch/joined.csv"
+awk -F, -v out="$csv" '
+  { p[NR] = $1; s[NR] = $2; d[NR] = $3; sim[NR] = $4; ee[NR] = $5; ok[NR] = $6
+    ips[NR] = $7 / $4 }
+  END {
+    print "puppet,setting,default,sim_s,ee_rms_m,ok,instructions_per_sim_s,front" > out
+    for (i = 1; i <= NR; i++) {
+      f = ok[i]
+      for (j = 1; j <= NR && f; j++)
+        if (j != i && ok[j] && p[j] == p[i] && ips[j] <= ips[i] && ee[j] <= ee[i] &&
+            (ips[j] < ips[i] || ee[j] < ee[i])) f = 0
+      front[i] = f
+      printf "%s,%s,%d,%g,%g,%d,%.0f,%d\n", p[i], s[i], d[i], sim[i], ee[i], ok[i], ips[i], f > out
+    }
+    for (i = 1; i <= NR; i++) {
+      if (p[i] != last) {
+        printf "\n%s\n%-42s %16s %10s %5s\n", p[i], "setting", "instr/sim-s", "ee rms", "front"
+        last = p[i]
+      }
+      gsub(/"/, "", s[i])
+      printf "%-42s %16.0f %10.2e %5s%s\n", s[i], ips[i], ee[i], front[i] ? "yes" : "",
+        ok[i] ? "" : "  RESET OR NOT FINITE"
+      if (d[i]) dflt[p[i]] = front[i]
+    }
+    printf "\ndefault on the front (instructions):"
+    for (k in dflt) printf " %s %s;", k, dflt[k] ? "yes" : "NO"
+    printf "\n"
+  }' "$scratch/joined.csv"

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <valgrind/callgrind.h>
 
 #include "bench.h"
 
@@ -324,4 +325,61 @@ int bench_sweep(bench *b) {
     if ((!b->quick || puppets[i].quick) && sweep_puppet(b, &puppets[i], csv) != 0) rc = -1;
   fclose(csv);
   return rc;
+}
+
+/* The stable figures of the sweep (`make bench-count`): every setting on
+ * every puppet, COUNT_SPAN seconds of track each, counted
+ * under callgrind one dump per run (count.sh reads the dumps in order).
+ * Prints one CSV line per run to stdout: puppet, setting, whether it is the
+ * default, simulated s, end-effector RMS error against the reference (m),
+ * and whether it ended finite without a reset. */
+#define COUNT_SPAN 3.0
+
+static int count_puppet(bench *b, const puppet *p) {
+  mr_scene sc;
+  if (bench_load(b, p->path, &sc) != 0) return -1;
+  size_t ee = mr_scene_find_particle(&sc, p->effector);
+  if (ee == (size_t)-1) ee = 0;
+  double horizon = fmin(p->horizon, COUNT_SPAN), moved;
+  bench_run ref[2];
+  for (int taut = 0; taut < 2; taut++) {
+    set_strings(&sc, taut ? MR_STRING_TAUT : MR_STRING_SPRING);
+    int rc = reference(&sc, ee, horizon, 0.001, &ref[taut], &moved);
+    set_strings(&sc, MR_STRING_SPRING);
+    if (rc != 0) {
+      if (taut) bench_run_free(&ref[0]);
+      mr_scene_free(&sc);
+      return -1;
+    }
+  }
+  int rc = 0;
+  for (int i = 0; i < N_SETTINGS && rc == 0; i++) {
+    const setting *s = &settings[i];
+    bench_progress("count", "%s: %s (%g s of track)", p->name, s->label, COUNT_SPAN);
+    mr_scene one = sc;
+    s->apply(&one.world, s->a, s->b);
+    if (s->taut) set_strings(&one, MR_STRING_TAUT);
+    bench_run run;
+    CALLGRIND_START_INSTRUMENTATION;
+    rc = bench_run_scene(&one, COUNT_SPAN, ee, horizon, &run);
+    CALLGRIND_STOP_INSTRUMENTATION;
+    CALLGRIND_DUMP_STATS_AT(s->label);
+    if (s->taut) set_strings(&one, MR_STRING_SPRING);
+    if (rc != 0) break;
+    double ee_max, ee_rms;
+    bench_ee_error(&run, &ref[s->taut], &ee_max, &ee_rms);
+    printf("%s,\"%s\",%d,%g,%.6g,%d\n", p->name, s->label, i == 0, run.r.sim_time, ee_rms,
+           run.r.finite && run.r.resets == 0);
+    bench_run_free(&run);
+  }
+  bench_run_free(&ref[0]);
+  bench_run_free(&ref[1]);
+  mr_scene_free(&sc);
+  return rc;
+}
+
+int bench_sweep_count(bench *b) {
+  for (int i = 0; i < N_PUPPETS; i++)
+    if (count_puppet(b, &puppets[i]) != 0) return -1;
+  return 0;
 }
