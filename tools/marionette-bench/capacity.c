@@ -136,9 +136,9 @@ int bench_crowd_load(int n, mr_scene *sc) {
  * of real time) are told apart. With a renderer, each frame is also drawn
  * headless and read back, and what that costs is summed apart. */
 typedef struct crowd_clock {
-  double t0, first, last, mark; /* CPU s: start, first and last frame, last mark */
-  double physics, render;       /* CPU s after the first frame */
-  double render_wall;           /* wall s of the drawing after the first frame */
+  double t0, first, mark; /* CPU s: start, first frame, end of the last frame's work */
+  double physics, render; /* CPU s after the first frame */
+  double render_wall;     /* wall s of the drawing after the first frame */
   int frames;
   /* Rendering (NULL: physics only). */
   mr_stage *stage;
@@ -163,7 +163,7 @@ static void on_crowd_frame(void *user, double t, const double *xyz, int n) {
     c->first = now;
   else
     c->physics += now - c->mark;
-  c->last = c->mark = now;
+  c->mark = now;
   c->frames++;
   if (c->render_ctx == NULL || c->failed || (size_t)n != c->n) return;
   double w0 = wall_seconds();
@@ -213,7 +213,8 @@ static int physics_table(bench *b, FILE *csv, double *ms_per_frame) {
     mr_scene sc;
     crowd_clock c = { 0 };
     mr_sim_result r;
-    int rc = crowd_load(n, 0, &sc) == 0 ? crowd_run(&sc, seconds, &c, &r) : -1;
+    if (crowd_load(n, 0, &sc) != 0) return -1;
+    int rc = crowd_run(&sc, seconds, &c, &r);
     mr_scene_free(&sc);
     if (rc != 0) return -1;
     double sim = (c.frames - 1) / 60.0, cost = c.physics / sim, per = 1000.0 * cost / n;
