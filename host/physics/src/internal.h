@@ -234,6 +234,8 @@ int mr_require(mr_world *w, uint32_t effect, const char *what);
 void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]);
 void mr_frame_rates(const mr_frame *fr, double t, int ends, double vel[3], double omega[3]);
 void mr_frames_place(mr_world *w, double t, double *x, double *v);
+/* Particle i of a frame alone, at the world's time. */
+void mr_frame_place_one(mr_world *w, int i);
 
 /* curve.c */
 void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], double acc[3]);

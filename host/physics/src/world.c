@@ -466,7 +466,7 @@ mr_status mr_world_add_particle(mr_world *w, const mr_particle_def *def, int *ou
     mr_pose_unrotate(pose.orientation, d, &w->local[3 * id]);
     MR_AT(w->kin, int, w->kin.n++) = id;
     w->n = id + 1;
-    mr_frames_place(w, w->t, w->x, w->v);
+    if (w->has_frames) mr_frame_place_one(w, id);
   }
   memcpy(&w->x_start[3 * id], &w->x[3 * id], 3 * sizeof(double));
   memcpy(&w->v_start[3 * id], &w->v[3 * id], 3 * sizeof(double));
