@@ -48,12 +48,31 @@ void mr_pattern_free(mr_pattern *pat);
  * numbers) since A was zeroed: for the tests of the pattern cache. */
 unsigned long mr_csr_pattern_builds(const mr_csr *A);
 
+/* An analysis kept for a pattern seen lately: the ordering (perm, iperm),
+ * the elimination tree (parent) and L's row starts (lp, nnz_l). */
+typedef struct mr_ldlt_kept {
+  mr_pattern pattern;
+  mr_buf perm, iperm, parent, lp;
+  size_t nnz_l;
+  unsigned long used; /* f->clock when last used: the least recent goes */
+} mr_ldlt_kept;
+/* How many analyses are kept, and the largest pattern kept (rows): a
+ * reserve gives every kept slot room for a full pattern of up to that
+ * many rows, 64 KiB each; larger systems keep only the analysis in use.
+ * The benchmark's puppets solve 7 to 31 rows. */
+#define MR_LDLT_KEPT       8
+#define MR_LDLT_KEPT_MAX_N 128
+
 /* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
- * only on A's pattern, which the physics keeps from step to step, so they
- * are kept with a copy of the pattern they were computed for. */
+ * only on A's pattern, so they are kept with a copy of the pattern they
+ * were computed for: the one in use below, and up to MR_LDLT_KEPT recent
+ * ones in kept[] (ldlt.c says why). */
 typedef struct mr_ldlt {
   mr_pattern pattern;
-  mr_buf perm, iperm; /* new → old, old → new */
+  mr_ldlt_kept kept[MR_LDLT_KEPT];
+  unsigned long clock;    /* changes of the analysis in use */
+  unsigned long analyses; /* analyses run (ordering + symbolic): for tests */
+  mr_buf perm, iperm;     /* new → old, old → new */
   mr_buf parent, lnz, flag, stack, lp, dropped;
   mr_buf li, lx, diag, y, z;
   mr_buf skip, res, dx; /* refinement: dropped rows by old index, r, δλ */

@@ -1,0 +1,126 @@
+/* The solver keeps the analyses (ordering and symbolic factorisation) of
+ * the last few patterns it saw: a step of the physics alternates among a
+ * few row sets, and each switch used to throw the one kept away.
+ * Alternating solves among three patterns analyse each once and give the
+ * same bits as a solver that has seen nothing before; more patterns than
+ * are kept evict the least recently used. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "mr_solver.h"
+#include "solver_internal.h"
+#include "solver_systems.h"
+
+enum { PATTERNS = MR_LDLT_KEPT + 1, K = 60 };
+
+/* Pattern v: the same 60 random rows, then v contacts (pins along z on
+ * the last movable particles): each v gives A another pattern. */
+static void make_variant(test_system *s, int v) {
+  static const double up[3] = { 0, 0, 1 };
+  test_system_random(s, K, 11);
+  for (int c = 0; c < v; c++) test_system_pin(s, s->np - 1 - c, up);
+}
+
+/* x = A⁻¹ b by a solver that has seen nothing before. */
+static void solve_fresh(const mr_csr *A, const double *b, double *x) {
+  mr_solver *fresh = mr_solver_create();
+  assert_non_null(fresh);
+  mr_solve_def def = mr_default_solve_def();
+  def.method = MR_SOLVE_LDLT;
+  mr_solve_result r;
+  memset(x, 0, (size_t)A->n * sizeof *x);
+  mr_solve_status st = mr_solver_solve(fresh, &def, A, b, x, &r);
+  assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT);
+  assert_int_equal(fresh->ldlt.analyses, 1);
+  mr_solver_destroy(fresh);
+}
+
+typedef struct variants {
+  test_system sys[PATTERNS];
+  mr_csr A[PATTERNS];
+  double b[PATTERNS][K + PATTERNS], ref[PATTERNS][K + PATTERNS];
+} variants;
+
+static void variants_make(variants *v) {
+  memset(v, 0, sizeof *v);
+  test_rng rng = { 5 };
+  for (int p = 0; p < PATTERNS; p++) {
+    make_variant(&v->sys[p], p);
+    assert_int_equal(mr_csr_assemble(&v->A[p], &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
+    test_system_consistent_rhs(&v->sys[p], &rng, v->b[p]);
+    solve_fresh(&v->A[p], v->b[p], v->ref[p]);
+  }
+}
+
+static void variants_free(variants *v) {
+  for (int p = 0; p < PATTERNS; p++) {
+    mr_csr_free(&v->A[p]);
+    test_system_free(&v->sys[p]);
+  }
+}
+
+/* Solves pattern p with s and checks the answer against a fresh solver's,
+ * bit for bit. */
+static void solve_and_compare(mr_solver *s, variants *v, int p) {
+  mr_solve_def def = mr_default_solve_def();
+  def.method = MR_SOLVE_LDLT;
+  mr_solve_result r;
+  double x[K + PATTERNS] = { 0 };
+  mr_solve_status st = mr_solver_solve(s, &def, &v->A[p], v->b[p], x, &r);
+  assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT);
+  assert_memory_equal(x, v->ref[p], (size_t)v->A[p].n * sizeof *x);
+}
+
+static void alternating_patterns_are_analysed_once_each(void **state) {
+  (void)state;
+  variants *v = malloc(sizeof *v);
+  assert_non_null(v);
+  variants_make(v);
+  mr_solver *s = mr_solver_create();
+  assert_non_null(s);
+  for (int round = 0; round < 10; round++)
+    for (int p = 0; p < 3; p++) solve_and_compare(s, v, round % 2 ? 2 - p : p);
+  assert_int_equal(s->ldlt.analyses, 3);
+  mr_solver_destroy(s);
+  variants_free(v);
+  free(v);
+}
+
+/* One pattern more than are kept, in turn: each is the least recently
+ * used when it comes back, so every solve analyses; the kept ones then
+ * still answer without one. */
+static void the_least_recently_used_analysis_goes(void **state) {
+  (void)state;
+  variants *v = malloc(sizeof *v);
+  assert_non_null(v);
+  variants_make(v);
+  mr_solver *s = mr_solver_create();
+  assert_non_null(s);
+  for (int round = 0; round < 2; round++)
+    for (int p = 0; p < PATTERNS; p++) solve_and_compare(s, v, p);
+  assert_int_equal(s->ldlt.analyses, 2 * PATTERNS);
+  for (int p = PATTERNS - 1; p >= 1; p--) solve_and_compare(s, v, p);
+  assert_int_equal(s->ldlt.analyses, 2 * PATTERNS);
+  solve_and_compare(s, v, 0); /* gone: it takes the place of the least recent, the last */
+  assert_int_equal(s->ldlt.analyses, 2 * PATTERNS + 1);
+  solve_and_compare(s, v, 1);
+  assert_int_equal(s->ldlt.analyses, 2 * PATTERNS + 1);
+  solve_and_compare(s, v, PATTERNS - 1);
+  assert_int_equal(s->ldlt.analyses, 2 * PATTERNS + 2);
+  mr_solver_destroy(s);
+  variants_free(v);
+  free(v);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(alternating_patterns_are_analysed_once_each),
+    cmocka_unit_test(the_least_recently_used_analysis_goes),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
