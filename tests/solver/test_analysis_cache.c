@@ -1,9 +1,10 @@
 /* The solver keeps the analyses (ordering and symbolic factorisation) of
- * the last few patterns it saw: a step of the physics alternates among a
- * few row sets, and each switch used to throw the one kept away.
- * Alternating solves among three patterns analyse each once and give the
- * same bits as a solver that has seen nothing before; more patterns than
- * are kept evict the least recently used. */
+ * the last few patterns it saw, and the assembly the plans of the last few
+ * Jacobians: a step of the physics alternates among a few row sets, and
+ * each switch used to throw the one kept away. Alternating among three
+ * patterns analyses (plans) each once and gives the same bits as a solver
+ * (an assembly) that has seen nothing before; more patterns than are kept
+ * evict the least recently used. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -117,10 +118,66 @@ static void the_least_recently_used_analysis_goes(void **state) {
   free(v);
 }
 
+/* A and a fresh assembly of the same J agree in every bit. */
+static void assert_same_as_fresh(const mr_csr *A, const test_system *s) {
+  mr_csr fresh = { 0 };
+  assert_int_equal(mr_csr_assemble(&fresh, &s->J, s->inv_mass), MR_SOLVE_OK);
+  assert_int_equal(A->n, fresh.n);
+  assert_int_equal(A->nnz, fresh.nnz);
+  assert_memory_equal(A->row_ptr, fresh.row_ptr, ((size_t)fresh.n + 1) * sizeof(int));
+  assert_memory_equal(A->col, fresh.col, (size_t)fresh.nnz * sizeof(int));
+  assert_memory_equal(A->val, fresh.val, (size_t)fresh.nnz * sizeof(double));
+  mr_csr_free(&fresh);
+}
+
+static void alternating_jacobians_are_planned_once_each(void **state) {
+  (void)state;
+  variants *v = malloc(sizeof *v);
+  assert_non_null(v);
+  variants_make(v);
+  mr_csr A = { 0 };
+  for (int round = 0; round < 10; round++) {
+    for (int q = 0; q < 3; q++) {
+      int p = round % 2 ? 2 - q : q;
+      assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
+      assert_same_as_fresh(&A, &v->sys[p]);
+    }
+  }
+  assert_int_equal(mr_csr_pattern_builds(&A), 3);
+  mr_csr_free(&A);
+  variants_free(v);
+  free(v);
+}
+
+/* One Jacobian more than there are plans, in turn: each is the least
+ * recently used when it comes back, so every assembly plans again. */
+static void the_least_recently_used_plan_goes(void **state) {
+  (void)state;
+  variants *v = malloc(sizeof *v);
+  assert_non_null(v);
+  variants_make(v);
+  mr_csr A = { 0 };
+  for (int round = 0; round < 2; round++) {
+    for (int p = 0; p < PATTERNS; p++) {
+      assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
+      assert_same_as_fresh(&A, &v->sys[p]);
+    }
+  }
+  assert_int_equal(mr_csr_pattern_builds(&A), 2 * PATTERNS);
+  for (int p = PATTERNS - 1; p >= 1; p--)
+    assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
+  assert_int_equal(mr_csr_pattern_builds(&A), 2 * PATTERNS);
+  mr_csr_free(&A);
+  variants_free(v);
+  free(v);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(alternating_patterns_are_analysed_once_each),
     cmocka_unit_test(the_least_recently_used_analysis_goes),
+    cmocka_unit_test(alternating_jacobians_are_planned_once_each),
+    cmocka_unit_test(the_least_recently_used_plan_goes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

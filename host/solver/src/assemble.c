@@ -10,26 +10,48 @@
  *
  * A's pattern depends only on which particles each row of J names and on
  * which particles are pinned (w_p = 0 adds nothing). The physics rebuilds J
- * every evaluation with the same rows, so the plan keeps that pattern, the
+ * every evaluation with the same rows, so a plan keeps that pattern, the
  * particle → rows lists and A's sorted columns, and a call that finds them
- * unchanged only recomputes the numbers. */
+ * unchanged only recomputes the numbers.
+ *
+ * Several plans are kept, least recently used out. A step mixes row sets
+ * (an impulse, evaluations with resting contacts, contacts released, the
+ * projection of taut strings after the step), so J alternates among a few
+ * patterns, and with one plan each switch built the pattern again: on the
+ * taut-string stick marionette (10 s of sway) assembly took 20.5 % of all
+ * instructions, about 11 % in rebuilding the plan. */
 #include "solver_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-struct mr_csr_plan {
-  mr_buf rp, col, val; /* A's arrays: A->row_ptr, col and val point here */
+/* One pattern's plan. */
+typedef struct csr_kept {
+  mr_buf rp, col; /* A's pattern: A->row_ptr and col point here */
   /* The pattern the plan was built for: J's rows, their particles, and
    * which particles were pinned. */
-  int valid, rows, np, ne;
+  int valid, rows, np, ne, nnz;
   mr_buf jrp, jpart, pinned;
   /* Particle → entries of J that name it (movable particles only): the
    * transpose of J's pattern. */
   mr_buf pstart, prow, pent;
+  unsigned long used; /* the plan set's clock when last used */
+} csr_kept;
+
+/* How many plans are kept, and the largest J kept beside the first plan
+ * (rows): larger ones always use plan 0, so a reserve gives the others
+ * room for a dense A of up to that size only (64 KiB each). The
+ * benchmark's puppets assemble 7 to 31 rows. */
+#define CSR_KEPT          8
+#define CSR_KEPT_MAX_ROWS 128
+
+struct mr_csr_plan {
+  csr_kept kept[CSR_KEPT];
+  int cur;                   /* the plan used last */
+  mr_buf val;                /* A's values: A->val points here */
   mr_buf mark, cursor, ucol; /* scratch of the pattern build and the symmetrising copy */
   mr_buf work;               /* one row of A, dense; zero between rows */
-  unsigned long builds;
+  unsigned long builds, clock;
 };
 
 #define INTS(b) ((int *)(b).p)
@@ -38,8 +60,7 @@ static int pinned(const double *inv_mass, int p) {
   return !inv_mass || inv_mass[p] == 0.0;
 }
 
-static int same_source(const struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass,
-                       int ne) {
+static int same_source(const csr_kept *pl, const mr_jac *J, const double *inv_mass, int ne) {
   if (!pl->valid || pl->rows != J->rows || pl->np != J->n_particles || pl->ne != ne) return 0;
   if (J->rows > 0 && memcmp(pl->jrp.p, J->row_ptr, (size_t)(J->rows + 1) * sizeof(int)) != 0)
     return 0;
@@ -50,28 +71,42 @@ static int same_source(const struct mr_csr_plan *pl, const mr_jac *J, const doub
   return 1;
 }
 
-/* The plan's arrays for k rows, np particles and ne entries of J. */
-static int plan_reserve(struct mr_csr_plan *pl, size_t k, size_t np, size_t ne) {
-  if (mr_buf_reserve(&pl->rp, k + 1, sizeof(int)) || mr_buf_reserve(&pl->jrp, k + 1, sizeof(int)) ||
-      mr_buf_reserve(&pl->jpart, ne, sizeof(int)) || mr_buf_reserve(&pl->pinned, np, 1) ||
-      mr_buf_reserve(&pl->pstart, np + 1, sizeof(int)) ||
-      mr_buf_reserve(&pl->prow, ne, sizeof(int)) || mr_buf_reserve(&pl->pent, ne, sizeof(int)) ||
-      mr_buf_reserve(&pl->mark, k, sizeof(int)) ||
-      mr_buf_reserve(&pl->cursor, k + 1, sizeof(int)) ||
+/* The plans that a J of k rows may use: all of them, or plan 0 alone. */
+static int plans_for(size_t k) {
+  return k > CSR_KEPT_MAX_ROWS ? 1 : CSR_KEPT;
+}
+
+/* Plans [0, count)'s arrays and the scratch for k rows, np particles and
+ * ne entries of J. Every plan grows with the largest J it may hold, so a
+ * pattern seen for the first time allocates nothing once a larger one was
+ * seen: the physics allocates nothing after its first step. */
+static int plan_reserve(struct mr_csr_plan *pl, int count, size_t k, size_t np, size_t ne) {
+  const size_t si = sizeof(int);
+  for (int s = 0; s < count; s++) {
+    csr_kept *kp = &pl->kept[s];
+    if (mr_buf_reserve(&kp->rp, k + 1, si) || mr_buf_reserve(&kp->jrp, k + 1, si) ||
+        mr_buf_reserve(&kp->jpart, ne, si) || mr_buf_reserve(&kp->pinned, np, 1) ||
+        mr_buf_reserve(&kp->pstart, np + 1, si) || mr_buf_reserve(&kp->prow, ne, si) ||
+        mr_buf_reserve(&kp->pent, ne, si))
+      return MR_SOLVE_ENOMEM;
+  }
+  if (mr_buf_reserve(&pl->mark, k, si) || mr_buf_reserve(&pl->cursor, k + 1, si) ||
       mr_buf_reserve(&pl->work, k, sizeof(double)))
     return MR_SOLVE_ENOMEM;
   return 0;
 }
 
-/* A's entries: nnz columns and values, and the unsorted columns. */
-static int plan_reserve_entries(struct mr_csr_plan *pl, size_t nnz) {
-  if (mr_buf_reserve(&pl->ucol, nnz, sizeof(int)) || mr_buf_reserve(&pl->col, nnz, sizeof(int)) ||
-      mr_buf_reserve(&pl->val, nnz, sizeof(double)))
+/* A's entries: nnz columns in plans [0, count), and the values and
+ * unsorted columns (shared: every assembly writes them whole). */
+static int plan_reserve_entries(struct mr_csr_plan *pl, int count, size_t nnz) {
+  for (int s = 0; s < count; s++)
+    if (mr_buf_reserve(&pl->kept[s].col, nnz, sizeof(int))) return MR_SOLVE_ENOMEM;
+  if (mr_buf_reserve(&pl->ucol, nnz, sizeof(int)) || mr_buf_reserve(&pl->val, nnz, sizeof(double)))
     return MR_SOLVE_ENOMEM;
   return 0;
 }
 
-static void keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne) {
+static void keep_source(csr_kept *pl, const mr_jac *J, const double *inv_mass, int ne) {
   const int k = J->rows, np = J->n_particles;
   if (k > 0) memcpy(pl->jrp.p, J->row_ptr, ((size_t)k + 1) * sizeof(int));
   if (ne > 0) memcpy(pl->jpart.p, J->particle, (size_t)ne * sizeof(int));
@@ -84,8 +119,7 @@ static void keep_source(struct mr_csr_plan *pl, const mr_jac *J, const double *i
 
 /* Particle → (row, entry) lists by a counting sort over J's entries; a
  * pinned particle gets an empty list. */
-static void particle_lists(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass,
-                           int ne) {
+static void particle_lists(csr_kept *pl, const mr_jac *J, const double *inv_mass, int ne) {
   const int np = J->n_particles;
   int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
   memset(pstart, 0, ((size_t)np + 1) * sizeof *pstart);
@@ -108,7 +142,7 @@ static void particle_lists(struct mr_csr_plan *pl, const mr_jac *J, const double
 /* The columns of row i of A (the diagonal first, then the rows sharing a
  * movable particle, unsorted) into out when out is not NULL. Returns the
  * count. mark[j] == i marks column j as seen for row i. */
-static int row_columns(const struct mr_csr_plan *pl, const mr_jac *J, int i, int *mark, int *out) {
+static int row_columns(const csr_kept *pl, const mr_jac *J, int i, int *mark, int *out) {
   const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *part = J->particle;
   int c = 0;
   mark[i] = i;
@@ -130,18 +164,18 @@ static int row_columns(const struct mr_csr_plan *pl, const mr_jac *J, int i, int
 /* A's row_ptr and sorted columns. Each row's columns are listed unsorted
  * into ucol, then one counting transpose sorts them all: A is symmetric,
  * so the transpose of its pattern is the pattern itself. */
-static int build_pattern(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J) {
+static int build_pattern(struct mr_csr_plan *pl, csr_kept *kp, const mr_jac *J) {
   const int k = J->rows;
   int *mark = INTS(pl->mark), *cnt = INTS(pl->cursor);
   for (int i = 0; i < k; i++) mark[i] = -1;
   int nnz = 0;
-  for (int i = 0; i < k; i++) nnz += row_columns(pl, J, i, mark, NULL);
-  if (plan_reserve_entries(pl, (size_t)nnz) != 0) return MR_SOLVE_ENOMEM;
-  int *ucol = INTS(pl->ucol), *rp = INTS(pl->rp), *col = INTS(pl->col);
+  for (int i = 0; i < k; i++) nnz += row_columns(kp, J, i, mark, NULL);
+  if (plan_reserve_entries(pl, plans_for((size_t)k), (size_t)nnz) != 0) return MR_SOLVE_ENOMEM;
+  int *ucol = INTS(pl->ucol), *rp = INTS(kp->rp), *col = INTS(kp->col);
   memset(cnt, 0, ((size_t)k + 1) * sizeof *cnt);
   for (int i = 0; i < k; i++) mark[i] = -1;
   for (int i = 0, at = 0; i < k; i++) {
-    int c = row_columns(pl, J, i, mark, ucol + at);
+    int c = row_columns(kp, J, i, mark, ucol + at);
     for (int t = at; t < at + c; t++) cnt[ucol[t] + 1]++;
     at += c;
   }
@@ -152,22 +186,44 @@ static int build_pattern(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J) {
   for (int i = 0, at = 0; i < k; i++) {
     for (int end = at + (rp[i + 1] - rp[i]); at < end; at++) col[cnt[ucol[at]]++] = i;
   }
-  A->n = k;
-  A->nnz = nnz;
+  kp->nnz = nnz;
   return 0;
 }
 
-static int replan(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass,
-                  int ne) {
-  pl->valid = 0;
-  if (plan_reserve(pl, (size_t)J->rows, (size_t)J->n_particles, (size_t)ne) != 0)
+/* A plan for J, built into the least recently used one (an empty one
+ * first; plan 0 for a J too large to keep beside it). */
+static int replan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne) {
+  const size_t k = (size_t)J->rows;
+  int s = 0;
+  if (plans_for(k) > 1)
+    for (int t = 1; t < CSR_KEPT; t++)
+      if (pl->kept[t].used < pl->kept[s].used) s = t;
+  csr_kept *kp = &pl->kept[s];
+  kp->valid = 0;
+  if (plan_reserve(pl, plans_for(k), k, (size_t)J->n_particles, (size_t)ne) != 0)
     return MR_SOLVE_ENOMEM;
-  memset(pl->work.p, 0, (size_t)J->rows * sizeof(double));
-  keep_source(pl, J, inv_mass, ne);
-  particle_lists(pl, J, inv_mass, ne);
-  if (build_pattern(A, pl, J) != 0) return MR_SOLVE_ENOMEM;
-  pl->valid = 1;
+  memset(pl->work.p, 0, k * sizeof(double));
+  keep_source(kp, J, inv_mass, ne);
+  particle_lists(kp, J, inv_mass, ne);
+  if (build_pattern(pl, kp, J) != 0) return MR_SOLVE_ENOMEM;
+  kp->valid = 1;
   pl->builds++;
+  pl->cur = s;
+  return 0;
+}
+
+/* Makes the plan for J's pattern pl->cur: the last one, a kept one, or a
+ * new one. */
+static int find_plan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne) {
+  if (!same_source(&pl->kept[pl->cur], J, inv_mass, ne)) {
+    int s = 0;
+    while (s < CSR_KEPT && !same_source(&pl->kept[s], J, inv_mass, ne)) s++;
+    if (s < CSR_KEPT)
+      pl->cur = s;
+    else if (replan(pl, J, inv_mass, ne) != 0)
+      return MR_SOLVE_ENOMEM;
+  }
+  pl->kept[pl->cur].used = ++pl->clock;
   return 0;
 }
 
@@ -179,11 +235,12 @@ static double dot3(const double a[3], const double b[3]) {
  * entry order, then gathered into A's sorted columns. Only the lower
  * triangle and the diagonal are summed (each particle's list is in row
  * order, so the rest of a list lies above): symmetrise() copies them up. */
-static void numeric(mr_csr *A, struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass) {
-  const int *pstart = INTS(pl->pstart), *prow = INTS(pl->prow), *pent = INTS(pl->pent);
+static void numeric(mr_csr *A, const csr_kept *kp, double *work, const mr_jac *J,
+                    const double *inv_mass) {
+  const int *pstart = INTS(kp->pstart), *prow = INTS(kp->prow), *pent = INTS(kp->pent);
   const int *jrp = J->row_ptr, *part = J->particle, *rp = A->row_ptr, *col = A->col;
   const double(*d)[3] = (const double(*)[3])J->d;
-  double *work = pl->work.p, *val = A->val;
+  double *val = A->val;
   for (int i = 0; i < J->rows; i++) {
     for (int e = jrp[i], e_end = jrp[i + 1]; e < e_end; e++) {
       const int p = part[e];
@@ -224,9 +281,12 @@ static int plan_of(mr_csr *A) {
 
 mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries) {
   if (!A || rows < 0 || particles < 0 || entries < 0) return MR_SOLVE_BAD_ARG;
-  const size_t k = (size_t)rows;
-  if (plan_of(A) != 0 || plan_reserve(A->plan, k, (size_t)particles, (size_t)entries) != 0 ||
-      plan_reserve_entries(A->plan, k * k) != 0)
+  const size_t k = (size_t)rows, kept = k < CSR_KEPT_MAX_ROWS ? k : CSR_KEPT_MAX_ROWS;
+  const size_t np = (size_t)particles, ne = (size_t)entries;
+  if (plan_of(A) != 0 || plan_reserve(A->plan, 1, k, np, ne) != 0 ||
+      plan_reserve_entries(A->plan, 1, k * k) != 0 ||
+      plan_reserve(A->plan, CSR_KEPT, kept, np, ne) != 0 ||
+      plan_reserve_entries(A->plan, CSR_KEPT, kept * kept) != 0)
     return MR_SOLVE_ENOMEM;
   return MR_SOLVE_OK;
 }
@@ -237,13 +297,15 @@ mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_ma
   if (ne > 0 && !inv_mass) return MR_SOLVE_UNAVAILABLE;
   if (plan_of(A) != 0) return MR_SOLVE_ENOMEM;
   struct mr_csr_plan *pl = A->plan;
-  if (!same_source(pl, J, inv_mass, ne) && replan(A, pl, J, inv_mass, ne) != 0)
-    return MR_SOLVE_ENOMEM;
-  A->row_ptr = pl->rp.p;
-  A->col = pl->col.p;
+  if (find_plan(pl, J, inv_mass, ne) != 0) return MR_SOLVE_ENOMEM;
+  const csr_kept *kp = &pl->kept[pl->cur];
+  A->n = kp->rows;
+  A->nnz = kp->nnz;
+  A->row_ptr = kp->rp.p;
+  A->col = kp->col.p;
   A->val = pl->val.p;
   A->row_ptr[0] = 0;
-  numeric(A, pl, J, inv_mass);
+  numeric(A, kp, pl->work.p, J, inv_mass);
   symmetrise(A, pl->cursor.p);
   return MR_SOLVE_OK;
 }
@@ -256,9 +318,13 @@ void mr_csr_free(mr_csr *A) {
   if (!A) return;
   struct mr_csr_plan *pl = A->plan;
   if (pl) {
-    mr_buf *const bufs[] = { &pl->rp,     &pl->col,    &pl->val,  &pl->jrp,  &pl->jpart,
-                             &pl->pinned, &pl->pstart, &pl->prow, &pl->pent, &pl->mark,
-                             &pl->cursor, &pl->ucol,   &pl->work };
+    for (int s = 0; s < CSR_KEPT; s++) {
+      csr_kept *kp = &pl->kept[s];
+      mr_buf *const kbufs[] = { &kp->rp,     &kp->col,    &kp->jrp,  &kp->jpart,
+                                &kp->pinned, &kp->pstart, &kp->prow, &kp->pent };
+      mr_bufs_free(kbufs, sizeof kbufs / sizeof kbufs[0]);
+    }
+    mr_buf *const bufs[] = { &pl->val, &pl->mark, &pl->cursor, &pl->ucol, &pl->work };
     mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
     free(pl);
   }
