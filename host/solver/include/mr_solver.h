@@ -68,8 +68,9 @@ typedef struct mr_csr {
 /* A_ij = Σ_p inv_mass[p] (dC_i/dx_p · dC_j/dx_p), inv_mass per particle
  * (0 = pinned). Rows have sorted columns, the diagonal is always stored,
  * and A is bitwise symmetric. While J's pattern (its rows' particles) and
- * the set of pinned particles stay as in the last call, only the numbers
- * are recomputed. MR_SOLVE_UNAVAILABLE for a NULL A, J, or inv_mass. */
+ * the set of pinned particles are one of the last 8 met (up to 128 rows),
+ * only the numbers are recomputed. MR_SOLVE_UNAVAILABLE for a NULL A, J,
+ * or inv_mass. */
 mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass);
 /* Room for any J of up to rows rows, particles particles and entries
  * entries (A dense: rows² entries), so that no assembly up to that size
