@@ -76,6 +76,14 @@ typedef struct builder {
   size_t n_anchors;
   size_t anchors_cap;
   int documents;
+  /* Mappings read ahead (scene_yaml_flow.c): the original text, the spans
+   * in file order, the next one libfyaml must open, and the close of the
+   * one it opened last, which must come next; (size_t)-1 when none. */
+  const char *text;
+  const mr_yspan *spans;
+  size_t n_spans;
+  size_t next_span;
+  size_t close_at;
 } builder;
 
 static int fail(mr_yerror *err, int line, int column, const char *fmt, ...) {
@@ -173,21 +181,23 @@ static int attach(builder *b, mr_ynode *node) {
   return 0;
 }
 
-static mr_ynode *new_node(builder *b, mr_ynode_kind kind, const struct fy_mark *m) {
+static mr_ynode *new_node_at(builder *b, mr_ynode_kind kind, int line, int column) {
   mr_ynode *n = arena_alloc(&b->doc->arena, sizeof *n);
   if (n == NULL) {
-    fail(b->err, m ? m->line + 1 : 0, m ? m->column + 1 : 0, "out of memory");
+    fail(b->err, line, column, "out of memory");
     return NULL;
   }
-  *n = (mr_ynode){
-    .kind = kind, .line = m ? m->line + 1 : 0, .column = m ? m->column + 1 : 0, .text = ""
-  };
+  *n = (mr_ynode){ .kind = kind, .line = line, .column = column, .text = "" };
   return n;
 }
 
-static int open_container(builder *b, mr_ynode_kind kind, struct fy_event *e,
-                          struct fy_token *anchor_tok) {
-  mr_ynode *n = new_node(b, kind, fy_event_start_mark(e));
+static mr_ynode *new_node(builder *b, mr_ynode_kind kind, const struct fy_mark *m) {
+  return new_node_at(b, kind, m ? m->line + 1 : 0, m ? m->column + 1 : 0);
+}
+
+static int open_container_at(builder *b, mr_ynode_kind kind, int line, int column,
+                             struct fy_token *anchor_tok) {
+  mr_ynode *n = new_node_at(b, kind, line, column);
   if (n == NULL) return -1;
   if (b->depth >= MR_YAML_MAX_DEPTH)
     return fail(b->err, n->line, n->column, "expected at most %d levels of nesting",
@@ -222,6 +232,52 @@ static int close_container(builder *b) {
   b->depth--;
   if (name != NULL && add_anchor(b, name, n) != 0) return -1;
   return attach(b, n);
+}
+
+/* The inside of a read-ahead mapping that libfyaml has just opened at m,
+ * as the events libfyaml would have given for it: its place is libfyaml's
+ * for the '{', and the inside is on the same line, in ASCII. */
+static int fill_span(builder *b, const mr_yspan *span, const struct fy_mark *m) {
+  size_t pos = span->open + 1, at, len;
+  mr_yflow_token t;
+  while ((t = mr_scene_yaml_flow_next(b->text, &pos, span->close, &at, &len)) != MR_YFLOW_END) {
+    int line = m->line + 1, column = m->column + 1 + (int)(at - span->open);
+    if (t == MR_YFLOW_SEQ_START) {
+      if (open_container_at(b, MR_YNODE_SEQ, line, column, NULL) != 0) return -1;
+      continue;
+    }
+    if (t == MR_YFLOW_SEQ_END) {
+      if (close_container(b) != 0) return -1;
+      continue;
+    }
+    mr_ynode *n = new_node_at(b, MR_YNODE_SCALAR, line, column);
+    char *text = n ? arena_alloc(&b->doc->arena, len + 1) : NULL;
+    if (text == NULL) return fail(b->err, line, column, "out of memory");
+    memcpy(text, b->text + at, len);
+    text[len] = '\0';
+    n->text = text;
+    if (attach(b, n) != 0) return -1;
+  }
+  return 0;
+}
+
+/* Read-ahead mappings must open exactly where they were found and close
+ * at once; anything else (the '{' was inside a text, say) gives up this
+ * parse for one of the original text by libfyaml alone. */
+static int follow_spans(builder *b, struct fy_event *e, const struct fy_mark *m) {
+  if (b->close_at != (size_t)-1) {
+    if (e->type != FYET_MAPPING_END || m == NULL || m->input_pos != b->close_at)
+      return fail(b->err, 0, 0, "a mapping read ahead did not close where expected");
+    b->close_at = (size_t)-1;
+    return 0;
+  }
+  if (b->next_span == b->n_spans || m == NULL || m->input_pos < b->spans[b->next_span].open)
+    return 0;
+  const mr_yspan *span = &b->spans[b->next_span++];
+  if (e->type != FYET_MAPPING_START || m->input_pos != span->open)
+    return fail(b->err, 0, 0, "a mapping read ahead was not opened where expected");
+  b->close_at = span->close;
+  return fill_span(b, span, m);
 }
 
 /* Explicit tags (§3.2.1.1 of YAML 1.2): the core schema's own are
@@ -280,11 +336,14 @@ static int on_event(builder *b, struct fy_event *e, const struct fy_mark *m) {
     if (text)
       return fail(b->err, line, column, "expected a text for the !!str tag, got a %s",
                   map ? "mapping" : "sequence");
-    return open_container(b, map ? MR_YNODE_MAP : MR_YNODE_SEQ, e,
-                          map ? e->mapping_start.anchor : e->sequence_start.anchor);
+    if (open_container_at(b, map ? MR_YNODE_MAP : MR_YNODE_SEQ, line, column,
+                          map ? e->mapping_start.anchor : e->sequence_start.anchor) != 0)
+      return -1;
+    return b->n_spans > 0 ? follow_spans(b, e, m) : 0;
   }
   case FYET_MAPPING_END:
   case FYET_SEQUENCE_END:
+    if (b->n_spans > 0 && follow_spans(b, e, m) != 0) return -1;
     return close_container(b);
   case FYET_SCALAR: {
     mr_ynode *n = new_node(b, MR_YNODE_SCALAR, m);
@@ -470,7 +529,48 @@ static void builder_free(builder *b) {
   free(b->anchors);
 }
 
-int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
+/* Builds the tree of `parsed`, which is `text` with the spans' insides
+ * blanked (or text itself, without spans). */
+static int parse_text(const char *parsed, const char *text, size_t len, const mr_yspan *spans,
+                      size_t n_spans, mr_ydoc *doc, mr_yerror *err) {
+  memset(doc, 0, sizeof *doc);
+  memset(err, 0, sizeof *err);
+  struct fy_diag *diag;
+  struct fy_parser *fyp = open_parser(parsed, len, &diag);
+  if (fyp == NULL) return fail(err, 0, 0, "out of memory");
+  builder b;
+  memset(&b, 0, sizeof b);
+  b.doc = doc;
+  b.err = err;
+  b.text = text;
+  b.spans = spans;
+  b.n_spans = n_spans;
+  b.close_at = (size_t)-1;
+  int rc = build_tree(&b, fyp, diag);
+  if (rc == 0 && (b.next_span != n_spans || b.close_at != (size_t)-1))
+    rc = fail(err, 0, 0, "a mapping read ahead was not opened where expected");
+  builder_free(&b);
+  fy_parser_destroy(fyp);
+  fy_diag_destroy(diag);
+  if (rc != 0) mr_scene_yaml_free(doc);
+  return rc;
+}
+
+/* The text with its "- {...}" mappings read ahead (scene_yaml_flow.c);
+ * -1 when there are none or the parse fails in any way, so that libfyaml
+ * alone reads the original and gives its own errors and places. */
+static int parse_ahead(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
+  mr_yspan *spans = NULL;
+  size_t n = mr_scene_yaml_flow_find(text, len, &spans);
+  char *blank = n > 0 ? mr_scene_yaml_flow_blank(text, len, spans, n) : NULL;
+  int rc = blank != NULL ? parse_text(blank, text, len, spans, n, doc, err) : -1;
+  free(blank);
+  free(spans);
+  return rc;
+}
+
+int mr_scene_yaml_parse_opt(const char *text, size_t len, bool read_ahead, mr_ydoc *doc,
+                            mr_yerror *err) {
   memset(doc, 0, sizeof *doc);
   memset(err, 0, sizeof *err);
   int nl, nc;
@@ -487,19 +587,12 @@ int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *e
     place_of(text, (size_t)bad, &nl, &nc);
     return fail(err, nl, nc, "expected at most %d levels of nesting", MR_YAML_MAX_DEPTH);
   }
-  struct fy_diag *diag;
-  struct fy_parser *fyp = open_parser(text, len, &diag);
-  if (fyp == NULL) return fail(err, 0, 0, "out of memory");
-  builder b;
-  memset(&b, 0, sizeof b);
-  b.doc = doc;
-  b.err = err;
-  int rc = build_tree(&b, fyp, diag);
-  builder_free(&b);
-  fy_parser_destroy(fyp);
-  fy_diag_destroy(diag);
-  if (rc != 0) mr_scene_yaml_free(doc);
-  return rc;
+  if (read_ahead && parse_ahead(text, len, doc, err) == 0) return 0;
+  return parse_text(text, text, len, NULL, 0, doc, err);
+}
+
+int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err) {
+  return mr_scene_yaml_parse_opt(text, len, true, doc, err);
 }
 
 void mr_scene_yaml_free(mr_ydoc *doc) {

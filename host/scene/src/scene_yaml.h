@@ -43,6 +43,32 @@ typedef struct mr_yerror {
 int mr_scene_yaml_parse(const char *text, size_t len, mr_ydoc *doc, mr_yerror *err);
 void mr_scene_yaml_free(mr_ydoc *doc);
 
+/* The same; read_ahead false leaves every line to libfyaml, so that tests
+ * can hold the two ways to one tree. */
+int mr_scene_yaml_parse_opt(const char *text, size_t len, bool read_ahead, mr_ydoc *doc,
+                            mr_yerror *err);
+
+/* Flow mappings that fill the rest of a "- {...}" line, read ahead of
+ * libfyaml (scene_yaml_flow.c): the offsets of their braces. */
+typedef struct mr_yspan {
+  size_t open;
+  size_t close;
+} mr_yspan;
+/* The spans of text in file order (*spans malloc'd, NULL when none). */
+size_t mr_scene_yaml_flow_find(const char *text, size_t len, mr_yspan **spans);
+/* A malloc'd copy of text with each span's inside blanked, or NULL. */
+char *mr_scene_yaml_flow_blank(const char *text, size_t len, const mr_yspan *spans, size_t n);
+typedef enum mr_yflow_token {
+  MR_YFLOW_END,
+  MR_YFLOW_SCALAR,
+  MR_YFLOW_SEQ_START,
+  MR_YFLOW_SEQ_END
+} mr_yflow_token;
+/* The next token of a span's inside from *pos, which it moves on; a
+ * scalar is text[*at, *at + *len). */
+mr_yflow_token mr_scene_yaml_flow_next(const char *text, size_t *pos, size_t close, size_t *at,
+                                       size_t *len);
+
 /* The value of key in a mapping, or NULL. */
 const mr_ynode *mr_scene_yaml_get(const mr_ynode *map, const char *key);
 const char *mr_scene_yaml_kind_name(mr_ynode_kind kind);
