@@ -36,7 +36,7 @@ done
 # reference cannot tell them apart.
 mkdir -p "$build/bench"
 csv=$build/bench/sweep_count.csv
-echo "sweep, every setting on every puppet, 3 s of track each (about five minutes):"
+echo "sweep, every setting on every puppet, 3 s of track each (a few minutes):"
 valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$scratch/sweep.out" \
   "$bench" --count sweep >"$scratch/sweep.csv" 2>"$scratch/sweep.log" ||
   { cat "$scratch/sweep.log" >&2; exit 1; }
