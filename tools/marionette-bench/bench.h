@@ -8,6 +8,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "mr_render.h"
 #include "mr_scene.h"
 #include "mr_sim.h"
 
@@ -22,6 +23,8 @@ typedef struct bench {
 /* machine.c */
 void bench_machine(char *out, size_t size);
 double bench_cpu_seconds(void);
+/* The monotonic wall clock, s. */
+double bench_wall_seconds(void);
 /* printf to stdout and to the summary file. */
 void bench_say(bench *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Progress on stderr: "[section] what" (a line per run, so a long run
@@ -50,6 +53,21 @@ int bench_run_scene(const mr_scene *scene, double duration, size_t ee_index, dou
 void bench_run_free(bench_run *r);
 /* Largest and RMS distance between two runs' end-effector tracks, m. */
 void bench_ee_error(const bench_run *a, const bench_run *ref, double *max, double *rms);
+
+/* A scene's stage drawn headless at w x h and read back (render_cost.c),
+ * for the sections that time drawing. */
+typedef struct bench_drawing {
+  mr_stage *stage;
+  mr_render *render;
+  mr_render_view view;
+  uint8_t *rgb;
+  size_t rgb_size, n; /* n: the scene's particles */
+} bench_drawing;
+/* 0, or −1 with the reason in msg. Close it either way. */
+int bench_drawing_open(const mr_scene *sc, int w, int h, bench_drawing *d, char *msg, size_t size);
+/* Draws the positions xyz of n particles and reads the frame back; 0 or −1. */
+int bench_drawing_draw(bench_drawing *d, const double *xyz, int n);
+void bench_drawing_close(bench_drawing *d);
 
 /* The sections, each printing its figures and writing its CSV. 0 or −1. */
 int bench_sweep(bench *b);

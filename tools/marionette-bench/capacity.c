@@ -5,7 +5,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench.h"
 #include "mr_render.h"
@@ -140,20 +139,9 @@ typedef struct crowd_clock {
   double physics, render; /* CPU s after the first frame */
   double render_wall;     /* wall s of the drawing after the first frame */
   int frames;
-  /* Rendering (NULL: physics only). */
-  mr_stage *stage;
-  mr_render *render_ctx;
-  mr_render_view view;
-  uint8_t *rgb;
-  size_t rgb_size, n;
+  bench_drawing draw; /* draw.render NULL: physics only */
   int failed;
 } crowd_clock;
-
-static double wall_seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
 
 static void on_crowd_frame(void *user, double t, const double *xyz, int n) {
   (void)t;
@@ -165,14 +153,11 @@ static void on_crowd_frame(void *user, double t, const double *xyz, int n) {
     c->physics += now - c->mark;
   c->mark = now;
   c->frames++;
-  if (c->render_ctx == NULL || c->failed || (size_t)n != c->n) return;
-  double w0 = wall_seconds();
-  const mr_draw_list *list;
-  c->failed = mr_stage_update(c->stage, xyz, c->n, &list) != MR_STAGE_OK ||
-              mr_render_draw(c->render_ctx, list, &c->view) != MR_RENDER_OK ||
-              mr_render_read_rgb(c->render_ctx, c->rgb, c->rgb_size) != MR_RENDER_OK;
+  if (c->draw.render == NULL || c->failed) return;
+  double w0 = bench_wall_seconds();
+  c->failed = bench_drawing_draw(&c->draw, xyz, n) != 0;
   c->mark = bench_cpu_seconds();
-  if (c->frames > 1) c->render += c->mark - now, c->render_wall += wall_seconds() - w0;
+  if (c->frames > 1) c->render += c->mark - now, c->render_wall += bench_wall_seconds() - w0;
 }
 
 /* Runs sc for `seconds` at 60 frames a second presented by interpolation
@@ -237,35 +222,6 @@ static int physics_table(bench *b, FILE *csv, double *ms_per_frame) {
   return 0;
 }
 
-/* The stage and a headless renderer of w x h for a crowd, from its start. */
-static int open_render(const mr_scene *sc, int w, int h, crowd_clock *c, char *msg, size_t size) {
-  mr_scene_error err;
-  double *xyz = mr_scene_start_positions(sc, &c->n, &err);
-  if (xyz == NULL) {
-    snprintf(msg, size, "%.500s", err.text);
-    return -1;
-  }
-  int rc = mr_stage_create(&sc->stage, xyz, c->n, &c->stage, msg, size) == MR_STAGE_OK ? 0 : -1;
-  free(xyz);
-  if (rc != 0) return -1;
-  mr_render_def def = mr_default_render_def();
-  def.headless = true;
-  def.width = w;
-  def.height = h;
-  if (mr_render_create(&def, &sc->stage, sc->path, &c->render_ctx, msg, size) != MR_RENDER_OK)
-    return -1;
-  c->view = mr_default_render_view(&sc->stage);
-  c->rgb_size = (size_t)w * h * 3;
-  c->rgb = malloc(c->rgb_size);
-  return c->rgb ? 0 : -1;
-}
-
-static void close_render(crowd_clock *c) {
-  if (c->render_ctx) mr_render_destroy(c->render_ctx);
-  if (c->stage) mr_stage_destroy(c->stage);
-  free(c->rgb);
-}
-
 /* One row of the render table: n puppets drawn at w x h for `frames`
  * frames after the first (whose drawing compiles shaders and is not
  * counted). Fills ms[0] physics, ms[1] render (CPU), ms[2] render (wall)
@@ -278,7 +234,7 @@ static int render_row(int n, int w, int h, int frames, double ms[3], char *msg, 
   }
   crowd_clock c = { 0 };
   mr_sim_result r;
-  int rc = open_render(&sc, w, h, &c, msg, size);
+  int rc = bench_drawing_open(&sc, w, h, &c.draw, msg, size);
   if (rc == 0) rc = crowd_run(&sc, (frames + 0.5) / 60.0, &c, &r);
   if (rc == 0) {
     int k = c.frames - 1;
@@ -287,8 +243,8 @@ static int render_row(int n, int w, int h, int frames, double ms[3], char *msg, 
     snprintf(msg, size, "the renderer failed");
   }
   if (rc == 0)
-    snprintf(msg, size, "%s", mr_render_backend_name(mr_render_backend_of(c.render_ctx)));
-  close_render(&c);
+    snprintf(msg, size, "%s", mr_render_backend_name(mr_render_backend_of(c.draw.render)));
+  bench_drawing_close(&c.draw);
   mr_scene_free(&sc);
   return rc;
 }

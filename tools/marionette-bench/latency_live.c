@@ -31,12 +31,6 @@ typedef struct live {
   int n, pending;             /* samples, and the first not yet shown */
 } live;
 
-static double wall(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
 static void on_frame(void *user, gp_event ev, const gp_msg *m, uint64_t byte) {
   (void)byte;
   live *l = user;
@@ -74,10 +68,10 @@ static pid_t start_gen(const bench *b, double seconds, char *path, size_t size) 
  * tick, step the world to the tick, and mark the samples read before it
  * as shown when the step is done. */
 static void run_loop(mr_glove *g, live *l, mr_scene *sc, mr_scene_world *sw, double seconds) {
-  const double period = 1.0 / 60.0, t0 = wall();
+  const double period = 1.0 / 60.0, t0 = bench_wall_seconds();
   for (int frame = 1; frame <= (int)(seconds * 60); frame++) {
     double tick = t0 + frame * period;
-    for (double now = wall(); now < tick; now = wall()) {
+    for (double now = bench_wall_seconds(); now < tick; now = bench_wall_seconds()) {
       l->now = now;
       mr_glove_poll(g, now, (int)ceil((tick - now) * 1e3));
     }
@@ -85,7 +79,7 @@ static void run_loop(mr_glove *g, live *l, mr_scene *sc, mr_scene_world *sw, dou
     mr_scene_frame_pose_at(sc, 0, frame * period, &goal);
     mr_world_set_frame_target(sw->world, sw->frames[0], &goal, frame * period);
     mr_world_step_to(sw->world, frame * period, NULL);
-    double done = wall();
+    double done = bench_wall_seconds();
     for (; l->pending < l->n; l->pending++) l->shown[l->pending] = done;
   }
 }

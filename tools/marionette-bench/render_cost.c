@@ -8,24 +8,54 @@
 #define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench.h"
 #include "mr_render.h"
 #include "mr_scene_world.h"
 
-static double wall_seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+/* The stage and the renderer for a scene, from its world's start. */
+int bench_drawing_open(const mr_scene *sc, int w, int h, bench_drawing *d, char *msg, size_t size) {
+  memset(d, 0, sizeof *d);
+  mr_scene_error err;
+  double *xyz = mr_scene_start_positions(sc, &d->n, &err);
+  if (xyz == NULL) {
+    snprintf(msg, size, "%.500s", err.text);
+    return -1;
+  }
+  int rc = mr_stage_create(&sc->stage, xyz, d->n, &d->stage, msg, size) == MR_STAGE_OK ? 0 : -1;
+  free(xyz);
+  if (rc != 0) return -1;
+  mr_render_def def = mr_default_render_def();
+  def.headless = true;
+  def.width = w;
+  def.height = h;
+  if (mr_render_create(&def, &sc->stage, sc->path, &d->render, msg, size) != MR_RENDER_OK)
+    return -1;
+  d->view = mr_default_render_view(&sc->stage);
+  d->rgb_size = (size_t)w * (size_t)h * 3;
+  d->rgb = malloc(d->rgb_size);
+  return d->rgb ? 0 : -1;
+}
+
+int bench_drawing_draw(bench_drawing *d, const double *xyz, int n) {
+  const mr_draw_list *list;
+  if (d->render == NULL || (size_t)n != d->n) return -1;
+  return mr_stage_update(d->stage, xyz, d->n, &list) == MR_STAGE_OK &&
+                 mr_render_draw(d->render, list, &d->view) == MR_RENDER_OK &&
+                 mr_render_read_rgb(d->render, d->rgb, d->rgb_size) == MR_RENDER_OK
+             ? 0
+             : -1;
+}
+
+void bench_drawing_close(bench_drawing *d) {
+  if (d->render) mr_render_destroy(d->render);
+  if (d->stage) mr_stage_destroy(d->stage);
+  free(d->rgb);
+  memset(d, 0, sizeof *d);
 }
 
 typedef struct drawing {
-  mr_stage *stage;
-  mr_render *render;
-  mr_render_view view;
-  uint8_t *rgb;
-  size_t rgb_size, n;
+  bench_drawing draw;
   int frames, max_frames, failed;
   double cost[64];
 } drawing;
@@ -33,44 +63,10 @@ typedef struct drawing {
 static void draw_frame(void *user, double t, const double *xyz, int n) {
   (void)t;
   drawing *d = user;
-  if (d->frames >= d->max_frames || d->failed || (size_t)n != d->n) return;
-  double t0 = wall_seconds();
-  const mr_draw_list *list;
-  d->failed = mr_stage_update(d->stage, xyz, d->n, &list) != MR_STAGE_OK ||
-              mr_render_draw(d->render, list, &d->view) != MR_RENDER_OK ||
-              mr_render_read_rgb(d->render, d->rgb, d->rgb_size) != MR_RENDER_OK;
-  d->cost[d->frames++] = wall_seconds() - t0;
-}
-
-/* The stage and the renderer for a scene, from its world's start. */
-static int open_drawing(const mr_scene *sc, drawing *d, char *msg, size_t size) {
-  mr_scene_error err;
-  double *xyz = mr_scene_start_positions(sc, &d->n, &err);
-  if (xyz == NULL) {
-    snprintf(msg, size, "%.500s", err.text);
-    return -1;
-  }
-  if (mr_stage_create(&sc->stage, xyz, d->n, &d->stage, msg, size) != MR_STAGE_OK) {
-    free(xyz);
-    return -1;
-  }
-  free(xyz);
-  mr_render_def def = mr_default_render_def();
-  def.headless = true;
-  def.width = 1280;
-  def.height = 720;
-  if (mr_render_create(&def, &sc->stage, sc->path, &d->render, msg, size) != MR_RENDER_OK)
-    return -1;
-  d->view = mr_default_render_view(&sc->stage);
-  d->rgb_size = (size_t)1280 * 720 * 3;
-  d->rgb = malloc(d->rgb_size);
-  return d->rgb ? 0 : -1;
-}
-
-static void close_drawing(drawing *d) {
-  if (d->render) mr_render_destroy(d->render);
-  if (d->stage) mr_stage_destroy(d->stage);
-  free(d->rgb);
+  if (d->frames >= d->max_frames || d->failed) return;
+  double t0 = bench_wall_seconds();
+  d->failed = bench_drawing_draw(&d->draw, xyz, n) != 0;
+  d->cost[d->frames++] = bench_wall_seconds() - t0;
 }
 
 static int by_cost(const void *a, const void *b) {
@@ -84,7 +80,7 @@ static void one_scene(bench *b, const char *rel, int frames) {
   drawing d = { .max_frames = frames };
   char msg[1100] = "";
   bench_progress("render", "%s: %d frames at 1280x720", rel, frames);
-  if (open_drawing(&sc, &d, msg, sizeof msg) == 0) {
+  if (bench_drawing_open(&sc, 1280, 720, &d.draw, msg, sizeof msg) == 0) {
     mr_sim_opts o = mr_default_sim_opts();
     o.fps = 30;
     o.duration = (frames + 0.5) / 30.0;
@@ -98,12 +94,12 @@ static void one_scene(bench *b, const char *rel, int frames) {
     qsort(d.cost, (size_t)d.frames, sizeof d.cost[0], by_cost);
     double p50 = d.cost[d.frames / 2], period = 1.0 / 60.0;
     bench_say(b, "%-28s %-7s %9.1f %9.1f %9.0f %%\n", rel + 12,
-              mr_render_backend_name(mr_render_backend_of(d.render)), 1e3 * p50,
+              mr_render_backend_name(mr_render_backend_of(d.draw.render)), 1e3 * p50,
               1e3 * d.cost[d.frames - 1], p50 > period ? 100.0 * (1.0 - period / p50) : 0.0);
   } else {
     bench_say(b, "%-28s not drawn: %s\n", rel + 12, msg[0] ? msg : "the renderer failed");
   }
-  close_drawing(&d);
+  bench_drawing_close(&d.draw);
   mr_scene_free(&sc);
 }
 

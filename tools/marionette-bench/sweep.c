@@ -206,6 +206,23 @@ static int reference(const mr_scene *base, size_t ee, double horizon, double h, 
   return 0;
 }
 
+/* A reference per string model, [0] spring and [1] taut: taut strings are
+ * another model of the puppet, measured against their own converged run.
+ * On failure nothing is left to free. */
+static int references(mr_scene *sc, size_t ee, double horizon, double h, bench_run ref[2],
+                      double moved[2]) {
+  for (int taut = 0; taut < 2; taut++) {
+    set_strings(sc, taut ? MR_STRING_TAUT : MR_STRING_SPRING);
+    int rc = reference(sc, ee, horizon, h, &ref[taut], &moved[taut]);
+    set_strings(sc, MR_STRING_SPRING);
+    if (rc != 0) {
+      if (taut) bench_run_free(&ref[0]);
+      return -1;
+    }
+  }
+  return 0;
+}
+
 static void csv_row(FILE *f, const puppet *p, const row *w, const mr_world_def *d) {
   const mr_sim_result *r = &w->run.r;
   fprintf(f,
@@ -294,20 +311,13 @@ static int sweep_puppet(bench *b, const puppet *p, FILE *csv) {
   double duration = b->quick ? p->quick_duration : p->duration;
   double horizon = b->quick ? fmin(2.0, p->horizon) : p->horizon, h = b->quick ? 0.002 : 0.001,
          moved[2] = { NAN, NAN };
-  /* A reference per string model: taut strings are another model of the
-   * puppet, measured against their own converged run. */
   bench_run ref[2];
-  for (int taut = 0; taut < 2; taut++) {
-    bench_progress("sweep", "%s: reference, %s strings, RK4 fixed %g and %g ms for %g s", p->name,
-                   taut ? "taut" : "spring", h * 1e3, h * 5e2, horizon);
-    set_strings(&sc, taut ? MR_STRING_TAUT : MR_STRING_SPRING);
-    int rc = reference(&sc, ee, horizon, h, &ref[taut], &moved[taut]);
-    set_strings(&sc, MR_STRING_SPRING);
-    if (rc != 0) {
-      if (taut) bench_run_free(&ref[0]);
-      mr_scene_free(&sc);
-      return -1;
-    }
+  bench_progress("sweep",
+                 "%s: references, spring and taut strings, RK4 fixed %g and %g ms for %g s",
+                 p->name, h * 1e3, h * 5e2, horizon);
+  if (references(&sc, ee, horizon, h, ref, moved) != 0) {
+    mr_scene_free(&sc);
+    return -1;
   }
   row rows[N_SETTINGS];
   int n = 0;
@@ -372,29 +382,21 @@ static int count_puppet(bench *b, const puppet *p) {
   if (ee == (size_t)-1) ee = 0;
   double horizon = fmin(p->horizon, COUNT_SPAN), moved[2];
   bench_run ref[2];
-  for (int taut = 0; taut < 2; taut++) {
-    set_strings(&sc, taut ? MR_STRING_TAUT : MR_STRING_SPRING);
-    int rc = reference(&sc, ee, horizon, 0.001, &ref[taut], &moved[taut]);
-    set_strings(&sc, MR_STRING_SPRING);
-    if (rc != 0) {
-      if (taut) bench_run_free(&ref[0]);
-      mr_scene_free(&sc);
-      return -1;
-    }
+  if (references(&sc, ee, horizon, 0.001, ref, moved) != 0) {
+    mr_scene_free(&sc);
+    return -1;
   }
   int rc = 0;
   for (int i = 0; i < N_SETTINGS && rc == 0; i++) {
     const setting *s = &settings[i];
     bench_progress("count", "%s: %s (%g s of track)", p->name, s->label, COUNT_SPAN);
-    mr_scene one = sc;
-    s->apply(&one.world, s->a, s->b);
-    if (s->taut) set_strings(&one, MR_STRING_TAUT);
+    mr_scene one = setting_scene(&sc, s);
     bench_run run;
     CALLGRIND_START_INSTRUMENTATION;
     rc = bench_run_scene(&one, COUNT_SPAN, ee, horizon, &run);
     CALLGRIND_STOP_INSTRUMENTATION;
     CALLGRIND_DUMP_STATS_AT(s->label);
-    if (s->taut) set_strings(&one, MR_STRING_SPRING);
+    untaut(&one, s);
     if (rc != 0) break;
     double ee_max, ee_rms;
     bench_ee_error(&run, &ref[s->taut], &ee_max, &ee_rms);
