@@ -1,10 +1,12 @@
 /* Item 2: the stick marionette in our engine and in MuJoCo, side by side
  * in one process. Each engine runs at the cheapest of its settings that
- * meets the track's accuracy: on the gentle sway, the end effector within
- * 1 % of a limb's length of its own converged reference over 10 s; on the
- * rapid Fig. 10 track (chaotic: trajectories are not compared), stable with
- * its strings at most 1 % over length. The chosen pair is then timed
- * again, interleaved, and the ratio of CPU per simulated second printed.
+ * meets one bar on every track: stable, its strings at most 1 % over
+ * length, and the end effector within 1 % of a limb's length of its own
+ * converged reference (or twice what halving that reference's step moves
+ * it, where that is more) over the horizon: the whole 10 s gentle sway,
+ * the first 2 s of the rapid Fig. 10 track, which is chaotic later. The
+ * chosen pair is then timed again, interleaved, and the ratio of CPU per
+ * simulated second printed.
  * Built only where MuJoCo is (MR_BENCH_MUJOCO). */
 #include <math.h>
 #include <stdlib.h>
@@ -199,7 +201,7 @@ static void ours_label(const ours_setting *o, char *out, size_t n) {
 
 typedef struct pick {
   char label[96];
-  double cost_ms, measure, violation; /* measure: ee error (gentle) or over-length (rapid) */
+  double cost_ms, hand, over, violation; /* hand: end-effector error; over: string over-length */
   int ok, index;
 } pick;
 
@@ -247,11 +249,12 @@ static void mj_label(const peer_mj_setting *s, char *out, size_t n) {
 #endif
 
 #ifdef MR_BENCH_MUJOCO
-static void keep_cheapest(pick *p, const char *label, int index, double cost, double measure,
-                          double violation, int ok) {
+static void keep_cheapest(pick *p, const char *label, int index, double cost, double hand,
+                          double over, double violation, int ok) {
   if (!ok || (p->ok && p->cost_ms <= cost)) return;
   snprintf(p->label, sizeof p->label, "%s", label);
-  p->index = index, p->cost_ms = cost, p->measure = measure, p->violation = violation, p->ok = 1;
+  p->index = index, p->cost_ms = cost, p->hand = hand, p->over = over;
+  p->violation = violation, p->ok = 1;
 }
 
 static int ours_fixed(const mr_scene *base, double h, double T, bench_run *run) {
@@ -261,47 +264,48 @@ static int ours_fixed(const mr_scene *base, double h, double T, bench_run *run) 
   return bench_run_scene(&sc, T, (size_t)peer_effector(), T, run);
 }
 
-/* Each engine's cheapest setting meeting the track's bar; gentle: the
- * end effector within tol of the engine's own reference. */
-static void search(bench *b, const mr_scene *sc, double T, int gentle, pick *po, pick *pm) {
+/* Each engine's cheapest setting meeting the track's bar: strings at most
+ * 1 % over length, and the end effector within tol of the engine's own
+ * reference over the horizon H (the whole gentle track; the first 2 s of
+ * the rapid one, which is chaotic further on, so no reference resolves it). */
+static void search(bench *b, const mr_scene *sc, double T, double H, int gentle, pick *po,
+                   pick *pm) {
   const double tol = 0.01 * peer_limb_length();
   bench_run ref = { 0 }, half = { 0 };
   mj_run mref = { 0 }, mhalf = { 0 };
   peer_mj_setting r1 = { 2.5e-4, 5e-4, 1, 1 }, r2 = { 1.25e-4, 2.5e-4, 1, 1 };
   double bar_o = tol, bar_m = tol;
-  if (gentle) {
-    bench_progress("peer", "gentle: references");
-    ours_fixed(sc, 1e-3, T, &half);
-    ours_fixed(sc, 5e-4, T, &ref);
-    mj_simulate(b, &r1, sc, T, T, &mhalf);
-    mj_simulate(b, &r2, sc, T, T, &mref);
-    double e1, e2;
-    bench_ee_error(&half, &ref, &e1, &(double){ 0 });
-    ee_error(mhalf.ee, mhalf.ee_n, mref.ee, mref.ee_n, &e2);
-    /* A bar below what halving the reference's step moves it by cannot
-     * be told from noise: it is raised to twice that, and said. */
-    bar_o = fmax(tol, 2 * e1), bar_m = fmax(tol, 2 * e2);
-    bench_say(b,
-              "references: halving the step moves the hand %.2e m (ours, RK4 0.5 ms), "
-              "%.2e m (MuJoCo, RK4 0.125 ms); 1 %% of a limb is %.2e m; bars: ours %.2e m, "
-              "MuJoCo %.2e m\n",
-              e1, e2, tol, bar_o, bar_m);
-  }
+  bench_progress("peer", "%s: references", gentle ? "gentle" : "rapid");
+  ours_fixed(sc, 1e-3, H, &half);
+  ours_fixed(sc, 5e-4, H, &ref);
+  mj_simulate(b, &r1, sc, H, H, &mhalf);
+  mj_simulate(b, &r2, sc, H, H, &mref);
+  double e1, e2;
+  bench_ee_error(&half, &ref, &e1, &(double){ 0 });
+  ee_error(mhalf.ee, mhalf.ee_n, mref.ee, mref.ee_n, &e2);
+  /* A bar below what halving the reference's step moves it by cannot
+   * be told from noise: it is raised to twice that, and said. */
+  bar_o = fmax(tol, 2 * e1), bar_m = fmax(tol, 2 * e2);
+  bench_say(b,
+            "references over %g s: halving the step moves the hand %.2e m (ours, RK4 0.5 ms), "
+            "%.2e m (MuJoCo, RK4 0.125 ms); 1 %% of a limb is %.2e m; bars: ours %.2e m, "
+            "MuJoCo %.2e m\n",
+            H, e1, e2, tol, bar_o, bar_m);
   for (int i = 0; i < N_OURS; i++) {
     bench_run run;
     char label[96];
     ours_label(&ours[i], label, sizeof label);
     bench_progress("peer", "%s: ours, %s", gentle ? "gentle" : "rapid", label);
-    if (ours_run(sc, &ours[i], T, gentle ? T : 0, &run) != 0) continue;
+    if (ours_run(sc, &ours[i], T, H, &run) != 0) continue;
     double e = NAN, over = run.r.string_stretch - 1.0;
-    if (gentle) bench_ee_error(&run, &ref, &e, &(double){ 0 });
-    int ok = run.r.finite && run.r.resets == 0 &&
-             (gentle ? e <= bar_o : over <= 0.01 && run.r.max_deviation <= 0.01);
+    bench_ee_error(&run, &ref, &e, &(double){ 0 });
+    int ok = run.r.finite && run.r.resets == 0 && e <= bar_o && over <= 0.01 &&
+             run.r.max_deviation <= 0.01;
     bench_progress("peer",
                    "  %.3f ms/sim-s, %d steps, %d rejected, hand error %.2e, over-length %.2e%s",
                    1e3 * run.cpu / run.r.sim_time, (int)run.r.steps, (int)run.r.rejected, e, over,
                    run.r.resets ? ", RESETS" : "");
-    keep_cheapest(po, label, i, 1e3 * run.cpu / run.r.sim_time, gentle ? e : over,
+    keep_cheapest(po, label, i, 1e3 * run.cpu / run.r.sim_time, e, over,
                   fmax(run.r.max_deviation, over), ok);
     bench_run_free(&run);
   }
@@ -311,13 +315,13 @@ static void search(bench *b, const mr_scene *sc, double T, int gentle, pick *po,
     mj_label(&s, label, sizeof label);
     bench_progress("peer", "%s: MuJoCo, %s", gentle ? "gentle" : "rapid", label);
     mj_run r;
-    if (mj_simulate(b, &s, sc, T, gentle ? T : 0, &r) != 0) continue;
+    if (mj_simulate(b, &s, sc, T, H, &r) != 0) continue;
     double e = NAN;
-    if (gentle) ee_error(r.ee, r.ee_n, mref.ee, mref.ee_n, &e);
-    int ok = r.stable && (gentle ? e <= bar_m : r.over <= 0.01);
+    ee_error(r.ee, r.ee_n, mref.ee, mref.ee_n, &e);
+    int ok = r.stable && e <= bar_m && r.over <= 0.01;
     bench_progress("peer", "  %.3f ms/sim-s, hand error %.2e, over-length %.2e, %s",
                    1e3 * r.cpu / r.sim, e, r.over, r.stable ? "stable" : "UNSTABLE");
-    keep_cheapest(pm, label, i, 1e3 * r.cpu / r.sim, gentle ? e : r.over, r.over, ok);
+    keep_cheapest(pm, label, i, 1e3 * r.cpu / r.sim, e, r.over, r.over, ok);
     free(r.ee);
   }
   bench_run_free(&ref);
@@ -345,15 +349,16 @@ static double interleaved(bench *b, const mr_scene *sc, double T, const pick *po
   return best_o / best_m;
 }
 
-static int track(bench *b, const char *name, const peer_track *tr, double T, int gentle) {
+static int track(bench *b, const char *name, const peer_track *tr, double T, double H, int gentle) {
   mr_scene sc;
   if (peer_scene_load(tr, &sc) != 0) return -1;
   pick po = { .ok = 0 }, pm = { .ok = 0 };
-  bench_say(b, "\n%s track, %g s: %s\n", name, T,
-            gentle ? "cheapest setting with the hand within 1 % of a limb of its own reference"
-                   : "cheapest setting that stays stable with strings at most 1 % over length "
-                     "(ours: and its links within 1 %, as MuJoCo's joints are exact)");
-  search(b, &sc, T, gentle, &po, &pm);
+  bench_say(b,
+            "\n%s track, %g s: cheapest setting that stays stable with its strings at most 1 %% "
+            "over length (ours: and its links within 1 %%, as MuJoCo's joints are exact) and the "
+            "hand within the bar of its own reference over %g s\n",
+            name, T, H);
+  search(b, &sc, T, H, gentle, &po, &pm);
   const pick *p[2] = { &po, &pm };
   const char *who[2] = { "ours", "MuJoCo 2.2.2" };
   for (int k = 0; k < 2; k++) {
@@ -361,9 +366,10 @@ static int track(bench *b, const char *name, const peer_track *tr, double T, int
       bench_say(b, "  %-13s no setting met the bar\n", who[k]);
       continue;
     }
-    bench_say(b, "  %-13s %-46s %8.3f ms/sim-s  %s %.2e  worst violation %.2e  stable\n", who[k],
-              p[k]->label, p[k]->cost_ms, gentle ? "hand error" : "over-length", p[k]->measure,
-              p[k]->violation);
+    bench_say(b,
+              "  %-13s %-46s %8.3f ms/sim-s  hand error %.2e  over-length %.2e  worst violation "
+              "%.2e  stable\n",
+              who[k], p[k]->label, p[k]->cost_ms, p[k]->hand, p[k]->over, p[k]->violation);
   }
   if (po.ok && pm.ok)
     bench_say(b, "  CPU per simulated second, ours / MuJoCo, interleaved in one process: %.2f\n",
@@ -389,8 +395,10 @@ int bench_peer(bench *b) {
             mj_versionString());
   const peer_track gentle = { { 0.1, 0, 0 }, 10, 0.5, 1 };
   const peer_track rapid = { { 0, 0.3, 0 }, 0, 3, 1 };
-  int rc = track(b, "gentle (0.5 Hz sway)", &gentle, b->quick ? 2 : 10, 1);
-  if (track(b, "rapid (Fig. 10: 3 Hz, 0.3 m vertical)", &rapid, b->quick ? 2 : 60, 0) != 0) rc = -1;
+  double T = b->quick ? 2 : 10;
+  int rc = track(b, "gentle (0.5 Hz sway)", &gentle, T, T, 1);
+  if (track(b, "rapid (Fig. 10: 3 Hz, 0.3 m vertical)", &rapid, b->quick ? 2 : 60, 2, 0) != 0)
+    rc = -1;
   return rc;
 #else
   bench_say(b, "\n== MuJoCo peer (item 2): not built (libmujoco-dev was not found) ==\n");
