@@ -539,6 +539,10 @@ typedef struct mr_stats {
                                      of an accepted step */
   double max_multiplier;          /* largest |λ| of the latest force solve: the
                                  bound on constraint forces */
+  double max_penetration;         /* the deepest two bodies went into each other
+                                     at any accepted step's end or on the straight
+                                     path between its ends, m, when deeper than
+                                     the contact slop (0 if never) */
 } mr_stats;
 /* The counters so far. MR_ERR_ARG for a NULL argument. */
 mr_status mr_world_stats(const mr_world *w, mr_stats *out);

@@ -80,8 +80,17 @@ typedef struct mr_contact_list {
   int n, cap;
   mr_contact *c;
 } mr_contact_list;
-/* A detector appends the contacts whose gap χ is at most `gap` in state x. */
-typedef int (*mr_detect_pass)(mr_world *w, const double *x, double gap, mr_contact_list *out);
+/* One step's motion, for the swept tests: from (x0, v0) to (x1, v1) over h
+ * (3n each). */
+typedef struct mr_sweep {
+  const double *x0, *v0, *x1, *v1;
+  double h;
+} mr_sweep;
+/* A detector appends the contacts whose gap χ is at most `gap` in state x;
+ * given a sweep (then x is its x1), those whose gap may be at most `gap`
+ * anywhere along the step (mr_contact_swept_gap). */
+typedef int (*mr_detect_pass)(mr_world *w, const double *x, const mr_sweep *sw, double gap,
+                              mr_contact_list *out);
 
 #define MR_MAX_PASSES 16
 
@@ -198,7 +207,6 @@ struct mr_world {
   /* ATS */
   double dt_next;
   double stable_dt;     /* mr_forces_stable_dt, at ensure_ready */
-  double min_leaf_r;    /* smallest leaf sphere (INFINITY: no sphere trees) */
   double drag_rate_cap; /* drag/m never exceeds this (1/s) */
   int recovering;       /* after a collision Δt doubles (§4.5) */
 
@@ -254,7 +262,18 @@ int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_
 int mr_collide_build_passes(mr_world *w);
 int mr_colliders(const mr_world *w);
 int mr_contacts_detect(mr_world *w, const double *x, double gap, mr_contact_list *out);
+/* The contacts whose swept gap may reach `gap` during the step sw. */
+int mr_contacts_sweep(mr_world *w, const mr_sweep *sw, double gap, mr_contact_list *out);
 double mr_contact_gap(const mr_world *w, const mr_contact *c, const double *x);
+/* A lower bound on the contact's gap over the whole step sw, not only at
+ * its ends (collide.c explains the bound); with bulge 0, the gap along the
+ * straight path between the ends alone. */
+double mr_contact_swept_gap(const mr_world *w, const mr_contact *c, const mr_sweep *sw, int bulge);
+/* The same for two leaf spheres (sphere_tree.c's leaf test). */
+double mr_sphere_pair_swept_gap(const mr_world *w, int leaf_a, int leaf_b, const mr_sweep *sw);
+/* How far a leaf's centre may stray from the straight path between its
+ * step ends, m (collide.c). */
+double mr_leaf_bulge(const mr_world *w, const mr_leaf *l, const mr_sweep *sw);
 double mr_contact_rate(const mr_world *w, const mr_contact *c, const double *x, const double *v);
 /* Writes the contact's J row into w->J and sets χ, χ̇ and J̇q̇; 0 or −1
  * (out of memory). A NaN state gives NaN values, not a failure. */
@@ -278,8 +297,10 @@ void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3]
 /* sphere_tree.c */
 int mr_trees_build(mr_world *w);
 void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3]);
-int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out);
-int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out);
+int mr_detect_self(mr_world *w, const double *x, const mr_sweep *sw, double gap,
+                   mr_contact_list *out);
+int mr_detect_puppets(mr_world *w, const double *x, const mr_sweep *sw, double gap,
+                      mr_contact_list *out);
 
 /* eval.c: accelerations for a state, eq. 1 and eq. 8, during a step of
  * length h (static friction aims to stop sliding within h/2). */

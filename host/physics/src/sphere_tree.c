@@ -195,12 +195,28 @@ int mr_trees_build(mr_world *w) {
 
 /* ----------------------------------------------------------------- refit */
 
-static void refit(mr_world *w, const mr_tree *t, const double *x) {
+/* A leaf's node sphere: the leaf in x, or, over a sweep, a sphere holding
+ * everything the leaf may cover during the step (its chord, widened by the
+ * bulge, collide.c). */
+static void fit_leaf(const mr_world *w, mr_tree_node *nd, const double *x, const mr_sweep *sw) {
+  const mr_leaf *l = &MR_AT(w->leaves, mr_leaf, nd->leaf);
+  mr_leaf_center(w, l, x, nd->c);
+  nd->r = l->r;
+  if (!sw) return;
+  double c0[3], len = 0.0;
+  mr_leaf_center(w, l, sw->x0, c0);
+  for (int k = 0; k < 3; k++) {
+    len += (nd->c[k] - c0[k]) * (nd->c[k] - c0[k]);
+    nd->c[k] = 0.5 * (nd->c[k] + c0[k]);
+  }
+  nd->r += 0.5 * sqrt(len) + mr_leaf_bulge(w, l, sw);
+}
+
+static void refit(mr_world *w, const mr_tree *t, const double *x, const mr_sweep *sw) {
   for (int i = t->first_node; i < t->first_node + t->node_count; i++) {
     mr_tree_node *nd = &w->nodes[i];
     if (nd->leaf >= 0) {
-      mr_leaf_center(w, &MR_AT(w->leaves, mr_leaf, nd->leaf), x, nd->c);
-      nd->r = MR_AT(w->leaves, mr_leaf, nd->leaf).r;
+      fit_leaf(w, nd, x, sw);
       continue;
     }
     const mr_tree_node *a = &w->nodes[nd->left], *b = &w->nodes[nd->right];
@@ -226,7 +242,7 @@ double mr_world_tree_slack(mr_world *w) {
   double worst = INFINITY;
   for (int t = 0; t < w->ntrees; t++) {
     const mr_tree *tr = &w->trees[t];
-    refit(w, tr, w->x);
+    refit(w, tr, w->x, NULL);
     for (int i = tr->first_node; i < tr->first_node + tr->node_count; i++) {
       const mr_tree_node *nd = &w->nodes[i];
       if (nd->leaf >= 0) continue;
@@ -248,10 +264,14 @@ static double node_gap(const mr_tree_node *a, const mr_tree_node *b) {
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - a->r - b->r;
 }
 
-/* Two leaves within the gap: a contact, unless their parts are adjacent. */
-static int leaf_pair(mr_world *w, int leaf_a, int leaf_b, mr_contact_list *out) {
+/* Two leaves within the gap: a contact, unless their parts are adjacent.
+ * Their node spheres were within it; over a sweep those only bound the
+ * leaves' reach, and the swept gap itself decides. */
+static int leaf_pair(mr_world *w, int leaf_a, int leaf_b, const mr_sweep *sw, double gap,
+                     mr_contact_list *out) {
   const mr_leaf *la = &MR_AT(w->leaves, mr_leaf, leaf_a), *lb = &MR_AT(w->leaves, mr_leaf, leaf_b);
   if (w->part_adjacent[la->part * w->parts.n + lb->part]) return 0;
+  if (sw && !(mr_sphere_pair_swept_gap(w, leaf_a, leaf_b, sw) <= gap)) return 0;
   const mr_part *pa = &MR_AT(w->parts, mr_part, la->part),
                 *pb = &MR_AT(w->parts, mr_part, lb->part);
   double e = 0.5 * (pa->restitution + pb->restitution);
@@ -282,7 +302,8 @@ static int expand(const mr_world *w, int a, int b, int same, int pairs[3][2]) {
 
 /* Depth-first traversal of the node pair (a, b); same = a and b are the
  * same tree. */
-static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contact_list *out) {
+static int traverse(mr_world *w, int ra, int rb, int same, const mr_sweep *sw, double gap,
+                    mr_contact_list *out) {
   int top = 0;
   if (mr_grow((void **)&w->tree_stack, &w->cap_tree_stack, 2, sizeof(int)) != 0) return -1;
   int *stack = w->tree_stack;
@@ -293,7 +314,7 @@ static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contac
     const mr_tree_node *na = &w->nodes[a], *nb = &w->nodes[b];
     if (!(a == b && same) && !(node_gap(na, nb) <= gap)) continue;
     if (na->leaf >= 0 && nb->leaf >= 0) {
-      if (a != b && leaf_pair(w, na->leaf, nb->leaf, out) != 0) return -1;
+      if (a != b && leaf_pair(w, na->leaf, nb->leaf, sw, gap, out) != 0) return -1;
       continue;
     }
     int pairs[3][2];
@@ -311,20 +332,22 @@ static int traverse(mr_world *w, int ra, int rb, int same, double gap, mr_contac
   return 0;
 }
 
-int mr_detect_self(mr_world *w, const double *x, double gap, mr_contact_list *out) {
+int mr_detect_self(mr_world *w, const double *x, const mr_sweep *sw, double gap,
+                   mr_contact_list *out) {
   w->pass_calls[MR_PASS_SELF_COLLISION]++;
   for (int t = 0; t < w->ntrees; t++) {
-    refit(w, &w->trees[t], x);
-    if (traverse(w, w->trees[t].root, w->trees[t].root, 1, gap, out) != 0) return -1;
+    refit(w, &w->trees[t], x, sw);
+    if (traverse(w, w->trees[t].root, w->trees[t].root, 1, sw, gap, out) != 0) return -1;
   }
   return 0;
 }
 
-int mr_detect_puppets(mr_world *w, const double *x, double gap, mr_contact_list *out) {
+int mr_detect_puppets(mr_world *w, const double *x, const mr_sweep *sw, double gap,
+                      mr_contact_list *out) {
   w->pass_calls[MR_PASS_PUPPET_COLLISION]++;
-  for (int t = 0; t < w->ntrees; t++) refit(w, &w->trees[t], x);
+  for (int t = 0; t < w->ntrees; t++) refit(w, &w->trees[t], x, sw);
   for (int a = 0; a < w->ntrees; a++)
     for (int b = a + 1; b < w->ntrees; b++)
-      if (traverse(w, w->trees[a].root, w->trees[b].root, 0, gap, out) != 0) return -1;
+      if (traverse(w, w->trees[a].root, w->trees[b].root, 0, sw, gap, out) != 0) return -1;
   return 0;
 }

@@ -10,8 +10,9 @@
  *       bound retries once at the lower bound, then restores the start;
  *   7.  the ATS decision (§4.5) on the largest relative deviation: reject
  *       and retry shorter, or accept;
- *   6b. collisions at the end state: detect a contact gone through, locate
- *       its time, roll back and step only to it (§4.5, §5.4);
+ *   6b. collisions over the step: detect a contact gone through at the end
+ *       or on the way (a swept test, collide.c), locate its time, roll
+ *       back and step only to it (§4.5, §5.4);
  *   then accept, the string-length correction (§6.2), and the next Δt (7):
  *   doubled after a located contact until the ATS rule governs again.
  * mr_world_step takes one step; mr_world_step_to repeats it and shortens
@@ -142,11 +143,6 @@ int mr_world_ensure_ready(mr_world *w) {
     if (mr_trees_build(w) != 0) return -1;
   if (reserve_contacts(w) != 0) return -1;
   w->stable_dt = mr_forces_stable_dt(w);
-  w->min_leaf_r = INFINITY;
-  for (int i = 0; i < w->leaves.n; i++) {
-    double r = MR_AT(w->leaves, mr_leaf, i).r;
-    if (r > 0 && r < w->min_leaf_r) w->min_leaf_r = r;
-  }
   w->stats.stable_dt = w->stable_dt;
   if (w->dt_next > w->stable_dt) w->dt_next = w->stable_dt;
   w->dirty = 0;
@@ -251,11 +247,14 @@ static void count_rejection(mr_world *w, mr_step_ctx *c) {
 
 /* ------------------------------------------------------- locating (6b) */
 
-static double offenders_gap(mr_world *w, const double *x, const unsigned char *valid) {
+/* The smallest swept gap of the offending contacts over the step from the
+ * start state to (x1, v1) at h. */
+static double offenders_gap(mr_world *w, double h, const unsigned char *valid) {
+  const mr_sweep sw = { w->scratch.x0, w->scratch.v0, w->x1, w->v1, h };
   double g = INFINITY;
   for (int i = 0; i < w->probe.n; i++)
     if (valid[i]) {
-      double c = mr_contact_gap(w, &w->probe.c[i], x);
+      double c = mr_contact_swept_gap(w, &w->probe.c[i], &sw, 1);
       if (c < g || c != c) g = c;
     }
   return g;
@@ -264,31 +263,40 @@ static double offenders_gap(mr_world *w, const double *x, const unsigned char *v
 /* Contacts touching at the start are in the force system (eq. 13b), which
  * pushes them back out; only contacts that were apart can be located in
  * time. Rolling back for a touching one would cut the step to nothing.
- * Marks those in probe_valid (its own flags: every trial integration
- * rewrites contact_active) and returns the smallest start gap of them, or
- * INFINITY if there is none. */
+ * Touching and clearly separating is apart too (eval.c leaves such a
+ * contact out of the force system): a part that lifts off and lands again
+ * within the step has met a new contact, found at its own time. Marks those
+ * in probe_valid (its own flags: every trial integration rewrites
+ * contact_active) and returns the smallest start gap of them, or INFINITY
+ * if there is none. */
 static double mark_offenders(mr_world *w) {
-  const double slop = w->def.contact_slop;
+  const double slop = w->def.contact_slop, separating = 0.1 * w->def.rest_speed;
+  const double *x0 = w->scratch.x0, *v0 = w->scratch.v0;
   double g0 = INFINITY;
   for (int i = 0; i < w->probe.n; i++) {
-    double c0 = mr_contact_gap(w, &w->probe.c[i], w->scratch.x0);
-    w->probe_valid[i] = c0 > slop;
+    const mr_contact *ct = &w->probe.c[i];
+    double c0 = mr_contact_gap(w, ct, x0);
+    w->probe_valid[i] =
+        c0 > slop || (c0 > -0.5 * slop && mr_contact_rate(w, ct, x0, v0) > separating);
     if (w->probe_valid[i] && c0 < g0) g0 = c0;
   }
   return g0;
 }
 
 /* A contact went through during [t, t + h]. Find the contact time h* by
- * regula falsi (Illinois) on the smallest gap of the offending contacts,
- * aiming at −slop/2, each trial a full integration from the start state, and
- * leave the state at t + h* in x1, v1 (§4.5, §5.4). Returns h*. */
+ * regula falsi (Illinois) on the smallest swept gap of the offending
+ * contacts over [t, t + h*], aiming at −slop/2, each trial a full
+ * integration from the start state, and leave the state at t + h* in x1, v1
+ * (§4.5, §5.4). The swept gap (collide.c) is at most the gap at every
+ * moment of the shortened step, so none of it goes deeper than the slop;
+ * for a contact that deepens to the end it is the end's gap. Returns h*. */
 static double locate_contact(mr_world *w, double t, double h, int *err) {
   const double slop = w->def.contact_slop, aim = -0.5 * slop;
   const double *x0 = w->scratch.x0, *v0 = w->scratch.v0;
   const unsigned char *valid = w->probe_valid;
   double g0 = mark_offenders(w);
   if (g0 == INFINITY) return h;
-  double lo = 0.0, flo = g0 - aim, hi = h, fhi = offenders_gap(w, w->x1, valid) - aim;
+  double lo = 0.0, flo = g0 - aim, hi = h, fhi = offenders_gap(w, h, valid) - aim;
   int side = 0;
   for (int it = 0; it < 24; it++) {
     double hm = hi - fhi * (hi - lo) / (fhi - flo);
@@ -297,7 +305,7 @@ static double locate_contact(mr_world *w, double t, double h, int *err) {
       *err = 1;
       return h;
     }
-    double fm = offenders_gap(w, w->x1, valid) - aim;
+    double fm = offenders_gap(w, hm, valid) - aim;
     if (fabs(fm) <= 0.5 * slop) return hm;
     if (fm < 0) {
       hi = hm;
@@ -320,28 +328,12 @@ static double locate_contact(mr_world *w, double t, double h, int *err) {
 /* ---------------------------------------------------------- the stages */
 
 /* Δt for this step: the planned one, or exactly what is left to t_target
- * (never leaving a sliver of a step behind it). */
-/* §4.4: contacts are found at the ends of a step, so two spheres closing
- * fast could pass through each other within one. No particle may travel
- * farther in a step than the smallest leaf sphere's radius: two spheres
- * then close by at most the sum of their radii and cannot both start apart
- * and end apart on the other side. Only sphere-tree worlds, and only while
- * something moves that fast (a throw at 10 m/s on 2 cm spheres: 2 ms). */
-static double travel_limit(const mr_world *w) {
-  if (!(w->min_leaf_r < INFINITY)) return INFINITY;
-  double vmax = 0.0;
-  for (int i = 0; i < w->n; i++) {
-    const double *v = &w->v[3 * i];
-    double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (s > vmax) vmax = s;
-  }
-  vmax = sqrt(vmax);
-  return vmax > 0 ? w->min_leaf_r / vmax : INFINITY;
-}
-
+ * (never leaving a sliver of a step behind it). Speed alone never shortens
+ * it: a contact crossed within the step is found by the swept test (6b),
+ * so a fast puppet far from anything keeps its step. */
 static void plan(mr_world *w, mr_step_ctx *c) {
   c->t = w->t;
-  c->planned = fmin(fmin(w->dt_next, w->stable_dt), travel_limit(w));
+  c->planned = fmin(w->dt_next, w->stable_dt);
   c->h = c->planned;
   c->landing = 0;
   if (c->to_target) {
@@ -380,15 +372,39 @@ static mr_status impacts(mr_world *w, mr_step_ctx *c) {
 
 enum verdict { TRY_ACCEPT, TRY_AGAIN, TRY_DIVERGED };
 
-/* 8: NaN/Inf or a deviation past the bound. Retried once at the lower
- * bound; diverged if it happens there. */
-static enum verdict divergence_check(mr_world *w, mr_step_ctx *c) {
+static mr_status penetration(mr_world *w, mr_step_ctx *c);
+
+/* The end state is finite, within max_speed and within the divergence bound. */
+static int sound(const mr_world *w, mr_step_ctx *c) {
   fastest(w, w->x1, w->v1, c);
-  if (c->speed <= w->def.max_speed && c->error <= w->def.divergence_bound) return TRY_ACCEPT;
+  return c->speed <= w->def.max_speed && c->error <= w->def.divergence_bound;
+}
+
+/* 8: NaN/Inf or a deviation past the bound. Retried once at the lower
+ * bound. A step that crossed a contact there (a slack string snapping
+ * taut, two parts meeting) can end far off its constraints only because
+ * that contact's force was not in it: it is cut to the contact time (6b)
+ * and kept if sound there. Otherwise, when the local error estimate too
+ * says the step is too long (a part spinning at 400 rad/s turns 4 rad in
+ * a step of dt_min), it is retried once more at the floor that estimate
+ * may use (ats_decision), and diverged only if it happens there too. *st:
+ * the failure of the cut, else unchanged. */
+static enum verdict divergence_check(mr_world *w, mr_step_ctx *c, mr_status *st) {
+  if (sound(w, c)) return TRY_ACCEPT;
   double lowest = ats_params(w).dt_min;
   if (c->asked < lowest) lowest = floor_dt(w);
   if (c->asked > lowest) {
     retry_with(c, lowest);
+    count_rejection(w, c);
+    return TRY_AGAIN;
+  }
+  if (mr_colliders(w)) {
+    if ((*st = penetration(w, c)) != MR_OK) return TRY_DIVERGED;
+    if (c->located && sound(w, c)) return TRY_ACCEPT;
+  }
+  if (c->int_error > w->def.deviation_high && c->asked > floor_dt(w)) {
+    c->located = 0;
+    retry_with(c, floor_dt(w));
     count_rejection(w, c);
     return TRY_AGAIN;
   }
@@ -445,7 +461,9 @@ static mr_status integrate_until_accepted(mr_world *w, mr_step_ctx *c, enum verd
     if (mr_integrate(w, c->t, c->h, w->scratch.x0, w->scratch.v0, w->x1, w->v1, &c->int_error) != 0)
       return inner_failure(w, "solve");
     c->error = end_error(w, c->t + c->h, w->x1);
-    *v = divergence_check(w, c);
+    mr_status st = MR_OK;
+    *v = divergence_check(w, c, &st);
+    if (st != MR_OK) return st;
     if (*v == TRY_AGAIN) continue;
     if (*v == TRY_DIVERGED) return MR_OK;
     *v = ats_decision(w, c);
@@ -453,16 +471,36 @@ static mr_status integrate_until_accepted(mr_world *w, mr_step_ctx *c, enum verd
   }
 }
 
-/* 6b: a contact gone through by the end state: roll back and step only to
- * its time. */
-static mr_status penetration(mr_world *w, mr_step_ctx *c) {
-  if (mr_contacts_detect(w, w->x1, -w->def.contact_slop, &w->probe) != 0 ||
+/* The contacts whose swept gap over the step to (x1, v1) may pass −slop. */
+static mr_status probe(mr_world *w, const mr_step_ctx *c) {
+  const mr_sweep sw = { w->scratch.x0, w->scratch.v0, w->x1, w->v1, c->h };
+  if (mr_contacts_sweep(w, &sw, -w->def.contact_slop, &w->probe) != 0 ||
       contact_capacity(w, w->probe.n) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
+  return MR_OK;
+}
+
+/* What the step taken leaves deeper than the slop (contacts touching at its
+ * start, which are not located): the deepest along the straight paths
+ * between its ends, into the stats. Every other contact stayed within the
+ * slop along the whole step. Strings are over-lengths, not depths. */
+static void record_depth(mr_world *w, const mr_step_ctx *c) {
+  const mr_sweep sw = { w->scratch.x0, w->scratch.v0, w->x1, w->v1, c->h };
+  for (int i = 0; i < w->probe.n; i++)
+    if (w->probe.c[i].kind != MR_CONTACT_STRING) {
+      double d = -mr_contact_swept_gap(w, &w->probe.c[i], &sw, 0);
+      if (d > w->stats.max_penetration) w->stats.max_penetration = d;
+    }
+}
+
+/* 6b: a contact gone through during the step, at its end or on the way:
+ * roll back and step only to its time. */
+static mr_status penetration(mr_world *w, mr_step_ctx *c) {
+  mr_status st = probe(w, c);
   /* Cut back to the first contact, the state at the new end may have
    * another contact gone through (one that was apart at the old end): look
    * again until the end state has none left to locate. */
-  for (int round = 0; round < 16 && w->probe.n > 0; round++) {
+  for (int round = 0; st == MR_OK && round < 16 && w->probe.n > 0; round++) {
     int err = 0;
     double hc = locate_contact(w, c->t, c->h, &err);
     if (err) return inner_failure(w, "contact time");
@@ -471,11 +509,10 @@ static mr_status penetration(mr_world *w, mr_step_ctx *c) {
     c->h = hc;
     c->landing = 0;
     c->error = end_error(w, c->t + c->h, w->x1);
-    if (mr_contacts_detect(w, w->x1, -w->def.contact_slop, &w->probe) != 0 ||
-        contact_capacity(w, w->probe.n) != 0)
-      return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");
+    st = probe(w, c);
   }
-  return MR_OK;
+  if (st == MR_OK) record_depth(w, c);
+  return st;
 }
 
 static void record_step(mr_world *w, const mr_step_ctx *c) {
@@ -525,19 +562,24 @@ static void accept(mr_world *w, mr_step_ctx *c) {
 }
 
 /* 7, second half: the Δt the next step will try. After a located contact
- * it doubles each step until the rule's own choice is smaller (§4.5). A
- * step shortened only to land on the target keeps the plan. */
+ * it doubles each step "until the allowable error threshold level is
+ * reached again" (§4.5): until the rule would shorten the step or rejected
+ * a try of it. A rule that only holds Δt (its error between the
+ * thresholds) does not stop it: a deviation left by the contact, which no
+ * shorter step lowers, would keep Δt at the cut's sliver (two puppets
+ * meeting at 10 m/s: 0.2 ms steps for 0.3 s). A step shortened only to land
+ * on the target keeps the plan. */
 static void next_dt(mr_world *w, const mr_step_ctx *c) {
   const mr_ats_params ats = ats_params(w);
   if (c->located) {
     w->dt_next = fmin(fmax(2.0 * c->h, 1e-3 * ats.dt_min), ats.dt_max);
     w->recovering = 1;
   } else if (w->recovering) {
-    double twice = 2.0 * c->planned;
-    if (twice < c->dec.dt_next) {
+    double twice = fmin(2.0 * c->planned, ats.dt_max);
+    if (!c->rejected_any && c->dec.dt_next >= c->asked && twice < ats.dt_max) {
       w->dt_next = twice;
     } else {
-      w->dt_next = c->dec.dt_next;
+      w->dt_next = fmin(c->dec.dt_next, twice);
       w->recovering = 0;
     }
   } else if (!c->shortened || c->rejected_any) {

@@ -311,7 +311,6 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
   w->stats.min_dt_landing = INFINITY;
   w->stats.stable_dt = INFINITY;
   w->stable_dt = INFINITY;
-  w->min_leaf_r = INFINITY;
   w->drag_rate_cap = INFINITY;
   w->has_frames = (def->effects & MR_EFFECT_FRAMES) != 0;
   w->has_solve = (def->effects & (MR_EFFECT_CONSTRAINTS | MR_EFFECT_PLANES |

@@ -80,7 +80,8 @@ typedef struct mr_sim_result {
   double creep, jitter;
   double string_stretch;  /* largest length/rest of any string after any step */
   double max_speed;       /* fastest particle after any step, m/s */
-  double max_penetration; /* deepest contact after any step (mr_world_penetration), m */
+  double max_penetration; /* deepest contact after any step call (mr_world_penetration), or
+                             within any step (mr_stats.max_penetration), m */
   mr_status last_status;  /* of the last step call */
   char first_reset[256];  /* the physics' account of the first reset */
 } mr_sim_result;

@@ -200,7 +200,10 @@ static mr_sim_step record(run *u, const mr_step_report *rep) {
     r->finite = false;
   r->string_stretch = fmax(r->string_stretch, string_stretch(u->s, &u->sw, u->rest));
   if (isfinite(row.max_speed)) r->max_speed = fmax(r->max_speed, row.max_speed);
-  r->max_penetration = fmax(r->max_penetration, mr_world_penetration(u->sw.world));
+  /* The world's own account covers every step of the call and the paths
+   * between their ends, where they went deeper than the slop. */
+  r->max_penetration =
+      fmax(fmax(r->max_penetration, mr_world_penetration(u->sw.world)), stats.max_penetration);
   r->steps += (uint64_t)rep->steps;
   r->rejected += (uint64_t)rep->rejected;
   if (rep->divergences > 0 && r->resets == 0)

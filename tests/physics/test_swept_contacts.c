@@ -1,0 +1,217 @@
+/* Contacts along the whole step (§4.4, §4.5, §5.4): a body thrown at up to
+ * 40 m/s never passes through a thin sphere or the floor within a step,
+ * the contact time found is the analytic one to within the slop, and the
+ * search costs a fast body far from anything no step. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+
+#include "mr_physics.h"
+
+#define SLOP 2e-4 /* twice the default, so the tests see a non-default one */
+
+static mr_world *world(uint32_t effects) {
+  mr_world_def def = mr_default_world_def();
+  def.effects = effects;
+  def.drag = 0.0;
+  def.contact_slop = SLOP;
+  def.dt_initial = def.dt_max; /* the first step spans the contact */
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  return w;
+}
+
+static int ball(mr_world *w, const double x[3], const double v[3], double r, int puppet) {
+  mr_particle_def p = mr_default_particle_def();
+  for (int k = 0; k < 3; k++) {
+    p.position[k] = x[k];
+    p.velocity[k] = v[k];
+  }
+  p.radius = r;
+  p.puppet = puppet;
+  int id = -1;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  mr_part_def d = mr_default_part_def();
+  d.particles = &id;
+  d.count = 1;
+  d.radius = r;
+  assert_int_equal(mr_world_add_part(w, &d, NULL), MR_OK);
+  return id;
+}
+
+static double speed_x(const mr_world *w, int id) {
+  double v[3];
+  mr_world_particle_state(w, id, NULL, v);
+  return v[0];
+}
+
+/* Steps to t_end; the smallest end-of-step gap between a and b, and the
+ * impacts. */
+static double run(mr_world *w, double t_end, int a, int b, double ra, double rb, int *impacts) {
+  double worst = INFINITY;
+  *impacts = 0;
+  while (mr_world_time(w) < t_end) {
+    mr_step_report rep;
+    mr_status s = mr_world_step(w, &rep);
+    assert_true(s == MR_OK || s == MR_DEPENDENT);
+    assert_int_equal(rep.divergences, 0);
+    *impacts += rep.collisions;
+    double xa[3], xb[3];
+    mr_world_particle_state(w, a, xa, NULL);
+    mr_world_particle_state(w, b, xb, NULL);
+    double d = sqrt((xa[0] - xb[0]) * (xa[0] - xb[0]) + (xa[1] - xb[1]) * (xa[1] - xb[1]) +
+                    (xa[2] - xb[2]) * (xa[2] - xb[2]));
+    worst = fmin(worst, d - ra - rb);
+  }
+  return worst;
+}
+
+/* A ball of radius ra thrown at v into a resting ball of radius rb, head-on
+ * or glancing (offset across): the thrown ball must bounce back or be
+ * turned aside, never come out the other side. */
+static void thrown_at_sphere(double v, double ra, double rb, double across) {
+  mr_world *w = world(MR_EFFECT_PUPPET_COLLISION);
+  const double xa[3] = { -0.6, 0, 0 }, va[3] = { v, 0, 0 };
+  const double xb[3] = { 0, across, 0 }, vb[3] = { 0, 0, 0 };
+  int a = ball(w, xa, va, ra, 0), b = ball(w, xb, vb, rb, 1);
+  int hits;
+  double g = run(w, 0.1, a, b, ra, rb, &hits);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  double vy[3];
+  mr_world_particle_state(w, a, NULL, vy);
+  printf("%4.0f m/s, r %.3f on %.3f, across %.4f: %d impacts, gap >= %.3g, depth %.3g, "
+         "v after (%.3g, %.3g)\n",
+         v, ra, rb, across, hits, g, st.max_penetration, vy[0], vy[1]);
+  assert_true(hits >= 1);
+  assert_true(g >= -SLOP);
+  assert_true(st.max_penetration <= SLOP + 1e-3);
+  /* The thrown ball (equal mass, restitution 0.5) lost most of its speed
+   * along x to the one it struck. */
+  assert_true(speed_x(w, a) < 0.8 * v);
+  mr_world_destroy(w);
+}
+
+static void a_ball_thrown_at_up_to_40_m_s_never_passes_through_a_thin_sphere(void **state) {
+  (void)state;
+  const double speeds[] = { 10, 25, 40 }, radii[] = { 0.004, 0.01, 0.025 };
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      thrown_at_sphere(speeds[i], radii[j], radii[2 - j], 0.0);
+      thrown_at_sphere(speeds[i], radii[j], radii[2 - j], 0.7 * (radii[j] + radii[2 - j]));
+    }
+}
+
+/* A ball thrown at the floor at v, straight down or at a slant: it stops at
+ * the floor's surface, within the slop, and bounces. */
+static void a_ball_thrown_at_the_floor_at_up_to_40_m_s_stops_at_its_surface(void **state) {
+  (void)state;
+  const double speeds[] = { 10, 25, 40 }, radii[] = { 0.003, 0.02 };
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 2; j++)
+      for (int slant = 0; slant < 2; slant++) {
+        mr_world *w = world(MR_EFFECT_PLANES);
+        mr_plane_def pl = mr_default_plane_def();
+        assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+        mr_particle_def p = mr_default_particle_def();
+        p.position[1] = 1.0;
+        p.velocity[0] = slant ? 0.6 * speeds[i] : 0.0;
+        p.velocity[1] = -(slant ? 0.8 : 1.0) * speeds[i];
+        p.radius = radii[j];
+        int id;
+        assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+        double lowest = INFINITY;
+        while (mr_world_time(w) < 0.2) {
+          assert_int_equal(mr_world_step(w, NULL), MR_OK);
+          double x[3];
+          mr_world_particle_state(w, id, x, NULL);
+          lowest = fmin(lowest, x[1] - radii[j]);
+        }
+        double v[3];
+        mr_world_particle_state(w, id, NULL, v);
+        printf("floor at %.0f m/s, r %.3f, %s: lowest gap %.3g, v_y after %.3g\n", speeds[i],
+               radii[j], slant ? "slant" : "straight", lowest, v[1]);
+        assert_true(lowest >= -SLOP);
+        assert_true(v[1] > 0 || lowest < 1e-3); /* bounced, or still at the floor */
+        mr_world_destroy(w);
+      }
+}
+
+/* Two balls closing at 2v with no force between: they touch at the
+ * analytic time t* = (d − ra − rb) / 2v. The first step, planned longer,
+ * is cut there: it ends with the gap within [−slop, 0], so at a time within
+ * slop / 2v after t*. The floor likewise, at t* = (y − r) / v. */
+static void the_contact_time_found_is_the_analytic_one(void **state) {
+  (void)state;
+  const double speeds[] = { 3, 17, 40 };
+  for (int i = 0; i < 3; i++) {
+    const double v = speeds[i], ra = 0.012, rb = 0.007, d = 0.5;
+    mr_world *w = world(MR_EFFECT_PUPPET_COLLISION);
+    const double xa[3] = { -0.5 * d, 0, 0 }, va[3] = { v, 0, 0 };
+    const double xb[3] = { 0.5 * d, 0, 0 }, vb[3] = { -v, 0, 0 };
+    ball(w, xa, va, ra, 0);
+    ball(w, xb, vb, rb, 1);
+    double exact = (d - ra - rb) / (2 * v), found = -1;
+    while (found < 0) {
+      mr_step_report rep;
+      assert_int_equal(mr_world_step(w, &rep), MR_OK);
+      if (mr_world_time(w) > exact - 1e-12 || rep.collisions > 0) found = mr_world_time(w);
+    }
+    printf("spheres at %.0f m/s: contact at %.9f s, exact %.9f s, late by %.3g s (<= %.3g)\n", v,
+           found, exact, found - exact, SLOP / (2 * v));
+    assert_true(found >= exact - 1e-12 && found - exact <= SLOP / (2 * v) + 1e-12);
+    mr_world_destroy(w);
+
+    w = world(MR_EFFECT_PLANES);
+    mr_plane_def pl = mr_default_plane_def();
+    assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+    mr_particle_def p = mr_default_particle_def();
+    p.position[1] = 0.8;
+    p.velocity[1] = -v;
+    p.radius = ra;
+    assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_OK);
+    exact = (0.8 - ra) / v;
+    found = -1;
+    while (found < 0) {
+      assert_int_equal(mr_world_step(w, NULL), MR_OK);
+      if (mr_world_time(w) > exact - 1e-12) found = mr_world_time(w);
+    }
+    printf("floor at %.0f m/s: contact at %.9f s, exact %.9f s\n", v, found, exact);
+    assert_true(found >= exact - 1e-12 && found - exact <= SLOP / v + 1e-12);
+    mr_world_destroy(w);
+  }
+}
+
+/* Two puppets of 5 mm spheres 10 m apart, one flying away at 40 m/s: no
+ * contact is possible, so it takes the steps it would take with no
+ * collisions at all (the upper bound, 0.05 s), not the 0.1 ms a limit on
+ * travel per step would give it. */
+static void a_fast_puppet_far_from_anything_is_not_slowed(void **state) {
+  (void)state;
+  mr_world *w = world(MR_EFFECT_PUPPET_COLLISION | MR_EFFECT_SELF_COLLISION);
+  const double xa[3] = { 0, 0, 0 }, va[3] = { 40, 0, 0 }, xa2[3] = { 0, 0.05, 0 };
+  const double xb[3] = { -10, 0, 0 }, vb[3] = { 0, 0, 0 };
+  ball(w, xa, va, 0.005, 0);
+  ball(w, xa2, va, 0.005, 0);
+  ball(w, xb, vb, 0.005, 1);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 1.0, &rep), MR_OK);
+  printf("far from anything at 40 m/s: %d steps for 1 s\n", rep.steps);
+  assert_true(rep.steps <= 21);
+  mr_world_destroy(w);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(a_ball_thrown_at_up_to_40_m_s_never_passes_through_a_thin_sphere),
+    cmocka_unit_test(a_ball_thrown_at_the_floor_at_up_to_40_m_s_stops_at_its_surface),
+    cmocka_unit_test(the_contact_time_found_is_the_analytic_one),
+    cmocka_unit_test(a_fast_puppet_far_from_anything_is_not_slowed),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
