@@ -101,7 +101,8 @@ bench: build
 	@$(BUILD)/tools/marionette-bench/marionette-bench --out $(BUILD)/bench $(BENCH_FLAGS)
 
 # Stable figures for regressions: instruction counts (callgrind) of fixed
-# runs, the puppet for 10 s and 10 000 decoded frames.
+# runs, the puppet for 10 s and 10 000 decoded frames, the start-up of
+# `marionette sim`, and every setting of the sweep.
 bench-count: build
 	@tools/marionette-bench/count.sh $(BUILD)
 
