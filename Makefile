@@ -1,7 +1,7 @@
 # The front door. Native code builds with CMake into build/ (and build-asan/
 # for the sanitizer run, build-clang/ for the second compiler, build-fuzz/
-# for libFuzzer); the firmware cross-builds
-# with its own Makefile into build/firmware/.
+# for libFuzzer); the firmware cross-builds with its own Makefile into
+# build/firmware/.
 .PHONY: all deps build build-asan build-clang firmware test test-native test-asan test-clang fuzz \
         demo bench bench-count install format clean
 

@@ -3,8 +3,8 @@
 stage program under libexec), their man pages and the udev rule in place
 under DESTDIR; each man page renders without warnings and names every
 option its program's --help lists; the Makefile hands PREFIX and the udev
-folder to the install, keeps the build log off the screen and runs the
-benchmark for make bench.
+folder to the install, keeps the build log off the screen, runs the
+benchmark for make bench and the clang build's tests for make test.
 
 usage: test_install.py SOURCE_DIR BUILD_DIR
 """
@@ -75,6 +75,10 @@ def check_front_door():
           "make build V=1 shows the build log")
     n = run(["make", "-n", "bench"], cwd=SRC).stdout
     check("tools/protocol-bench/protocol-bench" in n, "make bench runs protocol-bench")
+    n = run(["make", "-n", "test"], cwd=SRC).stdout
+    check("-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++" in n and "--target numbers_tests" in n
+          and re.search(r"cd build-clang && ctest .*-L numbers", n) is not None,
+          "make test builds the numbers tests with clang in build-clang/ and runs them")
 
 
 def main():
