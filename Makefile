@@ -1,8 +1,9 @@
 # The front door. Native code builds with CMake into build/ (and build-asan/
-# for the sanitizer run, build-fuzz/ for libFuzzer); the firmware cross-builds
-# with its own Makefile into build/firmware/.
-.PHONY: all deps build build-asan firmware test test-native test-asan fuzz demo bench bench-count \
-        install format clean
+# for the sanitizer run, build-clang/ for the second compiler, build-fuzz/
+# for libFuzzer); the firmware cross-builds with its own Makefile into
+# build/firmware/.
+.PHONY: all deps build build-asan build-clang firmware test test-native test-asan test-clang fuzz \
+        demo bench bench-count install format clean
 
 JOBS      ?= $(shell nproc)
 BUILD     := build
@@ -49,6 +50,14 @@ build: deps
 build-asan: deps
 	$(call cmake_build,$(BUILD)-asan,-DCMAKE_BUILD_TYPE=Debug -DMR_SANITIZE=ON,)
 
+# The tests that pin numbers (label `numbers`: physics, solvers, scenes and
+# their pinned state hashes, the examples, the build's floating-point
+# options), built with clang and run: states must be bit-identical under
+# both compilers. Only what they need is built (the target numbers_tests).
+build-clang: deps
+	$(call cmake_build,$(BUILD)-clang,-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo,--target numbers_tests)
+
 firmware: deps
 	@if [ -f firmware/Makefile ]; then $(MAKE) -C firmware OUT=$(CURDIR)/$(BUILD)/firmware; fi
 
@@ -61,6 +70,9 @@ test-asan: build-asan firmware
 	@cd $(BUILD)-asan && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 	  ctest --output-on-failure --no-tests=error -j $(JOBS)
 
+test-clang: build-clang
+	@cd $(BUILD)-clang && ctest --output-on-failure --no-tests=error -j $(JOBS) -L numbers
+
 # Bounded libFuzzer runs over the committed seed corpora (a scratch copy, so
 # the committed corpus stays as reviewed).
 fuzz: deps
@@ -68,7 +80,7 @@ fuzz: deps
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMR_FUZZ=ON,--target fuzz_targets)
 	@tests/fuzz/run.sh $(BUILD)-fuzz $(FUZZ_SECS)
 
-test: test-native test-asan fuzz
+test: test-native test-asan test-clang fuzz
 
 demo: build
 	@tools/demo.sh $(BUILD)
@@ -89,7 +101,8 @@ bench: build
 	@$(BUILD)/tools/marionette-bench/marionette-bench --out $(BUILD)/bench $(BENCH_FLAGS)
 
 # Stable figures for regressions: instruction counts (callgrind) of fixed
-# runs, the puppet for 10 s and 10 000 decoded frames.
+# runs, the puppet for 10 s and 10 000 decoded frames, the start-up of
+# `marionette sim`, and every setting of the sweep.
 bench-count: build
 	@tools/marionette-bench/count.sh $(BUILD)
 
@@ -103,4 +116,4 @@ install:
 	@MR_UDEV_RULES_DIR=$(UDEV_RULES_DIR) cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-fuzz
+	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-clang $(BUILD)-fuzz

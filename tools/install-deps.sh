@@ -5,6 +5,8 @@
 set -euo pipefail
 
 PACKAGES=(
+  # clang: the second compiler, whose build (make test-clang) must pin the
+  # same state hashes as GCC's, and libFuzzer with its runtime.
   build-essential cmake pkg-config python3 clang libclang-rt-14-dev
   libcmocka-dev libserialport-dev libfyaml-dev libeigen3-dev
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi

@@ -1,5 +1,7 @@
 /* Subcommands of the `marionette` program. Each takes the arguments after
- * its name and returns the process exit status. */
+ * its name and returns the process exit status. sim, list-ports and
+ * calibrate are in `marionette`; run and render, which draw, in the stage
+ * program `marionette-stage`. */
 #ifndef MR_APP_H
 #define MR_APP_H
 
@@ -21,5 +23,10 @@ int mr_cmd_calibrate(int argc, char **argv);
 void mr_cmd_calibrate_usage(void);
 int mr_cmd_render(int argc, char **argv);
 void mr_cmd_render_usage(void);
+
+/* In `marionette`: replaces the process with the stage program, given
+ * marionette's whole argv (argv[1] is "run" or "render"). Returns only on
+ * failure, after one line on stderr: MR_EXIT_FAIL. */
+int mr_stage_exec(char **argv);
 
 #endif

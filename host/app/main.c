@@ -1,6 +1,7 @@
 /* marionette: the theater's program. `sim` runs a scene headless; `run`
  * is the theater, a glove driving the puppet in real time; `render` draws
- * a scene's track or a take into pictures. */
+ * a scene's track or a take into pictures. The two that draw live in the
+ * stage program, which this one becomes for them (stage_exec.c). */
 #include <stdio.h>
 #include <string.h>
 
@@ -46,8 +47,8 @@ int main(int argc, char **argv) {
     return MR_EXIT_OK;
   }
   if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);
-  if (strcmp(cmd, "run") == 0) return mr_cmd_run(argc - 1, argv + 1);
-  if (strcmp(cmd, "render") == 0) return mr_cmd_render(argc - 1, argv + 1);
+  /* The drawing commands run in the stage program (stage_exec.c). */
+  if (strcmp(cmd, "run") == 0 || strcmp(cmd, "render") == 0) return mr_stage_exec(argv);
   if (strcmp(cmd, "list-ports") == 0) return mr_cmd_ports(argc - 1, argv + 1);
   if (strcmp(cmd, "calibrate") == 0) return mr_cmd_calibrate(argc - 1, argv + 1);
   fprintf(stderr,

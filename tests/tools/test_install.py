@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""`make install` puts the programs, their man pages and the udev rule in
-place under DESTDIR; each man page renders without warnings and names every
+"""`make install` puts the programs (marionette's run and render in the
+stage program under libexec), their man pages and the udev rule in place
+under DESTDIR; each man page renders without warnings and names every
 option its program's --help lists; the Makefile hands PREFIX and the udev
-folder to the install, keeps the build log off the screen and runs the
-benchmark for make bench.
+folder to the install, keeps the build log off the screen, runs the
+benchmark for make bench and the clang build's tests for make test.
 
 usage: test_install.py SOURCE_DIR BUILD_DIR
 """
@@ -74,6 +75,10 @@ def check_front_door():
           "make build V=1 shows the build log")
     n = run(["make", "-n", "bench"], cwd=SRC).stdout
     check("tools/protocol-bench/protocol-bench" in n, "make bench runs protocol-bench")
+    n = run(["make", "-n", "test"], cwd=SRC).stdout
+    check("-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++" in n and "--target numbers_tests" in n
+          and re.search(r"cd build-clang && ctest .*-L numbers", n) is not None,
+          "make test builds the numbers tests with clang in build-clang/ and runs them")
 
 
 def main():
@@ -95,8 +100,11 @@ def main():
         check(r.returncode == 0 and os.path.isfile(udev) and open(udev).read() == rule,
               "MR_UDEV_RULES_DIR=/etc/udev/rules.d puts the rule there, under DESTDIR")
         listing = run(["find", dest, "-type", "f"]).stdout.split()
-        check(len(listing) == 9, "install puts exactly 3 programs, 3 man pages, the systemd "
-              "unit and the rule (twice here): " + " ".join(sorted(listing)))
+        check(len(listing) == 10, "install puts exactly 3 programs, the stage program, 3 man "
+              "pages, the systemd unit and the rule (twice here): " + " ".join(sorted(listing)))
+        stage = dest + PREFIX + "/libexec/marionette/marionette-stage"
+        check(os.access(stage, os.X_OK), "the stage program (run, render) is installed in "
+              "PREFIX/libexec/marionette, off PATH")
         unit = dest + PREFIX + "/lib/systemd/system/marionette-theater@.service"
         check(os.path.isfile(unit) and "ExecStart=/usr/local/bin/marionette run" in open(unit).read(),
               "the theater box's systemd unit is installed in PREFIX/lib/systemd/system")

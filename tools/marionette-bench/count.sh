@@ -2,7 +2,8 @@
 # Stable figures for regressions (`make bench-count`): the instruction
 # counts of fixed runs under callgrind, counted only inside each run
 # (marionette-bench --count starts and stops the instrumentation), so the
-# same build gives the same numbers on any machine. The sweep's settings are
+# same build gives the same numbers on any machine; then the start-up of
+# `marionette sim`, counted whole. The sweep's settings are
 # counted too (one callgrind dump per run), and the accuracy-cost front is
 # marked on those counts, which no load on the machine can move; the table
 # also goes to BUILD_DIR/bench/sweep_count.csv.
@@ -26,6 +27,28 @@ for run in puppet fig10 decode; do
   valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$scratch/$run.out" \
     "$bench" --count $run >/dev/null 2>"$scratch/$run.log" ||
     { cat "$scratch/$run.log" >&2; exit 1; }
+  total=$(sed -n 's/^totals: //p' "$scratch/$run.out" | head -1)
+  printf '%-34s %15s instructions\n' "$what" "$total"
+done
+
+# Start-up: every instruction of a whole `marionette` process, from the
+# dynamic loader's first to exit (callgrind from the start, unlike the runs
+# above). `sim --help` is the start-up alone, what every sim run pays before
+# its scene; the stick figure for 1 ms adds reading and building a scene.
+# sim maps no graphics library (the drawing commands are in the stage
+# program), so this is the loader, the C and C++ runtimes and the scene.
+marionette=$build/host/app/marionette
+[ -x "$marionette" ] || { echo "bench-count: no $marionette; build first" >&2; exit 2; }
+for run in help stick; do
+  case $run in
+    help) what="marionette sim --help, start-up"; set -- sim --help ;;
+    stick)
+      what="marionette sim, stick.yaml for 1 ms"
+      set -- sim --time 0.001 -q "$(dirname "$0")/../../host/scenes/stick.yaml"
+      ;;
+  esac
+  valgrind --tool=callgrind --callgrind-out-file="$scratch/$run.out" "$marionette" "$@" \
+    >/dev/null 2>"$scratch/$run.log" || { cat "$scratch/$run.log" >&2; exit 1; }
   total=$(sed -n 's/^totals: //p' "$scratch/$run.out" | head -1)
   printf '%-34s %15s instructions\n' "$what" "$total"
 done
