@@ -67,11 +67,12 @@ static void empty_and_zero_systems(void **state) {
   for (int m = 0; m < N_METHODS; m++) {
     mr_solve_def o = mr_default_solve_def();
     o.method = methods[m];
-    mr_solve_result r = { 9, 9, 9.0, 9, 9, 9 };
+    mr_solve_result r = { 9, 9, 9.0, 9, 9, 9, 9 };
     assert_int_equal(mr_solver_solve(solver, &o, &A, NULL, NULL, &r), MR_SOLVE_OK);
     assert_int_equal(r.iterations, 0);
     assert_int_equal(r.dependent, 0);
     assert_int_equal(r.fallback, 0);
+    assert_int_equal(r.dense, 0);
     assert_true(r.residual == 0.0);
   }
   /* b = 0 gives λ = 0 whatever the warm start. */

@@ -17,13 +17,17 @@
 #include "solver_assert.h"
 #include "solver_systems.h"
 
+/* LDLᵀ twice: its sparse path (dense_max 0) and its dense one, which these
+ * small systems take by default. */
 static const mr_solve_method methods[] = { MR_SOLVE_GAUSS_SEIDEL, MR_SOLVE_CG, MR_SOLVE_LDLT,
-                                           MR_SOLVE_EIGEN };
-#define N_METHODS 4
+                                           MR_SOLVE_LDLT, MR_SOLVE_EIGEN };
+static const int dense_max[] = { 0, 0, 0, MR_SOLVE_DENSE_ROWS_MAX, 0 };
+#define N_METHODS 5
 
 static mr_solve_def opts_for(mr_solve_method m) {
   mr_solve_def o = mr_default_solve_def();
   o.method = m;
+  o.dense_max = m == MR_SOLVE_LDLT ? MR_SOLVE_DENSE_ROWS_MAX : 0;
   o.tol = 1e-12;
   o.max_iter = 100000;
   return o;
@@ -74,6 +78,7 @@ static void check_methods(const test_system *full, const double *b_full, const t
 
   for (int m = 0; m < N_METHODS; m++) {
     mr_solve_def o = opts_for(methods[m]);
+    o.dense_max = dense_max[m];
     memset(lam, 0, (size_t)full->k * sizeof *lam);
     int st = mr_solver_solve(solver, &o, &A, b_full, lam, &r);
     int direct = methods[m] == MR_SOLVE_LDLT || methods[m] == MR_SOLVE_EIGEN;
@@ -221,6 +226,7 @@ static void inconsistent_hidden_dependency_stays_bounded(void **state) {
   mr_solver *solver = mr_solver_create();
   for (int m = 0; m < N_METHODS; m++) {
     mr_solve_def o = opts_for(methods[m]);
+    o.dense_max = dense_max[m];
     o.max_iter = 1000; /* the physics' */
     double worst = 0, worst_ratio = 0;
     int over = 0, named = 0;
@@ -274,6 +280,7 @@ static void independent_pin_and_distance_are_not_flagged(void **state) {
         assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
         double b[2] = { 1.0 / scales[si], -2.0 / scales[si] }, lam[2] = { 0, 0 };
         mr_solve_def o = opts_for(methods[m]);
+        o.dense_max = dense_max[m];
         o.tol = 1e-9; /* A's condition reaches 4e6: rounding leaves ~1e-10 */
         mr_solve_result r;
         int st = mr_solver_solve(solver, &o, &A, b, lam, &r);
@@ -325,10 +332,12 @@ static void nearly_dependent_rows_are_regularised_alike(void **state) {
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
   double b[2] = { 1.0, -0.5 };
   mr_solver *solver = mr_solver_create();
-  double lam[2][2] = { { 0 } }, raw[2] = { 0 };
-  const mr_solve_method direct[2] = { MR_SOLVE_LDLT, MR_SOLVE_EIGEN };
-  for (int m = 0; m < 2; m++) {
+  double lam[3][2] = { { 0 } }, raw[2] = { 0 };
+  const mr_solve_method direct[3] = { MR_SOLVE_LDLT, MR_SOLVE_LDLT, MR_SOLVE_EIGEN };
+  const int direct_dense[3] = { MR_SOLVE_DENSE_ROWS_MAX, 0, 0 };
+  for (int m = 0; m < 3; m++) {
     mr_solve_def o = opts_for(direct[m]);
+    o.dense_max = direct_dense[m];
     o.reg_tol = 1e-4;
     mr_solve_result r;
     assert_true(mr_solver_solve(solver, &o, &A, b, lam[m], &r) >= 0);
@@ -336,8 +345,10 @@ static void nearly_dependent_rows_are_regularised_alike(void **state) {
            mr_solve_method_name(direct[m]), r.regularised, lam[m][0], lam[m][1]);
     assert_int_equal(r.regularised, 1);
     assert_int_equal(r.dependent, 0);
+    assert_int_equal(r.dense, direct_dense[m] > 0);
   }
-  for (int k = 0; k < 2; k++) assert_true(fabs(lam[0][k] - lam[1][k]) <= 1e-6 * fabs(lam[0][k]));
+  for (int m = 1; m < 3; m++)
+    for (int k = 0; k < 2; k++) assert_true(fabs(lam[0][k] - lam[m][k]) <= 1e-6 * fabs(lam[0][k]));
   mr_solve_def o = opts_for(MR_SOLVE_LDLT);
   assert_true(mr_solver_solve(solver, &o, &A, b, raw, NULL) >= 0);
   assert_true(test_norm(2, raw) > 20.0 * test_norm(2, lam[0]));

@@ -270,6 +270,7 @@ static void add_constraint_forces(mr_world *w, int rows, double *a) {
 }
 
 int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a) {
+  w->eval_used_h = 0;
   mr_frames_place(w, t, x, v); /* 1 */
   mr_taut_set_time(w, t);
   applied_forces(w, t, x, v, a); /* 2 */
@@ -277,7 +278,10 @@ int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a) {
   select_resting_contacts(w, x, v);
   int rows = solve_eq8(w, t, x, v, a); /* 3, 4 */
   if (rows <= 0) return rows;
-  if (has_friction(w, rows) && friction_rounds(w, h, rows, x, v, a) != 0) return -1;
+  /* Static friction aims at stopping within h/2: only then does the
+   * answer depend on h (integrate.c's memo). */
+  w->eval_used_h = has_friction(w, rows);
+  if (w->eval_used_h && friction_rounds(w, h, rows, x, v, a) != 0) return -1;
   add_constraint_forces(w, rows, a);
   return 0;
 }

@@ -4,10 +4,93 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void axpy(int n, double *out, const double *x, double h, const double *y) {
   for (int i = 0; i < n; i++) out[i] = x[i] + h * y[i];
+}
+
+/* ------------------------------------------------------------ the memo */
+
+void mr_eval_memo_free(mr_eval_memo *m) {
+  free(m->x);
+  free(m->v);
+  free(m->a);
+  free(m->frames);
+  free(m->contacts);
+  memset(m, 0, sizeof *m);
+}
+
+/* An evaluation is a function of t, the state (x, v) with the frames
+ * placed, the contacts held during the step, h when friction rounds ran,
+ * the world's elements (ensure_ready clears the memo when they change),
+ * and, for taut strings only, the frames' paths: a taut row takes the
+ * frame end's rates from the segment under way (taut_string.c), which a
+ * new target changes without moving the frame. Every other reading of a
+ * frame goes through the placed x and v. Anything that moves the state
+ * between steps, a projection, an impulse, the string correction, a
+ * reset, a frame placed at once, shows in these, and the memo is then not
+ * used. */
+static int memo_matches(const mr_world *w, double t, double h, const double *x, const double *v) {
+  const mr_eval_memo *m = &w->memo;
+  const size_t bytes = (size_t)(3 * w->n) * sizeof(double);
+  return m->valid && m->t == t && (!m->used_h || m->h == h) && m->n_frames == w->frames.n &&
+         m->n_contacts == w->contacts.n && memcmp(m->x, x, bytes) == 0 &&
+         memcmp(m->v, v, bytes) == 0 &&
+         (m->n_frames == 0 || w->n_taut == 0 ||
+          memcmp(m->frames, w->frames.data, (size_t)m->n_frames * sizeof(mr_frame)) == 0) &&
+         (m->n_contacts == 0 ||
+          memcmp(m->contacts, w->contacts.c, (size_t)m->n_contacts * sizeof(mr_contact)) == 0);
+}
+
+/* Keeps the evaluation a = f(t, x, v) just made. Its arrays grow to the
+ * world's reserved sizes, so that only the first step allocates. */
+static void memo_keep(mr_world *w, double t, double h, const double *x, const double *v,
+                      const double *a) {
+  mr_eval_memo *m = &w->memo;
+  const int n3 = 3 * w->n, nc = w->contacts.n > w->contacts.cap ? w->contacts.n : w->contacts.cap;
+  int cap = m->cap_n;
+  m->valid = 0;
+  if (mr_grow((void **)&m->x, &cap, n3, sizeof(double)) != 0) return;
+  cap = m->cap_n;
+  if (mr_grow((void **)&m->v, &cap, n3, sizeof(double)) != 0) return;
+  cap = m->cap_n;
+  if (mr_grow((void **)&m->a, &cap, n3, sizeof(double)) != 0) return;
+  m->cap_n = cap;
+  if (mr_grow((void **)&m->frames, &m->cap_frames, w->frames.n, sizeof(mr_frame)) != 0 ||
+      mr_grow((void **)&m->contacts, &m->cap_contacts, nc, sizeof(mr_contact)) != 0)
+    return;
+  const size_t bytes = (size_t)n3 * sizeof(double);
+  memcpy(m->x, x, bytes);
+  memcpy(m->v, v, bytes);
+  memcpy(m->a, a, bytes);
+  if (w->frames.n > 0) memcpy(m->frames, w->frames.data, (size_t)w->frames.n * sizeof(mr_frame));
+  if (w->contacts.n > 0)
+    memcpy(m->contacts, w->contacts.c, (size_t)w->contacts.n * sizeof(mr_contact));
+  m->n_frames = w->frames.n;
+  m->n_contacts = w->contacts.n;
+  m->t = t;
+  m->h = h;
+  m->used_h = w->eval_used_h;
+  m->valid = 1;
+}
+
+/* mr_eval through the memo: the kept answer when (t, x, v, ...) is the
+ * kept point, bit for bit, else a new evaluation, then kept. */
+static int eval_memo(mr_world *w, double t, double h, double *x, double *v, double *a) {
+  if (w->memo.valid) {
+    mr_frames_place(w, t, x, v);
+    if (memo_matches(w, t, h, x, v)) {
+      memcpy(a, w->memo.a, (size_t)(3 * w->n) * sizeof *a);
+      mr_taut_set_time(w, t);
+      w->memo.recalled++;
+      return 0;
+    }
+  }
+  if (mr_eval(w, t, h, x, v, a) != 0) return -1;
+  memo_keep(w, t, h, x, v, a);
+  return 0;
 }
 
 /* The scaled size of one particle's local error (ex, ev). */
@@ -38,7 +121,7 @@ static double particle_error(const mr_world *w, const double ex[3], const double
  * scale: h/6 or h/2. a_end is scratch for f(y1). */
 static int local_error(mr_world *w, double t, double h, double *x1, double *v1, const double *kv,
                        const double *ka, double scale, double *a_end, double *err) {
-  if (mr_eval(w, t + h, h, x1, v1, a_end) != 0) return -1;
+  if (eval_memo(w, t + h, h, x1, v1, a_end) != 0) return -1;
   double e = 0.0;
   for (int i = 0; i < w->n; i++) {
     if (!(w->inv_mass[i] > 0)) continue;
@@ -66,7 +149,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
   double *kv3 = k + 4 * n3, *ka3 = k + 5 * n3, *kv4 = k + 6 * n3, *ka4 = k + 7 * n3;
   memcpy(kv1, v0, bytes);
   memcpy(xs, x0, bytes);
-  if (mr_eval(w, t, h, xs, kv1, ka1) != 0) return -1;
+  if (eval_memo(w, t, h, xs, kv1, ka1) != 0) return -1;
   switch (w->def.integrator) {
   case MR_INTEGRATOR_EULER:
     axpy(n3, x1, xs, h, kv1);

@@ -110,6 +110,21 @@ enum {
 };
 #define MR_FORCES(w, id) (&(w)->forces[MR_EFFECT_BIT_##id])
 
+/* integrate.c: the last evaluation of the equations of motion, kept with
+ * everything it was computed from, so that an evaluation at the same point
+ * is not computed twice (first same as last: a step's end evaluation is
+ * the next step's first; a retried step starts where the rejected one
+ * did). Frame particles of x and v are as the frames place them. */
+typedef struct mr_eval_memo {
+  int valid, used_h, n_frames, n_contacts;
+  int cap_n, cap_frames, cap_contacts;
+  double t, h; /* h only matters when used_h (friction's time scale) */
+  double *x, *v, *a;
+  mr_frame *frames;
+  mr_contact *contacts;
+  uint64_t recalled; /* evaluations not computed again */
+} mr_eval_memo;
+
 /* --------------------------------------------------------------- world */
 
 struct mr_world {
@@ -209,6 +224,9 @@ struct mr_world {
   double stable_dt;     /* mr_forces_stable_dt, at ensure_ready */
   double drag_rate_cap; /* drag/m never exceeds this (1/s) */
   int recovering;       /* after a collision Δt doubles (§4.5) */
+
+  mr_eval_memo memo;
+  int eval_used_h; /* the last evaluation depended on h (friction rounds ran) */
 
   mr_stats stats;
   int last_dependent;
@@ -315,6 +333,7 @@ int mr_impulses_apply(mr_world *w, double t, int *collided);
 /* integrate.c */
 int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0, double *x1,
                  double *v1, double *err);
+void mr_eval_memo_free(mr_eval_memo *m);
 
 /* project.c: the inverse-dynamics iteration of §6.2 [19] applied to the
  * constraints. mr_project_positions moves x (3n) along M⁻¹Jᵀ, so that

@@ -386,6 +386,7 @@ void mr_world_destroy(mr_world *w) {
   mr_contact_list_free(&w->contacts);
   mr_contact_list_free(&w->probe);
   mr_contact_list_free(&w->measured);
+  mr_eval_memo_free(&w->memo);
   free(w->string_released);
   free(w->string_of_row);
   mr_jac_free(&w->J);

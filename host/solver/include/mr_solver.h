@@ -89,7 +89,16 @@ typedef struct mr_solve_def {
                        reg_tol · A_ii, is regularised: its pivot is raised to
                        reg_tol · A_ii (a compliance on that direction only), so
                        its multiplier stays bounded; 0 (default) = off */
+  int dense_max;    /* LDLT: a system of up to this many rows (at most
+                       MR_SOLVE_DENSE_ROWS_MAX) is factored dense, with no
+                       ordering or analysis; larger ones sparse. 0 = always
+                       sparse. Default MR_SOLVE_DENSE_DEFAULT, where the two
+                       cost the same (README.md) */
 } mr_solve_def;
+/* The most rows the dense path takes (its factor is rows² numbers), and
+ * the default cut-over. */
+#define MR_SOLVE_DENSE_ROWS_MAX 128
+#define MR_SOLVE_DENSE_DEFAULT  64
 /* MR_SOLVE_LDLT (exact to rounding, nothing to tune, and it names dependent
  * rows instead of converging slowly towards them), tol 1e-10, max_iter
  * 1000, pivot_tol 1e-12. */
@@ -104,6 +113,7 @@ typedef struct mr_solve_result {
   int fallback;    /* 1: Gauss–Seidel or CG could not finish (max_iter spent, or
                       a dependency among several rows that CG's search met)
                       and LDLᵀ solved the system; status and counts are its */
+  int dense;       /* 1: the dense LDLᵀ answered (dense_max), 0: another path */
 } mr_solve_result;
 
 typedef struct mr_solver mr_solver; /* the workspace of every method */

@@ -25,14 +25,16 @@
 #define BUF(f, name, type) ((type *)(f)->name.p)
 
 void mr_ldlt_free(mr_ldlt *f) {
-  mr_buf *const bufs[] = { &f->perm, &f->iperm,   &f->parent, &f->lnz, &f->flag, &f->stack,
-                           &f->lp,   &f->dropped, &f->li,     &f->lx,  &f->diag, &f->y,
-                           &f->z,    &f->skip,    &f->res,    &f->dx,  &f->cand, &f->bits };
+  mr_buf *const bufs[] = { &f->perm,  &f->iperm, &f->parent,  &f->lnz,  &f->flag,
+                           &f->stack, &f->lp,    &f->dropped, &f->li,   &f->lx,
+                           &f->diag,  &f->y,     &f->z,       &f->skip, &f->res,
+                           &f->dx,    &f->cand,  &f->bits,    &f->dperm };
   mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
+  mr_dense_free(&f->dense);
   mr_pattern_free(&f->pattern);
   for (int s = 0; s < MR_LDLT_KEPT; s++) {
     mr_ldlt_kept *k = &f->kept[s];
-    mr_buf *const kbufs[] = { &k->perm, &k->iperm, &k->parent, &k->lp };
+    mr_buf *const kbufs[] = { &k->perm, &k->iperm, &k->parent, &k->lp, &k->dperm };
     mr_bufs_free(kbufs, sizeof kbufs / sizeof kbufs[0]);
     mr_pattern_free(&k->pattern);
   }
@@ -64,9 +66,9 @@ static size_t symbolic(const mr_csr *A, const int *perm, const int *iperm, int *
 static int reserve_order(mr_ldlt *f, size_t n) {
   const size_t si = sizeof(int);
   if (mr_buf_reserve(&f->perm, n, si) || mr_buf_reserve(&f->iperm, n, si) ||
-      mr_buf_reserve(&f->cand, n, si) || mr_buf_reserve(&f->parent, n, si) ||
-      mr_buf_reserve(&f->lnz, n, si) || mr_buf_reserve(&f->flag, n, si) ||
-      mr_buf_reserve(&f->stack, 2 * n, si) ||
+      mr_buf_reserve(&f->dperm, n, si) || mr_buf_reserve(&f->cand, n, si) ||
+      mr_buf_reserve(&f->parent, n, si) || mr_buf_reserve(&f->lnz, n, si) ||
+      mr_buf_reserve(&f->flag, n, si) || mr_buf_reserve(&f->stack, 2 * n, si) ||
       (n <= MR_MIN_DEGREE_MAX_N && mr_buf_reserve(&f->bits, n * ((n + 63) / 64), sizeof(uint64_t))))
     return MR_SOLVE_ENOMEM;
   return 0;
@@ -92,7 +94,7 @@ static int reserve_kept(mr_ldlt *f, size_t n, size_t nnz) {
     mr_ldlt_kept *k = &f->kept[s];
     if (mr_pattern_reserve(&k->pattern, n, nnz) || mr_buf_reserve(&k->perm, n, si) ||
         mr_buf_reserve(&k->iperm, n, si) || mr_buf_reserve(&k->parent, n, si) ||
-        mr_buf_reserve(&k->lp, n + 1, si))
+        mr_buf_reserve(&k->dperm, n, si) || mr_buf_reserve(&k->lp, n + 1, si))
       return MR_SOLVE_ENOMEM;
   }
   return 0;
@@ -101,10 +103,27 @@ static int reserve_kept(mr_ldlt *f, size_t n, size_t nnz) {
 int mr_ldlt_reserve(mr_ldlt *f, int rows) {
   const size_t n = (size_t)rows;
   const size_t kept_n = n < MR_LDLT_KEPT_MAX_N ? n : MR_LDLT_KEPT_MAX_N;
-  if (reserve_order(f, n) || reserve_factor(f, n, n * (n > 0 ? n - 1 : 0) / 2) ||
+  if (mr_dense_reserve(&f->dense,
+                       rows < MR_SOLVE_DENSE_ROWS_MAX ? rows : MR_SOLVE_DENSE_ROWS_MAX) ||
+      reserve_order(f, n) || reserve_factor(f, n, n * (n > 0 ? n - 1 : 0) / 2) ||
       mr_pattern_reserve(&f->pattern, n, n * n) || reserve_kept(f, kept_n, kept_n * kept_n))
     return MR_SOLVE_ENOMEM;
   return 0;
+}
+
+/* The inner products the dense factor (dense.c) computes in the ordering
+ * perm: row k of L spans columns f_k..k−1 (f_k its first nonzero), and
+ * entry (k, j) sums over max(f_k, f_j)..j−1. first needs n ints. */
+static size_t profile_work(const mr_csr *A, const int *perm, const int *iperm, int *first) {
+  size_t work = 0;
+  for (int k = 0; k < A->n; k++) {
+    int f = k, old = perm[k];
+    for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++)
+      if (iperm[A->col[q]] < f) f = iperm[A->col[q]];
+    first[k] = f;
+    for (int j = f; j < k; j++) work += 1u + (size_t)(j - (f > first[j] ? f : first[j]));
+  }
+  return work;
 }
 
 int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l) {
@@ -117,7 +136,8 @@ int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l) {
      * small) and reverse Cuthill–McKee; keep whichever fills in least.
      * Each try is one symbolic pass, cheap beside a factorisation, and runs
      * only when the pattern changes. */
-  size_t best = 0;
+  int *dperm = BUF(f, dperm, int);
+  size_t best = 0, best_work = 0;
   for (int way = 0; way < 3; way++) {
     if (way == 0) {
       for (int i = 0; i < n; i++) cand[i] = i;
@@ -132,6 +152,13 @@ int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l) {
     if (way == 0 || fill < best) {
       best = fill;
       memcpy(perm, cand, (size_t)n * sizeof *perm);
+    }
+    /* The dense factor's work follows the envelope, not the fill: reverse
+     * Cuthill–McKee usually wins it, minimum degree (least fill) seldom. */
+    size_t work = profile_work(A, cand, iperm, flag);
+    if (way == 0 || work < best_work) {
+      best_work = work;
+      memcpy(dperm, cand, (size_t)n * sizeof *dperm);
     }
   }
   for (int i = 0; i < n; i++) iperm[perm[i]] = i;
@@ -176,6 +203,7 @@ static int restore(mr_ldlt *f, int s, const mr_csr *A) {
   if (reserve_order(f, n) || reserve_factor(f, n, k->nnz_l)) return MR_SOLVE_ENOMEM;
   memcpy(f->perm.p, k->perm.p, n * si);
   memcpy(f->iperm.p, k->iperm.p, n * si);
+  memcpy(f->dperm.p, k->dperm.p, n * si);
   memcpy(f->parent.p, k->parent.p, n * si);
   memcpy(f->lp.p, k->lp.p, (n + 1) * si);
   f->nnz_l = k->nnz_l;
@@ -196,6 +224,7 @@ static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
   if (reserve_kept(f, n, (size_t)A->row_ptr[A->n])) return MR_SOLVE_ENOMEM;
   memcpy(k->perm.p, f->perm.p, n * si);
   memcpy(k->iperm.p, f->iperm.p, n * si);
+  memcpy(k->dperm.p, f->dperm.p, n * si);
   memcpy(k->parent.p, f->parent.p, n * si);
   memcpy(k->lp.p, f->lp.p, (n + 1) * si);
   k->nnz_l = f->nnz_l;
@@ -205,7 +234,7 @@ static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
 
 /* The analysis for A's pattern in use: the one in use already, a kept one,
  * or a new one (then kept). */
-static int prepare(mr_ldlt *f, const mr_csr *A) {
+int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A) {
   if (mr_pattern_same(&f->pattern, A)) return 0;
   int s = find_kept(f, A), st;
   if (s >= 0)
@@ -214,8 +243,10 @@ static int prepare(mr_ldlt *f, const mr_csr *A) {
     st = keep(f, A, &s);
   if (st != 0) return st;
   /* The analysis in use is always the most recent: no stamp while it
-   * stays in use. */
-  if (s >= 0) f->kept[s].used = ++f->clock;
+   * stays in use. The clock moves at every change of it (dense.c keys its
+   * own per-pattern work on it). */
+  ++f->clock;
+  if (s >= 0) f->kept[s].used = f->clock;
   return 0;
 }
 
@@ -308,28 +339,49 @@ static void solve_factored(const mr_ldlt *f, const double *b, double *x) {
   for (int k = 0; k < n; k++) x[perm[k]] = z[k];
 }
 
+static void solve_factored_any(const void *f, const double *b, double *x) {
+  solve_factored(f, b, x);
+}
+
+/* The default path of the LDLᵀ method: dense up to the cut-over, where it
+ * is cheaper (dense.c), sparse above. */
+static int dense_limit(const mr_solve_def *o) {
+  return o->dense_max < MR_SOLVE_DENSE_ROWS_MAX ? o->dense_max : MR_SOLVE_DENSE_ROWS_MAX;
+}
+
 int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
                   double b_norm, double *x, mr_solve_result *r) {
   const int n = A->n;
-  int st = prepare(f, A);
+  if (n <= dense_limit(o)) return mr_dense_solve(f, o, A, b, b_norm, x, r);
+  int st = mr_ldlt_prepare(f, A);
   if (st != 0) return st;
   r->regularised = 0;
   r->dependent = factor(f, A, o->pivot_tol, o->reg_tol, &r->regularised);
   solve_factored(f, b, x);
   r->iterations = 1;
+  /* The refinement test skips dropped rows, by the caller's row index. */
+  unsigned char *skip = BUF(f, skip, unsigned char);
+  const unsigned char *dropped = BUF(f, dropped, unsigned char);
+  const int *perm = BUF(f, perm, int);
+  for (int k = 0; k < n; k++) skip[perm[k]] = dropped[k] != 0;
+  st = mr_ldlt_refine(f, o, A, b, b_norm, x, r, skip, solve_factored_any, f);
+  if (st != 0) return st;
+  return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+}
 
+int mr_ldlt_refine(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
+                   double b_norm, double *x, mr_solve_result *r, const unsigned char *skip,
+                   mr_factored_solve solve, const void *factored) {
   /* Iterative refinement: a step or two recovers the digits that
      * elimination loses on a badly scaled system (masses far apart). The
      * test skips dropped rows, whose equations an inconsistent b can leave
      * unsatisfiable. */
-  unsigned char *skip = BUF(f, skip, unsigned char);
-  const unsigned char *dropped = BUF(f, dropped, unsigned char);
-  const int *perm = BUF(f, perm, int);
+  const int n = A->n;
+  if (mr_buf_reserve(&f->res, (size_t)n, sizeof(double)) ||
+      mr_buf_reserve(&f->dx, (size_t)n, sizeof(double)))
+    return MR_SOLVE_ENOMEM;
   int skipped = 0;
-  for (int k = 0; k < n; k++) {
-    skip[perm[k]] = dropped[k] != 0;
-    skipped |= dropped[k] != 0;
-  }
+  for (int i = 0; i < n; i++) skipped |= skip[i] != 0;
   double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
   const double stop = o->tol * b_norm;
   f->res_known = 0;
@@ -343,9 +395,9 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const doub
     /* Refining a regularised row would undo its compliance. */
     for (int i = 0; i < n; i++)
       if (skip[i]) res[i] = 0.0;
-    solve_factored(f, res, dx);
+    solve(factored, res, dx);
     for (int i = 0; i < n; i++) x[i] += dx[i];
     r->iterations++;
   }
-  return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+  return 0;
 }

@@ -8,7 +8,7 @@
 #include <string.h>
 
 mr_solve_def mr_default_solve_def(void) {
-  mr_solve_def d = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12, 0.0 };
+  mr_solve_def d = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12, 0.0, MR_SOLVE_DENSE_DEFAULT };
   return d;
 }
 
@@ -184,6 +184,7 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
   r->residual = 0.0;
   r->dependent = 0;
   r->regularised = 0;
+  r->dense = 0;
   r->fallback = 0;
 
   mr_solve_def def = mr_default_solve_def();

@@ -52,7 +52,7 @@ unsigned long mr_csr_pattern_builds(const mr_csr *A);
  * the elimination tree (parent) and L's row starts (lp, nnz_l). */
 typedef struct mr_ldlt_kept {
   mr_pattern pattern;
-  mr_buf perm, iperm, parent, lp;
+  mr_buf perm, iperm, parent, lp, dperm;
   size_t nnz_l;
   unsigned long used; /* f->clock when last used: the least recent goes */
 } mr_ldlt_kept;
@@ -62,6 +62,19 @@ typedef struct mr_ldlt_kept {
  * The benchmark's puppets solve 7 to 31 rows. */
 #define MR_LDLT_KEPT       8
 #define MR_LDLT_KEPT_MAX_N 128
+
+/* The dense LDLᵀ's factor (dense.c): L row-major, n × n, row k used from
+ * its first nonzero column first[k]; 1/d (0 for a dropped row); which rows
+ * were dropped (1) or regularised (2). The order, first[] and where each
+ * entry of A goes in L depend only on A's pattern: they are kept while
+ * the LDLᵀ's analysis in use stays the same (clock). */
+typedef struct mr_dense {
+  int n, valid;
+  unsigned long clock; /* the mr_ldlt clock the pattern work was done at */
+  const int *perm;     /* the order factored, new → old (the analysis' dperm) */
+  mr_buf l, first, t, dinv, diag, dropped;
+  mr_buf place, y; /* per entry of A: its index in l, −1 above the diagonal; b and x permuted */
+} mr_dense;
 
 /* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
  * only on A's pattern, so they are kept with a copy of the pattern they
@@ -73,6 +86,7 @@ typedef struct mr_ldlt {
   unsigned long clock;    /* changes of the analysis in use */
   unsigned long analyses; /* analyses run (ordering + symbolic): for tests */
   mr_buf perm, iperm;     /* new → old, old → new */
+  mr_buf dperm;           /* the dense factor's order, new → old */
   mr_buf parent, lnz, flag, stack, lp, dropped;
   mr_buf li, lx, diag, y, z;
   mr_buf skip, res, dx; /* refinement: dropped rows by old index, r, δλ */
@@ -83,6 +97,7 @@ typedef struct mr_ldlt {
    * instead of measuring it again. */
   double res_norm;
   int res_known;
+  mr_dense dense; /* small systems' path */
 } mr_ldlt;
 
 struct mr_solver {
@@ -123,10 +138,27 @@ int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
 int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
                   double b_norm, double *x, mr_solve_result *r);
 void mr_ldlt_free(mr_ldlt *f);
+/* x = (the factor)⁺ b, for the refinement of either factor. */
+typedef void (*mr_factored_solve)(const void *factored, const double *b, double *x);
+/* Up to two steps of iterative refinement of x against A, skipping the rows
+ * flagged in skip (by the caller's row index); leaves f->res_norm and
+ * f->res_known for the caller's report. 0 or MR_SOLVE_ENOMEM. */
+int mr_ldlt_refine(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
+                   double b_norm, double *x, mr_solve_result *r, const unsigned char *skip,
+                   mr_factored_solve solve, const void *factored);
+/* dense.c: the LDLᵀ method's path for systems of up to dense_max rows. */
+int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
+                   double b_norm, double *x, mr_solve_result *r);
+int mr_dense_reserve(mr_dense *d, int rows);
+void mr_dense_free(mr_dense *d);
 /* The fill-reducing ordering the LDLᵀ uses, into f->perm (new → old) and
- * f->iperm, and the nonzeros of L below the diagonal it gives; uses only
- * f's ordering scratch. 0 or MR_SOLVE_ENOMEM. */
+ * f->iperm, and the nonzeros of L below the diagonal it gives; and the
+ * order with the least dense-factor work into f->dperm. Uses only f's
+ * ordering scratch. 0 or MR_SOLVE_ENOMEM. */
 int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l);
+/* Makes the analysis of A's pattern (orderings, symbolic factor) the one
+ * in use: kept, or computed. 0 or MR_SOLVE_ENOMEM. */
+int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A);
 /* Room for any pattern of up to rows rows: L dense, A's pattern full.
  * 0 or MR_SOLVE_ENOMEM. */
 int mr_ldlt_reserve(mr_ldlt *f, int rows);

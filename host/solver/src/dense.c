@@ -1,0 +1,181 @@
+/* Dense LDLᵀ of A = J M⁻¹ Jᵀ (§5.2 eq. 8, §5.3 eq. 9) for small systems,
+ * with the sparse path's pivot test (ldlt.c, README.md).
+ *
+ * A puppet solves a few tens of rows. At that size the sparse path's
+ * bookkeeping (scattering each row, walking the elimination tree,
+ * indirect addressing per entry of L) costs more than the arithmetic it
+ * saves: the dense factor's inner loop is a contiguous dot product. Rows
+ * are taken in the order with the least work for it (the analysis'
+ * dperm, usually reverse Cuthill–McKee), and the only structure used is
+ * each row's first nonzero column f_k: L's row k has no entry left of it
+ * (the fill of LDLᵀ stays inside A's envelope), so the sums start there.
+ *
+ * Row k of PAPᵀ:
+ *
+ *   t_j  = A_kj − Σ_{f ≤ m < j} t_m L_jm      (t_j = L_kj d_j),  f_k ≤ j < k
+ *   L_kj = t_j / d_j                            (0 when row j was dropped)
+ *   d_k  = A_kk − Σ_{f_k ≤ j < k} t_j L_kj
+ *
+ * with f = max(f_k, f_j). d_k is the squared distance of row k of J M^-½
+ * from the span of the rows before it, so the same test as the sparse path
+ * drops a dependent row (d_k ≤ pivot_tol · A_kk: λ_k = 0, column k of L
+ * zero) or regularises a nearly dependent one (reg_tol). Which row of a
+ * dependent set is dropped follows the order; Jᵀλ is the same. */
+#include "solver_internal.h"
+
+#include <float.h>
+#include <string.h>
+
+#define DBUF(d, name, type) ((type *)(d)->name.p)
+
+void mr_dense_free(mr_dense *d) {
+  mr_buf *const bufs[] = { &d->l,    &d->first,   &d->t,     &d->dinv,
+                           &d->diag, &d->dropped, &d->place, &d->y };
+  mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
+  d->valid = 0;
+}
+
+/* Room for any system of up to rows rows (A's pattern full). */
+int mr_dense_reserve(mr_dense *d, int rows) {
+  const size_t n = (size_t)rows, sd = sizeof(double);
+  if (mr_buf_reserve(&d->l, n * n, sd) || mr_buf_reserve(&d->first, n, sizeof(int)) ||
+      mr_buf_reserve(&d->t, n, sd) || mr_buf_reserve(&d->dinv, n, sd) ||
+      mr_buf_reserve(&d->diag, n, sd) || mr_buf_reserve(&d->dropped, n, 1) ||
+      mr_buf_reserve(&d->place, n * n, sizeof(int)) || mr_buf_reserve(&d->y, n, sd))
+    return MR_SOLVE_ENOMEM;
+  return 0;
+}
+
+/* The pattern's share: f_k of each row of PAPᵀ, and where each entry of
+ * A lands in L (its lower triangle and diagonal only). iperm: n ints of
+ * scratch. */
+static void place_pattern(mr_dense *dn, const mr_csr *A, int *iperm) {
+  const int n = A->n, *perm = dn->perm;
+  int *first = DBUF(dn, first, int), *place = DBUF(dn, place, int);
+  for (int k = 0; k < n; k++) iperm[perm[k]] = k;
+  for (int k = 0; k < n; k++) first[k] = k;
+  for (int old = 0; old < n; old++) {
+    const int k = iperm[old];
+    for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
+      const int j = iperm[A->col[q]];
+      place[q] = j <= k ? k * n + j : -1;
+      if (j < first[k]) first[k] = j;
+    }
+  }
+}
+
+/* PAPᵀ's lower triangle into L, zero elsewhere in each row's span. */
+static void load(mr_dense *dn, const mr_csr *A) {
+  const int n = A->n, nnz = A->row_ptr[n], *first = DBUF(dn, first, int);
+  const int *place = DBUF(dn, place, int);
+  double *l = DBUF(dn, l, double);
+  for (int k = 0; k < n; k++) {
+    double *lk = l + (size_t)k * (size_t)n;
+    memset(lk + first[k], 0, (size_t)(k + 1 - first[k]) * sizeof *lk);
+  }
+  for (int q = 0; q < nnz; q++)
+    if (place[q] >= 0) l[place[q]] = A->val[q];
+}
+
+/* s − Σ_{lo ≤ m < hi} a_m b_m, in two interleaved sums: half the loop's
+ * steps, and two chains of dependent additions instead of one. */
+static inline double minus_dot(double s, const double *a, const double *b, int lo, int hi) {
+  double odd = 0.0;
+  int m = lo;
+  for (; m + 1 < hi; m += 2) {
+    s -= a[m] * b[m];
+    odd -= a[m + 1] * b[m + 1];
+  }
+  if (m < hi) s -= a[m] * b[m];
+  return s + odd;
+}
+
+/* The pivot test of ldlt.c's factor(), on d_k. */
+static void judge(mr_dense *dn, int k, double akk, double d, double pivot_tol, double reg_tol,
+                  int *dependent, int *regularised) {
+  double *diag = DBUF(dn, diag, double), *dinv = DBUF(dn, dinv, double);
+  unsigned char *dropped = DBUF(dn, dropped, unsigned char);
+  if (!(akk > DBL_MIN) || !(d > pivot_tol * akk)) {
+    dropped[k] = 1;
+    diag[k] = 0.0;
+    (*dependent)++;
+  } else if (d < reg_tol * akk) {
+    dropped[k] = 2;
+    diag[k] = reg_tol * akk;
+    (*regularised)++;
+  } else {
+    dropped[k] = 0;
+    diag[k] = d;
+  }
+  dinv[k] = dropped[k] == 1 ? 0.0 : 1.0 / diag[k];
+}
+
+/* Factors the loaded PAPᵀ in place in dn->l. Returns the dropped rows'
+ * count. */
+static int factor(mr_dense *dn, double pivot_tol, double reg_tol, int *regularised) {
+  const int n = dn->n, *first = DBUF(dn, first, int);
+  double *l = DBUF(dn, l, double), *t = DBUF(dn, t, double);
+  const double *dinv = DBUF(dn, dinv, double);
+  int dependent = 0;
+  for (int k = 0; k < n; k++) {
+    double *lk = l + (size_t)k * (size_t)n;
+    const int fk = first[k];
+    double d = lk[k];
+    for (int j = fk; j < k; j++) {
+      const double *lj = l + (size_t)j * (size_t)n;
+      const double s = minus_dot(lk[j], t, lj, fk > first[j] ? fk : first[j], j);
+      const double ljk = s * dinv[j];
+      t[j] = s;
+      lk[j] = ljk;
+      d -= ljk * s;
+    }
+    judge(dn, k, lk[k], d, pivot_tol, reg_tol, &dependent, regularised);
+  }
+  return dependent;
+}
+
+/* x = P (L D Lᵀ)⁺ Pᵀ b with dropped rows' unknowns set to zero. */
+static void solve_factored(const void *factored, const double *b, double *x) {
+  const mr_dense *dn = factored;
+  const int n = dn->n, *perm = dn->perm, *first = DBUF(dn, first, const int);
+  const double *l = DBUF(dn, l, const double), *dinv = DBUF(dn, dinv, const double);
+  double *y = DBUF(dn, y, double);
+  for (int k = 0; k < n; k++)
+    y[k] = minus_dot(b[perm[k]], l + (size_t)k * (size_t)n, y, first[k], k);
+  for (int k = 0; k < n; k++) y[k] *= dinv[k];
+  for (int k = n - 1; k >= 0; k--) {
+    const double *lk = l + (size_t)k * (size_t)n;
+    const double yk = y[k];
+    for (int m = first[k]; m < k; m++) y[m] -= lk[m] * yk;
+    x[perm[k]] = yk;
+  }
+}
+
+int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
+                   double b_norm, double *x, mr_solve_result *r) {
+  mr_dense *dn = &f->dense;
+  const int n = A->n;
+  int st = mr_ldlt_prepare(f, A);
+  if (st != 0) return st;
+  if (mr_dense_reserve(dn, n) != 0 || mr_buf_reserve(&f->skip, (size_t)n, 1) != 0)
+    return MR_SOLVE_ENOMEM;
+  dn->perm = f->dperm.p; /* a reserve may have moved it */
+  if (!dn->valid || dn->clock != f->clock || dn->n != n) {
+    dn->n = n;
+    place_pattern(dn, A, f->flag.p);
+    dn->clock = f->clock;
+    dn->valid = 1;
+  }
+  load(dn, A);
+  r->regularised = 0;
+  r->dependent = factor(dn, o->pivot_tol, o->reg_tol, &r->regularised);
+  r->dense = 1;
+  solve_factored(dn, b, x);
+  r->iterations = 1;
+  unsigned char *skip = f->skip.p;
+  const unsigned char *dropped = DBUF(dn, dropped, unsigned char);
+  for (int k = 0; k < n; k++) skip[dn->perm[k]] = dropped[k] != 0;
+  st = mr_ldlt_refine(f, o, A, b, b_norm, x, r, skip, solve_factored, dn);
+  if (st != 0) return st;
+  return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+}
