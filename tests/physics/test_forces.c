@@ -388,11 +388,12 @@ static void string_correction_keeps_articulated_limbs_whole(void **state) {
 }
 
 /* Frame particles follow the pose exactly: here a 0.5 m shift and a 90°
- * turn about y, reached at t = 1 s and held. */
+ * turn about y, reached at t = 1 s and held, on a linear path. */
 static void frame_particles_follow_target_pose(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_FRAMES | MR_EFFECT_GRAVITY, 0.1);
   mr_frame_def fd = mr_default_frame_def();
+  fd.path = MR_FRAME_LINEAR;
   int frame;
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
   int p = add(w, 1, 0, 0, 1.0, frame);
