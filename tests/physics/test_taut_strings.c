@@ -76,12 +76,14 @@ static double length(const rig *r) {
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
-static void spring_is_the_default_and_bad_modes_are_refused(void **state) {
+static void taut_is_the_default_and_bad_modes_are_refused(void **state) {
   (void)state;
-  assert_int_equal(mr_default_string_def().mode, MR_STRING_SPRING);
+  assert_int_equal(mr_default_string_def().mode, MR_STRING_TAUT);
   mr_string_mode m;
   assert_int_equal(mr_string_mode_parse("taut", &m), 0);
   assert_int_equal(m, MR_STRING_TAUT);
+  assert_int_equal(mr_string_mode_parse("spring", &m), 0);
+  assert_int_equal(m, MR_STRING_SPRING);
   assert_string_equal(mr_string_mode_name(MR_STRING_SPRING), "spring");
   assert_int_equal(mr_string_mode_parse("rope", &m), -1);
   rig r;
@@ -205,7 +207,7 @@ static void out_of_memory_in_a_step_reaches_the_caller(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(spring_is_the_default_and_bad_modes_are_refused),
+    cmocka_unit_test(taut_is_the_default_and_bad_modes_are_refused),
     cmocka_unit_test(slack_string_falls_free_then_snaps_taut),
     cmocka_unit_test(taut_string_never_pushes),
     cmocka_unit_test(shaken_taut_string_holds_its_length),

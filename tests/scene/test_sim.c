@@ -334,7 +334,7 @@ static void string_stretch_is_measured_and_checked(void **state) {
                       "    pose: {position: [0, 1.5, 0]}\n"
                       "    points: [{name: bar, offset: [0, 0, 0]}]\n"
                       "  strings:\n"
-                      "    - {from: bar, to: w, stiffness: 1000, damping: 10, rest: 0.5}\n"
+                      "    - {from: bar, to: w, mode: spring, stiffness: 1000, damping: 10, rest: 0.5}\n"
                       "expect: {min_string_stretch: 3}\n";
   const char *path = tt_tmp_file("sim_stretch.yaml", text, sizeof text - 1);
   tt_output p;
