@@ -107,6 +107,10 @@ void mr_frame_motion(const mr_frame *fr, double t, double *st) {
     rb[i] = fr->w1[i] * j;
     rc[i] = fr->w0[i] * k;
   }
+  if (!fr->turning) { /* the identity turns: the same bits, none of the work */
+    memcpy(st + 3, fr->from.orientation, 4 * sizeof *st);
+    return;
+  }
   double qa[4], qb[4], qc[4], qab[4], qabc[4], u1[3], u2[3], wj[3], x1[3], x2[3];
   quat_exp(ra, qa);
   quat_exp(rb, qb);
@@ -256,6 +260,15 @@ static void end_rates(const mr_world *w, const mr_frame *fr, mr_frame *o) {
   mr_pose_unrotate(qa, w1, o->w1);
 }
 
+/* Both tangents the chord: h01 + h10 + h11 = s, a straight line at a
+ * constant rate, and a turn about one axis at a constant rate. */
+static void linear_rates(mr_frame *o, double T) {
+  for (int k = 0; k < 3; k++) {
+    o->v0[k] = o->v1[k] = (o->to.position[k] - o->from.position[k]) / T;
+    o->w0[k] = o->w1[k] = o->turn[k] / T;
+  }
+}
+
 /* The segment a target `goal` due at t makes of frame fr at the world's
  * time: from the pose now at the velocity now; placed at once and at rest
  * when t is not later than now (§6.1 method 1). */
@@ -278,16 +291,11 @@ static void plan_segment(const mr_world *w, const mr_frame *fr, const mr_pose *g
   memcpy(o->w0, st + 10, 3 * sizeof *st);
   double angle = mr_pose_turn(o->from.orientation, goal->orientation, axis);
   for (int k = 0; k < 3; k++) o->turn[k] = axis[k] * angle;
-  if (!o->linear) {
+  if (!o->linear)
     end_rates(w, fr, o);
-    return;
-  }
-  /* Both tangents the chord: h01 + h10 + h11 = s, a straight line at a
-   * constant rate, and a turn about one axis at a constant rate. */
-  for (int k = 0; k < 3; k++) {
-    o->v0[k] = o->v1[k] = (goal->position[k] - o->from.position[k]) / (t - w->t);
-    o->w0[k] = o->w1[k] = o->turn[k] / (t - w->t);
-  }
+  else
+    linear_rates(o, t - w->t);
+  for (int k = 0; k < 3; k++) o->turning |= o->turn[k] != 0 || o->w0[k] != 0 || o->w1[k] != 0;
 }
 
 mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t) {

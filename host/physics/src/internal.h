@@ -19,7 +19,8 @@ typedef struct mr_frame {
   mr_pose from, to;
   double t0, t1;
   double v0[3], v1[3], w0[3], w1[3], turn[3];
-  int linear; /* MR_FRAME_LINEAR: every tangent the chord rate */
+  int linear;  /* MR_FRAME_LINEAR: every tangent the chord rate */
+  int turning; /* any of turn, w0, w1 not zero: the orientation moves */
 } mr_frame;
 /* Per frame in frame_state: p, q, ṗ, ω, p̈, ω̇. */
 #define MR_FRAME_STATE 19
