@@ -124,6 +124,7 @@ static double string_force_along(double rate) {
   s.frame_particle = t;
   s.puppet_particle = p;
   s.rest_length = 1.0;
+  s.mode = MR_STRING_SPRING;
   s.stiffness = 10.0;
   s.damping = 5.0;
   assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);

@@ -43,6 +43,7 @@ static mr_world *hanging(mr_world_def def, double mass, double rest, double k, d
   s.frame_particle = bar;
   s.puppet_particle = *bob;
   s.rest_length = rest;
+  s.mode = MR_STRING_SPRING;
   s.stiffness = k;
   s.damping = c;
   assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);

@@ -200,6 +200,7 @@ static mr_world *hanging_string(uint32_t extra, double stiffness, int *bob) {
   mr_string_def s = mr_default_string_def();
   s.frame_particle = top;
   s.puppet_particle = *bob;
+  s.mode = MR_STRING_SPRING;
   s.stiffness = stiffness;
   s.damping = 1.0;
   assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
@@ -282,6 +283,7 @@ static void string_correction_keeps_rigid_groups_whole(void **state) {
     mr_string_def s = mr_default_string_def();
     s.frame_particle = f[i];
     s.puppet_particle = b[i];
+    s.mode = MR_STRING_SPRING;
     s.stiffness = 40.0;
     s.damping = 1.0;
     assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
@@ -355,6 +357,7 @@ static void string_correction_keeps_articulated_limbs_whole(void **state) {
     mr_string_def s = mr_default_string_def();
     s.frame_particle = bar[strung[i][0]];
     s.puppet_particle = p[strung[i][1]];
+    s.mode = MR_STRING_SPRING;
     s.stiffness = 30.0;
     s.damping = 0.5;
     rest[i] = dist(w, s.frame_particle, s.puppet_particle) * (i == 3 ? 1.5 : 1.0);
@@ -388,11 +391,12 @@ static void string_correction_keeps_articulated_limbs_whole(void **state) {
 }
 
 /* Frame particles follow the pose exactly: here a 0.5 m shift and a 90°
- * turn about y, reached at t = 1 s and held. */
+ * turn about y, reached at t = 1 s and held, on a linear path. */
 static void frame_particles_follow_target_pose(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_FRAMES | MR_EFFECT_GRAVITY, 0.1);
   mr_frame_def fd = mr_default_frame_def();
+  fd.path = MR_FRAME_LINEAR;
   int frame;
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
   int p = add(w, 1, 0, 0, 1.0, frame);

@@ -326,16 +326,17 @@ static void check_fails_with_a_clear_line(void **state) {
  * expectation, and the summary reports the stretch it did reach. */
 static void string_stretch_is_measured_and_checked(void **state) {
   (void)state;
-  const char text[] = "physics:\n"
-                      "  effects: [gravity, strings, control]\n"
-                      "  particles:\n"
-                      "    - {name: w, position: [0, 1, 0], mass: 1}\n"
-                      "  control:\n"
-                      "    pose: {position: [0, 1.5, 0]}\n"
-                      "    points: [{name: bar, offset: [0, 0, 0]}]\n"
-                      "  strings:\n"
-                      "    - {from: bar, to: w, stiffness: 1000, damping: 10, rest: 0.5}\n"
-                      "expect: {min_string_stretch: 3}\n";
+  const char text[] =
+      "physics:\n"
+      "  effects: [gravity, strings, control]\n"
+      "  particles:\n"
+      "    - {name: w, position: [0, 1, 0], mass: 1}\n"
+      "  control:\n"
+      "    pose: {position: [0, 1.5, 0]}\n"
+      "    points: [{name: bar, offset: [0, 0, 0]}]\n"
+      "  strings:\n"
+      "    - {from: bar, to: w, mode: spring, stiffness: 1000, damping: 10, rest: 0.5}\n"
+      "expect: {min_string_stretch: 3}\n";
   const char *path = tt_tmp_file("sim_stretch.yaml", text, sizeof text - 1);
   tt_output p;
   run(&p, "sim", "--check", "--time", "2", path, NULL);

@@ -17,7 +17,7 @@ static void usage(FILE *f) {
              "Measures what accuracy costs in time and prints the figures, each run stamped\n"
              "with the machine (kernel, CPU model, cores). Sections, in order:\n"
              "  sweep     accuracy against cost: every setting (thresholds, bounds, solver,\n"
-             "            integrator, Ks/Kd, error estimate, taut strings) on each puppet's\n"
+             "            integrator, Ks/Kd, error estimate, spring strings) on each puppet's\n"
              "            track; end-effector error against a converged RK4 reference; CSV,\n"
              "            and a gnuplot plot (SVG, PNG) with the Pareto front and the default\n"
              "  sec7      the paper's sec. 7 run: mean dt and the share at the upper bound\n"

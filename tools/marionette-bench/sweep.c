@@ -16,8 +16,8 @@ typedef struct setting {
   const char *group, *label;
   void (*apply)(mr_world_def *d, double a, double b);
   double a, b;
-  int quick; /* in the --quick sweep */
-  int taut;  /* strings in taut mode */
+  int quick;  /* in the --quick sweep */
+  int spring; /* strings in spring mode (the scenes' own are taut) */
 } setting;
 
 static void keep(mr_world_def *d, double a, double b) {
@@ -77,8 +77,8 @@ static const setting settings[] = {
   { "gains", "Ks/Kd 900/60", gains, 900, 60, 1, 0 },
   { "gains", "Ks/Kd 2500/100", gains, 2500, 100, 0, 0 },
   { "error", "no local error estimate (the paper's)", no_estimate, 0, 0, 1, 0 },
-  { "strings", "taut strings", keep, 0, 0, 1, 1 },
-  { "strings", "taut strings without error estimate", no_estimate, 0, 0, 0, 1 },
+  { "strings", "spring strings", keep, 0, 0, 1, 1 },
+  { "strings", "spring strings without error estimate", no_estimate, 0, 0, 0, 1 },
   { "fixed", "RK4 fixed 10 ms", fixed, 0.01, 0, 0, 0 },
   { "fixed", "RK4 fixed 4 ms", fixed, 0.004, 0, 0, 0 },
 };
@@ -109,6 +109,8 @@ typedef struct row {
   int ok, front;
 } row;
 
+/* Every string of the scene in one mode. The scenes' own strings are
+ * taut (the default), so MR_STRING_TAUT puts them back as written. */
 static void set_strings(mr_scene *sc, mr_string_mode mode) {
   for (size_t i = 0; i < sc->n_forces; i++)
     if (sc->forces[i].kind == MR_EFFECT_STRINGS) sc->forces[i].def.string.mode = mode;
@@ -206,7 +208,7 @@ static int reference(const mr_scene *base, size_t ee, double horizon, double h, 
   return 0;
 }
 
-/* A reference per string model, [0] spring and [1] taut: taut strings are
+/* A reference per string model, [0] spring and [1] taut: spring strings are
  * another model of the puppet, measured against their own converged run.
  * On failure nothing is left to free. */
 static int references(mr_scene *sc, size_t ee, double horizon, double h, bench_run ref[2],
@@ -214,7 +216,7 @@ static int references(mr_scene *sc, size_t ee, double horizon, double h, bench_r
   for (int taut = 0; taut < 2; taut++) {
     set_strings(sc, taut ? MR_STRING_TAUT : MR_STRING_SPRING);
     int rc = reference(sc, ee, horizon, h, &ref[taut], &moved[taut]);
-    set_strings(sc, MR_STRING_SPRING);
+    set_strings(sc, MR_STRING_TAUT);
     if (rc != 0) {
       if (taut) bench_run_free(&ref[0]);
       return -1;
@@ -231,24 +233,23 @@ static void csv_row(FILE *f, const puppet *p, const row *w, const mr_world_def *
           p->name, w->s->group, w->s->label, w->s == &settings[0],
           mr_integrator_name(d->integrator), mr_solve_method_name(d->solver), d->solver_tolerance,
           d->dt_min, d->dt_max, d->deviation_low, d->deviation_high, d->ks, d->kd,
-          w->s->taut ? "taut" : "spring", r->sim_time, (unsigned long long)r->steps,
+          w->s->spring ? "spring" : "taut", r->sim_time, (unsigned long long)r->steps,
           (unsigned long long)r->rejected, (unsigned long long)r->resets, r->dt_mean,
           r->at_upper_fraction, r->max_deviation, r->rms_deviation, w->ee_max, w->ee_rms,
           r->string_stretch, w->run.cpu, w->cost_ms, w->cost_ms > 0 ? 1000.0 / w->cost_ms : 0,
           w->front);
 }
 
-/* One setting of one puppet, against the reference. */
-/* A setting's scene: the puppet's, changed as the setting says. Taut
- * strings are set in the forces base shares; untaut() puts them back. */
+/* A setting's scene: the puppet's, changed as the setting says. Spring
+ * strings are set in the forces base shares; as_written() puts them back. */
 static mr_scene setting_scene(const mr_scene *base, const setting *s) {
   mr_scene sc = *base;
   s->apply(&sc.world, s->a, s->b);
-  if (s->taut) set_strings(&sc, MR_STRING_TAUT);
+  if (s->spring) set_strings(&sc, MR_STRING_SPRING);
   return sc;
 }
-static void untaut(mr_scene *sc, const setting *s) {
-  if (s->taut) set_strings(sc, MR_STRING_SPRING);
+static void as_written(mr_scene *sc, const setting *s) {
+  if (s->spring) set_strings(sc, MR_STRING_TAUT);
 }
 
 /* One setting of one puppet, against the reference. */
@@ -258,7 +259,7 @@ static void run_setting(const mr_scene *base, const setting *s, size_t ee, doubl
   memset(w, 0, sizeof *w);
   w->s = s;
   int rc = bench_run_scene(&sc, duration, ee, horizon, &w->run);
-  untaut(&sc, s);
+  as_written(&sc, s);
   if (rc != 0) return;
   bench_ee_error(&w->run, ref, &w->ee_max, &w->ee_rms);
   w->cost_ms = w->run.r.sim_time > 0 ? 1000.0 * w->run.cpu / w->run.r.sim_time : NAN;
@@ -280,7 +281,7 @@ static void time_again(const mr_scene *base, row *rows, int n, size_t ee, double
       mr_scene sc = setting_scene(base, w->s);
       bench_run again;
       int rc = bench_run_scene(&sc, duration, ee, horizon, &again);
-      untaut(&sc, w->s);
+      as_written(&sc, w->s);
       if (rc != 0) continue;
       w->run.cpu = fmin(w->run.cpu, again.cpu);
       w->cost_ms = 1000.0 * w->run.cpu / w->run.r.sim_time;
@@ -324,7 +325,7 @@ static int sweep_puppet(bench *b, const puppet *p, FILE *csv) {
   for (int i = 0; i < N_SETTINGS; i++) {
     if (b->quick && !settings[i].quick) continue;
     bench_progress("sweep", "%s: %s (%g s of track)", p->name, settings[i].label, duration);
-    run_setting(&sc, &settings[i], ee, duration, horizon, &ref[settings[i].taut], &rows[n++]);
+    run_setting(&sc, &settings[i], ee, duration, horizon, &ref[!settings[i].spring], &rows[n++]);
   }
   if (!b->quick) {
     bench_progress("sweep", "%s: every setting timed again, in turn", p->name);
@@ -396,12 +397,12 @@ static int count_puppet(bench *b, const puppet *p) {
     rc = bench_run_scene(&one, COUNT_SPAN, ee, horizon, &run);
     CALLGRIND_STOP_INSTRUMENTATION;
     CALLGRIND_DUMP_STATS_AT(s->label);
-    untaut(&one, s);
+    as_written(&one, s);
     if (rc != 0) break;
     double ee_max, ee_rms;
-    bench_ee_error(&run, &ref[s->taut], &ee_max, &ee_rms);
+    bench_ee_error(&run, &ref[!s->spring], &ee_max, &ee_rms);
     printf("%s,\"%s\",%d,%g,%.6g,%.6g,%d\n", p->name, s->label, i == 0, run.r.sim_time, ee_rms,
-           moved[s->taut], run.r.finite && run.r.resets == 0);
+           moved[!s->spring], run.r.finite && run.r.resets == 0);
     bench_run_free(&run);
   }
   bench_run_free(&ref[0]);

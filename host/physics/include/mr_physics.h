@@ -271,21 +271,43 @@ mr_status mr_world_set_particle_state(mr_world *w, int id, const double pos[3],
 
 /* Poses are mr_pose (mr_pose.h): a position and a unit quaternion. */
 
+/* How a frame moves from one target to the next: MR_FRAME_SMOOTH (the
+ * default) on a curve whose velocity is continuous across targets, or
+ * MR_FRAME_LINEAR straight at the chord's constant rate (position linear,
+ * orientation slerp), its velocity jumping at every target. */
+typedef enum mr_frame_path { MR_FRAME_SMOOTH, MR_FRAME_LINEAR } mr_frame_path;
+
 typedef struct mr_frame_def {
-  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_frame_def() */
-  mr_pose pose;    /* initial pose; default identity */
+  uint32_t cookie;    /* MR_DEF_COOKIE, set by mr_default_frame_def() */
+  mr_pose pose;       /* initial pose; default identity */
+  mr_frame_path path; /* default MR_FRAME_SMOOTH */
 } mr_frame_def;
 
 mr_frame_def mr_default_frame_def(void);
 /* Needs MR_EFFECT_FRAMES. */
 mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id);
 /* Moves the frame from its pose at the world's current time to `pose`,
- * reached at time t and held afterwards (position linear, orientation slerp).
- * Its particles follow kinematically, with the matching velocity, inside
- * every integrator stage. t ≤ the world time places it at once (§6.1 method
- * 1). Call it before mr_world_step_to(w, t, ...). */
+ * reached at time t and held afterwards. The path is a cubic Hermite curve
+ * (position and orientation) that leaves at the frame's current velocity
+ * and angular velocity and arrives at the slope of the parabola through
+ * the last target, the pose now and this one, so the velocity is
+ * continuous across targets set one after another and the path's
+ * acceleration follows a smooth track's. Its particles follow
+ * kinematically, with the matching velocity, inside every integrator
+ * stage (MR_FRAME_LINEAR: straight at constant rates instead). t ≤ the
+ * world time places it at once and at rest (§6.1 method 1). Call it before
+ * mr_world_step_to(w, t, ...). */
 mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t);
+/* Bounds on the speed (m/s) and the turn rate (rad/s) of the path that
+ * mr_world_set_frame_target(w, frame, pose, t) would make now: the path
+ * never moves faster than they say. A rate limiter scales the target back
+ * until they are within its limits. */
+mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose *pose, double t,
+                                     double *speed, double *turn_rate);
 mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out);
+/* The frame's velocity (m/s) and angular velocity (rad/s, world axes) at
+ * the world's current time. */
+mr_status mr_world_frame_rates(const mr_world *w, int frame, double vel[3], double omega[3]);
 
 /* ---------------------------------------------------------------- forces */
 
@@ -303,10 +325,11 @@ mr_spring_def mr_default_spring_def(void);
 mr_status mr_world_add_spring(mr_world *w, const mr_spring_def *def, int *out_id);
 
 /* How a string holds its length.
- *  - MR_STRING_SPRING (default, the paper's §6.2): a spring/damper that
- *    only pulls, stretching under load (held back, if declared, by
- *    MR_EFFECT_STRING_CORRECTION).
- *  - MR_STRING_TAUT: a unilateral length limit |x_p − x_f| ≤ rest, a row of
+ *  - MR_STRING_SPRING (the paper's §6.2): a spring/damper that only pulls,
+ *    stretching under load (held back, if declared, by
+ *    MR_EFFECT_STRING_CORRECTION): 1.05–1.4× its rest on the example
+ *    tracks, which an audience sees as rubber.
+ *  - MR_STRING_TAUT (default): a unilateral length limit |x_p − x_f| ≤ rest, a row of
  *    the same complementarity solve as a resting contact (§5.4): active
  *    only when taut, released when it would push, an inelastic impulse
  *    (eq. 9) when it snaps taut. stiffness and damping are not used; the
@@ -326,7 +349,7 @@ typedef struct mr_string_def {
   double rest_length;  /* < 0 (default) = current distance */
   double stiffness;    /* default 500 (spring mode) */
   double damping;      /* default 5 (spring mode) */
-  mr_string_mode mode; /* default MR_STRING_SPRING */
+  mr_string_mode mode; /* default MR_STRING_TAUT (needs rest_length > 0) */
 } mr_string_def;
 mr_string_def mr_default_string_def(void);
 mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id);

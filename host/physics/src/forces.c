@@ -329,7 +329,7 @@ mr_string_def mr_default_string_def(void) {
     .rest_length = -1.0,
     .stiffness = 500.0,
     .damping = 5.0,
-    .mode = MR_STRING_SPRING,
+    .mode = MR_STRING_TAUT,
   };
 }
 

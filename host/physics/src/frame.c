@@ -1,8 +1,36 @@
 /* Control frames (§6.1, §6.2): the frame's particles are moved kinematically
  * to the pose the glove gives. Between the time a target is set (t0) and
- * the time it is due (t1) the pose is interpolated, so the particles move
- * continuously and carry a velocity; every integrator stage places them at
- * its own time. */
+ * the time it is due (t1) the pose follows a path whose velocity is
+ * continuous across targets, so a taut string is not snapped at each one;
+ * every integrator stage places the particles on it at its own time.
+ *
+ * The path is a cubic Hermite curve, with s = (t − t0)/T, T = t1 − t0:
+ *
+ *   p(t) = p0 + Δ h01(s) + T m0 h10(s) + T m1 h11(s),
+ *   h01 = 3s² − 2s³, h10 = s³ − 2s² + s, h11 = s³ − s²,
+ *
+ * m0 the velocity the frame has when the target is set (so the velocity
+ * is continuous) and m1 the slope at t1 of the parabola through the last
+ * two targets and this one (exact to second order for a smooth track, so
+ * the path's acceleration follows the track's as the steps shrink, and it
+ * leans on no earlier tangent, so no error is carried from one segment to
+ * the next). The orientation is the same curve on rotations, a product of
+ * turns about fixed axes so that its rates are exact:
+ *
+ *   q(t) = A B C q0,  A = exp(ρ h01 / 2),  B = exp(ω1' T h11 / 2),
+ *   C = exp(ω0 T h10 / 2),
+ *
+ * ρ the short turn from q0 to q1 (world axes), ω0 the angular velocity at
+ * t0, ω1' = A(t1)⁻¹ ω1 for the end rate ω1. With u1 = R_A ω1', u2 = R_A R_B
+ * ω0, and dots for time derivatives of h01, T h11, T h10:
+ *
+ *   ω = ρ ḣ01 + u1 ḣ11 + u2 ḣ10,
+ *   ω̇ = ρ ḧ01 + u1 ḧ11 + u2 ḧ10 + ρ ḣ01 × (u1 ḣ11 + u2 ḣ10) + ḣ11 ḣ10 u1 × u2.
+ *
+ * Outside [t0, t1] the pose is held. The velocity is a quadratic Bézier
+ * curve with control points m0, 3Δ/T − m0 − m1, m1: its speed never
+ * exceeds the largest of the three; the turn rate is bounded alike, plus
+ * (4/27) T |ω0| |ω1| for B's turn of C's axis (mr_world_frame_target_peak). */
 #include "internal.h"
 
 #include <math.h>
@@ -25,51 +53,101 @@ static mr_status pose_check(mr_world *w, const mr_pose *p, const char *what, mr_
   return mr_fail(w, MR_ERR_DEGENERATE, "%s: orientation quaternion is zero", what);
 }
 
-/* The frame's velocity and angular velocity at t: those of the
- * interpolation from `from` at t0 to `to` at t1 inside it, 0 outside.
- * `ends` counts t0 and t1 as inside (a taut string's frame end, whose
- * step from t0 to t1 moves with the segment at both of its ends). */
-void mr_frame_rates(const mr_frame *fr, double t, int ends, double vel[3], double omega[3]) {
-  double span = fr->t1 - fr->t0;
-  double s = span > 0 ? (t - fr->t0) / span : 1.0;
-  int moving = span > 0 && (ends ? s >= 0 && s <= 1 : s > 0 && s < 1);
-  for (int k = 0; k < 3; k++) {
-    vel[k] = moving ? (fr->to.position[k] - fr->from.position[k]) / span : 0.0;
-    omega[k] = 0.0;
+static void cross(const double a[3], const double b[3], double out[3]) {
+  double r[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+  memcpy(out, r, sizeof r);
+}
+
+/* The turn by the rotation vector r (angle |r| about r/|r|) as a unit
+ * quaternion; below 1e-12 rad the first-order limit. */
+static void quat_exp(const double r[3], double q[4]) {
+  double a = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  double c = 1.0, s = 0.5;
+  if (a > 1e-12) {
+    c = cos(0.5 * a);
+    s = sin(0.5 * a) / a;
   }
-  if (moving) {
-    /* Slerp turns at a constant rate about one axis. */
-    double axis[3];
-    double angle = mr_pose_turn(fr->from.orientation, fr->to.orientation, axis);
-    if (angle > 0)
-      for (int k = 0; k < 3; k++) omega[k] = axis[k] * (angle / span);
+  q[0] = c;
+  for (int k = 0; k < 3; k++) q[k + 1] = s * r[k];
+}
+
+/* Hamilton product a b. */
+static void quat_mul(const double a[4], const double b[4], double out[4]) {
+  double r[4] = { a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                  a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                  a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                  a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0] };
+  memcpy(out, r, sizeof r);
+}
+
+/* Frame path at t into st (MR_FRAME_STATE entries: p, q, ṗ, ω, p̈, ω̇). */
+void mr_frame_motion(const mr_frame *fr, double t, double *st) {
+  double T = fr->t1 - fr->t0;
+  memset(st, 0, MR_FRAME_STATE * sizeof *st);
+  if (!(T > 0 && t >= fr->t0 && t <= fr->t1)) {
+    /* Held: at `to` from t1 on; before t0 (never stepped to) at `from`. */
+    const mr_pose *p = T > 0 && t < fr->t0 ? &fr->from : &fr->to;
+    memcpy(st, p->position, 3 * sizeof *st);
+    memcpy(st + 3, p->orientation, 4 * sizeof *st);
+    return;
+  }
+  double s = (t - fr->t0) / T, s2 = s * s;
+  /* h01, h10, h11 (T h10, T h11 for positions), their rates and accelerations. */
+  double g = s2 * (3.0 - 2.0 * s), gd = 6.0 * s * (1.0 - s) / T, gdd = (6.0 - 12.0 * s) / (T * T);
+  double k = T * s * (s2 - 2.0 * s + 1.0), kd = s * (3.0 * s - 4.0) + 1.0,
+         kdd = (6.0 * s - 4.0) / T;
+  double j = T * s2 * (s - 1.0), jd = s * (3.0 * s - 2.0), jdd = (6.0 * s - 2.0) / T;
+  double ra[3], rb[3], rc[3];
+  for (int i = 0; i < 3; i++) {
+    double d = fr->to.position[i] - fr->from.position[i];
+    st[i] = fr->from.position[i] + d * g + fr->v0[i] * k + fr->v1[i] * j;
+    st[7 + i] = d * gd + fr->v0[i] * kd + fr->v1[i] * jd;
+    st[13 + i] = d * gdd + fr->v0[i] * kdd + fr->v1[i] * jdd;
+    ra[i] = fr->turn[i] * g;
+    rb[i] = fr->w1[i] * j;
+    rc[i] = fr->w0[i] * k;
+  }
+  if (!fr->turning) { /* the identity turns: the same bits, none of the work */
+    memcpy(st + 3, fr->from.orientation, 4 * sizeof *st);
+    return;
+  }
+  double qa[4], qb[4], qc[4], qab[4], qabc[4], u1[3], u2[3], wj[3], x1[3], x2[3];
+  quat_exp(ra, qa);
+  quat_exp(rb, qb);
+  quat_exp(rc, qc);
+  quat_mul(qa, qb, qab);
+  quat_mul(qab, qc, qabc);
+  quat_mul(qabc, fr->from.orientation, st + 3);
+  mr_pose_rotate(qa, fr->w1, u1);
+  mr_pose_rotate(qab, fr->w0, u2);
+  for (int i = 0; i < 3; i++) wj[i] = u1[i] * jd + u2[i] * kd;
+  cross(fr->turn, wj, x1);
+  cross(u1, u2, x2);
+  for (int i = 0; i < 3; i++) {
+    st[10 + i] = fr->turn[i] * gd + wj[i];
+    st[16 + i] = fr->turn[i] * gdd + u1[i] * jdd + u2[i] * kdd + x1[i] * gd + x2[i] * (jd * kd);
   }
 }
 
-/* The frame's pose at t, and its velocity and angular velocity: the
- * interpolation from `from` at t0 to `to` at t1, held outside [t0, t1]. */
+/* The frame's pose at t, and its velocity and angular velocity. */
 void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]) {
-  double span = fr->t1 - fr->t0;
-  double s = span > 0 ? (t - fr->t0) / span : 1.0;
-  if (s <= 0) s = 0;
-  if (s >= 1) s = 1;
-  *pose = mr_pose_interpolate(&fr->from, &fr->to, s);
-  mr_frame_rates(fr, t, 0, vel, omega);
+  double st[MR_FRAME_STATE];
+  mr_frame_motion(fr, t, st);
+  memcpy(pose->position, st, 3 * sizeof *st);
+  memcpy(pose->orientation, st + 3, 4 * sizeof *st);
+  memcpy(vel, st + 7, 3 * sizeof *st);
+  memcpy(omega, st + 10, 3 * sizeof *st);
 }
 
-/* Frame f's pose and rates at t into its 13 entries of frame_state. */
+/* Frame f's path at t into its entries of frame_state. */
 static void frame_state_at(mr_world *w, int f, double t) {
-  double *st = &w->frame_state[13 * f];
-  mr_pose pose;
-  mr_frame_eval(&MR_AT(w->frames, mr_frame, f), t, &pose, st + 7, st + 10);
-  memcpy(st, pose.position, 3 * sizeof *st);
-  memcpy(st + 3, pose.orientation, 4 * sizeof *st);
+  mr_frame_motion(&MR_AT(w->frames, mr_frame, f), t, &w->frame_state[MR_FRAME_STATE * f]);
 }
 
 /* Particle i carried by its frame, from the frame's state: x = p + R l,
  * v = v_f + ω × R l. */
 static void carried(const mr_world *w, int i, double *x, double *v) {
-  const double *st = &w->frame_state[13 * w->frame[i]];
+  const double *st = &w->frame_state[MR_FRAME_STATE * w->frame[i]];
   const double *p = st, *qq = st + 3, *fv = st + 7, *fo = st + 10;
   double r[3];
   mr_pose_rotate(qq, &w->local[3 * i], r);
@@ -84,55 +162,176 @@ void mr_frames_place(mr_world *w, double t, double *x, double *v) {
   w->pass_calls[MR_PASS_FRAMES]++;
   /* Each frame's pose once, then its particles. */
   for (int f = 0; f < w->frames.n; f++) frame_state_at(w, f, t);
+  w->frame_state_t = t;
   for (int j = 0; j < w->kin.n; j++) carried(w, MR_AT(w->kin, int, j), x, v);
 }
 
 /* A control point just added is placed alone, with its own frame's state:
  * placing every frame's points again for each one added made building a
  * crowd of n puppets O(n²) (0.41 s for 1 000 stick puppets, 0.005 s now).
- * Counted as the frames pass it stands for. */
+ * Counted as the frames pass it stands for. Only its frame's state is
+ * fresh, so no time is recorded for the whole. */
 void mr_frame_place_one(mr_world *w, int i) {
   w->pass_calls[MR_PASS_FRAMES]++;
   frame_state_at(w, w->frame[i], w->t);
+  w->frame_state_t = NAN;
   carried(w, i, w->x, w->v);
+}
+
+/* The acceleration of frame particle i, at the time of w->frame_state
+ * (computed there when it is at another): ṗ̇ + ω̇ × r + ω × (ω × r), with
+ * its velocity v_f + ω × r. */
+void mr_frame_point_motion(const mr_world *w, int i, double t, const double *x, double v[3],
+                           double a[3]) {
+  double own[MR_FRAME_STATE];
+  const double *st = &w->frame_state[MR_FRAME_STATE * w->frame[i]];
+  if (!(t == w->frame_state_t)) {
+    mr_frame_motion(&MR_AT(w->frames, mr_frame, w->frame[i]), t, own);
+    st = own;
+  }
+  double r[3] = { x[3 * i] - st[0], x[3 * i + 1] - st[1], x[3 * i + 2] - st[2] };
+  double wr[3], wwr[3], ar[3];
+  cross(st + 10, r, wr);
+  cross(st + 10, wr, wwr);
+  cross(st + 16, r, ar);
+  for (int k = 0; k < 3; k++) {
+    v[k] = st[7 + k] + wr[k];
+    a[k] = st[13 + k] + ar[k] + wwr[k];
+  }
 }
 
 mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id) {
   const char *what = "mr_world_add_frame";
   mr_status s = MR_ADD_CHECK(w, def, MR_EFFECT_FRAMES, what);
   mr_frame fr;
+  memset(&fr, 0, sizeof fr);
   if (s == MR_OK) s = pose_check(w, &def->pose, what, &fr.from);
   if (s != MR_OK) return s;
   int cap = w->frames.cap;
-  if (mr_grow((void **)&w->frame_state, &cap, w->frames.n + 1, 13 * sizeof(double)) != 0)
+  if (mr_grow((void **)&w->frame_state, &cap, w->frames.n + 1, MR_FRAME_STATE * sizeof(double)) !=
+      0)
     return mr_fail(w, MR_ERR_NOMEM, "%s: out of memory", what);
+  if (def->path != MR_FRAME_SMOOTH && def->path != MR_FRAME_LINEAR)
+    return mr_fail(w, MR_ERR_ARG, "%s: path %d is neither smooth nor linear", what, (int)def->path);
+  fr.linear = def->path == MR_FRAME_LINEAR;
   fr.to = fr.from;
   fr.t0 = fr.t1 = w->t;
+  w->frame_state_t = NAN; /* the new frame has no state yet */
   return mr_add_push(w, &w->frames, &fr, sizeof fr, out_id, what);
 }
 
-mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t) {
-  if (!w || !pose) return mr_fail(w, MR_ERR_ARG, "mr_world_set_frame_target: NULL argument");
+static mr_status frame_at(mr_world *w, int frame, const char *what) {
+  if (!w) return MR_ERR_ARG;
   if (frame < 0 || frame >= w->frames.n)
-    return mr_fail(w, MR_ERR_ID, "mr_world_set_frame_target: frame %d does not exist", frame);
-  if (!isfinite(t))
-    return mr_fail(w, MR_ERR_NONFINITE, "mr_world_set_frame_target: time is NaN or Inf");
-  mr_pose p;
-  mr_status s = pose_check(w, pose, "mr_world_set_frame_target", &p);
-  if (s != MR_OK) return s;
-  mr_frame *fr = &MR_AT(w->frames, mr_frame, frame);
-  double vel[3], om[3];
-  mr_pose now;
-  mr_frame_eval(fr, w->t, &now, vel, om);
-  fr->from = now;
-  fr->to = p;
-  fr->t0 = w->t;
-  fr->t1 = t > w->t ? t : w->t;
-  if (t <= w->t) {
-    /* §6.1 method 1: placed at once. */
-    fr->from = p;
-    mr_frames_place(w, w->t, w->x, w->v);
+    return mr_fail(w, MR_ERR_ID, "%s: frame %d does not exist", what, frame);
+  return MR_OK;
+}
+
+static double norm3(const double v[3]) {
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* The end rates of a segment from the world's time to `o->t1`: the slopes
+ * at t1 of the parabola through the last target (fr's start, when the
+ * world is inside or at the end of fr), the pose now and the goal. With no
+ * last target (fr held, or just set), the rate now stands for the chord
+ * before it. */
+static void end_rates(const mr_world *w, const mr_frame *fr, mr_frame *o) {
+  double h2 = o->t1 - o->t0, h1 = w->t - fr->t0, c1[3], r1[3], axis[3], w1[3], qa[4];
+  if (fr->t1 > fr->t0 && h1 > 0 && w->t <= fr->t1) {
+    double angle = mr_pose_turn(fr->from.orientation, o->from.orientation, axis);
+    for (int k = 0; k < 3; k++) {
+      c1[k] = (o->from.position[k] - fr->from.position[k]) / h1;
+      r1[k] = axis[k] * angle / h1;
+    }
+  } else {
+    h1 = h2;
+    memcpy(c1, o->v0, sizeof c1);
+    memcpy(r1, o->w0, sizeof r1);
   }
+  double r = h2 / (h1 + h2);
+  for (int k = 0; k < 3; k++) {
+    double c2 = (o->to.position[k] - o->from.position[k]) / h2, r2 = o->turn[k] / h2;
+    o->v1[k] = c2 + r * (c2 - c1[k]);
+    w1[k] = r2 + r * (r2 - r1[k]);
+  }
+  /* ω1' = A(t1)⁻¹ ω1: A(t1) is the whole turn. */
+  quat_exp(o->turn, qa);
+  mr_pose_unrotate(qa, w1, o->w1);
+}
+
+/* Both tangents the chord: h01 + h10 + h11 = s, a straight line at a
+ * constant rate, and a turn about one axis at a constant rate. */
+static void linear_rates(mr_frame *o, double T) {
+  for (int k = 0; k < 3; k++) {
+    o->v0[k] = o->v1[k] = (o->to.position[k] - o->from.position[k]) / T;
+    o->w0[k] = o->w1[k] = o->turn[k] / T;
+  }
+}
+
+/* The segment a target `goal` due at t makes of frame fr at the world's
+ * time: from the pose now at the velocity now; placed at once and at rest
+ * when t is not later than now (§6.1 method 1). */
+static void plan_segment(const mr_world *w, const mr_frame *fr, const mr_pose *goal, double t,
+                         mr_frame *o) {
+  double st[MR_FRAME_STATE], axis[3];
+  memset(o, 0, sizeof *o);
+  o->linear = fr->linear;
+  o->to = *goal;
+  o->t0 = o->t1 = w->t;
+  if (!(t > w->t)) {
+    o->from = *goal;
+    return;
+  }
+  o->t1 = t;
+  mr_frame_motion(fr, w->t, st);
+  memcpy(o->from.position, st, 3 * sizeof *st);
+  memcpy(o->from.orientation, st + 3, 4 * sizeof *st);
+  memcpy(o->v0, st + 7, 3 * sizeof *st);
+  memcpy(o->w0, st + 10, 3 * sizeof *st);
+  double angle = mr_pose_turn(o->from.orientation, goal->orientation, axis);
+  for (int k = 0; k < 3; k++) o->turn[k] = axis[k] * angle;
+  if (!o->linear)
+    end_rates(w, fr, o);
+  else
+    linear_rates(o, t - w->t);
+  for (int k = 0; k < 3; k++) o->turning |= o->turn[k] != 0 || o->w0[k] != 0 || o->w1[k] != 0;
+}
+
+mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t) {
+  const char *what = "mr_world_set_frame_target";
+  if (!w || !pose) return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  mr_status s = frame_at(w, frame, what);
+  if (s != MR_OK) return s;
+  if (!isfinite(t)) return mr_fail(w, MR_ERR_NONFINITE, "%s: time is NaN or Inf", what);
+  mr_pose p;
+  if ((s = pose_check(w, pose, what, &p)) != MR_OK) return s;
+  mr_frame *fr = &MR_AT(w->frames, mr_frame, frame), o;
+  plan_segment(w, fr, &p, t, &o);
+  *fr = o;
+  w->frame_state_t = NAN; /* its path changes from now on */
+  if (!(t > w->t)) mr_frames_place(w, w->t, w->x, w->v);
+  return MR_OK;
+}
+
+mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose *pose, double t,
+                                     double *speed, double *turn_rate) {
+  if (!w || !pose || !speed || !turn_rate) return MR_ERR_ARG;
+  if (frame < 0 || frame >= w->frames.n) return MR_ERR_ID;
+  mr_pose p = *pose;
+  if (!isfinite(t) || mr_pose_normalize(&p) != 0) return MR_ERR_NONFINITE;
+  mr_frame o;
+  plan_segment(w, &MR_AT(w->frames, mr_frame, frame), &p, t, &o);
+  double T = o.t1 - o.t0, mid[3], wmid[3];
+  *speed = *turn_rate = 0.0;
+  if (!(T > 0)) return MR_OK;
+  for (int k = 0; k < 3; k++) {
+    mid[k] = 3.0 * (o.to.position[k] - o.from.position[k]) / T - o.v0[k] - o.v1[k];
+    wmid[k] = 3.0 * o.turn[k] / T - o.w0[k] - o.w1[k];
+  }
+  *speed = fmax(fmax(norm3(o.v0), norm3(mid)), norm3(o.v1));
+  *turn_rate = fmax(fmax(norm3(o.w0), norm3(wmid)), norm3(o.w1)) +
+               (4.0 / 27.0) * T * norm3(o.w0) * norm3(o.w1);
   return MR_OK;
 }
 
@@ -141,5 +340,15 @@ mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out) {
   if (frame < 0 || frame >= w->frames.n) return MR_ERR_ID;
   double vel[3], om[3];
   mr_frame_eval(&MR_AT(w->frames, mr_frame, frame), w->t, out, vel, om);
+  return MR_OK;
+}
+
+mr_status mr_world_frame_rates(const mr_world *w, int frame, double vel[3], double omega[3]) {
+  if (!w || !vel || !omega) return MR_ERR_ARG;
+  if (frame < 0 || frame >= w->frames.n) return MR_ERR_ID;
+  double st[MR_FRAME_STATE];
+  mr_frame_motion(&MR_AT(w->frames, mr_frame, frame), w->t, st);
+  memcpy(vel, st + 7, 3 * sizeof *st);
+  memcpy(omega, st + 10, 3 * sizeof *st);
   return MR_OK;
 }

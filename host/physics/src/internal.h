@@ -11,10 +11,19 @@
 
 /* ------------------------------------------------------------- elements */
 
+/* A frame's path (frame.c): a cubic Hermite curve from `from` at t0 to
+ * `to` at t1, leaving at velocity v0 and angular velocity w0 and arriving at
+ * v1 and at A(t1) w1 (w1 before the whole turn A(t1)); `turn` is the short
+ * turn from `from` to `to` (axis × angle, world axes). */
 typedef struct mr_frame {
-  mr_pose from, to; /* interpolated from `from` at t0 to `to` at t1 */
+  mr_pose from, to;
   double t0, t1;
+  double v0[3], v1[3], w0[3], w1[3], turn[3];
+  int linear;  /* MR_FRAME_LINEAR: every tangent the chord rate */
+  int turning; /* any of turn, w0, w1 not zero: the orientation moves */
 } mr_frame;
+/* Per frame in frame_state: p, q, ṗ, ω, p̈, ω̇. */
+#define MR_FRAME_STATE 19
 
 /* A string's element: forces.c pulls with it, string_correction.c shortens it. */
 typedef struct mr_string {
@@ -143,7 +152,8 @@ struct mr_world {
   int *puppet, *frame;
 
   mr_list frames;                      /* mr_frame */
-  double *frame_state;                 /* per frame: p, q, ṗ, ω (13) */
+  double *frame_state;                 /* per frame: MR_FRAME_STATE */
+  double frame_state_t;                /* the time all of it is at, or NaN */
   mr_list kin;                         /* int: particles carried by frames */
   mr_list forces[MR_FORCE_KIND_COUNT]; /* per force kind, its elements */
   mr_list distances;                   /* mr_distance */
@@ -257,8 +267,11 @@ int mr_finite3(const double v[3]);
 int mr_require(mr_world *w, uint32_t effect, const char *what);
 
 /* frame.c */
+void mr_frame_motion(const mr_frame *fr, double t, double *st);
 void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], double omega[3]);
-void mr_frame_rates(const mr_frame *fr, double t, int ends, double vel[3], double omega[3]);
+/* The velocity and acceleration at t of frame particle i at x (3n). */
+void mr_frame_point_motion(const mr_world *w, int i, double t, const double *x, double v[3],
+                           double a[3]);
 void mr_frames_place(mr_world *w, double t, double *x, double *v);
 /* Particle i of a frame alone, at the world's time. */
 void mr_frame_place_one(mr_world *w, int i);

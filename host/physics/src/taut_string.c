@@ -15,8 +15,8 @@
  *   χ̇ = −u·(v_p − v_f),
  *   J̇q̇ + ∂²χ/∂t² = −(|ḋ|² − L̇²)/L + u·a_f,
  *
- * with a_f = ω × (ω × r) the frame end's acceleration inside one frame
- * segment (linear motion at constant velocity, a turn at constant rate). */
+ * with a_f = p̈ + ω̇ × r + ω × (ω × r) the frame end's acceleration on the
+ * frame's path (frame.c), whose velocity is continuous across targets. */
 #include "internal.h"
 
 #include <math.h>
@@ -37,21 +37,10 @@ void mr_taut_set_time(mr_world *w, double t) {
   w->taut_t = t;
 }
 
-/* The velocity and acceleration ω × (ω × r) of frame particle i (r from
- * the frame's origin as mr_frames_place last placed it), from the rates of
- * the frame segment under way at w->taut_t, ends included: the frames'
- * own velocity is 0 at a segment's ends, where a step begins and ends. */
+/* The velocity and acceleration of frame particle i on its frame's path
+ * at w->taut_t. */
 static void frame_end_motion(const mr_world *w, int i, const double *x, double v[3], double a[3]) {
-  const double *p = &w->frame_state[13 * w->frame[i]];
-  double vel[3], om[3];
-  mr_frame_rates(&MR_AT(w->frames, mr_frame, w->frame[i]), w->taut_t, 1, vel, om);
-  double r[3] = { x[3 * i] - p[0], x[3 * i + 1] - p[1], x[3 * i + 2] - p[2] };
-  double wr[3] = { om[1] * r[2] - om[2] * r[1], om[2] * r[0] - om[0] * r[2],
-                   om[0] * r[1] - om[1] * r[0] };
-  for (int k = 0; k < 3; k++) v[k] = vel[k] + wr[k];
-  a[0] = om[1] * wr[2] - om[2] * wr[1];
-  a[1] = om[2] * wr[0] - om[0] * wr[2];
-  a[2] = om[0] * wr[1] - om[1] * wr[0];
+  mr_frame_point_motion(w, i, w->taut_t, x, v, a);
 }
 
 int mr_taut_detect(mr_world *w, const double *x, double gap, mr_contact_list *out) {

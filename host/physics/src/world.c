@@ -306,7 +306,8 @@ mr_status mr_world_create(const mr_world_def *def, mr_world **out_world, char *m
   w->opts.max_iter = def->solver_max_iterations;
   w->opts.reg_tol = MR_REG_TOL;
   w->dt_next = fmin(fmax(def->dt_initial, def->dt_min), def->dt_max);
-  w->dirty = 1; /* derived data and scratch are built at the first step */
+  w->frame_state_t = NAN; /* no frame placed yet */
+  w->dirty = 1;           /* derived data and scratch are built at the first step */
   w->stats.min_dt = INFINITY;
   w->stats.min_dt_landing = INFINITY;
   w->stats.stable_dt = INFINITY;

@@ -1,0 +1,203 @@
+/* The control frames' path (frame.c): a cubic Hermite curve from target to
+ * target whose velocity does not jump where one target follows another,
+ * whose rates are the derivatives of its pose, and whose speed stays
+ * within the bound a rate limiter reads (mr_world_frame_target_peak). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "mr_physics.h"
+
+#define FPS 60.0
+
+typedef struct rig {
+  mr_world *w;
+  int frame, point;
+} rig;
+
+/* A smooth track: the frame swings and bobs, and turns to and fro about a
+ * tilted axis. */
+static mr_pose track(double t) {
+  mr_pose p = mr_pose_identity();
+  p.position[0] = 0.2 * sin(6.283185307179586 * t);
+  p.position[1] = 1.0 + 0.1 * cos(3.0 * t);
+  p.position[2] = 0.05 * t;
+  const double axis[3] = { 0.28734788556634544, 0.9578262852211514, 0.0 };
+  double half = 0.5 * 0.8 * sin(2.0 * t);
+  p.orientation[0] = cos(half);
+  for (int k = 0; k < 3; k++) p.orientation[k + 1] = axis[k] * sin(half);
+  return p;
+}
+
+/* A frame at the track's start with one point 0.3 m off its origin (so
+ * turns move it). */
+static void make_rig(rig *r, mr_frame_path path) {
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_FRAMES;
+  assert_int_equal(mr_world_create(&def, &r->w, NULL, 0), MR_OK);
+  mr_frame_def fd = mr_default_frame_def();
+  fd.path = path;
+  fd.pose = track(0.0);
+  assert_int_equal(mr_world_add_frame(r->w, &fd, &r->frame), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.frame = r->frame;
+  p.position[0] = 0.3;
+  assert_int_equal(mr_world_add_particle(r->w, &p, &r->point), MR_OK);
+}
+
+static double norm3(const double v[3]) {
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* The largest change of velocity and angular velocity where a target is
+ * set, over 1 s of the track at 60 targets a second. */
+static double largest_jump(mr_frame_path path) {
+  rig r;
+  make_rig(&r, path);
+  double worst = 0.0;
+  for (int f = 1; f <= (int)FPS; f++) {
+    double v0[3], w0[3], v1[3], w1[3];
+    assert_int_equal(mr_world_frame_rates(r.w, r.frame, v0, w0), MR_OK);
+    mr_pose goal = track(f / FPS);
+    assert_int_equal(mr_world_set_frame_target(r.w, r.frame, &goal, f / FPS), MR_OK);
+    assert_int_equal(mr_world_frame_rates(r.w, r.frame, v1, w1), MR_OK);
+    if (f > 1) {
+      double dv[3] = { v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2] };
+      double dw[3] = { w1[0] - w0[0], w1[1] - w0[1], w1[2] - w0[2] };
+      worst = fmax(worst, fmax(norm3(dv), norm3(dw)));
+    }
+    assert_int_equal(mr_world_step_to(r.w, f / FPS, NULL), MR_OK);
+    /* and the target is reached when it is due */
+    mr_pose at;
+    assert_int_equal(mr_world_frame_pose(r.w, r.frame, &at), MR_OK);
+    for (int k = 0; k < 3; k++) assert_true(fabs(at.position[k] - goal.position[k]) < 1e-12);
+  }
+  mr_world_destroy(r.w);
+  return worst;
+}
+
+/* Where one target follows the next, the frame's velocity and angular
+ * velocity carry on unchanged (to rounding); on the straight path
+ * (MR_FRAME_LINEAR) they jump by the change of chord, 0.07 m/s and more. */
+static void velocity_is_continuous_where_targets_follow(void **state) {
+  (void)state;
+  double smooth = largest_jump(MR_FRAME_SMOOTH), linear = largest_jump(MR_FRAME_LINEAR);
+  print_message("largest jump: smooth %.3g, linear %.3g\n", smooth, linear);
+  assert_true(smooth < 1e-12);
+  assert_true(linear > 0.05);
+}
+
+/* Quaternion product a b. */
+static void qmul(const double a[4], const double b[4], double o[4]) {
+  o[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
+  o[1] = a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2];
+  o[2] = a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1];
+  o[3] = a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0];
+}
+
+/* Inside each segment, the rates the frame reports at t are the central
+ * differences of its pose at t ± δ (δ = 10 µs, so the differences are
+ * exact to about 1e-7 of these rates): the velocity of its position, the
+ * angular velocity of its orientation (q(t+δ) q(t−δ)* turns by 2δ ω), and
+ * its point's velocity v + ω × r of the point's positions. */
+static void rates_are_the_derivatives_of_the_pose(void **state) {
+  (void)state;
+  rig r;
+  make_rig(&r, MR_FRAME_SMOOTH);
+  const double d = 1e-5;
+  double worst = 0.0, scale = 0.0;
+  for (int f = 1; f <= 30; f++) {
+    mr_pose goal = track(f / FPS);
+    assert_int_equal(mr_world_set_frame_target(r.w, r.frame, &goal, f / FPS), MR_OK);
+    for (int i = 1; i <= 3; i++) {
+      double tm = (f - 1 + 0.25 * i) / FPS;
+      mr_pose a, b;
+      double v[3], om[3], xa[3], xb[3], xv[3];
+      assert_int_equal(mr_world_step_to(r.w, tm - d, NULL), MR_OK);
+      mr_world_frame_pose(r.w, r.frame, &a);
+      mr_world_particle_state(r.w, r.point, xa, NULL);
+      assert_int_equal(mr_world_step_to(r.w, tm, NULL), MR_OK);
+      mr_world_frame_rates(r.w, r.frame, v, om);
+      mr_world_particle_state(r.w, r.point, NULL, xv);
+      assert_int_equal(mr_world_step_to(r.w, tm + d, NULL), MR_OK);
+      mr_world_frame_pose(r.w, r.frame, &b);
+      mr_world_particle_state(r.w, r.point, xb, NULL);
+      const double ac[4] = { a.orientation[0], -a.orientation[1], -a.orientation[2],
+                             -a.orientation[3] };
+      double rel[4];
+      qmul(b.orientation, ac, rel);
+      double sgn = rel[0] < 0 ? -1.0 : 1.0;
+      for (int k = 0; k < 3; k++) {
+        worst = fmax(worst, fabs((b.position[k] - a.position[k]) / (2 * d) - v[k]));
+        worst = fmax(worst, fabs(sgn * rel[k + 1] / d - om[k]));
+        worst = fmax(worst, fabs((xb[k] - xa[k]) / (2 * d) - xv[k]));
+      }
+      scale = fmax(scale, fmax(norm3(v), norm3(om)));
+    }
+    assert_int_equal(mr_world_step_to(r.w, f / FPS, NULL), MR_OK);
+  }
+  print_message("rates against differences: %.3g (rates up to %.3g)\n", worst, scale);
+  assert_true(scale > 0.5);
+  assert_true(worst < 1e-6 * scale);
+  mr_world_destroy(r.w);
+}
+
+/* mr_world_frame_target_peak bounds the path's speed and turn rate. The
+ * frame moves and turns at 3, then 1, then 1 m/s (rad/s) of chord: on the
+ * third segment it leaves at rest (the parabola's slope after slowing
+ * down) and arrives at 1, and its speed bulges to 4/3 inside the segment,
+ * above both ends. Sampled every 1/200 of the segment, it never passes the
+ * bound (2: the Bézier control points of its velocity), and the bound is
+ * not loose by more than a factor 1.6 (measured 1.5). */
+static void peak_bounds_the_path(void **state) {
+  (void)state;
+  rig r;
+  make_rig(&r, MR_FRAME_SMOOTH);
+  const double at[4] = { 0.0, 3.0, 4.0, 5.0 }; /* 60ths of a metre, of a radian */
+  mr_pose start = track(0.0), goal = start;
+  double speed = 0.0, turn = 0.0, top = 0.0, top_turn = 0.0;
+  for (int f = 1; f <= 3; f++) {
+    double a = at[f] / FPS, axis_y = sin(0.5 * a);
+    for (int k = 0; k < 3; k++) goal.position[k] = start.position[k] + (k == 0 ? a : 0.0);
+    const double turn_q[4] = { cos(0.5 * a), 0.0, axis_y, 0.0 };
+    double q[4];
+    q[0] = turn_q[0] * start.orientation[0] - turn_q[2] * start.orientation[2];
+    q[1] = turn_q[0] * start.orientation[1] + turn_q[2] * start.orientation[3];
+    q[2] = turn_q[0] * start.orientation[2] + turn_q[2] * start.orientation[0];
+    q[3] = turn_q[0] * start.orientation[3] - turn_q[2] * start.orientation[1];
+    for (int k = 0; k < 4; k++) goal.orientation[k] = q[k];
+    if (f == 3)
+      assert_int_equal(mr_world_frame_target_peak(r.w, r.frame, &goal, f / FPS, &speed, &turn),
+                       MR_OK);
+    assert_int_equal(mr_world_set_frame_target(r.w, r.frame, &goal, f / FPS), MR_OK);
+    if (f < 3) {
+      assert_int_equal(mr_world_step_to(r.w, f / FPS, NULL), MR_OK);
+      continue;
+    }
+    for (int i = 1; i <= 200; i++) {
+      assert_int_equal(mr_world_step_to(r.w, (2 + i / 200.0) / FPS, NULL), MR_OK);
+      double v[3], om[3];
+      mr_world_frame_rates(r.w, r.frame, v, om);
+      top = fmax(top, norm3(v));
+      top_turn = fmax(top_turn, norm3(om));
+    }
+  }
+  print_message("speed %.4g <= %.4g, turn rate %.4g <= %.4g\n", top, speed, top_turn, turn);
+  assert_true(top > 1.3 && top_turn > 1.3); /* the bulge past both ends */
+  assert_true(top <= speed && top > speed / 1.6);
+  assert_true(top_turn <= turn && top_turn > turn / 1.6);
+  mr_world_destroy(r.w);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(velocity_is_continuous_where_targets_follow),
+    cmocka_unit_test(rates_are_the_derivatives_of_the_pose),
+    cmocka_unit_test(peak_bounds_the_path),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
