@@ -139,10 +139,27 @@ double mr_cos(double x) {
   return q < 0 ? NAN : quarter_turns(q + 1, r);
 }
 
+/* How many of asin_c a smaller y needs: where z = y² ≤ z_max, the terms
+ * after the first `terms` sum to less than 2⁻⁵⁶ y (summed in exact
+ * fractions, once). The slerp's nearly equal orientations put most calls
+ * at y ≈ 10⁻³, where four terms do the work of twenty-three. */
+static const struct {
+  double z_max;
+  int terms;
+} asin_terms[] = { { 0x1p-30, 1 }, { 0x1p-20, 2 }, { 0x1p-16, 3 }, { 0x1p-12, 4 },
+                   { 0x1p-10, 5 }, { 0x1p-8, 6 },  { 0x1p-6, 8 },  { 0x1p-4, 12 } };
+
 /* asin y − y, for |y| ≤ ½: the caller adds y last, where it is largest. */
 static double asin_rest(double y) {
   double z = y * y;
-  return y * z * series(asin_c, COUNT(asin_c), z);
+  int n = COUNT(asin_c);
+  for (int i = 0; i < COUNT(asin_terms); i++) {
+    if (z <= asin_terms[i].z_max) {
+      n = asin_terms[i].terms;
+      break;
+    }
+  }
+  return y * z * series(asin_c, n, z);
 }
 
 /* Within ½ of 0, acos x = π/2 − asin x. Beyond, the half-angle identity
