@@ -153,7 +153,7 @@ static void sine_springs_pass(mr_world *w, double t, const double *x, const doub
     double u[3], rate;
     double delta = line(x, v, s->a, s->b, u, &rate) - s->rest;
     double r = fabs(delta) / s->reach;
-    double mag = s->max_force * sin(half_pi * (r < 1 ? r : 1.0));
+    double mag = s->max_force * mr_sin(half_pi * (r < 1 ? r : 1.0));
     push_pair(f, s->a, s->b, u, -(copysign(mag, delta) + s->kd * rate));
   }
 }

@@ -64,8 +64,8 @@ static void quat_exp(const double r[3], double q[4]) {
   double a = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
   double c = 1.0, s = 0.5;
   if (a > 1e-12) {
-    c = cos(0.5 * a);
-    s = sin(0.5 * a) / a;
+    c = mr_cos(0.5 * a);
+    s = mr_sin(0.5 * a) / a;
   }
   q[0] = c;
   for (int k = 0; k < 3; k++) q[k + 1] = s * r[k];

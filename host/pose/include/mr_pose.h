@@ -65,6 +65,20 @@ mr_pose mr_pose_approach(const mr_pose *from, const mr_pose *to, double max_move
  * scene files have always meant them. */
 mr_pose mr_pose_from_euler_deg(const double position[3], const double rotation_deg[3]);
 
+/* Sine, cosine and arc cosine that give the same bits on every CPU,
+ * compiler and C library (libm's may differ in the last bit from one to
+ * the next, and they reach the state): within about one ulp of the true
+ * value, from + − × ÷ and sqrt alone. mr_sin and mr_cos take |x| up to
+ * MR_TRIG_MAX_RAD, inside which the reduction by π/2 keeps its precision (a 1 Hz
+ * oscillation reaches it after 15 days); beyond it, and for NaN or an
+ * infinity, they return NaN rather than a value whose last bits would
+ * depend on how the reduction lost them. mr_acos returns NaN outside
+ * [−1, 1], and 0 and π at 1 and −1 exactly. */
+#define MR_TRIG_MAX_RAD 0x1p23
+double mr_sin(double x);
+double mr_cos(double x);
+double mr_acos(double x);
+
 #ifdef __cplusplus
 }
 #endif

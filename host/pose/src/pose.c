@@ -74,7 +74,7 @@ static double short_way(const double q0[4], const double q1_in[4], double q1[4])
     dot = -dot;
   }
   if (dot > 1) dot = 1;
-  return acos(dot);
+  return mr_acos(dot);
 }
 
 /* slerp(q0, q1; s) = (sin((1−s)θ) q0 + sin(sθ) q1) / sin θ, renormalised so
@@ -90,8 +90,8 @@ mr_pose mr_pose_interpolate(const mr_pose *from, const mr_pose *to, double s) {
     a = 1 - s;
     b = s;
   } else {
-    a = sin((1 - s) * theta) / sin(theta);
-    b = sin(s * theta) / sin(theta);
+    a = mr_sin((1 - s) * theta) / mr_sin(theta);
+    b = mr_sin(s * theta) / mr_sin(theta);
   }
   double n2 = 0;
   for (int k = 0; k < 4; k++) {
@@ -153,7 +153,8 @@ mr_pose mr_pose_from_euler_deg(const double position[3], const double rotation_d
   double hx = rotation_deg[0] * pi / 360.0;
   double hy = rotation_deg[1] * pi / 360.0;
   double hz = rotation_deg[2] * pi / 360.0;
-  double cx = cos(hx), sx = sin(hx), cy = cos(hy), sy = sin(hy), cz = cos(hz), sz = sin(hz);
+  double cx = mr_cos(hx), sx = mr_sin(hx), cy = mr_cos(hy), sy = mr_sin(hy), cz = mr_cos(hz),
+         sz = mr_sin(hz);
   o.orientation[0] = cz * cy * cx + sz * sy * sx;
   o.orientation[1] = cz * cy * sx - sz * sy * cx;
   o.orientation[2] = cz * sy * cx + sz * cy * sx;

@@ -282,7 +282,7 @@ static mr_pose oscillate_at(const mr_scene_track *tr, const mr_pose *start, doub
   if (!(t > tr->start)) return o;
   double ramp = tr->ramp > 0 ? fmin(1.0, (t - tr->start) / tr->ramp) : 1.0;
   double arg = 2.0 * PI * tr->frequency_hz * (t - tr->start) + tr->phase_rad;
-  double w = sin(arg), c = cos(arg) - 1.0; /* c(start) = 0: no jump at the start */
+  double w = mr_sin(arg), c = mr_cos(arg) - 1.0; /* c(start) = 0: no jump at the start */
   mr_pose id = mr_pose_identity(), full = mr_pose_identity();
   memcpy(full.orientation, tr->turn, sizeof full.orientation);
   mr_pose turn = mr_pose_interpolate(&id, &full, ramp * w);

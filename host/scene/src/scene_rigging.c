@@ -161,7 +161,7 @@ static void frame_the_points(mr_scene *s) {
     half += (hi[c] - lo[c]) * (hi[c] - lo[c]) / 4;
   }
   /* A sphere of radius R fills a vertical field of view f from R / sin(f/2). */
-  double d = 1.2 * sqrt(half) / sin(s->stage.fov_deg * 3.14159265358979323846 / 360.0);
+  double d = 1.2 * sqrt(half) / mr_sin(s->stage.fov_deg * 3.14159265358979323846 / 360.0);
   s->stage.orbit_distance = fmin(fmax(d, 1.0), 1e5);
 }
 
