@@ -185,6 +185,36 @@ static void track_rotation_and_phase_reach_the_world(void **state) {
   mr_scene_free(&s);
 }
 
+/* A show left running for days: an oscillation at 7 Hz, 8 days in, is past
+ * the 2²³ rad that the sine takes, and a phase of 36 090° is 90° plus a
+ * hundred turns. The track is taken in whole cycles first, so the pose is
+ * the one a cycle after the start gives, and finite. */
+static void oscillation_is_the_same_after_days_and_whole_turns_of_phase(void **state) {
+  (void)state;
+  const char *osc = "physics:\n"
+                    "  effects: [control]\n"
+                    "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+                    "  control:\n"
+                    "    pose: {position: [0, 1, 0]}\n"
+                    "    points: [{name: p, offset: [0, 0, 0]}]\n"
+                    "    track:\n"
+                    "      oscillate: {amplitude: [0.2, 0, 0], frequency: 8, phase: 36090}\n";
+  mr_scene s;
+  load(osc, &s);
+  mr_pose near, far;
+  double later = 8.0 * 86400.0; /* 8 days: 5.5 million cycles, 3.5e7 rad */
+  for (int k = 1; k < 8; k++) {
+    double dt = k / 64.0;
+    mr_scene_frame_pose_at(&s, 0, dt, &near);
+    mr_scene_frame_pose_at(&s, 0, later + dt, &far);
+    assert_true(isfinite(far.position[0]));
+    assert_true(fabs(far.position[0] - near.position[0]) < 1e-9);
+  }
+  mr_scene_frame_pose_at(&s, 0, later + 1.0 / 32.0, &far); /* a quarter cycle: sin(180°) */
+  assert_true(fabs(far.position[0]) < 1e-9);
+  mr_scene_free(&s);
+}
+
 /* Every setting a scene gives reaches the world it builds, each in its
  * own field: distinct values, read back from the world, not the parse. */
 static void settings_reach_the_built_world(void **state) {
@@ -449,6 +479,7 @@ int main(void) {
     cmocka_unit_test(control_points_sit_where_the_file_means),
     cmocka_unit_test(start_positions_are_particles_then_control_points),
     cmocka_unit_test(track_rotation_and_phase_reach_the_world),
+    cmocka_unit_test(oscillation_is_the_same_after_days_and_whole_turns_of_phase),
     cmocka_unit_test(settings_reach_the_built_world),
     cmocka_unit_test(loader_and_physics_agree_on_flat_groups),
     cmocka_unit_test(pinned_particle_stays_and_free_one_falls),

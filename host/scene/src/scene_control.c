@@ -117,7 +117,7 @@ static int read_oscillate(mr_reader *r, const mr_ynode *n) {
       read_pose(r, n, &turn) != 0)
     return -1;
   tr->kind = MR_SCENE_TRACK_OSCILLATE;
-  tr->phase_rad = tr->phase_rad * PI / 180.0; /* read in degrees */
+  tr->phase_rad = fmod(tr->phase_rad, 360.0) * PI / 180.0; /* read in degrees, kept small */
   memcpy(tr->turn, turn.orientation, sizeof tr->turn);
   return 0;
 }
@@ -281,7 +281,11 @@ static mr_pose oscillate_at(const mr_scene_track *tr, const mr_pose *start, doub
   mr_pose o = *start;
   if (!(t > tr->start)) return o;
   double ramp = tr->ramp > 0 ? fmin(1.0, (t - tr->start) / tr->ramp) : 1.0;
-  double arg = 2.0 * PI * tr->frequency_hz * (t - tr->start) + tr->phase_rad;
+  /* The phase is taken in whole cycles first, so a show that runs for days
+   * keeps its argument small (mr_sin takes |x| up to 2²³ rad, and a large
+   * argument would cost the sine its low bits anyway). */
+  double cycles = tr->frequency_hz * (t - tr->start);
+  double arg = 2.0 * PI * (cycles - floor(cycles)) + tr->phase_rad;
   double w = mr_sin(arg), c = mr_cos(arg) - 1.0; /* c(start) = 0: no jump at the start */
   mr_pose id = mr_pose_identity(), full = mr_pose_identity();
   memcpy(full.orientation, tr->turn, sizeof full.orientation);
