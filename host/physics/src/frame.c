@@ -71,15 +71,6 @@ static void quat_exp(const double r[3], double q[4]) {
   for (int k = 0; k < 3; k++) q[k + 1] = s * r[k];
 }
 
-/* Hamilton product a b. */
-static void quat_mul(const double a[4], const double b[4], double out[4]) {
-  double r[4] = { a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-                  a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-                  a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-                  a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0] };
-  memcpy(out, r, sizeof r);
-}
-
 /* Frame path at t into st (MR_FRAME_STATE entries: p, q, ṗ, ω, p̈, ω̇). */
 void mr_frame_motion(const mr_frame *fr, double t, double *st) {
   double T = fr->t1 - fr->t0;
@@ -115,9 +106,9 @@ void mr_frame_motion(const mr_frame *fr, double t, double *st) {
   quat_exp(ra, qa);
   quat_exp(rb, qb);
   quat_exp(rc, qc);
-  quat_mul(qa, qb, qab);
-  quat_mul(qab, qc, qabc);
-  quat_mul(qabc, fr->from.orientation, st + 3);
+  mr_pose_quat_multiply(qa, qb, qab);
+  mr_pose_quat_multiply(qab, qc, qabc);
+  mr_pose_quat_multiply(qabc, fr->from.orientation, st + 3);
   mr_pose_rotate(qa, fr->w1, u1);
   mr_pose_rotate(qab, fr->w0, u2);
   for (int i = 0; i < 3; i++) wj[i] = u1[i] * jd + u2[i] * kd;

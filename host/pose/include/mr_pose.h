@@ -40,6 +40,9 @@ void mr_pose_apply(const mr_pose *pose, const double local[3], double world[3]);
 
 /* b first, then a: position a.p + R(a) b.p, orientation a.q b.q. */
 mr_pose mr_pose_compose(const mr_pose *a, const mr_pose *b);
+/* The Hamilton product a b of two quaternions (w, x, y, z): b's turn
+ * first, then a's; out may alias a or b. */
+void mr_pose_quat_multiply(const double a[4], const double b[4], double out[4]);
 
 /* The pose a fraction s (0..1) of the way from a to b: position linear,
  * orientation by slerp the short way round (so q and −q give the same

@@ -48,8 +48,7 @@ void mr_pose_apply(const mr_pose *p, const double local[3], double world[3]) {
   for (int k = 0; k < 3; k++) world[k] = p->position[k] + r[k];
 }
 
-/* Hamilton product a b. */
-static void quat_mul(const double a[4], const double b[4], double out[4]) {
+void mr_pose_quat_multiply(const double a[4], const double b[4], double out[4]) {
   double r[4] = { a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
                   a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
                   a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
@@ -60,7 +59,7 @@ static void quat_mul(const double a[4], const double b[4], double out[4]) {
 mr_pose mr_pose_compose(const mr_pose *a, const mr_pose *b) {
   mr_pose o;
   mr_pose_apply(a, b->position, o.position);
-  quat_mul(a->orientation, b->orientation, o.orientation);
+  mr_pose_quat_multiply(a->orientation, b->orientation, o.orientation);
   return o;
 }
 
