@@ -94,6 +94,56 @@ static void jac_products_match_dense(void **state) {
   test_system_free(&s);
 }
 
+/* Rows added whole and filled in place are the rows begin_row and add
+ * make, entry for entry, after rows made the slow way too. */
+static void rows_added_whole_equal_rows_added_entry_by_entry(void **state) {
+  (void)state;
+  mr_jac slow = { 0 }, fast = { 0 };
+  const double a[3] = { 1.0, -2.0, 0.5 }, b[3] = { 0.25, 3.0, -1.0 };
+  assert_int_equal(mr_jac_reset(&slow, 6), 0);
+  assert_int_equal(mr_jac_reset(&fast, 6), 0);
+  /* One row the slow way in both, then three rows of two, then two of one. */
+  for (mr_jac *J = &slow; J; J = J == &slow ? &fast : NULL) {
+    mr_jac_begin_row(J);
+    mr_jac_add(J, 5, a);
+  }
+  for (int r = 0; r < 3; r++) {
+    mr_jac_begin_row(&slow);
+    mr_jac_add(&slow, r, a);
+    mr_jac_add(&slow, r + 2, b);
+  }
+  for (int r = 0; r < 2; r++) {
+    mr_jac_begin_row(&slow);
+    mr_jac_add(&slow, 4 - r, b);
+  }
+  int e = mr_jac_add_rows(&fast, 3, 2);
+  assert_int_equal(e, 1);
+  for (int r = 0; r < 3; r++, e += 2) {
+    fast.particle[e] = r;
+    fast.particle[e + 1] = r + 2;
+    memcpy(fast.d[e], a, sizeof a);
+    memcpy(fast.d[e + 1], b, sizeof b);
+  }
+  e = mr_jac_add_rows(&fast, 2, 1);
+  assert_int_equal(e, 7);
+  for (int r = 0; r < 2; r++) {
+    fast.particle[e + r] = 4 - r;
+    memcpy(fast.d[e + r], b, sizeof b);
+  }
+  assert_int_equal(fast.rows, slow.rows);
+  assert_memory_equal(fast.row_ptr, slow.row_ptr, (size_t)(slow.rows + 1) * sizeof(int));
+  assert_memory_equal(fast.particle, slow.particle, 9 * sizeof(int));
+  assert_memory_equal(fast.d, slow.d, 9 * sizeof fast.d[0]);
+  /* Nothing to add to, or a row of no entries, is refused. */
+  mr_jac none = { 0 };
+  assert_int_equal(mr_jac_add_rows(&none, 1, 1), -1);
+  assert_int_equal(mr_jac_add_rows(&fast, 1, 0), -1);
+  assert_int_equal(mr_jac_add_rows(&fast, -1, 2), -1);
+  assert_int_equal(fast.rows, 6);
+  mr_jac_free(&slow);
+  mr_jac_free(&fast);
+}
+
 /* Looks up A(i, j) in CSR; 0 where nothing is stored. */
 static double csr_at(const mr_csr *A, int i, int j) {
   for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
@@ -192,6 +242,7 @@ int main(void) {
     cmocka_unit_test(jac_rejects_bad_particles_and_rows),
     cmocka_unit_test(jac_reset_keeps_capacity),
     cmocka_unit_test(jac_products_match_dense),
+    cmocka_unit_test(rows_added_whole_equal_rows_added_entry_by_entry),
     cmocka_unit_test(assembly_matches_dense_jmjt),
     cmocka_unit_test(assembly_handles_fixed_particles_and_zero_rows),
     cmocka_unit_test(assembly_of_an_empty_jacobian),
