@@ -24,57 +24,73 @@
 #include "solver_internal.h"
 
 #include <float.h>
+#include <math.h>
 #include <string.h>
 
 #define DBUF(d, name, type) ((type *)(d)->name.p)
 
 void mr_dense_free(mr_dense *d) {
-  mr_buf *const bufs[] = { &d->l,    &d->first,   &d->t,     &d->dinv,
-                           &d->diag, &d->dropped, &d->place, &d->y };
+  mr_buf *const bufs[] = { &d->l,       &d->first, &d->t,    &d->dinv, &d->diag,
+                           &d->dropped, &d->place, &d->zero, &d->y };
   mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
   d->valid = 0;
+  d->room = 0;
 }
 
 /* Room for any system of up to rows rows (A's pattern full). */
 int mr_dense_reserve(mr_dense *d, int rows) {
-  const size_t n = (size_t)rows, sd = sizeof(double);
-  if (mr_buf_reserve(&d->l, n * n, sd) || mr_buf_reserve(&d->first, n, sizeof(int)) ||
+  if (rows <= d->room) return 0;
+  const size_t n = (size_t)rows, sd = sizeof(double), si = sizeof(int);
+  if (mr_buf_reserve(&d->l, n * n, sd) || mr_buf_reserve(&d->first, n, si) ||
       mr_buf_reserve(&d->t, n, sd) || mr_buf_reserve(&d->dinv, n, sd) ||
       mr_buf_reserve(&d->diag, n, sd) || mr_buf_reserve(&d->dropped, n, 1) ||
-      mr_buf_reserve(&d->place, n * n, sizeof(int)) || mr_buf_reserve(&d->y, n, sd))
+      mr_buf_reserve(&d->place, n * (n + 1), si) || mr_buf_reserve(&d->zero, n * (n + 1) / 2, si) ||
+      mr_buf_reserve(&d->y, n, sd))
     return MR_SOLVE_ENOMEM;
+  d->room = rows;
   return 0;
 }
 
-/* The pattern's share: f_k of each row of PAPᵀ, and where each entry of
- * A lands in L (its lower triangle and diagonal only). iperm: n ints of
- * scratch. */
+/* The pattern's share: f_k of each row of PAPᵀ; where each entry of A's
+ * lower triangle and diagonal lands in L (pairs: its index in A, its
+ * place in L); and the places of each row's span that A leaves empty,
+ * which the factor fills in. iperm: n ints of scratch. */
 static void place_pattern(mr_dense *dn, const mr_csr *A, int *iperm) {
   const int n = A->n, *perm = dn->perm;
   int *first = DBUF(dn, first, int), *place = DBUF(dn, place, int);
+  int *zero = DBUF(dn, zero, int), np = 0, nz = 0;
+  double *l = DBUF(dn, l, double);
   for (int k = 0; k < n; k++) iperm[perm[k]] = k;
   for (int k = 0; k < n; k++) first[k] = k;
   for (int old = 0; old < n; old++) {
     const int k = iperm[old];
     for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
       const int j = iperm[A->col[q]];
-      place[q] = j <= k ? k * n + j : -1;
       if (j < first[k]) first[k] = j;
+      if (j > k) continue;
+      place[np++] = q;
+      place[np++] = k * n + j;
     }
   }
+  /* A's places marked in L (NaN; every load writes L afresh), then the
+   * unmarked places of the spans listed. */
+  for (int k = 0; k < n; k++)
+    for (int j = first[k]; j <= k; j++) l[k * n + j] = 0.0;
+  for (int p = 0; p < np; p += 2) l[place[p + 1]] = NAN;
+  for (int k = 0; k < n; k++)
+    for (int j = first[k]; j <= k; j++)
+      if (!isnan(l[k * n + j])) zero[nz++] = k * n + j;
+  dn->n_place = np / 2;
+  dn->n_zero = nz;
 }
 
 /* PAPᵀ's lower triangle into L, zero elsewhere in each row's span. */
 static void load(mr_dense *dn, const mr_csr *A) {
-  const int n = A->n, nnz = A->row_ptr[n], *first = DBUF(dn, first, int);
-  const int *place = DBUF(dn, place, int);
+  const int *place = DBUF(dn, place, int), *zero = DBUF(dn, zero, int);
+  const double *val = A->val;
   double *l = DBUF(dn, l, double);
-  for (int k = 0; k < n; k++) {
-    double *lk = l + (size_t)k * (size_t)n;
-    memset(lk + first[k], 0, (size_t)(k + 1 - first[k]) * sizeof *lk);
-  }
-  for (int q = 0; q < nnz; q++)
-    if (place[q] >= 0) l[place[q]] = A->val[q];
+  for (int z = 0; z < dn->n_zero; z++) l[zero[z]] = 0.0;
+  for (int p = 0; p < 2 * dn->n_place; p += 2) l[place[p + 1]] = val[place[p]];
 }
 
 /* s − Σ_{lo ≤ m < hi} a_m b_m, in two interleaved sums: half the loop's
@@ -174,7 +190,8 @@ int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
   r->iterations = 1;
   unsigned char *skip = f->skip.p;
   const unsigned char *dropped = DBUF(dn, dropped, unsigned char);
-  for (int k = 0; k < n; k++) skip[dn->perm[k]] = dropped[k] != 0;
+  for (int k = 0; r->dependent + r->regularised > 0 && k < n; k++)
+    skip[dn->perm[k]] = dropped[k] != 0;
   st = mr_ldlt_refine(f, o, A, b, b_norm, x, r, skip, solve_factored, dn);
   if (st != 0) return st;
   return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
