@@ -32,9 +32,12 @@ typedef struct mr_sine_spring {
 
 static void gravity_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)x, (void)v;
-  const double *g = w->def.gravity;
-  for (int i = 0; i < w->n; i++) {
-    double m = w->mass[i];
+  /* Locals: the stores into f could otherwise be the world's fields. */
+  const double g[3] = { w->def.gravity[0], w->def.gravity[1], w->def.gravity[2] };
+  const double *mass = w->mass;
+  const int n = w->n;
+  for (int i = 0; i < n; i++) {
+    double m = mass[i];
     f[3 * i + 0] += m * g[0];
     f[3 * i + 1] += m * g[1];
     f[3 * i + 2] += m * g[2];
@@ -44,10 +47,13 @@ static void gravity_pass(mr_world *w, double t, const double *x, const double *v
 /* Viscous friction F = −drag·v: the paper's default "particle friction". */
 static void drag_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)x;
-  double c = w->def.drag;
-  for (int i = 0; i < w->n; i++) {
-    if (w->inv_mass[i] == 0.0) continue;
-    double ci = fmin(c, w->drag_rate_cap * w->mass[i]); /* see mr_forces_stable_dt */
+  const double c = w->def.drag, cap = w->drag_rate_cap, *mass = w->mass, *inv_mass = w->inv_mass;
+  const int n = w->n;
+  for (int i = 0; i < n; i++) {
+    if (inv_mass[i] == 0.0) continue;
+    /* fmin(c, cap·m) (see mr_forces_stable_dt), inline: a NaN loses. */
+    const double y = cap * mass[i];
+    const double ci = c != c ? y : (y < c ? y : c);
     for (int k = 0; k < 3; k++) f[3 * i + k] -= ci * v[3 * i + k];
   }
 }
