@@ -13,12 +13,18 @@ static void axpy(int n, double *out, const double *x, double h, const double *y)
 
 /* ------------------------------------------------------------ the memo */
 
-void mr_eval_memo_free(mr_eval_memo *m) {
+static void point_free(mr_eval_point *m) {
   free(m->x);
   free(m->v);
   free(m->a);
   free(m->frames);
   free(m->contacts);
+  memset(m, 0, sizeof *m);
+}
+
+void mr_eval_memo_free(mr_eval_memo *m) {
+  point_free(&m->last);
+  point_free(&m->start);
   memset(m, 0, sizeof *m);
 }
 
@@ -32,8 +38,8 @@ void mr_eval_memo_free(mr_eval_memo *m) {
  * between steps, a projection, an impulse, the string correction, a
  * reset, a frame placed at once, shows in these, and the memo is then not
  * used. */
-static int memo_matches(const mr_world *w, double t, double h, const double *x, const double *v) {
-  const mr_eval_memo *m = &w->memo;
+static int point_matches(const mr_world *w, const mr_eval_point *m, double t, double h,
+                         const double *x, const double *v) {
   const size_t bytes = (size_t)(3 * w->n) * sizeof(double);
   return m->valid && m->t == t && (!m->used_h || m->h == h) && m->n_frames == w->frames.n &&
          m->n_contacts == w->contacts.n && memcmp(m->x, x, bytes) == 0 &&
@@ -44,11 +50,10 @@ static int memo_matches(const mr_world *w, double t, double h, const double *x, 
           memcmp(m->contacts, w->contacts.c, (size_t)m->n_contacts * sizeof(mr_contact)) == 0);
 }
 
-/* Keeps the evaluation a = f(t, x, v) just made. Its arrays grow to the
- * world's reserved sizes, so that only the first step allocates. */
-static void memo_keep(mr_world *w, double t, double h, const double *x, const double *v,
-                      const double *a) {
-  mr_eval_memo *m = &w->memo;
+/* Keeps the evaluation a = f(t, x, v) just made in m. Its arrays grow to
+ * the world's reserved sizes, so that only the first step allocates. */
+static void point_keep(mr_world *w, mr_eval_point *m, double t, double h, const double *x,
+                       const double *v, const double *a) {
   const int n3 = 3 * w->n, nc = w->contacts.n > w->contacts.cap ? w->contacts.n : w->contacts.cap;
   int cap = m->cap_n;
   m->valid = 0;
@@ -76,20 +81,31 @@ static void memo_keep(mr_world *w, double t, double h, const double *x, const do
   m->valid = 1;
 }
 
-/* mr_eval through the memo: the kept answer when (t, x, v, ...) is the
- * kept point, bit for bit, else a new evaluation, then kept. */
-static int eval_memo(mr_world *w, double t, double h, double *x, double *v, double *a) {
-  if (w->memo.valid) {
+/* mr_eval through the memo: a kept answer when (t, x, v, ...) is its
+ * point, bit for bit, else a new evaluation, then kept. A step's first
+ * stage (first) is kept as the start, where every try of the step begins,
+ * and is looked for there too; any other as the last. */
+static int eval_memo(mr_world *w, double t, double h, double *x, double *v, double *a, int first) {
+  mr_eval_memo *m = &w->memo;
+  if (!m->valid) m->last.valid = m->start.valid = 0;
+  m->valid = 1;
+  if (m->last.valid || (first && m->start.valid)) {
     mr_frames_place(w, t, x, v);
-    if (memo_matches(w, t, h, x, v)) {
-      memcpy(a, w->memo.a, (size_t)(3 * w->n) * sizeof *a);
+    const int in_last = point_matches(w, &m->last, t, h, x, v);
+    if (in_last || (first && point_matches(w, &m->start, t, h, x, v))) {
+      if (in_last && first) { /* the last step's end: now this step's start */
+        const mr_eval_point p = m->start;
+        m->start = m->last;
+        m->last = p;
+      }
+      memcpy(a, (in_last && !first ? m->last : m->start).a, (size_t)(3 * w->n) * sizeof *a);
       mr_taut_set_time(w, t);
-      w->memo.recalled++;
+      m->recalled++;
       return 0;
     }
   }
   if (mr_eval(w, t, h, x, v, a) != 0) return -1;
-  memo_keep(w, t, h, x, v, a);
+  point_keep(w, first ? &m->start : &m->last, t, h, x, v, a);
   return 0;
 }
 
@@ -121,7 +137,7 @@ static double particle_error(const mr_world *w, const double ex[3], const double
  * scale: h/6 or h/2. a_end is scratch for f(y1). */
 static int local_error(mr_world *w, double t, double h, double *x1, double *v1, const double *kv,
                        const double *ka, double scale, double *a_end, double *err) {
-  if (eval_memo(w, t + h, h, x1, v1, a_end) != 0) return -1;
+  if (eval_memo(w, t + h, h, x1, v1, a_end, 0) != 0) return -1;
   double e = 0.0;
   for (int i = 0; i < w->n; i++) {
     if (!(w->inv_mass[i] > 0)) continue;
@@ -149,7 +165,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
   double *kv3 = k + 4 * n3, *ka3 = k + 5 * n3, *kv4 = k + 6 * n3, *ka4 = k + 7 * n3;
   memcpy(kv1, v0, bytes);
   memcpy(xs, x0, bytes);
-  if (eval_memo(w, t, h, xs, kv1, ka1) != 0) return -1;
+  if (eval_memo(w, t, h, xs, kv1, ka1, 1) != 0) return -1;
   switch (w->def.integrator) {
   case MR_INTEGRATOR_EULER:
     axpy(n3, x1, xs, h, kv1);
