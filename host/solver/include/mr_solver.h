@@ -115,7 +115,9 @@ mr_solve_def mr_default_solve_def(void);
 typedef struct mr_solve_result {
   mr_solve_status status;
   int iterations;
-  double residual; /* ‖Ax − b‖ / max(‖b‖, tiny) */
+  double residual; /* ‖Ax − b‖ / max(‖b‖, tiny); for the dense LDLᵀ, when
+                      the factor's own error bound already keeps it within
+                      tol, that bound (not measured: README.md) */
   int dependent;   /* rows found dependent */
   int regularised; /* rows found nearly dependent and regularised (reg_tol) */
   int fallback;    /* 1: Gauss–Seidel or CG could not finish (max_iter spent, or

@@ -118,6 +118,9 @@ double mr_norm2(int n, const double *v);
 /* out = b − A x. */
 void mr_residual(const mr_csr *A, const double *b, const double *x, double *out);
 
+/* 1 when none of v[0..n) is NaN or ±Inf. */
+int mr_all_finite(size_t n, const double *v);
+
 /* A's diagonal (0 where none is stored). */
 void mr_csr_diagonal(const mr_csr *A, double *diag);
 
