@@ -83,8 +83,10 @@ static void accelerations(const mr_world *w, const double *f, double *a) {
   const int n = w->n;
   const double *inv_mass = w->inv_mass;
   for (int i = 0; i < n; i++) {
-    const double im = inv_mass[i];
-    for (int k = 0; k < 3; k++) a[3 * i + k] = f[3 * i + k] * im;
+    const double im = inv_mass[i]; /* written out: -O2 leaves a 3-loop rolled */
+    a[3 * i] = f[3 * i] * im;
+    a[3 * i + 1] = f[3 * i + 1] * im;
+    a[3 * i + 2] = f[3 * i + 2] * im;
   }
 }
 
@@ -276,7 +278,9 @@ static void add_constraint_forces(mr_world *w, int rows, double *a) {
   w->stats.max_multiplier = big;
   for (int i = 0; i < n; i++) {
     const double im = inv_mass[i];
-    for (int k = 0; k < 3; k++) a[3 * i + k] += fc[3 * i + k] * im;
+    a[3 * i] += fc[3 * i] * im;
+    a[3 * i + 1] += fc[3 * i + 1] * im;
+    a[3 * i + 2] += fc[3 * i + 2] * im;
   }
 }
 

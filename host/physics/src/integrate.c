@@ -139,13 +139,14 @@ static int local_error(mr_world *w, double t, double h, double *x1, double *v1, 
                        const double *ka, double scale, double *a_end, double *err) {
   if (eval_memo(w, t + h, h, x1, v1, a_end, 0) != 0) return -1;
   double e = 0.0;
+  const double *inv_mass = w->inv_mass;
   for (int i = 0; i < w->n; i++) {
-    if (!(w->inv_mass[i] > 0)) continue;
-    double ex[3], ev[3];
-    for (int k = 0; k < 3; k++) {
-      ex[k] = scale * (kv[3 * i + k] - v1[3 * i + k]);
-      ev[k] = scale * (ka[3 * i + k] - a_end[3 * i + k]);
-    }
+    if (!(inv_mass[i] > 0)) continue;
+    const double *kvi = kv + 3 * i, *v1i = v1 + 3 * i, *kai = ka + 3 * i, *ai = a_end + 3 * i;
+    const double ex[3] = { scale * (kvi[0] - v1i[0]), scale * (kvi[1] - v1i[1]),
+                           scale * (kvi[2] - v1i[2]) };
+    const double ev[3] = { scale * (kai[0] - ai[0]), scale * (kai[1] - ai[1]),
+                           scale * (kai[2] - ai[2]) };
     double p = particle_error(w, ex, ev);
     if (p > e || p != p) e = p;
   }
