@@ -39,6 +39,7 @@ typedef struct csr_kept {
    * which particles were pinned. */
   int valid, rows, np, ne, nnz;
   mr_buf jrp, jpart, pinned;
+  mr_buf masses; /* inv_mass as last seen: the same bits, the same pinned set */
   /* Particle → entries of J that name it (movable particles only): the
    * transpose of J's pattern. */
   mr_buf pstart, prow, pent;
@@ -74,14 +75,20 @@ static int pinned(const double *inv_mass, int p) {
   return !inv_mass || inv_mass[p] == 0.0;
 }
 
-static int same_source(const csr_kept *pl, const mr_jac *J, const double *inv_mass, int ne) {
+static int same_source(csr_kept *pl, const mr_jac *J, const double *inv_mass, int ne) {
   if (!pl->valid || pl->rows != J->rows || pl->np != J->n_particles || pl->ne != ne) return 0;
   if (J->rows > 0 && memcmp(pl->jrp.p, J->row_ptr, (size_t)(J->rows + 1) * sizeof(int)) != 0)
     return 0;
   if (ne > 0 && memcmp(pl->jpart.p, J->particle, (size_t)ne * sizeof(int)) != 0) return 0;
-  const unsigned char *pin = pl->pinned.p;
-  for (int p = 0; p < J->n_particles; p++)
-    if (pin[p] != pinned(inv_mass, p)) return 0;
+  /* The masses rarely change; comparing them whole is a quarter of the
+   * particle by particle test. */
+  const size_t mass_bytes = (size_t)J->n_particles * sizeof(double);
+  if (!inv_mass || memcmp(pl->masses.p, inv_mass, mass_bytes) != 0) {
+    const unsigned char *pin = pl->pinned.p;
+    for (int p = 0; p < J->n_particles; p++)
+      if (pin[p] != pinned(inv_mass, p)) return 0;
+    if (inv_mass) memcpy(pl->masses.p, inv_mass, mass_bytes);
+  }
   return 1;
 }
 
@@ -100,6 +107,7 @@ static int plan_reserve(struct mr_csr_plan *pl, int count, size_t k, size_t np, 
     csr_kept *kp = &pl->kept[s];
     if (mr_buf_reserve(&kp->rp, k + 1, si) || mr_buf_reserve(&kp->jrp, k + 1, si) ||
         mr_buf_reserve(&kp->jpart, ne, si) || mr_buf_reserve(&kp->pinned, np, 1) ||
+        mr_buf_reserve(&kp->masses, np, sizeof(double)) ||
         mr_buf_reserve(&kp->pstart, np + 1, si) || mr_buf_reserve(&kp->prow, ne, si) ||
         mr_buf_reserve(&kp->pent, ne, si) || mr_buf_reserve(&kp->tstart, ne + 1, si))
       return MR_SOLVE_ENOMEM;
@@ -134,6 +142,7 @@ static void keep_source(csr_kept *pl, const mr_jac *J, const double *inv_mass, i
   if (ne > 0) memcpy(pl->jpart.p, J->particle, (size_t)ne * sizeof(int));
   unsigned char *pin = pl->pinned.p;
   for (int p = 0; p < np; p++) pin[p] = (unsigned char)pinned(inv_mass, p);
+  if (inv_mass && np > 0) memcpy(pl->masses.p, inv_mass, (size_t)np * sizeof(double));
   pl->rows = k;
   pl->np = np;
   pl->ne = ne;
@@ -368,7 +377,8 @@ static void numeric_terms(mr_csr *A, const csr_kept *kp, const mr_jac *J, const 
   double *val = A->val;
   memset(val, 0, (size_t)kp->nnz * sizeof *val);
   for (int e = 0, t = 0; e < ne; e++) {
-    const double w = inv_mass[part[e]], *de = d[e];
+    /* Locals: a store into val might otherwise be a store into d. */
+    const double w = inv_mass[part[e]], de[3] = { d[e][0], d[e][1], d[e][2] };
     for (const int end = tstart[e + 1]; t < end; t++) val[tslot[t]] += w * dot3(de, d[teb[t]]);
   }
   for (int m = 0; m < kp->nmirror; m++) val[mirror[2 * m + 1]] = val[mirror[2 * m]];
@@ -407,9 +417,9 @@ void mr_csr_free(mr_csr *A) {
   if (pl) {
     for (int s = 0; s < CSR_KEPT; s++) {
       csr_kept *kp = &pl->kept[s];
-      mr_buf *const kbufs[] = { &kp->rp,     &kp->col,    &kp->jrp,  &kp->jpart,
-                                &kp->pinned, &kp->pstart, &kp->prow, &kp->pent,
-                                &kp->tstart, &kp->tslot,  &kp->teb,  &kp->mirror };
+      mr_buf *const kbufs[] = { &kp->rp,     &kp->col,    &kp->jrp,   &kp->jpart, &kp->pinned,
+                                &kp->masses, &kp->pstart, &kp->prow,  &kp->pent,  &kp->tstart,
+                                &kp->tslot,  &kp->teb,    &kp->mirror };
       mr_bufs_free(kbufs, sizeof kbufs / sizeof kbufs[0]);
     }
     mr_buf *const bufs[] = { &pl->val, &pl->mark, &pl->cursor, &pl->ucol, &pl->work };
