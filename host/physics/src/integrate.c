@@ -7,8 +7,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void axpy(int n, double *out, const double *x, double h, const double *y) {
-  for (int i = 0; i < n; i++) out[i] = x[i] + h * y[i];
+/* Two elements a step: the same operation on each, and the pairs (the
+ * arrays distinct) become one vector operation each. */
+static void axpy(int n, double *restrict out, const double *restrict x, double h,
+                 const double *restrict y) {
+  int i = 0;
+  for (; i + 1 < n; i += 2) {
+    out[i] = x[i] + h * y[i];
+    out[i + 1] = x[i + 1] + h * y[i + 1];
+  }
+  if (i < n) out[i] = x[i] + h * y[i];
 }
 
 /* ------------------------------------------------------------ the memo */
@@ -154,6 +162,25 @@ static int local_error(mr_world *w, double t, double h, double *x1, double *v1, 
   return 0;
 }
 
+/* RK4's weighted sums of the stages k (kv1 ka1 ... kv4 ka4, 3n each) into
+ * x1 and v1, two elements a step as axpy(). */
+static void rk4_combine(int n3, double h6, const double *restrict xs, const double *restrict k,
+                        double *restrict x1, double *restrict v1) {
+  const double *kv1 = k, *ka1 = k + n3, *kv2 = k + 2 * n3, *ka2 = k + 3 * n3;
+  const double *kv3 = k + 4 * n3, *ka3 = k + 5 * n3, *kv4 = k + 6 * n3, *ka4 = k + 7 * n3;
+  int i = 0;
+  for (; i + 1 < n3; i += 2) {
+    x1[i] = xs[i] + h6 * (kv1[i] + 2.0 * kv2[i] + 2.0 * kv3[i] + kv4[i]);
+    x1[i + 1] = xs[i + 1] + h6 * (kv1[i + 1] + 2.0 * kv2[i + 1] + 2.0 * kv3[i + 1] + kv4[i + 1]);
+    v1[i] = kv1[i] + h6 * (ka1[i] + 2.0 * ka2[i] + 2.0 * ka3[i] + ka4[i]);
+    v1[i + 1] = kv1[i + 1] + h6 * (ka1[i + 1] + 2.0 * ka2[i + 1] + 2.0 * ka3[i + 1] + ka4[i + 1]);
+  }
+  for (; i < n3; i++) {
+    x1[i] = xs[i] + h6 * (kv1[i] + 2.0 * kv2[i] + 2.0 * kv3[i] + kv4[i]);
+    v1[i] = kv1[i] + h6 * (ka1[i] + 2.0 * ka2[i] + 2.0 * ka3[i] + ka4[i]);
+  }
+}
+
 /* err: the scaled local error estimate (above), or NULL when the caller
  * does not need one (it then costs nothing). */
 int mr_integrate(mr_world *w, double t, double h, const double *x0, const double *v0, double *x1,
@@ -195,11 +222,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
     axpy(n3, xa, xs, h, kv3);
     axpy(n3, kv4, kv1, h, ka3);
     if (mr_eval(w, t + h, h, xa, kv4, ka4) != 0) return -1;
-    const double h6 = h / 6.0;
-    for (int i = 0; i < n3; i++) {
-      x1[i] = xs[i] + h6 * (kv1[i] + 2.0 * kv2[i] + 2.0 * kv3[i] + kv4[i]);
-      v1[i] = kv1[i] + h6 * (ka1[i] + 2.0 * ka2[i] + 2.0 * ka3[i] + ka4[i]);
-    }
+    rk4_combine(n3, h / 6.0, xs, k, x1, v1);
     break;
   }
   }
