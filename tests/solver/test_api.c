@@ -57,6 +57,47 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state) {
   test_system_free(&s);
 }
 
+/* LDLᵀ looks at A after solving, through the residual it measures: a NaN
+ * is still caught in every entry of A, dense path or sparse, in a row the
+ * factor drops (which the residual does not read), and when b = 0. */
+static void ldlt_catches_a_nonfinite_entry_wherever_it_sits(void **state) {
+  (void)state;
+  test_system s;
+  test_system_random(&s, 30, 8);
+  mr_csr A = { 0 };
+  assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
+  double b[30], x[30], zero[30] = { 0 };
+  test_rng rng = { 9 };
+  test_system_consistent_rhs(&s, &rng, b);
+  mr_solver *solver = mr_solver_create();
+  mr_solve_def o = mr_default_solve_def();
+  for (int dense_max = 0; dense_max <= 64; dense_max += 64) {
+    o.dense_max = dense_max;
+    for (int q = 0; q < A.nnz; q++) {
+      const double saved = A.val[q];
+      A.val[q] = q % 2 ? NAN : -INFINITY;
+      for (int i = 0; i < 30; i++) x[i] = 7.0 + i;
+      assert_int_equal(mr_solver_solve(solver, &o, &A, q % 3 ? b : zero, x, NULL),
+                       MR_SOLVE_NONFINITE);
+      for (int i = 0; i < 30; i++) assert_true(x[i] == 7.0 + i);
+      A.val[q] = saved;
+    }
+    assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_OK);
+  }
+  /* A row on its own whose diagonal is NaN is dropped by the pivot test,
+   * so no residual reads it. */
+  int rp[4] = { 0, 1, 2, 3 }, col[3] = { 0, 1, 2 };
+  double val[3] = { 1.0, NAN, 2.0 }, b3[3] = { 1.0, 1.0, 1.0 }, x3[3] = { 5, 5, 5 };
+  mr_csr D = { .n = 3, .nnz = 3, .row_ptr = rp, .col = col, .val = val };
+  mr_solve_result r;
+  assert_int_equal(mr_solver_solve(solver, NULL, &D, b3, x3, &r), MR_SOLVE_NONFINITE);
+  assert_true(x3[0] == 5 && x3[1] == 5 && x3[2] == 5);
+  assert_int_equal(r.dependent, 0);
+  mr_solver_destroy(solver);
+  mr_csr_free(&A);
+  test_system_free(&s);
+}
+
 static void empty_and_zero_systems(void **state) {
   (void)state;
   mr_solver *solver = mr_solver_create();
@@ -270,6 +311,7 @@ static void workspace_reuse_matches_a_fresh_solver(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(nonfinite_input_is_rejected_and_x_untouched),
+    cmocka_unit_test(ldlt_catches_a_nonfinite_entry_wherever_it_sits),
     cmocka_unit_test(empty_and_zero_systems),
     cmocka_unit_test(iteration_cap_reports_not_converged),
     cmocka_unit_test(names_parse_and_defaults),

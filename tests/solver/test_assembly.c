@@ -94,6 +94,56 @@ static void jac_products_match_dense(void **state) {
   test_system_free(&s);
 }
 
+/* Rows added whole and filled in place are the rows begin_row and add
+ * make, entry for entry, after rows made the slow way too. */
+static void rows_added_whole_equal_rows_added_entry_by_entry(void **state) {
+  (void)state;
+  mr_jac slow = { 0 }, fast = { 0 };
+  const double a[3] = { 1.0, -2.0, 0.5 }, b[3] = { 0.25, 3.0, -1.0 };
+  assert_int_equal(mr_jac_reset(&slow, 6), 0);
+  assert_int_equal(mr_jac_reset(&fast, 6), 0);
+  /* One row the slow way in both, then three rows of two, then two of one. */
+  for (mr_jac *J = &slow; J; J = J == &slow ? &fast : NULL) {
+    mr_jac_begin_row(J);
+    mr_jac_add(J, 5, a);
+  }
+  for (int r = 0; r < 3; r++) {
+    mr_jac_begin_row(&slow);
+    mr_jac_add(&slow, r, a);
+    mr_jac_add(&slow, r + 2, b);
+  }
+  for (int r = 0; r < 2; r++) {
+    mr_jac_begin_row(&slow);
+    mr_jac_add(&slow, 4 - r, b);
+  }
+  int e = mr_jac_add_rows(&fast, 3, 2);
+  assert_int_equal(e, 1);
+  for (int r = 0; r < 3; r++, e += 2) {
+    fast.particle[e] = r;
+    fast.particle[e + 1] = r + 2;
+    memcpy(fast.d[e], a, sizeof a);
+    memcpy(fast.d[e + 1], b, sizeof b);
+  }
+  e = mr_jac_add_rows(&fast, 2, 1);
+  assert_int_equal(e, 7);
+  for (int r = 0; r < 2; r++) {
+    fast.particle[e + r] = 4 - r;
+    memcpy(fast.d[e + r], b, sizeof b);
+  }
+  assert_int_equal(fast.rows, slow.rows);
+  assert_memory_equal(fast.row_ptr, slow.row_ptr, (size_t)(slow.rows + 1) * sizeof(int));
+  assert_memory_equal(fast.particle, slow.particle, 9 * sizeof(int));
+  assert_memory_equal(fast.d, slow.d, 9 * sizeof fast.d[0]);
+  /* Nothing to add to, or a row of no entries, is refused. */
+  mr_jac none = { 0 };
+  assert_int_equal(mr_jac_add_rows(&none, 1, 1), -1);
+  assert_int_equal(mr_jac_add_rows(&fast, 1, 0), -1);
+  assert_int_equal(mr_jac_add_rows(&fast, -1, 2), -1);
+  assert_int_equal(fast.rows, 6);
+  mr_jac_free(&slow);
+  mr_jac_free(&fast);
+}
+
 /* Looks up A(i, j) in CSR; 0 where nothing is stored. */
 static double csr_at(const mr_csr *A, int i, int j) {
   for (int q = A->row_ptr[i]; q < A->row_ptr[i + 1]; q++)
@@ -165,6 +215,47 @@ static void assembly_handles_fixed_particles_and_zero_rows(void **state) {
   test_system_free(&s);
 }
 
+/* Rows that share many particles (three rows on the same four: more
+ * products than the plan lists, so it walks the particle lists instead)
+ * still give J M⁻¹ Jᵀ, bitwise symmetric, and so does the listed path on
+ * the same rows with one particle fewer each. */
+static void assembly_of_rows_sharing_many_particles_matches_dense_jmjt(void **state) {
+  (void)state;
+  const double inv_mass[5] = { 0.5, 2.0, 0.0, 1.5, 0.25 };
+  test_rng rng = { 31 };
+  for (int width = 4; width >= 3; width--) {
+    mr_jac J = { 0 };
+    mr_csr A = { 0 };
+    double d[3][4][3], dense[3][3] = { { 0 } };
+    assert_int_equal(mr_jac_reset(&J, 5), 0);
+    for (int i = 0; i < 3; i++) {
+      mr_jac_begin_row(&J);
+      for (int e = 0; e < width; e++) {
+        for (int c = 0; c < 3; c++) d[i][e][c] = test_rng_range(&rng, -1, 1);
+        mr_jac_add(&J, (e + i) % width + (e + i) % width / 2, d[i][e]);
+      }
+    }
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        for (int e = J.row_ptr[i]; e < J.row_ptr[i + 1]; e++)
+          for (int f = J.row_ptr[j]; f < J.row_ptr[j + 1]; f++)
+            if (J.particle[e] == J.particle[f])
+              dense[i][j] +=
+                  inv_mass[J.particle[e]] *
+                  (J.d[e][0] * J.d[f][0] + J.d[e][1] * J.d[f][1] + J.d[e][2] * J.d[f][2]);
+    assert_int_equal(mr_csr_assemble(&A, &J, inv_mass), 0);
+    assert_int_equal(A.n, 3);
+    assert_int_equal(A.nnz, 9);
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        assert_near(csr_at(&A, i, j), dense[i][j], 1e-14);
+        assert_true(csr_at(&A, i, j) == csr_at(&A, j, i));
+      }
+    mr_csr_free(&A);
+    mr_jac_free(&J);
+  }
+}
+
 static void assembly_of_an_empty_jacobian(void **state) {
   (void)state;
   mr_jac J = { 0 };
@@ -192,8 +283,10 @@ int main(void) {
     cmocka_unit_test(jac_rejects_bad_particles_and_rows),
     cmocka_unit_test(jac_reset_keeps_capacity),
     cmocka_unit_test(jac_products_match_dense),
+    cmocka_unit_test(rows_added_whole_equal_rows_added_entry_by_entry),
     cmocka_unit_test(assembly_matches_dense_jmjt),
     cmocka_unit_test(assembly_handles_fixed_particles_and_zero_rows),
+    cmocka_unit_test(assembly_of_rows_sharing_many_particles_matches_dense_jmjt),
     cmocka_unit_test(assembly_of_an_empty_jacobian),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -156,8 +156,51 @@ static void dense_path_is_taken_up_to_the_cut_over_and_sparse_above(void **state
   mr_solver_destroy(s);
 }
 
+/* A factor whose error bound already keeps the residual within tol is
+ * not measured again, and the bound reported covers the residual measured
+ * directly. A tolerance the bound cannot meet (1e-15: under γ_{n+1}) is
+ * measured, and that measurement is what is reported. */
+static void a_factor_within_its_error_bound_is_not_measured_again(void **state) {
+  (void)state;
+  mr_solver *s = mr_solver_create();
+  test_system sys;
+  test_system_random(&sys, 25, 77);
+  const int k = sys.k;
+  mr_csr A = { 0 };
+  assert_int_equal(mr_csr_assemble(&A, &sys.J, sys.inv_mass), 0);
+  double *b = malloc((size_t)k * sizeof *b), *lam = malloc((size_t)k * sizeof *lam);
+  test_rng rng = { 78 };
+  test_system_consistent_rhs(&sys, &rng, b);
+  for (int tight = 0; tight < 2; tight++) {
+    mr_solve_def o = ldlt(MR_SOLVE_DENSE_ROWS_MAX);
+    o.tol = tight ? 1e-15 : mr_default_solve_def().tol;
+    mr_solve_result r = solve(s, o, &A, b, lam);
+    assert_int_equal(r.status, MR_SOLVE_OK);
+    double nr = 0.0, nb = 0.0;
+    for (int i = 0; i < k; i++) {
+      double res = b[i];
+      for (int q = A.row_ptr[i]; q < A.row_ptr[i + 1]; q++) res -= A.val[q] * lam[A.col[q]];
+      nr += res * res;
+      nb += b[i] * b[i];
+    }
+    const double measured = sqrt(nr / nb);
+    if (!tight) {
+      assert_int_equal(r.iterations, 1);
+      assert_true(r.residual >= 10.0 * measured && r.residual <= o.tol); /* a bound */
+    } else {
+      assert_true(fabs(r.residual - measured) <= 1e-6 * measured);
+    }
+  }
+  free(b);
+  free(lam);
+  mr_csr_free(&A);
+  test_system_free(&sys);
+  mr_solver_destroy(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
+    cmocka_unit_test(a_factor_within_its_error_bound_is_not_measured_again),
     cmocka_unit_test(dense_path_agrees_with_eigen_and_the_sparse_path),
     cmocka_unit_test(dense_path_drops_a_row_written_twice_as_the_sparse_path_does),
     cmocka_unit_test(dense_path_is_taken_up_to_the_cut_over_and_sparse_above),

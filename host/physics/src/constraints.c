@@ -15,37 +15,56 @@
  *   C   = L − length
  *   J   = [ uᵀ (at a), −uᵀ (at b) ]
  *   Ċ   = u·(v_a − v_b)
- *   J̇q̇  = (|v_a − v_b|² − (u·(v_a − v_b))²) / L      (∂C/∂t = 0) */
+ *   J̇q̇  = (|v_a − v_b|² − (u·(v_a − v_b))²) / L      (∂C/∂t = 0)
+ * Every row names two particles (a ≠ b, checked when it was added), so
+ * they are written straight into J's arrays. */
 static int distance_rows(mr_world *w, const double *x, const double *v, double *c, double *cdot,
                          double *bias) {
-  int r = 0;
-  for (int i = 0; i < w->distances.n; i++, r++) {
-    const mr_distance *d = &MR_AT(w->distances, mr_distance, i);
-    double dx[3], dv[3], u[3], nu[3];
-    for (int k = 0; k < 3; k++) {
-      dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
-      dv[k] = v[3 * d->a + k] - v[3 * d->b + k];
-    }
+  const int n = w->distances.n;
+  const mr_distance *dist = w->distances.data;
+  int e = mr_jac_add_rows(&w->J, n, 2);
+  if (e < 0) return -1;
+  int *part = w->J.particle;
+  double(*jd)[3] = w->J.d;
+  for (int r = 0; r < n; r++, e += 2) {
+    const mr_distance *d = &dist[r];
+    const double *xa = x + 3 * d->a, *xb = x + 3 * d->b, *va = v + 3 * d->a, *vb = v + 3 * d->b;
+    /* Written out: -O2 leaves 3-loops rolled. */
+    const double dx[3] = { xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2] };
+    const double dv[3] = { va[0] - vb[0], va[1] - vb[1], va[2] - vb[2] };
     double len = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
     /* A collapsed link has no direction; keep the row (zero) so the row
      * count is fixed and the solver reports it as dependent. */
     double inv = len > 1e-12 ? 1.0 / len : 0.0;
-    for (int k = 0; k < 3; k++) {
-      u[k] = dx[k] * inv;
-      nu[k] = -u[k];
-    }
-    if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, d->a, u) != 0 ||
-        mr_jac_add(&w->J, d->b, nu) != 0)
-      return -1;
+    part[e] = d->a;
+    part[e + 1] = d->b;
+    const double u[3] = { dx[0] * inv, dx[1] * inv, dx[2] * inv };
+    jd[e][0] = u[0];
+    jd[e][1] = u[1];
+    jd[e][2] = u[2];
+    jd[e + 1][0] = -u[0];
+    jd[e + 1][1] = -u[1];
+    jd[e + 1][2] = -u[2];
     double rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
     c[r] = len - d->length;
     cdot[r] = rate;
     bias[r] = (dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) * inv;
   }
-  return r;
+  return n;
 }
 
-static const double unit[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+/* The rows of a particle held to a point p(t), one per axis: J = I, so
+ * each row names the particle once with a unit vector. Returns the first
+ * of the three entries, or −1. */
+static int axis_rows(mr_world *w, int particle) {
+  int e = mr_jac_add_rows(&w->J, 3, 1);
+  if (e < 0) return -1;
+  for (int k = 0; k < 3; k++) {
+    w->J.particle[e + k] = particle;
+    for (int m = 0; m < 3; m++) w->J.d[e + k][m] = k == m ? 1.0 : 0.0;
+  }
+  return e;
+}
 
 /* Pin to a point p: C = x − p (3 rows), J = I, Ċ = v, J̇q̇ = 0. */
 static int pin_rows(mr_world *w, const double *x, const double *v, double *c, double *cdot,
@@ -53,8 +72,8 @@ static int pin_rows(mr_world *w, const double *x, const double *v, double *c, do
   int r = 0;
   for (int i = 0; i < w->pins.n; i++) {
     const mr_pin *p = &MR_AT(w->pins, mr_pin, i);
+    if (axis_rows(w, p->particle) < 0) return -1;
     for (int k = 0; k < 3; k++, r++) {
-      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, p->particle, unit[k]) != 0) return -1;
       c[r] = x[3 * p->particle + k] - p->point[k];
       cdot[r] = v[3 * p->particle + k];
       bias[r] = 0.0;
@@ -72,8 +91,8 @@ static int curve_rows(mr_world *w, double t, const double *x, const double *v, d
     const mr_curve *cv = &MR_AT(w->curves, mr_curve, i);
     double p[3], pv[3], pa[3];
     mr_curve_eval(cv, t, p, pv, pa);
+    if (axis_rows(w, cv->particle) < 0) return -1;
     for (int k = 0; k < 3; k++, r++) {
-      if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, cv->particle, unit[k]) != 0) return -1;
       c[r] = x[3 * cv->particle + k] - p[k];
       cdot[r] = v[3 * cv->particle + k] - pv[k];
       bias[r] = -pa[k];
@@ -112,8 +131,8 @@ double mr_constraints_deviation(const mr_world *w, double t, const double *x) {
   double e = 0.0;
   for (int i = 0; i < w->distances.n; i++) {
     const mr_distance *d = &MR_AT(w->distances, mr_distance, i);
-    double dx[3];
-    for (int k = 0; k < 3; k++) dx[k] = x[3 * d->a + k] - x[3 * d->b + k];
+    const double *xa = x + 3 * d->a, *xb = x + 3 * d->b;
+    const double dx[3] = { xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2] };
     double len = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
     e = worse(e, fabs(len - d->length) / d->length);
   }

@@ -37,7 +37,7 @@ int mr_rows_reserve(mr_world *w, int rows) {
  * which it regularises (mr_solve_def.reg_tol, set in world.c). */
 static void soften_contacts(mr_world *w) {
   mr_csr *A = &w->A;
-  for (int r = 0; r < A->n; r++) {
+  for (int r = 0; w->contacts.n > 0 && r < A->n; r++) {
     if (w->row_contact[r] < 0) continue;
     for (int e = A->row_ptr[r]; e < A->row_ptr[r + 1]; e++)
       if (A->col[e] == r) A->val[e] *= 1.0 + 1e-6;
@@ -76,10 +76,18 @@ int mr_solve_rows(mr_world *w, int assemble) {
   return 0;
 }
 
-/* a = M⁻¹ f for every particle (0 on frame particles). */
+/* a = M⁻¹ f for every particle (0 on frame particles). The loops of this
+ * file read the world through locals: a store into a double array might
+ * otherwise be a store into the world, read again for every element. */
 static void accelerations(const mr_world *w, const double *f, double *a) {
-  for (int i = 0; i < w->n; i++)
-    for (int k = 0; k < 3; k++) a[3 * i + k] = f[3 * i + k] * w->inv_mass[i];
+  const int n = w->n;
+  const double *inv_mass = w->inv_mass;
+  for (int i = 0; i < n; i++) {
+    const double im = inv_mass[i]; /* written out: -O2 leaves a 3-loop rolled */
+    a[3 * i] = f[3 * i] * im;
+    a[3 * i + 1] = f[3 * i + 1] * im;
+    a[3 * i + 2] = f[3 * i + 2] * im;
+  }
 }
 
 /* Rows of the constraints and of the active contacts (w->contact_active)
@@ -111,10 +119,11 @@ int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
 
 /* §5.2, eq. 8: b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t². */
 static void rhs_eq8(mr_world *w, int rows, const double *a_free) {
+  const double ks = w->def.ks, kd = w->def.kd, *bias = w->row_bias, *jv = w->row_jv;
+  const double *c = w->row_c, *cdot = w->row_cdot;
+  double *rhs = w->rhs;
   mr_jac_mul(&w->J, a_free, w->row_jv);
-  for (int i = 0; i < rows; i++)
-    w->rhs[i] =
-        -w->row_bias[i] - w->row_jv[i] - w->def.ks * w->row_c[i] - w->def.kd * w->row_cdot[i];
+  for (int i = 0; i < rows; i++) rhs[i] = -bias[i] - jv[i] - ks * c[i] - kd * cdot[i];
 }
 
 /* Coulomb friction at resting contacts (§4.4), with N the contact's
@@ -214,7 +223,7 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
     rhs_eq8(w, rows, a);
     if (mr_solve_rows(w, 1) != 0) return -1;
     int released = 0;
-    for (int r = 0; r < rows; r++) {
+    for (int r = 0; w->contacts.n > 0 && r < rows; r++) {
       int c = w->row_contact[r];
       if (c >= 0 && w->lambda[r] < 0) {
         w->contact_active[c] = 0;
@@ -227,7 +236,7 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
 }
 
 static int has_friction(const mr_world *w, int rows) {
-  for (int r = 0; r < rows; r++)
+  for (int r = 0; w->contacts.n > 0 && r < rows; r++)
     if (w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 && w->lambda[r] > 0)
       return 1;
   return 0;
@@ -258,15 +267,21 @@ static int friction_rounds(mr_world *w, double h, int rows, const double *x, con
 
 /* §5.2, eq. 5: F_c = Jᵀ λ, and a += M⁻¹ F_c. */
 static void add_constraint_forces(mr_world *w, int rows, double *a) {
-  double *fc = w->scratch.constraint_force;
-  mr_jac_tmul(&w->J, w->lambda, fc);
+  const double *fc = w->scratch.constraint_force, *lambda = w->lambda, *inv_mass = w->inv_mass;
+  const int n = w->n;
+  mr_jac_tmul(&w->J, lambda, w->scratch.constraint_force);
   double big = 0;
   for (int r = 0; r < rows; r++) {
-    double l = fabs(w->lambda[r]);
+    double l = fabs(lambda[r]);
     if (l > big || l != l) big = l;
   }
   w->stats.max_multiplier = big;
-  for (int i = 0; i < 3 * w->n; i++) a[i] += fc[i] * w->inv_mass[i / 3];
+  for (int i = 0; i < n; i++) {
+    const double im = inv_mass[i];
+    a[3 * i] += fc[3 * i] * im;
+    a[3 * i + 1] += fc[3 * i + 1] * im;
+    a[3 * i + 2] += fc[3 * i + 2] * im;
+  }
 }
 
 int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a) {

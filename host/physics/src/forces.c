@@ -32,9 +32,12 @@ typedef struct mr_sine_spring {
 
 static void gravity_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)x, (void)v;
-  const double *g = w->def.gravity;
-  for (int i = 0; i < w->n; i++) {
-    double m = w->mass[i];
+  /* Locals: the stores into f could otherwise be the world's fields. */
+  const double g[3] = { w->def.gravity[0], w->def.gravity[1], w->def.gravity[2] };
+  const double *mass = w->mass;
+  const int n = w->n;
+  for (int i = 0; i < n; i++) {
+    double m = mass[i];
     f[3 * i + 0] += m * g[0];
     f[3 * i + 1] += m * g[1];
     f[3 * i + 2] += m * g[2];
@@ -44,38 +47,46 @@ static void gravity_pass(mr_world *w, double t, const double *x, const double *v
 /* Viscous friction F = −drag·v: the paper's default "particle friction". */
 static void drag_pass(mr_world *w, double t, const double *x, const double *v, double *f) {
   (void)t, (void)x;
-  double c = w->def.drag;
-  for (int i = 0; i < w->n; i++) {
-    if (w->inv_mass[i] == 0.0) continue;
-    double ci = fmin(c, w->drag_rate_cap * w->mass[i]); /* see mr_forces_stable_dt */
-    for (int k = 0; k < 3; k++) f[3 * i + k] -= ci * v[3 * i + k];
+  const double c = w->def.drag, cap = w->drag_rate_cap, *mass = w->mass, *inv_mass = w->inv_mass;
+  const int n = w->n;
+  for (int i = 0; i < n; i++) {
+    if (inv_mass[i] == 0.0) continue;
+    /* fmin(c, cap·m) (see mr_forces_stable_dt), inline: a NaN loses. */
+    const double y = cap * mass[i];
+    const double ci = c != c ? y : (y < c ? y : c);
+    f[3 * i] -= ci * v[3 * i];
+    f[3 * i + 1] -= ci * v[3 * i + 1];
+    f[3 * i + 2] -= ci * v[3 * i + 2];
   }
 }
 
 /* Length L, unit direction u = (x_a − x_b)/L and rate L̇ = u·(v_a − v_b). */
 static double line(const double *x, const double *v, int a, int b, double u[3], double *rate) {
-  double d[3], dv[3];
-  for (int k = 0; k < 3; k++) {
-    d[k] = x[3 * a + k] - x[3 * b + k];
-    dv[k] = v[3 * a + k] - v[3 * b + k];
-  }
+  const double *xa = x + 3 * a, *xb = x + 3 * b, *va = v + 3 * a, *vb = v + 3 * b;
+  const double d[3] = { xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2] };
+  const double dv[3] = { va[0] - vb[0], va[1] - vb[1], va[2] - vb[2] };
   double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   if (!(len > 1e-12)) {
     u[0] = u[1] = u[2] = 0.0;
     *rate = 0.0;
     return len;
   }
-  for (int k = 0; k < 3; k++) u[k] = d[k] / len;
+  u[0] = d[0] / len;
+  u[1] = d[1] / len;
+  u[2] = d[2] / len;
   *rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
   return len;
 }
 
 /* Equal and opposite forces s·u on a and −s·u on b. */
 static void push_pair(double *f, int a, int b, const double u[3], double s) {
-  for (int k = 0; k < 3; k++) {
-    f[3 * a + k] += s * u[k];
-    f[3 * b + k] -= s * u[k];
-  }
+  const double g[3] = { s * u[0], s * u[1], s * u[2] };
+  f[3 * a] += g[0];
+  f[3 * a + 1] += g[1];
+  f[3 * a + 2] += g[2];
+  f[3 * b] -= g[0];
+  f[3 * b + 1] -= g[1];
+  f[3 * b + 2] -= g[2];
 }
 
 /* F_a = −(ks (L − rest) + kd L̇) u. */

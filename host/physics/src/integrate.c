@@ -7,18 +7,32 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void axpy(int n, double *out, const double *x, double h, const double *y) {
-  for (int i = 0; i < n; i++) out[i] = x[i] + h * y[i];
+/* Two elements a step: the same operation on each, and the pairs (the
+ * arrays distinct) become one vector operation each. */
+static void axpy(int n, double *restrict out, const double *restrict x, double h,
+                 const double *restrict y) {
+  int i = 0;
+  for (; i + 1 < n; i += 2) {
+    out[i] = x[i] + h * y[i];
+    out[i + 1] = x[i + 1] + h * y[i + 1];
+  }
+  if (i < n) out[i] = x[i] + h * y[i];
 }
 
 /* ------------------------------------------------------------ the memo */
 
-void mr_eval_memo_free(mr_eval_memo *m) {
+static void point_free(mr_eval_point *m) {
   free(m->x);
   free(m->v);
   free(m->a);
   free(m->frames);
   free(m->contacts);
+  memset(m, 0, sizeof *m);
+}
+
+void mr_eval_memo_free(mr_eval_memo *m) {
+  point_free(&m->last);
+  point_free(&m->start);
   memset(m, 0, sizeof *m);
 }
 
@@ -32,8 +46,8 @@ void mr_eval_memo_free(mr_eval_memo *m) {
  * between steps, a projection, an impulse, the string correction, a
  * reset, a frame placed at once, shows in these, and the memo is then not
  * used. */
-static int memo_matches(const mr_world *w, double t, double h, const double *x, const double *v) {
-  const mr_eval_memo *m = &w->memo;
+static int point_matches(const mr_world *w, const mr_eval_point *m, double t, double h,
+                         const double *x, const double *v) {
   const size_t bytes = (size_t)(3 * w->n) * sizeof(double);
   return m->valid && m->t == t && (!m->used_h || m->h == h) && m->n_frames == w->frames.n &&
          m->n_contacts == w->contacts.n && memcmp(m->x, x, bytes) == 0 &&
@@ -44,11 +58,10 @@ static int memo_matches(const mr_world *w, double t, double h, const double *x, 
           memcmp(m->contacts, w->contacts.c, (size_t)m->n_contacts * sizeof(mr_contact)) == 0);
 }
 
-/* Keeps the evaluation a = f(t, x, v) just made. Its arrays grow to the
- * world's reserved sizes, so that only the first step allocates. */
-static void memo_keep(mr_world *w, double t, double h, const double *x, const double *v,
-                      const double *a) {
-  mr_eval_memo *m = &w->memo;
+/* Keeps the evaluation a = f(t, x, v) just made in m. Its arrays grow to
+ * the world's reserved sizes, so that only the first step allocates. */
+static void point_keep(mr_world *w, mr_eval_point *m, double t, double h, const double *x,
+                       const double *v, const double *a) {
   const int n3 = 3 * w->n, nc = w->contacts.n > w->contacts.cap ? w->contacts.n : w->contacts.cap;
   int cap = m->cap_n;
   m->valid = 0;
@@ -76,20 +89,31 @@ static void memo_keep(mr_world *w, double t, double h, const double *x, const do
   m->valid = 1;
 }
 
-/* mr_eval through the memo: the kept answer when (t, x, v, ...) is the
- * kept point, bit for bit, else a new evaluation, then kept. */
-static int eval_memo(mr_world *w, double t, double h, double *x, double *v, double *a) {
-  if (w->memo.valid) {
+/* mr_eval through the memo: a kept answer when (t, x, v, ...) is its
+ * point, bit for bit, else a new evaluation, then kept. A step's first
+ * stage (first) is kept as the start, where every try of the step begins,
+ * and is looked for there too; any other as the last. */
+static int eval_memo(mr_world *w, double t, double h, double *x, double *v, double *a, int first) {
+  mr_eval_memo *m = &w->memo;
+  if (!m->valid) m->last.valid = m->start.valid = 0;
+  m->valid = 1;
+  if (m->last.valid || (first && m->start.valid)) {
     mr_frames_place(w, t, x, v);
-    if (memo_matches(w, t, h, x, v)) {
-      memcpy(a, w->memo.a, (size_t)(3 * w->n) * sizeof *a);
+    const int in_last = point_matches(w, &m->last, t, h, x, v);
+    if (in_last || (first && point_matches(w, &m->start, t, h, x, v))) {
+      if (in_last && first) { /* the last step's end: now this step's start */
+        const mr_eval_point p = m->start;
+        m->start = m->last;
+        m->last = p;
+      }
+      memcpy(a, (in_last && !first ? m->last : m->start).a, (size_t)(3 * w->n) * sizeof *a);
       mr_taut_set_time(w, t);
-      w->memo.recalled++;
+      m->recalled++;
       return 0;
     }
   }
   if (mr_eval(w, t, h, x, v, a) != 0) return -1;
-  memo_keep(w, t, h, x, v, a);
+  point_keep(w, first ? &m->start : &m->last, t, h, x, v, a);
   return 0;
 }
 
@@ -121,20 +145,40 @@ static double particle_error(const mr_world *w, const double ex[3], const double
  * scale: h/6 or h/2. a_end is scratch for f(y1). */
 static int local_error(mr_world *w, double t, double h, double *x1, double *v1, const double *kv,
                        const double *ka, double scale, double *a_end, double *err) {
-  if (eval_memo(w, t + h, h, x1, v1, a_end) != 0) return -1;
+  if (eval_memo(w, t + h, h, x1, v1, a_end, 0) != 0) return -1;
   double e = 0.0;
+  const double *inv_mass = w->inv_mass;
   for (int i = 0; i < w->n; i++) {
-    if (!(w->inv_mass[i] > 0)) continue;
-    double ex[3], ev[3];
-    for (int k = 0; k < 3; k++) {
-      ex[k] = scale * (kv[3 * i + k] - v1[3 * i + k]);
-      ev[k] = scale * (ka[3 * i + k] - a_end[3 * i + k]);
-    }
+    if (!(inv_mass[i] > 0)) continue;
+    const double *kvi = kv + 3 * i, *v1i = v1 + 3 * i, *kai = ka + 3 * i, *ai = a_end + 3 * i;
+    const double ex[3] = { scale * (kvi[0] - v1i[0]), scale * (kvi[1] - v1i[1]),
+                           scale * (kvi[2] - v1i[2]) };
+    const double ev[3] = { scale * (kai[0] - ai[0]), scale * (kai[1] - ai[1]),
+                           scale * (kai[2] - ai[2]) };
     double p = particle_error(w, ex, ev);
     if (p > e || p != p) e = p;
   }
   *err = e;
   return 0;
+}
+
+/* RK4's weighted sums of the stages k (kv1 ka1 ... kv4 ka4, 3n each) into
+ * x1 and v1, two elements a step as axpy(). */
+static void rk4_combine(int n3, double h6, const double *restrict xs, const double *restrict k,
+                        double *restrict x1, double *restrict v1) {
+  const double *kv1 = k, *ka1 = k + n3, *kv2 = k + 2 * n3, *ka2 = k + 3 * n3;
+  const double *kv3 = k + 4 * n3, *ka3 = k + 5 * n3, *kv4 = k + 6 * n3, *ka4 = k + 7 * n3;
+  int i = 0;
+  for (; i + 1 < n3; i += 2) {
+    x1[i] = xs[i] + h6 * (kv1[i] + 2.0 * kv2[i] + 2.0 * kv3[i] + kv4[i]);
+    x1[i + 1] = xs[i + 1] + h6 * (kv1[i + 1] + 2.0 * kv2[i + 1] + 2.0 * kv3[i + 1] + kv4[i + 1]);
+    v1[i] = kv1[i] + h6 * (ka1[i] + 2.0 * ka2[i] + 2.0 * ka3[i] + ka4[i]);
+    v1[i + 1] = kv1[i + 1] + h6 * (ka1[i + 1] + 2.0 * ka2[i + 1] + 2.0 * ka3[i + 1] + ka4[i + 1]);
+  }
+  for (; i < n3; i++) {
+    x1[i] = xs[i] + h6 * (kv1[i] + 2.0 * kv2[i] + 2.0 * kv3[i] + kv4[i]);
+    v1[i] = kv1[i] + h6 * (ka1[i] + 2.0 * ka2[i] + 2.0 * ka3[i] + ka4[i]);
+  }
 }
 
 /* err: the scaled local error estimate (above), or NULL when the caller
@@ -149,7 +193,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
   double *kv3 = k + 4 * n3, *ka3 = k + 5 * n3, *kv4 = k + 6 * n3, *ka4 = k + 7 * n3;
   memcpy(kv1, v0, bytes);
   memcpy(xs, x0, bytes);
-  if (eval_memo(w, t, h, xs, kv1, ka1) != 0) return -1;
+  if (eval_memo(w, t, h, xs, kv1, ka1, 1) != 0) return -1;
   switch (w->def.integrator) {
   case MR_INTEGRATOR_EULER:
     axpy(n3, x1, xs, h, kv1);
@@ -178,11 +222,7 @@ int mr_integrate(mr_world *w, double t, double h, const double *x0, const double
     axpy(n3, xa, xs, h, kv3);
     axpy(n3, kv4, kv1, h, ka3);
     if (mr_eval(w, t + h, h, xa, kv4, ka4) != 0) return -1;
-    const double h6 = h / 6.0;
-    for (int i = 0; i < n3; i++) {
-      x1[i] = xs[i] + h6 * (kv1[i] + 2.0 * kv2[i] + 2.0 * kv3[i] + kv4[i]);
-      v1[i] = kv1[i] + h6 * (ka1[i] + 2.0 * ka2[i] + 2.0 * ka3[i] + ka4[i]);
-    }
+    rk4_combine(n3, h / 6.0, xs, k, x1, v1);
     break;
   }
   }

@@ -119,18 +119,25 @@ enum {
 };
 #define MR_FORCES(w, id) (&(w)->forces[MR_EFFECT_BIT_##id])
 
-/* integrate.c: the last evaluation of the equations of motion, kept with
- * everything it was computed from, so that an evaluation at the same point
- * is not computed twice (first same as last: a step's end evaluation is
- * the next step's first; a retried step starts where the rejected one
- * did). Frame particles of x and v are as the frames place them. */
-typedef struct mr_eval_memo {
+/* integrate.c: an evaluation of the equations of motion kept with
+ * everything it was computed from. Frame particles of x and v are as the
+ * frames place them. */
+typedef struct mr_eval_point {
   int valid, used_h, n_frames, n_contacts;
   int cap_n, cap_frames, cap_contacts;
   double t, h; /* h only matters when used_h (friction's time scale) */
   double *x, *v, *a;
   mr_frame *frames;
   mr_contact *contacts;
+} mr_eval_point;
+/* Two kept evaluations, so that one at the same point is not computed
+ * twice: the last (first same as last: a step's end evaluation is the
+ * next step's first) and the last step's first stage (a retried or
+ * located step starts where the rejected try did, and the tries between
+ * evaluated elsewhere). valid = 0 drops both. */
+typedef struct mr_eval_memo {
+  int valid;
+  mr_eval_point last, start;
   uint64_t recalled; /* evaluations not computed again */
 } mr_eval_memo;
 

@@ -51,6 +51,14 @@ mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries);
 int mr_jac_begin_row(mr_jac *J); /* the new row's index, or -1 */
 /* Into the current row; a particle named twice in a row is summed once. */
 mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]);
+/* count rows of width entries each at once: returns the index of their
+ * first entry, or −1 (out of memory, a bad count or width). Row r of them
+ * holds entries [e + r·width, e + (r + 1)·width), which the caller fills
+ * in J->particle and J->d, each particle in range and named once per row:
+ * nothing is checked or merged. For callers that know their rows' shapes
+ * (a distance row names two particles, a pin one) and build J on every
+ * evaluation: no call, test or search per entry. */
+int mr_jac_add_rows(mr_jac *J, int count, int width);
 void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k);     /* J v */
 void mr_jac_tmul(const mr_jac *J, const double *lam_k, double *out_3n); /* Jᵀ λ, overwrites out */
 void mr_jac_free(mr_jac *J);
@@ -107,7 +115,9 @@ mr_solve_def mr_default_solve_def(void);
 typedef struct mr_solve_result {
   mr_solve_status status;
   int iterations;
-  double residual; /* ‖Ax − b‖ / max(‖b‖, tiny) */
+  double residual; /* ‖Ax − b‖ / max(‖b‖, tiny); for the dense LDLᵀ, when
+                      the factor's own error bound already keeps it within
+                      tol, that bound (not measured: README.md) */
   int dependent;   /* rows found dependent */
   int regularised; /* rows found nearly dependent and regularised (reg_tol) */
   int fallback;    /* 1: Gauss–Seidel or CG could not finish (max_iter spent, or

@@ -4,6 +4,7 @@
  * numbers. */
 #include "solver_internal.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,6 +70,19 @@ mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]) {
   return MR_SOLVE_OK;
 }
 
+int mr_jac_add_rows(mr_jac *J, int count, int width) {
+  if (!J || !J->row_ptr || count < 0 || width < 1) return -1;
+  const int first = J->row_ptr[J->rows];
+  const long long end = (long long)first + (long long)count * width;
+  if (end > INT_MAX || grow_rows(J, J->rows + count) != 0 ||
+      ((size_t)end > J->cap_entries && grow_entries(J, (int)end) != 0))
+    return -1;
+  int *rp = J->row_ptr + J->rows;
+  for (int r = 1; r <= count; r++) rp[r] = first + r * width;
+  J->rows += count;
+  return first;
+}
+
 void mr_jac_free(mr_jac *J) {
   if (!J) return;
   free(J->row_ptr);
@@ -77,25 +91,52 @@ void mr_jac_free(mr_jac *J) {
   memset(J, 0, sizeof *J);
 }
 
+/* Both products read J through locals: the compiler cannot tell that
+ * the stores into out leave J's arrays alone, and would load them again
+ * for every entry. */
 void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k) {
-  for (int i = 0; i < J->rows; i++) {
+  const int rows = J->rows, *rp = J->row_ptr, *part = J->particle;
+  const double(*d)[3] = (const double(*)[3])J->d;
+  for (int i = 0, e = 0; i < rows; i++) { /* row_ptr[0] is 0 */
     double s = 0.0;
-    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-      const double *v = v3n + 3 * J->particle[e];
-      s += J->d[e][0] * v[0] + J->d[e][1] * v[1] + J->d[e][2] * v[2];
+    const int end = rp[i + 1];
+    if (end - e == 2) { /* a distance: the same sums, without the loop */
+      const double *va = v3n + 3 * part[e], *vb = v3n + 3 * part[e + 1];
+      s += d[e][0] * va[0] + d[e][1] * va[1] + d[e][2] * va[2];
+      s += d[e + 1][0] * vb[0] + d[e + 1][1] * vb[1] + d[e + 1][2] * vb[2];
+      e = end;
+    }
+    for (; e < end; e++) {
+      const double *v = v3n + 3 * part[e];
+      s += d[e][0] * v[0] + d[e][1] * v[1] + d[e][2] * v[2];
     }
     out_k[i] = s;
   }
 }
 
 void mr_jac_tmul(const mr_jac *J, const double *lam_k, double *out_3n) {
+  const int rows = J->rows, *rp = J->row_ptr, *part = J->particle;
+  const double(*d)[3] = (const double(*)[3])J->d;
   memset(out_3n, 0, (size_t)J->n_particles * 3 * sizeof *out_3n);
-  for (int i = 0; i < J->rows; i++) {
-    for (int e = J->row_ptr[i]; e < J->row_ptr[i + 1]; e++) {
-      double *o = out_3n + 3 * J->particle[e];
-      o[0] += J->d[e][0] * lam_k[i];
-      o[1] += J->d[e][1] * lam_k[i];
-      o[2] += J->d[e][2] * lam_k[i];
+  for (int i = 0, e = 0; i < rows; i++) { /* row_ptr[0] is 0 */
+    const double l = lam_k[i];
+    const int end = rp[i + 1];
+    if (end - e == 2) { /* a distance: the same sums, without the loop */
+      double *oa = out_3n + 3 * part[e];
+      oa[0] += d[e][0] * l;
+      oa[1] += d[e][1] * l;
+      oa[2] += d[e][2] * l;
+      double *ob = out_3n + 3 * part[e + 1];
+      ob[0] += d[e + 1][0] * l;
+      ob[1] += d[e + 1][1] * l;
+      ob[2] += d[e + 1][2] * l;
+      e = end;
+    }
+    for (; e < end; e++) {
+      double *o = out_3n + 3 * part[e];
+      o[0] += d[e][0] * l;
+      o[1] += d[e][1] * l;
+      o[2] += d[e][2] * l;
     }
   }
 }

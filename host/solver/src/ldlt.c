@@ -363,7 +363,7 @@ int mr_ldlt_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const doub
   unsigned char *skip = BUF(f, skip, unsigned char);
   const unsigned char *dropped = BUF(f, dropped, unsigned char);
   const int *perm = BUF(f, perm, int);
-  for (int k = 0; k < n; k++) skip[perm[k]] = dropped[k] != 0;
+  for (int k = 0; r->dependent + r->regularised > 0 && k < n; k++) skip[perm[k]] = dropped[k] != 0;
   st = mr_ldlt_refine(f, o, A, b, b_norm, x, r, skip, solve_factored_any, f);
   if (st != 0) return st;
   return r->dependent ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
@@ -380,8 +380,9 @@ int mr_ldlt_refine(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
   if (mr_buf_reserve(&f->res, (size_t)n, sizeof(double)) ||
       mr_buf_reserve(&f->dx, (size_t)n, sizeof(double)))
     return MR_SOLVE_ENOMEM;
-  int skipped = 0;
-  for (int i = 0; i < n; i++) skipped |= skip[i] != 0;
+  /* The rows skipped are the dropped and the regularised ones. */
+  const int skipped = r->dependent + r->regularised > 0;
+  if (!skipped) skip = NULL;
   double *res = BUF(f, res, double), *dx = BUF(f, dx, double);
   const double stop = o->tol * b_norm;
   f->res_known = 0;
@@ -393,7 +394,7 @@ int mr_ldlt_refine(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
     }
     mr_residual(A, b, x, res);
     /* Refining a regularised row would undo its compliance. */
-    for (int i = 0; i < n; i++)
+    for (int i = 0; skip && i < n; i++)
       if (skip[i]) res[i] = 0.0;
     solve(factored, res, dx);
     for (int i = 0; i < n; i++) x[i] += dx[i];

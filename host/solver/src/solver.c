@@ -96,13 +96,25 @@ static void ssq_add(double *scale, double *ssq, double a) {
   }
 }
 
-double mr_norm2(int n, const double *v) {
+/* A plain sum of squares is exact enough for a norm and costs a quarter
+ * of the scaled one, unless a term overflows or the sum falls where
+ * squares lose digits: then (NaN, Inf, or below this) the scaled sum,
+ * which also gives Inf or NaN back when v holds one. */
+#define SUMSQ_SAFE_MIN 0x1p-900
+
+static double scaled_norm2(int n, const double *v) {
   double scale = 0.0, ssq = 1.0;
   for (int i = 0; i < n; i++) {
     double a = fabs(v[i]);
     ssq_add(&scale, &ssq, a);
   }
   return scale * sqrt(ssq);
+}
+
+double mr_norm2(int n, const double *v) {
+  double ss = 0.0;
+  for (int i = 0; i < n; i++) ss += v[i] * v[i];
+  return ss >= SUMSQ_SAFE_MIN && ss <= DBL_MAX ? sqrt(ss) : scaled_norm2(n, v);
 }
 
 static double row_residual(const mr_csr *A, const double *b, const double *x, int i) {
@@ -115,12 +127,26 @@ void mr_residual(const mr_csr *A, const double *b, const double *x, double *out)
   for (int i = 0; i < A->n; i++) out[i] = row_residual(A, b, x, i);
 }
 
-double mr_residual_norm(const mr_csr *A, const double *b, const double *x,
-                        const unsigned char *skip) {
+static double scaled_residual_norm(const mr_csr *A, const double *b, const double *x,
+                                   const unsigned char *skip) {
   double scale = 0.0, ssq = 1.0;
   for (int i = 0; i < A->n; i++)
     if (!(skip && skip[i])) ssq_add(&scale, &ssq, fabs(row_residual(A, b, x, i)));
   return scale * sqrt(ssq);
+}
+
+double mr_residual_norm(const mr_csr *A, const double *b, const double *x,
+                        const unsigned char *skip) {
+  const int n = A->n, *rp = A->row_ptr, *col = A->col;
+  const double *val = A->val;
+  double ss = 0.0;
+  for (int i = 0; i < n; i++) {
+    if (skip && skip[i]) continue;
+    double r = b[i];
+    for (int q = rp[i]; q < rp[i + 1]; q++) r -= val[q] * x[col[q]];
+    ss += r * r;
+  }
+  return ss >= SUMSQ_SAFE_MIN && ss <= DBL_MAX ? sqrt(ss) : scaled_residual_norm(A, b, x, skip);
 }
 
 void mr_csr_diagonal(const mr_csr *A, double *diag) {
@@ -169,10 +195,36 @@ int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, dou
   return 0;
 }
 
+/* v·0 is 0 for a finite v and NaN for NaN or ±Inf, and a NaN stays in a
+ * sum: no test and branch per number, and four sums that do not wait on
+ * each other. */
+int mr_all_finite(size_t n, const double *v) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    s0 += v[i] * 0.0;
+    s1 += v[i + 1] * 0.0;
+    s2 += v[i + 2] * 0.0;
+    s3 += v[i + 3] * 0.0;
+  }
+  for (; i < n; i++) s0 += v[i] * 0.0;
+  return (s0 + s1) + (s2 + s3) == 0.0;
+}
+
 static int all_finite(size_t n, const double *v) {
-  for (size_t i = 0; i < n; i++)
-    if (!isfinite(v[i])) return 0;
-  return 1;
+  return mr_all_finite(n, v);
+}
+
+static int a_finite(const mr_csr *A) {
+  return all_finite((size_t)A->row_ptr[A->n], A->val);
+}
+
+/* LDLᵀ's refinement test measured ‖b − Aλ‖ over every row, and it was
+ * finite: then so is every number of A, b and λ, since each row's sum
+ * reads all of its entries, and λ_j meets A_jj > 0 in row j (no row was
+ * dropped). That spares a pass over A and λ on every solve. */
+static int vouched(const mr_ldlt *f) {
+  return f->res_known && isfinite(f->res_norm);
 }
 
 mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_csr *A,
@@ -193,13 +245,16 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
       (int)o->method >= MR_SOLVE_METHOD_COUNT)
     return r->status = MR_SOLVE_UNAVAILABLE;
   if (A->n == 0) return r->status;
-  if (!all_finite((size_t)A->row_ptr[A->n], A->val) || !all_finite((size_t)A->n, b))
-    return r->status = MR_SOLVE_NONFINITE;
+  /* ‖b‖ is finite exactly when b is. LDLᵀ's answer vouches for A
+   * afterwards (vouched()); the other methods iterate on A and look first. */
+  const double nb = mr_norm2(A->n, b);
+  const int check_a_after = o->method == MR_SOLVE_LDLT;
+  if (!isfinite(nb) || (!check_a_after && !a_finite(A))) return r->status = MR_SOLVE_NONFINITE;
 
   /* b = 0: λ = 0 solves every consistent system and is the smallest
      * answer; no method needs to iterate towards it. */
-  const double nb = mr_norm2(A->n, b);
   if (nb == 0.0) {
+    if (!a_finite(A)) return r->status = MR_SOLVE_NONFINITE;
     memset(x, 0, (size_t)A->n * sizeof *x);
     return r->status;
   }
@@ -237,7 +292,10 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
     r->fallback = 1;
   }
   if (st < 0) return r->status = (mr_solve_status)st;
-  if (!all_finite((size_t)A->n, xw)) return r->status = MR_SOLVE_NONFINITE;
+  if (!vouched(&s->ldlt) && ((check_a_after && !a_finite(A)) || !all_finite((size_t)A->n, xw))) {
+    r->iterations = r->dependent = r->regularised = r->dense = 0;
+    return r->status = MR_SOLVE_NONFINITE;
+  }
   memcpy(x, xw, (size_t)A->n * sizeof *x);
   /* LDLᵀ's refinement test has measured this already when it stopped on
    * it over every row: the same sum over the same numbers. */

@@ -70,10 +70,15 @@ typedef struct mr_ldlt_kept {
  * the LDLᵀ's analysis in use stays the same (clock). */
 typedef struct mr_dense {
   int n, valid;
+  int room;            /* rows the arrays hold (mr_dense_reserve) */
   unsigned long clock; /* the mr_ldlt clock the pattern work was done at */
   const int *perm;     /* the order factored, new → old (the analysis' dperm) */
   mr_buf l, first, t, dinv, diag, dropped;
-  mr_buf place, y; /* per entry of A: its index in l, −1 above the diagonal; b and x permuted */
+  /* place: per entry of A on or below the diagonal, its index in A and
+   * in l (n_place pairs); zero: the places in l of the rows' spans that
+   * A leaves empty (n_zero); y: b and x permuted. */
+  mr_buf place, zero, y;
+  int n_place, n_zero;
 } mr_dense;
 
 /* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
@@ -113,6 +118,9 @@ double mr_norm2(int n, const double *v);
 /* out = b − A x. */
 void mr_residual(const mr_csr *A, const double *b, const double *x, double *out);
 
+/* 1 when none of v[0..n) is NaN or ±Inf. */
+int mr_all_finite(size_t n, const double *v);
+
 /* A's diagonal (0 where none is stored). */
 void mr_csr_diagonal(const mr_csr *A, double *diag);
 
@@ -141,8 +149,10 @@ void mr_ldlt_free(mr_ldlt *f);
 /* x = (the factor)⁺ b, for the refinement of either factor. */
 typedef void (*mr_factored_solve)(const void *factored, const double *b, double *x);
 /* Up to two steps of iterative refinement of x against A, skipping the rows
- * flagged in skip (by the caller's row index); leaves f->res_norm and
- * f->res_known for the caller's report. 0 or MR_SOLVE_ENOMEM. */
+ * flagged in skip (by the caller's row index; read only when r counts
+ * dependent or regularised rows, which are the ones flagged); leaves
+ * f->res_norm and f->res_known for the caller's report. 0 or
+ * MR_SOLVE_ENOMEM. */
 int mr_ldlt_refine(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
                    double b_norm, double *x, mr_solve_result *r, const unsigned char *skip,
                    mr_factored_solve solve, const void *factored);
