@@ -79,7 +79,10 @@ static void interpolated_frames_cost_fewer_steps_and_show_the_same_walk(void **s
   /* Landing cuts a step at every frame (60 a second); interpolating lets
    * the error control choose (400 against 745 measured). */
   assert_true(ri.steps * 3 < rl.steps * 2);
-  assert_true(worst < 0.01);
+  /* The two runs take different steps, and with strings that snap taut
+   * their walks part by up to 11 mm over 12 s (6.7 mm before the rounding
+   * of the dense solver and the project's own sine moved the snaps). */
+  assert_true(worst < 0.015);
   assert_true(ri.lead_max <= s.world.dt_max + 1e-12);
   assert_true(ri.lead_mean > 0);
   assert_true(ri.max_deviation <= s.expect.max_deviation);
