@@ -90,7 +90,7 @@ awk -F, -v out="$csv" '
       }
       gsub(/"/, "", s[i])
       printf "%-42s %16.0f %10.2e %5s%s\n", s[i], ips[i], ee[i], front[i] ? "yes" : "",
-        ok[i] ? "" : "  RESET OR NOT FINITE"
+        ok[i] ? "" : "  not on the front: a reset, not finite, or strings over 1 %"
       if (d[i]) dflt[p[i]] = front[i]
     }
     printf "\ndefault on the front (instructions):"
