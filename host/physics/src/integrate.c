@@ -65,6 +65,7 @@ static void point_keep(mr_world *w, mr_eval_point *m, double t, double h, const 
   const int n3 = 3 * w->n, nc = w->contacts.n > w->contacts.cap ? w->contacts.n : w->contacts.cap;
   int cap = m->cap_n;
   m->valid = 0;
+  if (n3 == 0) return; /* an empty world: nothing worth keeping, and no arrays to keep it in */
   if (mr_grow((void **)&m->x, &cap, n3, sizeof(double)) != 0) return;
   cap = m->cap_n;
   if (mr_grow((void **)&m->v, &cap, n3, sizeof(double)) != 0) return;
