@@ -269,6 +269,8 @@ mr_status mr_add_push(mr_world *w, mr_list *list, const void *elem, size_t size,
                       const char *what);
 mr_status mr_fail(mr_world *w, mr_status s, const char *fmt, ...);
 int mr_world_ensure_ready(mr_world *w);
+/* ready.c: the per-contact arrays hold at least need contacts. */
+int mr_world_contact_capacity(mr_world *w, int need);
 int mr_check_particle(mr_world *w, int id, const char *what);
 int mr_finite3(const double v[3]);
 int mr_require(mr_world *w, uint32_t effect, const char *what);
