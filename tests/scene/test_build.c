@@ -134,6 +134,22 @@ static void start_positions_are_particles_then_control_points(void **state) {
   mr_scene_free(&s);
 }
 
+/* A control point on a frame swaying 0.2 m in x at f Hz, from phase (°). */
+static void load_oscillation(double f, double phase, mr_scene *s) {
+  char text[512];
+  snprintf(text, sizeof text,
+           "physics:\n"
+           "  effects: [control]\n"
+           "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+           "  control:\n"
+           "    pose: {position: [0, 1, 0]}\n"
+           "    points: [{name: p, offset: [0, 0, 0]}]\n"
+           "    track:\n"
+           "      oscillate: {amplitude: [0.2, 0, 0], frequency: %g, phase: %g}\n",
+           f, phase);
+  load(text, s);
+}
+
 /* A track's rotation reaches the physics as the frame moves: keyframes
  * turning the frame 90° about y in 1 s, run through mr_scene_run, leave
  * the point where the turn puts it; an oscillation's phase is read in
@@ -166,15 +182,7 @@ static void track_rotation_and_phase_reach_the_world(void **state) {
   mr_scene_world_free(&sw);
   mr_scene_free(&s);
 
-  const char *osc = "physics:\n"
-                    "  effects: [control]\n"
-                    "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
-                    "  control:\n"
-                    "    pose: {position: [0, 1, 0]}\n"
-                    "    points: [{name: p, offset: [0, 0, 0]}]\n"
-                    "    track:\n"
-                    "      oscillate: {amplitude: [0.2, 0, 0], frequency: 1, phase: 90}\n";
-  load(osc, &s);
+  load_oscillation(1, 90, &s);
   mr_pose p;
   mr_scene_frame_pose_at(&s, 0, 1e-9, &p);
   assert_true(fabs(p.position[0] - 0.2) < 1e-9); /* sin(0 + 90°) = 1 */
@@ -185,22 +193,14 @@ static void track_rotation_and_phase_reach_the_world(void **state) {
   mr_scene_free(&s);
 }
 
-/* A show left running for days: an oscillation at 7 Hz, 8 days in, is past
+/* A show left running for days: an oscillation at 8 Hz, 8 days in, is past
  * the 2²³ rad that the sine takes, and a phase of 36 090° is 90° plus a
  * hundred turns. The track is taken in whole cycles first, so the pose is
  * the one a cycle after the start gives, and finite. */
 static void oscillation_is_the_same_after_days_and_whole_turns_of_phase(void **state) {
   (void)state;
-  const char *osc = "physics:\n"
-                    "  effects: [control]\n"
-                    "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
-                    "  control:\n"
-                    "    pose: {position: [0, 1, 0]}\n"
-                    "    points: [{name: p, offset: [0, 0, 0]}]\n"
-                    "    track:\n"
-                    "      oscillate: {amplitude: [0.2, 0, 0], frequency: 8, phase: 36090}\n";
   mr_scene s;
-  load(osc, &s);
+  load_oscillation(8, 36090, &s);
   mr_pose near, far;
   double later = 8.0 * 86400.0; /* 8 days: 5.5 million cycles, 3.5e7 rad */
   for (int k = 1; k < 8; k++) {
