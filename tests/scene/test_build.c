@@ -194,9 +194,10 @@ static void track_rotation_and_phase_reach_the_world(void **state) {
 }
 
 /* A show left running for days: an oscillation at 8 Hz, 8 days in, is past
- * the 2²³ rad that the sine takes, and a phase of 36 090° is 90° plus a
- * hundred turns. The track is taken in whole cycles first, so the pose is
- * the one a cycle after the start gives, and finite. */
+ * the 2²³ rad that the sine takes (a phase of 36 090°, 90° plus a hundred
+ * turns, rides along; the reader bounds a phase to 10⁶°, 17 453 rad). The
+ * track is taken in whole cycles first, so the pose is the one a cycle
+ * after the start gives, and finite. */
 static void oscillation_is_the_same_after_days_and_whole_turns_of_phase(void **state) {
   (void)state;
   mr_scene s;

@@ -117,7 +117,7 @@ static int read_oscillate(mr_reader *r, const mr_ynode *n) {
       read_pose(r, n, &turn) != 0)
     return -1;
   tr->kind = MR_SCENE_TRACK_OSCILLATE;
-  tr->phase_rad = fmod(tr->phase_rad, 360.0) * PI / 180.0; /* read in degrees, kept small */
+  tr->phase_rad = tr->phase_rad * PI / 180.0; /* read in degrees */
   memcpy(tr->turn, turn.orientation, sizeof tr->turn);
   return 0;
 }
