@@ -476,7 +476,22 @@ static void glove_mappings_are_read(void **state) {
     fail_msg("%s", e.text);
   assert_true(fabs(s.frames[0].max_turn - 3.14159265358979323846 / 2) < 1e-15);
   assert_true(s.frames[0].max_speed == MR_SCENE_CONTROL_MAX_SPEED);
+  assert_true(s.frames[0].max_accel == MR_SCENE_CONTROL_MAX_ACCEL);
+  assert_true(fabs(s.frames[0].max_turn_accel -
+                   MR_SCENE_CONTROL_MAX_TURN_ACCEL_DEG * 3.14159265358979323846 / 180) < 1e-12);
   mr_scene_free(&s);
+
+  /* A glove's acceleration limits: m/s², and degrees per second squared
+   * kept in radians; a negative one is refused at its place. */
+  snprintf(text, sizeof text, "%s    max_accel: 4.5\n    max_turn_accel: 180\n", head);
+  if (mr_scene_load_text("t.yaml", text, strlen(text), &s, &e) != MR_SCENE_OK)
+    fail_msg("%s", e.text);
+  assert_true(s.frames[0].max_accel == 4.5);
+  assert_true(fabs(s.frames[0].max_turn_accel - 3.14159265358979323846) < 1e-15);
+  mr_scene_free(&s);
+  snprintf(text, sizeof text, "%s    max_turn_accel: -3\n", head);
+  expect_error(text, MR_SCENE_ERR_VALUE,
+               "t.yaml:7:21: expected a positive number for max_turn_accel, got -3");
 
   snprintf(text, sizeof text, "%smapping:\n  - name: m\n    axes:\n      fly: {channel: 1}\n",
            head);

@@ -7,8 +7,9 @@
  * The poses the run reports are compared with the poses the control
  * mapping gives for glove-gen's truth samples (the intact ones, at their
  * device times): after the best time shift (the path's latency), each
- * frame is within a degree of its own glove's poses and far from the other
- * glove's. The samples taken and the errors counted equal the truth's.
+ * frame is close to its own glove's poses (within a degree for the
+ * unbroken stream; the faulty one stalls, and its frame eases back after
+ * each stall) and far from the other glove's. The samples taken and the errors counted equal the truth's.
  * Each glove's take, replayed with the other's, gives the show's states. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -301,9 +302,14 @@ static void two_gloves_drive_two_puppets_each_its_own(void **state) {
     print_message("frame %zu: %.3f deg and %.2f mm RMS from its glove (delay %.3f s); %.1f deg "
                   "and %.1f mm from the other\n",
                   k, e_own, m_own * 1e3, d_own, e_other, m_other * 1e3);
-    assert_true(e_own < 3.0);
-    assert_true(m_own < 0.01);
-    assert_true(e_other > 10.0 * e_own);
+    /* The left hand's stream stalls (glove-gen's --stall, in --faults:
+     * 40 to 400 ms unplugged); at the replug its frame eases to the glove
+     * within control.max_accel and max_turn_accel instead of jumping
+     * there, and lags the glove meanwhile. The right hand's, unbroken,
+     * follows closely. */
+    assert_true(e_own < (own == 0 ? 5.0 : 1.0));
+    assert_true(m_own < (own == 0 ? 0.015 : 0.003));
+    assert_true(e_other > 8.0 * e_own);
   }
   mr_scene_free(&s);
   tt_output_free(&o);

@@ -69,9 +69,110 @@ static void frame_keeps_its_speed_and_turn_limits_on_a_curved_path(void **state)
   mr_scene_free(&sc);
 }
 
+/* A frame a glove drives, limited to 4 m/s² and 180°/s², whose input
+ * jumps 0.6 m sideways and turns 90° between two frames at t = 0.2 s: its
+ * velocity and turn rate, sampled 20 times inside every segment, change no
+ * faster than the limits allow, and do reach them; it still arrives. A
+ * track-driven frame (the test above) is not held to them. */
+static void glove_frame_keeps_its_acceleration_limits(void **state) {
+  (void)state;
+  static const char text[] = "format: 1\n"
+                             "physics:\n"
+                             "  effects: [control]\n"
+                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
+                             "  control:\n"
+                             "    max_accel: 4\n"
+                             "    max_turn_accel: 180\n"
+                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
+                             "    pose: {position: [0, 1, 0]}\n";
+  const double pi = 3.14159265358979323846, sub = 1.0 / 1200.0;
+  mr_scene sc;
+  mr_scene_error err;
+  mr_scene_world sw;
+  assert_int_equal(mr_scene_load_text("accel.yaml", text, sizeof text - 1, &sc, &err), MR_SCENE_OK);
+  assert_int_equal(mr_scene_build(&sc, &sw, &err), MR_SCENE_OK);
+  const double still[3] = { 0, 0, 0 }, turned[3] = { 0, 90, 0 };
+  const double here[3] = { 0, 1, 0 }, there[3] = { 0.6, 1, 0 };
+  double top = 0.0, top_turn = 0.0, v0[3] = { 0 }, w0[3] = { 0 };
+  mr_glove_follow follow;
+  memset(&follow, 0, sizeof follow);
+  for (int f = 1; f <= 180; f++) {
+    double t = f / 60.0;
+    mr_pose goal =
+        t < 0.2 ? mr_pose_from_euler_deg(here, still) : mr_pose_from_euler_deg(there, turned);
+    mr_theater_follow_glove(&sc, &sw, 0, &follow, goal, t);
+    for (int i = 1; i <= 20; i++) {
+      assert_true(mr_world_step_to(sw.world, (f - 1 + i / 20.0) / 60.0, NULL) >= 0);
+      double v[3], w[3], dv[3], dw[3];
+      assert_int_equal(mr_world_frame_rates(sw.world, sw.frames[0], v, w), MR_OK);
+      for (int k = 0; k < 3; k++) {
+        dv[k] = (v[k] - v0[k]) / sub;
+        dw[k] = (w[k] - w0[k]) / sub;
+      }
+      memcpy(v0, v, sizeof v0);
+      memcpy(w0, w, sizeof w0);
+      top = fmax(top, sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]));
+      top_turn = fmax(top_turn, sqrt(dw[0] * dw[0] + dw[1] * dw[1] + dw[2] * dw[2]));
+    }
+  }
+  print_message("acceleration %.6f m/s² (limit 4), turn %.6f rad/s² (limit %.6f)\n", top, top_turn,
+                pi);
+  assert_true(top <= 4.0 * (1 + 1e-6) && top > 3.0);
+  assert_true(top_turn <= pi * (1 + 1e-6) && top_turn > 0.75 * pi);
+  mr_pose end;
+  assert_int_equal(mr_world_frame_pose(sw.world, sw.frames[0], &end), MR_OK);
+  print_message("end %.6f %.6f %.6f\n", end.position[0], end.position[1], end.position[2]);
+  assert_true(fabs(end.position[0] - 0.6) < 1e-3);
+  mr_scene_world_free(&sw);
+  mr_scene_free(&sc);
+}
+
+/* A hand's motion, well within the default limits (0.1 m at 0.3 Hz, a
+ * 30° turn at 0.25 Hz), reaches the frame unchanged: once the bar, at rest
+ * at the start while the hand already moves, has caught up (within half a
+ * second), at every frame time the frame is where the glove put it (a
+ * frame behind would be 3 mm and 0.8° off). */
+static void glove_motion_within_the_limits_passes_unchanged(void **state) {
+  (void)state;
+  static const char text[] = "format: 1\n"
+                             "physics:\n"
+                             "  effects: [control]\n"
+                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
+                             "  control:\n"
+                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
+                             "    pose: {position: [0, 1, 0]}\n";
+  const double pi = 3.14159265358979323846;
+  mr_scene sc;
+  mr_scene_error err;
+  mr_scene_world sw;
+  assert_int_equal(mr_scene_load_text("hand.yaml", text, sizeof text - 1, &sc, &err), MR_SCENE_OK);
+  assert_int_equal(mr_scene_build(&sc, &sw, &err), MR_SCENE_OK);
+  mr_glove_follow follow;
+  memset(&follow, 0, sizeof follow);
+  double worst = 0.0, worst_turn = 0.0;
+  for (int f = 1; f <= 600; f++) {
+    double t = f / 60.0, axis[3];
+    double pos[3] = { 0.1 * sin(2 * pi * 0.3 * t), 1, 0 };
+    double rot[3] = { 0, 30 * sin(2 * pi * 0.25 * t), 0 };
+    mr_pose goal = mr_pose_from_euler_deg(pos, rot), now;
+    mr_theater_follow_glove(&sc, &sw, 0, &follow, goal, t);
+    assert_true(mr_world_step_to(sw.world, t, NULL) >= 0);
+    assert_int_equal(mr_world_frame_pose(sw.world, sw.frames[0], &now), MR_OK);
+    if (t < 0.5) continue;
+    worst = fmax(worst, fabs(now.position[0] - pos[0]));
+    worst_turn = fmax(worst_turn, mr_pose_turn(now.orientation, goal.orientation, axis));
+  }
+  print_message("farthest from the glove's pose: %.3g m, %.3g rad\n", worst, worst_turn);
+  assert_true(worst < 1e-9 && worst_turn < 1e-6);
+  mr_scene_world_free(&sw);
+  mr_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(frame_keeps_its_speed_and_turn_limits_on_a_curved_path),
+    cmocka_unit_test(glove_frame_keeps_its_acceleration_limits),
+    cmocka_unit_test(glove_motion_within_the_limits_passes_unchanged),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

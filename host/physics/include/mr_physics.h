@@ -304,6 +304,11 @@ mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose,
  * until they are within its limits. */
 mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose *pose, double t,
                                      double *speed, double *turn_rate);
+/* The largest acceleration (m/s²) and angular acceleration (rad/s²) of
+ * that same path, at its two ends and its middle: exact for the position
+ * (a cubic's acceleration is linear in time), a sample for the turn. */
+mr_status mr_world_frame_target_accel(const mr_world *w, int frame, const mr_pose *pose, double t,
+                                      double *accel, double *turn_accel);
 mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out);
 /* The frame's velocity (m/s) and angular velocity (rad/s, world axes) at
  * the world's current time. */

@@ -326,6 +326,25 @@ mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose
   return MR_OK;
 }
 
+mr_status mr_world_frame_target_accel(const mr_world *w, int frame, const mr_pose *pose, double t,
+                                      double *accel, double *turn_accel) {
+  if (!w || !pose || !accel || !turn_accel) return MR_ERR_ARG;
+  if (frame < 0 || frame >= w->frames.n) return MR_ERR_ID;
+  mr_pose p = *pose;
+  if (!isfinite(t) || mr_pose_normalize(&p) != 0) return MR_ERR_NONFINITE;
+  mr_frame o;
+  plan_segment(w, &MR_AT(w->frames, mr_frame, frame), &p, t, &o);
+  *accel = *turn_accel = 0.0;
+  if (!(o.t1 > o.t0)) return MR_OK;
+  for (int i = 0; i <= 2; i++) {
+    double st[MR_FRAME_STATE];
+    mr_frame_motion(&o, o.t0 + 0.5 * i * (o.t1 - o.t0), st);
+    *accel = fmax(*accel, norm3(st + 13));
+    *turn_accel = fmax(*turn_accel, norm3(st + 16));
+  }
+  return MR_OK;
+}
+
 mr_status mr_world_frame_pose(const mr_world *w, int frame, mr_pose *out) {
   if (!w || !out) return MR_ERR_ARG;
   if (frame < 0 || frame >= w->frames.n) return MR_ERR_ID;

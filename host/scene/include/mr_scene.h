@@ -180,6 +180,12 @@ typedef struct mr_scene_frame {
    * max_turn_rate, read in deg/s, kept in rad/s): a jump in the input is
    * spread over as many frames as these allow (mr_pose_approach). */
   double max_speed, max_turn;
+  /* How hard a glove may start and stop the frame (max_accel, m/s²;
+   * max_turn_accel, read in deg/s², kept in rad/s²): a glove's jump (its
+   * first reading, a reconnection, a frame given up to catch up) would
+   * otherwise start the bar at max_speed at once and throw the puppet on
+   * its taut strings. A track is the scene's own motion: not limited. */
+  double max_accel, max_turn_accel;
   mr_scene_track track;
   mr_scene_glove_bind glove;
   mr_scene_pos pos;
@@ -218,6 +224,14 @@ typedef struct mr_scene_expect {
  * is 11 m/s), far below a teleport (2 m in a 60 Hz frame is 120 m/s). */
 #define MR_SCENE_CONTROL_MAX_SPEED    20.0
 #define MR_SCENE_CONTROL_MAX_TURN_DEG 1440.0
+/* The defaults of control.max_accel (m/s²) and control.max_turn_accel
+ * (deg/s²): a bar that never drops away faster than gravity pulls the
+ * puppet after it keeps its strings taut, so the puppet is not thrown
+ * over the bar; the turn's share at a bar end 0.3 m out is about half g.
+ * A hand moving the bar through the default mapping's range needs under
+ * 2 m/s² and 400°/s². */
+#define MR_SCENE_CONTROL_MAX_ACCEL          10.0
+#define MR_SCENE_CONTROL_MAX_TURN_ACCEL_DEG 1000.0
 
 typedef struct mr_scene {
   char *path;

@@ -203,13 +203,31 @@ static int read_glove(mr_reader *r, const mr_ynode *n) {
   return read_uid(r, mr_scene_yaml_get(n, "uid"), b);
 }
 
+/* A positive number of degrees (per second, or per second squared) at
+ * `key`, if there, into *out in radians. */
+static int read_degrees(mr_reader *r, const mr_ynode *n, const char *key, double *out) {
+  const mr_ynode *v = mr_scene_yaml_get(n, key);
+  if (v == NULL) return 0;
+  double deg;
+  if (mr_scene_read_quantity(r, v, key, &deg) != 0) return -1;
+  if (!(deg > 0))
+    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE, "expected a positive number for %s, got %g",
+                              key, deg);
+  if (mr_scene_range_check(r, v, key, deg) != 0) return -1;
+  *out = deg * PI / 180.0;
+  return 0;
+}
+
 /* physics.control, or a puppet's control: a new frame, its points, start
  * pose, track, speed limits and glove. */
 int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "points",        "pose",  "track", "max_speed",
-                                      "max_turn_rate", "glove", NULL };
+  static const char *const keys[] = { "points",         "pose",      "track",
+                                      "max_speed",      "max_accel", "max_turn_rate",
+                                      "max_turn_accel", "glove",     NULL };
   static const mr_scene_field speed = { "max_speed", MR_SCENE_FIELD_POSITIVE,
                                         offsetof(mr_scene_frame, max_speed), 0, 0 };
+  static const mr_scene_field accel = { "max_accel", MR_SCENE_FIELD_POSITIVE,
+                                        offsetof(mr_scene_frame, max_accel), 0, 0 };
   static const char *const pose_keys[] = { "position", "rotation", NULL };
   mr_scene *s = r->scene;
   if (mr_scene_read_map(r, n, r->puppet ? "a puppet's control" : "physics.control", keys) != 0)
@@ -240,16 +258,10 @@ int mr_scene_read_control(mr_reader *r, const mr_ynode *n) {
   }
   if ((v = mr_scene_yaml_get(n, "track")) != NULL && read_track(r, v) != 0) return -1;
   if ((v = mr_scene_yaml_get(n, "glove")) != NULL && read_glove(r, v) != 0) return -1;
-  if (mr_scene_read_field(r, n, &speed, f) != 0) return -1;
-  if ((v = mr_scene_yaml_get(n, "max_turn_rate")) == NULL) return 0;
-  double deg; /* read in degrees, kept in radians */
-  if (mr_scene_read_quantity(r, v, "max_turn_rate", &deg) != 0) return -1;
-  if (!(deg > 0))
-    return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
-                              "expected a positive number for max_turn_rate, got %g", deg);
-  if (mr_scene_range_check(r, v, "max_turn_rate", deg) != 0) return -1;
-  f->max_turn = deg * PI / 180.0;
-  return 0;
+  if (mr_scene_read_field(r, n, &speed, f) != 0 || mr_scene_read_field(r, n, &accel, f) != 0)
+    return -1;
+  if (read_degrees(r, n, "max_turn_rate", &f->max_turn) != 0) return -1;
+  return read_degrees(r, n, "max_turn_accel", &f->max_turn_accel);
 }
 
 void mr_scene_frame_defaults(mr_scene_frame *f) {
@@ -258,6 +270,8 @@ void mr_scene_frame_defaults(mr_scene_frame *f) {
   memcpy(f->track.turn, f->pose.orientation, sizeof f->track.turn);
   f->max_speed = MR_SCENE_CONTROL_MAX_SPEED;
   f->max_turn = MR_SCENE_CONTROL_MAX_TURN_DEG * PI / 180.0;
+  f->max_accel = MR_SCENE_CONTROL_MAX_ACCEL;
+  f->max_turn_accel = MR_SCENE_CONTROL_MAX_TURN_ACCEL_DEG * PI / 180.0;
 }
 
 /* Between keys: smoothstep eases in and out of each key so the frame's

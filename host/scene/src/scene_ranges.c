@@ -59,6 +59,8 @@ static const mr_scene_range ranges[] = {
   /* control */
   { "rotation", -1e6, 1e6, "°" },
   { "max_turn_rate", 1e-6, 1e8, "°/s" },
+  { "max_accel", 1e-6, 1e9, "m/s²" },
+  { "max_turn_accel", 1e-6, 1e10, "°/s²" },
   { "t", 0, 1e6, "s" },
   { "amplitude", -1e6, 1e6, "m" },
   { "quadrature", -1e6, 1e6, "m" },

@@ -29,6 +29,7 @@ typedef struct show_frame {
   int glove; /* index into gloves, -1 until bound */
   mr_control *control;
   mr_pose target;
+  mr_glove_follow follow; /* how fast the target moves */
   uint64_t samples_seen;
   mr_channel_state states[MR_CONTROL_CHANNELS]; /* as last told to the user */
 } show_frame;
@@ -255,7 +256,7 @@ static int step_world(show *s, double t, mr_frame_work *work) {
   while (t > mr_world_time(w) + 1e-9) {
     double end = s->interpolate ? mr_world_time(w) + mr_world_next_dt(w) : t;
     for (size_t k = 0; k < s->n_frames; k++)
-      mr_theater_head_frame(s->scene, &s->sw, k, s->frames[k].target, end);
+      mr_theater_follow_glove(s->scene, &s->sw, k, &s->frames[k].follow, s->frames[k].target, end);
     mr_interp_mark(&s->ip, w);
     mr_step_report rep;
     memset(&rep, 0, sizeof rep);

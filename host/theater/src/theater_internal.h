@@ -11,6 +11,19 @@
  * Measured from the frame's pose at the world's time, the rule holds
  * whether a step lands on t or stops short of it. */
 void mr_theater_head_frame(const mr_scene *s, mr_scene_world *sw, size_t k, mr_pose goal, double t);
+/* The same for a frame a glove drives, which also changes its velocity no
+ * faster than control.max_accel and its turn rate no faster than
+ * max_turn_accel allow. The goal's own motion, which the frame
+ * matches, is taken from the goals one after another: *follow keeps the
+ * last one and its rate (zeroed: none yet). */
+typedef struct mr_glove_follow {
+  mr_pose goal;       /* the last goal that differed from the one before */
+  double t;           /* when it came */
+  double u[3], uw[3]; /* how fast the goal moved to it, m/s and rad/s */
+  int seen;
+} mr_glove_follow;
+void mr_theater_follow_glove(const mr_scene *s, mr_scene_world *sw, size_t k,
+                             mr_glove_follow *follow, mr_pose goal, double t);
 
 /* Interpolated presentation (interp.c): mark the world's state before the
  * steps that pass a frame time, then ask for the state at that time. */
