@@ -1,11 +1,16 @@
-/* The shaders, GLSL 3.30 core (the oldest core profile every backend here
- * gives; Mesa's OSMesa and EGL give 4.5). Every fragment shader writes
- * sRGB itself (mr_to_srgb): the framebuffers are plain RGBA8, because
- * SDL's sRGB framebuffer flag is unreliable and headless backends have no
- * default framebuffer to ask it of. */
+/* The shaders' bodies, in the subset GLSL 3.30 core (the oldest core
+ * profile every backend here gives; Mesa's OSMesa and EGL give 4.5) and
+ * GLSL ES 3.00 share: no implicit int to float, float literals with a
+ * point, no features past 3.30. shaders.c puts the #version line (and
+ * ES's precision statements) before each at compile time, so
+ * MR_GLSL_VERSION, which opens every body, stands for that header and is
+ * empty here. Every fragment shader writes sRGB itself (mr_to_srgb): the
+ * framebuffers are plain RGBA8, because SDL's sRGB framebuffer flag is
+ * unreliable and headless backends have no default framebuffer to ask it
+ * of. */
 #include "shader_src.h"
 
-#define MR_GLSL_VERSION "#version 330 core\n"
+#define MR_GLSL_VERSION ""
 #define MR_GLSL_SRGB                                                   \
   "vec3 mr_to_srgb(vec3 c) {\n"                                        \
   "  c = clamp(c, 0.0, 1.0);\n"                                        \
