@@ -80,7 +80,12 @@ static bool env_set(const char *name) {
 static int sdl_video_init(char *msg, size_t msg_size) {
   bool console = !env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY");
   bool named = env_set("SDL_VIDEODRIVER");
-  if (console && !named) SDL_SetHint(SDL_HINT_VIDEODRIVER, "kmsdrm");
+  /* The hint outlives this window: a later one with a display must not
+   * inherit it. */
+  if (console && !named)
+    SDL_SetHint(SDL_HINT_VIDEODRIVER, "kmsdrm");
+  else
+    SDL_ResetHint(SDL_HINT_VIDEODRIVER);
   if (SDL_InitSubSystem(SDL_INIT_VIDEO | SDL_INIT_GAMECONTROLLER) != 0) {
     if (console && !named)
       snprintf(msg, msg_size,
