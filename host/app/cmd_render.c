@@ -322,6 +322,7 @@ static int render_scene(job *j, const mr_scene *scene) {
   mr_render_def rd = mr_default_render_def();
   rd.headless = true;
   rd.backend = a->so.backend;
+  rd.gl = a->so.gl;
   rd.width = a->so.width;
   rd.height = a->so.height;
   if (a->so.samples > 0) rd.samples = a->so.samples;

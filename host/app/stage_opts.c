@@ -24,13 +24,17 @@ const char mr_stage_opts_help[] =
     "  --camera NAME       look through the scene's camera NAME (camera.views)\n"
     "                      instead of the orbit camera\n"
     "  --day X             the day knob, 0..1: 0 and 1 midnight, 0.5 noon\n"
-    "                      (default: the scene's stage.time_of_day)\n";
+    "                      (default: the scene's stage.time_of_day)\n"
+    "  --gl API            the OpenGL to draw with: auto (default: desktop\n"
+    "                      OpenGL 3.3 core, else OpenGL ES 3.0), core, or es3\n"
+    "                      (OpenGL ES 3.0; the window or egl backend)\n";
 
 void mr_stage_opts_init(mr_stage_opts *o) {
   memset(o, 0, sizeof *o);
   o->every = 1;
   o->day = NAN;
   o->backend = MR_RENDER_AUTO;
+  o->gl = MR_RENDER_GL_AUTO;
 }
 
 static int bad(const char *cmd, const char *what, const char *v) {
@@ -89,6 +93,8 @@ static int take_value(mr_stage_opts *o, const char *cmd, const char *opt, const 
     o->day = strtod(v, &end);
     if (end == v || *end != '\0' || !(o->day >= 0 && o->day <= 1))
       return bad(cmd, "expected --day a number from 0 to 1", v);
+  } else if (strcmp(opt, "--gl") == 0) {
+    if (mr_render_gl_parse(v, &o->gl) != 0) return bad(cmd, "expected --gl auto, core or es3", v);
   } else {
     bool ok = mr_render_backend_parse(v, &o->backend) == 0;
     if (!ok || (!allow_window && o->backend == MR_RENDER_WINDOW))
@@ -104,7 +110,7 @@ int mr_stage_opts_take(mr_stage_opts *o, const char *cmd, int argc, char **argv,
                        bool allow_window) {
   static const char *const valued[] = { "-o",        "--output",  "--every",  "--mp4",
                                         "--sheet",   "--size",    "--camera", "--day",
-                                        "--backend", "--samples", NULL };
+                                        "--backend", "--samples", "--gl",     NULL };
   const char *opt = argv[*i];
   if (strcmp(opt, "--no-mp4") == 0) return o->no_mp4 = true, 1;
   if (strcmp(opt, "--no-sheet") == 0) return o->no_sheet = true, 1;

@@ -19,6 +19,7 @@ typedef struct mr_stage_opts {
   const char *camera;
   double day; /* --day, NaN: the scene's */
   mr_render_backend backend;
+  mr_render_gl gl; /* --gl auto|core|es3, default auto */
   char mp4_buf[600], sheet_buf[600];
 } mr_stage_opts;
 

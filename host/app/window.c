@@ -342,6 +342,7 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
     rd.backend = so->backend;
   rd.width = so->width;
   rd.height = so->height;
+  rd.gl = so->gl;
   if (so->samples > 0) rd.samples = so->samples;
   rd.fullscreen = def->fullscreen;
   rd.title = "marionette";
@@ -375,9 +376,10 @@ int mr_live_close(mr_live *lv, bool quiet) {
   lv->fo = NULL;
   if (!quiet || rc != 0) {
     mr_render_backend b = mr_render_backend_of(lv->sv.render);
-    printf("stage: %s (%s), %dx%d, %llu frames drawn\n", lv->window ? "in a window" : "headless",
+    printf("stage: %s (%s), %dx%d, %llu frames drawn (%s)\n",
+           lv->window ? "in a window" : "headless",
            b == MR_RENDER_WINDOW ? "SDL" : mr_render_backend_name(b), lv->sv.width, lv->sv.height,
-           (unsigned long long)lv->drawn);
+           (unsigned long long)lv->drawn, mr_render_gl_version(lv->sv.render));
     if (s.frames > 0 || s.pngs > 0) {
       printf("png frames: %llu in %s\n", (unsigned long long)s.pngs, lv->out);
       if (s.sheet_cells > 0) printf("sheet: %d thumbnails\n", s.sheet_cells);

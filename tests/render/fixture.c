@@ -48,15 +48,21 @@ int fx_add(fx_scene *s, mr_shape shape, const float rgb[3], double x, double y, 
 }
 
 mr_render *fx_render(mr_render_backend b, const fx_scene *s) {
+  return fx_render_gl(b, MR_RENDER_GL_AUTO, s);
+}
+
+mr_render *fx_render_gl(mr_render_backend b, mr_render_gl gl, const fx_scene *s) {
   mr_render_def def = mr_default_render_def();
   def.backend = b;
+  def.gl = gl;
   def.headless = true;
   def.width = FX_W;
   def.height = FX_H;
   mr_render *r = NULL;
   char msg[512] = "";
   mr_render_status st = mr_render_create(&def, &s->stage, "fixture.yaml", &r, msg, sizeof msg);
-  if (st != MR_RENDER_OK) fail_msg("%s: %s", mr_render_backend_name(b), msg);
+  if (st != MR_RENDER_OK)
+    fail_msg("%s (gl %s): %s", mr_render_backend_name(b), mr_render_gl_name(gl), msg);
   return r;
 }
 

@@ -1,7 +1,12 @@
 /* Whole pictures against committed goldens (tests/render/golden, PNG,
  * 320 x 180): a day scene, a night sky with stars, and a low sun's
  * shadows with a spot; drawn through EGL and OSMesa, both held to the
- * same golden. MR_UPDATE_GOLDEN=1 rewrites them. */
+ * same golden. MR_UPDATE_GOLDEN=1 rewrites them.
+ *
+ * Built a second time with MR_TEST_GLES (render_golden_on_gles3): the same
+ * pictures drawn through EGL on an OpenGL ES 3 context, held to the same
+ * goldens at the same tolerance, each one's agreement printed. That build
+ * never writes a golden: they are the desktop path's. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -13,6 +18,10 @@
 
 #include "fixture.h"
 #include "golden.h"
+
+#ifdef MR_TEST_GLES
+#include <stb_image.h>
+#endif
 
 /* A small show: a sphere head, a box body, a cylinder arm, and the
  * rigging as lines. */
@@ -41,6 +50,7 @@ static void show_init(fx_scene *s, mr_draw_line lines[3]) {
   s->list.n_lines = 3;
 }
 
+#ifndef MR_TEST_GLES
 static void check(const fx_scene *s, const char *name) {
   char path[512], msg[1024] = "";
   snprintf(path, sizeof path, "%s/tests/render/golden/%s.png", MR_SOURCE_DIR, name);
@@ -54,6 +64,37 @@ static void check(const fx_scene *s, const char *name) {
     if (rc != 0) fail_msg("%s: %s", mr_render_backend_name(order[i]), msg);
   }
 }
+#else
+/* Drawn on OpenGL ES (the renderer says so, and so does GL_VERSION),
+ * compared with the desktop golden; a frame that fails is written to the
+ * build folder as NAME.gles.png. */
+static void check(const fx_scene *s, const char *name) {
+  char path[512];
+  snprintf(path, sizeof path, "%s/tests/render/golden/%s.png", MR_SOURCE_DIR, name);
+  mr_render *r = fx_render_gl(MR_RENDER_EGL, MR_RENDER_GL_ES3, s);
+  assert_int_equal(mr_render_gl_of(r), MR_RENDER_GL_ES3);
+  assert_non_null(strstr(mr_render_gl_description(r), "OpenGL ES 3."));
+  uint8_t *rgb = fx_draw(r, s);
+  mr_render_destroy(r);
+  int w = 0, h = 0, n = 0;
+  uint8_t *golden = stbi_load(path, &w, &h, &n, 3);
+  if (!golden || w != FX_W || h != FX_H) fail_msg("%s: cannot read a %dx%d PNG", path, FX_W, FX_H);
+  int worst = 0;
+  double a = mr_frames_agreement(rgb, golden, FX_W, FX_H, MR_GOLDEN_TOLERANCE, &worst);
+  printf("%s on OpenGL ES: %.4f %% of pixels within %d/255 of the golden (worst %d)\n", name,
+         100 * a, MR_GOLDEN_TOLERANCE, worst);
+  stbi_image_free(golden);
+  if (a < MR_GOLDEN_FRACTION) {
+    char actual[512];
+    snprintf(actual, sizeof actual, "%s/tests/render/%s.gles.png", MR_BINARY_DIR, name);
+    mr_png_write(actual, rgb, FX_W, FX_H);
+    free(rgb);
+    fail_msg("%s on OpenGL ES: only %.4f %% of pixels agree with %s; the frame is in %s", name,
+             100 * a, path, actual);
+  }
+  free(rgb);
+}
+#endif
 
 static void test_a_day_scene_matches_its_golden(void **state) {
   (void)state;

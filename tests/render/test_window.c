@@ -1,7 +1,8 @@
 /* The window path, run under Xvfb (ctest starts it through xvfb-run):
  * an SDL window opens, 60 frames are drawn and shown, and the window's
  * own pixels (the frame blitted into its back buffer, read from there)
- * match the headless EGL frame of the same draw list. */
+ * match the headless EGL frame of the same draw list; the same on an
+ * OpenGL ES 3 window, against the desktop's headless frame. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -15,8 +16,8 @@
 #include "golden.h"
 #include "render_internal.h"
 
-static void test_a_window_shows_the_frame_the_headless_backends_draw(void **state) {
-  (void)state;
+/* A window on the OpenGL gl asks for (AUTO: the desktop's here). */
+static void window_shows_the_headless_frame(mr_render_gl gl) {
   const char *display = getenv("DISPLAY");
   if (!display || !*display) fail_msg("no DISPLAY: run under xvfb-run -a");
   fx_scene s;
@@ -33,12 +34,15 @@ static void test_a_window_shows_the_frame_the_headless_backends_draw(void **stat
   def.height = FX_H;
   def.vsync = false;
   def.title = "marionette test";
+  def.gl = gl;
   mr_render *win = NULL;
   char msg[1024] = "";
   /* AUTO with a display is the window. */
   if (mr_render_create(&def, &s.stage, NULL, &win, msg, sizeof msg) != MR_RENDER_OK)
     fail_msg("%s", msg);
   assert_int_equal(mr_render_backend_of(win), MR_RENDER_WINDOW);
+  assert_int_equal(mr_render_gl_of(win),
+                   gl == MR_RENDER_GL_ES3 ? MR_RENDER_GL_ES3 : MR_RENDER_GL_CORE);
   for (int i = 0; i < 60; i++) {
     s.items[0].pose.position[0] = 0.3 * (i - 59) / 59.0; /* ends at 0 */
     assert_int_equal(mr_render_draw(win, &s.list, &s.view), MR_RENDER_OK);
@@ -60,17 +64,29 @@ static void test_a_window_shows_the_frame_the_headless_backends_draw(void **stat
   int worst = 0;
   double agree = mr_frames_agreement(shown, headless, FX_W, FX_H, MR_GOLDEN_TOLERANCE, &worst);
   if (agree < MR_GOLDEN_FRACTION) {
-    fx_save("window_shown", shown);
-    fail_msg("window and EGL: %.4f%% agree, worst %d", agree * 100, worst);
+    fx_save(gl == MR_RENDER_GL_ES3 ? "window_shown_gles" : "window_shown", shown);
+    fail_msg("window (gl %s) and EGL: %.4f%% agree, worst %d", mr_render_gl_name(gl), agree * 100,
+             worst);
   }
   free(shown);
   free(fbo);
   free(headless);
 }
 
+static void test_a_window_shows_the_frame_the_headless_backends_draw(void **state) {
+  (void)state;
+  window_shows_the_headless_frame(MR_RENDER_GL_AUTO);
+}
+
+static void test_an_opengl_es_window_shows_the_frame_the_desktop_draws(void **state) {
+  (void)state;
+  window_shows_the_headless_frame(MR_RENDER_GL_ES3);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_a_window_shows_the_frame_the_headless_backends_draw),
+    cmocka_unit_test(test_an_opengl_es_window_shows_the_frame_the_desktop_draws),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,4 +1,5 @@
-/* mr_render: the stage drawn with one OpenGL 3.3 core path.
+/* mr_render: the stage drawn with one GL path, on OpenGL 3.3 core or
+ * OpenGL ES 3.0.
  *
  * Every frame is drawn into the renderer's own multisampled framebuffer
  * object, resolved, then shown in a window (SDL2) or read back (OSMesa,
@@ -31,9 +32,22 @@ typedef enum mr_render_backend {
 const char *mr_render_backend_name(mr_render_backend b);
 int mr_render_backend_parse(const char *name, mr_render_backend *out);
 
+/* Which OpenGL the context speaks. The renderer draws the same frame with
+ * either: its shaders are one source, compiled as GLSL 3.30 core or
+ * GLSL ES 3.00 (see host/render/README.md). */
+typedef enum mr_render_gl {
+  MR_RENDER_GL_AUTO = 0, /* desktop OpenGL 3.3 core, else OpenGL ES 3.0 */
+  MR_RENDER_GL_CORE,     /* desktop OpenGL 3.3 core only */
+  MR_RENDER_GL_ES3       /* OpenGL ES 3.0 only (window or EGL; OSMesa has none) */
+} mr_render_gl;
+/* "auto", "core", "es3". */
+const char *mr_render_gl_name(mr_render_gl g);
+int mr_render_gl_parse(const char *name, mr_render_gl *out);
+
 typedef struct mr_render_def {
   uint32_t cookie; /* MR_RENDER_COOKIE, set by mr_default_render_def() */
   mr_render_backend backend;
+  mr_render_gl gl;       /* default AUTO */
   bool headless;         /* AUTO picks only headless backends */
   int width, height;     /* <= 0: the stage's size */
   int samples;           /* multisampling, default 4; 1: none */
@@ -66,6 +80,11 @@ void mr_render_destroy(mr_render *r);
 mr_render_backend mr_render_backend_of(const mr_render *r);
 /* The GL_RENDERER and GL_VERSION strings, for logs. */
 const char *mr_render_gl_description(const mr_render *r);
+/* The OpenGL the renderer got: MR_RENDER_GL_CORE or MR_RENDER_GL_ES3. */
+mr_render_gl mr_render_gl_of(const mr_render *r);
+/* It, short, with the context's version: "OpenGL 4.5 core" or
+ * "OpenGL ES 3.2", for a summary line. */
+const char *mr_render_gl_version(const mr_render *r);
 void mr_render_size(const mr_render *r, int *width, int *height);
 
 /* How a frame is looked at. */

@@ -4,7 +4,8 @@
  * = OSMESA_CORE_PROFILE gives a 4.5 core profile; the default
  * (compatibility) profile stops at 3.0, too old for the 3.3 shaders. The
  * context's own buffer is a few pixels: every frame is drawn into the
- * renderer's framebuffer object (fbo.c), never into it. */
+ * renderer's framebuffer object (fbo.c), never into it. OSMesa makes no
+ * OpenGL ES context at all: def.gl ES3 is refused here, by name. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -46,7 +47,13 @@ static void osmesa_stop(mr_render *r) {
 }
 
 static int osmesa_start(mr_render *r, const mr_render_def *def, char *msg, size_t msg_size) {
-  (void)def;
+  r->gles = false;
+  if (def->gl == MR_RENDER_GL_ES3) {
+    snprintf(msg, msg_size,
+             "OSMesa has no OpenGL ES, only desktop OpenGL (OpenGL ES 3.0 needs the egl or "
+             "window backend)");
+    return -1;
+  }
   osmesa_state *s = calloc(1, sizeof *s);
   if (!s) {
     snprintf(msg, msg_size, "out of memory");

@@ -56,7 +56,6 @@ mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list,
 
   mr_fbo_bind_draw(r);
   gl->ClearColor(mr_srgb(f.sky[0]), mr_srgb(f.sky[1]), mr_srgb(f.sky[2]), 1);
-  gl->ClearDepth(1);
   gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl->Enable(GL_DEPTH_TEST);
   gl->DepthFunc(GL_LEQUAL);

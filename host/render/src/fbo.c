@@ -101,7 +101,10 @@ int mr_fbo_read_rgb(mr_render *r, uint8_t *rgb) {
 void mr_fbo_blit_to_window(mr_render *r, int w, int h) {
   const mr_gl *gl = &r->gl;
   gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  gl->DrawBuffer(GL_BACK);
+  /* glDrawBuffers names the window's back buffer GL_BACK in ES and
+   * GL_BACK_LEFT on the desktop (glDrawBuffer is desktop only). */
+  const GLenum back = r->gles ? GL_BACK : GL_BACK_LEFT;
+  gl->DrawBuffers(1, &back);
   gl->Viewport(0, 0, w, h);
   gl->ClearColor(0, 0, 0, 1);
   gl->Clear(GL_COLOR_BUFFER_BIT);

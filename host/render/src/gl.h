@@ -6,7 +6,13 @@
  * EGL) each export the whole gl* set, so a direct call binds to whichever
  * the linker saw first, which need not be the library whose context is
  * current. No Debian loader covers OSMesa (libepoxy knows GLX, EGL and WGL;
- * GLEW knows GLX), so the renderer loads the few entry points it uses. */
+ * GLEW knows GLX), so the renderer loads the few entry points it uses.
+ *
+ * Every entry here is in both OpenGL 3.3 core and OpenGL ES 3.0, so one
+ * table serves either context: glDrawBuffer and glClearDepth (desktop
+ * only) are not here; glDrawBuffers is, and the depth clear value is
+ * never changed from its 1.0. An enum one API lacks is used only behind
+ * r->gles (render_internal.h); the ES golden tests catch a GL error. */
 #ifndef MR_RENDER_GL_H
 #define MR_RENDER_GL_H
 
@@ -21,7 +27,6 @@
   X(PFNGLGETERRORPROC, GetError)                                             \
   X(PFNGLCLEARPROC, Clear)                                                   \
   X(PFNGLCLEARCOLORPROC, ClearColor)                                         \
-  X(PFNGLCLEARDEPTHPROC, ClearDepth)                                         \
   X(PFNGLENABLEPROC, Enable)                                                 \
   X(PFNGLDISABLEPROC, Disable)                                               \
   X(PFNGLVIEWPORTPROC, Viewport)                                             \
@@ -33,7 +38,7 @@
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \
   X(PFNGLREADBUFFERPROC, ReadBuffer)                                         \
-  X(PFNGLDRAWBUFFERPROC, DrawBuffer)                                         \
+  X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                       \
   X(PFNGLFINISHPROC, Finish)                                                 \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \

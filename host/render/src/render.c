@@ -58,13 +58,6 @@ static int backend_start(mr_render *r, const mr_render_def *def, char *msg, size
   return -1;
 }
 
-static void describe(mr_render *r) {
-  const char *renderer = (const char *)r->gl.GetString(GL_RENDERER);
-  const char *version = (const char *)r->gl.GetString(GL_VERSION);
-  snprintf(r->description, sizeof r->description, "%s, OpenGL %s", renderer ? renderer : "?",
-           version ? version : "?");
-}
-
 /* Every GL object the renderer keeps, made once. */
 static mr_render_status gl_objects_create(mr_render *r, const mr_render_def *def,
                                           const mr_stage_def *stage, const char *scene_path,
@@ -90,7 +83,7 @@ mr_render_status mr_render_create(const mr_render_def *def, const mr_stage_def *
   }
   if (out) *out = NULL;
   if (!def || def->cookie != MR_RENDER_COOKIE || !stage || stage->cookie != MR_STAGE_COOKIE ||
-      !out) {
+      !out || (unsigned)def->gl > MR_RENDER_GL_ES3) {
     snprintf(msg, msg_size, "mr_render_create: a def not from its default maker, or NULL");
     return MR_RENDER_ERR_ARG;
   }
@@ -107,7 +100,7 @@ mr_render_status mr_render_create(const mr_render_def *def, const mr_stage_def *
     free(r);
     return MR_RENDER_ERR_BACKEND;
   }
-  describe(r);
+  mr_gl_describe(r);
   mr_render_status st = gl_objects_create(r, def, stage, scene_path, msg, msg_size);
   if (st != MR_RENDER_OK) {
     if (st == MR_RENDER_ERR_GL && !msg[0]) snprintf(msg, msg_size, "a GL call failed at create");

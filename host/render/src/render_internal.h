@@ -65,6 +65,8 @@ struct mr_render {
   const mr_backend_ops *ops;
   void *bk; /* the backend's own state */
   mr_gl gl;
+  bool gles;           /* the context is OpenGL ES 3.x, set by the backend */
+  char gl_version[32]; /* "OpenGL 4.5 core", "OpenGL ES 3.2" */
   int width, height, samples;
   char description[256];
   mr_stage_def stage; /* a copy; its pointers are not used after create */
@@ -86,6 +88,9 @@ struct mr_render {
   GLsizei n_stars;
   struct mr_text *text;
 };
+
+/* glapi.c: the description and short version of the context. */
+void mr_gl_describe(mr_render *r);
 
 /* fbo.c */
 int mr_fbo_create(mr_render *r, char *msg, size_t msg_size);

@@ -1,11 +1,16 @@
-/* The shaders, GLSL 3.30 core (the oldest core profile every backend here
- * gives; Mesa's OSMesa and EGL give 4.5). Every fragment shader writes
- * sRGB itself (mr_to_srgb): the framebuffers are plain RGBA8, because
- * SDL's sRGB framebuffer flag is unreliable and headless backends have no
- * default framebuffer to ask it of. */
+/* The shaders' bodies, in the subset GLSL 3.30 core (the oldest core
+ * profile every backend here gives; Mesa's OSMesa and EGL give 4.5) and
+ * GLSL ES 3.00 share: no implicit int to float, float literals with a
+ * point, no features past 3.30. shaders.c puts the #version line (and
+ * ES's precision statements) before each at compile time, so
+ * MR_GLSL_VERSION, which opens every body, stands for that header and is
+ * empty here. Every fragment shader writes sRGB itself (mr_to_srgb): the
+ * framebuffers are plain RGBA8, because SDL's sRGB framebuffer flag is
+ * unreliable and headless backends have no default framebuffer to ask it
+ * of. */
 #include "shader_src.h"
 
-#define MR_GLSL_VERSION "#version 330 core\n"
+#define MR_GLSL_VERSION ""
 #define MR_GLSL_SRGB                                                   \
   "vec3 mr_to_srgb(vec3 c) {\n"                                        \
   "  c = clamp(c, 0.0, 1.0);\n"                                        \
@@ -127,7 +132,10 @@ const char mr_src_line_fs[] =
                                  "void main() { o_color = vec4(mr_to_srgb(v_color), 1.0); }\n";
 
 /* Stars: points on a sphere about the eye, inside the far plane, so the
- * floor and the backdrop hide them; they fade in as the sun sets. */
+ * floor and the backdrop hide them; they fade in as the sun sets. A star
+ * whose centre is outside the view is dropped (sent past the far plane):
+ * desktop GL discards such a point, but ES clips points only at the near
+ * and far planes and would draw the part that reaches into the frame. */
 const char mr_src_star_vs[] =
     MR_GLSL_VERSION "layout(location = 0) in vec3 a_dir;\n"
                     "layout(location = 1) in float a_bright;\n"
@@ -138,7 +146,9 @@ const char mr_src_star_vs[] =
                     "void main() {\n"
                     "  v_alpha = clamp(a_bright, 0.0, 1.0) * u_night;\n"
                     "  gl_PointSize = (1.5 + 2.5 * clamp(a_bright, 0.0, 1.0)) * u_point_scale;\n"
-                    "  gl_Position = u_view_proj * vec4(u_eye + normalize(a_dir) * 50.0, 1.0);\n"
+                    "  vec4 p = u_view_proj * vec4(u_eye + normalize(a_dir) * 50.0, 1.0);\n"
+                    "  if (any(greaterThan(abs(p.xy), vec2(p.w)))) p.z = 2.0 * p.w;\n"
+                    "  gl_Position = p;\n"
                     "}\n";
 
 const char mr_src_star_fs[] =

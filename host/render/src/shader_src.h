@@ -1,4 +1,5 @@
-/* The GLSL 3.30 core sources (shader_src.c). */
+/* The shaders' bodies, for GLSL 3.30 core and GLSL ES 3.00 both
+ * (shader_src.c; shaders.c prepends the #version line). */
 #ifndef MR_RENDER_SHADER_SRC_H
 #define MR_RENDER_SHADER_SRC_H
 

@@ -5,11 +5,26 @@
 #include "render_internal.h"
 #include "shader_src.h"
 
+/* Each shader is one body (shader_src.c) in the subset GLSL 3.30 core and
+ * GLSL ES 3.00 share, after a header for the context's language: its
+ * #version line and, for ES, precision statements. ES gives no default
+ * precision for float in fragment shaders nor for sampler2DShadow at all,
+ * and only lowp for sampler2D; highp everywhere keeps the bones (floats
+ * read by texelFetch), the shadow depths and the lighting as exact as on
+ * the desktop, and every ES 3.0 fragment shader has highp. */
+static const char glsl_core[] = "#version 330 core\n";
+static const char glsl_es[] = "#version 300 es\n"
+                              "precision highp float;\n"
+                              "precision highp int;\n"
+                              "precision highp sampler2D;\n"
+                              "precision highp sampler2DShadow;\n";
+
 static GLuint compile(mr_render *r, GLenum kind, const char *src, const char *what, char *msg,
                       size_t msg_size) {
   const mr_gl *gl = &r->gl;
   GLuint s = gl->CreateShader(kind);
-  gl->ShaderSource(s, 1, &src, NULL);
+  const char *parts[2] = { r->gles ? glsl_es : glsl_core, src };
+  gl->ShaderSource(s, 2, parts, NULL);
   gl->CompileShader(s);
   GLint ok = 0;
   gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);

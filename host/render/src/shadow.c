@@ -30,7 +30,8 @@ int mr_shadow_create(mr_render *r, char *msg, size_t msg_size) {
   gl->GenFramebuffers(1, &r->shadow_fbo);
   gl->BindFramebuffer(GL_FRAMEBUFFER, r->shadow_fbo);
   gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, r->shadow_tex, 0);
-  gl->DrawBuffer(GL_NONE);
+  const GLenum none = GL_NONE; /* glDrawBuffers: glDrawBuffer is desktop only */
+  gl->DrawBuffers(1, &none);
   gl->ReadBuffer(GL_NONE);
   GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
   gl->BindFramebuffer(GL_FRAMEBUFFER, 0);

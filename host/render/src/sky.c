@@ -83,7 +83,8 @@ void mr_sky_draw_stars(mr_render *r, const mr_frame *f) {
   /* Sized for 720 rows, never under a pixel's worth. */
   float scale = (float)r->height / 720.0f;
   mr_uniform_f(r, r->prog_star, "u_point_scale", scale > 1 ? scale : 1);
-  gl->Enable(GL_PROGRAM_POINT_SIZE);
+  /* ES always takes gl_PointSize, and has no such switch. */
+  if (!r->gles) gl->Enable(GL_PROGRAM_POINT_SIZE);
   gl->Enable(GL_BLEND);
   gl->BlendFunc(GL_SRC_ALPHA, GL_ONE);
   gl->DepthMask(GL_FALSE);
@@ -92,6 +93,6 @@ void mr_sky_draw_stars(mr_render *r, const mr_frame *f) {
   gl->BindVertexArray(0);
   gl->DepthMask(GL_TRUE);
   gl->Disable(GL_BLEND);
-  gl->Disable(GL_PROGRAM_POINT_SIZE);
+  if (!r->gles) gl->Disable(GL_PROGRAM_POINT_SIZE);
   gl->UseProgram(0);
 }
