@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include <stdio.h>
+#include <sys/types.h>
 
 #include "mr_render.h"
 #include "mr_scene.h"
@@ -78,6 +79,13 @@ int bench_capacity(bench *b);
 int bench_crowd_load(int n, mr_scene *sc);
 int bench_load_time(bench *b);
 int bench_latency(bench *b);
+/* glove-gen at 250 Hz on a new pty for `seconds`, waiting up to 10 s for
+ * its reader; the slave's path into path once it is open (latency_live.c,
+ * its path file named after `name` in out). Its pid, or -1. */
+pid_t bench_glove_gen_start(const bench *b, const char *name, double seconds, char *path,
+                            size_t size);
+/* The show as a puppeteer runs it, in a window (show_live.c). */
+int bench_show(bench *b);
 /* Item 4, live: glove-gen through a pty, on the wall clock (latency_live.c). */
 int bench_latency_live(bench *b);
 /* Item 2: ours against MuJoCo (peer.c), or a line saying it is not built. */

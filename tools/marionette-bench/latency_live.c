@@ -39,10 +39,10 @@ static void on_frame(void *user, gp_event ev, const gp_msg *m, uint64_t byte) {
   l->read[l->n++] = l->now;
 }
 
-/* glove-gen on a new pty; its slave path once it is open. */
-static pid_t start_gen(const bench *b, double seconds, char *path, size_t size) {
+pid_t bench_glove_gen_start(const bench *b, const char *name, double seconds, char *path,
+                            size_t size) {
   char file[1024], dur[32];
-  snprintf(file, sizeof file, "%s/latency-pty.txt", b->out);
+  snprintf(file, sizeof file, "%s/%s-pty.txt", b->out, name);
   snprintf(dur, sizeof dur, "%g", seconds);
   remove(file);
   char *argv[] = { GLOVE_GEN_PATH, "-o", "pty", "--path-file", file, "--wait", "10", "-r",
@@ -112,7 +112,7 @@ int bench_latency_live(bench *b) {
   const double seconds = b->quick ? 2.0 : 10.0;
   char path[512];
   bench_progress("latency", "live: glove-gen on a pty for %g s", seconds);
-  pid_t pid = start_gen(b, seconds + 2, path, sizeof path);
+  pid_t pid = bench_glove_gen_start(b, "latency", seconds + 2, path, sizeof path);
   if (pid < 0) {
     bench_say(b, "live: glove-gen did not start\n");
     return -1;
