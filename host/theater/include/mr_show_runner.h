@@ -73,8 +73,9 @@ bool mr_show_runner_done(mr_show_runner *r);
 mr_show_status mr_show_runner_tick(mr_show_runner *r);
 
 /* Commands sent and commands the physics has done, of each kind (arrays
- * of MR_SHOW_CMD_COUNT; either may be NULL). Exact once the runner is
- * done. */
+ * of MR_SHOW_CMD_COUNT; either may be NULL): the caller's thread's. Once
+ * the runner is done, every command sent before the one that ended it
+ * has been done. */
 void mr_show_runner_counts(mr_show_runner *r, uint64_t *sent, uint64_t *done);
 
 /* Waits for the show's end (send MR_SHOW_CMD_QUIT first to end it now),

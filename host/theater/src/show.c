@@ -53,6 +53,7 @@ struct mr_show {
   unsigned resets_asked, mappings_asked; /* done as the next frame starts */
   mr_show_frame scratch;                 /* the snapshot the hooks are handed */
   bool ended;
+  mr_scheduler_stats end_stats; /* the figures as the show ended */
   mr_show_error err;
 };
 typedef struct mr_show show;
@@ -496,7 +497,10 @@ static void close_parts(show *s) {
 }
 
 static void gather(const show *s, mr_show_result *result) {
-  if (s->sch != NULL) mr_scheduler_stats_get(s->sch, &result->frames);
+  if (s->ended)
+    result->frames = s->end_stats;
+  else if (s->sch != NULL)
+    mr_scheduler_stats_get(s->sch, &result->frames);
   result->interpolated = s->interpolate;
   result->lead_mean = s->frames_stepped > 0 ? s->sum_lead / (double)s->frames_stepped : 0.0;
   result->lead_max = s->lead_max;
@@ -572,6 +576,9 @@ mr_show_status mr_show_tick(show *s) {
   if (s->err.status != MR_SHOW_OK) return s->err.status;
   if (s->ended) return MR_SHOW_ENDED;
   if (mr_scheduler_tick(s->sch) == MR_THEATER_OK) return MR_SHOW_OK;
+  /* Wall time stops with the show, not with whoever destroys it later (a
+   * window may still be drawing its last frame). */
+  mr_scheduler_stats_get(s->sch, &s->end_stats);
   s->ended = true;
   return s->err.status != MR_SHOW_OK ? s->err.status : MR_SHOW_ENDED;
 }

@@ -137,8 +137,9 @@ mr_show_status mr_show_runner_tick(mr_show_runner *r) {
   if (atomic_load_explicit(&r->done, memory_order_acquire)) return r->end;
   if (!r->def.threaded && r->def.pump != NULL) r->def.pump(r->def.user);
   apply_queued(r);
-  mr_show_status st = r->quit ? MR_SHOW_ENDED : mr_show_tick(r->show);
-  if (st == MR_SHOW_OK && r->quit) st = MR_SHOW_ENDED;
+  /* After a quit the tick still runs: its frame asks stop, which ends the
+   * show there, as Ctrl-C always did. */
+  mr_show_status st = mr_show_tick(r->show);
   if (st != MR_SHOW_OK) {
     r->end = st;
     atomic_store_explicit(&r->done, true, memory_order_release);
