@@ -428,17 +428,17 @@ static int show_status(const args *a, status *st, mr_show_status rc, const mr_sh
  * costs the physics no core. */
 #define NAP_S 0.004
 
-/* The drawing thread while the physics runs on its own: events become
- * commands, and the newest frame is drawn whenever there is one, as fast
- * as the renderer goes; paused, the view still answers (orbit, zoom,
- * cameras, screenshots). */
+/* This thread while the physics runs on its own: events become commands,
+ * and the newest frame is drawn (or, without a stage, its status line
+ * printed) whenever there is one, as fast as the renderer goes; paused,
+ * the view still answers (orbit, zoom, cameras, screenshots). */
 static void draw_loop(status *st) {
   while (!mr_show_runner_done(st->r)) {
     int events = pump(st);
     const mr_show_frame *f = NULL;
     if (mr_show_runner_latest(st->r, &f)) {
       present(st, f);
-    } else if (events > 0 || st->lv->shot_asked) {
+    } else if (st->lv != NULL && (events > 0 || st->lv->shot_asked)) {
       mr_live_redraw(st->lv);
     } else {
       struct timespec nap = { 0, (long)(NAP_S * 1e9) };
@@ -478,7 +478,7 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   mr_show_status rc = mr_show_runner_start(scene, &a->def, &clock, &hooks, &rd, &st->r, &err);
   if (rc == MR_SHOW_OK) {
     lv.runner = st->r;
-    if (rd.threaded && st->lv != NULL)
+    if (rd.threaded)
       draw_loop(st);
     else
       while (mr_show_runner_tick(st->r) == MR_SHOW_OK) {
