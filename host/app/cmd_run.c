@@ -470,6 +470,11 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   if (rc_stage != 0) return rc_stage;
   mr_show_runner_def rd = mr_default_show_runner_def();
   rd.threaded = threaded(a, st);
+  /* On its own thread the physics is behind only when the machine starved
+   * it, not because a render took long, and a frame of it costs a fraction
+   * of a millisecond: it chases up to half a second rather than give the
+   * show's time up. */
+  if (rd.threaded) a->def.max_catch_up = 30;
   rd.pump = pump_hook;
   rd.user = st;
   /* Threaded, the hooks run on the physics thread: only frame_done's

@@ -65,6 +65,10 @@ typedef struct mr_show_def {
   /* Frames landed on (the paper's) or interpolated between steps at the
    * ATS's own Δt; MR_PRESENT_SCENE (default): the scene's sim.present. */
   mr_present_mode present;
+  /* Frames simulated in one tick at the most when behind, past which the
+   * lag is given up (mr_scheduler_def); <= 0: the scheduler's default.
+   * A show on its own thread may chase further: its frames cost little. */
+  int max_catch_up;
   /* The mapping to start with, by name (the scene's `mapping:`); NULL:
    * the first. */
   const char *mapping;

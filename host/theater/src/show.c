@@ -67,32 +67,6 @@ mr_show_def mr_default_show_def(void) {
   return d;
 }
 
-const char *mr_show_status_name(mr_show_status st) {
-  switch (st) {
-  case MR_SHOW_OK:
-    return "ok";
-  case MR_SHOW_ENDED:
-    return "ended";
-  case MR_SHOW_ERR_ARG:
-    return "bad argument";
-  case MR_SHOW_ERR_SCENE:
-    return "scene refused";
-  case MR_SHOW_ERR_MAPPING:
-    return "bad mapping";
-  case MR_SHOW_ERR_GLOVE:
-    return "bad glove source";
-  case MR_SHOW_ERR_TAKE:
-    return "take not written";
-  case MR_SHOW_ERR_PHYSICS:
-    return "physics stopped";
-  case MR_SHOW_ERR_NOMEM:
-    return "out of memory";
-  case MR_SHOW_ERR_THREAD:
-    return "no physics thread";
-  }
-  return "unknown";
-}
-
 /* The first error is the one told: what follows from it is not news. */
 static mr_show_status fail(show *s, mr_show_status st, const char *msg) {
   if (s->err.status != MR_SHOW_OK) return st;
@@ -467,6 +441,7 @@ static int open_parts(show *s, const mr_show_def *def) {
     return fail(s, MR_SHOW_ERR_NOMEM, "out of memory"), -1;
   mr_scheduler_def sd = mr_default_scheduler_def();
   sd.policy = def->policy;
+  if (def->max_catch_up > 0) sd.max_catch_up = def->max_catch_up;
   sd.fps = def->fps > 0 ? def->fps : s->scene->fps > 0 ? s->scene->fps : 60.0;
   mr_scheduler_hooks h = { advance, present, s };
   if (mr_scheduler_create(&sd, &s->clock, &h, &s->sch, msg, sizeof msg) != MR_THEATER_OK) {

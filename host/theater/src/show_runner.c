@@ -193,7 +193,8 @@ mr_show_status mr_show_runner_start(const mr_scene *scene, const mr_show_def *de
   r->clock.idle = idle;
   r->clock.user = r;
   mr_clock show_clock = mr_clock_scaled(&r->clock);
-  mr_show_hooks h = { present, stop, frame_done, note, r };
+  /* A frame is made for a hook only when someone reads it. */
+  mr_show_hooks h = { r->hooks.present != NULL ? present : NULL, stop, frame_done, note, r };
   mr_show_status st = mr_show_create(scene, def, &show_clock, &h, &r->show, err);
   if (st != MR_SHOW_OK) {
     runner_free(r);
