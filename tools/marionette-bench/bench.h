@@ -84,6 +84,8 @@ int bench_latency_live(bench *b);
 int bench_peer(bench *b);
 /* Item 5: milliseconds a frame for each example scene (render_cost.c). */
 int bench_render(bench *b);
+/* The humanoid in a window under Xvfb, idle and loaded (window_show.c). */
+int bench_window(bench *b);
 /* The fixed runs `make bench-count` counts under callgrind: "puppet"
  * (host/scenes/puppet.yaml for 10 s) or "decode" (10 000 SAMPLE frames). */
 int bench_count_run(bench *b, const char *which);

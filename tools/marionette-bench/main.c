@@ -28,6 +28,9 @@ static void usage(FILE *f) {
              "            only where libmujoco-dev is)\n"
              "  render    milliseconds a frame at 1280x720, headless, for each example scene,\n"
              "            and the share of renders a 60 fps show skips (not with --quick)\n"
+             "  window    marionette run in a window under Xvfb, the humanoid at 1280x720\n"
+             "            driven by glove-gen, idle and beside two busy processes: the\n"
+             "            real-time factor, time given up, frames drawn a second\n"
              "\n"
              "  --quick       a run of about a minute (fewer settings, shorter tracks)\n"
              "  --out DIR     where sweep.csv, capacity.csv, the plots and summary.txt go\n"
@@ -65,7 +68,7 @@ static const struct {
 } sections[] = { { "sweep", bench_sweep },       { "sec7", bench_paper_run },
                  { "capacity", bench_capacity }, { "load", bench_load_time },
                  { "latency", bench_latency },   { "peer", bench_peer },
-                 { "render", bench_render } };
+                 { "render", bench_render },     { "window", bench_window } };
 #define N_SECTIONS (sizeof sections / sizeof sections[0])
 
 /* Every comma-separated name in --only must be a section: a misspelt name
