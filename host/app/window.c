@@ -1,6 +1,7 @@
 /* A live show on the stage: the window's keys, mouse and gamepad, the
- * on-screen display, and the show's clock that pause, single step and slow
- * motion act on (issue 10, items 4 and 5). */
+ * on-screen display, and the frames drawn, shown or written (issue 10,
+ * items 4 and 5). Pause, single step, slow motion and reset go to the
+ * show's runner as commands; its clock acts on them (host/theater). */
 #define _POSIX_C_SOURCE 200809L
 
 #include "window.h"
