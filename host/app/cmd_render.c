@@ -231,9 +231,9 @@ static void on_sim_frame(void *user, double t, const double *xyz, int n) {
   frame(user, t, xyz, (size_t)n);
 }
 
-static void on_show_frame(void *user, const mr_show_frame *f, uint64_t hash) {
+static void on_show_frame(void *user, const mr_show_frame *f) {
   job *j = user;
-  j->hash = hash;
+  j->hash = f->hash;
   frame(j, f->t, f->xyz, (size_t)f->n_particles);
 }
 
@@ -242,8 +242,9 @@ static int stop_after_picture(void *user) {
   return j->failed || (j->a->has_frame && j->done);
 }
 
-/* The track, or the takes, run with frame() on every frame. */
-static mr_scene_status run_frames(job *j, const mr_scene *scene, mr_scene_error *err) {
+/* The track, or the takes, run with frame() on every frame. 0, or -1
+ * with the error's text in text. */
+static int run_frames(job *j, const mr_scene *scene, char *text, size_t text_size) {
   const render_args *a = j->a;
   if (a->n_takes == 0) {
     mr_sim_opts o = mr_default_sim_opts();
@@ -252,9 +253,11 @@ static mr_scene_status run_frames(job *j, const mr_scene *scene, mr_scene_error 
     o.on_frame = on_sim_frame;
     o.user = j;
     mr_sim_result r;
-    mr_scene_status st = mr_sim_run(scene, &o, &r, err);
+    mr_scene_error err;
+    mr_scene_status st = mr_sim_run(scene, &o, &r, &err);
     j->hash = r.hash;
-    return st;
+    if (st != MR_SCENE_OK) snprintf(text, text_size, "%s", err.text);
+    return st == MR_SCENE_OK ? 0 : -1;
   }
   mr_show_def d = mr_default_show_def();
   char sources[MAX_TAKES][MR_GLOVE_SOURCE_MAX];
@@ -267,9 +270,13 @@ static mr_scene_status run_frames(job *j, const mr_scene *scene, mr_scene_error 
   d.duration = a->has_frame ? a->frame_t + 1.5 / j->fps : a->duration;
   mr_virtual_clock vc = { 0.0 };
   mr_clock clock = mr_clock_virtual(&vc);
-  mr_show_hooks h = { NULL, stop_after_picture, on_show_frame, NULL, NULL, j, NULL };
+  mr_show_hooks h = { NULL, stop_after_picture, on_show_frame, NULL, j };
   mr_show_result r;
-  return mr_show_run(scene, &d, &clock, &h, &r, err);
+  mr_show_error err;
+  mr_show_status st = mr_show_run(scene, &d, &clock, &h, &r, &err);
+  mr_show_result_free(&r);
+  if (st != MR_SHOW_OK) snprintf(text, text_size, "%s", err.text);
+  return st == MR_SHOW_OK ? 0 : -1;
 }
 
 /* Where --frame's picture goes: -o FILE.png, else DIR/frame_T.png. */
@@ -350,15 +357,15 @@ static int render_scene(job *j, const mr_scene *scene) {
   double duration = a->duration > 0 ? a->duration : scene->duration > 0 ? scene->duration : 10;
   if (a->n_takes == 0 || a->duration > 0) j->total = (uint64_t)floor(duration * j->fps + 1e-9) + 1;
   j->wall0 = wall_now();
-  mr_scene_error err;
-  mr_scene_status st = run_frames(j, scene, &err);
+  char err_text[1100] = "";
+  int run_rc = run_frames(j, scene, err_text, sizeof err_text);
   if (j->tty && !a->quiet && j->drawn > 0 && !a->has_frame) fputc('\n', stderr);
   mr_frames_out_summary s;
   char out_msg[700] = "";
   int out_rc = mr_frames_out_close(j->fo, &s, out_msg, sizeof out_msg);
   rc = MR_EXIT_OK;
-  if (st != MR_SCENE_OK) {
-    fprintf(stderr, "marionette: %s\n", err.text);
+  if (run_rc != 0) {
+    fprintf(stderr, "marionette: %s\n", err_text);
     rc = MR_EXIT_FAIL;
   } else if (j->failed || out_rc != 0) {
     fprintf(stderr, "marionette render: %s\n", j->failed ? j->msg : out_msg);

@@ -13,10 +13,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "app.h"
 #include "mr_scene.h"
 #include "mr_show.h"
+#include "mr_show_runner.h"
 #include "stage_opts.h"
 #include "window.h"
 
@@ -27,16 +29,6 @@ static void on_signal(int sig) {
     mappings_asked++;
   else
     stop_asked = 1;
-}
-
-/* SIGUSR1: the next mapping (a theater box's operator sends it with
- * `systemctl kill -s USR1`). */
-static int next_mapping(void *user) {
-  static sig_atomic_t done;
-  (void)user;
-  if (done == mappings_asked) return 0;
-  done++;
-  return 1;
 }
 
 void mr_cmd_run_usage(void) {
@@ -87,6 +79,9 @@ void mr_cmd_run_usage(void) {
          "  --mapping NAME      start with the scene's mapping NAME (default: its\n"
          "                      first); SIGUSR1 moves to the next one during the show\n"
          "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
+         "  --thread on|off     the physics on a thread of its own (default on in a\n"
+         "                      window: the window draws the newest frame as fast\n"
+         "                      as it can), or on the drawing thread (off)\n"
          "  --present MODE      land (each frame's last step lands on its time, the\n"
          "                      paper's) or interpolate (steps at the ATS's own dt,\n"
          "                      each frame interpolated between the steps around\n"
@@ -119,13 +114,16 @@ typedef struct status {
   FILE *hashes; /* --hashes: one line a frame */
   FILE *poses;  /* --poses: one line a frame */
   int hash_failed;
-  mr_live *lv; /* the stage, or NULL */
+  mr_live *lv;           /* the stage, or NULL */
+  mr_show_runner *r;     /* the show */
+  sig_atomic_t mappings; /* SIGUSR1s sent on as commands */
+  bool quit_sent;
 } status;
 
-static void frame_done(void *user, const mr_show_frame *f, uint64_t hash) {
+/* On the thread that ticks the show: st->hashes and st->poses are its. */
+static void frame_done(void *user, const mr_show_frame *f) {
   status *st = user;
-  if (st->lv != NULL) st->lv->show_t = f->t;
-  if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", f->t, hash) < 0)
+  if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", f->t, f->hash) < 0)
     st->hash_failed = 1;
   if (st->poses == NULL) return;
   int bad = fprintf(st->poses, "%.6f", f->t) < 0;
@@ -138,25 +136,33 @@ static void frame_done(void *user, const mr_show_frame *f, uint64_t hash) {
   if (bad || fputc('\n', st->poses) == EOF) st->hash_failed = 1;
 }
 
+/* Frames shown: drawn on the stage when there is one (the physics thread
+ * publishes every frame; the stage draws what it can), else the
+ * scheduler's. */
+static uint64_t frames_shown(const status *st, const mr_scheduler_stats *s) {
+  return st->lv != NULL && st->r != NULL ? st->lv->drawn : s->frames_presented;
+}
+
+/* A frame shown: on the stage, and a status line a second. */
 static void present(void *user, const mr_show_frame *f) {
   status *st = user;
   if (st->lv != NULL) mr_live_present(st->lv, f);
   if (st->quiet || f->t < st->next_line) return;
   st->next_line = floor(f->t) + 1.0;
-  mr_scheduler_stats s;
-  mr_scheduler_stats_get(f->scheduler, &s);
+  const mr_scheduler_stats *s = &f->stats;
+  uint64_t shown = frames_shown(st, s);
   printf("t %.0f s: %" PRIu64 " frames shown, %" PRIu64 " skipped, %" PRIu64 " steps, %" PRIu64
          " resets, latency p50 %.1f ms",
-         f->t, s.frames_presented, s.frames_skipped, s.steps, s.resets, s.latency_p50 * 1e3);
+         f->t, shown, s->frames_simulated > shown ? s->frames_simulated - shown : 0, s->steps,
+         s->resets, s->latency_p50 * 1e3);
   for (size_t g = 0; g < f->n_gloves; g++) {
-    char glove[400];
-    printf("; %s", mr_glove_describe(f->gloves[g], f->t, glove, sizeof glove));
+    const mr_show_glove_view *v = &f->gloves[g];
+    printf("; %s", v->describe);
     /* The newest sample's delay past the fastest one seen: the link's
      * jitter, which the clock offset leaves when it takes out the fixed
      * part. */
-    mr_glove_reading r;
-    mr_glove_latest(f->gloves[g], &r);
-    double late = r.host_t - r.device_t - mr_glove_clock_offset(f->gloves[g]);
+    const mr_glove_reading r = v->reading;
+    double late = r.host_t - r.device_t - v->clock_offset;
     if (r.samples > 0 && isfinite(late)) printf(", %.1f ms late", late * 1e3);
   }
   printf("\n");
@@ -168,18 +174,22 @@ static void note(void *user, const char *line) {
   fprintf(stderr, "marionette run: %s\n", line);
 }
 
-static int stop(void *user) {
-  const status *st = user;
-  if (st->lv != NULL) mr_live_pump(st->lv);
-  return stop_asked != 0 || (st->lv != NULL && st->lv->quit);
+/* The stage's events and keys, and the signals, as commands: Ctrl-C and
+ * q quit; SIGUSR1 is the next mapping (a theater box's operator sends it
+ * with `systemctl kill -s USR1`). The number of events. */
+static int pump(status *st) {
+  int events = st->lv != NULL ? mr_live_pump(st->lv) : 0;
+  if (!st->quit_sent && (stop_asked || (st->lv != NULL && st->lv->quit))) {
+    st->quit_sent = true;
+    mr_show_runner_send(st->r, MR_SHOW_CMD_QUIT);
+  }
+  for (; st->mappings != mappings_asked; st->mappings++)
+    mr_show_runner_send(st->r, MR_SHOW_CMD_NEXT_MAPPING);
+  return events;
 }
 
-/* The window's reset key. */
-static int reset(void *user) {
-  status *st = user;
-  if (st->lv == NULL || !st->lv->reset_asked) return 0;
-  st->lv->reset_asked = false;
-  return 1;
+static void pump_hook(void *user) {
+  pump(user);
 }
 
 /* Glove 1's lines are "glove: ...", as with one glove; glove k's
@@ -195,10 +205,11 @@ static void glove_summary(const mr_show_result *r, size_t g) {
   if (o->state != MR_GLOVE_LIVE) printf("%s state: %s\n", key, o->describe);
 }
 
-static void summary(const mr_scene *scene, const mr_show_result *r) {
-  printf("frames simulated: %" PRIu64 "\n", r->frames.frames_simulated);
-  printf("frames shown: %" PRIu64 "\n", r->frames.frames_presented);
-  printf("frames skipped: %" PRIu64 "\n", r->frames.frames_skipped);
+static void summary(const status *st, const mr_scene *scene, const mr_show_result *r) {
+  uint64_t shown = frames_shown(st, &r->frames), sim = r->frames.frames_simulated;
+  printf("frames simulated: %" PRIu64 "\n", sim);
+  printf("frames shown: %" PRIu64 "\n", shown);
+  printf("frames skipped: %" PRIu64 "\n", sim > shown ? sim - shown : 0);
   printf("steps: %" PRIu64 "\n", r->frames.steps);
   printf("rejected steps: %" PRIu64 "\n", r->frames.rejected);
   printf("resets: %" PRIu64 "\n", r->frames.resets);
@@ -214,7 +225,7 @@ static void summary(const mr_scene *scene, const mr_show_result *r) {
     printf("physics ahead of frames: mean %.1f ms, max %.1f ms (input lag added)\n",
            r->lead_mean * 1e3, r->lead_max * 1e3);
   for (size_t g = 0; g < r->n_gloves; g++) glove_summary(r, g);
-  for (size_t k = 0; k < scene->n_frames && k < 16; k++) {
+  for (size_t k = 0; k < scene->n_frames && k < r->n_frames; k++) {
     const char *who = scene->frames[k].puppet[0] ? scene->frames[k].puppet : "the scene";
     if (r->glove_of[k] >= 0)
       printf("control frame of %s: glove %d\n", who, r->glove_of[k] + 1);
@@ -232,7 +243,7 @@ static int bad_usage(const char *fmt, const char *arg) {
 
 /* The command line, read. */
 typedef struct args {
-  const char *scene, *hashes, *poses, *keys;
+  const char *scene, *hashes, *poses, *keys, *thread;
   size_t n_live, n_replay, n_record;
   int real_time, quiet, help, headless, fullscreen, no_osd;
   mr_stage_opts so;
@@ -266,6 +277,10 @@ static int take_value(args *a, const char *opt, const char *v) {
     a->hashes = v;
   } else if (strcmp(opt, "--poses") == 0) {
     a->poses = v;
+  } else if (strcmp(opt, "--thread") == 0) {
+    if (strcmp(v, "on") != 0 && strcmp(v, "off") != 0)
+      return bad_usage("expected --thread on or off, got '%s'", v), -1;
+    a->thread = v;
   } else if (strcmp(opt, "--mapping") == 0) {
     a->def.mapping = v;
   } else if (strcmp(opt, "--present") == 0) {
@@ -296,7 +311,7 @@ static bool window_wanted(const args *a) {
 static int parse(int argc, char **argv, args *a) {
   static const char *const valued[] = { "--glove",   "--policy",  "-t",       "--time",
                                         "--record",  "--replay",  "--hashes", "--poses",
-                                        "--present", "--mapping", NULL };
+                                        "--present", "--mapping", "--thread", NULL };
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     int staged = mr_stage_opts_take(&a->so, "run", argc, argv, &i, true);
@@ -369,8 +384,7 @@ static int close_outputs(status *st) {
 /* The stage for this run: in a window (a display, live time), headless
  * (--headless, -o or --keys), or none (the status line only). 0, or the
  * exit status after one line. */
-static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live *lv,
-                      mr_clock *clock, status *st) {
+static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live *lv, status *st) {
   bool window = window_wanted(a) && !virtual_time;
   if (!window && !a->headless && a->so.out == NULL && a->keys == NULL) return 0;
   mr_live_def d = { window, a->fullscreen, a->def.n_gloves == 0, a->keys, 60.0, a->no_osd != 0 };
@@ -378,7 +392,6 @@ static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live
     d.fps = a->def.fps;
   else if (scene->fps > 0)
     d.fps = scene->fps;
-  if (!virtual_time) *clock = mr_live_clock(lv);
   int usage = 0;
   char msg[700];
   if (mr_live_open(lv, scene, &d, &a->so, &usage, msg, sizeof msg) != 0) {
@@ -392,15 +405,16 @@ static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live
 }
 
 /* The show's end: what the gloves say, and whether all was written. */
-static int show_status(const args *a, status *st, mr_scene_status rc, const mr_show_result *r,
-                       const mr_scene_error *err) {
+static int show_status(const args *a, status *st, mr_show_status rc, const mr_show_result *r,
+                       const mr_show_error *err) {
+  if (st->lv != NULL) mr_live_hold(st->lv, r->frames.sim_time);
   int stage_rc = st->lv != NULL ? mr_live_close(st->lv, false) : 0;
-  if (close_outputs(st) != 0 && rc == MR_SCENE_OK) {
+  if (close_outputs(st) != 0 && rc == MR_SHOW_OK) {
     fprintf(stderr, "marionette run: could not write all of %s\n",
             a->hashes != NULL ? a->hashes : a->poses);
     return MR_EXIT_FAIL;
   }
-  if (rc != MR_SCENE_OK) {
+  if (rc != MR_SHOW_OK) {
     fprintf(stderr, "marionette: %s\n", err->text);
     return MR_EXIT_FAIL;
   }
@@ -412,21 +426,77 @@ static int show_status(const args *a, status *st, mr_scene_status rc, const mr_s
   return stage_rc != 0 ? MR_EXIT_FAIL : MR_EXIT_OK;
 }
 
+/* How long the drawing thread naps when there is nothing new to draw: a
+ * frame period at 240 Hz, so a new frame waits little and an idle stage
+ * costs the physics no core. */
+#define NAP_S 0.004
+
+/* This thread while the physics runs on its own: events become commands,
+ * and the newest frame is drawn (or, without a stage, its status line
+ * printed) whenever there is one, as fast as the renderer goes; paused,
+ * the view still answers (orbit, zoom, cameras, screenshots). */
+static void draw_loop(status *st) {
+  while (!mr_show_runner_done(st->r)) {
+    int events = pump(st);
+    const mr_show_frame *f = NULL;
+    if (mr_show_runner_latest(st->r, &f)) {
+      present(st, f);
+    } else if (st->lv != NULL && (events > 0 || st->lv->shot_asked)) {
+      mr_live_redraw(st->lv);
+    } else {
+      struct timespec nap = { 0, (long)(NAP_S * 1e9) };
+      nanosleep(&nap, NULL);
+    }
+  }
+  const mr_show_frame *f = NULL;
+  if (mr_show_runner_latest(st->r, &f) && f != NULL) present(st, f);
+}
+
+/* The physics on a thread of its own in a window (or with --thread on),
+ * else on this one. */
+static bool threaded(const args *a, const status *st) {
+  if (a->thread != NULL) return strcmp(a->thread, "on") == 0;
+  return st->lv != NULL && st->lv->window;
+}
+
 static int run_show(args *a, mr_scene *scene, status *st) {
   bool virtual_time = a->n_replay > 0 && !a->real_time;
   mr_virtual_clock vc = { 0.0 };
   mr_clock clock = virtual_time ? mr_clock_virtual(&vc) : mr_clock_wall();
   if (virtual_time) st->quiet = 1; /* as fast as it goes: no seconds to mark */
-  static mr_live lv;               /* large, and its address is the clock's */
+  static mr_live lv;               /* large */
   memset(&lv, 0, sizeof lv);
-  int rc_stage = open_stage(a, scene, virtual_time, &lv, &clock, st);
+  int rc_stage = open_stage(a, scene, virtual_time, &lv, st);
   if (rc_stage != 0) return rc_stage;
-  mr_show_hooks hooks = { present, stop, frame_done, next_mapping, note, st, reset };
+  mr_show_runner_def rd = mr_default_show_runner_def();
+  rd.threaded = threaded(a, st);
+  /* On its own thread the physics is behind only when the machine starved
+   * it, not because a render took long, and a frame of it costs a fraction
+   * of a millisecond: it chases up to half a second rather than give the
+   * show's time up. */
+  if (rd.threaded) a->def.max_catch_up = 30;
+  rd.pump = pump_hook;
+  rd.user = st;
+  /* Threaded, the hooks run on the physics thread: only frame_done's
+   * files and the notes (stderr, line-buffered by stdio) are there. */
+  mr_show_hooks hooks = { rd.threaded ? NULL : present, NULL, frame_done, note, st };
   mr_show_result r;
-  mr_scene_error err;
-  mr_scene_status rc = mr_show_run(scene, &a->def, &clock, &hooks, &r, &err);
-  if (rc == MR_SCENE_OK) summary(scene, &r);
-  return show_status(a, st, rc, &r, &err);
+  memset(&r, 0, sizeof r);
+  mr_show_error err;
+  mr_show_status rc = mr_show_runner_start(scene, &a->def, &clock, &hooks, &rd, &st->r, &err);
+  if (rc == MR_SHOW_OK) {
+    lv.runner = st->r;
+    if (rd.threaded)
+      draw_loop(st);
+    else
+      while (mr_show_runner_tick(st->r) == MR_SHOW_OK) {
+      }
+    rc = mr_show_runner_finish(st->r, &r, &err);
+  }
+  if (rc == MR_SHOW_OK) summary(st, scene, &r);
+  int exit_status = show_status(a, st, rc, &r, &err);
+  mr_show_result_free(&r);
+  return exit_status;
 }
 
 int mr_cmd_run(int argc, char **argv) {
@@ -440,7 +510,9 @@ int mr_cmd_run(int argc, char **argv) {
     mr_cmd_run_usage();
     return MR_EXIT_OK;
   }
-  status st = { a.quiet, 0.0, NULL, NULL, 0, NULL };
+  status st;
+  memset(&st, 0, sizeof st);
+  st.quiet = a.quiet;
   mr_scene scene;
   mr_scene_error err;
   if (mr_scene_load(a.scene, &scene, &err) != MR_SCENE_OK) {

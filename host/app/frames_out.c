@@ -7,6 +7,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,6 +28,8 @@ struct mr_frames_out {
   int pipe_fd; /* ffmpeg's stdin, -1 without */
   bool pipe_broken;
   mr_sheet *sh;
+  uint8_t *last;       /* keep_time: the frame piped last, to repeat */
+  uint64_t next_index; /* keep_time: the video frame to write next */
 };
 
 mr_frames_out_def mr_default_frames_out_def(void) {
@@ -157,9 +160,16 @@ int mr_frames_out_open(const mr_frames_out_def *def, mr_frames_out **out, char *
     free(fo);
     return -1;
   }
+  if (def->keep_time && (fo->last = malloc((size_t)def->width * (size_t)def->height * 3)) == NULL) {
+    snprintf(msg, msg_size, "out of memory");
+    mr_sheet_destroy(fo->sh);
+    free(fo);
+    return -1;
+  }
   /* A reader that went away must not kill the show: writes then fail. */
   signal(SIGPIPE, SIG_IGN);
   if (fo->mp4[0] != '\0' && start_ffmpeg(fo, msg, msg_size) != 0) {
+    free(fo->last);
     mr_sheet_destroy(fo->sh);
     free(fo);
     return -1;
@@ -179,6 +189,35 @@ static int write_all(int fd, const uint8_t *p, size_t n) {
   return 0;
 }
 
+static void pipe_frame(mr_frames_out *fo, const uint8_t *rgb) {
+  if (fo->pipe_fd < 0 || fo->pipe_broken) return;
+  size_t n = (size_t)fo->def.width * (size_t)fo->def.height * 3;
+  if (write_all(fo->pipe_fd, rgb, n) != 0)
+    fo->pipe_broken = true; /* ffmpeg's own message is on stderr; close says it */
+  else
+    fo->encoded++;
+}
+
+/* The video frame that show time t falls on. */
+static uint64_t video_index(const mr_frames_out *fo, double t) {
+  double k = floor(t * fo->def.fps + 0.5);
+  return k > 0 ? (uint64_t)k : 0;
+}
+
+/* keep_time: the last frame again up to (not including) video frame k. */
+static void repeat_until(mr_frames_out *fo, uint64_t k) {
+  for (; fo->next_index < k && fo->last != NULL && !fo->pipe_broken; fo->next_index++)
+    pipe_frame(fo, fo->last);
+}
+
+int mr_frames_out_hold(mr_frames_out *fo, double t, char *msg, size_t msg_size) {
+  if (fo == NULL || !fo->def.keep_time || fo->pipe_fd < 0) return 0;
+  repeat_until(fo, video_index(fo, t) + 1);
+  if (!fo->pipe_broken) return 0;
+  snprintf(msg, msg_size, "ffmpeg stopped reading %s", fo->mp4);
+  return -1;
+}
+
 int mr_frames_out_add(mr_frames_out *fo, const uint8_t *rgb, double t, char *msg, size_t msg_size) {
   uint64_t i = fo->frames++;
   if (fo->dir[0] != '\0' && i % (uint64_t)fo->def.every == 0) {
@@ -191,12 +230,18 @@ int mr_frames_out_add(mr_frames_out *fo, const uint8_t *rgb, double t, char *msg
     }
     fo->pngs++;
   }
-  if (fo->pipe_fd >= 0 && !fo->pipe_broken) {
-    size_t n = (size_t)fo->def.width * (size_t)fo->def.height * 3;
-    if (write_all(fo->pipe_fd, rgb, n) != 0)
-      fo->pipe_broken = true; /* ffmpeg's own message is on stderr; close says it */
-    else
-      fo->encoded++;
+  if (!fo->def.keep_time) {
+    pipe_frame(fo, rgb);
+  } else if (fo->pipe_fd >= 0) {
+    uint64_t k = video_index(fo, t);
+    repeat_until(fo, k);
+    /* A frame whose video slot is taken already (two shows in one
+     * frame period) replaces nothing: the video's clock rules. */
+    if (k >= fo->next_index) {
+      pipe_frame(fo, rgb);
+      fo->next_index = k + 1;
+      memcpy(fo->last, rgb, (size_t)fo->def.width * (size_t)fo->def.height * 3);
+    }
   }
   if (fo->sh != NULL) mr_sheet_offer(fo->sh, rgb, t);
   return 0;
@@ -233,6 +278,7 @@ int mr_frames_out_close(mr_frames_out *fo, mr_frames_out_summary *sum, char *msg
     }
   }
   mr_sheet_destroy(fo->sh);
+  free(fo->last);
   free(fo);
   return rc;
 }

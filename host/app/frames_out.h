@@ -17,6 +17,11 @@ typedef struct mr_frames_out_def {
   const char *sheet; /* the contact sheet's PNG; NULL: none */
   int sheet_cells;   /* thumbnails at most, default 24 */
   int width, height; /* every frame's size */
+  /* The MP4 keeps show time: a frame handed in at show time t is frame
+   * round(t fps) of the video, the frame before it repeated over the
+   * frames not handed in (renders skipped under load), so the video
+   * lasts as long as the show. Else every frame handed in is the next. */
+  bool keep_time;
 } mr_frames_out_def;
 mr_frames_out_def mr_default_frames_out_def(void);
 
@@ -24,7 +29,7 @@ mr_frames_out_def mr_default_frames_out_def(void);
 typedef struct mr_frames_out_summary {
   uint64_t frames;  /* frames handed in */
   uint64_t pngs;    /* PNG files written */
-  uint64_t encoded; /* frames piped to ffmpeg */
+  uint64_t encoded; /* frames piped to ffmpeg, repeats included */
   int sheet_cells;  /* thumbnails on the sheet */
   bool mp4_ok;      /* ffmpeg ran and ended well */
 } mr_frames_out_summary;
@@ -36,6 +41,10 @@ int mr_frames_out_open(const mr_frames_out_def *def, mr_frames_out **out, char *
                        size_t msg_size);
 /* One frame at show time t. -1 with msg when a file cannot be written. */
 int mr_frames_out_add(mr_frames_out *fo, const uint8_t *rgb, double t, char *msg, size_t msg_size);
+/* With keep_time: the video holds the last frame up to show time t (the
+ * show's end), as if frames came until then. -1 with msg when ffmpeg's
+ * pipe broke. */
+int mr_frames_out_hold(mr_frames_out *fo, double t, char *msg, size_t msg_size);
 /* Writes the sheet, waits for ffmpeg and frees fo (NULL is fine). -1 with
  * msg when something was not written; the summary is filled either way. */
 int mr_frames_out_close(mr_frames_out *fo, mr_frames_out_summary *sum, char *msg, size_t msg_size);

@@ -13,8 +13,6 @@
 
 #include "mr_scene_world.h"
 
-static const double DEG = 3.14159265358979323846 / 180.0;
-
 /* The positions the stage takes its rest frames from: the same start a
  * run has. */
 static double *start_positions(const mr_scene *scene, size_t *n, char *msg, size_t msg_size) {
@@ -27,11 +25,7 @@ static double *start_positions(const mr_scene *scene, size_t *n, char *msg, size
 static void start_camera(mr_stageview *sv) {
   const mr_stage_def *d = &sv->scene->stage;
   sv->camera = -1;
-  memcpy(sv->target, d->orbit_target, sizeof sv->target);
-  sv->distance = d->orbit_distance;
-  sv->azimuth = d->orbit_azimuth_deg;
-  sv->elevation = d->orbit_elevation_deg;
-  sv->fov = d->fov_deg;
+  sv->orbit = mr_orbit_of_stage(d);
   sv->time_of_day = d->time_of_day;
   sv->show_osd = true;
   sv->show_rigging = true;
@@ -85,8 +79,9 @@ static mr_render_view current_view(const mr_stageview *sv) {
     memcpy(v.target, c->target, sizeof v.target);
     v.fov_deg = c->fov_deg;
   } else {
-    mr_render_view_orbit(&v, sv->target, sv->distance, sv->azimuth, sv->elevation);
-    v.fov_deg = sv->fov;
+    const mr_orbit *o = &sv->orbit;
+    mr_render_view_orbit(&v, o->target, o->distance, o->azimuth_deg, o->elevation_deg);
+    v.fov_deg = o->fov_deg;
   }
   v.time_of_day = sv->time_of_day;
   v.show_rigging = sv->show_rigging;
@@ -145,30 +140,18 @@ void mr_stageview_pick_camera(mr_stageview *sv, int k) {
 /* From a scene camera, the orbit starts where that camera stands. */
 static void leave_scene_camera(mr_stageview *sv) {
   if (sv->camera < 0) return;
-  const mr_camera_def *c = &sv->scene->stage.cameras[sv->camera];
-  double d[3];
-  for (int i = 0; i < 3; i++) d[i] = c->position[i] - c->target[i];
-  double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (r > 1e-9) {
-    memcpy(sv->target, c->target, sizeof sv->target);
-    sv->distance = r;
-    sv->azimuth = atan2(d[0], d[2]) / DEG;
-    sv->elevation = asin(d[1] / r) / DEG;
-    sv->fov = c->fov_deg;
-  }
+  sv->orbit = mr_orbit_of_camera(&sv->scene->stage.cameras[sv->camera], &sv->orbit);
   sv->camera = -1;
 }
 
 void mr_stageview_orbit(mr_stageview *sv, double d_azimuth, double d_elevation) {
   leave_scene_camera(sv);
-  sv->azimuth = fmod(sv->azimuth + d_azimuth, 360.0);
-  sv->elevation = fmin(89.0, fmax(-89.0, sv->elevation + d_elevation));
+  mr_orbit_turn(&sv->orbit, d_azimuth, d_elevation);
 }
 
 void mr_stageview_zoom(mr_stageview *sv, double steps) {
   leave_scene_camera(sv);
-  /* Each wheel step 10 % nearer (up) or farther. */
-  sv->distance = fmin(100.0, fmax(0.05, sv->distance * pow(0.9, steps)));
+  mr_orbit_zoom(&sv->orbit, steps);
 }
 
 void mr_stageview_set_day(mr_stageview *sv, double time_of_day) {

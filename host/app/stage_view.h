@@ -21,7 +21,7 @@ typedef struct mr_stageview {
   int width, height;
   /* The camera: -1 the orbit camera, else the scene's camera k. */
   int camera;
-  double target[3], distance, azimuth, elevation, fov;
+  mr_orbit orbit; /* the orbit camera (mr_stage's maths) */
   double time_of_day;
   int material_turn; /* times the models were told to change materials */
   bool show_osd, show_rigging;

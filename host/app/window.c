@@ -1,6 +1,7 @@
 /* A live show on the stage: the window's keys, mouse and gamepad, the
- * on-screen display, and the show's clock that pause, single step and slow
- * motion act on (issue 10, items 4 and 5). */
+ * on-screen display, and the frames drawn, shown or written (issue 10,
+ * items 4 and 5). Pause, single step, slow motion and reset go to the
+ * show's runner as commands; its clock acts on them (host/theater). */
 #define _POSIX_C_SOURCE 200809L
 
 #include "window.h"
@@ -13,69 +14,11 @@
 #include <string.h>
 #include <time.h>
 
-#define SLOW_RATE 0.25
 #define ORBIT_DEG 0.3 /* degrees of orbit per pixel dragged */
 #define DAY_STEP  0.02
-#define TICK_S    0.004 /* how often a wait looks at events */
 
 static double wall(const mr_live *lv) {
   return lv->wall.now(lv->wall.self);
-}
-
-static double live_now(void *self) {
-  const mr_live *lv = self;
-  if (lv->paused) return lv->show_base;
-  return lv->show_base + lv->rate * (wall(lv) - lv->wall_base);
-}
-
-/* Show time and wall time tied anew before the rate changes. */
-static void rebase(mr_live *lv) {
-  lv->show_base = live_now(lv);
-  lv->wall_base = wall(lv);
-}
-
-static void sleep_s(double s) {
-  if (s <= 0) return;
-  struct timespec ts = { (time_t)s, (long)((s - floor(s)) * 1e9) };
-  nanosleep(&ts, NULL);
-}
-
-/* The scheduler waits here for its next tick: events are handled as it
- * waits; paused, show time stands still until a step or the end. */
-static void live_wait(void *self, double t) {
-  mr_live *lv = self;
-  for (;;) {
-    mr_live_pump(lv);
-    if (lv->quit) return;
-    double now = live_now(lv);
-    if (now >= t) return;
-    if (lv->paused) {
-      if (lv->step_asked) {
-        lv->step_asked = false;
-        lv->show_base = t;
-        return;
-      }
-      /* The view still answers: orbit, zoom, cameras, the OSD. */
-      if (lv->window && mr_stageview_redraw(&lv->sv, lv->msg, sizeof lv->msg) == 0) {
-        if (lv->shot_asked) mr_live_screenshot(lv);
-        lv->shot_asked = false;
-        mr_render_present(lv->sv.render);
-      }
-      sleep_s(1.0 / 30);
-      continue;
-    }
-    double left = (t - now) / lv->rate;
-    sleep_s(left < TICK_S ? left : TICK_S);
-  }
-}
-
-mr_clock mr_live_clock(mr_live *lv) {
-  lv->wall = mr_clock_wall();
-  lv->rate = 1.0;
-  lv->wall_base = wall(lv);
-  lv->show_base = 0;
-  mr_clock c = { live_now, live_wait, lv };
-  return c;
 }
 
 static int key_named(const char *name) {
@@ -115,15 +58,14 @@ int mr_live_parse_keys(mr_live *lv, const char *list) {
   return lv->n_keys > 0 ? 0 : -1;
 }
 
-static void toggle_pause(mr_live *lv) {
-  rebase(lv);
-  lv->paused = !lv->paused;
-  lv->pause_wall = wall(lv);
+static void send(mr_live *lv, mr_show_cmd cmd) {
+  if (lv->runner != NULL) mr_show_runner_send(lv->runner, cmd);
 }
 
-static void toggle_slow(mr_live *lv) {
-  rebase(lv);
-  lv->rate = lv->rate < 1.0 ? 1.0 : SLOW_RATE;
+static void toggle_pause(mr_live *lv) {
+  lv->paused = !lv->paused;
+  lv->pause_wall = wall(lv);
+  send(lv, MR_SHOW_CMD_PAUSE);
 }
 
 /* The stage's keys (the man page's table). */
@@ -132,12 +74,14 @@ static void stage_key(mr_live *lv, int key) {
   if (key == ' ') {
     toggle_pause(lv);
   } else if (key == '.') {
-    if (!lv->paused) toggle_pause(lv);
-    lv->step_asked = true;
+    if (!lv->paused) lv->pause_wall = wall(lv);
+    lv->paused = true;
+    send(lv, MR_SHOW_CMD_STEP);
   } else if (key == 's') {
-    toggle_slow(lv);
+    lv->slow = !lv->slow;
+    send(lv, MR_SHOW_CMD_SLOW);
   } else if (key == 'r') {
-    lv->reset_asked = true;
+    send(lv, MR_SHOW_CMD_RESET);
   } else if (key == 'n') {
     mr_stageview_set_day(sv, sv->time_of_day + 0.5);
   } else if (key == 'm') {
@@ -185,7 +129,8 @@ void mr_live_event(mr_live *lv, const mr_event *ev) {
  * which falls behind the clock when renders are skipped and lag is given
  * up). Paused, show time stands still, so the script's time runs on the
  * wall clock from the pause: a script can let go of its own pause. */
-static void play_keys(mr_live *lv) {
+static int play_keys(mr_live *lv) {
+  int played = 0;
   double now = lv->show_t + (lv->paused ? wall(lv) - lv->pause_wall : 0.0);
   for (int i = 0; i < lv->n_keys; i++) {
     mr_key_press *k = &lv->keys[i];
@@ -196,6 +141,7 @@ static void play_keys(mr_live *lv) {
     if (!k->down_sent && now >= k->t) {
       k->down_sent = ev.down = true;
       mr_live_event(lv, &ev);
+      played++;
     }
     if (k->down_sent && !k->up_sent && now >= k->t + k->hold) {
       /* A press and its release may come in one pass: the release must
@@ -203,21 +149,28 @@ static void play_keys(mr_live *lv) {
       k->up_sent = true;
       ev.down = false;
       mr_live_event(lv, &ev);
+      played++;
     }
   }
+  return played;
 }
 
-void mr_live_pump(mr_live *lv) {
+int mr_live_pump(mr_live *lv) {
   mr_event ev;
+  int events = 0;
   if (lv->window)
-    while (mr_render_poll(lv->sv.render, &ev) != 0) mr_live_event(lv, &ev);
-  play_keys(lv);
-  if (!lv->manual_on) return;
+    while (mr_render_poll(lv->sv.render, &ev) != 0) {
+      mr_live_event(lv, &ev);
+      events++;
+    }
+  events += play_keys(lv);
+  if (!lv->manual_on) return events;
   double w = wall(lv);
   mr_manual_update(&lv->manual, lv->last_pump > 0 ? w - lv->last_pump : 0);
   lv->last_pump = w;
   /* Paused, the show reads nothing: samples would only pile up. */
   if (!lv->paused) mr_pty_glove_pump(&lv->glove, lv->manual.values, w);
+  return events;
 }
 
 int mr_live_screenshot(mr_live *lv) {
@@ -233,49 +186,49 @@ int mr_live_screenshot(mr_live *lv) {
   return 0;
 }
 
-/* The figures of the status line, over the latest second. */
+/* The figures of the status line, over the latest second: fps is frames
+ * drawn here, on the stage. */
 static void osd_rates(mr_live *lv, const mr_scheduler_stats *s) {
   double w = wall(lv);
   if (lv->osd_wall == 0) {
     lv->osd_wall = w;
-    lv->osd_presented = s->frames_presented;
+    lv->osd_drawn = lv->drawn;
     lv->osd_sim = s->sim_time;
     lv->osd_steps = s->steps;
     return;
   }
   if (w - lv->osd_wall < 1.0) return;
-  lv->fps = (double)(s->frames_presented - lv->osd_presented) / (w - lv->osd_wall);
+  lv->fps = (double)(lv->drawn - lv->osd_drawn) / (w - lv->osd_wall);
   if (s->steps > lv->osd_steps)
     lv->dt_mean = (s->sim_time - lv->osd_sim) / (double)(s->steps - lv->osd_steps);
   lv->osd_wall = w;
-  lv->osd_presented = s->frames_presented;
+  lv->osd_drawn = lv->drawn;
   lv->osd_sim = s->sim_time;
   lv->osd_steps = s->steps;
 }
 
 static void osd_lines(mr_live *lv, const mr_show_frame *f) {
   mr_stageview *sv = &lv->sv;
-  mr_scheduler_stats s;
-  mr_scheduler_stats_get(f->scheduler, &s);
+  const mr_scheduler_stats s = f->stats;
   osd_rates(lv, &s);
+  uint64_t skipped = s.frames_simulated > lv->drawn ? s.frames_simulated - lv->drawn : 0;
   mr_stageview_osd_clear(sv);
   mr_stageview_osd(sv, "t %.2f s  fps %.1f  skipped %llu  dt %.2f ms  resets %llu%s%s", f->t,
-                   lv->fps, (unsigned long long)s.frames_skipped, lv->dt_mean * 1e3,
+                   lv->fps, (unsigned long long)skipped, lv->dt_mean * 1e3,
                    (unsigned long long)s.resets, lv->paused ? "  PAUSED" : "",
-                   lv->rate < 1.0 ? "  SLOW x0.25" : "");
+                   lv->slow ? "  SLOW x0.25" : "");
   mr_stageview_osd(sv, "latency p50 %.1f ms  p99 %.1f ms", s.latency_p50 * 1e3,
                    s.latency_p99 * 1e3);
   for (size_t g = 0; g < f->n_gloves && g < MR_OSD_LINES - 4; g++) {
-    mr_glove_reading r;
-    mr_glove_latest(f->gloves[g], &r);
-    double late = r.host_t - r.device_t - mr_glove_clock_offset(f->gloves[g]);
+    const mr_show_glove_view *v = &f->gloves[g];
+    const mr_glove_reading r = v->reading;
+    double late = r.host_t - r.device_t - v->clock_offset;
     char lateness[48] = "";
     if (r.samples > 0 && isfinite(late))
       snprintf(lateness, sizeof lateness, ", %.1f ms late", late * 1e3);
     mr_stageview_osd(sv, "glove %zu%s: %s%s, %llu samples", g + 1,
                      lv->manual_on && g == 0 ? " (keys, mouse, pad)" : "",
-                     mr_glove_state_name(mr_glove_state_get(f->gloves[g])), lateness,
-                     (unsigned long long)r.samples);
+                     mr_glove_state_name(v->state), lateness, (unsigned long long)r.samples);
   }
   const char *cam = sv->camera >= 0 ? sv->scene->stage.cameras[sv->camera].name : "orbit";
   mr_stageview_osd(sv, "camera %s  day %.2f  (h: hide, q: quit)", cam, sv->time_of_day);
@@ -283,8 +236,7 @@ static void osd_lines(mr_live *lv, const mr_show_frame *f) {
 
 void mr_live_present(mr_live *lv, const mr_show_frame *f) {
   if (lv->failed) return;
-  /* A slow frame must not starve the keyboard's glove. */
-  mr_live_pump(lv);
+  lv->show_t = f->t;
   osd_lines(lv, f);
   if (mr_stageview_draw(&lv->sv, f->xyz, (size_t)f->n_particles, lv->msg, sizeof lv->msg) != 0) {
     lv->failed = lv->quit = true;
@@ -307,6 +259,22 @@ void mr_live_present(mr_live *lv, const mr_show_frame *f) {
   }
 }
 
+void mr_live_redraw(mr_live *lv) {
+  if (lv->failed || !lv->window || lv->drawn == 0) return;
+  if (mr_stageview_redraw(&lv->sv, lv->msg, sizeof lv->msg) != 0) {
+    lv->failed = lv->quit = true;
+    return;
+  }
+  if (lv->shot_asked) mr_live_screenshot(lv);
+  lv->shot_asked = false;
+  mr_render_present(lv->sv.render);
+}
+
+void mr_live_hold(mr_live *lv, double t) {
+  if (lv->fo != NULL && !lv->failed && mr_frames_out_hold(lv->fo, t, lv->msg, sizeof lv->msg) != 0)
+    lv->failed = true;
+}
+
 static int open_outputs(mr_live *lv, const mr_live_def *def, mr_stage_opts *so, char *msg,
                         size_t msg_size) {
   lv->out = so->out;
@@ -319,6 +287,7 @@ static int open_outputs(mr_live *lv, const mr_live_def *def, mr_stage_opts *so, 
   char note[200];
   mr_frames_out_def od =
       mr_stage_opts_outputs(so, def->fps, lv->sv.width, lv->sv.height, note, sizeof note);
+  od.keep_time = true; /* skipped renders must not shorten the video */
   if (note[0] != '\0') fprintf(stderr, "marionette run: %s\n", note);
   return mr_frames_out_open(&od, &lv->fo, msg, msg_size);
 }
@@ -326,6 +295,7 @@ static int open_outputs(mr_live *lv, const mr_live_def *def, mr_stage_opts *so, 
 int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
                  struct mr_stage_opts *so, int *usage, char *msg, size_t msg_size) {
   *usage = 0;
+  lv->wall = mr_clock_wall();
   lv->window = def->window;
   lv->fullscreen = def->fullscreen;
   if (def->keys != NULL && mr_live_parse_keys(lv, def->keys) != 0) {

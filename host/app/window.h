@@ -1,8 +1,9 @@
 /* A live show on the stage (`marionette run`): in a window, with its keys,
- * mouse and gamepad, or headless into frames. The show's clock is wrapped
- * so that pause, single step and slow motion stop or slow show time
- * itself: the scheduler, the gloves and the latency counters all run on
- * it, so nothing else needs to know. */
+ * mouse and gamepad, or headless into frames. The keys that act on the
+ * show (pause, single step, slow motion, reset) become commands for its
+ * runner (mr_show_runner.h), whose clock stops or slows show time itself;
+ * the view's keys (cameras, orbit, day, OSD) act here, on the drawing
+ * thread. */
 #ifndef MR_WINDOW_H
 #define MR_WINDOW_H
 
@@ -12,6 +13,7 @@
 #include "frames_out.h"
 #include "manual_glove.h"
 #include "mr_show.h"
+#include "mr_show_runner.h"
 #include "stage_view.h"
 
 enum { MR_KEYS_MAX = 64 };
@@ -30,12 +32,13 @@ typedef struct mr_live {
   mr_frames_out *fo; /* headless with -o */
   char shot_dir[512];
   int shots;
-  /* The show's clock: wall time, paused or slowed. */
   mr_clock wall;
-  double show_base, wall_base, rate; /* rate 1, or slow motion's */
-  bool paused, step_asked;
+  mr_show_runner *runner; /* where the show's keys go */
+  /* The show's clock as the keys left it (the runner's own follows the
+   * same commands), for the OSD and the scripted keys. */
+  bool paused, slow;
   /* What the keys asked for. */
-  bool quit, reset_asked, shot_asked, fullscreen, dragging;
+  bool quit, shot_asked, fullscreen, dragging;
   /* The glove made from the keyboard, mouse and gamepad. */
   bool manual_on;
   mr_manual manual;
@@ -47,7 +50,7 @@ typedef struct mr_live {
   double pause_wall; /* wall time the pause began */
   /* For the OSD: rates over the latest second. */
   double osd_wall, osd_sim;
-  uint64_t osd_presented, osd_steps;
+  uint64_t osd_drawn, osd_steps;
   double fps, dt_mean;
   uint64_t drawn;
   bool failed;
@@ -79,19 +82,25 @@ int mr_live_close(mr_live *lv, bool quiet);
  * space, esc, left, right, up, down, pgup, pgdn, f1, f11, f12. 0 or -1. */
 int mr_live_parse_keys(mr_live *lv, const char *list);
 
-/* The show's clock over the wall clock (lv must not move after this). */
-mr_clock mr_live_clock(mr_live *lv);
-
 /* One event from the window or a script: the glove's keys go to the
  * manual glove (when it is on), the rest are the stage's. */
 void mr_live_event(mr_live *lv, const mr_event *ev);
 
-/* Events, scripted keys and the manual glove, handled now. */
-void mr_live_pump(mr_live *lv);
+/* Events, scripted keys and the manual glove, handled now; the number of
+ * events (a view that moved is drawn again). */
+int mr_live_pump(mr_live *lv);
 
-/* The show's present hook's work: the OSD, the frame drawn, shown or
- * written, a screenshot if asked. */
+/* A frame on the stage: the OSD, the frame drawn, shown or written, a
+ * screenshot if asked. */
 void mr_live_present(mr_live *lv, const mr_show_frame *f);
+
+/* In a window: the frame drawn last again, with the view as it is now
+ * (orbit, zoom, cameras; its OSD as it was), and a screenshot if asked. */
+void mr_live_redraw(mr_live *lv);
+
+/* Headless with an MP4: the video holds its last frame up to show time t,
+ * the show's end. */
+void mr_live_hold(mr_live *lv, double t);
 
 /* A screenshot's path: dir/shot_NNN.png. */
 int mr_live_screenshot(mr_live *lv);

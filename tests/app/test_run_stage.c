@@ -231,6 +231,55 @@ static void a_recorded_take_renders_the_same_frames_twice(void **state) {
   free(dir);
 }
 
+/* A number field of the summary ("simulated: 3.000 s" gives 3). */
+static double summary_number(const char *out, const char *key) {
+  char v[64];
+  assert_int_equal(tt_field(out, key, v, sizeof v), 0);
+  return strtod(v, NULL);
+}
+
+/* Headless, renders that cost more than a frame period are skipped, and
+ * the MP4 still lasts as long as the show, within one frame: the frame
+ * shown last is repeated over the skipped ones (ffprobe says how long the
+ * video plays). */
+static void the_headless_video_lasts_as_long_as_the_show(void **state) {
+  (void)state;
+  char ffprobe[512], ffmpeg[512];
+  if (at_which("ffprobe", ffprobe, sizeof ffprobe) != 0 ||
+      at_which("ffmpeg", ffmpeg, sizeof ffmpeg) != 0)
+    skip();
+  char *dir = tt_tmpdir();
+  /* Large and multisampled, so that drawing a frame in software takes
+   * longer than the 16.7 ms a frame may. */
+  char *argv[] = { marionette,   "run",        "--backend", MR_APP_TEST_BACKEND,
+                   STICK,        "--keys",     "0.5:r",     "--time",
+                   "3",          "--headless", "-o",        dir,
+                   "--size",     "1280x720",   "--samples", "4",
+                   "--no-sheet", "-q",         NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  double simulated = summary_number(o.out, "simulated");
+  double shown = summary_number(o.out, "frames shown"),
+         all = summary_number(o.out, "frames simulated");
+  tt_output_free(&o);
+  char mp4[700];
+  snprintf(mp4, sizeof mp4, "%s", tt_path(dir, "show.mp4"));
+  char *probe[] = { ffprobe,   "-v", "error", "-show_entries", "format=duration", "-of",
+                    "csv=p=0", mp4,  NULL };
+  assert_int_equal(tt_capture(probe, &o), 0);
+  assert_int_equal(o.status, 0);
+  double duration = strtod(o.out, NULL);
+  tt_output_free(&o);
+  print_message("show %.3f s, %.0f of %.0f frames drawn; the video plays %.3f s\n", simulated,
+                shown, all, duration);
+  if (shown >= all) print_message("no render was skipped: the repeats were not needed\n");
+  assert_true(simulated >= 2.99);
+  assert_true(fabs(duration - simulated) <= 1.0 / 60 + 1e-3);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* Under Xvfb: the window opens, draws, the p key takes a screenshot of
  * the size asked, and q ends the show with status 0. */
 static void the_window_opens_draws_and_takes_a_screenshot_under_xvfb(void **state) {
@@ -348,6 +397,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(the_keyboards_glove_turns_the_control_frame),
     cmocka_unit_test(pause_slow_motion_and_reset_act_on_the_show),
     cmocka_unit_test(a_recorded_take_renders_the_same_frames_twice),
+    cmocka_unit_test(the_headless_video_lasts_as_long_as_the_show),
     cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
     cmocka_unit_test(the_m_key_changes_what_the_puppet_wears),
   };

@@ -292,16 +292,19 @@ static void mappings_switch_during_the_show(void **state) {
 }
 
 /* A take recorded live replays on a virtual clock to the same state at
- * every one of its 121 frames, bit for bit. */
-static void a_take_replays_to_identical_frames(void **state) {
+ * every one of its 121 frames, bit for bit: on one thread (the default
+ * without a window) and with the physics on a thread of its own, as in a
+ * window. */
+static void a_take_replays_to_identical_frames_on_one_thread_or_two(void **state) {
   (void)state;
   char *dir = tt_tmpdir(), source[300];
   pid_t gen = start_glove(dir, "4", NULL, source, sizeof source);
   const char *take = tt_path(dir, "take.mrec");
-  char take_path[300], live[300], again[300];
+  char take_path[300], live[300], again[300], threaded[300];
   snprintf(take_path, sizeof take_path, "%s", take);
   snprintf(live, sizeof live, "%s", tt_path(dir, "live.hashes"));
   snprintf(again, sizeof again, "%s", tt_path(dir, "replay.hashes"));
+  snprintf(threaded, sizeof threaded, "%s", tt_path(dir, "threaded.hashes"));
   char *rec[] = { (char *)marionette, "run",     PUPPET,     "--glove", source, "--time", "2", "-q",
                   "--record",         take_path, "--hashes", live,      NULL };
   tt_output o;
@@ -315,17 +318,27 @@ static void a_take_replays_to_identical_frames(void **state) {
   if (o.status != 0) fail_msg("replay: status %d: %s", o.status, o.err);
   assert_true(field(o.out, "glove samples") >= 250);
   tt_output_free(&o);
-  size_t n1 = 0, n2 = 0;
-  char *a = tt_read_file(live, &n1), *b = tt_read_file(again, &n2);
+  char *two[] = { (char *)marionette, "run", PUPPET,     "--replay", take_path, "--time", "2", "-q",
+                  "--thread",         "on",  "--hashes", threaded,   NULL };
+  assert_int_equal(tt_capture(two, &o), 0);
+  if (o.status != 0) fail_msg("threaded replay: status %d: %s", o.status, o.err);
+  tt_output_free(&o);
+  size_t n1 = 0, n2 = 0, n3 = 0;
+  char *a = tt_read_file(live, &n1), *b = tt_read_file(again, &n2),
+       *c = tt_read_file(threaded, &n3);
   assert_non_null(a);
   assert_non_null(b);
+  assert_non_null(c);
   int lines = 0;
   for (size_t i = 0; i < n1; i++) lines += a[i] == '\n';
   assert_true(lines >= 100); /* a frame a line */
   assert_int_equal(n1, n2);
   assert_memory_equal(a, b, n1);
+  assert_int_equal(n1, n3);
+  assert_memory_equal(a, c, n1);
   free(a);
   free(b);
+  free(c);
   tt_rmdir(dir);
   free(dir);
 }
@@ -425,7 +438,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_silent_source_is_named_and_the_show_goes_on),
     cmocka_unit_test(calibrate_saves_the_range_on_the_glove),
     cmocka_unit_test(mappings_switch_during_the_show),
-    cmocka_unit_test(a_take_replays_to_identical_frames),
+    cmocka_unit_test(a_take_replays_to_identical_frames_on_one_thread_or_two),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(ports_are_listed_and_auto_finds_no_glove_clearly),
     cmocka_unit_test(bad_usage_exits_2_with_one_line),

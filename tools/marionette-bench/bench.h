@@ -84,8 +84,8 @@ int bench_latency(bench *b);
  * its path file named after `name` in out). Its pid, or -1. */
 pid_t bench_glove_gen_start(const bench *b, const char *name, double seconds, char *path,
                             size_t size);
-/* The show as a puppeteer runs it, in a window (show_live.c). */
-int bench_show(bench *b);
+/* The show as a puppeteer runs it, in a window (window_live.c). */
+int bench_window(bench *b);
 /* Item 4, live: glove-gen through a pty, on the wall clock (latency_live.c). */
 int bench_latency_live(bench *b);
 /* Item 2: ours against MuJoCo (peer.c), or a line saying it is not built. */

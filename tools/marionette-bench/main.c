@@ -28,7 +28,7 @@ static void usage(FILE *f) {
              "            only where libmujoco-dev is)\n"
              "  render    milliseconds a frame at 1280x720, headless, for each example scene,\n"
              "            and the share of renders a 60 fps show skips (not with --quick)\n"
-             "  show      the humanoid in a window at 1280x720 driven by glove-gen, idle and\n"
+             "  window    the humanoid in a window at 1280x720 driven by glove-gen, idle and\n"
              "            beside a busy process a core: real-time factor, time given up,\n"
              "            drawn fps, glove-to-frame latency (xvfb-run without a display)\n"
              "\n"
@@ -68,7 +68,7 @@ static const struct {
 } sections[] = { { "sweep", bench_sweep },       { "sec7", bench_paper_run },
                  { "capacity", bench_capacity }, { "load", bench_load_time },
                  { "latency", bench_latency },   { "peer", bench_peer },
-                 { "render", bench_render },     { "show", bench_show } };
+                 { "render", bench_render },     { "window", bench_window } };
 #define N_SECTIONS (sizeof sections / sizeof sections[0])
 
 /* Every comma-separated name in --only must be a section: a misspelt name

@@ -206,6 +206,28 @@ typedef struct mr_stage_def {
 } mr_stage_def;
 mr_stage_def mr_default_stage_def(void);
 
+/* The orbit camera: it looks at a target from `distance` metres, standing
+ * at an azimuth about the vertical (0 looks from +z towards -z, the
+ * backdrop) and an elevation above the target. The window drags and
+ * zooms it; leaving a scene's camera starts it where that camera stood. */
+typedef struct mr_orbit {
+  double target[3], distance, azimuth_deg, elevation_deg;
+  double fov_deg; /* vertical */
+} mr_orbit;
+/* The stage's own orbit (its orbit_* and fov_deg). */
+mr_orbit mr_orbit_of_stage(const mr_stage_def *def);
+/* The orbit whose eye is where camera c stands, looking at its target;
+ * start untouched when the two coincide (no direction to stand in). */
+mr_orbit mr_orbit_of_camera(const mr_camera_def *c, const mr_orbit *start);
+/* Turned by d_azimuth, d_elevation degrees: the azimuth wraps at 360, the
+ * elevation stays within +-89 (the view never flips over the top). */
+void mr_orbit_turn(mr_orbit *o, double d_azimuth_deg, double d_elevation_deg);
+/* Each step 10 % nearer (positive, the wheel up) or farther, from 5 cm to
+ * 100 m. */
+void mr_orbit_zoom(mr_orbit *o, double steps);
+/* Where the eye stands. */
+void mr_orbit_eye(const mr_orbit *o, double eye[3]);
+
 /* The built-in constellations: a few recognisable patterns and a field of
  * faint stars, fixed (no randomness at run time), so frames are
  * reproducible. */

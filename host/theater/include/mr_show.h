@@ -17,7 +17,11 @@
  * its limits (mr_pose_approach), and the world is stepped to land on the
  * frame time. A glove that is lost leaves its frames where they were: the
  * puppets hold their pose. Presenting a frame is the caller's hook: the
- * program draws it on the stage (host/render) and prints a status line. */
+ * program draws it on the stage (host/render) and prints a status line.
+ *
+ * The show is an object ticked one frame at a time (mr_show_tick), from
+ * one thread; mr_show_runner.h runs it on a thread of its own. Every frame
+ * it hands out is a snapshot (mr_show_frame), values only. */
 #ifndef MR_SHOW_H
 #define MR_SHOW_H
 
@@ -32,6 +36,27 @@ extern "C" {
 
 enum { MR_SHOW_MAX_GLOVES = 8 };
 
+/* What a show's calls return. */
+typedef enum mr_show_status {
+  MR_SHOW_OK = 0,
+  MR_SHOW_ENDED = 1,        /* mr_show_tick: the show is over (its time, its takes, stop) */
+  MR_SHOW_ERR_ARG = -1,     /* a NULL, a def not made by its maker, no glove or more than 8 */
+  MR_SHOW_ERR_SCENE = -2,   /* the scene's world could not be built */
+  MR_SHOW_ERR_MAPPING = -3, /* no mapping of that name, or one the control side refused */
+  MR_SHOW_ERR_GLOVE = -4,   /* a glove source that cannot be used */
+  MR_SHOW_ERR_TAKE = -5,    /* a take that cannot be written */
+  MR_SHOW_ERR_PHYSICS = -6, /* the physics stopped */
+  MR_SHOW_ERR_NOMEM = -7,
+  MR_SHOW_ERR_THREAD = -8 /* the physics thread could not be started */
+} mr_show_status;
+const char *mr_show_status_name(mr_show_status s);
+
+typedef struct mr_show_error {
+  mr_show_status status;
+  char message[400];
+  char text[800]; /* "SCENE_PATH: message" */
+} mr_show_error;
+
 typedef struct mr_show_def {
   uint32_t cookie;  /* MR_SHOW_COOKIE, set by mr_default_show_def() */
   mr_policy policy; /* default skip */
@@ -40,6 +65,10 @@ typedef struct mr_show_def {
   /* Frames landed on (the paper's) or interpolated between steps at the
    * ATS's own Δt; MR_PRESENT_SCENE (default): the scene's sim.present. */
   mr_present_mode present;
+  /* Frames simulated in one tick at the most when behind, past which the
+   * lag is given up (mr_scheduler_def); <= 0: the scheduler's default.
+   * A show on its own thread may chase further: its frames cost little. */
+  int max_catch_up;
   /* The mapping to start with, by name (the scene's `mapping:`); NULL:
    * the first. */
   const char *mapping;
@@ -54,45 +83,62 @@ typedef struct mr_show_def {
 #define MR_SHOW_COOKIE 0x6d725369u
 mr_show_def mr_default_show_def(void);
 
-/* What a frame shows, for the present hook. */
+/* One glove as a frame shows it: copies, taken when the frame was made. */
+typedef struct mr_show_glove_view {
+  mr_glove_state state;
+  mr_glove_reading reading; /* the newest sample */
+  mr_glove_counters counters;
+  double clock_offset; /* mr_glove_clock_offset */
+  char describe[400];  /* mr_glove_describe at the frame's time */
+} mr_show_glove_view;
+
+/* A frame: a snapshot, values only. Nothing in it points into the show or
+ * its world, so whoever holds one may keep it, hand it to another thread
+ * and read it while the physics runs on. Its arrays are its own, sized
+ * for the show it was made for (mr_show_frame_make). */
 typedef struct mr_show_frame {
-  double t;                      /* simulated time */
-  const mr_pose *target;         /* per control frame: where its glove sends it */
-  const mr_pose *pose;           /* per control frame: where it is at t */
-  const int *glove_of;           /* per control frame: its glove's index, -1 unbound */
-  size_t n_frames;               /* at most 16: the first 16 control frames */
-  const mr_glove *const *gloves; /* their states, values and counters */
+  double t;                 /* simulated time */
+  uint64_t hash;            /* the world's state hash at t (frame_done only; else 0) */
+  mr_scheduler_stats stats; /* the scheduler's figures as the frame was made */
+  size_t n_frames;          /* control frames, every one of the scene's */
+  mr_pose *target;          /* per control frame: where its glove sends it */
+  mr_pose *pose;            /* per control frame: where it is at t */
+  int *glove_of;            /* per control frame: its glove's index, -1 unbound */
   size_t n_gloves;
-  const mr_scheduler *scheduler;
-  const mr_world *world;
+  mr_show_glove_view gloves[MR_SHOW_MAX_GLOVES];
   /* Every particle's position as the frame shows it (3 n): the world's at
    * t, or interpolated to t between the steps around it. */
-  const double *xyz;
+  double *xyz;
   int n_particles;
+  char mapping[32]; /* the mapping in use */
 } mr_show_frame;
 
+typedef struct mr_show mr_show;
+
+/* A frame sized for show's control frames and particles, zeroed; 0, or -1
+ * when memory runs out. mr_show_frame_free gives its arrays back. */
+int mr_show_frame_make(const mr_show *show, mr_show_frame *out);
+void mr_show_frame_free(mr_show_frame *f);
+/* src into dst, both made for the same show; -1 (dst untouched) when
+ * their sizes differ. */
+int mr_show_frame_copy(mr_show_frame *dst, const mr_show_frame *src);
+
 typedef struct mr_show_hooks {
-  void (*present)(void *user, const mr_show_frame *frame); /* may be NULL */
-  /* Polled once a frame: nonzero ends the show (Ctrl-C). May be NULL. */
+  /* A frame the scheduler shows, a snapshot the hook may read as long as
+   * it runs and keep with mr_show_frame_copy. May be NULL. */
+  void (*present)(void *user, const mr_show_frame *frame);
+  /* Polled once a frame: nonzero ends the show. May be NULL. */
   int (*stop)(void *user);
-  /* After each frame is simulated (shown or skipped): the frame, and the
+  /* After each frame is simulated (shown or skipped): the frame, with the
    * world's state hash, which a replay of the take reproduces bit for bit.
    * May be NULL. */
-  void (*frame_done)(void *user, const mr_show_frame *frame, uint64_t hash);
-  /* Polled once a frame: nonzero moves every control frame to the scene's
-   * next mapping (after the last, the first), the filters kept. May be
-   * NULL. */
-  int (*next_mapping)(void *user);
+  void (*frame_done)(void *user, const mr_show_frame *frame);
   /* One line for the user when a glove's channel goes bad (NaN, or stuck
    * at an end past the mapping's stuck_after: held at neutral) or
-   * recovers, naming the glove, its source and the finger. May be NULL. */
+   * recovers, naming the glove, its source and the finger; and when a
+   * reset or a mapping is done. May be NULL. */
   void (*note)(void *user, const char *line);
   void *user;
-  /* Polled once a frame: nonzero puts every puppet back where it started
-   * (positions, at rest) and each control frame at its start pose; the
-   * gloves then move them on from there (the window's reset key). May be
-   * NULL. */
-  int (*reset)(void *user);
 } mr_show_hooks;
 
 typedef struct mr_show_glove_result {
@@ -106,7 +152,10 @@ typedef struct mr_show_result {
   mr_scheduler_stats frames;
   mr_show_glove_result glove[MR_SHOW_MAX_GLOVES];
   size_t n_gloves;
-  int glove_of[16]; /* the first 16 control frames' gloves at the end, -1 unbound */
+  /* Every control frame's glove at the end, -1 unbound (n_frames of them;
+   * mr_show_result_free gives them back). */
+  int *glove_of;
+  size_t n_frames;
   /* Interpolated frames: how far the physics had run past each frame when
    * it was shown, mean and max, s: input read at a frame moves the puppet
    * only from there on, so this adds to the latency counters. */
@@ -114,14 +163,42 @@ typedef struct mr_show_result {
   double lead_mean, lead_max;
   char mapping[32]; /* the mapping in use at the end */
 } mr_show_result;
+void mr_show_result_free(mr_show_result *r);
 
-/* Runs scene with def's gloves on clock until the duration passes or
- * stop() says so. Returns MR_SCENE_OK, or an error in err (the scene's
- * world refused, a bad glove source, a take that cannot be written, a
- * physics failure) naming what. */
-mr_scene_status mr_show_run(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
-                            const mr_show_hooks *hooks, mr_show_result *result,
-                            mr_scene_error *err);
+/* The show of scene (which must outlive it) with def's gloves on clock
+ * (copied; its self must outlive the show), hooks copied. MR_SHOW_OK, or
+ * an error in err naming what (the scene's world refused, a bad glove
+ * source, a mapping, a take that cannot be written). */
+mr_show_status mr_show_create(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
+                              const mr_show_hooks *hooks, mr_show **out, mr_show_error *err);
+
+/* One tick of the scheduler: the frame computed last shown (unless the
+ * skip policy finds it stale), the next simulated, then the wait for the
+ * next tick's time on the clock. MR_SHOW_OK; MR_SHOW_ENDED when the show
+ * is over; or an error (mr_show_destroy says what). */
+mr_show_status mr_show_tick(mr_show *show);
+
+/* Asked between ticks, done as the next frame starts: every puppet back
+ * where it started (positions, at rest) with each control frame at its
+ * start pose, the gloves moving them on from there; and every control
+ * frame moved to the scene's next mapping (after the last, the first),
+ * the filters kept. Each is told through the note hook. */
+void mr_show_reset(mr_show *show);
+void mr_show_next_mapping(mr_show *show);
+
+/* The frame as it stands (the latest simulated), into a frame made for
+ * this show. */
+void mr_show_snapshot(const mr_show *show, mr_show_frame *out);
+
+/* What the show did (result, may be NULL; mr_show_result_free after) and
+ * why it failed (err, may be NULL); the takes closed, everything freed.
+ * Returns MR_SHOW_OK or the first error (a take that could not be closed
+ * counts). */
+mr_show_status mr_show_destroy(mr_show *show, mr_show_result *result, mr_show_error *err);
+
+/* create, tick until the end, destroy: the one-thread show. */
+mr_show_status mr_show_run(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
+                           const mr_show_hooks *hooks, mr_show_result *result, mr_show_error *err);
 
 #ifdef __cplusplus
 }

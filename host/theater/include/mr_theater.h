@@ -44,6 +44,42 @@ typedef struct mr_virtual_clock {
 mr_clock mr_clock_virtual(mr_virtual_clock *vc);
 void mr_virtual_clock_spend(mr_virtual_clock *vc, double seconds);
 
+/* Whether c is mr_clock_wall()'s: its times are CLOCK_MONOTONIC's, which
+ * a thread may wait for by other means (a condition variable). */
+bool mr_clock_is_wall(const mr_clock *c);
+
+/* A clock over another (the wall, or a virtual one in tests) that pause,
+ * single step and slow motion act on: show time runs at `rate` show
+ * seconds per base second and stands still while paused. A wait for a
+ * show time runs until the base clock reaches the time it comes at;
+ * paused, it ends only by a single step, which moves show time to the
+ * time waited for (one frame, when the scheduler waits), or by `idle`.
+ * One thread uses it: the one that ticks the show. */
+typedef struct mr_scaled_clock {
+  mr_clock base;
+  double rate; /* > 0 */
+  bool paused;
+  unsigned steps; /* single steps asked and not yet taken */
+  double show_base, base_base;
+  /* Called while a wait cannot end yet, with the base time it would end
+   * at (INFINITY while paused without a step). It returns no later than
+   * that, may pause, step or change the rate in between, and returns
+   * nonzero to end the wait at once (the show is quitting). NULL: the
+   * base clock's wait, and a paused wait without a step returns at
+   * once. */
+  int (*idle)(void *user, double base_deadline);
+  void *user;
+} mr_scaled_clock;
+
+/* Show time 0 at the base's now, rate 1, running; idle NULL. */
+void mr_scaled_clock_init(mr_scaled_clock *sc, const mr_clock *base);
+mr_clock mr_clock_scaled(mr_scaled_clock *sc); /* sc must not move afterwards */
+double mr_scaled_clock_now(const mr_scaled_clock *sc);
+void mr_scaled_clock_pause(mr_scaled_clock *sc, bool paused);
+void mr_scaled_clock_set_rate(mr_scaled_clock *sc, double rate); /* ignored unless > 0 */
+/* Pauses (if running) and lets the next paused wait end at its time. */
+void mr_scaled_clock_step(mr_scaled_clock *sc);
+
 /* ------------------------------------------------------------ scheduler */
 
 typedef enum mr_policy {

@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <string.h>
 #include <time.h>
 
 static double wall_now(void *self) {
@@ -46,4 +47,81 @@ mr_clock mr_clock_virtual(mr_virtual_clock *vc) {
 
 void mr_virtual_clock_spend(mr_virtual_clock *vc, double seconds) {
   if (vc != NULL && seconds > 0) vc->t += seconds;
+}
+
+bool mr_clock_is_wall(const mr_clock *c) {
+  return c != NULL && c->now == wall_now && c->wait_until == wall_wait_until;
+}
+
+/* The scaled clock: show time = show_base + rate (base - base_base) while
+ * running, show_base while paused; the two bases are tied anew whenever
+ * the rate or the pause changes, so show time never jumps. */
+
+static double base_now(const mr_scaled_clock *sc) {
+  return sc->base.now(sc->base.self);
+}
+
+double mr_scaled_clock_now(const mr_scaled_clock *sc) {
+  if (sc->paused) return sc->show_base;
+  return sc->show_base + sc->rate * (base_now(sc) - sc->base_base);
+}
+
+static void rebase(mr_scaled_clock *sc) {
+  sc->show_base = mr_scaled_clock_now(sc);
+  sc->base_base = base_now(sc);
+}
+
+void mr_scaled_clock_init(mr_scaled_clock *sc, const mr_clock *base) {
+  memset(sc, 0, sizeof *sc);
+  sc->base = *base;
+  sc->rate = 1.0;
+  sc->base_base = base_now(sc);
+}
+
+void mr_scaled_clock_pause(mr_scaled_clock *sc, bool paused) {
+  if (sc->paused == paused) return;
+  rebase(sc);
+  sc->paused = paused;
+}
+
+void mr_scaled_clock_set_rate(mr_scaled_clock *sc, double rate) {
+  if (!(rate > 0) || !isfinite(rate)) return;
+  rebase(sc);
+  sc->rate = rate;
+}
+
+void mr_scaled_clock_step(mr_scaled_clock *sc) {
+  mr_scaled_clock_pause(sc, true);
+  sc->steps++;
+}
+
+static double scaled_now(void *self) {
+  return mr_scaled_clock_now(self);
+}
+
+static void scaled_wait_until(void *self, double t) {
+  mr_scaled_clock *sc = self;
+  for (;;) {
+    if (sc->paused && sc->steps > 0 && sc->show_base < t) {
+      sc->steps--;
+      sc->show_base = t;
+      sc->base_base = base_now(sc);
+      return;
+    }
+    if (mr_scaled_clock_now(sc) >= t) return;
+    double deadline = sc->paused ? INFINITY : sc->base_base + (t - sc->show_base) / sc->rate;
+    /* Rounding may leave show time a hair short of t: its time has come. */
+    if (base_now(sc) >= deadline) return;
+    if (sc->idle != NULL) {
+      if (sc->idle(sc->user, deadline) != 0) return;
+    } else {
+      if (sc->paused) return;
+      sc->base.wait_until(sc->base.self, deadline);
+    }
+  }
+}
+
+mr_clock mr_clock_scaled(mr_scaled_clock *sc) {
+  mr_clock c = { scaled_now, scaled_wait_until, sc };
+  return c;
 }

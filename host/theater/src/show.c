@@ -34,7 +34,7 @@ typedef struct show_frame {
   mr_channel_state states[MR_CONTROL_CHANNELS]; /* as last told to the user */
 } show_frame;
 
-typedef struct show {
+struct mr_show {
   const mr_scene *scene;
   mr_scene_world sw;
   show_glove gloves[MR_SHOW_MAX_GLOVES];
@@ -44,16 +44,20 @@ typedef struct show {
   size_t n_frames;
   mr_scheduler *sch;
   mr_clock clock;
-  const mr_show_hooks *hooks;
+  mr_show_hooks hooks;
   double duration;
   bool interpolate;
   double sum_lead, lead_max;
   uint64_t frames_stepped;
-  mr_interp ip;      /* the frame's positions, interpolated or the world's */
-  double *start_xyz; /* every particle where it started, for a reset */
-  mr_scene_error *err;
-  mr_scene_status rc;
-} show;
+  mr_interp ip;                          /* the frame's positions, interpolated or the world's */
+  double *start_xyz;                     /* every particle where it started, for a reset */
+  unsigned resets_asked, mappings_asked; /* done as the next frame starts */
+  mr_show_frame scratch;                 /* the snapshot the hooks are handed */
+  bool ended;
+  mr_scheduler_stats end_stats; /* the figures as the show ended */
+  mr_show_error err;
+};
+typedef struct mr_show show;
 
 mr_show_def mr_default_show_def(void) {
   mr_show_def d;
@@ -64,11 +68,13 @@ mr_show_def mr_default_show_def(void) {
   return d;
 }
 
-static mr_scene_status fail(show *s, mr_scene_status st, const char *msg) {
-  s->err->status = st;
-  snprintf(s->err->message, sizeof s->err->message, "%.300s", msg);
-  snprintf(s->err->text, sizeof s->err->text, "%s: %s", s->scene->path, s->err->message);
-  s->rc = st;
+/* The first error is the one told: what follows from it is not news. */
+static mr_show_status fail(show *s, mr_show_status st, const char *msg) {
+  if (s->err.status != MR_SHOW_OK) return st;
+  s->err.status = st;
+  snprintf(s->err.message, sizeof s->err.message, "%.390s", msg);
+  snprintf(s->err.text, sizeof s->err.text, "%s: %s", s->scene ? s->scene->path : "show",
+           s->err.message);
   return st;
 }
 
@@ -103,7 +109,7 @@ static int find_glove(const show *s, size_t k) {
 }
 
 static void note(const show *s, const char *line) {
-  if (s->hooks != NULL && s->hooks->note != NULL) s->hooks->note(s->hooks->user, line);
+  if (s->hooks.note != NULL) s->hooks.note(s->hooks.user, line);
 }
 
 /* A channel that went bad or came back, told once, not every frame. */
@@ -226,25 +232,41 @@ static bool takes_over(const show *s) {
   return true;
 }
 
-/* The frame as the hooks see it; targets and poses live in *buf. */
-typedef struct frame_view {
-  mr_pose target[16], pose[16];
-  int glove_of[16];
-  const mr_glove *gloves[MR_SHOW_MAX_GLOVES];
-} frame_view;
+static const char *mapping_name(const show *s) {
+  int m = s->n_frames > 0 && s->frames[0].control ? mr_control_selected(s->frames[0].control) : 0;
+  return s->scene->n_mappings > 0 ? s->scene->mappings[m].def.name : "default";
+}
 
-static mr_show_frame view(const show *s, double t, frame_view *buf) {
-  size_t n = s->n_frames < 16 ? s->n_frames : 16;
-  for (size_t k = 0; k < n; k++) {
-    buf->target[k] = s->frames[k].target;
-    buf->glove_of[k] = s->frames[k].glove;
-    if (mr_world_frame_pose(s->sw.world, s->sw.frames[k], &buf->pose[k]) != MR_OK)
-      buf->pose[k] = s->frames[k].target;
+void mr_show_snapshot(const show *s, mr_show_frame *f) {
+  if (s == NULL || f == NULL || f->n_frames != s->n_frames || f->n_particles != s->ip.n) return;
+  f->t = mr_world_time(s->sw.world);
+  f->hash = 0;
+  mr_scheduler_stats_get(s->sch, &f->stats);
+  for (size_t k = 0; k < s->n_frames; k++) {
+    f->target[k] = s->frames[k].target;
+    f->glove_of[k] = s->frames[k].glove;
+    if (mr_world_frame_pose(s->sw.world, s->sw.frames[k], &f->pose[k]) != MR_OK)
+      f->pose[k] = s->frames[k].target;
   }
-  for (size_t g = 0; g < s->n_gloves; g++) buf->gloves[g] = s->gloves[g].glove;
-  mr_show_frame f = { t,           buf->target, buf->pose,   buf->glove_of, n,      buf->gloves,
-                      s->n_gloves, s->sch,      s->sw.world, s->ip.frame,   s->ip.n };
-  return f;
+  f->n_gloves = s->n_gloves;
+  for (size_t g = 0; g < s->n_gloves; g++) {
+    const mr_glove *gl = s->gloves[g].glove;
+    mr_show_glove_view *v = &f->gloves[g];
+    v->state = mr_glove_state_get(gl);
+    mr_glove_latest(gl, &v->reading);
+    mr_glove_counters_get(gl, &v->counters);
+    v->clock_offset = mr_glove_clock_offset(gl);
+    mr_glove_describe(gl, f->t, v->describe, sizeof v->describe);
+  }
+  memcpy(f->xyz, s->ip.frame, 3 * (size_t)s->ip.n * sizeof *f->xyz);
+  snprintf(f->mapping, sizeof f->mapping, "%s", mapping_name(s));
+}
+
+/* The snapshot of the frame at t, for a hook. */
+static mr_show_frame *view(show *s, double t) {
+  mr_show_snapshot(s, &s->scratch);
+  s->scratch.t = t;
+  return &s->scratch;
 }
 
 /* The world to time t: the frames head for their gloves' poses and the
@@ -265,7 +287,7 @@ static int step_world(show *s, double t, mr_frame_work *work) {
       char msg[400];
       snprintf(msg, sizeof msg, "the physics stopped (%s): %s at t = %.3f s", mr_status_name(st),
                mr_world_last_error(w), t);
-      fail(s, MR_SCENE_ERR_BUILD, msg);
+      fail(s, MR_SHOW_ERR_PHYSICS, msg);
       return -1;
     }
     work->steps += (uint64_t)rep.steps;
@@ -311,32 +333,35 @@ static void reset_puppets(show *s) {
   note(s, "reset: the puppets are back where they started");
 }
 
+void mr_show_reset(show *s) {
+  if (s != NULL) s->resets_asked++;
+}
+
+void mr_show_next_mapping(show *s) {
+  if (s != NULL) s->mappings_asked++;
+}
+
 static int advance(void *user, double t, mr_frame_work *work) {
   show *s = user;
-  if (s->hooks != NULL && s->hooks->reset != NULL && s->hooks->reset(s->hooks->user))
-    reset_puppets(s);
-  if (s->hooks != NULL && s->hooks->next_mapping != NULL && s->hooks->next_mapping(s->hooks->user))
-    switch_mapping(s);
+  for (; s->resets_asked > 0; s->resets_asked--) reset_puppets(s);
+  for (; s->mappings_asked > 0; s->mappings_asked--) switch_mapping(s);
   read_gloves(s, t);
   if (step_world(s, t, work) != 0) return 1;
-  if (s->hooks != NULL && s->hooks->frame_done != NULL) {
-    frame_view buf;
-    mr_show_frame f = view(s, t, &buf);
-    s->hooks->frame_done(s->hooks->user, &f, mr_world_state_hash(s->sw.world));
+  if (s->hooks.frame_done != NULL) {
+    mr_show_frame *f = view(s, t);
+    f->hash = mr_world_state_hash(s->sw.world);
+    s->hooks.frame_done(s->hooks.user, f);
   }
   /* Stopping ends the show after this frame: the scheduler counts it as
    * simulated, and it was. */
-  if (s->hooks != NULL && s->hooks->stop != NULL && s->hooks->stop(s->hooks->user)) return 1;
+  if (s->hooks.stop != NULL && s->hooks.stop(s->hooks.user)) return 1;
   if (s->duration > 0) return t >= s->duration;
   return takes_over(s);
 }
 
 static void present(void *user, double t) {
   show *s = user;
-  if (s->hooks == NULL || s->hooks->present == NULL) return;
-  frame_view buf;
-  mr_show_frame f = view(s, t, &buf);
-  s->hooks->present(s->hooks->user, &f);
+  if (s->hooks.present != NULL) s->hooks.present(s->hooks.user, view(s, t));
 }
 
 /* Each frame's control: the scene's mappings, or the paper's default, about
@@ -353,12 +378,12 @@ static int make_controls(show *s, const char *mapping) {
         n += snprintf(msg + n, sizeof msg - (size_t)n, "%s %s", i ? "," : "",
                       s->scene->mappings[i].def.name);
       if (s->scene->n_mappings == 0) snprintf(msg + n, sizeof msg - (size_t)n, " only the default");
-      return fail(s, MR_SCENE_ERR_VALUE, msg), -1;
+      return fail(s, MR_SHOW_ERR_MAPPING, msg), -1;
     }
   }
   s->n_frames = s->scene->n_frames;
   s->frames = calloc(s->n_frames ? s->n_frames : 1, sizeof *s->frames);
-  if (s->frames == NULL) return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
+  if (s->frames == NULL) return fail(s, MR_SHOW_ERR_NOMEM, "out of memory"), -1;
   for (size_t k = 0; k < s->n_frames; k++) {
     mr_mapping_def defs[MR_CONTROL_MAX_MAPPINGS];
     int n = 0;
@@ -370,7 +395,7 @@ static int make_controls(show *s, const char *mapping) {
     s->frames[k].target = s->scene->frames[k].pose;
     char msg[200];
     if (mr_control_create(defs, n, &s->frames[k].control, msg, sizeof msg) != MR_CONTROL_OK)
-      return fail(s, MR_SCENE_ERR_VALUE, msg), -1;
+      return fail(s, MR_SHOW_ERR_MAPPING, msg), -1;
     if (start >= 0) mr_control_select(s->frames[k].control, start);
   }
   return 0;
@@ -382,11 +407,11 @@ static int open_glove(show *s, size_t i, const char *source, const char *take_pa
   mr_glove_def gd = mr_default_glove_def();
   snprintf(gd.source, sizeof gd.source, "%s", source);
   if (mr_glove_create(&gd, &g->glove, msg, sizeof msg) != MR_GLOVE_OK)
-    return fail(s, MR_SCENE_ERR_VALUE, msg), -1;
+    return fail(s, MR_SHOW_ERR_GLOVE, msg), -1;
   if (take_path == NULL) return 0;
   mr_io_err err;
   if (mr_rec_writer_open(&g->take, take_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0)
-    return fail(s, MR_SCENE_ERR_IO, err.msg), -1;
+    return fail(s, MR_SHOW_ERR_TAKE, err.msg), -1;
   g->recording = g->take_open = true;
   mr_glove_set_tap(g->glove, record, g);
   return 0;
@@ -394,16 +419,18 @@ static int open_glove(show *s, size_t i, const char *source, const char *take_pa
 
 static int open_parts(show *s, const mr_show_def *def) {
   char msg[400];
-  if (mr_scene_build(s->scene, &s->sw, s->err) != MR_SCENE_OK) return -1;
+  mr_scene_error se;
+  if (mr_scene_build(s->scene, &s->sw, &se) != MR_SCENE_OK)
+    return fail(s, MR_SHOW_ERR_SCENE, se.message), -1;
   s->interpolate = def->present == MR_PRESENT_INTERPOLATE ||
                    (def->present == MR_PRESENT_SCENE && s->scene->interpolate);
   if (mr_interp_open(&s->ip, mr_world_particle_count(s->sw.world)) != 0)
-    return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
+    return fail(s, MR_SHOW_ERR_NOMEM, "out of memory"), -1;
   mr_interp_mark(&s->ip, s->sw.world);
   mr_interp_at(&s->ip, s->sw.world, 0.0);
   int n = mr_world_particle_count(s->sw.world);
   if ((s->start_xyz = calloc((size_t)(n > 0 ? n : 1) * 3, sizeof(double))) == NULL)
-    return fail(s, MR_SCENE_ERR_NOMEM, "out of memory"), -1;
+    return fail(s, MR_SHOW_ERR_NOMEM, "out of memory"), -1;
   mr_world_positions(s->sw.world, s->start_xyz, n);
   for (size_t i = 0; i < def->n_gloves; i++) {
     s->n_gloves = i + 1;
@@ -411,12 +438,15 @@ static int open_parts(show *s, const mr_show_def *def) {
     if (open_glove(s, i, def->gloves[i], def->record[i]) != 0) return -1;
   }
   if (make_controls(s, def->mapping) != 0) return -1;
+  if (mr_show_frame_make(s, &s->scratch) != 0)
+    return fail(s, MR_SHOW_ERR_NOMEM, "out of memory"), -1;
   mr_scheduler_def sd = mr_default_scheduler_def();
   sd.policy = def->policy;
+  if (def->max_catch_up > 0) sd.max_catch_up = def->max_catch_up;
   sd.fps = def->fps > 0 ? def->fps : s->scene->fps > 0 ? s->scene->fps : 60.0;
   mr_scheduler_hooks h = { advance, present, s };
   if (mr_scheduler_create(&sd, &s->clock, &h, &s->sch, msg, sizeof msg) != MR_THEATER_OK) {
-    fail(s, MR_SCENE_ERR_VALUE, msg);
+    fail(s, MR_SHOW_ERR_ARG, msg);
     return -1;
   }
   return 0;
@@ -427,23 +457,26 @@ static void close_parts(show *s) {
     show_glove *g = &s->gloves[i];
     if (g->take_open) {
       mr_io_err err;
-      if (mr_rec_writer_close(&g->take, &err) != 0 && s->rc == MR_SCENE_OK)
-        fail(s, MR_SCENE_ERR_IO, err.msg);
+      if (mr_rec_writer_close(&g->take, &err) != 0) fail(s, MR_SHOW_ERR_TAKE, err.msg);
       g->take_open = g->recording = false;
     }
-    if (s->rc == MR_SCENE_OK && g->take_error[0] != '\0') fail(s, MR_SCENE_ERR_IO, g->take_error);
+    if (g->take_error[0] != '\0') fail(s, MR_SHOW_ERR_TAKE, g->take_error);
     mr_glove_destroy(g->glove);
   }
   for (size_t k = 0; k < s->n_frames; k++) mr_control_destroy(s->frames[k].control);
   free(s->frames);
   mr_scheduler_destroy(s->sch);
   mr_interp_close(&s->ip);
+  mr_show_frame_free(&s->scratch);
   free(s->start_xyz);
   mr_scene_world_free(&s->sw);
 }
 
 static void gather(const show *s, mr_show_result *result) {
-  if (s->sch != NULL) mr_scheduler_stats_get(s->sch, &result->frames);
+  if (s->ended)
+    result->frames = s->end_stats;
+  else if (s->sch != NULL)
+    mr_scheduler_stats_get(s->sch, &result->frames);
   result->interpolated = s->interpolate;
   result->lead_mean = s->frames_stepped > 0 ? s->sum_lead / (double)s->frames_stepped : 0.0;
   result->lead_max = s->lead_max;
@@ -460,35 +493,91 @@ static void gather(const show *s, mr_show_result *result) {
     /* The gloves run on show time. */
     mr_glove_describe(g, result->frames.sim_time, o->describe, sizeof o->describe);
   }
-  for (size_t k = 0; k < 16; k++) result->glove_of[k] = k < s->n_frames ? s->frames[k].glove : -1;
-  int m = s->n_frames > 0 && s->frames[0].control ? mr_control_selected(s->frames[0].control) : 0;
-  snprintf(result->mapping, sizeof result->mapping, "%s",
-           s->scene->n_mappings > 0 ? s->scene->mappings[m].def.name : "default");
+  result->glove_of = calloc(s->n_frames > 0 ? s->n_frames : 1, sizeof *result->glove_of);
+  if (result->glove_of != NULL) {
+    result->n_frames = s->n_frames;
+    for (size_t k = 0; k < s->n_frames; k++) result->glove_of[k] = s->frames[k].glove;
+  }
+  snprintf(result->mapping, sizeof result->mapping, "%s", s->frames ? mapping_name(s) : "default");
 }
 
-mr_scene_status mr_show_run(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
-                            const mr_show_hooks *hooks, mr_show_result *result,
-                            mr_scene_error *err) {
-  show s;
-  memset(&s, 0, sizeof s);
-  memset(result, 0, sizeof *result);
-  memset(err, 0, sizeof *err);
-  s.scene = scene;
-  s.err = err;
-  s.hooks = hooks;
-  if (def == NULL || def->cookie != MR_SHOW_COOKIE || clock == NULL || def->n_gloves == 0 ||
-      def->n_gloves > MR_SHOW_MAX_GLOVES) {
-    fail(&s, MR_SCENE_ERR_VALUE, "expected a show definition with 1 to 8 gloves, and a clock");
-    return s.rc;
+void mr_show_result_free(mr_show_result *r) {
+  if (r == NULL) return;
+  free(r->glove_of);
+  r->glove_of = NULL;
+  r->n_frames = 0;
+}
+
+int mr_show_frame_make(const show *s, mr_show_frame *out) {
+  if (s == NULL || out == NULL) return -1;
+  return mr_show_frame_alloc(out, s->n_frames, s->ip.n);
+}
+
+mr_show_status mr_show_create(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
+                              const mr_show_hooks *hooks, mr_show **out, mr_show_error *err) {
+  if (err != NULL) memset(err, 0, sizeof *err);
+  if (out != NULL) *out = NULL;
+  show *s = calloc(1, sizeof *s);
+  if (s == NULL) {
+    if (err != NULL) err->status = MR_SHOW_ERR_NOMEM;
+    return MR_SHOW_ERR_NOMEM;
   }
-  for (size_t i = 0; i < def->n_gloves; i++)
-    if (def->gloves[i] == NULL) return fail(&s, MR_SCENE_ERR_VALUE, "expected a glove source");
-  s.clock = *clock;
-  s.duration = def->duration;
-  if (open_parts(&s, def) == 0)
-    while (mr_scheduler_tick(s.sch) == MR_THEATER_OK) {
-    }
-  gather(&s, result);
-  close_parts(&s);
-  return s.rc != MR_SCENE_OK ? s.rc : err->status;
+  s->scene = scene;
+  if (hooks != NULL) s->hooks = *hooks;
+  if (scene == NULL || out == NULL || def == NULL || def->cookie != MR_SHOW_COOKIE ||
+      clock == NULL || def->n_gloves == 0 || def->n_gloves > MR_SHOW_MAX_GLOVES) {
+    fail(s, MR_SHOW_ERR_ARG, "expected a scene, a show definition with 1 to 8 gloves, and a clock");
+  } else {
+    for (size_t i = 0; i < def->n_gloves; i++)
+      if (def->gloves[i] == NULL) fail(s, MR_SHOW_ERR_ARG, "expected a glove source");
+  }
+  if (s->err.status == MR_SHOW_OK) {
+    s->clock = *clock;
+    s->duration = def->duration;
+    open_parts(s, def);
+  }
+  if (s->err.status != MR_SHOW_OK) {
+    mr_show_status st = s->err.status;
+    if (err != NULL) *err = s->err;
+    if (s->scene != NULL) close_parts(s);
+    free(s);
+    return st;
+  }
+  *out = s;
+  return MR_SHOW_OK;
+}
+
+mr_show_status mr_show_tick(show *s) {
+  if (s == NULL) return MR_SHOW_ERR_ARG;
+  if (s->err.status != MR_SHOW_OK) return s->err.status;
+  if (s->ended) return MR_SHOW_ENDED;
+  if (mr_scheduler_tick(s->sch) == MR_THEATER_OK) return MR_SHOW_OK;
+  /* Wall time stops with the show, not with whoever destroys it later (a
+   * window may still be drawing its last frame). */
+  mr_scheduler_stats_get(s->sch, &s->end_stats);
+  s->ended = true;
+  return s->err.status != MR_SHOW_OK ? s->err.status : MR_SHOW_ENDED;
+}
+
+mr_show_status mr_show_destroy(show *s, mr_show_result *result, mr_show_error *err) {
+  if (result != NULL) memset(result, 0, sizeof *result);
+  if (err != NULL) memset(err, 0, sizeof *err);
+  if (s == NULL) return MR_SHOW_ERR_ARG;
+  if (result != NULL) gather(s, result);
+  close_parts(s);
+  mr_show_status st = s->err.status;
+  if (err != NULL) *err = s->err;
+  free(s);
+  return st;
+}
+
+mr_show_status mr_show_run(const mr_scene *scene, const mr_show_def *def, const mr_clock *clock,
+                           const mr_show_hooks *hooks, mr_show_result *result, mr_show_error *err) {
+  if (result != NULL) memset(result, 0, sizeof *result);
+  mr_show *s = NULL;
+  mr_show_status st = mr_show_create(scene, def, clock, hooks, &s, err);
+  if (st != MR_SHOW_OK) return st;
+  while ((st = mr_show_tick(s)) == MR_SHOW_OK) {
+  }
+  return mr_show_destroy(s, result, err);
 }

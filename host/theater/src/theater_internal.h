@@ -4,6 +4,7 @@
 #define MR_THEATER_INTERNAL_H
 
 #include "mr_scene_world.h"
+#include "mr_show.h"
 
 /* Control frame k heads for `goal`, reached at t (§6.2), but from where it
  * is now no faster than the scene's control.max_speed and max_turn_rate
@@ -38,5 +39,9 @@ int mr_interp_open(mr_interp *ip, int n); /* -1: out of memory */
 void mr_interp_close(mr_interp *ip);
 void mr_interp_mark(mr_interp *ip, const mr_world *w);
 const double *mr_interp_at(mr_interp *ip, const mr_world *w, double t);
+
+/* A frame's arrays for n_frames control frames and n_particles particles
+ * (show_frame.c); 0 or -1 (nothing kept) when memory runs out. */
+int mr_show_frame_alloc(mr_show_frame *f, size_t n_frames, int n_particles);
 
 #endif

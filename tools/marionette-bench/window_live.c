@@ -101,15 +101,15 @@ static int one_show(bench *b, const char *scene, double seconds, int busy) {
   int n_spin = 0;
   for (; n_spin < busy && n_spin < MAX_BUSY; n_spin++) spin[n_spin] = busy_start();
   char path[512], log[1024];
-  snprintf(log, sizeof log, "%s/show-%d-busy.log", b->out, busy);
-  pid_t gen = bench_glove_gen_start(b, "show", seconds * 4 + 30, path, sizeof path);
+  snprintf(log, sizeof log, "%s/window-%d-busy.log", b->out, busy);
+  pid_t gen = bench_glove_gen_start(b, "window", seconds * 4 + 30, path, sizeof path);
   int status = gen < 0 ? -1 : run_show(scene, path, seconds, log);
   stop(gen, SIGTERM);
   for (int i = 0; i < n_spin; i++) stop(spin[i], SIGKILL);
   char *text = slurp(log);
   double rt = text ? field(text, "real-time factor") : NAN;
   if (status != 0 || text == NULL || !(rt > 0)) {
-    bench_say(b, "show, %d busy: the run failed (status %d); its output is in %s\n", busy, status,
+    bench_say(b, "window, %d busy: the run failed (status %d); its output is in %s\n", busy, status,
               log);
     free(text);
     return -1;
@@ -126,7 +126,12 @@ static int one_show(bench *b, const char *scene, double seconds, int busy) {
   return 0;
 }
 
-int bench_show(bench *b) {
+int bench_window(bench *b) {
+  const char *display = getenv("DISPLAY");
+  if ((display == NULL || *display == '\0') && system("command -v xvfb-run >/dev/null 2>&1") != 0) {
+    bench_say(b, "\nwindow: skipped (no display and no xvfb-run)\n");
+    return 0;
+  }
   const double seconds = b->quick ? 5.0 : 20.0;
   char scene[1024];
   snprintf(scene, sizeof scene, "%s/host/scenes/humanoid.yaml", b->root);
@@ -136,9 +141,9 @@ int bench_show(bench *b) {
             "\n== the show in a window (humanoid, 1280x720, glove-gen over a pty, %g s) ==\n"
             "%-26s %9s %12s %10s %9s %9s\n",
             seconds, "machine", "real-time", "given up, s", "drawn fps", "p50, ms", "p99, ms");
-  bench_progress("show", "idle, %g s", seconds);
+  bench_progress("window", "idle, %g s", seconds);
   int rc = one_show(b, scene, seconds, 0);
-  bench_progress("show", "%d busy processes beside it, %g s", busy, seconds);
+  bench_progress("window", "%d busy processes beside it, %g s", busy, seconds);
   if (one_show(b, scene, seconds, busy) != 0) rc = -1;
   return rc;
 }

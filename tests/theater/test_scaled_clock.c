@@ -1,0 +1,125 @@
+/* The show's clock that pause, single step and slow motion act on
+ * (mr_scaled_clock), on a virtual clock: every time below is exact. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+
+#include "mr_theater.h"
+
+/* At rate 1 over a base that starts at 0 (a replay's virtual clock) show
+ * time is the base's, bit for bit; at a quarter, a second of show takes
+ * four. */
+static void slow_motion_stretches_show_time_without_a_jump(void **state) {
+  (void)state;
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock base = mr_clock_virtual(&vc);
+  mr_scaled_clock sc;
+  mr_scaled_clock_init(&sc, &base);
+  mr_clock c = mr_clock_scaled(&sc);
+  assert_true(c.now(c.self) == 0.0);
+  for (int j = 1; j <= 60; j++) {
+    c.wait_until(c.self, j / 60.0);
+    assert_true(c.now(c.self) == j / 60.0);
+  }
+  vc.t += 10.0;
+  sc.base_base += 10.0; /* the same clock, its base ten seconds on */
+  c.wait_until(c.self, 1.0);
+  mr_scaled_clock_set_rate(&sc, 0.25);
+  assert_true(fabs(c.now(c.self) - 1.0) < 1e-12); /* no jump at the change */
+  c.wait_until(c.self, 2.0);
+  assert_true(fabs(vc.t - 15.0) < 1e-9); /* 1 s of show in 4 s */
+  assert_true(sc.rate == 0.25);
+  assert_true(c.now(c.self) >= 2.0 - 1e-12);
+  mr_scaled_clock_set_rate(&sc, 1.0);
+  c.wait_until(c.self, 3.0);
+  assert_true(fabs(vc.t - 16.0) < 1e-9);
+  mr_scaled_clock_set_rate(&sc, 0); /* refused */
+  assert_true(sc.rate == 1.0);
+}
+
+/* Paused, show time stands still however long the base runs, a wait
+ * without a step does not reach its time, and each step moves show time
+ * to the time waited for, one at a time. */
+static void paused_time_stands_still_and_steps_move_it_a_frame(void **state) {
+  (void)state;
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock base = mr_clock_virtual(&vc);
+  mr_scaled_clock sc;
+  mr_scaled_clock_init(&sc, &base);
+  mr_clock c = mr_clock_scaled(&sc);
+  c.wait_until(c.self, 0.5);
+  mr_scaled_clock_pause(&sc, true);
+  mr_virtual_clock_spend(&vc, 100.0);
+  assert_true(c.now(c.self) == 0.5);
+  c.wait_until(c.self, 0.6);
+  assert_true(c.now(c.self) == 0.5);
+  mr_scaled_clock_step(&sc);
+  mr_scaled_clock_step(&sc);
+  c.wait_until(c.self, 0.6);
+  assert_true(c.now(c.self) == 0.6);
+  c.wait_until(c.self, 0.7);
+  assert_true(c.now(c.self) == 0.7);
+  c.wait_until(c.self, 0.8); /* the steps are spent */
+  assert_true(c.now(c.self) == 0.7);
+  assert_true(sc.paused);
+  mr_scaled_clock_pause(&sc, false);
+  double v0 = vc.t;
+  c.wait_until(c.self, 0.8);
+  assert_true(fabs(c.now(c.self) - 0.8) < 1e-12);
+  assert_true(fabs(vc.t - v0 - 0.1) < 1e-9); /* on from where it stood */
+}
+
+typedef struct script {
+  mr_scaled_clock *sc;
+  mr_virtual_clock *vc;
+  int calls;
+  double deadlines[8];
+} script;
+
+/* The idle hook: told when the wait would end (never, while paused),
+ * spends a second, and the third time lets go of the pause. */
+static int idle(void *user, double deadline) {
+  script *s = user;
+  if (s->calls < 8) s->deadlines[s->calls] = deadline;
+  s->calls++;
+  if (!isfinite(deadline)) {
+    mr_virtual_clock_spend(s->vc, 1.0);
+    if (s->calls == 3) mr_scaled_clock_pause(s->sc, false);
+    return 0;
+  }
+  s->vc->t = deadline;
+  return 0;
+}
+
+/* A paused wait goes to the idle hook (the physics thread waits there for
+ * its commands) until a command lets it go on; then it ends at its time. */
+static void a_paused_wait_idles_until_a_command_lets_it_go(void **state) {
+  (void)state;
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock base = mr_clock_virtual(&vc);
+  mr_scaled_clock sc;
+  mr_scaled_clock_init(&sc, &base);
+  script s = { &sc, &vc, 0, { 0 } };
+  sc.idle = idle;
+  sc.user = &s;
+  mr_clock c = mr_clock_scaled(&sc);
+  mr_scaled_clock_pause(&sc, true);
+  c.wait_until(c.self, 0.25);
+  assert_int_equal(s.calls, 4);
+  for (int i = 0; i < 3; i++) assert_true(isinf(s.deadlines[i]));
+  assert_true(s.deadlines[3] == 3.25); /* paused for 3 s of base time */
+  assert_true(c.now(c.self) == 0.25);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(slow_motion_stretches_show_time_without_a_jump),
+    cmocka_unit_test(paused_time_stands_still_and_steps_move_it_a_frame),
+    cmocka_unit_test(a_paused_wait_idles_until_a_command_lets_it_go),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
