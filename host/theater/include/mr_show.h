@@ -14,8 +14,9 @@
  * Each frame: the gloves are read (without waiting), each bound frame's
  * glove's five values go through the scene's mapping (host/control) to a
  * pose about that frame's start pose, the frame heads there no faster than
- * its limits (mr_pose_approach), and the world is stepped to land on the
- * frame time. A glove that is lost leaves its frames where they were: the
+ * its speed limits (mr_pose_approach) and changing its velocity no faster
+ * than its acceleration limits (control.max_accel), and the world is
+ * stepped to land on the frame time. A glove that is lost leaves its frames where they were: the
  * puppets hold their pose. Presenting a frame is the caller's hook: the
  * program draws it on the stage (host/render) and prints a status line.
  *
