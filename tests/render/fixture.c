@@ -48,8 +48,13 @@ int fx_add(fx_scene *s, mr_shape shape, const float rgb[3], double x, double y, 
 }
 
 mr_render *fx_render(mr_render_backend b, const fx_scene *s) {
+  return fx_render_samples(b, s, 0);
+}
+
+mr_render *fx_render_samples(mr_render_backend b, const fx_scene *s, int samples) {
   mr_render_def def = mr_default_render_def();
   def.backend = b;
+  def.samples = samples;
   def.headless = true;
   def.width = FX_W;
   def.height = FX_H;

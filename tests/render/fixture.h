@@ -28,6 +28,8 @@ int fx_add(fx_scene *s, mr_shape shape, const float rgb[3], double x, double y, 
 
 /* A renderer of backend b for s's stage at FX_W x FX_H (asserts it starts). */
 mr_render *fx_render(mr_render_backend b, const fx_scene *s);
+/* The same with def.samples set (0: the default). */
+mr_render *fx_render_samples(mr_render_backend b, const fx_scene *s, int samples);
 /* Draws and reads back; the frame is malloc'ed (3 FX_W FX_H). */
 uint8_t *fx_draw(mr_render *r, const fx_scene *s);
 
