@@ -71,7 +71,7 @@ mr_render_backend mr_render_backend_of(const mr_render *r);
 /* The GL_RENDERER and GL_VERSION strings, for logs. */
 const char *mr_render_gl_description(const mr_render *r);
 /* What the frame is drawn with, for logs: "1 sample, edges smoothed,
- * shadow map 1024 x 1024, 4-read filter". */
+ * shadow map 1024 x 1024, 1-read filter". */
 const char *mr_render_quality(const mr_render *r);
 /* True when GL draws in software (GL_RENDERER names llvmpipe, softpipe
  * or swrast): the defaults then choose what is cheap there. */

@@ -138,7 +138,7 @@ typedef struct mr_lights_def {
    * smallest power of two at least half its longer side, 256 to 2048. */
   int shadow_size;
   /* Reads of the shadow map a pixel (each a bilinear 2 x 2 compare): 1, 4
-   * or 9; 0 (default): 9 where a GPU draws, 4 in software. */
+   * or 9; 0 (default): 9 where a GPU draws, 1 in software. */
   int shadow_filter;
   mr_spot_def spots[MR_STAGE_MAX_SPOTS];
   int n_spots;

@@ -70,13 +70,15 @@ static void describe(mr_render *r) {
 /* The defaults follow where GL draws. In software (the profile of one
  * llvmpipe frame at 1280x720: 4x multisampling took over 40 % of it, the
  * 3 x 3 shadow filter a fifth) a frame has one sample and a post pass
- * smooths its edges, and the shadow filter reads the map 4 times; on a
+ * smooths its edges, and the shadow filter reads the map once (one
+ * bilinear 2 x 2 compare: the map fitted to the casters has texels
+ * smaller than the frame's pixels, so more reads change little); on a
  * GPU, 4 samples and 9 reads. What the caller or the scene asks wins. */
 static void choose_quality(mr_render *r, const mr_render_def *def) {
   r->smooth = def->samples <= 0 && r->software;
   r->samples = def->samples > 0 ? def->samples : (r->software ? 1 : 4);
   int taps = r->stage.lights.shadow_filter;
-  r->shadow_taps = taps == 1 || taps == 4 || taps == 9 ? taps : (r->software ? 4 : 9);
+  r->shadow_taps = taps == 1 || taps == 4 || taps == 9 ? taps : (r->software ? 1 : 9);
 }
 
 static void describe_quality(mr_render *r) {

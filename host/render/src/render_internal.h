@@ -79,6 +79,7 @@ struct mr_render {
   /* Programs (shaders.c). */
   GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text, prog_smooth;
   GLuint prog_mesh_skin, prog_depth_skin; /* 0 when the stage has no freeform model */
+  GLuint prog_scenery;                    /* the floor and backdrop's lit program */
   /* The sun's shadow map (shadow.c). */
   GLuint shadow_fbo, shadow_tex;
   int shadow_size;

@@ -79,8 +79,10 @@ static void set_model(mr_render *r, GLuint p, mat4 m) {
   mr_uniform_m4(r, p, "u_normal", n);
 }
 
+/* The floor and the backdrop, with the scenery program (in use), whose
+ * shader takes their roughness as given (shader_src.c). */
 static void draw_scenery(mr_render *r) {
-  GLuint p = r->prog_mesh;
+  GLuint p = r->prog_scenery;
   const mr_stage_def *s = &r->stage;
   mat4 id = GLM_MAT4_IDENTITY_INIT;
   set_model(r, p, id);
@@ -152,8 +154,9 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
     r->gl.UseProgram(r->prog_mesh_skin);
     set_lights(r, r->prog_mesh_skin, f);
     draw_skins(r, list, r->prog_mesh_skin, true, false);
-    r->gl.UseProgram(r->prog_mesh);
   }
+  r->gl.UseProgram(r->prog_scenery);
+  set_lights(r, r->prog_scenery, f);
   draw_scenery(r);
   r->gl.UseProgram(0);
 }

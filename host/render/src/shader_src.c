@@ -63,8 +63,12 @@ static const char mesh_vs_body[] =
  * 1 / (1 + k d^2) falloff. Both counts are constants of the source
  * (mr_src_mesh_fs_make): software GL reads a uniform array at a varying
  * index lane by lane, and runs both sides of every branch, so a loop up
- * to a uniform count costs several times the unrolled one. The floor's
- * checkerboard is worked out here from world x and z. */
+ * to a uniform count costs several times the unrolled one. MR_SCENERY:
+ * the floor and the backdrop, untextured, of roughness 0.9, whose
+ * exponent 2 / 0.81 - 2 is clamped to 1, so the lobe is the cosine
+ * itself and the compiler drops the pow (scene.c draws them with that
+ * roughness). The floor's checkerboard is worked out here from world x
+ * and z. */
 static const char mesh_fs_body[] = MR_GLSL_SRGB
     "in vec3 v_world, v_normal;\n"
     "in vec2 v_uv;\n"
@@ -107,7 +111,9 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "}\n"
     "void main() {\n"
     "  vec3 base = u_color.rgb;\n"
+    "#if !MR_SCENERY\n"
     "  if (u_textured != 0) base *= texture(u_texture, v_uv).rgb;\n"
+    "#endif\n"
     "  if (u_checker != 0) {\n"
     "    vec2 c = floor(v_world.xz / u_cell);\n"
     "    if (mod(c.x + c.y, 2.0) >= 1.0) base = u_color2;\n"
@@ -115,8 +121,12 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  vec3 n = normalize(v_normal);\n"
     "  if (!gl_FrontFacing) n = -n;\n"
     "  vec3 v = normalize(u_eye - v_world);\n"
+    "#if MR_SCENERY\n"
+    "  float shin = 1.0;\n"
+    "#else\n"
     "  float r = clamp(u_roughness, 0.05, 1.0);\n"
     "  float shin = clamp(2.0 / (r * r) - 2.0, 1.0, 1024.0);\n"
+    "#endif\n"
     "  vec3 f0 = mix(vec3(0.04), base, u_metallic);\n"
     "  vec3 c = u_ambient * base + u_emissive;\n"
     "  float ndl = max(dot(n, u_sun_dir), 0.0);\n"
@@ -138,9 +148,10 @@ int mr_src_mesh_vs_make(char *buf, size_t size, int skinned) {
   return n > 0 && (size_t)n < size ? 0 : -1;
 }
 
-int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps) {
-  int n = snprintf(buf, size, "%s#define MR_N_SPOTS %d\n#define MR_SHADOW_TAPS %d\n%s",
-                   MR_GLSL_VERSION, n_spots, shadow_taps, mesh_fs_body);
+int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps, int scenery) {
+  int n = snprintf(buf, size,
+                   "%s#define MR_N_SPOTS %d\n#define MR_SHADOW_TAPS %d\n#define MR_SCENERY %d\n%s",
+                   MR_GLSL_VERSION, n_spots, shadow_taps, scenery ? 1 : 0, mesh_fs_body);
   return n > 0 && (size_t)n < size ? 0 : -1;
 }
 

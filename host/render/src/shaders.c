@@ -54,20 +54,24 @@ static bool has_skins(const mr_stage_def *s) {
 }
 
 /* The mesh programs, lit and shadow, each for items and (when the stage
- * has a freeform model) for skins. The stage's spot count and the shadow
+ * has a freeform model) for skins, and the lit one for the scenery. The stage's spot count and the shadow
  * filter are constants of the lit shader, as skinning is of the vertex
  * shader (shader_src.c says why). */
 static int mesh_programs(mr_render *r, char *msg, size_t msg_size) {
   int n_spots = r->stage.lights.n_spots < 8 ? r->stage.lights.n_spots : 8;
-  char vs[4096], vs_skin[4096], fs[8192];
+  n_spots = n_spots > 0 ? n_spots : 0;
+  char vs[4096], vs_skin[4096], fs[8192], fs_scenery[8192];
   if (mr_src_mesh_vs_make(vs, sizeof vs, 0) != 0 ||
       mr_src_mesh_vs_make(vs_skin, sizeof vs_skin, 1) != 0 ||
-      mr_src_mesh_fs_make(fs, sizeof fs, n_spots > 0 ? n_spots : 0, r->shadow_taps) != 0) {
+      mr_src_mesh_fs_make(fs, sizeof fs, n_spots, r->shadow_taps, 0) != 0 ||
+      mr_src_mesh_fs_make(fs_scenery, sizeof fs_scenery, n_spots, r->shadow_taps, 1) != 0) {
     snprintf(msg, msg_size, "a mesh shader's source does not fit its buffer");
     return -1;
   }
   r->prog_mesh = program(r, vs, fs, "mesh", msg, msg_size);
   if (!r->prog_mesh) return -1;
+  r->prog_scenery = program(r, vs, fs_scenery, "scenery", msg, msg_size);
+  if (!r->prog_scenery) return -1;
   r->prog_depth = program(r, vs, mr_src_depth_fs, "shadow", msg, msg_size);
   if (!r->prog_depth) return -1;
   if (!has_skins(&r->stage)) return 0;
@@ -91,8 +95,9 @@ int mr_shaders_create(mr_render *r, char *msg, size_t msg_size) {
 }
 
 void mr_shaders_destroy(mr_render *r) {
-  GLuint *progs[] = { &r->prog_mesh, &r->prog_depth, &r->prog_mesh_skin, &r->prog_depth_skin,
-                      &r->prog_line, &r->prog_star,  &r->prog_text,      &r->prog_smooth };
+  GLuint *progs[] = { &r->prog_mesh,      &r->prog_scenery,    &r->prog_depth,
+                      &r->prog_mesh_skin, &r->prog_depth_skin, &r->prog_line,
+                      &r->prog_star,      &r->prog_text,       &r->prog_smooth };
   for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) {
     if (*progs[i]) r->gl.DeleteProgram(*progs[i]);
     *progs[i] = 0;
