@@ -2,7 +2,8 @@
  * OSMesa and EGL (both Mesa's llvmpipe here): one sample and a post pass
  * that smooths the edges, unless samples are asked for; a shadow map that
  * is drawn again when a caster moves; the stage's spots, however many,
- * each lighting its cone. */
+ * each lighting its cone; built-in shapes culled from the outside, even
+ * mirrored. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -200,12 +201,37 @@ static void test_each_of_three_spots_lights_its_own_cone(void **state) {
   for (size_t i = 0; i < 2; i++) spots(backends[i]);
 }
 
+/* A sphere (a built-in shape, whose back faces are culled) scaled by -1
+ * in x is the same sphere: its mirrored winding turns the culling round,
+ * and the frame is the unmirrored one's. */
+static void mirrored(mr_render_backend b) {
+  fx_scene s;
+  fx_scene_init(&s);
+  mr_render *r = fx_render(b, &s);
+  uint8_t *plain = fx_draw(r, &s);
+  s.items[0].scale[0] = -s.items[0].scale[0];
+  uint8_t *mirror = fx_draw(r, &s);
+  fx_save("software_mirrored", mirror);
+  mr_render_destroy(r);
+  size_t n = differ(plain, mirror);
+  if (n > 20)
+    fail_msg("%s: the mirrored sphere differs on %zu pixels", mr_render_backend_name(b), n);
+  free(plain);
+  free(mirror);
+}
+
+static void test_a_mirrored_shape_is_drawn_from_the_outside(void **state) {
+  (void)state;
+  for (size_t i = 0; i < 2; i++) mirrored(backends[i]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_in_software_a_frame_has_one_sample_and_only_its_edges_are_smoothed),
     cmocka_unit_test(test_samples_asked_for_are_drawn_in_software_too),
     cmocka_unit_test(test_the_shadow_map_is_drawn_again_when_a_caster_moves),
     cmocka_unit_test(test_each_of_three_spots_lights_its_own_cone),
+    cmocka_unit_test(test_a_mirrored_shape_is_drawn_from_the_outside),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

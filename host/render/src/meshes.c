@@ -129,6 +129,7 @@ static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
   }
   gm->n_meshes = model->n_meshes;
   gm->skinned = def->display == MR_DISPLAY_FREEFORM;
+  gm->closed = def->shape != MR_SHAPE_FILE;
   gm->cast_shadow = def->cast_shadow;
   gm->n_bones = def->n_bones;
   gm->n_materials = def->n_materials;

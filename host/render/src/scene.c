@@ -8,6 +8,12 @@
 
 enum { UNIT_TEXTURE = 0, UNIT_SHADOW = 1, UNIT_BONES = 2 };
 
+static int mirrors(mat4 m) {
+  mat3 m3;
+  glm_mat4_pick3(m, m3);
+  return glm_mat3_det(m3) < 0;
+}
+
 static void set_material(mr_render *r, GLuint p, const mr_material_def *m,
                          const mr_gpu_mesh *mesh) {
   mr_uniform_v4(r, p, "u_color", m->base_color);
@@ -70,13 +76,15 @@ static void set_lights(mr_render *r, GLuint p, const mr_frame *f) {
 }
 
 /* An item's model matrix, and the inverse transpose that turns its
- * normals (links stretch along y). */
+ * normals (links stretch along y). A matrix that mirrors turns the
+ * winding round: what GL calls a back face is then the outside. */
 static void set_model(mr_render *r, GLuint p, mat4 m) {
   mat4 n;
   glm_mat4_inv(m, n);
   glm_mat4_transpose(n);
   mr_uniform_m4(r, p, "u_model", m);
   mr_uniform_m4(r, p, "u_normal", n);
+  mr_uniform_i(r, p, "u_mirrored", mirrors(m));
 }
 
 /* The floor and the backdrop, with the scenery program (in use), whose
@@ -105,6 +113,21 @@ static void draw_scenery(mr_render *r) {
   }
 }
 
+/* A built-in shape is closed and wound counter-clockwise seen from
+ * outside, so its back faces, hidden behind its front, are culled before
+ * they are set up and rasterised (software GL spends a third of a small
+ * frame on triangles). A model matrix that mirrors turns the winding
+ * round. Model files do not agree on winding, and skins and the scenery
+ * are seen from both sides: never culled. */
+static void cull(mr_render *r, const mr_gpu_model *gm, mat4 m) {
+  if (!gm->closed) {
+    r->gl.Disable(GL_CULL_FACE);
+    return;
+  }
+  r->gl.Enable(GL_CULL_FACE);
+  r->gl.CullFace(mirrors(m) ? GL_FRONT : GL_BACK);
+}
+
 /* The items (not skins), with prog; lit sets each mesh's material, and
  * casters draws only the models that cast. */
 static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit,
@@ -117,11 +140,14 @@ static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool
     mat4 m;
     mr_item_matrix(it, m);
     set_model(r, prog, m);
+    cull(r, gm, m);
     for (size_t k = 0; k < gm->n_meshes; k++) {
       if (lit) set_material(r, prog, worn(gm, &gm->meshes[k], it->material), &gm->meshes[k]);
       mr_mesh_draw(r, &gm->meshes[k]);
     }
   }
+  r->gl.Disable(GL_CULL_FACE);
+  r->gl.CullFace(GL_BACK);
 }
 
 /* The skins, with prog (a skinned program, in use). */
