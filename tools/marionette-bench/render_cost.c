@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <valgrind/callgrind.h>
+
 #include "bench.h"
 #include "mr_render.h"
 #include "mr_scene_world.h"
@@ -103,6 +105,46 @@ static void one_scene(bench *b, const char *rel, int frames, int w, int h) {
   }
   bench_drawing_close(&d.draw);
   mr_scene_free(&sc);
+}
+
+/* One humanoid frame at w x h for callgrind (`--count render`): two
+ * frames first (the shaders are compiled at their first draw), then one
+ * counted, with a particle nudged each frame so the shadow map is drawn
+ * again, as in a show; one dump named for the size. */
+static int count_frame(const mr_scene *sc, int w, int h) {
+  bench_drawing d;
+  char msg[1100] = "";
+  if (bench_drawing_open(sc, w, h, &d, msg, sizeof msg) != 0) {
+    fprintf(stderr, "marionette-bench: %s\n", msg[0] ? msg : "the renderer failed");
+    bench_drawing_close(&d);
+    return -1;
+  }
+  mr_scene_error err;
+  size_t n = 0;
+  double *xyz = mr_scene_start_positions(sc, &n, &err);
+  int rc = xyz ? 0 : -1;
+  for (int f = 0; rc == 0 && f < 3; f++) {
+    xyz[0] += f % 2 ? 1e-3 : -1e-3;
+    if (f == 2) CALLGRIND_START_INSTRUMENTATION;
+    rc = bench_drawing_draw(&d, xyz, (int)n);
+    if (f == 2) CALLGRIND_STOP_INSTRUMENTATION;
+  }
+  char name[64];
+  snprintf(name, sizeof name, "render %dx%d", w, h);
+  CALLGRIND_DUMP_STATS_AT(name);
+  free(xyz);
+  bench_drawing_close(&d);
+  return rc;
+}
+
+int bench_count_render(bench *b) {
+  /* llvmpipe's own threads would run outside the count's order. */
+  setenv("LP_NUM_THREADS", "0", 1);
+  mr_scene sc;
+  if (bench_load(b, "host/scenes/humanoid.yaml", &sc) != 0) return -1;
+  int rc = count_frame(&sc, 640, 360) == 0 && count_frame(&sc, 1280, 720) == 0 ? 0 : -1;
+  mr_scene_free(&sc);
+  return rc;
 }
 
 int bench_render(bench *b) {
