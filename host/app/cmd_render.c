@@ -305,6 +305,7 @@ static void summary(const job *j, const mr_scene *scene, const mr_frames_out_sum
   printf("backend: %s (%s)\n", mr_render_backend_name(mr_render_backend_of(j->sv.render)),
          mr_render_gl_description(j->sv.render));
   printf("size: %dx%d\n", j->sv.width, j->sv.height);
+  printf("quality: %s\n", mr_render_quality(j->sv.render));
   if (a->has_frame) {
     printf("frame: t %.3f s\n", j->last_t);
     printf("picture: %s\n", j->frame_path);

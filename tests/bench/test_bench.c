@@ -48,7 +48,7 @@ static void count_runs_are_fixed_work(void **state) {
   o = run("--count", "nothing", NULL, NULL);
   assert_int_equal(o.status, 2); /* bad usage */
   assert_non_null(strstr(o.err, "'nothing'"));
-  assert_non_null(strstr(o.err, "puppet, fig10, decode or sweep"));
+  assert_non_null(strstr(o.err, "puppet, fig10, decode, sweep or render"));
   assert_int_equal(strlen(o.err), strcspn(o.err, "\n") + 1); /* one line */
   tt_output_free(&o);
 }

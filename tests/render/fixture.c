@@ -48,13 +48,22 @@ int fx_add(fx_scene *s, mr_shape shape, const float rgb[3], double x, double y, 
 }
 
 mr_render *fx_render(mr_render_backend b, const fx_scene *s) {
-  return fx_render_gl(b, MR_RENDER_GL_AUTO, s);
+  return fx_render_with(b, MR_RENDER_GL_AUTO, s, 0);
 }
 
 mr_render *fx_render_gl(mr_render_backend b, mr_render_gl gl, const fx_scene *s) {
+  return fx_render_with(b, gl, s, 0);
+}
+
+mr_render *fx_render_samples(mr_render_backend b, const fx_scene *s, int samples) {
+  return fx_render_with(b, MR_RENDER_GL_AUTO, s, samples);
+}
+
+mr_render *fx_render_with(mr_render_backend b, mr_render_gl gl, const fx_scene *s, int samples) {
   mr_render_def def = mr_default_render_def();
   def.backend = b;
   def.gl = gl;
+  def.samples = samples;
   def.headless = true;
   def.width = FX_W;
   def.height = FX_H;

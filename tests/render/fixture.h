@@ -28,8 +28,11 @@ int fx_add(fx_scene *s, mr_shape shape, const float rgb[3], double x, double y, 
 
 /* A renderer of backend b for s's stage at FX_W x FX_H (asserts it starts). */
 mr_render *fx_render(mr_render_backend b, const fx_scene *s);
-/* The same on the OpenGL gl asks for. */
+/* The same on the OpenGL gl asks for, with def.samples set (0: the
+ * default). */
 mr_render *fx_render_gl(mr_render_backend b, mr_render_gl gl, const fx_scene *s);
+mr_render *fx_render_samples(mr_render_backend b, const fx_scene *s, int samples);
+mr_render *fx_render_with(mr_render_backend b, mr_render_gl gl, const fx_scene *s, int samples);
 /* Draws and reads back; the frame is malloc'ed (3 FX_W FX_H). */
 uint8_t *fx_draw(mr_render *r, const fx_scene *s);
 

@@ -97,7 +97,8 @@ static const char full[] = PHYS
     "  - {name: m_skin, shape: sphere, display: freeform, bones: [a, b, c, d], influences: 2}\n"
     "lights:\n"
     "  ambient: [0.1, 0.2, 0.3]\n"
-    "  sun: {color: [1, 0.5, 0.25], intensity: 2, shadows: false, shadow_size: 1024}\n"
+    "  sun: {color: [1, 0.5, 0.25], intensity: 2, shadows: false, shadow_size: 1024, "
+    "shadow_filter: 9}\n"
     "  spots:\n"
     "    - {position: [1, 2.5, 1], target: [0, 0.5, 0], angle: 30, color: [1, 1, 0], "
     "intensity: 3}\n"
@@ -159,7 +160,7 @@ static void every_stage_key_is_read_back(void **state) {
   assert_true(m[5].particles[0] == 3 && fabs(m[5].scale[1] - 0.2) < 1e-12);
   const mr_lights_def *l = &d->lights;
   assert_true(l->ambient[2] == 0.3f && l->sun_color[2] == 0.25f && l->sun_intensity == 2);
-  assert_true(!l->shadows && l->shadow_size == 1024);
+  assert_true(!l->shadows && l->shadow_size == 1024 && l->shadow_filter == 9);
   assert_int_equal(l->n_spots, 1);
   assert_true(l->spots[0].angle_deg == 30 && l->spots[0].intensity == 3 &&
               l->spots[0].color[2] == 0 && l->spots[0].position[1] == 2.5 &&
@@ -218,6 +219,8 @@ static void a_scene_without_stage_sections_still_shows_every_particle_and_link(v
   assert_true(d->orbit_distance > 2 && d->orbit_distance < 10);
   assert_int_equal(d->n_cameras, 0);
   assert_true(d->width == 1280 && d->height == 720);
+  /* The shadow map's size and filter are the renderer's to choose. */
+  assert_true(d->lights.shadows && d->lights.shadow_size == 0 && d->lights.shadow_filter == 0);
   stage_accepts(&s);
   mr_scene_free(&s);
   /* models: [] shows none; the rigging stays. */
@@ -333,6 +336,10 @@ static void mistakes_are_refused_at_their_place(void **state) {
       "t.yaml:7:19: expected [x, y, z] (three numbers) for ambient, got '0.5'" },
     { SMALL "lights: {sun: {shadow_size: 100}}\n",
       "t.yaml:7:29: expected shadow_size between 256 and 8192, got 100" },
+    { SMALL "lights: {sun: {shadow_filter: 2}}\n",
+      "t.yaml:7:31: expected shadow_filter 1, 4 or 9, got 2" },
+    { SMALL "lights: {sun: {shadow_filter: 16}}\n",
+      "t.yaml:7:31: expected shadow_filter between 1 and 9, got 16" },
     { SMALL "lights: {spots: [{angle: 90}]}\n",
       "t.yaml:7:26: expected angle between 0.1 and 89 °, got 90" },
     { SMALL "stage: {size: [10, 480]}\n",

@@ -19,7 +19,8 @@ static void defaults_are_the_documented_ones(void **state) {
   assert_int_equal(d.width, 1280);
   assert_int_equal(d.height, 720);
   assert_true(d.time_of_day == 0.5 && d.floor && d.backdrop && d.stars);
-  assert_true(d.lights.shadows && d.lights.shadow_size == 2048);
+  /* 0: the renderer sizes the map to the frame and picks the filter. */
+  assert_true(d.lights.shadows && d.lights.shadow_size == 0 && d.lights.shadow_filter == 0);
   mr_model_def m = mr_default_model_def();
   assert_int_equal(m.influences, 4);
   assert_true(m.cast_shadow && m.scale[1] == 1 && m.place.orientation[0] == 1);

@@ -95,6 +95,9 @@ int bench_render(bench *b);
 /* The fixed runs `make bench-count` counts under callgrind: "puppet"
  * (host/scenes/puppet.yaml for 10 s) or "decode" (10 000 SAMPLE frames). */
 int bench_count_run(bench *b, const char *which);
+/* --count render: one humanoid frame at 640x360 and one at 1280x720, one
+ * llvmpipe thread, each its own callgrind dump (render_cost.c). */
+int bench_count_render(bench *b);
 /* `make bench-count`'s sweep: the quick settings on every puppet, each run
  * its own callgrind dump, a CSV line per run on stdout (sweep.c). */
 int bench_sweep_count(bench *b);

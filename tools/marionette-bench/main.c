@@ -12,7 +12,7 @@
 
 static void usage(FILE *f) {
   fprintf(f, "usage: marionette-bench [--quick] [--out DIR] [--only LIST] [--root DIR]\n"
-             "       marionette-bench --count puppet|fig10|decode|sweep\n"
+             "       marionette-bench --count puppet|fig10|decode|sweep|render\n"
              "\n"
              "Measures what accuracy costs in time and prints the figures, each run stamped\n"
              "with the machine (kernel, CPU model, cores). Sections, in order:\n"
@@ -40,8 +40,10 @@ static void usage(FILE *f) {
              "  --count RUN   one fixed run for `make bench-count` to count under callgrind\n"
              "                (--instr-atstart=no): puppet (puppet.yaml for 10 s), fig10 (the\n"
              "                stick figure on the Fig. 10 track for 10 s), decode\n"
-             "                (10 000 SAMPLE frames), or sweep (the quick sweep's settings on\n"
-             "                every puppet, 3 s each, one dump per run, a CSV line per run)\n"
+             "                (10 000 SAMPLE frames), sweep (the quick sweep's settings on\n"
+             "                every puppet, 3 s each, one dump per run, a CSV line per run),\n"
+             "                or render (one humanoid frame at 640x360, then at 1280x720, on\n"
+             "                one llvmpipe thread, a dump each)\n"
              "  --help        this text\n"
              "\n"
              "Progress goes to stderr, figures to stdout and DIR/summary.txt. The CSV\n"
@@ -128,14 +130,16 @@ int main(int argc, char **argv) {
   }
   /* Bad values are bad usage, like bad options: exit 2 before any work. */
   if (count != NULL && strcmp(count, "puppet") != 0 && strcmp(count, "decode") != 0 &&
-      strcmp(count, "fig10") != 0 && strcmp(count, "sweep") != 0) {
-    fprintf(stderr, "marionette-bench: --count expects puppet, fig10, decode or sweep, got '%s'\n",
+      strcmp(count, "fig10") != 0 && strcmp(count, "sweep") != 0 && strcmp(count, "render") != 0) {
+    fprintf(stderr,
+            "marionette-bench: --count expects puppet, fig10, decode, sweep or render, got '%s'\n",
             count);
     return 2;
   }
   if (only != NULL && !only_is_valid(only)) return 2;
   bench_machine(b.machine, sizeof b.machine);
   if (count != NULL && strcmp(count, "sweep") == 0) return bench_sweep_count(&b) == 0 ? 0 : 1;
+  if (count != NULL && strcmp(count, "render") == 0) return bench_count_render(&b) == 0 ? 0 : 1;
   if (count != NULL) return bench_count_run(&b, count) == 0 ? 0 : 1;
   if (make_dir(b.out) != 0) return 1;
   b.summary = bench_open(&b, "summary.txt");

@@ -1,9 +1,9 @@
 /* mr_render: the stage drawn with one GL path, on OpenGL 3.3 core or
  * OpenGL ES 3.0.
  *
- * Every frame is drawn into the renderer's own multisampled framebuffer
- * object, resolved, then shown in a window (SDL2) or read back (OSMesa,
- * EGL surfaceless). The renderer takes an mr_stage_def at create (its
+ * Every frame is drawn into the renderer's own framebuffer object,
+ * multisampled and resolved (or, in software, smoothed by a post pass),
+ * then shown in a window (SDL2) or read back (OSMesa, EGL surfaceless). The renderer takes an mr_stage_def at create (its
  * models are loaded then) and, each frame, an mr_draw_list of poses and an
  * mr_render_view; it knows nothing of physics. No SDL or GL type appears
  * here. Libraries never print: errors fill msg. */
@@ -47,10 +47,14 @@ int mr_render_gl_parse(const char *name, mr_render_gl *out);
 typedef struct mr_render_def {
   uint32_t cookie; /* MR_RENDER_COOKIE, set by mr_default_render_def() */
   mr_render_backend backend;
-  mr_render_gl gl;       /* default AUTO */
-  bool headless;         /* AUTO picks only headless backends */
-  int width, height;     /* <= 0: the stage's size */
-  int samples;           /* multisampling, default 4; 1: none */
+  mr_render_gl gl;   /* default AUTO */
+  bool headless;     /* AUTO picks only headless backends */
+  int width, height; /* <= 0: the stage's size */
+  /* Multisampling, samples a pixel. 0 (default): 4 where a GPU draws; in
+   * software (Mesa's llvmpipe or softpipe), where it costs most of a
+   * frame, 1, and the edges are smoothed by a post pass instead. N >= 1:
+   * N samples (1: none), and no post pass. */
+  int samples;
   bool fullscreen;       /* window only */
   bool vsync;            /* window only, default true */
   const char *title;     /* window only */
@@ -85,6 +89,12 @@ mr_render_gl mr_render_gl_of(const mr_render *r);
 /* It, short, with the context's version: "OpenGL 4.5 core" or
  * "OpenGL ES 3.2", for a summary line. */
 const char *mr_render_gl_version(const mr_render *r);
+/* What the frame is drawn with, for logs: "1 sample, edges smoothed,
+ * shadow map 1024 x 1024, 1-read filter". */
+const char *mr_render_quality(const mr_render *r);
+/* True when GL draws in software (GL_RENDERER names llvmpipe, softpipe
+ * or swrast): the defaults then choose what is cheap there. */
+bool mr_render_is_software(const mr_render *r);
 void mr_render_size(const mr_render *r, int *width, int *height);
 
 /* How a frame is looked at. */

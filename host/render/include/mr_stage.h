@@ -134,7 +134,12 @@ typedef struct mr_lights_def {
   float sun_color[3];   /* default (1, 0.96, 0.9) */
   double sun_intensity; /* default 1 */
   bool shadows;         /* the sun casts shadows through a shadow map; default true */
-  int shadow_size;      /* shadow map texels a side, default 2048 */
+  /* Shadow map texels a side; 0 (default): sized to the frame, the
+   * smallest power of two at least half its longer side, 256 to 2048. */
+  int shadow_size;
+  /* Reads of the shadow map a pixel (each a bilinear 2 x 2 compare): 1, 4
+   * or 9; 0 (default): 9 where a GPU draws, 1 in software. */
+  int shadow_filter;
   mr_spot_def spots[MR_STAGE_MAX_SPOTS];
   int n_spots;
 } mr_lights_def;

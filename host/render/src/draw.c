@@ -1,6 +1,7 @@
-/* One frame, in the order it is drawn: the sun's shadow map, the sky (the
- * clear colour), the lit scenery and models, the stars, the rigging, the
- * on-screen display; then the multisampled frame is resolved. */
+/* One frame, in the order it is drawn: the sun's shadow map (when it has
+ * moved), the sky (the clear colour), the lit scenery and models, the
+ * stars, the rigging; then the frame is resolved (or its edges smoothed)
+ * and the on-screen display drawn over it. */
 #include <math.h>
 
 #include "render_internal.h"
@@ -65,9 +66,11 @@ mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list,
   mr_scene_draw_lit(r, list, &f);
   mr_sky_draw_stars(r, &f);
   if (view->show_rigging && list) mr_lines_draw(r, list->lines, list->n_lines, &f);
-  mr_text_draw(r, view->osd, view->n_osd);
   gl->Disable(GL_DEPTH_TEST);
+  /* The text goes on after the resolve (or the smoothing), sharp. */
   mr_fbo_resolve(r);
+  mr_text_draw(r, view->osd, view->n_osd);
+  gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
   r->drawn = true;
   return gl->GetError() == GL_NO_ERROR ? MR_RENDER_OK : MR_RENDER_ERR_GL;
 }

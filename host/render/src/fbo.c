@@ -1,7 +1,9 @@
 /* The frame's own framebuffers: every backend draws into a multisampled
  * one (headless contexts have no multisampled default framebuffer), which
  * is resolved with glBlitFramebuffer into a single-sampled one, then read
- * back or blitted to the window. */
+ * back or blitted to the window. When the edges are smoothed instead
+ * (r->smooth, software GL), the first has one sample and its colour is a
+ * texture, which the post pass (post.c) reads into the second. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,19 +24,35 @@ int mr_fbo_create(mr_render *r, char *msg, size_t msg_size) {
   if (r->samples > max_samples) r->samples = max_samples;
   GLsizei samples = r->samples > 1 ? r->samples : 0;
 
-  gl->GenRenderbuffers(1, &r->rb_color_ms);
-  gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_color_ms);
-  gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, r->width, r->height);
+  if (r->smooth) {
+    gl->GenTextures(1, &r->tex_frame);
+    gl->BindTexture(GL_TEXTURE_2D, r->tex_frame);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, r->width, r->height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                   NULL);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->BindTexture(GL_TEXTURE_2D, 0);
+    gl->GenVertexArrays(1, &r->post_vao);
+  } else {
+    gl->GenRenderbuffers(1, &r->rb_color_ms);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_color_ms);
+    gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, r->width, r->height);
+  }
   gl->GenRenderbuffers(1, &r->rb_depth_ms);
   gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_depth_ms);
   gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, r->width,
                                      r->height);
   gl->GenFramebuffers(1, &r->fbo_ms);
   gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_ms);
-  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                              r->rb_color_ms);
+  if (r->smooth)
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->tex_frame, 0);
+  else
+    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                r->rb_color_ms);
   gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->rb_depth_ms);
-  if (fbo_check(r, "multisampled", msg, msg_size) != 0) return -1;
+  if (fbo_check(r, r->smooth ? "drawing" : "multisampled", msg, msg_size) != 0) return -1;
 
   gl->GenRenderbuffers(1, &r->rb_color_out);
   gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_color_out);
@@ -55,7 +73,10 @@ void mr_fbo_destroy(mr_render *r) {
   if (r->rb_color_ms) gl->DeleteRenderbuffers(1, &r->rb_color_ms);
   if (r->rb_depth_ms) gl->DeleteRenderbuffers(1, &r->rb_depth_ms);
   if (r->rb_color_out) gl->DeleteRenderbuffers(1, &r->rb_color_out);
+  if (r->tex_frame) gl->DeleteTextures(1, &r->tex_frame);
+  if (r->post_vao) gl->DeleteVertexArrays(1, &r->post_vao);
   r->fbo_ms = r->fbo_out = r->rb_color_ms = r->rb_depth_ms = r->rb_color_out = 0;
+  r->tex_frame = r->post_vao = 0;
 }
 
 void mr_fbo_bind_draw(mr_render *r) {
@@ -63,13 +84,39 @@ void mr_fbo_bind_draw(mr_render *r) {
   r->gl.Viewport(0, 0, r->width, r->height);
 }
 
+/* The post pass: the drawn frame's texture through the edge-smoothing
+ * shader into the output framebuffer. */
+static void smooth(mr_render *r) {
+  const mr_gl *gl = &r->gl;
+  gl->Disable(GL_DEPTH_TEST);
+  gl->Disable(GL_BLEND);
+  gl->UseProgram(r->prog_smooth);
+  mr_uniform_i(r, r->prog_smooth, "u_frame", 0);
+  gl->Uniform2f(gl->GetUniformLocation(r->prog_smooth, "u_texel"), 1.0f / (float)r->width,
+                1.0f / (float)r->height);
+  gl->ActiveTexture(GL_TEXTURE0);
+  gl->BindTexture(GL_TEXTURE_2D, r->tex_frame);
+  gl->BindVertexArray(r->post_vao);
+  gl->DrawArrays(GL_TRIANGLES, 0, 3);
+  gl->BindVertexArray(0);
+  gl->BindTexture(GL_TEXTURE_2D, 0);
+  gl->UseProgram(0);
+}
+
 void mr_fbo_resolve(mr_render *r) {
   const mr_gl *gl = &r->gl;
-  gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
-  gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_out);
-  gl->BlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT,
-                      GL_NEAREST);
-  gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (r->smooth) {
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_out);
+    gl->Viewport(0, 0, r->width, r->height);
+    smooth(r);
+  } else {
+    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
+    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_out);
+    gl->BlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT,
+                        GL_NEAREST);
+  }
+  gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_out);
+  gl->Viewport(0, 0, r->width, r->height);
 }
 
 /* Reads the bound read framebuffer's w x h as RGB, top row first (GL's

@@ -37,6 +37,8 @@ void mr_gl_describe(mr_render *r) {
   r->gl.GetIntegerv(GL_MINOR_VERSION, &minor);
   snprintf(r->gl_version, sizeof r->gl_version, r->gles ? "OpenGL ES %d.%d" : "OpenGL %d.%d core",
            (int)major, (int)minor);
+  r->software = renderer && (strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") ||
+                             strstr(renderer, "swrast"));
 }
 
 mr_render_gl mr_render_gl_of(const mr_render *r) {

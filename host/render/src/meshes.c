@@ -102,6 +102,24 @@ static int skin_mesh(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m, const mr_mo
   return rc;
 }
 
+/* The box that holds every vertex: the shadow's box is fitted to the
+ * casters' (shadow.c). An empty model's is the origin. */
+static void bounds(mr_gpu_model *gm, const mr_model *model) {
+  bool any = false;
+  for (int k = 0; k < 3; k++) gm->lo[k] = gm->hi[k] = 0;
+  for (size_t i = 0; i < model->n_meshes; i++) {
+    const mr_mesh *m = &model->meshes[i];
+    for (size_t v = 0; v < m->n_vertices; v++) {
+      for (int k = 0; k < 3; k++) {
+        float x = m->positions[3 * v + (size_t)k];
+        if (!any || x < gm->lo[k]) gm->lo[k] = x;
+        if (!any || x > gm->hi[k]) gm->hi[k] = x;
+      }
+      any = true;
+    }
+  }
+}
+
 static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
                         const mr_model_def *def, char *why, size_t why_size) {
   gm->meshes = calloc(model->n_meshes ? model->n_meshes : 1, sizeof *gm->meshes);
@@ -111,10 +129,12 @@ static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
   }
   gm->n_meshes = model->n_meshes;
   gm->skinned = def->display == MR_DISPLAY_FREEFORM;
+  gm->closed = def->shape != MR_SHAPE_FILE;
   gm->cast_shadow = def->cast_shadow;
   gm->n_bones = def->n_bones;
   gm->n_materials = def->n_materials;
   memcpy(gm->materials, def->materials, sizeof gm->materials);
+  bounds(gm, model);
   for (size_t i = 0; i < model->n_meshes; i++) {
     if (!gm->skinned) {
       upload_mesh(r, &gm->meshes[i], &model->meshes[i], NULL, NULL);
@@ -266,7 +286,7 @@ void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m) {
 
 /* mr_pose (double, w x y z) to a cglm matrix (float; cglm's quaternions
  * are x y z w). */
-static void pose_matrix(const mr_pose *p, mat4 out) {
+void mr_pose_matrix(const mr_pose *p, mat4 out) {
   versor q;
   glm_quat_init(q, (float)p->orientation[1], (float)p->orientation[2], (float)p->orientation[3],
                 (float)p->orientation[0]);
@@ -277,7 +297,7 @@ static void pose_matrix(const mr_pose *p, mat4 out) {
 }
 
 void mr_item_matrix(const mr_draw_item *item, mat4 out) {
-  pose_matrix(&item->pose, out);
+  mr_pose_matrix(&item->pose, out);
   vec3 s = { (float)item->scale[0], (float)item->scale[1], (float)item->scale[2] };
   glm_scale(out, s);
 }
@@ -287,7 +307,7 @@ void mr_bones_upload(mr_render *r, const mr_draw_skin *skin) {
   if (!data) return;
   for (int i = 0; i < skin->n_bones; i++) {
     mat4 m;
-    pose_matrix(&skin->bones[i], m);
+    mr_pose_matrix(&skin->bones[i], m);
     memcpy(data + 16 * i, m, sizeof m);
   }
   r->gl.BindTexture(GL_TEXTURE_2D, r->bone_tex);

@@ -47,7 +47,9 @@ typedef struct mr_gpu_model {
   mr_material_def materials[MR_STAGE_MAX_MATERIALS];
   int n_materials;
   bool skinned, cast_shadow;
+  bool closed; /* a built-in shape: closed, wound counter-clockwise outside */
   int n_bones;
+  float lo[3], hi[3]; /* the meshes' bounds, in the model's own axes (skins: at rest) */
 } mr_gpu_model;
 
 /* What one frame is drawn with, worked out once per draw (draw.c). */
@@ -68,16 +70,25 @@ struct mr_render {
   bool gles;           /* the context is OpenGL ES 3.x, set by the backend */
   char gl_version[32]; /* "OpenGL 4.5 core", "OpenGL ES 3.2" */
   int width, height, samples;
-  char description[256];
+  bool software;   /* GL draws in software (llvmpipe, softpipe, swrast) */
+  bool smooth;     /* one sample, and the edge-smoothing pass (post.c) */
+  int shadow_taps; /* the shadow filter's reads, 1, 4 or 9 */
+  char description[256], quality[128];
   mr_stage_def stage; /* a copy; its pointers are not used after create */
-  /* The frame's targets (fbo.c): multisampled, then resolved. */
-  GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out;
+  /* The frame's targets (fbo.c): multisampled, then resolved; or, when
+   * smoothed, one sample into a texture, then the post pass. */
+  GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out, tex_frame, post_vao;
   bool drawn;
   /* Programs (shaders.c). */
-  GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text;
+  GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text, prog_smooth;
+  GLuint prog_mesh_skin, prog_depth_skin; /* 0 when the stage has no freeform model */
+  GLuint prog_scenery;                    /* the floor and backdrop's lit program */
   /* The sun's shadow map (shadow.c). */
   GLuint shadow_fbo, shadow_tex;
   int shadow_size;
+  float *shadow_key; /* what the map was last drawn for (shadow.c) */
+  size_t shadow_key_len;
+  bool shadow_drawn;
   /* Meshes (meshes.c). */
   mr_gpu_model *models;
   size_t n_models;
@@ -96,6 +107,8 @@ void mr_gl_describe(mr_render *r);
 int mr_fbo_create(mr_render *r, char *msg, size_t msg_size);
 void mr_fbo_destroy(mr_render *r);
 void mr_fbo_bind_draw(mr_render *r);
+/* Resolves (or smooths) the frame into the output framebuffer, and
+ * leaves that bound for what is drawn over it (the on-screen text). */
 void mr_fbo_resolve(mr_render *r);
 int mr_fbo_read_rgb(mr_render *r, uint8_t *rgb); /* -1: out of memory */
 /* Window: the last frame blitted into the window's back buffer. */
@@ -118,12 +131,16 @@ void mr_meshes_destroy(mr_render *r);
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m);
 /* The model matrix of a draw item: scale, then pose. */
 void mr_item_matrix(const mr_draw_item *item, mat4 out);
+/* A pose as a matrix (a skin's bone: rest to now). */
+void mr_pose_matrix(const mr_pose *p, mat4 out);
 /* Uploads a skin's bone matrices into the bone texture. */
 void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 
 /* scene.c: the lit scene, and the shadow pass's casters. */
 void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f);
-void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, GLuint prog);
+/* The casters into the shadow map, with the shadow programs, seen
+ * through light_vp. */
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp);
 
 /* shadow.c */
 int mr_shadow_create(mr_render *r, char *msg, size_t msg_size);

@@ -8,8 +8,14 @@
 
 enum { UNIT_TEXTURE = 0, UNIT_SHADOW = 1, UNIT_BONES = 2 };
 
-static void set_material(mr_render *r, const mr_material_def *m, const mr_gpu_mesh *mesh) {
-  GLuint p = r->prog_mesh;
+static int mirrors(mat4 m) {
+  mat3 m3;
+  glm_mat4_pick3(m, m3);
+  return glm_mat3_det(m3) < 0;
+}
+
+static void set_material(mr_render *r, GLuint p, const mr_material_def *m,
+                         const mr_gpu_mesh *mesh) {
   mr_uniform_v4(r, p, "u_color", m->base_color);
   mr_uniform_f(r, p, "u_roughness", m->roughness);
   mr_uniform_f(r, p, "u_metallic", m->metallic);
@@ -28,15 +34,15 @@ static const mr_material_def *worn(const mr_gpu_model *gm, const mr_gpu_mesh *me
   return &mesh->material;
 }
 
-static void set_lights(mr_render *r, const mr_frame *f) {
-  GLuint p = r->prog_mesh;
+/* The camera and the lights, on the lit program p (in use). */
+static void set_lights(mr_render *r, GLuint p, const mr_frame *f) {
+  mr_uniform_m4(r, p, "u_view_proj", (vec4 *)f->view_proj);
   const mr_lights_def *L = &r->stage.lights;
   mr_uniform_v3(r, p, "u_eye", f->eye);
   mr_uniform_v3(r, p, "u_ambient", f->ambient);
   mr_uniform_v3(r, p, "u_sun_dir", f->sun_dir);
   mr_uniform_v3(r, p, "u_sun_color", f->sun_color);
   int n = L->n_spots < 8 ? L->n_spots : 8;
-  mr_uniform_i(r, p, "u_n_spots", n);
   for (int i = 0; i < n; i++) {
     const mr_spot_def *s = &L->spots[i];
     char name[32];
@@ -69,17 +75,30 @@ static void set_lights(mr_render *r, const mr_frame *f) {
   r->gl.BindTexture(GL_TEXTURE_2D, r->bone_tex);
 }
 
+/* An item's model matrix, and the inverse transpose that turns its
+ * normals (links stretch along y). A matrix that mirrors turns the
+ * winding round: what GL calls a back face is then the outside. */
+static void set_model(mr_render *r, GLuint p, mat4 m) {
+  mat4 n;
+  glm_mat4_inv(m, n);
+  glm_mat4_transpose(n);
+  mr_uniform_m4(r, p, "u_model", m);
+  mr_uniform_m4(r, p, "u_normal", n);
+  mr_uniform_i(r, p, "u_mirrored", mirrors(m));
+}
+
+/* The floor and the backdrop, with the scenery program (in use), whose
+ * shader takes their roughness as given (shader_src.c). */
 static void draw_scenery(mr_render *r) {
-  GLuint p = r->prog_mesh;
+  GLuint p = r->prog_scenery;
   const mr_stage_def *s = &r->stage;
   mat4 id = GLM_MAT4_IDENTITY_INIT;
-  mr_uniform_m4(r, p, "u_model", id);
-  mr_uniform_i(r, p, "u_skinned", 0);
+  set_model(r, p, id);
   mr_material_def m = mr_default_material_def();
   m.roughness = 0.9f;
   if (s->floor) {
     for (int k = 0; k < 3; k++) m.base_color[k] = s->floor_color[k];
-    set_material(r, &m, &r->floor);
+    set_material(r, p, &m, &r->floor);
     mr_uniform_i(r, p, "u_checker", 1);
     mr_uniform_v3(r, p, "u_color2", s->floor_color2);
     /* 16 squares a side. */
@@ -89,15 +108,30 @@ static void draw_scenery(mr_render *r) {
   }
   if (s->backdrop) {
     for (int k = 0; k < 3; k++) m.base_color[k] = s->backdrop_color[k];
-    set_material(r, &m, &r->backdrop);
+    set_material(r, p, &m, &r->backdrop);
     mr_mesh_draw(r, &r->backdrop);
   }
 }
 
-/* Items and skins; prog is the lit or the shadow program; lit sets each
- * mesh's material, and casters draws only the models that cast. */
-static void draw_list(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit, bool casters) {
-  mr_uniform_i(r, prog, "u_skinned", 0);
+/* A built-in shape is closed and wound counter-clockwise seen from
+ * outside, so its back faces, hidden behind its front, are culled before
+ * they are set up and rasterised (software GL spends a third of a small
+ * frame on triangles). A model matrix that mirrors turns the winding
+ * round. Model files do not agree on winding, and skins and the scenery
+ * are seen from both sides: never culled. */
+static void cull(mr_render *r, const mr_gpu_model *gm, mat4 m) {
+  if (!gm->closed) {
+    r->gl.Disable(GL_CULL_FACE);
+    return;
+  }
+  r->gl.Enable(GL_CULL_FACE);
+  r->gl.CullFace(mirrors(m) ? GL_FRONT : GL_BACK);
+}
+
+/* The items (not skins), with prog; lit sets each mesh's material, and
+ * casters draws only the models that cast. */
+static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit,
+                       bool casters) {
   for (size_t i = 0; i < list->n_items; i++) {
     const mr_draw_item *it = &list->items[i];
     if (it->model < 0 || (size_t)it->model >= r->n_models) continue;
@@ -105,12 +139,21 @@ static void draw_list(mr_render *r, const mr_draw_list *list, GLuint prog, bool 
     if (gm->skinned || (casters && !gm->cast_shadow)) continue;
     mat4 m;
     mr_item_matrix(it, m);
-    mr_uniform_m4(r, prog, "u_model", m);
+    set_model(r, prog, m);
+    cull(r, gm, m);
     for (size_t k = 0; k < gm->n_meshes; k++) {
-      if (lit) set_material(r, worn(gm, &gm->meshes[k], it->material), &gm->meshes[k]);
+      if (lit) set_material(r, prog, worn(gm, &gm->meshes[k], it->material), &gm->meshes[k]);
       mr_mesh_draw(r, &gm->meshes[k]);
     }
   }
+  r->gl.Disable(GL_CULL_FACE);
+  r->gl.CullFace(GL_BACK);
+}
+
+/* The skins, with prog (a skinned program, in use). */
+static void draw_skins(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit,
+                       bool casters) {
+  mr_uniform_i(r, prog, "u_bones", UNIT_BONES);
   for (size_t i = 0; i < list->n_skins; i++) {
     const mr_draw_skin *sk = &list->skins[i];
     if (sk->model < 0 || (size_t)sk->model >= r->n_models) continue;
@@ -119,25 +162,43 @@ static void draw_list(mr_render *r, const mr_draw_list *list, GLuint prog, bool 
     if (casters && !gm->cast_shadow) continue;
     r->gl.ActiveTexture(GL_TEXTURE0 + UNIT_BONES);
     mr_bones_upload(r, sk);
-    mr_uniform_i(r, prog, "u_skinned", 1);
     for (size_t k = 0; k < gm->n_meshes; k++) {
-      if (lit) set_material(r, worn(gm, &gm->meshes[k], sk->material), &gm->meshes[k]);
+      if (lit) set_material(r, prog, worn(gm, &gm->meshes[k], sk->material), &gm->meshes[k]);
       mr_mesh_draw(r, &gm->meshes[k]);
     }
-    mr_uniform_i(r, prog, "u_skinned", 0);
   }
 }
 
+/* The items and skins first, then the backdrop and the floor, which they
+ * hide in part: a fragment behind what is drawn already fails the depth
+ * test before it is shaded. */
 void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
   r->gl.UseProgram(r->prog_mesh);
-  mr_uniform_m4(r, r->prog_mesh, "u_view_proj", (vec4 *)f->view_proj);
-  set_lights(r, f);
+  set_lights(r, r->prog_mesh, f);
+  if (list) draw_items(r, list, r->prog_mesh, true, false);
+  if (list && list->n_skins > 0 && r->prog_mesh_skin) {
+    r->gl.UseProgram(r->prog_mesh_skin);
+    set_lights(r, r->prog_mesh_skin, f);
+    draw_skins(r, list, r->prog_mesh_skin, true, false);
+  }
+  r->gl.UseProgram(r->prog_scenery);
+  set_lights(r, r->prog_scenery, f);
   draw_scenery(r);
-  if (list) draw_list(r, list, r->prog_mesh, true, false);
   r->gl.UseProgram(0);
 }
 
-void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, GLuint prog) {
-  mr_uniform_i(r, prog, "u_bones", UNIT_BONES);
-  draw_list(r, list, prog, false, true);
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp) {
+  mat4 id = GLM_MAT4_IDENTITY_INIT;
+  GLuint progs[2] = { r->prog_depth, r->prog_depth_skin };
+  for (int k = 0; k < 2; k++) {
+    if (!progs[k] || (k == 1 && list->n_skins == 0)) continue;
+    r->gl.UseProgram(progs[k]);
+    mr_uniform_m4(r, progs[k], "u_view_proj", light_vp);
+    mr_uniform_m4(r, progs[k], "u_light_vp", id);
+    if (k == 0)
+      draw_items(r, list, progs[k], false, true);
+    else
+      draw_skins(r, list, progs[k], false, true);
+  }
+  r->gl.UseProgram(0);
 }

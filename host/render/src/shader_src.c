@@ -10,6 +10,8 @@
  * of. */
 #include "shader_src.h"
 
+#include <stdio.h>
+
 #define MR_GLSL_VERSION ""
 #define MR_GLSL_SRGB                                                   \
   "vec3 mr_to_srgb(vec3 c) {\n"                                        \
@@ -18,18 +20,21 @@
   "             step(vec3(0.0031308), c));\n"                          \
   "}\n"
 
-/* Meshes: an item's model matrix, or (skinned) the blend of its bones'
- * matrices, read from a 4 x n_bones float texture, one column a texel:
- * linear blend skinning, p' = sum_k w_k M_k p (§3.3, freeform). Normals
- * go through the inverse transpose, since links stretch along y. */
-const char mr_src_mesh_vs[] = MR_GLSL_VERSION
+/* Meshes: an item's model matrix, or (MR_SKINNED) the blend of its
+ * bones' matrices, read from a 4 x n_bones float texture, one column a
+ * texel: linear blend skinning, p' = sum_k w_k M_k p (§3.3, freeform).
+ * Normals go through the inverse transpose, since links stretch along y:
+ * an item's is worked out once on the CPU (u_normal), a skin's a vertex.
+ * Skinned or not is a constant of the source (mr_src_mesh_vs_make), not
+ * a uniform: software GL runs both sides of a branch, and would read 16
+ * bone texels for every vertex of every item. */
+static const char mesh_vs_body[] =
     "layout(location = 0) in vec3 a_pos;\n"
     "layout(location = 1) in vec3 a_normal;\n"
     "layout(location = 2) in vec2 a_uv;\n"
     "layout(location = 3) in ivec4 a_bones;\n"
     "layout(location = 4) in vec4 a_weights;\n"
-    "uniform mat4 u_model, u_view_proj, u_light_vp;\n"
-    "uniform int u_skinned;\n"
+    "uniform mat4 u_model, u_normal, u_view_proj, u_light_vp;\n"
     "uniform sampler2D u_bones;\n"
     "out vec3 v_world, v_normal;\n"
     "out vec2 v_uv;\n"
@@ -39,13 +44,16 @@ const char mr_src_mesh_vs[] = MR_GLSL_VERSION
     "              texelFetch(u_bones, ivec2(2, i), 0), texelFetch(u_bones, ivec2(3, i), 0));\n"
     "}\n"
     "void main() {\n"
+    "#if MR_SKINNED\n"
+    "  mat4 m = a_weights.x * bone(a_bones.x) + a_weights.y * bone(a_bones.y) +\n"
+    "           a_weights.z * bone(a_bones.z) + a_weights.w * bone(a_bones.w);\n"
+    "  v_normal = transpose(inverse(mat3(m))) * a_normal;\n"
+    "#else\n"
     "  mat4 m = u_model;\n"
-    "  if (u_skinned != 0)\n"
-    "    m = a_weights.x * bone(a_bones.x) + a_weights.y * bone(a_bones.y) +\n"
-    "        a_weights.z * bone(a_bones.z) + a_weights.w * bone(a_bones.w);\n"
+    "  v_normal = mat3(u_normal) * a_normal;\n"
+    "#endif\n"
     "  vec4 w = m * vec4(a_pos, 1.0);\n"
     "  v_world = w.xyz;\n"
-    "  v_normal = transpose(inverse(mat3(m))) * a_normal;\n"
     "  v_uv = a_uv;\n"
     "  v_light = u_light_vp * w;\n"
     "  gl_Position = u_view_proj * w;\n"
@@ -53,18 +61,28 @@ const char mr_src_mesh_vs[] = MR_GLSL_VERSION
 
 /* Lighting: ambient, the sun (Lambert and a normalised Blinn-Phong lobe
  * whose exponent is the roughness's, s = 2 / r^2 - 2, the inverse of the
- * loader's r = sqrt(2 / (s + 2))), its shadow from the shadow map (3 x 3
- * percentage-closer filtering), and up to 8 spots: a cone with a smooth
- * edge and 1 / (1 + k d^2) falloff. The floor's checkerboard is worked
- * out here from world x and z. */
-const char mr_src_mesh_fs[] = MR_GLSL_VERSION MR_GLSL_SRGB
+ * loader's r = sqrt(2 / (s + 2))), its shadow from the shadow map
+ * (percentage-closer filtering, MR_SHADOW_TAPS reads of the map, each a
+ * bilinear 2 x 2 compare: 1, 4 at half-texel offsets, or 9 on a 3 x 3
+ * grid), and MR_N_SPOTS spots (0 to 8): a cone with a smooth edge and
+ * 1 / (1 + k d^2) falloff. Both counts are constants of the source
+ * (mr_src_mesh_fs_make): software GL reads a uniform array at a varying
+ * index lane by lane, and runs both sides of every branch, so a loop up
+ * to a uniform count costs several times the unrolled one. MR_SCENERY:
+ * the floor and the backdrop, untextured, of roughness 0.9, whose
+ * exponent 2 / 0.81 - 2 is clamped to 1, so the lobe is the cosine
+ * itself and the compiler drops the pow (scene.c draws them with that
+ * roughness). The floor's checkerboard is worked out here from world x
+ * and z. */
+static const char mesh_fs_body[] = MR_GLSL_SRGB
     "in vec3 v_world, v_normal;\n"
     "in vec2 v_uv;\n"
     "in vec4 v_light;\n"
     "uniform vec4 u_color;\n"
     "uniform vec3 u_emissive, u_color2, u_eye, u_ambient, u_sun_dir, u_sun_color;\n"
     "uniform float u_roughness, u_metallic, u_cell, u_shadow_texel;\n"
-    "uniform int u_textured, u_checker, u_shadows, u_n_spots;\n"
+    "uniform int u_textured, u_checker, u_shadows;\n"
+    "uniform bool u_mirrored;\n"
     "uniform sampler2D u_texture;\n"
     "uniform sampler2DShadow u_shadow_map;\n"
     "uniform vec3 u_spot_pos[8], u_spot_dir[8], u_spot_color[8];\n"
@@ -75,11 +93,21 @@ const char mr_src_mesh_fs[] = MR_GLSL_VERSION MR_GLSL_SRGB
     "  vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;\n"
     "  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;\n"
     "  float z = p.z - max(0.0015 * (1.0 - ndl), 0.0004);\n"
+    "#if MR_SHADOW_TAPS == 9\n"
     "  float lit = 0.0;\n"
     "  for (int i = -1; i <= 1; i++)\n"
     "    for (int j = -1; j <= 1; j++)\n"
     "      lit += texture(u_shadow_map, vec3(p.xy + vec2(i, j) * u_shadow_texel, z));\n"
     "  return lit / 9.0;\n"
+    "#elif MR_SHADOW_TAPS == 4\n"
+    "  float d = 0.5 * u_shadow_texel;\n"
+    "  return 0.25 * (texture(u_shadow_map, vec3(p.x - d, p.y - d, z)) +\n"
+    "                 texture(u_shadow_map, vec3(p.x + d, p.y - d, z)) +\n"
+    "                 texture(u_shadow_map, vec3(p.x - d, p.y + d, z)) +\n"
+    "                 texture(u_shadow_map, vec3(p.x + d, p.y + d, z)));\n"
+    "#else\n"
+    "  return texture(u_shadow_map, vec3(p.xy, z));\n"
+    "#endif\n"
     "}\n"
     "vec3 light(vec3 n, vec3 v, vec3 l, vec3 base, vec3 f0, float shin) {\n"
     "  float ndl = max(dot(n, l), 0.0);\n"
@@ -89,21 +117,27 @@ const char mr_src_mesh_fs[] = MR_GLSL_VERSION MR_GLSL_SRGB
     "}\n"
     "void main() {\n"
     "  vec3 base = u_color.rgb;\n"
+    "#if !MR_SCENERY\n"
     "  if (u_textured != 0) base *= texture(u_texture, v_uv).rgb;\n"
+    "#endif\n"
     "  if (u_checker != 0) {\n"
     "    vec2 c = floor(v_world.xz / u_cell);\n"
     "    if (mod(c.x + c.y, 2.0) >= 1.0) base = u_color2;\n"
     "  }\n"
     "  vec3 n = normalize(v_normal);\n"
-    "  if (!gl_FrontFacing) n = -n;\n"
+    "  if (gl_FrontFacing == u_mirrored) n = -n;\n"
     "  vec3 v = normalize(u_eye - v_world);\n"
+    "#if MR_SCENERY\n"
+    "  float shin = 1.0;\n"
+    "#else\n"
     "  float r = clamp(u_roughness, 0.05, 1.0);\n"
     "  float shin = clamp(2.0 / (r * r) - 2.0, 1.0, 1024.0);\n"
+    "#endif\n"
     "  vec3 f0 = mix(vec3(0.04), base, u_metallic);\n"
     "  vec3 c = u_ambient * base + u_emissive;\n"
     "  float ndl = max(dot(n, u_sun_dir), 0.0);\n"
     "  c += u_sun_color * light(n, v, u_sun_dir, base, f0, shin) * sun_shadow(ndl);\n"
-    "  for (int i = 0; i < u_n_spots; i++) {\n"
+    "  for (int i = 0; i < MR_N_SPOTS; i++) {\n"
     "    vec3 d = u_spot_pos[i] - v_world;\n"
     "    float dist = length(d);\n"
     "    vec3 l = d / dist;\n"
@@ -113,6 +147,19 @@ const char mr_src_mesh_fs[] = MR_GLSL_VERSION MR_GLSL_SRGB
     "  }\n"
     "  o_color = vec4(mr_to_srgb(c), 1.0);\n"
     "}\n";
+
+int mr_src_mesh_vs_make(char *buf, size_t size, int skinned) {
+  int n = snprintf(buf, size, "%s#define MR_SKINNED %d\n%s", MR_GLSL_VERSION, skinned ? 1 : 0,
+                   mesh_vs_body);
+  return n > 0 && (size_t)n < size ? 0 : -1;
+}
+
+int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps, int scenery) {
+  int n = snprintf(buf, size,
+                   "%s#define MR_N_SPOTS %d\n#define MR_SHADOW_TAPS %d\n#define MR_SCENERY %d\n%s",
+                   MR_GLSL_VERSION, n_spots, shadow_taps, scenery ? 1 : 0, mesh_fs_body);
+  return n > 0 && (size_t)n < size ? 0 : -1;
+}
 
 /* The shadow pass writes depth only. */
 const char mr_src_depth_fs[] = MR_GLSL_VERSION "void main() {}\n";
@@ -157,6 +204,47 @@ const char mr_src_star_fs[] =
                     "void main() {\n"
                     "  float r = length(gl_PointCoord * 2.0 - 1.0);\n"
                     "  o_color = vec4(1.0, 1.0, 0.95, v_alpha * (1.0 - smoothstep(0.5, 1.0, r)));\n"
+                    "}\n";
+
+/* The post pass: one triangle that covers the frame, its corners from
+ * the vertex's number (no buffer). */
+const char mr_src_post_vs[] = MR_GLSL_VERSION
+    "void main() {\n"
+    "  vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));\n"
+    "  gl_Position = vec4(p, 0.0, 1.0);\n"
+    "}\n";
+
+/* Edge smoothing, for frames drawn with one sample (software GL, where
+ * multisampling costs most of a frame). The luma of the pixel and its
+ * four neighbours gives the contrast and the gradient; where the contrast
+ * is high, the pixel is blended with two bilinear reads along the edge
+ * (across the gradient), 1.5 pixels either way, so the steps of a
+ * slanted edge are spread along it. Flat areas and 1-pixel lines (whose
+ * gradient is nil) are left as they are. Its input is already sRGB. */
+const char mr_src_smooth_fs[] =
+    MR_GLSL_VERSION "uniform sampler2D u_frame;\n"
+                    "uniform vec2 u_texel;\n"
+                    "out vec4 o_color;\n"
+                    "float luma(ivec2 p, ivec2 hi) {\n"
+                    "  vec3 c = texelFetch(u_frame, clamp(p, ivec2(0), hi), 0).rgb;\n"
+                    "  return dot(c, vec3(0.299, 0.587, 0.114));\n"
+                    "}\n"
+                    "void main() {\n"
+                    "  ivec2 p = ivec2(gl_FragCoord.xy), hi = textureSize(u_frame, 0) - 1;\n"
+                    "  vec3 c = texelFetch(u_frame, p, 0).rgb;\n"
+                    "  float m = dot(c, vec3(0.299, 0.587, 0.114));\n"
+                    "  float n = luma(p + ivec2(0, 1), hi), s = luma(p - ivec2(0, 1), hi);\n"
+                    "  float e = luma(p + ivec2(1, 0), hi), w = luma(p - ivec2(1, 0), hi);\n"
+                    "  float lo = min(m, min(min(n, s), min(e, w)));\n"
+                    "  float top = max(m, max(max(n, s), max(e, w)));\n"
+                    "  float amount = smoothstep(0.03, 0.12, top - lo);\n"
+                    "  vec2 g = vec2(e - w, n - s);\n"
+                    "  float len = length(g);\n"
+                    "  vec2 t = len > 0.0001 ? vec2(-g.y, g.x) * (1.5 / len) : vec2(0.0);\n"
+                    "  vec2 uv = gl_FragCoord.xy * u_texel;\n"
+                    "  vec3 a = texture(u_frame, uv + t * u_texel).rgb;\n"
+                    "  vec3 b = texture(u_frame, uv - t * u_texel).rgb;\n"
+                    "  o_color = vec4(mix(c, 0.5 * (a + b), 0.5 * amount), 1.0);\n"
                     "}\n";
 
 /* The on-screen display: pixel coordinates, top left origin; glyphs take

@@ -3,9 +3,19 @@
 #ifndef MR_RENDER_SHADER_SRC_H
 #define MR_RENDER_SHADER_SRC_H
 
-extern const char mr_src_mesh_vs[], mr_src_mesh_fs[], mr_src_depth_fs[];
+#include <stddef.h>
+
+extern const char mr_src_depth_fs[];
+/* The mesh vertex shader, skinned (freeform models) or not, into buf; -1
+ * when it does not fit. */
+int mr_src_mesh_vs_make(char *buf, size_t size, int skinned);
+/* The lit fragment shader for n_spots spots (0 to 8) and a shadow filter
+ * of shadow_taps reads (1, 4 or 9), for items or (scenery) for the floor
+ * and backdrop, into buf; -1 when it does not fit. */
+int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps, int scenery);
 extern const char mr_src_line_vs[], mr_src_line_fs[];
 extern const char mr_src_star_vs[], mr_src_star_fs[];
 extern const char mr_src_text_vs[], mr_src_text_fs[];
+extern const char mr_src_post_vs[], mr_src_smooth_fs[];
 
 #endif

@@ -62,21 +62,57 @@ static GLuint program(mr_render *r, const char *vs_src, const char *fs_src, cons
   return 0;
 }
 
-int mr_shaders_create(mr_render *r, char *msg, size_t msg_size) {
-  r->prog_mesh = program(r, mr_src_mesh_vs, mr_src_mesh_fs, "mesh", msg, msg_size);
+static bool has_skins(const mr_stage_def *s) {
+  for (size_t i = 0; i < s->n_models; i++)
+    if (s->models && s->models[i].display == MR_DISPLAY_FREEFORM) return true;
+  return false;
+}
+
+/* The mesh programs, lit and shadow, each for items and (when the stage
+ * has a freeform model) for skins, and the lit one for the scenery. The stage's spot count and the shadow
+ * filter are constants of the lit shader, as skinning is of the vertex
+ * shader (shader_src.c says why). */
+static int mesh_programs(mr_render *r, char *msg, size_t msg_size) {
+  int n_spots = r->stage.lights.n_spots < 8 ? r->stage.lights.n_spots : 8;
+  n_spots = n_spots > 0 ? n_spots : 0;
+  char vs[4096], vs_skin[4096], fs[8192], fs_scenery[8192];
+  if (mr_src_mesh_vs_make(vs, sizeof vs, 0) != 0 ||
+      mr_src_mesh_vs_make(vs_skin, sizeof vs_skin, 1) != 0 ||
+      mr_src_mesh_fs_make(fs, sizeof fs, n_spots, r->shadow_taps, 0) != 0 ||
+      mr_src_mesh_fs_make(fs_scenery, sizeof fs_scenery, n_spots, r->shadow_taps, 1) != 0) {
+    snprintf(msg, msg_size, "a mesh shader's source does not fit its buffer");
+    return -1;
+  }
+  r->prog_mesh = program(r, vs, fs, "mesh", msg, msg_size);
   if (!r->prog_mesh) return -1;
-  r->prog_depth = program(r, mr_src_mesh_vs, mr_src_depth_fs, "shadow", msg, msg_size);
+  r->prog_scenery = program(r, vs, fs_scenery, "scenery", msg, msg_size);
+  if (!r->prog_scenery) return -1;
+  r->prog_depth = program(r, vs, mr_src_depth_fs, "shadow", msg, msg_size);
   if (!r->prog_depth) return -1;
+  if (!has_skins(&r->stage)) return 0;
+  r->prog_mesh_skin = program(r, vs_skin, fs, "skinned mesh", msg, msg_size);
+  if (!r->prog_mesh_skin) return -1;
+  r->prog_depth_skin = program(r, vs_skin, mr_src_depth_fs, "skinned shadow", msg, msg_size);
+  return r->prog_depth_skin ? 0 : -1;
+}
+
+int mr_shaders_create(mr_render *r, char *msg, size_t msg_size) {
+  if (mesh_programs(r, msg, msg_size) != 0) return -1;
   r->prog_line = program(r, mr_src_line_vs, mr_src_line_fs, "line", msg, msg_size);
   if (!r->prog_line) return -1;
   r->prog_star = program(r, mr_src_star_vs, mr_src_star_fs, "star", msg, msg_size);
   if (!r->prog_star) return -1;
   r->prog_text = program(r, mr_src_text_vs, mr_src_text_fs, "text", msg, msg_size);
-  return r->prog_text ? 0 : -1;
+  if (!r->prog_text) return -1;
+  if (!r->smooth) return 0;
+  r->prog_smooth = program(r, mr_src_post_vs, mr_src_smooth_fs, "edge smoothing", msg, msg_size);
+  return r->prog_smooth ? 0 : -1;
 }
 
 void mr_shaders_destroy(mr_render *r) {
-  GLuint *progs[] = { &r->prog_mesh, &r->prog_depth, &r->prog_line, &r->prog_star, &r->prog_text };
+  GLuint *progs[] = { &r->prog_mesh,      &r->prog_scenery,    &r->prog_depth,
+                      &r->prog_mesh_skin, &r->prog_depth_skin, &r->prog_line,
+                      &r->prog_star,      &r->prog_text,       &r->prog_smooth };
   for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) {
     if (*progs[i]) r->gl.DeleteProgram(*progs[i]);
     *progs[i] = 0;

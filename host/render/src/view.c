@@ -29,7 +29,7 @@ mr_render_def mr_default_render_def(void) {
   memset(&d, 0, sizeof d);
   d.cookie = MR_RENDER_COOKIE;
   d.backend = MR_RENDER_AUTO;
-  d.samples = 4;
+  d.samples = 0;
   d.vsync = true;
   d.title = "marionette";
   return d;

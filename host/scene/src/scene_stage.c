@@ -37,17 +37,23 @@ static int read_bounded(mr_reader *r, const mr_ynode *n, const char *what, size_
 }
 
 static int read_sun(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "color", "intensity", "shadows", "shadow_size", NULL };
+  static const char *const keys[] = { "color",       "intensity",     "shadows",
+                                      "shadow_size", "shadow_filter", NULL };
   static const mr_scene_field fields[] = {
     { "intensity", MR_SCENE_FIELD_NONNEG, offsetof(mr_lights_def, sun_intensity), 0, 0 },
     { "shadow_size", MR_SCENE_FIELD_INT, offsetof(mr_lights_def, shadow_size), 256, 8192 },
+    { "shadow_filter", MR_SCENE_FIELD_INT, offsetof(mr_lights_def, shadow_filter), 1, 9 },
   };
   mr_lights_def *l = &r->scene->stage.lights;
   if (mr_scene_read_map(r, n, "lights.sun", keys) != 0 ||
-      mr_scene_read_fields(r, n, fields, 2, l) != 0 ||
+      mr_scene_read_fields(r, n, fields, 3, l) != 0 ||
       read_rgb_at(r, n, "color", l->sun_color) != 0 ||
       read_bool_at(r, n, "shadows", &l->shadows) != 0)
     return -1;
+  const mr_ynode *f = mr_scene_yaml_get(n, "shadow_filter");
+  if (f != NULL && l->shadow_filter != 1 && l->shadow_filter != 4 && l->shadow_filter != 9)
+    return mr_scene_read_fail(r, f, MR_SCENE_ERR_VALUE, "expected shadow_filter 1, 4 or 9, got %d",
+                              l->shadow_filter);
   return 0;
 }
 

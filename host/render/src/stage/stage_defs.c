@@ -65,7 +65,8 @@ static void default_lights(mr_lights_def *l) {
   set3f(l->sun_color, 1.0f, 0.96f, 0.9f);
   l->sun_intensity = 1;
   l->shadows = true;
-  l->shadow_size = 2048;
+  l->shadow_size = 0;
+  l->shadow_filter = 0;
   for (int k = 0; k < MR_STAGE_MAX_SPOTS; k++) l->spots[k] = mr_default_spot_def();
 }
 
