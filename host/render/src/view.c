@@ -30,8 +30,6 @@ mr_render_def mr_default_render_def(void) {
   d.cookie = MR_RENDER_COOKIE;
   d.backend = MR_RENDER_AUTO;
   d.samples = 4;
-  d.vsync = true;
-  d.title = "marionette";
   return d;
 }
 
