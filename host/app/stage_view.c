@@ -117,9 +117,7 @@ static mr_render_view current_view(const mr_stageview *sv) {
     memcpy(v.target, c->target, sizeof v.target);
     v.fov_deg = c->fov_deg;
   } else {
-    const mr_orbit *o = &sv->orbit;
-    mr_render_view_orbit(&v, o->target, o->distance, o->azimuth_deg, o->elevation_deg);
-    v.fov_deg = o->fov_deg;
+    mr_render_view_orbit(&v, &sv->orbit);
   }
   v.time_of_day = sv->time_of_day;
   v.show_rigging = sv->show_rigging;

@@ -115,10 +115,9 @@ typedef struct mr_render_view {
 } mr_render_view;
 /* The stage's orbit camera at its start, its day knob, rigging shown. */
 mr_render_view mr_default_render_view(const mr_stage_def *stage);
-/* The orbit camera: eye at distance from target, turned by azimuth about
- * y and raised by elevation (degrees). */
-void mr_render_view_orbit(mr_render_view *v, const double target[3], double distance,
-                          double azimuth_deg, double elevation_deg);
+/* The view from the orbit camera o (mr_stage's maths): its eye, target,
+ * field of view, and y up. */
+void mr_render_view_orbit(mr_render_view *v, const mr_orbit *o);
 
 /* Draws one frame into the renderer's framebuffer. */
 mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list, const mr_render_view *view);
