@@ -334,7 +334,7 @@ static int render_scene(job *j, const mr_scene *scene) {
   rd.width = a->so.width;
   rd.height = a->so.height;
   if (a->so.samples > 0) rd.samples = a->so.samples;
-  if (mr_stageview_open(&j->sv, scene, &rd, j->msg, sizeof j->msg) != 0) {
+  if (mr_stageview_open(&j->sv, scene, &rd, NULL, j->msg, sizeof j->msg) != 0) {
     fprintf(stderr, "marionette: %s\n", j->msg);
     return MR_EXIT_FAIL;
   }

@@ -27,11 +27,16 @@ static int key_channel(int key, int *dir) {
   static const struct {
     int key, channel, dir;
   } layout[] = {
-    { 'j', CH_THUMB, -1 },          { 'l', CH_THUMB, 1 },
-    { 'i', CH_INDEX, 1 },           { 'k', CH_INDEX, -1 },
-    { MR_KEY_LEFT, CH_MIDDLE, -1 }, { MR_KEY_RIGHT, CH_MIDDLE, 1 },
-    { MR_KEY_PAGE_UP, CH_RING, 1 }, { MR_KEY_PAGE_DOWN, CH_RING, -1 },
-    { MR_KEY_UP, CH_LITTLE, 1 },    { MR_KEY_DOWN, CH_LITTLE, -1 },
+    { 'j', CH_THUMB, -1 },
+    { 'l', CH_THUMB, 1 },
+    { 'i', CH_INDEX, 1 },
+    { 'k', CH_INDEX, -1 },
+    { MR_WINDOW_KEY_LEFT, CH_MIDDLE, -1 },
+    { MR_WINDOW_KEY_RIGHT, CH_MIDDLE, 1 },
+    { MR_WINDOW_KEY_PAGE_UP, CH_RING, 1 },
+    { MR_WINDOW_KEY_PAGE_DOWN, CH_RING, -1 },
+    { MR_WINDOW_KEY_UP, CH_LITTLE, 1 },
+    { MR_WINDOW_KEY_DOWN, CH_LITTLE, -1 },
   };
   for (size_t i = 0; i < sizeof layout / sizeof layout[0]; i++)
     if (layout[i].key == key) {
@@ -41,7 +46,7 @@ static int key_channel(int key, int *dir) {
   return -1;
 }
 
-static bool key_event(mr_manual *m, const mr_event *ev) {
+static bool key_event(mr_manual *m, const mr_window_event *ev) {
   int dir = 0, c = key_channel(ev->key, &dir);
   if (c < 0) return false;
   m->held[c][dir > 0] = ev->down;
@@ -55,13 +60,13 @@ static double clamp1(double x) {
 
 /* Right drag: x turns (middle finger), y raises (ring; screen y grows
  * down). Letting go lets the values ease back. */
-static bool mouse_event(mr_manual *m, const mr_event *ev) {
-  if (ev->kind == MR_EVENT_MOUSE_BUTTON && ev->button == 3) {
+static bool mouse_event(mr_manual *m, const mr_window_event *ev) {
+  if (ev->kind == MR_WINDOW_EVENT_MOUSE_BUTTON && ev->button == 3) {
     m->dragging = ev->down;
     if (!ev->down) m->mouse[CH_MIDDLE] = m->mouse[CH_RING] = 0;
     return true;
   }
-  if (ev->kind == MR_EVENT_MOUSE_MOVE && m->dragging && (ev->buttons & 4)) {
+  if (ev->kind == MR_WINDOW_EVENT_MOUSE_MOVE && m->dragging && (ev->buttons & 4)) {
     m->mouse[CH_MIDDLE] = clamp1(m->mouse[CH_MIDDLE] + ev->dx / DRAG_FULL_PX);
     m->mouse[CH_RING] = clamp1(m->mouse[CH_RING] - ev->dy / DRAG_FULL_PX);
     return true;
@@ -71,9 +76,9 @@ static bool mouse_event(mr_manual *m, const mr_event *ev) {
 
 /* Sticks -1..1 (y down positive, as SDL gives it), triggers 0..1. A small
  * dead zone keeps a resting stick from drifting the puppet. */
-static bool pad_event(mr_manual *m, const mr_event *ev) {
-  if (ev->kind == MR_EVENT_PAD_ADDED || ev->kind == MR_EVENT_PAD_REMOVED) {
-    m->pads += ev->kind == MR_EVENT_PAD_ADDED ? 1 : -1;
+static bool pad_event(mr_manual *m, const mr_window_event *ev) {
+  if (ev->kind == MR_WINDOW_EVENT_PAD_ADDED || ev->kind == MR_WINDOW_EVENT_PAD_REMOVED) {
+    m->pads += ev->kind == MR_WINDOW_EVENT_PAD_ADDED ? 1 : -1;
     if (m->pads <= 0) {
       m->pads = 0;
       memset(m->pad, 0, sizeof m->pad);
@@ -81,25 +86,25 @@ static bool pad_event(mr_manual *m, const mr_event *ev) {
     }
     return true;
   }
-  if (ev->kind != MR_EVENT_PAD_AXIS) return ev->kind == MR_EVENT_PAD_BUTTON;
+  if (ev->kind != MR_WINDOW_EVENT_PAD_AXIS) return ev->kind == MR_WINDOW_EVENT_PAD_BUTTON;
   double v = fabs(ev->value) < 0.08 ? 0.0 : ev->value;
   switch (ev->axis) {
-  case MR_PAD_LEFT_X:
+  case MR_WINDOW_PAD_LEFT_X:
     m->pad[CH_MIDDLE] = clamp1(v);
     break;
-  case MR_PAD_LEFT_Y:
+  case MR_WINDOW_PAD_LEFT_Y:
     m->pad[CH_LITTLE] = clamp1(-v);
     break;
-  case MR_PAD_RIGHT_X:
+  case MR_WINDOW_PAD_RIGHT_X:
     m->pad[CH_THUMB] = clamp1(v);
     break;
-  case MR_PAD_RIGHT_Y:
+  case MR_WINDOW_PAD_RIGHT_Y:
     m->pad[CH_INDEX] = clamp1(-v);
     break;
-  case MR_PAD_TRIGGER_LEFT:
+  case MR_WINDOW_PAD_TRIGGER_LEFT:
     m->trigger[0] = v;
     break;
-  case MR_PAD_TRIGGER_RIGHT:
+  case MR_WINDOW_PAD_TRIGGER_RIGHT:
     m->trigger[1] = v;
     break;
   default:
@@ -109,17 +114,17 @@ static bool pad_event(mr_manual *m, const mr_event *ev) {
   return true;
 }
 
-bool mr_manual_event(mr_manual *m, const mr_event *ev) {
+bool mr_manual_event(mr_manual *m, const mr_window_event *ev) {
   switch (ev->kind) {
-  case MR_EVENT_KEY:
+  case MR_WINDOW_EVENT_KEY:
     return key_event(m, ev);
-  case MR_EVENT_MOUSE_BUTTON:
-  case MR_EVENT_MOUSE_MOVE:
+  case MR_WINDOW_EVENT_MOUSE_BUTTON:
+  case MR_WINDOW_EVENT_MOUSE_MOVE:
     return mouse_event(m, ev);
-  case MR_EVENT_PAD_ADDED:
-  case MR_EVENT_PAD_REMOVED:
-  case MR_EVENT_PAD_AXIS:
-  case MR_EVENT_PAD_BUTTON:
+  case MR_WINDOW_EVENT_PAD_ADDED:
+  case MR_WINDOW_EVENT_PAD_REMOVED:
+  case MR_WINDOW_EVENT_PAD_AXIS:
+  case MR_WINDOW_EVENT_PAD_BUTTON:
     return pad_event(m, ev);
   default:
     return false;

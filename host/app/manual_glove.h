@@ -22,7 +22,7 @@
 #include <stdint.h>
 
 #include "mr_io.h"
-#include "mr_render.h"
+#include "mr_window.h"
 
 enum { MR_MANUAL_CHANNELS = 5 };
 
@@ -40,7 +40,7 @@ typedef struct mr_manual {
 void mr_manual_init(mr_manual *m);
 /* An event from the window: true when it was the glove's (a key of the
  * layout, a right drag, the gamepad), false for anything else. */
-bool mr_manual_event(mr_manual *m, const mr_event *ev);
+bool mr_manual_event(mr_manual *m, const mr_window_event *ev);
 /* The values eased dt seconds towards where the inputs point. */
 void mr_manual_update(mr_manual *m, double dt);
 /* Where the inputs point now, 0.05..0.95 (the values' goal). */

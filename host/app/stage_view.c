@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "glue.h"
 #include "mr_scene_world.h"
 
 /* The positions the stage takes its rest frames from: the same start a
@@ -31,8 +32,43 @@ static void start_camera(mr_stageview *sv) {
   sv->show_rigging = true;
 }
 
-int mr_stageview_open(mr_stageview *sv, const mr_scene *scene, const mr_render_def *rdef, char *msg,
-                      size_t msg_size) {
+/* The window of wdef at the size the renderer will take, on rdef's
+ * OpenGL; its context into *ctx for the renderer. */
+static int open_window(mr_stageview *sv, const mr_render_def *rdef, const mr_window_def *wdef,
+                       mr_render_context *ctx, char *msg, size_t msg_size) {
+  const mr_stage_def *st = &sv->scene->stage;
+  mr_window_def wd = *wdef;
+  wd.width = rdef->width > 0 ? rdef->width : (st->width > 0 ? st->width : 1280);
+  wd.height = rdef->height > 0 ? rdef->height : (st->height > 0 ? st->height : 720);
+  wd.gl = mr_glue_gl(rdef->gl);
+  char why[600];
+  if (mr_window_create(&wd, &sv->window, why, sizeof why) != MR_WINDOW_OK) {
+    snprintf(msg, msg_size, "no backend started: window: %s", why);
+    return -1;
+  }
+  *ctx = mr_glue_context(sv->window);
+  return 0;
+}
+
+/* The renderer of rdef, in the window of wdef when there is one to be. */
+static int open_render(mr_stageview *sv, const mr_render_def *rdef, const mr_window_def *wdef,
+                       char *msg, size_t msg_size) {
+  mr_render_def rd = *rdef;
+  mr_render_context ctx;
+  if (wdef != NULL && rd.backend == MR_RENDER_WINDOW) {
+    if (open_window(sv, rdef, wdef, &ctx, msg, msg_size) != 0) return -1;
+    rd.context = &ctx;
+  }
+  if (mr_render_create(&rd, &sv->scene->stage, sv->scene->path, &sv->render, msg, msg_size) ==
+      MR_RENDER_OK)
+    return 0;
+  mr_window_destroy(sv->window);
+  sv->window = NULL;
+  return -1;
+}
+
+int mr_stageview_open(mr_stageview *sv, const mr_scene *scene, const mr_render_def *rdef,
+                      const mr_window_def *wdef, char *msg, size_t msg_size) {
   memset(sv, 0, sizeof *sv);
   sv->scene = scene;
   start_camera(sv);
@@ -46,8 +82,7 @@ int mr_stageview_open(mr_stageview *sv, const mr_scene *scene, const mr_render_d
     snprintf(msg, msg_size, "%s: the stage: %s", scene->path, why);
     return -1;
   }
-  if (mr_render_create(rdef, &scene->stage, scene->path, &sv->render, msg, msg_size) !=
-      MR_RENDER_OK) {
+  if (open_render(sv, rdef, wdef, msg, msg_size) != 0) {
     mr_stage_destroy(sv->stage);
     sv->stage = NULL;
     return -1;
@@ -63,10 +98,13 @@ int mr_stageview_open(mr_stageview *sv, const mr_scene *scene, const mr_render_d
 }
 
 void mr_stageview_close(mr_stageview *sv) {
+  /* The renderer first: it frees its GL objects in the window's context. */
   mr_render_destroy(sv->render);
+  mr_window_destroy(sv->window);
   mr_stage_destroy(sv->stage);
   free(sv->rgb);
   sv->render = NULL;
+  sv->window = NULL;
   sv->stage = NULL;
   sv->rgb = NULL;
 }
@@ -79,9 +117,7 @@ static mr_render_view current_view(const mr_stageview *sv) {
     memcpy(v.target, c->target, sizeof v.target);
     v.fov_deg = c->fov_deg;
   } else {
-    const mr_orbit *o = &sv->orbit;
-    mr_render_view_orbit(&v, o->target, o->distance, o->azimuth_deg, o->elevation_deg);
-    v.fov_deg = o->fov_deg;
+    mr_render_view_orbit(&v, &sv->orbit);
   }
   v.time_of_day = sv->time_of_day;
   v.show_rigging = sv->show_rigging;

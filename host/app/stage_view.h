@@ -1,5 +1,6 @@
 /* A scene on the stage: its mr_stage (frames' positions -> a draw list),
- * the renderer, and how it is looked at (the orbit camera or one of the
+ * the renderer (in a window, mr_window's, or headless), and how it is
+ * looked at (the orbit camera or one of the
  * scene's, the day knob, the on-screen display). Shared by `marionette
  * render` and `marionette run`. */
 #ifndef MR_STAGE_VIEW_H
@@ -11,12 +12,14 @@
 
 #include "mr_render.h"
 #include "mr_scene.h"
+#include "mr_window.h"
 
 enum { MR_OSD_LINES = 16, MR_OSD_LINE_MAX = 200 };
 
 typedef struct mr_stageview {
   const mr_scene *scene;
   mr_stage *stage;
+  mr_window *window; /* NULL: headless */
   mr_render *render;
   int width, height;
   /* The camera: -1 the orbit camera, else the scene's camera k. */
@@ -33,11 +36,13 @@ typedef struct mr_stageview {
 } mr_stageview;
 
 /* The stage of scene (its world built once for the start positions) and a
- * renderer of rdef (its size: rdef's, else the scene's stage.size). On
- * failure -1 and one line in msg: a model error names the scene's
- * file:line:column and the model's path. */
-int mr_stageview_open(mr_stageview *sv, const mr_scene *scene, const mr_render_def *rdef, char *msg,
-                      size_t msg_size);
+ * renderer of rdef (its size: rdef's, else the scene's stage.size). With
+ * wdef and rdef's backend the window's, a window of wdef (at the
+ * renderer's size, on rdef's OpenGL) is opened first and the renderer
+ * draws into its context. On failure -1 and one line in msg: a model
+ * error names the scene's file:line:column and the model's path. */
+int mr_stageview_open(mr_stageview *sv, const mr_scene *scene, const mr_render_def *rdef,
+                      const mr_window_def *wdef, char *msg, size_t msg_size);
 void mr_stageview_close(mr_stageview *sv);
 
 /* The points at xyz (3 n: scene particles, then control points) drawn

@@ -25,10 +25,12 @@ static int key_named(const char *name) {
   static const struct {
     const char *name;
     int key;
-  } names[] = { { "space", MR_KEY_SPACE },  { "esc", MR_KEY_ESCAPE },     { "left", MR_KEY_LEFT },
-                { "right", MR_KEY_RIGHT },  { "up", MR_KEY_UP },          { "down", MR_KEY_DOWN },
-                { "pgup", MR_KEY_PAGE_UP }, { "pgdn", MR_KEY_PAGE_DOWN }, { "f1", MR_KEY_F1 },
-                { "f11", MR_KEY_F11 },      { "f12", MR_KEY_F12 } };
+  } names[] = { { "space", MR_WINDOW_KEY_SPACE },  { "esc", MR_WINDOW_KEY_ESCAPE },
+                { "left", MR_WINDOW_KEY_LEFT },    { "right", MR_WINDOW_KEY_RIGHT },
+                { "up", MR_WINDOW_KEY_UP },        { "down", MR_WINDOW_KEY_DOWN },
+                { "pgup", MR_WINDOW_KEY_PAGE_UP }, { "pgdn", MR_WINDOW_KEY_PAGE_DOWN },
+                { "f1", MR_WINDOW_KEY_F1 },        { "f11", MR_WINDOW_KEY_F11 },
+                { "f12", MR_WINDOW_KEY_F12 } };
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
     if (strcmp(name, names[i].name) == 0) return names[i].key;
   if (strlen(name) == 1 && name[0] > ' ' && name[0] < 127) return name[0];
@@ -88,36 +90,36 @@ static void stage_key(mr_live *lv, int key) {
     mr_stageview_next_material(sv);
   } else if (key == '[' || key == ']') {
     mr_stageview_set_day(sv, sv->time_of_day + (key == ']' ? DAY_STEP : -DAY_STEP));
-  } else if (key == 'h' || key == MR_KEY_F1) {
+  } else if (key == 'h' || key == MR_WINDOW_KEY_F1) {
     sv->show_osd = !sv->show_osd;
-  } else if (key == 'p' || key == MR_KEY_F12) {
+  } else if (key == 'p' || key == MR_WINDOW_KEY_F12) {
     lv->shot_asked = true;
-  } else if ((key == 'f' || key == MR_KEY_F11) && lv->window) {
-    if (mr_render_set_fullscreen(sv->render, !lv->fullscreen) == MR_RENDER_OK)
+  } else if ((key == 'f' || key == MR_WINDOW_KEY_F11) && lv->window) {
+    if (mr_window_set_fullscreen(sv->window, !lv->fullscreen) == MR_WINDOW_OK)
       lv->fullscreen = !lv->fullscreen;
-  } else if (key == 'q' || key == MR_KEY_ESCAPE) {
+  } else if (key == 'q' || key == MR_WINDOW_KEY_ESCAPE) {
     lv->quit = true;
   } else if (key >= '0' && key <= '9') {
     mr_stageview_pick_camera(sv, key - '1'); /* 0: -1, the orbit camera */
   }
 }
 
-void mr_live_event(mr_live *lv, const mr_event *ev) {
+void mr_live_event(mr_live *lv, const mr_window_event *ev) {
   if (lv->manual_on && mr_manual_event(&lv->manual, ev)) return;
   switch (ev->kind) {
-  case MR_EVENT_QUIT:
+  case MR_WINDOW_EVENT_QUIT:
     lv->quit = true;
     break;
-  case MR_EVENT_KEY:
+  case MR_WINDOW_EVENT_KEY:
     if (ev->down) stage_key(lv, ev->key);
     break;
-  case MR_EVENT_MOUSE_BUTTON:
+  case MR_WINDOW_EVENT_MOUSE_BUTTON:
     if (ev->button == 1) lv->dragging = ev->down;
     break;
-  case MR_EVENT_MOUSE_MOVE:
+  case MR_WINDOW_EVENT_MOUSE_MOVE:
     if (ev->buttons & 1) mr_stageview_orbit(&lv->sv, -ev->dx * ORBIT_DEG, ev->dy * ORBIT_DEG);
     break;
-  case MR_EVENT_MOUSE_WHEEL:
+  case MR_WINDOW_EVENT_MOUSE_WHEEL:
     mr_stageview_zoom(&lv->sv, ev->dy);
     break;
   default:
@@ -134,9 +136,9 @@ static int play_keys(mr_live *lv) {
   double now = lv->show_t + (lv->paused ? wall(lv) - lv->pause_wall : 0.0);
   for (int i = 0; i < lv->n_keys; i++) {
     mr_key_press *k = &lv->keys[i];
-    mr_event ev;
+    mr_window_event ev;
     memset(&ev, 0, sizeof ev);
-    ev.kind = MR_EVENT_KEY;
+    ev.kind = MR_WINDOW_EVENT_KEY;
     ev.key = k->key;
     if (!k->down_sent && now >= k->t) {
       k->down_sent = ev.down = true;
@@ -156,10 +158,10 @@ static int play_keys(mr_live *lv) {
 }
 
 int mr_live_pump(mr_live *lv) {
-  mr_event ev;
+  mr_window_event ev;
   int events = 0;
   if (lv->window)
-    while (mr_render_poll(lv->sv.render, &ev) != 0) {
+    while (mr_window_poll(lv->sv.window, &ev) != 0) {
       mr_live_event(lv, &ev);
       events++;
     }
@@ -314,9 +316,10 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
   rd.height = so->height;
   rd.gl = so->gl;
   if (so->samples > 0) rd.samples = so->samples;
-  rd.fullscreen = def->fullscreen;
-  rd.title = "marionette";
-  if (mr_stageview_open(&lv->sv, scene, &rd, msg, msg_size) != 0) return -1;
+  mr_window_def wd = mr_default_window_def();
+  wd.fullscreen = def->fullscreen;
+  wd.title = "marionette";
+  if (mr_stageview_open(&lv->sv, scene, &rd, &wd, msg, msg_size) != 0) return -1;
   if (mr_stage_opts_apply(so, "run", &lv->sv) != 0) {
     mr_stageview_close(&lv->sv);
     msg[0] = '\0'; /* the line is out */

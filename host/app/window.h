@@ -4,8 +4,8 @@
  * runner (mr_show_runner.h), whose clock stops or slows show time itself;
  * the view's keys (cameras, orbit, day, OSD) act here, on the drawing
  * thread. */
-#ifndef MR_WINDOW_H
-#define MR_WINDOW_H
+#ifndef MR_APP_WINDOW_H
+#define MR_APP_WINDOW_H
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -84,7 +84,7 @@ int mr_live_parse_keys(mr_live *lv, const char *list);
 
 /* One event from the window or a script: the glove's keys go to the
  * manual glove (when it is on), the rest are the stage's. */
-void mr_live_event(mr_live *lv, const mr_event *ev);
+void mr_live_event(mr_live *lv, const mr_window_event *ev);
 
 /* Events, scripted keys and the manual glove, handled now; the number of
  * events (a view that moved is drawn again). */

@@ -19,10 +19,10 @@
 /* cmocka's assert_double_equal came after Debian 12's cmocka. */
 #define assert_near(a, b, eps) assert_true(fabs((double)(a) - (double)(b)) <= (eps))
 
-static mr_event key(int k, bool down) {
-  mr_event ev;
+static mr_window_event key(int k, bool down) {
+  mr_window_event ev;
   memset(&ev, 0, sizeof ev);
-  ev.kind = MR_EVENT_KEY;
+  ev.kind = MR_WINDOW_EVENT_KEY;
   ev.key = k;
   ev.down = down;
   return ev;
@@ -37,20 +37,20 @@ static void keys_move_their_channels_and_let_go_returns_them(void **state) {
   mr_manual m;
   mr_manual_init(&m);
   double g[5];
-  mr_event e = key(MR_KEY_RIGHT, true);
+  mr_window_event e = key(MR_WINDOW_KEY_RIGHT, true);
   assert_true(mr_manual_event(&m, &e));
   goal(&m, g);
   assert_near(g[2], 0.95, 1e-12); /* middle: yaw */
   assert_near(g[0], 0.5, 1e-12);
-  e = key(MR_KEY_LEFT, true); /* both arrows: they cancel */
+  e = key(MR_WINDOW_KEY_LEFT, true); /* both arrows: they cancel */
   mr_manual_event(&m, &e);
   goal(&m, g);
   assert_near(g[2], 0.5, 1e-12);
-  e = key(MR_KEY_RIGHT, false);
+  e = key(MR_WINDOW_KEY_RIGHT, false);
   mr_manual_event(&m, &e);
   goal(&m, g);
   assert_near(g[2], 0.05, 1e-12);
-  e = key(MR_KEY_LEFT, false);
+  e = key(MR_WINDOW_KEY_LEFT, false);
   mr_manual_event(&m, &e);
   static const struct {
     int key, channel;
@@ -59,10 +59,10 @@ static void keys_move_their_channels_and_let_go_returns_them(void **state) {
                 { 'j', 0, 0.05 },
                 { 'i', 1, 0.95 },
                 { 'k', 1, 0.05 },
-                { MR_KEY_PAGE_UP, 3, 0.95 },
-                { MR_KEY_PAGE_DOWN, 3, 0.05 },
-                { MR_KEY_UP, 4, 0.95 },
-                { MR_KEY_DOWN, 4, 0.05 } };
+                { MR_WINDOW_KEY_PAGE_UP, 3, 0.95 },
+                { MR_WINDOW_KEY_PAGE_DOWN, 3, 0.05 },
+                { MR_WINDOW_KEY_UP, 4, 0.95 },
+                { MR_WINDOW_KEY_DOWN, 4, 0.05 } };
   for (size_t i = 0; i < sizeof table / sizeof table[0]; i++) {
     e = key(table[i].key, true);
     assert_true(mr_manual_event(&m, &e));
@@ -81,13 +81,13 @@ static void a_right_drag_and_a_gamepad_move_the_values_too(void **state) {
   (void)state;
   mr_manual m;
   mr_manual_init(&m);
-  mr_event e;
+  mr_window_event e;
   memset(&e, 0, sizeof e);
-  e.kind = MR_EVENT_MOUSE_BUTTON;
+  e.kind = MR_WINDOW_EVENT_MOUSE_BUTTON;
   e.button = 3;
   e.down = true;
   assert_true(mr_manual_event(&m, &e));
-  e.kind = MR_EVENT_MOUSE_MOVE;
+  e.kind = MR_WINDOW_EVENT_MOUSE_MOVE;
   e.buttons = 4;
   e.dx = 125;  /* half of a full drag */
   e.dy = -250; /* up: a full raise */
@@ -96,29 +96,29 @@ static void a_right_drag_and_a_gamepad_move_the_values_too(void **state) {
   mr_manual_goal(&m, g);
   assert_near(g[2], 0.5 + 0.45 * 0.5, 1e-12);
   assert_near(g[3], 0.95, 1e-12);
-  e.kind = MR_EVENT_MOUSE_BUTTON;
+  e.kind = MR_WINDOW_EVENT_MOUSE_BUTTON;
   e.down = false;
   mr_manual_event(&m, &e);
   mr_manual_goal(&m, g);
   assert_near(g[2], 0.5, 1e-12);
   memset(&e, 0, sizeof e);
-  e.kind = MR_EVENT_PAD_ADDED;
+  e.kind = MR_WINDOW_EVENT_PAD_ADDED;
   assert_true(mr_manual_event(&m, &e));
-  e.kind = MR_EVENT_PAD_AXIS;
-  e.axis = MR_PAD_LEFT_Y;
+  e.kind = MR_WINDOW_EVENT_PAD_AXIS;
+  e.axis = MR_WINDOW_PAD_LEFT_Y;
   e.value = -1; /* stick up: forward */
   mr_manual_event(&m, &e);
-  e.axis = MR_PAD_TRIGGER_RIGHT;
+  e.axis = MR_WINDOW_PAD_TRIGGER_RIGHT;
   e.value = 0.5;
   mr_manual_event(&m, &e);
-  e.axis = MR_PAD_RIGHT_X;
+  e.axis = MR_WINDOW_PAD_RIGHT_X;
   e.value = 0.05; /* inside the dead zone */
   mr_manual_event(&m, &e);
   mr_manual_goal(&m, g);
   assert_near(g[4], 0.95, 1e-12);
   assert_near(g[3], 0.5 + 0.45 * 0.5, 1e-12);
   assert_near(g[0], 0.5, 1e-12);
-  e.kind = MR_EVENT_PAD_REMOVED; /* unplugged: the pad lets go */
+  e.kind = MR_WINDOW_EVENT_PAD_REMOVED; /* unplugged: the pad lets go */
   mr_manual_event(&m, &e);
   mr_manual_goal(&m, g);
   for (int c = 0; c < 5; c++) assert_near(g[c], 0.5, 1e-12);
@@ -129,7 +129,7 @@ static void values_ease_towards_the_goal(void **state) {
   (void)state;
   mr_manual m;
   mr_manual_init(&m);
-  mr_event e = key(MR_KEY_UP, true);
+  mr_window_event e = key(MR_WINDOW_KEY_UP, true);
   mr_manual_event(&m, &e);
   for (int i = 0; i < 10; i++) mr_manual_update(&m, 0.01);
   assert_near(m.values[4], 0.5 + 0.45 * (1 - exp(-1.0)), 1e-9);

@@ -123,6 +123,17 @@ static void test_a_read_into_a_buffer_too_small_is_refused_and_leaves_it_alone(v
  * up vector has no camera basis: the draw is refused and the last frame
  * stays as it was, not replaced by a picture of only sky. Looking down
  * from 89 degrees still draws the sphere under the camera. */
+/* v from the orbit camera at 2.5 m from (0, 0.6, 0), its field of view
+ * kept. */
+static void orbit_view(mr_render_view *v, double azimuth_deg, double elevation_deg) {
+  const mr_orbit o = { .target = { 0, 0.6, 0 },
+                       .distance = 2.5,
+                       .azimuth_deg = azimuth_deg,
+                       .elevation_deg = elevation_deg,
+                       .fov_deg = v->fov_deg };
+  mr_render_view_orbit(v, &o);
+}
+
 static void test_a_view_without_a_camera_basis_is_refused(void **state) {
   (void)state;
   fx_scene s;
@@ -130,14 +141,13 @@ static void test_a_view_without_a_camera_basis_is_refused(void **state) {
   mr_render *r = fx_render(MR_RENDER_OSMESA, &s);
   uint8_t *before = fx_draw(r, &s);
   const size_t n = (size_t)FX_W * FX_H * 3;
-  const double target[3] = { 0, 0.6, 0 };
   mr_render_view v = s.view;
   for (int k = 0; k < 3; k++) v.eye[k] = v.target[k];
   assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_ERR_ARG);
   v = s.view;
-  mr_render_view_orbit(&v, target, 2.5, 30, 90);
+  orbit_view(&v, 30, 90);
   assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_ERR_ARG);
-  mr_render_view_orbit(&v, target, 2.5, 0, -90);
+  orbit_view(&v, 0, -90);
   assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_ERR_ARG);
   v = s.view;
   v.up[0] = v.up[1] = v.up[2] = 0;
@@ -148,7 +158,7 @@ static void test_a_view_without_a_camera_basis_is_refused(void **state) {
   assert_memory_equal(before, after, n);
 
   v = s.view;
-  mr_render_view_orbit(&v, target, 2.5, 30, 89);
+  orbit_view(&v, 30, 89);
   assert_int_equal(mr_render_draw(r, &s.list, &v), MR_RENDER_OK);
   assert_int_equal(mr_render_read_rgb(r, after, n), MR_RENDER_OK);
   double c[2];

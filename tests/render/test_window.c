@@ -1,8 +1,9 @@
 /* The window path, run under Xvfb (ctest starts it through xvfb-run):
- * an SDL window opens, 60 frames are drawn and shown, and the window's
- * own pixels (the frame blitted into its back buffer, read from there)
- * match the headless EGL frame of the same draw list; the same on an
- * OpenGL ES 3 window, against the desktop's headless frame. */
+ * an SDL window opens (mr_window), the renderer is handed its context as
+ * the program hands it (glue.c), 60 frames are drawn and shown, and the
+ * window's own pixels (the frame blitted into its back buffer, read from
+ * there) match the headless EGL frame of the same draw list; the same on
+ * an OpenGL ES 3 window, against the desktop's headless frame. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -13,6 +14,7 @@
 #include <cmocka.h>
 
 #include "fixture.h"
+#include "glue.h"
 #include "golden.h"
 #include "render_internal.h"
 
@@ -29,15 +31,23 @@ static void window_shows_the_headless_frame(mr_render_gl gl) {
   mr_render *egl = fx_render(MR_RENDER_EGL, &s);
   uint8_t *headless = fx_draw(egl, &s);
   mr_render_destroy(egl);
+  mr_window_def wdef = mr_default_window_def();
+  wdef.width = FX_W;
+  wdef.height = FX_H;
+  wdef.vsync = false;
+  wdef.title = "marionette test";
+  wdef.gl = mr_glue_gl(gl);
+  mr_window *window = NULL;
+  char msg[1024] = "";
+  if (mr_window_create(&wdef, &window, msg, sizeof msg) != MR_WINDOW_OK) fail_msg("%s", msg);
+  mr_render_context ctx = mr_glue_context(window);
   mr_render_def def = mr_default_render_def();
   def.width = FX_W;
   def.height = FX_H;
-  def.vsync = false;
-  def.title = "marionette test";
   def.gl = gl;
+  def.context = &ctx;
   mr_render *win = NULL;
-  char msg[1024] = "";
-  /* AUTO with a display is the window. */
+  /* AUTO with a window's context is the window. */
   if (mr_render_create(&def, &s.stage, NULL, &win, msg, sizeof msg) != MR_RENDER_OK)
     fail_msg("%s", msg);
   assert_int_equal(mr_render_backend_of(win), MR_RENDER_WINDOW);
@@ -47,8 +57,8 @@ static void window_shows_the_headless_frame(mr_render_gl gl) {
     s.items[0].pose.position[0] = 0.3 * (i - 59) / 59.0; /* ends at 0 */
     assert_int_equal(mr_render_draw(win, &s.list, &s.view), MR_RENDER_OK);
     mr_render_present(win);
-    mr_event ev;
-    while (mr_render_poll(win, &ev)) assert_int_not_equal(ev.kind, MR_EVENT_NONE);
+    mr_window_event ev;
+    while (mr_window_poll(window, &ev)) assert_int_not_equal(ev.kind, MR_WINDOW_EVENT_NONE);
   }
   int w = 0, h = 0;
   uint8_t *shown = malloc((size_t)4096 * 4096 * 3);
@@ -58,8 +68,9 @@ static void window_shows_the_headless_frame(mr_render_gl gl) {
   uint8_t *fbo = malloc((size_t)FX_W * FX_H * 3);
   assert_int_equal(mr_render_read_rgb(win, fbo, (size_t)FX_W * FX_H * 3), MR_RENDER_OK);
   assert_memory_equal(shown, fbo, (size_t)FX_W * FX_H * 3);
-  assert_int_equal(mr_render_set_fullscreen(win, false), MR_RENDER_OK);
+  assert_int_equal(mr_window_set_fullscreen(window, false), MR_WINDOW_OK);
   mr_render_destroy(win);
+  mr_window_destroy(window);
 
   int worst = 0;
   double agree = mr_frames_agreement(shown, headless, FX_W, FX_H, MR_GOLDEN_TOLERANCE, &worst);

@@ -3,10 +3,12 @@
  *
  * Every frame is drawn into the renderer's own framebuffer object,
  * multisampled and resolved (or, in software, smoothed by a post pass),
- * then shown in a window (SDL2) or read back (OSMesa, EGL surfaceless). The renderer takes an mr_stage_def at create (its
- * models are loaded then) and, each frame, an mr_draw_list of poses and an
- * mr_render_view; it knows nothing of physics. No SDL or GL type appears
- * here. Libraries never print: errors fill msg. */
+ * then shown in a window (in the GL context a window made, which the
+ * renderer is handed: mr_render_context) or read back (OSMesa, EGL
+ * surfaceless). The renderer takes an mr_stage_def at create (its models
+ * are loaded then) and, each frame, an mr_draw_list of poses and an
+ * mr_render_view; it knows nothing of physics nor of windows. No SDL or GL
+ * type appears here. Libraries never print: errors fill msg. */
 #ifndef MR_RENDER_H
 #define MR_RENDER_H
 
@@ -23,9 +25,10 @@ extern "C" {
 #define MR_RENDER_COOKIE 0x6d725264u
 
 typedef enum mr_render_backend {
-  MR_RENDER_AUTO = 0, /* a window when a display is there, else EGL, else OSMesa;
-                         headless (def.headless): EGL, else OSMesa */
-  MR_RENDER_WINDOW,   /* SDL2 */
+  MR_RENDER_AUTO = 0, /* the window's context when def.context is given, else
+                         EGL, else OSMesa; headless (def.headless): EGL, else
+                         OSMesa */
+  MR_RENDER_WINDOW,   /* the GL context of a window (def.context) */
   MR_RENDER_OSMESA,
   MR_RENDER_EGL /* surfaceless */
 } mr_render_backend;
@@ -44,6 +47,20 @@ typedef enum mr_render_gl {
 const char *mr_render_gl_name(mr_render_gl g);
 int mr_render_gl_parse(const char *name, mr_render_gl *out);
 
+/* A GL context someone else made, with a window to show frames in (the
+ * window backend's; host/window's mr_window makes one). The renderer
+ * draws only while it is current, and makes it current itself before it
+ * draws, reads or shows. */
+typedef void (*mr_render_proc)(void);
+typedef struct mr_render_context {
+  void *self;                                   /* handed back to the calls below */
+  mr_render_proc (*get_proc)(const char *name); /* the context's GL entry points */
+  int (*make_current)(void *self);              /* 0, or -1 */
+  void (*drawable_size)(void *self, int *width, int *height);
+  void (*present)(void *self); /* shows the back buffer (swaps) */
+  bool gles;                   /* the context is OpenGL ES 3.x, else desktop core */
+} mr_render_context;
+
 typedef struct mr_render_def {
   uint32_t cookie; /* MR_RENDER_COOKIE, set by mr_default_render_def() */
   mr_render_backend backend;
@@ -55,9 +72,9 @@ typedef struct mr_render_def {
    * frame, 1, and the edges are smoothed by a post pass instead. N >= 1:
    * N samples (1: none), and no post pass. */
   int samples;
-  bool fullscreen;       /* window only */
-  bool vsync;            /* window only, default true */
-  const char *title;     /* window only */
+  /* The window's context (backend WINDOW, or AUTO not headless); copied
+   * at create; it must outlive the renderer. NULL: none. */
+  const mr_render_context *context;
   const char *font_path; /* NULL: the DejaVu Sans Mono the system ships */
 } mr_render_def;
 mr_render_def mr_default_render_def(void);
@@ -109,78 +126,17 @@ typedef struct mr_render_view {
 } mr_render_view;
 /* The stage's orbit camera at its start, its day knob, rigging shown. */
 mr_render_view mr_default_render_view(const mr_stage_def *stage);
-/* The orbit camera: eye at distance from target, turned by azimuth about
- * y and raised by elevation (degrees). */
-void mr_render_view_orbit(mr_render_view *v, const double target[3], double distance,
-                          double azimuth_deg, double elevation_deg);
+/* The view from the orbit camera o (mr_stage's maths): its eye, target,
+ * field of view, and y up. */
+void mr_render_view_orbit(mr_render_view *v, const mr_orbit *o);
 
 /* Draws one frame into the renderer's framebuffer. */
 mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list, const mr_render_view *view);
 /* The last frame drawn as 8-bit RGB, top row first: size >= 3 w h. */
 mr_render_status mr_render_read_rgb(mr_render *r, uint8_t *rgb, size_t size);
-/* Window: shows the last frame drawn. Headless: nothing. */
+/* Window: the last frame drawn blitted into the window's back buffer,
+ * scaled to fit, then shown (context.present). Headless: nothing. */
 void mr_render_present(mr_render *r);
-mr_render_status mr_render_set_fullscreen(mr_render *r, bool on);
-
-/* ---------------------------------------------------- the window's input */
-
-typedef enum mr_event_kind {
-  MR_EVENT_NONE = 0,
-  MR_EVENT_QUIT,
-  MR_EVENT_KEY,          /* key, down */
-  MR_EVENT_MOUSE_MOVE,   /* x, y, dx, dy (pixels), buttons held */
-  MR_EVENT_MOUSE_BUTTON, /* button, down, x, y */
-  MR_EVENT_MOUSE_WHEEL,  /* dy: steps, up positive */
-  MR_EVENT_PAD_ADDED,    /* a game controller plugged in (pad: its id) */
-  MR_EVENT_PAD_REMOVED,
-  MR_EVENT_PAD_AXIS,   /* axis, value: sticks -1..1, triggers 0..1 */
-  MR_EVENT_PAD_BUTTON, /* button, down */
-  MR_EVENT_RESIZE      /* width, height */
-} mr_event_kind;
-
-/* Keys: printable keys are their lower-case ASCII code; the rest these. */
-enum {
-  MR_KEY_ESCAPE = 27,
-  MR_KEY_SPACE = ' ',
-  MR_KEY_F1 = 0x100,
-  MR_KEY_F11 = 0x10a,
-  MR_KEY_F12 = 0x10b,
-  MR_KEY_LEFT = 0x110,
-  MR_KEY_RIGHT,
-  MR_KEY_UP,
-  MR_KEY_DOWN,
-  MR_KEY_PAGE_UP,
-  MR_KEY_PAGE_DOWN,
-  MR_KEY_SHIFT,
-  MR_KEY_OTHER = 0x1ff
-};
-
-/* Game controller axes and buttons, as SDL's game controller names them. */
-enum {
-  MR_PAD_LEFT_X = 0,
-  MR_PAD_LEFT_Y,
-  MR_PAD_RIGHT_X,
-  MR_PAD_RIGHT_Y,
-  MR_PAD_TRIGGER_LEFT,
-  MR_PAD_TRIGGER_RIGHT
-};
-
-typedef struct mr_event {
-  mr_event_kind kind;
-  int key;     /* MR_EVENT_KEY */
-  bool down;   /* KEY, MOUSE_BUTTON, PAD_BUTTON */
-  int button;  /* mouse: 1 left, 2 middle, 3 right; pad: SDL's number */
-  int buttons; /* MOUSE_MOVE: held, bit 0 left, 1 middle, 2 right */
-  double x, y, dx, dy;
-  int axis;          /* PAD_AXIS */
-  double value;      /* PAD_AXIS */
-  int pad;           /* PAD_*: which controller */
-  int width, height; /* RESIZE */
-} mr_event;
-
-/* The next pending window event into ev; 0 when there is none (always 0
- * headless). Never waits. */
-int mr_render_poll(mr_render *r, mr_event *ev);
 
 #ifdef __cplusplus
 }

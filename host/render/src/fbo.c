@@ -168,7 +168,7 @@ void mr_fbo_blit_to_window(mr_render *r, int w, int h) {
 int mr_render_read_window_rgb(mr_render *r, uint8_t *rgb, size_t size, int *w, int *h) {
   if (!r || r->backend != MR_RENDER_WINDOW || !r->drawn) return -1;
   if (r->ops->make_current(r) != 0) return -1;
-  mr_sdl_drawable_size(r, w, h);
+  mr_context_drawable_size(r, w, h);
   if ((size_t)*w * (size_t)*h * 3 > size) return -1;
   mr_fbo_blit_to_window(r, *w, *h);
   r->gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);

@@ -1,6 +1,6 @@
 /* The GL entry points the renderer calls, loaded into a table through the
  * backend's own get-proc-address (OSMesaGetProcAddress, eglGetProcAddress,
- * SDL_GL_GetProcAddress).
+ * SDL_GL_GetProcAddress, which the window hands over as its context's get_proc).
  *
  * Why a table and no gl* calls: libOSMesa and libGL (and libOpenGL through
  * EGL) each export the whole gl* set, so a direct call binds to whichever

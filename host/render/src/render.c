@@ -10,7 +10,7 @@
 static const mr_backend_ops *backend_ops(mr_render_backend b) {
   switch (b) {
   case MR_RENDER_WINDOW:
-    return &mr_backend_sdl_ops;
+    return &mr_backend_window_ops;
   case MR_RENDER_OSMESA:
     return &mr_backend_osmesa_ops;
   case MR_RENDER_EGL:
@@ -20,16 +20,16 @@ static const mr_backend_ops *backend_ops(mr_render_backend b) {
   }
 }
 
-/* AUTO: a window when a display is there (and headless was not asked),
- * else EGL, else OSMesa. Returns how many backends to try, in order. */
+/* AUTO: the window's context when one is given (and headless was not
+ * asked), else EGL, else OSMesa. Returns how many backends to try, in
+ * order. */
 static int backend_order(const mr_render_def *def, mr_render_backend order[3]) {
   if (def->backend != MR_RENDER_AUTO) {
     order[0] = def->backend;
     return 1;
   }
   int n = 0;
-  const char *x11 = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
-  if (!def->headless && ((x11 && *x11) || (wl && *wl))) order[n++] = MR_RENDER_WINDOW;
+  if (!def->headless && def->context) order[n++] = MR_RENDER_WINDOW;
   order[n++] = MR_RENDER_EGL;
   order[n++] = MR_RENDER_OSMESA;
   return n;
@@ -181,18 +181,7 @@ mr_render_status mr_render_read_rgb(mr_render *r, uint8_t *rgb, size_t size) {
 void mr_render_present(mr_render *r) {
   if (!r || r->backend != MR_RENDER_WINDOW || r->ops->make_current(r) != 0) return;
   int w = 0, h = 0;
-  mr_sdl_drawable_size(r, &w, &h);
+  mr_context_drawable_size(r, &w, &h);
   if (w > 0 && h > 0) mr_fbo_blit_to_window(r, w, h);
-  mr_sdl_swap(r);
-}
-
-mr_render_status mr_render_set_fullscreen(mr_render *r, bool on) {
-  if (!r) return MR_RENDER_ERR_ARG;
-  if (r->backend != MR_RENDER_WINDOW) return MR_RENDER_OK;
-  return mr_sdl_set_fullscreen(r, on) == 0 ? MR_RENDER_OK : MR_RENDER_ERR_BACKEND;
-}
-
-int mr_render_poll(mr_render *r, mr_event *ev) {
-  if (!r || !ev || r->backend != MR_RENDER_WINDOW) return 0;
-  return mr_sdl_poll(r, ev);
+  mr_context_present(r);
 }

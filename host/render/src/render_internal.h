@@ -13,8 +13,8 @@
 
 typedef struct mr_render mr_render;
 
-/* A backend: starts a context (and a window), makes it current, shows a
- * frame, stops. start fills r->gl through its get-proc-address. */
+/* A backend: starts a context (or takes the window's), makes it current,
+ * stops. start fills r->gl through its get-proc-address. */
 typedef struct mr_backend_ops {
   mr_render_backend kind;
   int (*start)(mr_render *r, const mr_render_def *def, char *msg, size_t msg_size);
@@ -24,13 +24,12 @@ typedef struct mr_backend_ops {
 
 extern const mr_backend_ops mr_backend_osmesa_ops;
 extern const mr_backend_ops mr_backend_egl_ops;
-extern const mr_backend_ops mr_backend_sdl_ops;
+extern const mr_backend_ops mr_backend_window_ops;
 
-/* The window backend's extras (backend_sdl.c). */
-void mr_sdl_swap(mr_render *r);
-void mr_sdl_drawable_size(mr_render *r, int *w, int *h);
-int mr_sdl_set_fullscreen(mr_render *r, bool on);
-int mr_sdl_poll(mr_render *r, mr_event *ev);
+/* The window backend's extras (backend_window.c): the size of what the
+ * window's context draws into, and the back buffer shown. */
+void mr_context_drawable_size(mr_render *r, int *w, int *h);
+void mr_context_present(mr_render *r);
 
 /* One mesh on the GPU. Attribute slots: 0 position, 1 normal, 2 uv,
  * 3 bone indices (ivec4), 4 bone weights (vec4). */
