@@ -209,8 +209,9 @@ static void bad_sources_are_refused_by_name(void **state) {
   snprintf(d.source, sizeof d.source, "pty:");
   assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);
   assert_null(g);
-  assert_string_equal(msg, "glove source 'pty:': expected serial:DEV, serial:auto, pty:PATH, "
-                           "pty, file:PATH, -, tcp:HOST:PORT or tcp-listen:PORT");
+  assert_string_equal(msg, "glove source 'pty:': expected serial:DEV[@BAUD], serial:auto, "
+                           "pty:PATH, pty, file:PATH, take:PATH, -, tcp:HOST:PORT or "
+                           "tcp-listen:[HOST:]PORT");
   d = mr_default_glove_def();
   d.retry_every = 5;
   assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);

@@ -89,20 +89,22 @@ static void tools_cli_bad_usage_exits_2_with_one_line_naming_the_program(void **
   }
 }
 
+/* A device that is not there is the user's usage (exit 2), found before
+ * anything opens, and reads the same in every tool. */
 static void tools_cli_a_missing_device_reads_the_same_in_every_tool(void **state) {
-  const char *want = "/dev/ttyNOSUCH0: cannot open: No such file or directory";
+  const char *want = "/dev/ttyNOSUCH0: no such ";
   (void)state;
   {
     const char *a[] = { tt_glove_dump, "/dev/ttyNOSUCH0", NULL };
-    expect_one_line(a, "glove-dump", 1, want);
+    expect_one_line(a, "glove-dump", 2, want);
   }
   {
     const char *a[] = { tt_glove_dump, "serial:/dev/ttyNOSUCH0@9600", NULL };
-    expect_one_line(a, "glove-dump", 1, want);
+    expect_one_line(a, "glove-dump", 2, "serial:/dev/ttyNOSUCH0@9600: no such device");
   }
   {
     const char *a[] = { tt_glove_gen, "-n", "3", "-o", "serial:/dev/ttyNOSUCH0", NULL };
-    expect_one_line(a, "glove-gen", 1, want);
+    expect_one_line(a, "glove-gen", 2, "serial:/dev/ttyNOSUCH0: no such device");
   }
 }
 
