@@ -132,7 +132,8 @@ const gp_info *mr_glove_info(const mr_glove *g);
 void mr_glove_latest(const mr_glove *g, mr_glove_reading *out);
 void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out);
 /* host time − device time, the smallest seen (the path's fixed delay
- * included), s; NAN before a sample. A sample's latency is its host time
+ * included) since the device clock last started afresh (a START flag, a
+ * reconnect, a new INFO uid, a sequence restart), s; NAN before a sample. A sample's latency is its host time
  * minus its device time minus this. */
 double mr_glove_clock_offset(const mr_glove *g);
 /* One line for the user: the source, the state and what to do about it.

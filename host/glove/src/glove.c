@@ -229,6 +229,7 @@ static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
   }
   if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LOST;
   if (why != g->last_error) snprintf(g->last_error, sizeof g->last_error, "%s", why);
+  g->clock_fresh = true;
   g->next_open = now + g->def.retry_every;
   if (ends) g->ended = true;
 }
@@ -285,6 +286,7 @@ static void try_open(mr_glove *g, double now) {
   }
   g->take_error = MR_IO_OK;
   g->open = true;
+  g->clock_fresh = true;
   g->counters.opens++;
   g->last_bytes = now;
   g->sniffing = !g->is_take && is_stream(g);
@@ -304,6 +306,18 @@ static double calibrate(const mr_glove *g, int k, uint16_t raw) {
 }
 
 static void take_sample(mr_glove *g, const gp_sample *s, double now) {
+  /* A restarted device clock is no wrap, and the smallest offset seen
+   * before it says nothing of the new one (it left "ms late" seconds off
+   * for the rest of a show after a replug). A restart is a reconnect, a
+   * new INFO uid, or what the decoder counts as a sequence restart: a
+   * START flag, or a sequence that started again (SPEC.md, rule 8). */
+  if (g->clock_fresh || g->dec.c.seq_restarts != g->seen_restarts) {
+    g->have_t = false;
+    g->device_base = 0;
+    g->offset = NAN;
+    g->clock_fresh = false;
+  }
+  g->seen_restarts = g->dec.c.seq_restarts;
   if (g->have_t && s->t_us < g->last_t_us && g->last_t_us - s->t_us > 0x80000000u)
     g->device_base += 4294.967296; /* the µs counter wrapped */
   g->last_t_us = s->t_us;
@@ -338,6 +352,8 @@ int mr_glove_feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
       g->state = MR_GLOVE_MISMATCH;
       g->mismatch_hash = g->dec.peer_known ? g->dec.peer_hash : 0;
     } else if (ev == GP_EV_FRAME && m.type == GP_INFO) {
+      if (g->have_info && memcmp(g->info.uid, m.u.info.uid, sizeof g->info.uid) != 0)
+        g->clock_fresh = true; /* another glove on this source */
       g->info = m.u.info;
       g->have_info = true;
     } else if ((ev == GP_EV_FRAME) && m.type == GP_SAMPLE) {

@@ -32,6 +32,11 @@ struct mr_glove {
   uint32_t last_t_us; /* for unwrapping device time */
   double device_base; /* s added for the wraps seen */
   bool have_t;
+  /* The device clock starts afresh (a START flag, a reconnect, a new INFO
+   * uid, a sequence restart): the next sample re-estimates the offset and
+   * is not taken for a wrap. */
+  bool clock_fresh;
+  uint32_t seen_restarts; /* the decoder's seq_restarts at the last sample */
   uint32_t mismatch_hash;
   mr_glove_counters counters;
   char last_error[sizeof(((mr_io_err *)0)->msg)];
