@@ -87,8 +87,11 @@ typedef struct mr_io {
  *   "pty"                    a new pseudo-terminal, raw mode; mr_io_path()
  *                            names its slave side for the peer to open
  *   "tcp:HOST:PORT"          connect
- *   "tcp-listen:[HOST:]PORT" listen (HOST defaults to 127.0.0.1; PORT 0 picks
- *                            a free port, read it back from io->port)
+ *   "tcp-listen:[HOST:]PORT" listen (HOST defaults to 127.0.0.1, the loopback
+ *                            only; PORT 0 picks a free port, read it back
+ *                            from io->port) and serve one peer at a time:
+ *                            while one is served, reads accept and close
+ *                            any other at once (it reads end of stream)
  *   "serial:DEV[@BAUD]"      8N1 at BAUD (default 115200); a pty slave path is
  *                            recognised and opened through termios
  * Returns 0, or -1 with *err filled. */

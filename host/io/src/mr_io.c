@@ -290,10 +290,19 @@ mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t
                                             : mr_io_accept(io, timeout_ms, err);
     if (st != MR_IO_OK) return st;
   }
+  /* A peer from "tcp-listen:" is served alone: others are refused. */
+  nfds_t nfds = io->kind == MR_IO_TCP && io->listen_fd >= 0 ? 2 : 1;
   for (;;) {
-    struct pollfd p = { io->fd, POLLIN, 0 };
+    struct pollfd ps[2] = { { io->fd, POLLIN, 0 }, { io->listen_fd, POLLIN, 0 } };
+    struct pollfd p;
     ssize_t n;
-    int r = poll(&p, 1, mr_io_ms_left(start, timeout_ms));
+    int r = poll(ps, nfds, mr_io_ms_left(start, timeout_ms));
+    p = ps[0];
+    if (r > 0 && nfds == 2 && (ps[1].revents & POLLIN)) {
+      /* None taken (out of descriptors?): stop watching, never spin. */
+      if (mr_io_tcp_refuse_extra(io) == 0) nfds = 1;
+      if (p.revents == 0) continue;
+    }
     if (r < 0) {
       /* A signal ends the wait early, so that the caller can look at it. */
       if (errno == EINTR) return MR_IO_TIMEOUT;
