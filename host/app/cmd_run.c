@@ -270,7 +270,7 @@ static int take_value(args *a, const char *opt, const char *v) {
     a->def.record[a->n_record++] = v;
   } else if (strcmp(opt, "--replay") == 0) {
     char *src = a->take_source[a->def.n_gloves < MR_SHOW_MAX_GLOVES ? a->def.n_gloves : 0];
-    snprintf(src, MR_GLOVE_SOURCE_MAX, "file:%s", v);
+    snprintf(src, MR_GLOVE_SOURCE_MAX, "take:%s", v);
     a->n_replay++;
     return add_glove(a, src);
   } else if (strcmp(opt, "--hashes") == 0) {
@@ -356,6 +356,20 @@ static int parse(int argc, char **argv, args *a) {
   if (a->n_record > a->n_live) return bad_usage("expected at most one --record per --glove%s", "");
   if (a->real_time && a->n_replay == 0)
     return bad_usage("expected --real-time with --replay%s", "");
+  return 0;
+}
+
+/* Each glove source, checked before the show: one the user got wrong is
+ * bad usage. 0, or the exit status after one line. */
+static int check_gloves(const args *a) {
+  for (size_t i = 0; i < a->def.n_gloves; i++) {
+    mr_glove_source_report rep;
+    if (mr_glove_source_check(a->def.gloves[i], &rep) == MR_IO_ERR_SPEC)
+      return bad_usage("%s", rep.msg);
+    if (rep.status != MR_IO_OK)
+      return fprintf(stderr, "marionette run: %s\n", rep.msg), MR_EXIT_FAIL;
+    if (rep.note[0] != '\0') fprintf(stderr, "marionette run: %s\n", rep.note);
+  }
   return 0;
 }
 
@@ -519,6 +533,8 @@ int mr_cmd_run(int argc, char **argv) {
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;
   }
+  int rc_gloves = check_gloves(&a);
+  if (rc_gloves != 0) return mr_scene_free(&scene), rc_gloves;
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;

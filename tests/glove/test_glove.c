@@ -110,6 +110,104 @@ static mr_glove *glove_on_new_port(port *p, char *source, size_t size) {
   return glove_on(source);
 }
 
+static void send_sample_flags(port *p, uint16_t seq, uint32_t t_us, uint8_t flags) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_SAMPLE;
+  m.u.sample.seq = seq;
+  m.u.sample.t_us = t_us;
+  m.u.sample.flags = flags;
+  for (int k = 0; k < 5; k++) m.u.sample.ch[k] = 2000;
+  send(p, &m, GP_SPEC_HASH);
+}
+
+/* "ms late" as the theater shows it: the newest sample's host time past
+ * its device time, less the clock offset. */
+static double lateness(const mr_glove *g) {
+  mr_glove_reading r;
+  mr_glove_latest(g, &r);
+  return r.host_t - r.device_t - mr_glove_clock_offset(g);
+}
+
+/* 100 Hz samples for `secs` of host time from `now`, device time from
+ * t0_us, seq from *seq; each one read at its host time. */
+static double stream(port *p, mr_glove *g, double now, double secs, uint32_t t0_us, uint16_t *seq) {
+  for (int i = 0; i < (int)(secs * 100); i++) {
+    send_sample_flags(p, (*seq)++, t0_us + 10000u * (uint32_t)i, 0);
+    assert_true(poll_for_samples(g, now + 0.01 * i) > 0);
+  }
+  return now + secs;
+}
+
+/* A glove replugged on a new pty whose clock started again (its sequence
+ * carries on and no START flag came: the reconnect alone must tell): the
+ * lateness is below 100 ms again within a second, not the old offset's
+ * 100 s. */
+static void the_lateness_is_measured_afresh_after_a_replug(void **state) {
+  (void)state;
+  port p;
+  char source[128];
+  uint16_t seq = 1;
+  mr_glove *g = glove_on_new_port(&p, source, sizeof source);
+  mr_glove_poll(g, 10.0, 0);
+  double now = stream(&p, g, 10.0, 0.5, 100000000u, &seq); /* device at 100 s */
+  assert_true(fabs(lateness(g)) < 0.1);
+  unplug(&p);
+  for (int i = 0; i < 50 && mr_glove_state_get(g) != MR_GLOVE_LOST; i++) mr_glove_poll(g, now, 10);
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LOST);
+  plug(&p);
+  now += 2.0;
+  for (int i = 0; i < 50 && mr_glove_state_get(g) == MR_GLOVE_LOST; i++) {
+    mr_glove_poll(g, now, 10);
+    send_sample_flags(&p, seq++, 0, 0);
+    poll_for_samples(g, now);
+  }
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  now = stream(&p, g, now, 1.0, 500000u, &seq); /* the device clock restarted */
+  if (!(lateness(g) < 0.1)) fail_msg("%.3f s late a second after the replug", lateness(g));
+  mr_glove_destroy(g);
+  unplug(&p);
+  rmdir(p.dir);
+}
+
+/* On one connection: a START flag after the device clock reached 3000 s
+ * (more than 2^31 µs) is a restart, not a wrap, and a new INFO uid starts
+ * the offset afresh too. */
+static void a_restart_or_a_new_uid_starts_the_device_clock_afresh(void **state) {
+  (void)state;
+  port p;
+  char source[128];
+  uint16_t seq = 1;
+  mr_glove *g = glove_on_new_port(&p, source, sizeof source);
+  mr_glove_poll(g, 1.0, 0);
+  send_info(&p, GP_SPEC_HASH);
+  double now = stream(&p, g, 1.0, 0.2, 3000000000u, &seq);
+  send_sample_flags(&p, 0, 1000, GP_SAMPLE_F_START);
+  assert_true(poll_for_samples(g, now) > 0);
+  mr_glove_reading r;
+  mr_glove_latest(g, &r);
+  if (!(fabs(r.device_t - 0.001) < 1e-9)) fail_msg("device time %.6f s, not 0.001", r.device_t);
+  assert_true(fabs(lateness(g)) < 1e-9);
+
+  /* Another glove's INFO: its clock is 50 s behind; the lateness must not
+   * read 50 s. */
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_INFO;
+  m.u.info.proto_major = 1;
+  m.u.info.spec_hash = GP_SPEC_HASH;
+  m.u.info.uid[0] = 0xBEEF;
+  m.u.info.n_channels = 5;
+  m.u.info.adc_bits = 12;
+  send(&p, &m, GP_SPEC_HASH);
+  seq = 5000;
+  now = stream(&p, g, now + 60.0, 0.2, 10000000u, &seq);
+  if (!(fabs(lateness(g)) < 0.1)) fail_msg("%.3f s late after a new uid", lateness(g));
+  mr_glove_destroy(g);
+  unplug(&p);
+  rmdir(p.dir);
+}
+
 static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
   (void)state;
   port p;
@@ -209,8 +307,9 @@ static void bad_sources_are_refused_by_name(void **state) {
   snprintf(d.source, sizeof d.source, "pty:");
   assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);
   assert_null(g);
-  assert_string_equal(msg, "glove source 'pty:': expected serial:DEV, serial:auto, pty:PATH, "
-                           "pty, file:PATH, -, tcp:HOST:PORT or tcp-listen:PORT");
+  assert_string_equal(msg, "glove source 'pty:': expected serial:DEV[@BAUD], serial:auto, "
+                           "pty:PATH, pty, file:PATH, take:PATH, -, tcp:HOST:PORT or "
+                           "tcp-listen:[HOST:]PORT");
   d = mr_default_glove_def();
   d.retry_every = 5;
   assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);
@@ -269,6 +368,8 @@ int main(void) {
     cmocka_unit_test(a_live_glove_is_read_calibrated_lost_and_found_again),
     cmocka_unit_test(a_foreign_glove_is_a_spec_mismatch),
     cmocka_unit_test(bad_sources_are_refused_by_name),
+    cmocka_unit_test(the_lateness_is_measured_afresh_after_a_replug),
+    cmocka_unit_test(a_restart_or_a_new_uid_starts_the_device_clock_afresh),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -89,20 +89,68 @@ static void tools_cli_bad_usage_exits_2_with_one_line_naming_the_program(void **
   }
 }
 
+/* A device that is not there is the user's usage (exit 2), found before
+ * anything opens, and reads the same in every tool. */
 static void tools_cli_a_missing_device_reads_the_same_in_every_tool(void **state) {
-  const char *want = "/dev/ttyNOSUCH0: cannot open: No such file or directory";
+  const char *want = "/dev/ttyNOSUCH0: no such ";
   (void)state;
   {
     const char *a[] = { tt_glove_dump, "/dev/ttyNOSUCH0", NULL };
-    expect_one_line(a, "glove-dump", 1, want);
+    expect_one_line(a, "glove-dump", 2, want);
   }
   {
     const char *a[] = { tt_glove_dump, "serial:/dev/ttyNOSUCH0@9600", NULL };
-    expect_one_line(a, "glove-dump", 1, want);
+    expect_one_line(a, "glove-dump", 2, "serial:/dev/ttyNOSUCH0@9600: no such device");
   }
   {
     const char *a[] = { tt_glove_gen, "-n", "3", "-o", "serial:/dev/ttyNOSUCH0", NULL };
-    expect_one_line(a, "glove-gen", 1, want);
+    expect_one_line(a, "glove-gen", 2, "serial:/dev/ttyNOSUCH0: no such device");
+  }
+}
+
+/* Runs a bash pipeline to its end; stdout (the statuses it echoes) and
+ * stderr in *o. */
+static void pipeline(const char *script, tt_output *o) {
+  const char *a[] = { "/bin/bash", "-c", script, NULL };
+  assert_int_equal(tt_capture((char *const *)a, o), 0);
+}
+
+/* A reader that leaves after what it wanted (glove-dump -n, head, the end
+ * of a show) is no failure of the writer: glove-gen exits 0, and
+ * glove-dump piped into head ends quietly, exit 0, no "Broken pipe". */
+static void tools_cli_a_reader_that_leaves_ends_the_writers_quietly_with_0(void **state) {
+  char script[3000];
+  tt_output o;
+  (void)state;
+  snprintf(script, sizeof script,
+           "'%s' -q -r 1000 | '%s' -q -n 5 >/dev/null; echo \"${PIPESTATUS[*]}\"", tt_glove_gen,
+           tt_glove_dump);
+  pipeline(script, &o);
+  if (strcmp(o.out, "0 0\n") != 0) fail_msg("glove-gen | glove-dump -n 5: statuses %s", o.out);
+  tt_output_free(&o);
+  snprintf(script, sizeof script,
+           "'%s' -q --fast -n 5000 | '%s' | head -n 2 >/dev/null; echo \"${PIPESTATUS[*]}\"",
+           tt_glove_gen, tt_glove_dump);
+  pipeline(script, &o);
+  if (strcmp(o.out, "0 0 0\n") != 0 || o.err[0] != '\0')
+    fail_msg("glove-gen | glove-dump | head: statuses %s, stderr '%s' (want 0 0 0, nothing)", o.out,
+             o.err);
+  tt_output_free(&o);
+}
+
+/* --version: one line, the program's name and the project's version. */
+static void tools_cli_each_tool_tells_its_version(void **state) {
+  const char *tools[2][2] = { { tt_glove_gen, "glove-gen " }, { tt_glove_dump, "glove-dump " } };
+  (void)state;
+  for (int i = 0; i < 2; i++) {
+    const char *a[] = { tools[i][0], "--version", NULL };
+    tt_output o;
+    assert_int_equal(tt_capture((char *const *)a, &o), 0);
+    size_t n = strlen(tools[i][1]);
+    if (o.status != 0 || strncmp(o.out, tools[i][1], n) != 0 || o.out[n] < '0' || o.out[n] > '9' ||
+        count_lines(o.out) != 1 || o.err[0] != '\0')
+      fail_msg("%s --version: exit %d, '%s'", tools[i][1], o.status, o.out);
+    tt_output_free(&o);
   }
 }
 
@@ -148,6 +196,8 @@ int main(int argc, char **argv) {
     cmocka_unit_test(tools_cli_bad_usage_exits_2_with_one_line_naming_the_program),
     cmocka_unit_test(tools_cli_a_missing_device_reads_the_same_in_every_tool),
     cmocka_unit_test(tools_cli_glove_gen_refuses_to_write_binary_to_a_terminal),
+    cmocka_unit_test(tools_cli_a_reader_that_leaves_ends_the_writers_quietly_with_0),
+    cmocka_unit_test(tools_cli_each_tool_tells_its_version),
   };
   tt_take_args(argc, argv);
   if (argc > 3) g_marionette = argv[3];

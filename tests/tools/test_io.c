@@ -13,7 +13,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
 #include <sys/mman.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -365,6 +369,87 @@ static void tools_io_clocks_tell_unix_time_and_never_go_back(void **state) {
   assert_true(u + 1 >= t && u <= t + 1);
 }
 
+/* The listening socket's own address (getsockname; nothing is sent):
+ * tcp-listen:PORT is the loopback only, with no word said; another
+ * interface must be named, and then mr_io_spec_check says once that plain
+ * TCP has no authentication. */
+static void tools_io_tcp_listen_binds_the_loopback_unless_told(void **state) {
+  static const struct {
+    const char *spec, *addr;
+    int noted;
+  } cases[] = { { "tcp-listen:0", "127.0.0.1", 0 }, { "tcp-listen:0.0.0.0:0", "0.0.0.0", 1 } };
+  (void)state;
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    mr_io io;
+    mr_io_err err;
+    char note[320];
+    struct sockaddr_in sa;
+    socklen_t len = sizeof sa;
+    char addr[INET_ADDRSTRLEN];
+    tt_assert_io_ok(mr_io_spec_check(cases[i].spec, MR_IO_READ, note, sizeof note, &err), err);
+    if ((note[0] != '\0') != cases[i].noted || (cases[i].noted && !strstr(note, "authentication")))
+      fail_msg("%s: note '%s'", cases[i].spec, note);
+    tt_assert_io_ok(mr_io_open(&io, cases[i].spec, MR_IO_READ, &err), err);
+    assert_int_equal(getsockname(io.listen_fd, (struct sockaddr *)&sa, &len), 0);
+    assert_int_equal(sa.sin_family, AF_INET);
+    assert_non_null(inet_ntop(AF_INET, &sa.sin_addr, addr, sizeof addr));
+    if (strcmp(addr, cases[i].addr) != 0)
+      fail_msg("%s listens on %s, not %s", cases[i].spec, addr, cases[i].addr);
+    assert_int_equal(ntohs(sa.sin_port), io.port);
+    mr_io_close(&io);
+  }
+}
+
+/* tcp-listen: serves one peer at a time (as documented): 20 more that
+ * connect meanwhile, one after another between reads, are each accepted
+ * and closed at once (they read end
+ * of stream within 2 s), and the first peer's bytes still come through. */
+static void tools_io_tcp_listen_serves_one_peer_and_refuses_the_rest_cleanly(void **state) {
+  mr_io srv;
+  mr_io_err err;
+  struct sockaddr_in sa;
+  int extra[20], first;
+  char buf[64];
+  size_t got;
+  (void)state;
+  tt_assert_io_ok(mr_io_open(&srv, "tcp-listen:0", MR_IO_READ, &err), err);
+  memset(&sa, 0, sizeof sa);
+  sa.sin_family = AF_INET;
+  sa.sin_port = htons((uint16_t)srv.port);
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  first = socket(AF_INET, SOCK_STREAM, 0);
+  assert_int_equal(connect(first, (struct sockaddr *)&sa, sizeof sa), 0);
+  assert_int_equal(write(first, "one", 3), 3);
+  assert_int_equal(mr_io_read(&srv, buf, sizeof buf, 2000, &got, &err), MR_IO_OK);
+  assert_int_equal(got, 3);
+  for (int i = 0; i < 20; i++) {
+    extra[i] = socket(AF_INET, SOCK_STREAM, 0);
+    /* A backlog nobody empties would block connect for a minute: 2 s. */
+    struct timeval tv = { 2, 0 };
+    setsockopt(extra[i], SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
+    if (connect(extra[i], (struct sockaddr *)&sa, sizeof sa) != 0)
+      fail_msg("connection %d of 20 not taken: %s", i + 1, strerror(errno));
+    mr_io_read(&srv, buf, sizeof buf, 0, &got, &err); /* as a show reads each frame */
+  }
+  assert_int_equal(write(first, "two", 3), 3);
+  int closed = 0;
+  for (int round = 0; round < 40 && closed < 20; round++) {
+    mr_io_status st = mr_io_read(&srv, buf, sizeof buf, 50, &got, &err);
+    assert_true(st == MR_IO_OK || st == MR_IO_TIMEOUT);
+    closed = 0;
+    for (int i = 0; i < 20; i++) {
+      struct pollfd p = { extra[i], POLLIN, 0 };
+      closed += poll(&p, 1, 0) == 1 && recv(extra[i], buf, 1, MSG_PEEK) == 0;
+    }
+  }
+  if (closed != 20) fail_msg("%d of 20 extra connections closed", closed);
+  assert_int_equal(write(first, "three", 5), 5);
+  assert_int_equal(mr_io_read(&srv, buf, sizeof buf, 2000, &got, &err), MR_IO_OK);
+  for (int i = 0; i < 20; i++) close(extra[i]);
+  close(first);
+  mr_io_close(&srv);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
@@ -374,6 +459,8 @@ int main(void) {
     cmocka_unit_test(tools_io_tcp_peer_close_is_hangup),
     cmocka_unit_test(tools_io_file_and_fifo_end_with_eof),
     cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),
+    cmocka_unit_test(tools_io_tcp_listen_binds_the_loopback_unless_told),
+    cmocka_unit_test(tools_io_tcp_listen_serves_one_peer_and_refuses_the_rest_cleanly),
     cmocka_unit_test(tools_io_a_missing_device_fails_with_one_message_for_every_spec),
     cmocka_unit_test(tools_io_status_names_are_distinct_and_only_errors_fail),
     cmocka_unit_test(tools_io_pty_slave_detection),

@@ -34,10 +34,14 @@ static void usage(FILE *f) {
              "\n"
              "SOURCE (default -):\n"
              "  -                      stdin\n"
-             "  PATH or file:PATH      raw stream bytes, or a .mrec recording (by its magic)\n"
+             "  PATH or file:PATH      raw stream bytes, or a .mrec recording (by its magic,\n"
+             "                         or by its name: a *.mrec file must be a recording)\n"
+             "  take:PATH              a .mrec recording, whatever its name\n"
              "  /dev/ttyUSB0, /dev/pts/N, serial:DEV[@BAUD]\n"
              "                         a serial device 8N1 (a pty is opened through termios)\n"
-             "  tcp:HOST:PORT          connect;  tcp-listen:[HOST:]PORT  wait for one peer\n"
+             "  tcp:HOST:PORT          connect\n"
+             "  tcp-listen:[HOST:]PORT wait for one peer at a time, on 127.0.0.1 unless\n"
+             "                         HOST is named (then a warning: no authentication)\n"
              "\n"
              "Output:\n"
              "      --csv              SAMPLE frames as CSV (seq,t_us,ch0..ch4,flags,late)\n"
@@ -59,10 +63,13 @@ static void usage(FILE *f) {
              "                         tcp-listen:[HOST:]0, the port the kernel picked)\n"
              "      --list             list serial ports with their USB ids and exit\n"
              "  -h, --help             this text\n"
+             "      --version          the version, and exit\n"
              "\n"
-             "Exit: 0 end of stream or hang-up, 1 error (cannot open, read error,\n"
-             "malformed recording, stdout not writable), 2 bad usage (also a SOURCE that\n"
-             "does not parse), 3 spec mismatch, 130 SIGINT.\n"
+             "Exit: 0 end of stream or hang-up (or the reader of stdout left), 1 error\n"
+             "(cannot open, read error, a recording malformed or cut short: its whole\n"
+             "chunks are decoded first, stdout not writable), 2 bad usage (also a SOURCE\n"
+             "that does not parse, a device or file that is not there), 3 spec mismatch,\n"
+             "130 SIGINT.\n"
              "A spec mismatch prints exactly:\n"
              "  glove-dump: spec mismatch (device 0xDEVICE, host 0xHOST)\n");
 }
@@ -212,7 +219,7 @@ static int run(dump *D, const char *path_file) {
   int rc = 0;
   while (!D->stop && !g_stop) {
     /* A take plays at once unless --realtime: its chunks are all due. */
-    double now = mr_glove_is_take(D->g) && !D->realtime ? 1e9 : now_s(D);
+    double now = mr_glove_is_take(D->g) && !D->realtime ? 1e12 : now_s(D);
     mr_glove_poll(D->g, now, 200);
     const char *at = mr_glove_io_path(D->g);
     if (at[0] != '\0' && D->where[0] == '\0' && path_file && write_path_file(path_file, at) != 0)
@@ -253,9 +260,9 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
             D->reconnect >= 0 ? ": " : "", D->reconnect >= 0 ? why : "");
   if (mr_glove_is_take(D->g) && (st == MR_IO_ERR_TRUNCATED || st == MR_IO_ERR_FORMAT)) {
     fprintf(stderr, "glove-dump: %s\n", why);
-    /* The chunks before a cut-short end were decoded: a recorder that was
-     * killed leaves such a file, and that is not an error. */
-    if (st == MR_IO_ERR_FORMAT) rc = 1;
+    /* The chunks before the damage were decoded, and what follows is
+     * lost: an error, also for a last chunk cut short. */
+    rc = 1;
   }
   /* Bytes after the last delimiter are a frame that never ended: the
    * decoder holds them, and no event will ever name them. */
@@ -266,13 +273,18 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
             "%llu) were not decoded\n",
             spec, held, (unsigned long long)(c.decoder.bytes - held));
   if (fflush(stdout) != 0 && !D->out_errno) D->out_errno = errno ? errno : EIO;
-  if (stdout_failed(D)) {
+  /* The reader of stdout left (`glove-dump ... | head`): what it wanted it
+   * got, so the dump ends quietly, as cat does. */
+  bool reader_left = stdout_failed(D) && D->out_errno == EPIPE;
+  if (stdout_failed(D) && !reader_left) {
     fprintf(stderr, "glove-dump: stdout: cannot write the decoded frames: %s\n",
             strerror(D->out_errno));
     rc = 1;
   }
-  fprintf(stderr, "glove-dump: counters\n");
-  gd_print_counters(stderr, &c.decoder);
+  if (!reader_left) {
+    fprintf(stderr, "glove-dump: counters\n");
+    gd_print_counters(stderr, &c.decoder);
+  }
   if (counters_path) {
     FILE *f = fopen(counters_path, "w");
     if (!f) {
@@ -310,7 +322,8 @@ static int parse(int argc, char **argv, dump *D, args *a) {
     O_IDLE,
     O_KEEP_GOING,
     O_LIST,
-    O_PATH_FILE
+    O_PATH_FILE,
+    O_VERSION
   };
   static const struct option opts[] = { { "csv", no_argument, 0, O_CSV },
                                         { "quiet", no_argument, 0, 'q' },
@@ -326,6 +339,7 @@ static int parse(int argc, char **argv, dump *D, args *a) {
                                         { "list", no_argument, 0, O_LIST },
                                         { "path-file", required_argument, 0, O_PATH_FILE },
                                         { "help", no_argument, 0, 'h' },
+                                        { "version", no_argument, 0, O_VERSION },
                                         { 0, 0, 0, 0 } };
   long baud = 0;
   int c;
@@ -396,6 +410,9 @@ static int parse(int argc, char **argv, dump *D, args *a) {
     case 'h':
       usage(stdout);
       return 0;
+    case O_VERSION:
+      printf("glove-dump %s\n", MR_VERSION);
+      return 0;
     default:
       return bad_option(c, argv);
     }
@@ -445,6 +462,15 @@ int main(int argc, char **argv) {
    * hang-up ends it unless --reconnect says how long to wait. */
   gd.lost_after = 1e9;
   gd.reconnect = D.reconnect < 0 ? -1 : D.reconnect;
+  /* A source the user got wrong is bad usage, found before anything is
+   * opened; a take that is no take is an error. */
+  mr_glove_source_report rep;
+  if (mr_glove_source_check(spec, &rep) != MR_IO_OK) {
+    fprintf(stderr, "glove-dump: %s%s\n", rep.msg,
+            rep.status == MR_IO_ERR_SPEC ? " (see --help)" : "");
+    return rep.status == MR_IO_ERR_SPEC ? EXIT_USAGE : 1;
+  }
+  if (rep.note[0] != '\0') fprintf(stderr, "glove-dump: %s\n", rep.note);
   char msg[400];
   if (mr_glove_create(&gd, &D.g, msg, sizeof msg) != MR_GLOVE_OK) {
     fprintf(stderr, "glove-dump: %s (see --help)\n", msg);

@@ -19,6 +19,7 @@
 #define MAX_GLOVES 16
 
 static volatile sig_atomic_t g_stop;
+static int g_quiet; /* -q: no messages but errors */
 
 static void on_signal(int sig) {
   (void)sig;
@@ -81,9 +82,11 @@ static void usage(FILE *f) {
           "      --record FILE.mrec  record the bytes sent, one per -o, in order\n"
           "      --progress          progress on stderr (default when stderr is a terminal)\n"
           "  -q, --quiet             no messages but errors\n"
+          "      --version           the version, and exit\n"
           "  -h, --help              this text\n"
-          "Exit: 0 done (or stopped by SIGINT/SIGTERM), 1 error, 2 bad usage (also: an\n"
-          "output spec that does not parse, or stdout is a terminal).\n");
+          "Exit: 0 done (or stopped by SIGINT/SIGTERM, or the reader left), 1 error,\n"
+          "2 bad usage (also: an output spec that does not parse, a device that is not\n"
+          "there, or stdout is a terminal).\n");
 }
 
 static int die_usage(const char *fmt, const char *arg) {
@@ -143,8 +146,9 @@ typedef struct glove {
   uint64_t frames_written;
 } glove;
 
-/* Writes one slot's bytes, riding out signals; 0, or -1 once the reader is
- * gone or the output failed. */
+/* Writes one slot's bytes, riding out signals; 0, 1 once the reader is gone
+ * (it ended its read, as `marionette run -t` or `head` do: not an error),
+ * or -1 when the output failed. */
 static int send_bytes(glove *g, int idx, const uint8_t *buf, size_t len, uint64_t t_ns) {
   mr_io_err err;
   size_t off = 0;
@@ -163,12 +167,14 @@ static int send_bytes(glove *g, int idx, const uint8_t *buf, size_t len, uint64_
       if (g_stop) return -1;
       continue;
     }
-    if (st == MR_IO_HANGUP)
-      fprintf(stderr, "glove-gen: glove %d: %s: the reader hung up after %llu slots\n", idx,
-              mr_io_path(&g->io), (unsigned long long)g->stream.slot);
-    else
-      fprintf(stderr, "glove-gen: glove %d: %s\n", idx, err.msg);
     g->gone = 1;
+    if (st == MR_IO_HANGUP) {
+      if (!g_quiet)
+        fprintf(stderr, "glove-gen: glove %d: %s: the reader left after %llu slots; stopping\n",
+                idx, mr_io_path(&g->io), (unsigned long long)g->stream.slot);
+      return 1;
+    }
+    fprintf(stderr, "glove-gen: glove %d: %s\n", idx, err.msg);
     return -1;
   }
   return 0;
@@ -198,6 +204,7 @@ static void answer_host(glove *g, int idx, uint64_t t_ns) {
 int main(int argc, char **argv) {
   enum {
     O_PATH_FILE = 256,
+    O_VERSION,
     O_WAIT,
     O_LINGER,
     O_FAST,
@@ -246,6 +253,7 @@ int main(int argc, char **argv) {
     { "ignore-commands", required_argument, 0, O_IGNORE },
     { "quiet", no_argument, 0, 'q' },
     { "help", no_argument, 0, 'h' },
+    { "version", no_argument, 0, O_VERSION },
     { 0, 0, 0, 0 }
   };
   static glove gloves[MAX_GLOVES];
@@ -362,6 +370,9 @@ int main(int argc, char **argv) {
     case 'q':
       quiet = 1;
       break;
+    case O_VERSION:
+      printf("glove-gen %s\n", MR_VERSION);
+      return 0;
     case 'h':
       usage(stdout);
       return 0;
@@ -400,6 +411,7 @@ int main(int argc, char **argv) {
       return die_usage("faults need the host's spec hash; drop --spec-hash%s", "");
   }
   if (quiet) progress = 0;
+  g_quiet = quiet;
 
   signal(SIGPIPE, SIG_IGN);
   signal(SIGINT, on_signal);
@@ -432,8 +444,11 @@ int main(int argc, char **argv) {
     mr_io_err err;
     gg_stream_config cfg;
     g->duplex = is_duplex(g->spec);
-    if (mr_io_open(&g->io, g->spec, g->duplex ? MR_IO_READ | MR_IO_WRITE : MR_IO_WRITE, &err) !=
-        0) {
+    int mode = g->duplex ? MR_IO_READ | MR_IO_WRITE : MR_IO_WRITE;
+    /* Checked first, as glove-dump checks its source: a device that is not
+     * there is the user's usage too. */
+    if (mr_io_spec_check(g->spec, mode, NULL, 0, &err) != 0 ||
+        mr_io_open(&g->io, g->spec, mode, &err) != 0) {
       /* An output spec that does not parse is the user's usage. */
       fprintf(stderr, "glove-gen: %s%s\n", err.msg,
               err.status == MR_IO_ERR_SPEC ? " (see --help)" : "");
@@ -538,10 +553,9 @@ int main(int argc, char **argv) {
       gg_answer_observe(&g->answer, &g->stream);
       /* Recordings carry stream time when fast, so a replay keeps the pace. */
       uint64_t t_rec = fast ? t_slot - t0 : mr_io_monotonic_ns() - t0;
-      if (n && send_bytes(g, i, buf, n, t_rec) != 0) {
-        if (g_stop) break;
-        rc = 1;
-      }
+      int sent = n ? send_bytes(g, i, buf, n, t_rec) : 0;
+      if (sent != 0 && g_stop) break;
+      if (sent < 0) rc = 1;
       if (g->duplex) answer_host(g, i, t_rec);
     }
     if (all_done) break;

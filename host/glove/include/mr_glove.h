@@ -45,9 +45,12 @@ typedef struct mr_glove_def {
   char source[MR_GLOVE_SOURCE_MAX]; /* serial:DEV[@BAUD], serial:auto, pty:PATH,
                                        pty (a new one, for a writer to open),
                                        file:PATH, PATH, -, tcp:HOST:PORT,
-                                       tcp-listen:[HOST:]PORT; a take (.mrec),
+                                       tcp-listen:[HOST:]PORT (127.0.0.1
+                                       unless HOST is named); a take (.mrec),
                                        as a file or on a stream, plays its
-                                       bytes at their recorded times */
+                                       bytes at their recorded times;
+                                       take:PATH and a file named *.mrec
+                                       must be takes */
   double lost_after;  /* s without a sample before a live glove is lost; default 0.5 */
   double retry_every; /* s between attempts to reopen; default 0.5, at most 1 */
   /* After a hang-up: < 0 the glove ends there; 0 (default) its port is
@@ -86,6 +89,26 @@ typedef struct mr_glove mr_glove;
  * at the same times. */
 typedef void (*mr_glove_tap_fn)(void *user, double now, const uint8_t *bytes, size_t len);
 
+/* What mr_glove_source_check found. */
+typedef struct mr_glove_source_report {
+  mr_io_status status; /* MR_IO_OK; MR_IO_ERR_SPEC: the user named a source
+                          that cannot be (bad usage); another MR_IO_ERR_*:
+                          it is there but cannot be used (a damaged take) */
+  char msg[400];       /* what is wrong, naming the source or file; "" if OK */
+  char note[320];      /* a sound source worth one line to the user, told
+                          once (tcp-listen beyond the loopback: plain TCP
+                          has no authentication); "" if none */
+} mr_glove_source_report;
+
+/* Checks a glove source before anything starts, as mr_glove_create and
+ * the first poll would take it, without opening a device: the spec
+ * parses (ports, baud rates), a named device or file is there (and is not
+ * a directory), and a take's header reads. Returns out->status. Programs
+ * call it before a show or a dump and treat MR_IO_ERR_SPEC as bad usage;
+ * mr_glove_create does not, so that a glove may be created before its
+ * device appears. */
+mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *out);
+
 /* Checks the definition; the source is opened at the first poll. */
 mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *msg,
                                 size_t msg_size);
@@ -94,8 +117,11 @@ void mr_glove_set_tap(mr_glove *g, mr_glove_tap_fn tap, void *user);
 /* For a take: true once every chunk has been fed (the take is over). */
 bool mr_glove_take_done(const mr_glove *g);
 
-/* Reads what the source has (waiting up to timeout_ms for the first byte),
- * decodes it and updates the state, at the caller's time `now`. Opens or
+/* Reads what the source has (waiting up to timeout_ms for the first byte;
+ * a take with nothing due yet sleeps up to timeout_ms, or until its next
+ * chunk is due if `now` runs at wall pace), decodes it and updates the
+ * state, at the caller's time `now`. A `now` past any take's end (over
+ * 2^64 ns, e.g. 1e12 s) plays every chunk at once. Opens or
  * reopens the source when it is due. Returns how many new SAMPLEs were
  * taken. */
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms);
@@ -106,7 +132,8 @@ const gp_info *mr_glove_info(const mr_glove *g);
 void mr_glove_latest(const mr_glove *g, mr_glove_reading *out);
 void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out);
 /* host time − device time, the smallest seen (the path's fixed delay
- * included), s; NAN before a sample. A sample's latency is its host time
+ * included) since the device clock last started afresh (a START flag, a
+ * reconnect, a new INFO uid, a sequence restart), s; NAN before a sample. A sample's latency is its host time
  * minus its device time minus this. */
 double mr_glove_clock_offset(const mr_glove *g);
 /* One line for the user: the source, the state and what to do about it.

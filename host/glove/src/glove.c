@@ -35,11 +35,14 @@ mr_glove_def mr_default_glove_def(void) {
 }
 
 /* A glove source as an mr_io spec: pty:PATH is a tty opened through
- * termios, which mr_io does for a serial spec naming a pty. */
+ * termios, which mr_io does for a serial spec naming a pty; take:PATH is
+ * a file that must be a take. */
 static int to_io_spec(const char *source, char *out, size_t size) {
   static const char *const prefixes[] = { "serial:", "file:", "tcp:", "tcp-listen:", NULL };
   if (strncmp(source, "pty:", 4) == 0)
     return source[4] != '\0' && snprintf(out, size, "serial:%s", source + 4) < (int)size ? 0 : -1;
+  if (strncmp(source, "take:", 5) == 0)
+    return source[5] != '\0' && snprintf(out, size, "file:%s", source + 5) < (int)size ? 0 : -1;
   if (strcmp(source, "serial:auto") == 0) return -1; /* probing comes with the port list */
   if (strcmp(source, "pty") == 0) return snprintf(out, size, "pty") < (int)size ? 0 : -1;
   /* A bare path (no prefix) is a file or a device, as mr_io takes it. */
@@ -52,11 +55,27 @@ static int to_io_spec(const char *source, char *out, size_t size) {
   return known && snprintf(out, size, "%s", source) < (int)size ? 0 : -1;
 }
 
-/* A file source that starts with the recording magic is a take. */
-static bool file_is_take(const char *source) {
+/* The file a file source names (take:, file: or a bare path), else NULL. */
+static const char *file_path(const char *source) {
+  if (strncmp(source, "take:", 5) == 0 || strncmp(source, "file:", 5) == 0) return source + 5;
   bool bare = source[0] == '/' || (strchr(source, ':') == NULL && strcmp(source, "-") != 0);
-  const char *path = strncmp(source, "file:", 5) == 0 ? source + 5 : bare ? source : NULL;
+  return bare ? source : NULL;
+}
+
+/* A take by name: take:PATH, or a file named *.mrec. Its magic is then
+ * required: a damaged take is reported, not read as a raw stream. */
+static bool named_take(const char *source) {
+  const char *path = file_path(source);
+  size_t n = path != NULL ? strlen(path) : 0;
+  return strncmp(source, "take:", 5) == 0 || (n > 5 && strcmp(path + n - 5, ".mrec") == 0);
+}
+
+/* A file source that is a take: by name, or a regular file that starts
+ * with the recording magic. */
+static bool file_is_take(const char *source) {
+  const char *path = file_path(source);
   struct stat st;
+  if (named_take(source)) return true;
   /* Regular files only: reading a device to look would take its bytes. */
   if (path == NULL || stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return false;
   FILE *f = fopen(path, "rb");
@@ -65,6 +84,45 @@ static bool file_is_take(const char *source) {
   size_t n = fread(magic, 1, sizeof magic, f);
   fclose(f);
   return mr_rec_is_recording(magic, n) != 0;
+}
+
+#define SOURCES_EXPECTED                                                              \
+  "expected serial:DEV[@BAUD], serial:auto, pty:PATH, pty, file:PATH, take:PATH, -, " \
+  "tcp:HOST:PORT or tcp-listen:[HOST:]PORT"
+
+mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *out) {
+  char spec[MR_GLOVE_SOURCE_MAX + 16];
+  mr_io_err err;
+  memset(out, 0, sizeof *out);
+  out->status = MR_IO_ERR_SPEC;
+  if (source == NULL || strlen(source) >= MR_GLOVE_SOURCE_MAX) {
+    snprintf(out->msg, sizeof out->msg, "glove source is %s",
+             source == NULL ? "missing" : "longer than 255 characters");
+    return out->status;
+  }
+  if (strcmp(source, "serial:auto") == 0) return out->status = MR_IO_OK;
+  if (to_io_spec(source, spec, sizeof spec) != 0) {
+    snprintf(out->msg, sizeof out->msg, "glove source '%.255s': " SOURCES_EXPECTED, source);
+    return out->status;
+  }
+  if (mr_io_spec_check(spec, MR_IO_READ, out->note, sizeof out->note, &err) != 0) {
+    /* In the user's words: pty:PATH, not the serial: it is opened as. */
+    size_t n = strlen(spec);
+    bool same = strncmp(err.msg, spec, n) == 0 && strcmp(spec, source) != 0;
+    snprintf(out->msg, sizeof out->msg, "%s%s", same ? source : "", err.msg + (same ? n : 0));
+    return out->status = err.status;
+  }
+  if (file_is_take(source)) {
+    /* The header is read now: a take that is no take fails before the
+     * show; a chunk's defect is found where the replay reaches it. */
+    mr_rec_reader r;
+    if (mr_rec_reader_open(&r, file_path(source), &err) != 0) {
+      snprintf(out->msg, sizeof out->msg, "%s", err.msg);
+      return out->status = err.status;
+    }
+    mr_rec_reader_close(&r);
+  }
+  return out->status = MR_IO_OK;
 }
 
 mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *msg,
@@ -105,10 +163,7 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->def.source[MR_GLOVE_SOURCE_MAX - 1] = '\0';
   g->is_auto = strcmp(g->def.source, "serial:auto") == 0;
   if (!g->is_auto && to_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
-    snprintf(msg, msg_size,
-             "glove source '%s': expected serial:DEV, serial:auto, pty:PATH, pty, file:PATH, -, "
-             "tcp:HOST:PORT or tcp-listen:PORT",
-             g->def.source);
+    snprintf(msg, msg_size, "glove source '%s': " SOURCES_EXPECTED, g->def.source);
     free(g);
     return MR_GLOVE_ERR_ARG;
   }
@@ -173,7 +228,8 @@ static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
     if (g->def.reconnect > 0) g->give_up_at = now + g->def.reconnect;
   }
   if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LOST;
-  snprintf(g->last_error, sizeof g->last_error, "%s", why);
+  if (why != g->last_error) snprintf(g->last_error, sizeof g->last_error, "%s", why);
+  g->clock_fresh = true;
   g->next_open = now + g->def.retry_every;
   if (ends) g->ended = true;
 }
@@ -230,6 +286,7 @@ static void try_open(mr_glove *g, double now) {
   }
   g->take_error = MR_IO_OK;
   g->open = true;
+  g->clock_fresh = true;
   g->counters.opens++;
   g->last_bytes = now;
   g->sniffing = !g->is_take && is_stream(g);
@@ -249,6 +306,18 @@ static double calibrate(const mr_glove *g, int k, uint16_t raw) {
 }
 
 static void take_sample(mr_glove *g, const gp_sample *s, double now) {
+  /* A restarted device clock is no wrap, and the smallest offset seen
+   * before it says nothing of the new one (it left "ms late" seconds off
+   * for the rest of a show after a replug). A restart is a reconnect, a
+   * new INFO uid, or what the decoder counts as a sequence restart: a
+   * START flag, or a sequence that started again (SPEC.md, rule 8). */
+  if (g->clock_fresh || g->dec.c.seq_restarts != g->seen_restarts) {
+    g->have_t = false;
+    g->device_base = 0;
+    g->offset = NAN;
+    g->clock_fresh = false;
+  }
+  g->seen_restarts = g->dec.c.seq_restarts;
   if (g->have_t && s->t_us < g->last_t_us && g->last_t_us - s->t_us > 0x80000000u)
     g->device_base += 4294.967296; /* the µs counter wrapped */
   g->last_t_us = s->t_us;
@@ -283,6 +352,8 @@ int mr_glove_feed(mr_glove *g, const uint8_t *buf, size_t n, double now) {
       g->state = MR_GLOVE_MISMATCH;
       g->mismatch_hash = g->dec.peer_known ? g->dec.peer_hash : 0;
     } else if (ev == GP_EV_FRAME && m.type == GP_INFO) {
+      if (g->have_info && memcmp(g->info.uid, m.u.info.uid, sizeof g->info.uid) != 0)
+        g->clock_fresh = true; /* another glove on this source */
       g->info = m.u.info;
       g->have_info = true;
     } else if ((ev == GP_EV_FRAME) && m.type == GP_SAMPLE) {
@@ -349,11 +420,16 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   }
   if (g->is_take) {
     int taken = mr_glove_take_play(g, now);
+    if (taken == 0) mr_glove_take_wait(g, now, timeout_ms);
     /* Lost only after lost_after, as a live glove: the frame that read the
-     * last chunk must take its samples, as it did live. */
+     * last chunk must take its samples, as it did live. A take that failed
+     * keeps its reader's message. */
     if (now - g->last_bytes > g->def.lost_after && g->state != MR_GLOVE_MISMATCH &&
         g->state != MR_GLOVE_LOST)
-      mark_lost(g, now, g->take_done ? "the take ended" : "no bytes for longer than lost_after",
+      mark_lost(g, now,
+                !g->take_done                 ? "no bytes for longer than lost_after"
+                : mr_io_failed(g->take_error) ? g->last_error
+                                              : "the take ended",
                 g->take_done);
     return taken;
   }
@@ -432,8 +508,12 @@ const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t s
              (unsigned)g->mismatch_hash, (unsigned)GP_SPEC_HASH);
     break;
   case MR_GLOVE_LOST:
-    snprintf(out, size, "glove on %s: lost %.1f s ago (%s); retrying every %.1f s", src,
-             now - g->lost_since, g->last_error, g->def.retry_every);
+    if (mr_glove_ended(g))
+      snprintf(out, size, "glove on %s: ended %.1f s ago (%s)", src, now - g->lost_since,
+               g->last_error);
+    else
+      snprintf(out, size, "glove on %s: lost %.1f s ago (%s); retrying every %.1f s", src,
+               now - g->lost_since, g->last_error, g->def.retry_every);
     break;
   case MR_GLOVE_LIVE:
     if (g->have_info)

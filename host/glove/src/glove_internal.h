@@ -32,6 +32,11 @@ struct mr_glove {
   uint32_t last_t_us; /* for unwrapping device time */
   double device_base; /* s added for the wraps seen */
   bool have_t;
+  /* The device clock starts afresh (a START flag, a reconnect, a new INFO
+   * uid, a sequence restart): the next sample re-estimates the offset and
+   * is not taken for a wrap. */
+  bool clock_fresh;
+  uint32_t seen_restarts; /* the decoder's seq_restarts at the last sample */
   uint32_t mismatch_hash;
   mr_glove_counters counters;
   char last_error[sizeof(((mr_io_err *)0)->msg)];
@@ -73,6 +78,8 @@ int mr_glove_feed(mr_glove *g, const uint8_t *buf, size_t n, double now);
 /* glove_take.c: plays what is due of a take; takes the stream the source
  * opened on as a take whose first len bytes were read already. */
 int mr_glove_take_play(mr_glove *g, double now);
+/* Sleeps up to timeout_ms while the take's next chunk is not due. */
+void mr_glove_take_wait(const mr_glove *g, double now, int timeout_ms);
 int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, double now);
 
 /* glove_cmd.c: sends what is due and retires what timed out (each poll);

@@ -1,10 +1,13 @@
 /* Takes (.mrec): a glove's bytes as recorded, each chunk fed when the
  * caller's time reaches the time it was recorded at. A take is named as a
  * file source, or found on a stream (stdin, a FIFO) by its magic. */
+#define _POSIX_C_SOURCE 200809L
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "glove_internal.h"
 
@@ -20,7 +23,8 @@ static void take_failed(mr_glove *g, const mr_io_err *err) {
 /* The take named by the source, opened at the first poll. */
 static int open_named(mr_glove *g, double now) {
   mr_io_err err;
-  const char *path = strncmp(g->def.source, "file:", 5) == 0 ? g->def.source + 5 : g->def.source;
+  const char *src = g->def.source;
+  const char *path = strncmp(src, "file:", 5) == 0 || strncmp(src, "take:", 5) == 0 ? src + 5 : src;
   if (mr_rec_reader_open(&g->take, path, &err) != 0) {
     take_failed(g, &err);
     g->take_done = true;
@@ -56,6 +60,22 @@ int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, do
   return 0;
 }
 
+/* In whole ns, rounded as a recorder rounds `now`, so a chunk read at a
+ * frame's time plays at that frame, not the next. A `now` beyond what a
+ * uint64 of ns holds makes every chunk due. */
+static bool chunk_due(const mr_glove *g, double now) {
+  if (now >= 1.8e10) return true;
+  return g->chunk_t_ns <= (uint64_t)llround(fmax(now, 0.0) * 1e9);
+}
+
+void mr_glove_take_wait(const mr_glove *g, double now, int timeout_ms) {
+  if (timeout_ms <= 0 || !g->have_chunk || g->take_done || chunk_due(g, now)) return;
+  double wait_s = (double)g->chunk_t_ns * 1e-9 - now;
+  if (wait_s > timeout_ms * 1e-3) wait_s = timeout_ms * 1e-3;
+  struct timespec ts = { (time_t)wait_s, (long)((wait_s - floor(wait_s)) * 1e9) };
+  nanosleep(&ts, NULL);
+}
+
 int mr_glove_take_play(mr_glove *g, double now) {
   int taken = 0;
   if (!g->take_open && (g->take_done || open_named(g, now) != 0)) return 0;
@@ -74,9 +94,7 @@ int mr_glove_take_play(mr_glove *g, double now) {
       }
       g->have_chunk = true;
     }
-    /* In whole ns, rounded as a recorder rounds `now`, so a chunk read at
-     * a frame's time plays at that frame, not the next. */
-    if (g->chunk_t_ns > (uint64_t)llround(fmax(now, 0.0) * 1e9)) return taken;
+    if (!chunk_due(g, now)) return taken;
     g->have_chunk = false;
     g->last_bytes = now;
     if (g->tap != NULL) g->tap(g->tap_user, now, g->chunk, g->chunk_len);

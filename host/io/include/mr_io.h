@@ -87,12 +87,25 @@ typedef struct mr_io {
  *   "pty"                    a new pseudo-terminal, raw mode; mr_io_path()
  *                            names its slave side for the peer to open
  *   "tcp:HOST:PORT"          connect
- *   "tcp-listen:[HOST:]PORT" listen (HOST defaults to 127.0.0.1; PORT 0 picks
- *                            a free port, read it back from io->port)
+ *   "tcp-listen:[HOST:]PORT" listen (HOST defaults to 127.0.0.1, the loopback
+ *                            only; PORT 0 picks a free port, read it back
+ *                            from io->port) and serve one peer at a time:
+ *                            while one is served, reads accept and close
+ *                            any other at once (it reads end of stream)
  *   "serial:DEV[@BAUD]"      8N1 at BAUD (default 115200); a pty slave path is
  *                            recognised and opened through termios
  * Returns 0, or -1 with *err filled. */
 int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err);
+
+/* Checks spec as mr_io_open would take it, opening nothing (so a serial
+ * board is not reset by a raised DTR): 0, or -1 with *err filled, status
+ * MR_IO_ERR_SPEC for anything the user wrote wrong: a spec that does not
+ * parse, a port outside 1..65535 (0..65535 to listen), a baud outside
+ * 1..100000000, a device that is not there or not a character device, a
+ * file to read that is missing or a directory. A spec that is sound but
+ * worth a word (tcp-listen beyond the loopback: plain TCP has no
+ * authentication) puts one line in note (if given), else note is "". */
+int mr_io_spec_check(const char *spec, int mode, char *note, size_t note_size, mr_io_err *err);
 
 /* Adopts an existing descriptor (not closed by mr_io_close). */
 void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name);
@@ -161,6 +174,11 @@ int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_io_err *err);
 #define MR_REC_HEADER_LEN       32u
 #define MR_REC_CHUNK_HEADER_LEN 12u
 #define MR_REC_MAX_CHUNK        1048576u
+/* The longest silence a take holds: a chunk's time is at most this much
+ * after the chunk before it (the first chunk's: after 0). A replay plays
+ * silence at its recorded length, so without a bound one flipped bit in a
+ * time field (2^60 ns) would stall a replay for ever. */
+#define MR_REC_MAX_GAP_NS 3600000000000ull
 
 typedef struct mr_rec_header {
   uint16_t version;
@@ -181,7 +199,8 @@ typedef struct mr_rec_writer {
 int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
                        uint64_t start_unix_ns, mr_io_err *err);
 /* Appends one chunk: 1..MR_REC_MAX_CHUNK bytes at t_ns since the start,
- * never earlier than the chunk before. 0 or -1. */
+ * never earlier than the chunk before and at most MR_REC_MAX_GAP_NS after
+ * it. 0 or -1. */
 int mr_rec_writer_add(mr_rec_writer *w, uint64_t t_ns, const void *data, size_t len,
                       mr_io_err *err);
 /* Flushes and closes; 0 or -1 (the file may be incomplete). */
@@ -211,7 +230,9 @@ int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void
                           size_t prefix_len, mr_io_err *err);
 
 /* The next chunk: 1 with *t_ns, *data (valid until the next call) and *len
- * set; 0 at a clean end of file; -1 on a malformed chunk (MR_IO_ERR_FORMAT) or a
+ * set; 0 at a clean end of file; -1 on a malformed chunk (MR_IO_ERR_FORMAT:
+ * a length of 0 or over MR_REC_MAX_CHUNK, a time going back or jumping
+ * more than MR_REC_MAX_GAP_NS) or a
  * final chunk cut short (MR_IO_ERR_TRUNCATED: offset and bytes missing in the
  * message). Every chunk returned before an error is complete. */
 int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data, size_t *len,

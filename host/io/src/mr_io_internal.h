@@ -19,6 +19,9 @@ int mr_io_pty_create(mr_io *io, mr_io_err *err);
 int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_io_err *err);
 int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_io_err *err);
 int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_err *err);
+/* A peer is served: every connection waiting on the listening socket is
+ * accepted and closed. How many. */
+int mr_io_tcp_refuse_extra(mr_io *io);
 int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_io_err *err);
 void mr_io_serial_close(mr_io *io);
 

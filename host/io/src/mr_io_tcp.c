@@ -1,4 +1,7 @@
-/* TCP: connect to HOST:PORT, or listen on one and accept a single peer. */
+/* TCP: connect to HOST:PORT, or listen on one and serve one peer at a
+ * time: a connection that comes while a peer is served is accepted and
+ * closed at once, so it reads the end of the stream instead of waiting
+ * unanswered in the backlog. */
 #include <errno.h>
 #include <fcntl.h>
 #include <netdb.h>
@@ -50,7 +53,9 @@ static int open_stream(const char *host, const char *port, int listening, int *g
     }
     if (listening) {
       setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-      if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, 1) == 0) break;
+      /* A backlog of 16: a burst of connections waits to be refused, not
+       * dropped with its SYNs retried for a minute. */
+      if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, 16) == 0) break;
     } else if (connect(fd, ai->ai_addr, ai->ai_addrlen) == 0) {
       break;
     }
@@ -84,6 +89,7 @@ int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_err *e
     return mr_io_err_set(err, MR_IO_ERR_SPEC, "tcp-listen:%s:%s: %s", host, port,
                          gai_strerror(gai));
   if (fd < 0) return mr_io_err_sys(err, "tcp-listen:%s:%s: cannot listen", host, port);
+  fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK); /* refusing never blocks */
   io->listen_fd = fd;
   io->fd = -1;
   io->kind = MR_IO_TCP_LISTEN;
@@ -120,6 +126,15 @@ mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_io_err *err) {
   io->fd = fd;
   io->kind = MR_IO_TCP;
   return MR_IO_OK;
+}
+
+int mr_io_tcp_refuse_extra(mr_io *io) {
+  int n = 0, fd;
+  while ((fd = accept(io->listen_fd, NULL, NULL)) >= 0) {
+    close(fd);
+    n++;
+  }
+  return n;
 }
 
 int mr_io_rearm(mr_io *io) {

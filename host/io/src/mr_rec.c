@@ -71,6 +71,13 @@ int mr_rec_writer_add(mr_rec_writer *w, uint64_t t_ns, const void *data, size_t 
                          "%s: byte %llu: chunk time %llu ns is before the previous %llu ns",
                          w->path, (unsigned long long)w->offset, (unsigned long long)t_ns,
                          (unsigned long long)w->last_t_ns);
+  if (t_ns - w->last_t_ns > MR_REC_MAX_GAP_NS)
+    return mr_io_err_set(err, MR_IO_ERR_ARG,
+                         "%s: byte %llu: chunk time %llu ns is %.0f s after the previous %llu ns "
+                         "(a take holds at most %llu s of silence)",
+                         w->path, (unsigned long long)w->offset, (unsigned long long)t_ns,
+                         (double)(t_ns - w->last_t_ns) * 1e-9, (unsigned long long)w->last_t_ns,
+                         MR_REC_MAX_GAP_NS / 1000000000ull);
   put_le(h, t_ns, 8);
   put_le(h + 8, len, 4);
   if (write_all(w->fd, h, sizeof h) != 0 || write_all(w->fd, data, len) != 0)
@@ -126,6 +133,10 @@ int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void
   strncpy(r->name, name ? name : "recording", sizeof r->name - 1);
   got = read_full(r, h, sizeof h);
   if (got < 0) return mr_io_err_sys(err, "%s: byte 0: cannot read the header", r->name);
+  if (got == 0)
+    return mr_io_err_set(err, MR_IO_ERR_FORMAT,
+                         "%s: byte 0: empty file, not a stream recording (no %s magic)", r->name,
+                         MR_REC_MAGIC);
   if (got < 8 || memcmp(h, MR_REC_MAGIC, 8) != 0)
     return mr_io_err_set(err, MR_IO_ERR_FORMAT, "%s: byte 0: not a stream recording (no %s magic)",
                          r->name, MR_REC_MAGIC);
@@ -201,6 +212,13 @@ int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data, s
     return mr_io_err_set(
         err, MR_IO_ERR_FORMAT, "%s: byte %llu: chunk time %llu ns goes back before %llu ns",
         r->name, (unsigned long long)at, (unsigned long long)t, (unsigned long long)r->last_t_ns);
+  if (t - r->last_t_ns > MR_REC_MAX_GAP_NS)
+    return mr_io_err_set(err, MR_IO_ERR_FORMAT,
+                         "%s: byte %llu: chunk time %llu ns jumps %.0f s past %llu ns (a take "
+                         "holds at most %llu s of silence)",
+                         r->name, (unsigned long long)at, (unsigned long long)t,
+                         (double)(t - r->last_t_ns) * 1e-9, (unsigned long long)r->last_t_ns,
+                         MR_REC_MAX_GAP_NS / 1000000000ull);
   if (r->data_cap < n) {
     uint8_t *p = realloc(r->data, n);
     if (!p)

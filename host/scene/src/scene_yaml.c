@@ -157,17 +157,20 @@ static int attach(builder *b, mr_ynode *node) {
     return 0;
   }
   frame *f = &b->stack[b->depth - 1];
-  mr_ynode **kids = b->kids + f->first;
   if (f->node->kind == MR_YNODE_MAP && f->n % 2 == 0) {
     if (node->kind != MR_YNODE_SCALAR)
       return fail(b->err, node->line, node->column,
                   "expected a plain key, got a %s as a mapping key",
                   mr_scene_yaml_kind_name(node->kind));
-    for (size_t i = 0; i < f->n; i += 2)
-      if (same_scalar(kids[i], node))
+    /* Indexed, not b->kids + first: before the first child kids is NULL,
+     * and NULL + 0 is undefined (clang's UBSan reports it). */
+    for (size_t i = 0; i < f->n; i += 2) {
+      const mr_ynode *key = b->kids[f->first + i];
+      if (same_scalar(key, node))
         return fail(b->err, node->line, node->column,
-                    "duplicate key '%s' (first at line %d, column %d)", node->text, kids[i]->line,
-                    kids[i]->column);
+                    "duplicate key '%s' (first at line %d, column %d)", node->text, key->line,
+                    key->column);
+    }
   }
   if (b->n_kids == b->kids_cap) {
     size_t cap = b->kids_cap ? 2 * b->kids_cap : 64;

@@ -461,6 +461,13 @@ static void close_parts(show *s) {
       g->take_open = g->recording = false;
     }
     if (g->take_error[0] != '\0') fail(s, MR_SHOW_ERR_TAKE, g->take_error);
+    /* A replayed take that is damaged: the reader's line, naming the file. */
+    mr_io_status gst;
+    const char *why = mr_glove_last_error(g->glove, &gst);
+    if (s->err.status == MR_SHOW_OK && mr_glove_is_take(g->glove) && mr_io_failed(gst)) {
+      fail(s, MR_SHOW_ERR_GLOVE, why);
+      snprintf(s->err.text, sizeof s->err.text, "%s", why);
+    }
     mr_glove_destroy(g->glove);
   }
   for (size_t k = 0; k < s->n_frames; k++) mr_control_destroy(s->frames[k].control);
