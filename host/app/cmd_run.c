@@ -209,6 +209,8 @@ static void summary(const status *st, const mr_scene *scene, const mr_show_resul
   uint64_t shown = frames_shown(st, &r->frames), sim = r->frames.frames_simulated;
   printf("frames simulated: %" PRIu64 "\n", sim);
   printf("frames shown: %" PRIu64 "\n", shown);
+  /* Without a stage the frames went through the scheduler, onto nothing. */
+  if (st->lv == NULL) printf("frames drawn: 0 (headless without -o: nothing drawn)\n");
   printf("frames skipped: %" PRIu64 "\n", sim > shown ? sim - shown : 0);
   printf("steps: %" PRIu64 "\n", r->frames.steps);
   printf("rejected steps: %" PRIu64 "\n", r->frames.rejected);
@@ -347,13 +349,25 @@ static int parse(int argc, char **argv, args *a) {
   }
   if (a->help) return 0;
   if (a->scene == NULL) return bad_usage("expected a scene file%s", "");
-  if (a->def.n_gloves == 0 && !window_wanted(a) && a->keys == NULL)
+  return 0;
+}
+
+/* The options together, checked once the scene is loaded (a missing scene
+ * is the first thing to hear of). Without --glove or --replay the
+ * keyboard's glove plays (a window or --keys), and a --record takes its
+ * bytes as it would a glove's. 0, or the exit status after one line. */
+static int check_together(const args *a) {
+  bool keyboard = a->def.n_gloves == 0;
+  if (keyboard && !window_wanted(a) && a->keys == NULL)
     return bad_usage("expected --glove SOURCE or --replay TAKE%s", "");
   if (a->n_live > 0 && a->n_replay > 0)
     return bad_usage("expected gloves or takes, not both: a take replays on show time%s", "");
   if (a->n_replay > 0 && a->n_record > 0)
     return bad_usage("expected --record with a glove, not with --replay%s", "");
-  if (a->n_record > a->n_live) return bad_usage("expected at most one --record per --glove%s", "");
+  if (keyboard && a->n_record > 1)
+    return bad_usage("expected at most one --record for the keyboard's glove%s", "");
+  if (!keyboard && a->n_record > a->n_live)
+    return bad_usage("expected at most one --record per --glove%s", "");
   if (a->real_time && a->n_replay == 0)
     return bad_usage("expected --real-time with --replay%s", "");
   return 0;
@@ -533,7 +547,8 @@ int mr_cmd_run(int argc, char **argv) {
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;
   }
-  int rc_gloves = check_gloves(&a);
+  int rc_gloves = check_together(&a);
+  if (rc_gloves == 0) rc_gloves = check_gloves(&a);
   if (rc_gloves != 0) return mr_scene_free(&scene), rc_gloves;
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);

@@ -30,7 +30,8 @@ static void usage(FILE *f) {
              "              the glove; see `marionette calibrate --help`\n"
              "\n"
              "options:\n"
-             "  -h, --help  show this help\n");
+             "  -h, --help  show this help\n"
+             "  --version   print the version and exit\n");
 }
 
 int main(int argc, char **argv) {
@@ -44,6 +45,10 @@ int main(int argc, char **argv) {
   const char *cmd = argv[1];
   if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
     usage(stdout);
+    return MR_EXIT_OK;
+  }
+  if (strcmp(cmd, "--version") == 0) {
+    printf("marionette %s\n", MR_VERSION);
     return MR_EXIT_OK;
   }
   if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);

@@ -8,6 +8,10 @@
 #include "app.h"
 
 int main(int argc, char **argv) {
+  if (argc >= 2 && strcmp(argv[1], "--version") == 0) {
+    printf("marionette-stage %s\n", MR_VERSION);
+    return MR_EXIT_OK;
+  }
   if (argc >= 2 && strcmp(argv[1], "run") == 0) return mr_cmd_run(argc - 1, argv + 1);
   if (argc >= 2 && strcmp(argv[1], "render") == 0) return mr_cmd_render(argc - 1, argv + 1);
   fprintf(stderr, "marionette-stage: started by `marionette run` and `marionette render`; "
