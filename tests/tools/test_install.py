@@ -120,6 +120,12 @@ def check_model_search(dest):
     if os.path.exists(places[-1]):
         print("note: the scenes are installed in %s here; the missing model is not tried" % built)
         return
+    # marionette run without a scene: the box's show, else the default show.
+    default = built + "/share/marionette/scenes/humanoid.yaml"
+    if not os.path.exists("/etc/marionette/show.yaml") and not os.path.exists(default):
+        r = run([exe, "run", "--glove", "tcp:127.0.0.1:9", "-o", dest + "/run"])
+        check(r.returncode == 1 and r.stderr.startswith("marionette: %s: " % default),
+              "marionette run without a scene plays the installed default show: " + r.stderr)
     r = run(argv, env=dict(os.environ, MARIONETTE_PATH=dest + "/a::" + dest + "/b"))
     err = r.stderr.strip()
     at = [err.find(p) for p in places]
