@@ -45,8 +45,11 @@ all: build
 deps:
 	@tools/install-deps.sh
 
+# PREFIX is built in too: scenes look for their models in the installed
+# PREFIX/share/marionette/scenes (host/scenes/FORMAT.md), so build and
+# install with the same one (make PREFIX=/usr; sudo make install PREFIX=/usr).
 build: deps
-	$(call cmake_build,$(BUILD),-DCMAKE_BUILD_TYPE=RelWithDebInfo,)
+	$(call cmake_build,$(BUILD),-DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX=$(PREFIX),)
 
 build-asan: deps
 	$(call cmake_build,$(BUILD)-asan,-DCMAKE_BUILD_TYPE=Debug -DMR_SANITIZE=ON,)

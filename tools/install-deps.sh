@@ -20,6 +20,8 @@ PACKAGES=(
   # marionette-bench: its plots (SVG and PNG), and the instruction counts
   # of `make bench-count`.
   gnuplot-nox valgrind
+  # make flash: the firmware goes to the glove's board over USB DFU.
+  dfu-util
 )
 
 missing=()

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "app.h"
 #include "mr_scene.h"
@@ -32,7 +33,7 @@ static void on_signal(int sig) {
 }
 
 void mr_cmd_run_usage(void) {
-  printf("usage: marionette run [OPTIONS] SCENE [--glove SOURCE | --replay TAKE]...\n"
+  printf("usage: marionette run [OPTIONS] [SCENE] [--glove SOURCE | --replay TAKE]...\n"
          "\n"
          "The theater: the glove at SOURCE drives the puppet of the scene file SCENE\n"
          "in real time, on the stage. Its five values move the control frame through\n"
@@ -44,7 +45,9 @@ void mr_cmd_run_usage(void) {
          "and simulated time keeps to wall time (--policy skip), or simulated time\n"
          "slows and nothing is skipped (--policy slow). One status line a second\n"
          "shows frames, skipped frames, steps, resets and the glove; a summary ends\n"
-         "the show. Ctrl-C ends it cleanly.\n"
+         "the show. Ctrl-C ends it cleanly. Without SCENE the show is\n"
+         "/etc/marionette/show.yaml when it exists, else the installed default show\n"
+         "(PREFIX/share/marionette/scenes/humanoid.yaml).\n"
          "\n"
          "The stage: with a display (DISPLAY or WAYLAND_DISPLAY set, or --fullscreen)\n"
          "the show is drawn in a window, its on-screen display showing fps, skipped\n"
@@ -349,7 +352,8 @@ static int parse(int argc, char **argv, args *a) {
     }
   }
   if (a->help) return 0;
-  if (a->scene == NULL) return bad_usage("expected a scene file%s", "");
+  /* No scene: the box's show, else the installed default show. */
+  if (a->scene == NULL) a->scene = access(MR_BOX_SHOW, F_OK) == 0 ? MR_BOX_SHOW : MR_DEFAULT_SHOW;
   return 0;
 }
 

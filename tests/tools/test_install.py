@@ -16,7 +16,7 @@ import sys
 import tempfile
 
 SRC, BUILD = sys.argv[1], sys.argv[2]
-PREFIX = "/usr/local"
+PREFIX = "/usr"
 PROGRAMS = {"marionette": [["--help"], ["sim", "--help"], ["run", "--help"],
                            ["render", "--help"], ["list-ports", "--help"]],
             "glove-gen": [["--help"]],
@@ -81,6 +81,58 @@ def check_front_door():
           "make test builds the numbers tests with clang in build-clang/ and runs them")
 
 
+def verify_unit(dest, unit):
+    """systemd-analyze verify, over the DESTDIR tree as the box's root, so
+    that it finds the installed program; the tree is given the /bin/sh
+    that ExecStartPre runs, as every box has one."""
+    if not shutil.which("systemd-analyze"):
+        print("note: no systemd-analyze; the unit is not verified")
+        return
+    os.makedirs(dest + "/bin", exist_ok=True)
+    shutil.copy("/bin/sh", dest + "/bin/sh")
+    r = run(["systemd-analyze", "verify", "--man=no", "--recursive-errors=no", "--root=" + dest,
+             unit])
+    check(r.returncode == 0 and r.stderr.strip() == "" and r.stdout.strip() == "",
+          "systemd-analyze verify accepts the installed unit: " + (r.stderr + r.stdout).strip())
+
+
+def check_model_search(dest):
+    """An installed example scene copied alone to a new folder finds its
+    models in the installed tree along MARIONETTE_PATH (after a folder that
+    does not exist); with the models nowhere, the one-line error names the
+    scene's folder, each MARIONETTE_PATH folder and the installed one."""
+    share = dest + PREFIX + "/share/marionette/scenes"
+    show = dest + "/show"
+    os.makedirs(show)
+    shutil.copy(share + "/humanoid.yaml", show + "/show.yaml")
+    exe = dest + PREFIX + "/bin/marionette"
+    argv = [exe, "render", show + "/show.yaml", "--frame", "1", "-o", dest + "/pictures"]
+    env = dict(os.environ, MARIONETTE_PATH=dest + "/nowhere:" + share)
+    r = run(argv, env=env)
+    check(r.returncode == 0 and os.path.isfile(dest + "/pictures/frame_1.000.png"),
+          "a copied scene finds its models in the installed tree along MARIONETTE_PATH: "
+          + r.stderr.strip())
+    cache = open(BUILD + "/CMakeCache.txt").read()
+    built = re.search(r"^CMAKE_INSTALL_PREFIX:PATH=(.*)$", cache, re.M).group(1)
+    places = [show + "/models/humanoid_head.obj", dest + "/a/models/humanoid_head.obj",
+              dest + "/b/models/humanoid_head.obj",
+              built + "/share/marionette/scenes/models/humanoid_head.obj"]
+    if os.path.exists(places[-1]):
+        print("note: the scenes are installed in %s here; the missing model is not tried" % built)
+        return
+    # marionette run without a scene: the box's show, else the default show.
+    default = built + "/share/marionette/scenes/humanoid.yaml"
+    if not os.path.exists("/etc/marionette/show.yaml") and not os.path.exists(default):
+        r = run([exe, "run", "--glove", "tcp:127.0.0.1:9", "-o", dest + "/run"])
+        check(r.returncode == 1 and r.stderr.startswith("marionette: %s: " % default),
+              "marionette run without a scene plays the installed default show: " + r.stderr)
+    r = run(argv, env=dict(os.environ, MARIONETTE_PATH=dest + "/a::" + dest + "/b"))
+    err = r.stderr.strip()
+    at = [err.find(p) for p in places]
+    check(r.returncode == 1 and err.count("\n") == 0 and -1 not in at and at == sorted(at),
+          "a missing model's one-line error names, in order, every place searched: " + err)
+
+
 def main():
     dest = tempfile.mkdtemp(prefix="mr-install-test-")
     try:
@@ -100,14 +152,31 @@ def main():
         check(r.returncode == 0 and os.path.isfile(udev) and open(udev).read() == rule,
               "MR_UDEV_RULES_DIR=/etc/udev/rules.d puts the rule there, under DESTDIR")
         listing = run(["find", dest, "-type", "f"]).stdout.split()
-        check(len(listing) == 10, "install puts exactly 3 programs, the stage program, 3 man "
-              "pages, the systemd unit and the rule (twice here): " + " ".join(sorted(listing)))
+        share = root + "/share/marionette/scenes"
+        scenes = sorted(f for f in os.listdir(SRC + "/host/scenes") if f.endswith(".yaml"))
+        models = sorted(os.listdir(SRC + "/host/scenes/models"))
+        check(os.path.isdir(share) and sorted(f for f in os.listdir(share) if f.endswith(".yaml"))
+              == scenes, "the example scenes (not the hard cases) are installed in "
+              "PREFIX/share/marionette/scenes")
+        check(os.path.isdir(share + "/models") and sorted(os.listdir(share + "/models")) == models,
+              "the example scenes' models are installed in PREFIX/share/marionette/scenes/models")
+        check(len(listing) == 10 + len(scenes) + len(models),
+              "install puts exactly 3 programs, the stage program, 3 man pages, the systemd "
+              "unit, the rule (twice here), the scenes and their models: "
+              + " ".join(sorted(listing)))
         stage = dest + PREFIX + "/libexec/marionette/marionette-stage"
         check(os.access(stage, os.X_OK), "the stage program (run, render) is installed in "
               "PREFIX/libexec/marionette, off PATH")
         unit = dest + PREFIX + "/lib/systemd/system/marionette-theater@.service"
-        check(os.path.isfile(unit) and "ExecStart=/usr/local/bin/marionette run" in open(unit).read(),
-              "the theater box's systemd unit is installed in PREFIX/lib/systemd/system")
+        text = open(unit).read() if os.path.isfile(unit) else ""
+        check("\nExecStart=%s/bin/marionette run " % PREFIX in text and "@" not in
+              text.split("ExecStart=")[1].split()[0],
+              "the theater box's systemd unit is installed in PREFIX/lib/systemd/system and "
+              "starts PREFIX/bin/marionette (DESTDIR left out): " + text.split("ExecStart=")[-1][:60])
+        check("ExecStartPre=" in text and "RestartPreventExitStatus=2 3" in text,
+              "the unit still waits for the glove's adapter and does not retry exit 2 or 3")
+        verify_unit(dest, unit)
+        check_model_search(dest)
         for prog, helps in PROGRAMS.items():
             exe = os.path.join(root, "bin", prog)
             page = os.path.join(root, "share/man/man1", prog + ".1")

@@ -89,9 +89,12 @@ enum { MR_STAGE_MAX_MATERIALS = 8, MR_SKIN_MAX_INFLUENCES = 4 };
 typedef struct mr_model_def {
   char name[MR_STAGE_NAME_MAX];
   mr_shape shape;
-  char path[MR_STAGE_PATH_MAX]; /* MR_SHAPE_FILE: the model file, as the
-                                   scene resolved it (relative to the scene
-                                   file's folder) */
+  char path[MR_STAGE_PATH_MAX];       /* MR_SHAPE_FILE: the model file, as the
+                                   scene resolved it (host/scenes/FORMAT.md,
+                                   "Where models are found") */
+  char looked[2 * MR_STAGE_PATH_MAX]; /* when no place had the file: the
+                                         places tried after path, ", "-
+                                         separated (else empty) */
   /* Placement, applied to the mesh at load: scale first, then the turn,
    * then the move. */
   double scale[3]; /* default (1, 1, 1) */

@@ -147,7 +147,8 @@ static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
   return 0;
 }
 
-/* "SCENE:LINE:COLUMN: model 'NAME': PATH: why". */
+/* "SCENE:LINE:COLUMN: model 'NAME': PATH: why", then the other places the
+ * scene looked for the file when none had it. */
 static void model_error(char *msg, size_t msg_size, const char *scene_path, const mr_model_def *def,
                         const char *why) {
   const char *what = def->shape == MR_SHAPE_FILE ? def->path : mr_shape_name(def->shape);
@@ -158,6 +159,9 @@ static void model_error(char *msg, size_t msg_size, const char *scene_path, cons
     snprintf(msg, msg_size, "%s: model '%s': %s: %s", scene_path, def->name, what, why);
   else
     snprintf(msg, msg_size, "model '%s': %s: %s", def->name, what, why);
+  size_t n = msg_size ? strlen(msg) : 0;
+  if (def->shape == MR_SHAPE_FILE && def->looked[0] && n + 1 < msg_size)
+    snprintf(msg + n, msg_size - n, "; also looked in %s", def->looked);
 }
 
 /* A flat rectangle: centre c, half-extents along unit axes u and v,

@@ -71,14 +71,12 @@ static int orient_parse(const char *word, int *out) {
   return 0;
 }
 
-/* file: resolved against the scene file's folder. */
+/* file: found along the model search path (scene_search.c). */
 static int read_file(mr_reader *r, const mr_ynode *v, mr_model_def *m) {
   if (v->kind != MR_YNODE_SCALAR || v->text[0] == '\0')
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_SCHEMA, "expected a model file's path for file");
-  const char *path = r->scene->path, *slash = strrchr(path, '/');
-  int dir = v->text[0] == '/' || slash == NULL ? 0 : (int)(slash - path) + 1;
-  int n = snprintf(m->path, sizeof m->path, "%.*s%s", dir, path, v->text);
-  if (n < 0 || (size_t)n >= sizeof m->path)
+  if (mr_scene_model_find(r->scene->path, v->text, m->path, sizeof m->path, m->looked,
+                          sizeof m->looked) != 0)
     return mr_scene_read_fail(r, v, MR_SCENE_ERR_VALUE,
                               "expected a model path under %d characters (with the scene's "
                               "folder)",

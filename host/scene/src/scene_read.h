@@ -110,6 +110,14 @@ int mr_scene_read_items(mr_reader *r, const mr_ynode *seq, const char *what, uin
 int mr_scene_read_particle(mr_reader *r, const mr_ynode *node, int *id);
 int mr_scene_read_control_point(mr_reader *r, const mr_ynode *node, int *id);
 int mr_scene_read_point(mr_reader *r, const mr_ynode *node, int *id); /* either */
+
+/* The model file NAME of the scene at scene_path, along the search path:
+ * the scene's folder, MARIONETTE_PATH's folders, the installed scenes'
+ * folder. path gets the first place that has it, else the scene's own
+ * (and looked every other place tried, ", "-separated). -1 when the
+ * scene's own place does not fit in size. */
+int mr_scene_model_find(const char *scene_path, const char *name, char *path, size_t size,
+                        char *looked, size_t looked_size);
 bool mr_scene_is_control_id(const mr_scene *scene, int id);
 const char *mr_scene_point_name(const mr_scene *scene, int id);
 /* A sequence of particle names, each at most once, as world ids. */
