@@ -18,6 +18,25 @@ static int within(const mr_scene_world *sw, size_t k, const mr_scene_frame *f, c
   return speed <= f->max_speed && turn <= f->max_turn;
 }
 
+typedef int (*keeps_fn)(const mr_scene_world *sw, size_t k, const mr_scene_frame *f,
+                        const mr_pose *goal, double t);
+
+/* The goal drawn back towards `from` by halvings, as far as the path to it
+ * keeps the limits `keeps` tests (goal itself does not). */
+static mr_pose draw_back(const mr_scene_world *sw, size_t k, const mr_scene_frame *f,
+                         const mr_pose *from, const mr_pose *goal, double t, keeps_fn keeps) {
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < LIMIT_HALVINGS; i++) {
+    double mid = 0.5 * (lo + hi);
+    mr_pose g = mr_pose_interpolate(from, goal, mid);
+    if (keeps(sw, k, f, &g, t))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return mr_pose_interpolate(from, goal, lo);
+}
+
 /* The approach rule (mr_pose_approach) keeps the chord from `now` to the
  * goal within the limits; the path the physics makes is curved (its
  * velocity is continuous across targets), and may pass them on the way,
@@ -30,18 +49,7 @@ void mr_theater_head_frame(const mr_scene *s, mr_scene_world *sw, size_t k, mr_p
   double dt = fmax(t - mr_world_time(sw->world), 0.0);
   if (mr_world_frame_pose(sw->world, sw->frames[k], &now) == MR_OK) {
     goal = mr_pose_approach(&now, &goal, f->max_speed * dt, f->max_turn * dt);
-    if (dt > 0 && !within(sw, k, f, &goal, t)) {
-      double lo = 0.0, hi = 1.0;
-      for (int i = 0; i < LIMIT_HALVINGS; i++) {
-        double mid = 0.5 * (lo + hi);
-        mr_pose g = mr_pose_interpolate(&now, &goal, mid);
-        if (within(sw, k, f, &g, t))
-          lo = mid;
-        else
-          hi = mid;
-      }
-      goal = mr_pose_interpolate(&now, &goal, lo);
-    }
+    if (dt > 0 && !within(sw, k, f, &goal, t)) goal = draw_back(sw, k, f, &now, &goal, t, within);
   }
   mr_world_set_frame_target(sw->world, sw->frames[k], &goal, t);
 }
@@ -102,27 +110,15 @@ static mr_pose moved(const mr_pose *now, const double v[3], const double w[3], d
  * goals come every frame while it streams. */
 #define GOAL_GAP 0.04
 
-/* One rate estimate u (m/s, or rad/s turning) moved towards `raw`, no
- * more than a hand could change it in span at `accel` (a jump is not a
- * hand's speed), and never past max. */
-static void rate_toward(double u[3], const double raw[3], double accel, double max, double span) {
-  double d[3];
-  for (int i = 0; i < 3; i++) d[i] = raw[i] - u[i];
-  double n = norm(d), s = n > accel * span ? accel * span / n : 1.0;
-  for (int i = 0; i < 3; i++) u[i] += s * d[i];
-  n = norm(u);
-  if (n > max)
-    for (int i = 0; i < 3; i++) u[i] *= max / n;
-}
-
 /* How fast the goal moves (u, uw turning), from goals that follow one
- * another within GOAL_GAP (rate_toward); nothing is known of a goal that
+ * another within GOAL_GAP (limited_rate caps it with the rest, and its
+ * change with the acceleration); nothing is known of a goal that
  * is the first or follows a gap. A goal unchanged since the last keeps the
  * rate until GOAL_GAP has passed (the samples come unevenly against the
  * frames), then the rate is 0: a quiet glove's frame holds its pose. */
-static void goal_rates(const mr_scene_frame *f, mr_glove_follow *fl, const mr_pose *goal, double t,
-                       double u[3], double uw[3]) {
-  double axis[3], span = t - fl->t, raw[3], raw_w[3];
+static void goal_rates(mr_glove_follow *fl, const mr_pose *goal, double t, double u[3],
+                       double uw[3]) {
+  double axis[3], span = t - fl->t;
   int fresh = !fl->seen || memcmp(goal, &fl->goal, sizeof *goal) != 0;
   if (fresh && !(fl->seen && span > 0 && span <= GOAL_GAP)) {
     memset(fl->u, 0, sizeof fl->u);
@@ -130,11 +126,9 @@ static void goal_rates(const mr_scene_frame *f, mr_glove_follow *fl, const mr_po
   } else if (fresh) {
     double angle = mr_pose_turn(fl->goal.orientation, goal->orientation, axis);
     for (int i = 0; i < 3; i++) {
-      raw[i] = (goal->position[i] - fl->goal.position[i]) / span;
-      raw_w[i] = axis[i] * angle / span;
+      fl->u[i] = (goal->position[i] - fl->goal.position[i]) / span;
+      fl->uw[i] = axis[i] * angle / span;
     }
-    rate_toward(fl->u, raw, f->max_accel, f->max_speed, span);
-    rate_toward(fl->uw, raw_w, f->max_turn_accel, f->max_turn, span);
   }
   if (fresh) {
     fl->goal = *goal;
@@ -166,7 +160,7 @@ void mr_theater_follow_glove(const mr_scene *s, mr_scene_world *sw, size_t k,
   const mr_scene_frame *f = &s->frames[k];
   double dt = t - mr_world_time(sw->world), v[3], w[3], axis[3], d[3], r[3], vm[3], wm[3];
   double u[3], uw[3];
-  goal_rates(f, follow, &goal, t, u, uw);
+  goal_rates(follow, &goal, t, u, uw);
   mr_pose now;
   if (dt > 0 && mr_world_frame_pose(sw->world, sw->frames[k], &now) == MR_OK &&
       mr_world_frame_rates(sw->world, sw->frames[k], v, w) == MR_OK) {
@@ -183,18 +177,8 @@ void mr_theater_follow_glove(const mr_scene *s, mr_scene_world *sw, size_t k,
     limited_rate(v, d, u, f->max_speed, f->max_accel, dt, vm);
     limited_rate(w, r, uw, f->max_turn, f->max_turn_accel, dt, wm);
     goal = moved(&now, vm, wm, dt);
-    if (!accel_within(sw, k, f, &goal, t)) {
-      double lo = 0.0, hi = 1.0;
-      for (int i = 0; i < LIMIT_HALVINGS; i++) {
-        double mid = 0.5 * (lo + hi);
-        mr_pose g = mr_pose_interpolate(&coast, &goal, mid);
-        if (accel_within(sw, k, f, &g, t))
-          lo = mid;
-        else
-          hi = mid;
-      }
-      goal = mr_pose_interpolate(&coast, &goal, lo);
-    }
+    if (!accel_within(sw, k, f, &goal, t))
+      goal = draw_back(sw, k, f, &coast, &goal, t, accel_within);
   }
   mr_theater_head_frame(s, sw, k, goal, t);
 }
