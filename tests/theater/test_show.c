@@ -248,6 +248,44 @@ static void a_glove_frame_turns_no_faster_than_its_max_turn_rate(void **state) {
   free(dir);
 }
 
+/* A glove that lifts its frame 0.12 m at once, under max_accel 2 m/s² (not
+ * the default 10): in the show the frame's height, frame by frame, changes
+ * its speed by no more than 2 m/s² allows (its second difference over
+ * 1/60 s), reaches the limit, and arrives. */
+static void a_glove_frame_changes_its_speed_no_faster_than_its_max_accel(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  const char *path = tt_path(dir, "lift.mrec");
+  take tk;
+  take_open(&tk, path, 1);
+  const double rest[5] = { 0.5, 0.5, 0.5, 0.5, 0.5 }, lift[5] = { 0.5, 0.5, 0.5, 0.9, 0.5 };
+  take_hold(&tk, 0.01, 0.3, rest);
+  take_hold(&tk, 0.3, 2.0, lift);
+  take_close(&tk);
+  mr_scene sc;
+  load(SCENE_HEAD "    max_accel: 2\n", &sc);
+  mr_virtual_clock vc = { 0.0 };
+  seen s;
+  memset(&s, 0, sizeof s);
+  mr_show *show = start(&sc, &path, 1, 1.9, &vc, &s);
+  run_to(show, &s, 1.9);
+  double top = 0.0;
+  for (int i = 2; i < s.n; i++) {
+    double y0 = s.pose[i - 2].position[1], y1 = s.pose[i - 1].position[1];
+    double y2 = s.pose[i].position[1];
+    top = fmax(top, fabs(y2 - 2 * y1 + y0) * 60.0 * 60.0);
+  }
+  double end = s.pose[s.n - 1].position[1];
+  print_message("largest change of speed %.6f m/s² (limit 2), height %.6f m of 1.12\n", top, end);
+  assert_true(top <= 2.0 * (1 + 1e-6));
+  assert_true(top > 1.5);
+  assert_true(fabs(end - 1.12) < 1e-4);
+  finish(show);
+  mr_scene_free(&sc);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* Two gloves whose uids differ only in the last of their 24 digits are two
  * gloves: a frame bound to the second's uid takes the second, whichever
  * comes first, and one bound to the first's takes the first. */
@@ -287,6 +325,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_reset_puts_the_gloves_goal_back_at_the_start_pose),
     cmocka_unit_test(a_glove_frame_turns_no_faster_than_its_max_turn_rate),
+    cmocka_unit_test(a_glove_frame_changes_its_speed_no_faster_than_its_max_accel),
     cmocka_unit_test(a_glove_is_bound_by_its_whole_uid),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
