@@ -183,6 +183,182 @@ static void one_euro_is_steady_when_still_and_quick_on_a_step(void **state) {
   assert_true(lag > 0 && lag <= 0.15);
 }
 
+/* A mapping that drives only move_y, from channel 3, over the range
+ * [low, high] about `neutral` with `dead_zone`: the frame's height is the
+ * axis's value, so a test reads the axis straight off the pose. */
+static mr_mapping_def height_only(double low, double high, double neutral, double dead_zone) {
+  mr_mapping_def d = mr_default_mapping_def();
+  for (int a = 0; a < MR_DOF_COUNT; a++) d.axes[a].channel = -1;
+  d.axes[MR_DOF_MOVE_Y] = (mr_axis_def){ 3, low, high, false, neutral, dead_zone };
+  return d;
+}
+
+/* A string stuck at full scale for less than stuck_after (0.5 s here, not
+ * the default 2 s) is trusted; leaving the end, even for one sample, or
+ * reading NaN once, starts its timer afresh, so two stretches at the end
+ * never add up; one stretch past 0.5 s is flagged. */
+static void leaving_an_end_starts_the_stuck_timer_afresh(void **state) {
+  (void)state;
+  mr_mapping_def d = height_only(0, 1, 0.5, 0);
+  d.stuck_after = 0.5;
+  mr_control *c = make(&d, 1);
+  double v[5] = { 0.5, 0.5, 0.5, 0.5, 0.5 }, t = 0;
+  mr_channel_state st[5];
+  hold(c, v, &t, 0.2, st);
+  for (int round = 0; round < 4; round++) {
+    v[3] = 1.0;
+    hold(c, v, &t, 0.4, st);
+    assert_int_equal(st[3], MR_CHANNEL_OK);
+    v[3] = round % 2 == 0 ? 0.9 : NAN; /* off the end for one sample */
+    hold(c, v, &t, 0.01, st);
+    assert_int_equal(st[3], round % 2 == 0 ? MR_CHANNEL_OK : MR_CHANNEL_NOT_FINITE);
+  }
+  v[3] = 0.0; /* the other end counts the same */
+  hold(c, v, &t, 0.45, st);
+  assert_int_equal(st[3], MR_CHANNEL_OK);
+  hold(c, v, &t, 0.1, st);
+  assert_int_equal(st[3], MR_CHANNEL_STUCK);
+  mr_control_destroy(c);
+}
+
+/* A broken channel is held at its own axis's neutral, here 0.3 (the
+ * range puts 0 m there), not at the middle: the frame stays where the
+ * relaxed hand held it, whether the string reads NaN or sticks at an end. */
+static void a_broken_channel_is_held_at_its_axis_neutral(void **state) {
+  (void)state;
+  mr_mapping_def d = height_only(-0.3, 0.7, 0.3, 0);
+  d.stuck_after = 0.25;
+  mr_control *c = make(&d, 1);
+  double v[5] = { 0.5, 0.5, 0.5, 0.3, 0.5 }, t = 0;
+  mr_channel_state st[5];
+  mr_pose p = hold(c, v, &t, 1, st);
+  assert_true(fabs(p.position[1]) < 1e-12);
+  v[3] = NAN;
+  p = hold(c, v, &t, 1, st);
+  assert_int_equal(st[3], MR_CHANNEL_NOT_FINITE);
+  if (!(fabs(p.position[1]) < 1e-12)) fail_msg("NaN held at %.6f m, expected 0", p.position[1]);
+  v[3] = 1.0;
+  hold(c, v, &t, 0.2, st);
+  assert_int_equal(st[3], MR_CHANNEL_OK);
+  p = hold(c, v, &t, 4, st);
+  assert_int_equal(st[3], MR_CHANNEL_STUCK);
+  if (!(fabs(p.position[1]) < 1e-6)) fail_msg("stuck held at %.6f m, expected 0", p.position[1]);
+  mr_control_destroy(c);
+}
+
+/* The dead zone lies about the axis's own neutral, 0.25 here: 0.33 and
+ * 0.17 read as 0.25 (the frame holds still at 0 m), 0.4 does not; and
+ * 0.45, near the middle but 0.2 from neutral, moves the frame. */
+static void the_dead_zone_centres_on_a_neutral_other_than_the_middle(void **state) {
+  (void)state;
+  mr_mapping_def d = height_only(-0.25, 0.75, 0.25, 0.1);
+  static const struct {
+    double in, height;
+  } cases[] = { { 0.33, 0.0 }, { 0.17, 0.0 }, { 0.25, 0.0 }, { 0.4, 0.15 }, { 0.45, 0.2 } };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    mr_control *c = make(&d, 1);
+    double v[5] = { 0.5, 0.5, 0.5, cases[i].in, 0.5 }, t = 0;
+    mr_pose p = hold(c, v, &t, 1, NULL);
+    if (!(fabs(p.position[1] - cases[i].height) < 1e-9))
+      fail_msg("input %.2f: height %.9f m, expected %.2f", cases[i].in, p.position[1],
+               cases[i].height);
+    mr_control_destroy(c);
+  }
+}
+
+/* Two samples stamped with the same time (two readings in one frame, or
+ * a repeat) are allowed; the second cannot be smoothed against the first
+ * (no time passed), so the output stays, and never turns NaN. */
+static void two_updates_at_one_time_keep_the_pose_finite(void **state) {
+  (void)state;
+  mr_mapping_def d = height_only(0, 1, 0.5, 0);
+  mr_control *c = make(&d, 1);
+  double v[5] = { 0.5, 0.5, 0.5, 0.4, 0.5 }, t = 0;
+  mr_pose first, again;
+  hold(c, v, &t, 0.5, NULL);
+  assert_int_equal(mr_control_update(c, v, t + 0.01, &first, NULL), MR_CONTROL_OK);
+  v[3] = 0.8;
+  assert_int_equal(mr_control_update(c, v, t + 0.01, &again, NULL), MR_CONTROL_OK);
+  t += 0.01;
+  assert_true(again.position[1] == first.position[1]);
+  mr_pose p = hold(c, v, &t, 2, NULL);
+  if (!(fabs(p.position[1] - 0.8) < 1e-3)) fail_msg("height %.6f, expected 0.8", p.position[1]);
+  mr_one_euro f;
+  mr_one_euro_init(&f, 2.0, 0.5, 3.0);
+  assert_true(mr_one_euro_filter(&f, 0.2, 1.0) == 0.2);
+  assert_true(mr_one_euro_filter(&f, 0.9, 1.0) == 0.2);
+  assert_true(isfinite(mr_one_euro_filter(&f, 0.9, 1.01)));
+  mr_control_destroy(c);
+}
+
+/* Each mapping smooths with its own filter settings: after a switch the
+ * filters run on the new mapping's min_cutoff, beta and d_cutoff (from
+ * the state they had), and after switching back on the first's. Checked
+ * against a lone One Euro filter given the same samples and settings. */
+static void switching_mappings_switches_the_filter_settings(void **state) {
+  (void)state;
+  mr_mapping_def a = height_only(0, 1, 0.5, 0), b = a;
+  snprintf(b.name, sizeof b.name, "quick");
+  b.min_cutoff = 4.0;
+  b.beta = 3.0;
+  b.d_cutoff = 0.2;
+  const mr_mapping_def both[2] = { a, b };
+  mr_control *c = make(both, 2);
+  mr_one_euro f;
+  mr_one_euro_init(&f, a.min_cutoff, a.beta, a.d_cutoff);
+  const mr_mapping_def *sel[3] = { &a, &b, &a };
+  double worst = 0;
+  for (int i = 1; i <= 300; i++) {
+    int phase = (i - 1) / 100;
+    if (i % 100 == 1 && phase > 0) {
+      assert_int_equal(mr_control_select(c, phase % 2), MR_CONTROL_OK);
+      f.min_cutoff = sel[phase]->min_cutoff; /* the state kept, the settings new */
+      f.beta = sel[phase]->beta;
+      f.d_cutoff = sel[phase]->d_cutoff;
+    }
+    double t = i * 0.01, v[5] = { 0.5, 0.5, 0.5, 0.5 + 0.4 * sin(2 * PI * 1.5 * t), 0.5 };
+    mr_pose p;
+    assert_int_equal(mr_control_update(c, v, t, &p, NULL), MR_CONTROL_OK);
+    worst = fmax(worst, fabs(p.position[1] - mr_one_euro_filter(&f, v[3], t)));
+  }
+  print_message("the control's output differs from a lone filter's by %.3g at most\n", worst);
+  assert_true(worst < 1e-12);
+  mr_control_destroy(c);
+}
+
+/* A dead zone reaches at most half the input on either side of neutral:
+ * 0.5 is taken (every input then reads neutral), 0.75 and 1.0 are
+ * refused naming the axis; so is a neutral outside 0..1, while 0 and 1
+ * themselves are taken. */
+static void a_dead_zone_past_half_the_input_or_a_neutral_outside_it_is_refused(void **state) {
+  (void)state;
+  const char *want = "mapping 'default', move_y: expected a finite range, neutral in 0..1 and "
+                     "dead zone in 0..0.5";
+  char msg[160];
+  mr_control *c = NULL;
+  static const double refused[][2] = { { 0.5, 0.75 },  { 0.5, 1.0 },  { 0.5, 0.5000001 },
+                                       { -0.01, 0.1 }, { 1.01, 0.1 }, { 0.5, -0.01 } };
+  for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+    mr_mapping_def d = height_only(0, 1, refused[i][0], refused[i][1]);
+    msg[0] = '\0';
+    assert_int_equal(mr_control_create(&d, 1, &c, msg, sizeof msg), MR_CONTROL_ERR_ARG);
+    assert_null(c);
+    assert_string_equal(msg, want);
+  }
+  static const double taken[][2] = { { 0.0, 0.1 }, { 1.0, 0.1 } };
+  for (size_t i = 0; i < sizeof taken / sizeof taken[0]; i++) {
+    mr_mapping_def d = height_only(0, 1, taken[i][0], taken[i][1]);
+    c = make(&d, 1);
+    mr_control_destroy(c);
+  }
+  mr_mapping_def d = height_only(0, 1, 0.5, 0.5);
+  c = make(&d, 1);
+  double v[5] = { 0.5, 0.5, 0.5, 0.999, 0.5 }, t = 0;
+  mr_pose p = hold(c, v, &t, 1, NULL);
+  assert_true(p.position[1] == 0.5);
+  mr_control_destroy(c);
+}
+
 /* Bad definitions are refused naming the field; time may not go back. */
 static void bad_definitions_and_time_are_refused(void **state) {
   (void)state;
@@ -221,6 +397,12 @@ int main(void) {
     cmocka_unit_test(broken_channels_are_flagged_and_held_at_neutral),
     cmocka_unit_test(one_euro_is_steady_when_still_and_quick_on_a_step),
     cmocka_unit_test(bad_definitions_and_time_are_refused),
+    cmocka_unit_test(leaving_an_end_starts_the_stuck_timer_afresh),
+    cmocka_unit_test(a_broken_channel_is_held_at_its_axis_neutral),
+    cmocka_unit_test(the_dead_zone_centres_on_a_neutral_other_than_the_middle),
+    cmocka_unit_test(two_updates_at_one_time_keep_the_pose_finite),
+    cmocka_unit_test(switching_mappings_switches_the_filter_settings),
+    cmocka_unit_test(a_dead_zone_past_half_the_input_or_a_neutral_outside_it_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -15,6 +15,7 @@
 
 #include "mr_scene.h"
 #include "mr_scene_world.h"
+#include "mr_sim.h"
 #include "theater_internal.h"
 
 /* A frame limited to 2 m/s and 90°/s whose input jumps 1 m sideways and
@@ -168,11 +169,89 @@ static void glove_motion_within_the_limits_passes_unchanged(void **state) {
   mr_scene_free(&sc);
 }
 
+/* The control point's position at every frame `marionette sim` presents. */
+typedef struct point_path {
+  int id, n;
+  double xyz[400][3];
+} point_path;
+
+static void keep_point(void *user, double t, const double *xyz, int n) {
+  (void)t;
+  point_path *pp = user;
+  assert_true(pp->id < n);
+  if (pp->n < 400) memcpy(pp->xyz[pp->n++], &xyz[3 * pp->id], sizeof pp->xyz[0]);
+}
+
+/* The angle between two points seen from c. */
+static double angle_at(const double c[3], const double a[3], const double b[3]) {
+  double u[3], v[3], uv = 0, uu = 0, vv = 0;
+  for (int k = 0; k < 3; k++) {
+    u[k] = a[k] - c[k];
+    v[k] = b[k] - c[k];
+    uv += u[k] * v[k];
+    uu += u[k] * u[k];
+    vv += v[k] * v[k];
+  }
+  return acos(fmax(-1.0, fmin(1.0, uv / sqrt(uu * vv))));
+}
+
+/* `marionette sim` (mr_sim_run at 60 fps) drives a track frame through the
+ * same allowance: a track that turns the frame 120° about its own origin
+ * within 10 ms, under max_turn_rate 45 (not the default 1440), turns its
+ * control point no more than 0.75° from one frame to the next, and brings
+ * it round the whole 120° in the end. */
+static void marionette_sim_keeps_a_track_frame_within_its_max_turn_rate(void **state) {
+  (void)state;
+  static const char text[] = "format: 1\n"
+                             "physics:\n"
+                             "  effects: [control]\n"
+                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
+                             "  control:\n"
+                             "    max_turn_rate: 45\n"
+                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
+                             "    pose: {position: [0, 1, 0]}\n"
+                             "    track:\n"
+                             "      interpolation: linear\n"
+                             "      keyframes:\n"
+                             "        - {t: 0.0, position: [0, 1, 0]}\n"
+                             "        - {t: 0.19, position: [0, 1, 0]}\n"
+                             "        - {t: 0.2, position: [0, 1, 0], rotation: [0, 120, 0]}\n";
+  const double pi = 3.14159265358979323846, origin[3] = { 0, 1, 0 };
+  mr_scene sc;
+  mr_scene_error err;
+  mr_scene_world sw;
+  assert_int_equal(mr_scene_load_text("turn.yaml", text, sizeof text - 1, &sc, &err), MR_SCENE_OK);
+  assert_int_equal(mr_scene_build(&sc, &sw, &err), MR_SCENE_OK);
+  static point_path pp;
+  memset(&pp, 0, sizeof pp);
+  pp.id = sw.control_ids[0];
+  mr_scene_world_free(&sw);
+  mr_sim_opts o = mr_default_sim_opts();
+  o.duration = 3.5;
+  o.fps = 60;
+  o.present = MR_PRESENT_LAND;
+  o.on_frame = keep_point;
+  o.user = &pp;
+  mr_sim_result r;
+  if (mr_sim_run(&sc, &o, &r, &err) != MR_SCENE_OK) fail_msg("%s", err.text);
+  double top = 0.0;
+  for (int i = 1; i < pp.n; i++) top = fmax(top, angle_at(origin, pp.xyz[i - 1], pp.xyz[i]));
+  double reached = angle_at(origin, pp.xyz[0], pp.xyz[pp.n - 1]) * 180 / pi;
+  print_message("%d frames: most turn in a frame %.6f° (allowance 0.75°), %.4f° reached\n", pp.n,
+                top * 180 / pi, reached);
+  assert_true(pp.n > 200);
+  assert_true(top <= 0.75 * pi / 180 * (1 + 1e-9));
+  assert_true(top > 0.7 * pi / 180);
+  assert_true(fabs(reached - 120.0) < 1e-6);
+  mr_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(frame_keeps_its_speed_and_turn_limits_on_a_curved_path),
     cmocka_unit_test(glove_frame_keeps_its_acceleration_limits),
     cmocka_unit_test(glove_motion_within_the_limits_passes_unchanged),
+    cmocka_unit_test(marionette_sim_keeps_a_track_frame_within_its_max_turn_rate),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -50,9 +50,8 @@ static void present(void *user, double t) {
   mr_virtual_clock_spend(&s->vc, s->render_cost);
 }
 
-static mr_scheduler *start(show *s, mr_policy policy) {
-  mr_scheduler_def d = mr_default_scheduler_def();
-  d.policy = policy;
+static mr_scheduler *start_def(show *s, const mr_scheduler_def *def) {
+  mr_scheduler_def d = *def;
   s->period = 1.0 / d.fps;
   mr_clock c = mr_clock_virtual(&s->vc);
   mr_scheduler_hooks h = { advance, present, s };
@@ -60,6 +59,12 @@ static mr_scheduler *start(show *s, mr_policy policy) {
   char msg[160];
   if (mr_scheduler_create(&d, &c, &h, &sch, msg, sizeof msg) != MR_THEATER_OK) fail_msg("%s", msg);
   return sch;
+}
+
+static mr_scheduler *start(show *s, mr_policy policy) {
+  mr_scheduler_def d = mr_default_scheduler_def();
+  d.policy = policy;
+  return start_def(s, &d);
 }
 
 /* Light load: nothing skipped, every frame computed for exactly j/60 s and
@@ -196,6 +201,134 @@ static void a_sample_is_shown_within_two_frame_periods(void **state) {
   mr_scheduler_destroy(sch);
 }
 
+/* One tick that costs ten periods (a render that stalled), with the
+ * catch-up cap at 3 (not the default 5): that tick simulates three frames
+ * and gives up the other eight periods for good, moving the wall origin,
+ * so every tick after it simulates one frame again, and shows it one period
+ * after its time (from the moved origin); nothing more is given up. */
+static void a_stall_past_the_cap_gives_its_lag_up_for_good(void **state) {
+  (void)state;
+  show s;
+  memset(&s, 0, sizeof s);
+  s.vc.t = s.origin = 50.0;
+  mr_scheduler_def d = mr_default_scheduler_def();
+  d.max_catch_up = 3;
+  mr_scheduler *sch = start_def(&s, &d);
+  for (int i = 0; i < 100; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  s.render_cost = 10 * s.period; /* the frame shown in the next tick */
+  s.advances_in_tick = 0;
+  assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  assert_int_equal(s.advances_in_tick, 3);
+  s.render_cost = 0;
+  mr_scheduler_stats st;
+  mr_scheduler_stats_get(sch, &st);
+  assert_true(fabs(st.dropped_time - 8 * s.period) < 1e-9);
+  s.origin += st.dropped_time;
+  s.bad_delay = 0;
+  for (int i = 0; i < 100; i++) {
+    s.advances_in_tick = 0;
+    assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+    if (s.advances_in_tick != 1)
+      fail_msg("tick %d after the stall simulated %d frames", i + 1, s.advances_in_tick);
+  }
+  mr_scheduler_stats_get(sch, &st);
+  assert_true(fabs(st.dropped_time - 8 * s.period) < 1e-9);
+  assert_int_equal(s.bad_delay, 0);
+  assert_int_equal(s.bad_landing, 0);
+  mr_scheduler_destroy(sch);
+}
+
+/* The slow policy after a single slow frame (a render of ten periods):
+ * the nine periods it fell behind are kept as lag, and the frames after it
+ * come one period apart, not in a burst to catch up. */
+static void slow_policy_after_one_slow_frame_keeps_the_pace(void **state) {
+  (void)state;
+  show s;
+  memset(&s, 0, sizeof s);
+  s.vc.t = s.origin = 7.0;
+  mr_scheduler *sch = start(&s, MR_POLICY_SLOW);
+  mr_scheduler_stats st;
+  for (int i = 0; i < 100; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  mr_scheduler_stats_get(sch, &st);
+  double lag_before = st.wall_time - st.sim_time;
+  s.render_cost = 10 * s.period;
+  assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  s.render_cost = 0;
+  assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  mr_scheduler_stats_get(sch, &st);
+  double shown = st.last_present_wall;
+  for (int i = 0; i < 100; i++) {
+    assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+    mr_scheduler_stats_get(sch, &st);
+    if (fabs(st.last_present_wall - shown - s.period) > 1e-9)
+      fail_msg("frame %d after the slow one came %.3f periods after the last", i + 1,
+               (st.last_present_wall - shown) / s.period);
+    shown = st.last_present_wall;
+  }
+  double lag = st.wall_time - st.sim_time - lag_before;
+  print_message("one frame of ten periods: %.3f periods behind for good, real-time factor %.4f\n",
+                lag / s.period, st.real_time_factor);
+  assert_true(fabs(lag - 9 * s.period) < 1e-9);
+  assert_int_equal(st.frames_skipped, 0);
+  mr_scheduler_destroy(sch);
+}
+
+/* Latency counts from the first sample noted for a frame, whichever order
+ * they are noted in: two samples 0.9 and 0.1 periods before the tick give
+ * 1.9 periods to the frame's presentation, not 1.1. A frame that read no
+ * sample adds no latency, however long the show runs on. */
+static void latency_counts_from_the_first_sample_of_a_frame(void **state) {
+  (void)state;
+  show s;
+  memset(&s, 0, sizeof s);
+  mr_scheduler *sch = start(&s, MR_POLICY_SKIP);
+  mr_scheduler_stats st;
+  for (int i = 0; i < 100; i++) {
+    double early = s.vc.t - 0.9 * s.period, late = s.vc.t - 0.1 * s.period;
+    mr_scheduler_note_input(sch, i % 2 == 0 ? early : late);
+    mr_scheduler_note_input(sch, i % 2 == 0 ? late : early);
+    assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  }
+  assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK); /* shows the last of them */
+  mr_scheduler_stats_get(sch, &st);
+  print_message("latency p50 %.4f, p99 %.4f periods\n", st.latency_p50 / s.period,
+                st.latency_p99 / s.period);
+  assert_true(st.latency_p50 >= 1.9 * s.period && st.latency_p50 <= 1.9 * s.period + 1.001e-4);
+  assert_true(st.latency_p99 == st.latency_p50);
+  for (int i = 0; i < 300; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  mr_scheduler_stats st2;
+  mr_scheduler_stats_get(sch, &st2);
+  assert_true(st2.latency_p50 == st.latency_p50 && st2.latency_p99 == st.latency_p99);
+  mr_scheduler_destroy(sch);
+}
+
+/* The latency quantiles on three frames of known latency (5.05, 12.35 and
+ * 40.05 ms, each in the middle of a 0.1 ms bin): the median is the second
+ * sample's bin's upper edge, 12.4 ms, never below the sample, and the
+ * 99th percentile the third's, 40.1 ms. */
+static void latency_quantiles_are_the_upper_edge_of_the_samples_bin(void **state) {
+  (void)state;
+  show s;
+  memset(&s, 0, sizeof s);
+  s.vc.t = s.origin = 3.0;
+  mr_scheduler_def d = mr_default_scheduler_def();
+  d.fps = 50;
+  mr_scheduler *sch = start_def(&s, &d);
+  static const double lat[3] = { 5.05e-3, 12.35e-3, 40.05e-3 };
+  for (uint64_t k = 0; k < 4; k++) {
+    /* Frame k is computed now and shown at the next tick, origin + (k+1)/fps. */
+    if (k < 3) mr_scheduler_note_input(sch, s.origin + (double)(k + 1) / d.fps - lat[k]);
+    assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  }
+  mr_scheduler_stats st;
+  mr_scheduler_stats_get(sch, &st);
+  print_message("p50 %.6f s, p99 %.6f s\n", st.latency_p50, st.latency_p99);
+  assert_int_equal(st.frames_presented, 3);
+  assert_true(fabs(st.latency_p50 - 12.4e-3) < 1e-12);
+  assert_true(fabs(st.latency_p99 - 40.1e-3) < 1e-12);
+  mr_scheduler_destroy(sch);
+}
+
 static void bad_definitions_are_refused(void **state) {
   (void)state;
   mr_virtual_clock vc = { 0 };
@@ -228,6 +361,10 @@ int main(void) {
     cmocka_unit_test(slow_policy_skips_nothing_and_reports_the_factor),
     cmocka_unit_test(a_sample_is_shown_within_two_frame_periods),
     cmocka_unit_test(bad_definitions_are_refused),
+    cmocka_unit_test(a_stall_past_the_cap_gives_its_lag_up_for_good),
+    cmocka_unit_test(slow_policy_after_one_slow_frame_keeps_the_pace),
+    cmocka_unit_test(latency_counts_from_the_first_sample_of_a_frame),
+    cmocka_unit_test(latency_quantiles_are_the_upper_edge_of_the_samples_bin),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
