@@ -19,6 +19,7 @@
 
 #include "gg_motion.h"
 #include "gg_track.h"
+#include "gp_glove.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -521,8 +522,6 @@ void gg_motion_eval(gg_motion *m, double t_s, uint16_t out[GG_CHANNELS]) {
       v = gg_track_eval(g->track, g->column, t_s, g->loop);
       break;
     }
-    if (!(v > 0)) v = 0; /* also catches NaN */
-    if (v > 1) v = 1;
-    out[i] = (uint16_t)lround(v * GG_ADC_MAX);
+    out[i] = gp_glove_value_count(v); /* clamped to 0..1, NaN as 0 */
   }
 }
