@@ -5,7 +5,7 @@
 #include <math.h>
 #include <string.h>
 
-/* The baud a glove announces unless told otherwise (SPEC.md, INFO). */
+/* The link's default rate (SPEC.md), announced unless told otherwise. */
 #define DEFAULT_BAUD 115200u
 
 gp_info gp_default_glove_info(void) {
