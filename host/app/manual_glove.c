@@ -1,14 +1,14 @@
 /* The keyboard, the mouse and a gamepad as a glove (issue 10, item 5):
  * their five values go out as the protocol's frames on a pty, encoded by
- * the same codec the firmware uses (protocol/), so the show reads them as
- * it reads a glove. */
+ * the protocol's glove encoder (protocol/glove, as glove-gen's are), so the
+ * show reads them as it reads a glove. */
 #include "manual_glove.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "gp.h"
+#include "gp_glove.h"
 
 /* How far a full drag goes, in pixels, and the values' easing lag (s). */
 #define DRAG_FULL_PX 250.0
@@ -161,36 +161,20 @@ int mr_pty_glove_open(mr_pty_glove *g, double rate_hz, double now, char *msg, si
 /* The INFO a glove of this layout announces: five channels at full scale,
  * the factory calibration (the values are already 0..1), the right hand. */
 static size_t put_info(const mr_pty_glove *g, uint8_t *out) {
-  gp_msg m;
-  memset(&m, 0, sizeof m);
-  m.type = GP_INFO;
-  m.u.info.proto_major = GP_PROTO_MAJOR;
-  m.u.info.spec_hash = GP_SPEC_HASH;
-  m.u.info.fw_minor = 1;
-  m.u.info.uid[0] = 0x6b657973u; /* "keys" */
-  m.u.info.hand = GP_HAND_RIGHT;
-  m.u.info.n_channels = MR_MANUAL_CHANNELS;
-  m.u.info.adc_bits = GP_SAMPLE_CH_BITS;
-  m.u.info.frame_rate_hz = (uint16_t)lround(g->rate_hz);
-  m.u.info.sample_rate_hz = m.u.info.frame_rate_hz;
-  m.u.info.baud = MR_IO_DEFAULT_BAUD;
-  m.u.info.cal_state = GP_CAL_DEFAULTS;
-  for (int c = 0; c < MR_MANUAL_CHANNELS; c++) m.u.info.cal_max[c] = GP_SAMPLE_CH_MAX;
-  return gp_encode(&m, GP_SPEC_HASH, out, GP_MAX_WIRE);
+  gp_info info = gp_default_glove_info();
+  info.uid[0] = 0x6b657973u; /* "keys" */
+  info.n_channels = MR_MANUAL_CHANNELS;
+  info.baud = MR_IO_DEFAULT_BAUD;
+  gp_glove_info_set_rate(&info, g->rate_hz);
+  return gp_glove_info_encode(&info, out, GP_MAX_WIRE);
 }
 
 static size_t put_sample(mr_pty_glove *g, const double values[MR_MANUAL_CHANNELS], double now,
                          uint8_t *out) {
-  gp_msg m;
-  memset(&m, 0, sizeof m);
-  m.type = GP_SAMPLE;
-  m.u.sample.seq = g->seq++;
-  m.u.sample.t_us = (uint32_t)llround((now - g->t0) * 1e6);
-  for (int c = 0; c < MR_MANUAL_CHANNELS; c++) {
-    double v = values[c] < 0 ? 0 : values[c] > 1 ? 1 : values[c];
-    m.u.sample.ch[c] = (uint16_t)lround(v * GP_SAMPLE_CH_MAX);
-  }
-  return gp_encode(&m, GP_SPEC_HASH, out, GP_MAX_WIRE);
+  uint16_t ch[GP_SAMPLE_CH_COUNT] = { 0 };
+  for (int c = 0; c < MR_MANUAL_CHANNELS; c++) ch[c] = gp_glove_value_count(values[c]);
+  gp_sample s = gp_glove_sample(g->seq++, gp_glove_time_us(now - g->t0), ch);
+  return gp_glove_sample_encode(&s, GP_SPEC_HASH, out, GP_MAX_WIRE);
 }
 
 void mr_pty_glove_pump(mr_pty_glove *g, const double values[MR_MANUAL_CHANNELS], double now) {

@@ -309,129 +309,152 @@ typedef struct args {
   char spec_buf[512];
 } args;
 
+enum {
+  O_CSV = 256,
+  O_NO_EVENTS,
+  O_COUNTERS,
+  O_RECORD,
+  O_BAUD,
+  O_REALTIME,
+  O_RECONNECT,
+  O_IDLE,
+  O_KEEP_GOING,
+  O_LIST,
+  O_PATH_FILE,
+  O_VERSION
+};
+
+static const struct option long_opts[] = { { "csv", no_argument, 0, O_CSV },
+                                           { "quiet", no_argument, 0, 'q' },
+                                           { "no-events", no_argument, 0, O_NO_EVENTS },
+                                           { "counters", required_argument, 0, O_COUNTERS },
+                                           { "record", required_argument, 0, O_RECORD },
+                                           { "baud", required_argument, 0, O_BAUD },
+                                           { "realtime", no_argument, 0, O_REALTIME },
+                                           { "reconnect", required_argument, 0, O_RECONNECT },
+                                           { "idle", required_argument, 0, O_IDLE },
+                                           { "count", required_argument, 0, 'n' },
+                                           { "keep-going", no_argument, 0, O_KEEP_GOING },
+                                           { "list", no_argument, 0, O_LIST },
+                                           { "path-file", required_argument, 0, O_PATH_FILE },
+                                           { "help", no_argument, 0, 'h' },
+                                           { "version", no_argument, 0, O_VERSION },
+                                           { 0, 0, 0, 0 } };
+
+/* --idle or --reconnect (c says which) into D: -1, or the exit status. */
+static int parse_seconds(int c, dump *D) {
+  char *end;
+  double v = strtod(optarg, &end);
+  if (*end || end == optarg || !(v >= 0) || !isfinite(v)) {
+    fprintf(stderr, "glove-dump: %s '%s' is not a number of seconds\n",
+            c == O_IDLE ? "--idle" : "--reconnect", optarg);
+    return EXIT_USAGE;
+  }
+  if (c == O_IDLE)
+    D->idle = v;
+  else
+    D->reconnect = v;
+  return -1;
+}
+
+static int parse_count(dump *D) {
+  char *end;
+  unsigned long long v = strtoull(optarg, &end, 10);
+  if (*end || end == optarg || v == 0 || optarg[0] == '-') {
+    fprintf(stderr, "glove-dump: --count '%s' is not a positive integer\n", optarg);
+    return EXIT_USAGE;
+  }
+  D->max_frames = v;
+  return -1;
+}
+
+static int parse_baud(long *baud) {
+  char *end;
+  *baud = strtol(optarg, &end, 10);
+  if (*end || *baud <= 0) {
+    fprintf(stderr, "glove-dump: --baud '%s' is not a positive integer\n", optarg);
+    return EXIT_USAGE;
+  }
+  return -1;
+}
+
+/* One option into D, a and *baud: -1 when the run goes on, else the exit
+ * status. */
+static int parse_option(int c, char **argv, dump *D, args *a, long *baud) {
+  switch (c) {
+  case O_CSV:
+    D->csv = 1;
+    return -1;
+  case 'q':
+    D->quiet = 1;
+    return -1;
+  case O_NO_EVENTS:
+    D->events = 0;
+    return -1;
+  case O_COUNTERS:
+    a->counters_path = optarg;
+    return -1;
+  case O_RECORD:
+    a->record_path = optarg;
+    return -1;
+  case O_BAUD:
+    return parse_baud(baud);
+  case O_REALTIME:
+    D->realtime = 1;
+    return -1;
+  case O_RECONNECT:
+  case O_IDLE:
+    return parse_seconds(c, D);
+  case 'n':
+    return parse_count(D);
+  case O_KEEP_GOING:
+    D->keep_going = 1;
+    return -1;
+  case O_PATH_FILE:
+    a->path_file = optarg;
+    return -1;
+  case O_LIST:
+    return list_ports();
+  case 'h':
+    usage(stdout);
+    return 0;
+  case O_VERSION:
+    printf("glove-dump %s\n", MR_VERSION);
+    return 0;
+  default:
+    return bad_option(c, argv);
+  }
+}
+
+/* A serial device named without @BAUD gets --baud's rate. */
+static void apply_baud(args *a, long baud) {
+  struct stat st;
+  int is_dev =
+      strncmp(a->spec, "serial:", 7) == 0 || (stat(a->spec, &st) == 0 && S_ISCHR(st.st_mode));
+  if (is_dev) {
+    snprintf(a->spec_buf, sizeof a->spec_buf, "%s%s@%ld",
+             strncmp(a->spec, "serial:", 7) == 0 ? "" : "serial:", a->spec, baud);
+    a->spec = a->spec_buf;
+  }
+}
+
 /* Options into D and a; -1 when the run goes on, else the exit status. */
 static int parse(int argc, char **argv, dump *D, args *a) {
-  enum {
-    O_CSV = 256,
-    O_NO_EVENTS,
-    O_COUNTERS,
-    O_RECORD,
-    O_BAUD,
-    O_REALTIME,
-    O_RECONNECT,
-    O_IDLE,
-    O_KEEP_GOING,
-    O_LIST,
-    O_PATH_FILE,
-    O_VERSION
-  };
-  static const struct option opts[] = { { "csv", no_argument, 0, O_CSV },
-                                        { "quiet", no_argument, 0, 'q' },
-                                        { "no-events", no_argument, 0, O_NO_EVENTS },
-                                        { "counters", required_argument, 0, O_COUNTERS },
-                                        { "record", required_argument, 0, O_RECORD },
-                                        { "baud", required_argument, 0, O_BAUD },
-                                        { "realtime", no_argument, 0, O_REALTIME },
-                                        { "reconnect", required_argument, 0, O_RECONNECT },
-                                        { "idle", required_argument, 0, O_IDLE },
-                                        { "count", required_argument, 0, 'n' },
-                                        { "keep-going", no_argument, 0, O_KEEP_GOING },
-                                        { "list", no_argument, 0, O_LIST },
-                                        { "path-file", required_argument, 0, O_PATH_FILE },
-                                        { "help", no_argument, 0, 'h' },
-                                        { "version", no_argument, 0, O_VERSION },
-                                        { 0, 0, 0, 0 } };
   long baud = 0;
-  int c;
+  int c, rc;
   a->spec = "-";
   D->reconnect = -1;
   D->idle = -1;
   D->events = 1;
   opterr = 0; /* bad_option says it in one line, without the program's path */
-  while ((c = getopt_long(argc, argv, ":qn:h", opts, NULL)) != -1) {
-    char *end;
-    switch (c) {
-    case O_CSV:
-      D->csv = 1;
-      break;
-    case 'q':
-      D->quiet = 1;
-      break;
-    case O_NO_EVENTS:
-      D->events = 0;
-      break;
-    case O_COUNTERS:
-      a->counters_path = optarg;
-      break;
-    case O_RECORD:
-      a->record_path = optarg;
-      break;
-    case O_BAUD:
-      baud = strtol(optarg, &end, 10);
-      if (*end || baud <= 0) {
-        fprintf(stderr, "glove-dump: --baud '%s' is not a positive integer\n", optarg);
-        return EXIT_USAGE;
-      }
-      break;
-    case O_REALTIME:
-      D->realtime = 1;
-      break;
-    case O_RECONNECT:
-    case O_IDLE: {
-      double v = strtod(optarg, &end);
-      if (*end || end == optarg || !(v >= 0) || !isfinite(v)) {
-        fprintf(stderr, "glove-dump: %s '%s' is not a number of seconds\n",
-                c == O_IDLE ? "--idle" : "--reconnect", optarg);
-        return EXIT_USAGE;
-      }
-      if (c == O_IDLE)
-        D->idle = v;
-      else
-        D->reconnect = v;
-      break;
-    }
-    case 'n': {
-      unsigned long long v = strtoull(optarg, &end, 10);
-      if (*end || end == optarg || v == 0 || optarg[0] == '-') {
-        fprintf(stderr, "glove-dump: --count '%s' is not a positive integer\n", optarg);
-        return EXIT_USAGE;
-      }
-      D->max_frames = v;
-      break;
-    }
-    case O_KEEP_GOING:
-      D->keep_going = 1;
-      break;
-    case O_PATH_FILE:
-      a->path_file = optarg;
-      break;
-    case O_LIST:
-      return list_ports();
-    case 'h':
-      usage(stdout);
-      return 0;
-    case O_VERSION:
-      printf("glove-dump %s\n", MR_VERSION);
-      return 0;
-    default:
-      return bad_option(c, argv);
-    }
-  }
+  while ((c = getopt_long(argc, argv, ":qn:h", long_opts, NULL)) != -1)
+    if ((rc = parse_option(c, argv, D, a, &baud)) >= 0) return rc;
   if (optind < argc) a->spec = argv[optind++];
   if (optind < argc) {
     fprintf(stderr, "glove-dump: one SOURCE only, got also '%s' (see --help)\n", argv[optind]);
     return EXIT_USAGE;
   }
-  if (baud && !strchr(a->spec, '@')) {
-    struct stat st;
-    int is_dev =
-        strncmp(a->spec, "serial:", 7) == 0 || (stat(a->spec, &st) == 0 && S_ISCHR(st.st_mode));
-    if (is_dev) {
-      snprintf(a->spec_buf, sizeof a->spec_buf, "%s%s@%ld",
-               strncmp(a->spec, "serial:", 7) == 0 ? "" : "serial:", a->spec, baud);
-      a->spec = a->spec_buf;
-    }
-  }
+  if (baud && !strchr(a->spec, '@')) apply_baud(a, baud);
   return -1;
 }
 

@@ -19,6 +19,7 @@
 
 #include "gg_motion.h"
 #include "gg_track.h"
+#include "gp_glove.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -271,94 +272,123 @@ static int parse_track(ctx *c, const tok *toks, int nt, const tok *kind, gg_gen 
   return 0;
 }
 
-static int parse_line(ctx *c, gg_motion *m, const tok *toks, int nt) {
-  int sel[GG_CHANNELS];
-  gg_gen g;
-  gg_track *track = NULL;
-  double column = -1;
-  const tok *kind;
-  if (tok_is(&toks[0], "duration")) {
-    if (nt != 2) return fail(c, toks[0].col, "expected 'duration SECONDS'");
-    if (parse_num(c, &toks[1], toks[1].s, toks[1].len, &m->duration_s) != 0) return -1;
-    if (m->duration_s <= 0) return fail(c, toks[1].col, "duration must be positive");
-    return 0;
-  }
-  if (parse_channels(c, &toks[0], sel) != 0) return -1;
-  if (nt < 2)
-    return fail(c, toks[0].col + (int)toks[0].len, "expected a motion after the channels");
-  kind = &toks[1];
-  gen_init(&g);
+static int parse_duration(ctx *c, gg_motion *m, const tok *toks, int nt) {
+  if (nt != 2) return fail(c, toks[0].col, "expected 'duration SECONDS'");
+  if (parse_num(c, &toks[1], toks[1].s, toks[1].len, &m->duration_s) != 0) return -1;
+  if (m->duration_s <= 0) return fail(c, toks[1].col, "duration must be positive");
+  return 0;
+}
+
+/* The options of each shape (toks: those after the shape's name) into g. */
+static int parse_sine(ctx *c, const tok *kind, const tok *toks, int nt, gg_gen *g) {
+  double phase_deg = 0;
+  opt o[] = { { "mid", &g->mid },     { "amp", &g->amp },      { "freq", &g->freq },
+              { "to", &g->freq_end }, { "over", &g->sweep_s }, { "phase", &phase_deg },
+              { NULL, NULL } };
+  g->shape = GG_SINE;
+  g->mid = 0.5;
+  g->amp = 0.4;
+  g->freq = 1;
+  g->freq_end = -1;
+  if (parse_opts(c, toks, nt, o, "sine", "mid, amp, freq, to, over, phase") != 0) return -1;
+  if (g->freq_end < 0) g->freq_end = g->freq;
+  if (g->sweep_s < 0) return fail(c, kind->col, "over must not be negative");
+  g->phase = phase_deg * M_PI / 180.0;
+  return 0;
+}
+
+static int parse_step(ctx *c, const tok *kind, const tok *toks, int nt, gg_gen *g) {
+  opt o[] = { { "from", &g->from },     { "to", &g->to },     { "at", &g->at },
+              { "period", &g->period }, { "duty", &g->duty }, { NULL, NULL } };
+  g->shape = GG_STEP;
+  g->to = 1;
+  g->at = 1;
+  g->duty = 0.5;
+  if (parse_opts(c, toks, nt, o, "step", "from, to, at, period, duty") != 0) return -1;
+  if (g->period < 0 || g->duty < 0 || g->duty > 1)
+    return fail(c, kind->col, "step needs period >= 0 and duty in 0..1");
+  return 0;
+}
+
+static int parse_walk(ctx *c, const tok *kind, const tok *toks, int nt, gg_gen *g) {
+  opt o[] = { { "start", &g->start },
+              { "sigma", &g->sigma },
+              { "min", &g->lo },
+              { "max", &g->hi },
+              { NULL, NULL } };
+  g->shape = GG_WALK;
+  g->start = 0.5;
+  g->sigma = 0.3;
+  g->hi = 1;
+  if (parse_opts(c, toks, nt, o, "walk", "start, sigma, min, max") != 0) return -1;
+  if (!(g->lo < g->hi) || g->sigma < 0)
+    return fail(c, kind->col, "walk needs min < max and sigma >= 0");
+  g->walk_v = g->start < g->lo ? g->lo : g->start > g->hi ? g->hi : g->start;
+  return 0;
+}
+
+/* The motion named by kind, with its options toks, into g (and a track's
+ * file into *track and *column). */
+static int parse_motion(ctx *c, const tok *kind, const tok *toks, int nt, gg_gen *g,
+                        gg_track **track, double *column) {
   if (tok_is(kind, "const")) {
-    opt o[] = { { "value", &g.value }, { NULL, NULL } };
-    g.shape = GG_CONST;
-    if (parse_opts(c, toks + 2, nt - 2, o, "const", "value") != 0) return -1;
-  } else if (tok_is(kind, "keys")) {
-    g.shape = GG_KEYS;
-    if (parse_keys(c, toks + 2, nt - 2, &g) != 0) {
-      free(g.keys);
+    opt o[] = { { "value", &g->value }, { NULL, NULL } };
+    g->shape = GG_CONST;
+    return parse_opts(c, toks, nt, o, "const", "value");
+  }
+  if (tok_is(kind, "keys")) {
+    g->shape = GG_KEYS;
+    if (parse_keys(c, toks, nt, g) != 0) {
+      free(g->keys);
       return -1;
     }
-  } else if (tok_is(kind, "sine")) {
-    double phase_deg = 0;
-    opt o[] = { { "mid", &g.mid },     { "amp", &g.amp },      { "freq", &g.freq },
-                { "to", &g.freq_end }, { "over", &g.sweep_s }, { "phase", &phase_deg },
-                { NULL, NULL } };
-    g.shape = GG_SINE;
-    g.mid = 0.5;
-    g.amp = 0.4;
-    g.freq = 1;
-    g.freq_end = -1;
-    if (parse_opts(c, toks + 2, nt - 2, o, "sine", "mid, amp, freq, to, over, phase") != 0)
-      return -1;
-    if (g.freq_end < 0) g.freq_end = g.freq;
-    if (g.sweep_s < 0) return fail(c, kind->col, "over must not be negative");
-    g.phase = phase_deg * M_PI / 180.0;
-  } else if (tok_is(kind, "step")) {
-    opt o[] = { { "from", &g.from },     { "to", &g.to },     { "at", &g.at },
-                { "period", &g.period }, { "duty", &g.duty }, { NULL, NULL } };
-    g.shape = GG_STEP;
-    g.to = 1;
-    g.at = 1;
-    g.duty = 0.5;
-    if (parse_opts(c, toks + 2, nt - 2, o, "step", "from, to, at, period, duty") != 0) return -1;
-    if (g.period < 0 || g.duty < 0 || g.duty > 1)
-      return fail(c, kind->col, "step needs period >= 0 and duty in 0..1");
-  } else if (tok_is(kind, "walk")) {
-    opt o[] = { { "start", &g.start },
-                { "sigma", &g.sigma },
-                { "min", &g.lo },
-                { "max", &g.hi },
-                { NULL, NULL } };
-    g.shape = GG_WALK;
-    g.start = 0.5;
-    g.sigma = 0.3;
-    g.hi = 1;
-    if (parse_opts(c, toks + 2, nt - 2, o, "walk", "start, sigma, min, max") != 0) return -1;
-    if (!(g.lo < g.hi) || g.sigma < 0)
-      return fail(c, kind->col, "walk needs min < max and sigma >= 0");
-    g.walk_v = g.start < g.lo ? g.lo : g.start > g.hi ? g.hi : g.start;
-  } else if (tok_is(kind, "csv") || tok_is(kind, "mrec")) {
-    g.shape = GG_TRACK;
-    if (parse_track(c, toks + 2, nt - 2, kind, &g, &track, &column) != 0) return -1;
-  } else {
-    return fail(c, kind->col, "unknown motion '%.*s' (const, keys, sine, step, walk, csv, mrec)",
-                (int)kind->len, kind->s);
+    return 0;
   }
+  if (tok_is(kind, "sine")) return parse_sine(c, kind, toks, nt, g);
+  if (tok_is(kind, "step")) return parse_step(c, kind, toks, nt, g);
+  if (tok_is(kind, "walk")) return parse_walk(c, kind, toks, nt, g);
+  if (tok_is(kind, "csv") || tok_is(kind, "mrec")) {
+    g->shape = GG_TRACK;
+    return parse_track(c, toks, nt, kind, g, track, column);
+  }
+  return fail(c, kind->col, "unknown motion '%.*s' (const, keys, sine, step, walk, csv, mrec)",
+              (int)kind->len, kind->s);
+}
+
+/* Each selected channel gets its own copy of g (keys copied, the track
+ * shared). */
+static int give_channels(ctx *c, gg_motion *m, const int sel[GG_CHANNELS], const gg_gen *g,
+                         gg_track *track, double column, const tok *kind) {
   for (int i = 0; i < GG_CHANNELS; i++) {
     gg_gen *dst = &m->ch[i];
     if (!sel[i]) continue;
     gen_free(dst);
-    *dst = g;
-    if (g.keys) {
-      dst->keys = malloc(g.n_keys * sizeof *g.keys);
+    *dst = *g;
+    if (g->keys) {
+      dst->keys = malloc(g->n_keys * sizeof *g->keys);
       if (!dst->keys) return fail(c, kind->col, "out of memory");
-      memcpy(dst->keys, g.keys, g.n_keys * sizeof *g.keys);
+      memcpy(dst->keys, g->keys, g->n_keys * sizeof *g->keys);
     }
     if (track) {
       dst->track = gg_track_retain(track);
       dst->column = column >= 0 ? (int)column : i;
     }
   }
+  return 0;
+}
+
+static int parse_line(ctx *c, gg_motion *m, const tok *toks, int nt) {
+  int sel[GG_CHANNELS];
+  gg_gen g;
+  gg_track *track = NULL;
+  double column = -1;
+  if (tok_is(&toks[0], "duration")) return parse_duration(c, m, toks, nt);
+  if (parse_channels(c, &toks[0], sel) != 0) return -1;
+  if (nt < 2)
+    return fail(c, toks[0].col + (int)toks[0].len, "expected a motion after the channels");
+  gen_init(&g);
+  if (parse_motion(c, &toks[1], toks + 2, nt - 2, &g, &track, &column) != 0) return -1;
+  if (give_channels(c, m, sel, &g, track, column, &toks[1]) != 0) return -1;
   free(g.keys);
   gg_track_release(track);
   return 0;
@@ -521,8 +551,6 @@ void gg_motion_eval(gg_motion *m, double t_s, uint16_t out[GG_CHANNELS]) {
       v = gg_track_eval(g->track, g->column, t_s, g->loop);
       break;
     }
-    if (!(v > 0)) v = 0; /* also catches NaN */
-    if (v > 1) v = 1;
-    out[i] = (uint16_t)lround(v * GG_ADC_MAX);
+    out[i] = gp_glove_value_count(v); /* clamped to 0..1, NaN as 0 */
   }
 }

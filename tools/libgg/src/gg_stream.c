@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "gg_stream.h"
+#include "gp_glove.h"
 
 const char *const gg_fault_names[GG_F_COUNT] = { "drop",       "dup",      "reorder",
                                                  "flip",       "truncate", "garbage",
@@ -26,30 +27,22 @@ void gg_stream_init(gg_stream *s, const gg_stream_config *cfg, gg_motion *motion
   for (int i = 0; i < GG_CHANNELS; i++) s->cal_max[i] = GG_ADC_MAX;
 }
 
-static size_t put_msg(const gp_msg *m, uint32_t hash, uint8_t *out) {
-  return gp_encode(m, hash, out, GP_MAX_WIRE);
+static size_t put_sample(const gp_sample *x, uint32_t hash, uint8_t *out) {
+  return gp_glove_sample_encode(x, hash, out, GP_MAX_WIRE);
 }
 
 static size_t put_info(const gg_stream *s, uint32_t announced, uint8_t *out) {
-  gp_msg m;
-  memset(&m, 0, sizeof m);
-  m.type = GP_INFO;
-  m.u.info.proto_major = GP_PROTO_MAJOR;
-  m.u.info.spec_hash = announced;
-  m.u.info.fw_major = 0;
-  m.u.info.fw_minor = 1;
-  m.u.info.fw_patch = 0;
-  memcpy(m.u.info.uid, s->cfg.uid, sizeof m.u.info.uid);
-  m.u.info.hand = s->cfg.hand;
-  m.u.info.n_channels = GG_CHANNELS;
-  m.u.info.adc_bits = GP_SAMPLE_CH_BITS;
-  m.u.info.frame_rate_hz = s->cfg.rate_hz >= 65535 ? 65535 : (uint16_t)lround(s->cfg.rate_hz);
-  m.u.info.sample_rate_hz = m.u.info.frame_rate_hz;
-  m.u.info.baud = s->cfg.baud;
-  m.u.info.cal_state = s->cal_state;
-  memcpy(m.u.info.cal_min, s->cal_min, sizeof m.u.info.cal_min);
-  memcpy(m.u.info.cal_max, s->cal_max, sizeof m.u.info.cal_max);
-  return put_msg(&m, announced, out);
+  gp_info info = gp_default_glove_info();
+  info.spec_hash = announced;
+  memcpy(info.uid, s->cfg.uid, sizeof info.uid);
+  info.hand = s->cfg.hand;
+  info.n_channels = GG_CHANNELS;
+  gp_glove_info_set_rate(&info, s->cfg.rate_hz);
+  info.baud = s->cfg.baud;
+  info.cal_state = s->cal_state;
+  memcpy(info.cal_min, s->cal_min, sizeof info.cal_min);
+  memcpy(info.cal_max, s->cal_max, sizeof info.cal_max);
+  return gp_glove_info_encode(&info, out, GP_MAX_WIRE);
 }
 
 /* An INFO sent, as the decoder will count it. */
@@ -78,8 +71,8 @@ static void truth_line(gg_stream *s, const gp_sample *x) {
 }
 
 /* An intact, in-order SAMPLE: the decoder now counts every loss before it. */
-static size_t put_intact(gg_stream *s, const gp_msg *m, uint8_t *out) {
-  size_t n = put_msg(m, s->cfg.spec_hash, out);
+static size_t put_intact(gg_stream *s, const gp_sample *x, uint8_t *out) {
+  size_t n = put_sample(x, s->cfg.spec_hash, out);
   if (s->cfg.spec_hash != GP_SPEC_HASH) {
     s->expect.spec_mismatch++;
     return n;
@@ -87,15 +80,19 @@ static size_t put_intact(gg_stream *s, const gp_msg *m, uint8_t *out) {
   s->expect.frames++;
   s->expect.lost += s->lost_pending;
   s->lost_pending = 0;
-  truth_line(s, &m->u.sample);
+  truth_line(s, x);
   return n;
 }
 
 /* 1..3 distinct bits of payload+CRC, never the type byte, and never a
  * pattern that the CRC would pass under our hash or the announced one. */
-static size_t put_flipped(gg_stream *s, const gp_msg *m, uint8_t *out) {
+static size_t put_flipped(gg_stream *s, const gp_sample *x, uint8_t *out) {
   uint8_t raw[GP_MAX_FRAME], orig[GP_MAX_FRAME];
-  size_t len = gp_frame_pack(m, GP_SPEC_HASH, orig, sizeof orig), n;
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_SAMPLE;
+  m.u.sample = *x;
+  size_t len = gp_frame_pack(&m, GP_SPEC_HASH, orig, sizeof orig), n;
   for (;;) {
     uint32_t bits = gg_rng_range(&s->rng, 1, 3), pos[3], crc;
     memcpy(raw, orig, len);
@@ -121,8 +118,8 @@ static size_t put_flipped(gg_stream *s, const gp_msg *m, uint8_t *out) {
   return n;
 }
 
-static size_t put_truncated(gg_stream *s, const gp_msg *m, uint8_t *out) {
-  size_t wl = put_msg(m, GP_SPEC_HASH, out);
+static size_t put_truncated(gg_stream *s, const gp_sample *x, uint8_t *out) {
+  size_t wl = put_sample(x, GP_SPEC_HASH, out);
   size_t keep = gg_rng_range(&s->rng, 1, (uint32_t)(wl - 2));
   out[keep] = 0;
   return keep + 1;
@@ -174,10 +171,107 @@ static int pick_fault(gg_stream *s) {
   return -1;
 }
 
-size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
-  gp_msg m;
+/* The SAMPLE of this slot, as the motion makes it, with the flags a glove
+ * sets. The motion runs every streaming slot, stalled or not, so a fault
+ * never changes the motion that follows. */
+static gp_sample slot_sample(gg_stream *s, double t_s) {
+  uint16_t ch[GG_CHANNELS];
+  gg_motion_eval(s->motion, t_s, ch);
+  memcpy(s->last_ch, ch, sizeof s->last_ch);
+  gp_sample x = gp_glove_sample(s->seq, gp_glove_time_us(t_s), ch);
+  if (s->cal_state == GP_CAL_VALID) x.flags |= GP_SAMPLE_F_CALIBRATED;
+  for (int i = 0; i < GG_CHANNELS; i++)
+    if (ch[i] == 0 || ch[i] == GG_ADC_MAX) x.flags |= GP_SAMPLE_F_CLIPPED;
+  /* Like the firmware, the first SAMPLE says the glove has just started. */
+  if (s->slot == 0) x.flags |= GP_SAMPLE_F_START;
+  return x;
+}
+
+/* A stall starts: the device keeps counting through the gap; nothing at
+ * all is sent, in this slot or the next k - 1. */
+static void start_stall(gg_stream *s) {
+  uint64_t k = gg_rng_range(&s->rng, s->cfg.stall_min, s->cfg.stall_max);
+  if (s->cfg.count != UINT64_MAX && k > s->cfg.count - 2 - s->slot) k = s->cfg.count - 2 - s->slot;
+  s->injected[GG_F_STALL]++;
+  s->stall_frames += k;
+  s->lost_pending += k;
+  s->stall_left = k - 1;
+}
+
+/* The SAMPLE out intact; then a reordered one held back arrives late, after
+ * the newer frame it was swapped with. */
+static size_t put_in_turn(gg_stream *s, const gp_sample *x, uint8_t *out) {
+  size_t n = put_intact(s, x, out);
+  if (s->held && s->force_intact) {
+    memcpy(out + n, s->held_wire, s->held_len);
+    n += s->held_len;
+    s->expect.frames++;
+    truth_line(s, &s->held_sample);
+    s->held = 0;
+    s->force_intact = 0;
+  }
+  return n;
+}
+
+/* The slot's SAMPLE with a fault applied (or none: fault < 0), and what the
+ * decoder will count for it. */
+static size_t put_faulted(gg_stream *s, int fault, const gp_sample *x, uint8_t *out) {
   size_t n = 0;
-  int fault;
+  switch (fault) {
+  case GG_F_DROP:
+    s->lost_pending++;
+    break;
+  case GG_F_DUP:
+    n += put_intact(s, x, out + n);
+    n += put_sample(x, s->cfg.spec_hash, out + n);
+    s->expect.duplicates++;
+    break;
+  case GG_F_REORDER:
+    s->held_len = put_sample(x, s->cfg.spec_hash, s->held_wire);
+    s->held_sample = *x;
+    s->held = 1;
+    s->force_intact = 1;
+    s->expect.reordered++;
+    break;
+  case GG_F_FLIP:
+    n += put_flipped(s, x, out + n);
+    s->expect.crc_errors++;
+    s->lost_pending++;
+    break;
+  case GG_F_TRUNCATE:
+    n += put_truncated(s, x, out + n);
+    s->expect.framing_errors++;
+    s->lost_pending++;
+    break;
+  case GG_F_GARBAGE:
+    n += put_garbage(s, out + n);
+    s->expect.oversize++;
+    n += put_intact(s, x, out + n);
+    break;
+  case GG_F_WRONG_HASH:
+    if (!s->foreign_announced) {
+      n += put_info(s, s->foreign_hash, out + n);
+      s->foreign_announced = 1;
+      s->expect.spec_mismatch++;
+    }
+    n += put_sample(x, s->foreign_hash, out + n);
+    s->expect.spec_mismatch++;
+    s->lost_pending++;
+    break;
+  case GG_F_UNKNOWN:
+    n += put_unknown(s, out + n);
+    s->expect.unknown_type++;
+    n += put_intact(s, x, out + n);
+    break;
+  default:
+    n += put_in_turn(s, x, out + n);
+    break;
+  }
+  return n;
+}
+
+size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
+  size_t n = 0;
   double t_s = (double)s->slot / s->cfg.rate_hz;
   *done = 0;
   if (s->cfg.count != UINT64_MAX && s->slot >= s->cfg.count) {
@@ -192,101 +286,18 @@ size_t gg_stream_next(gg_stream *s, uint8_t *out, int *done) {
     s->slot++;
     return n;
   }
-  memset(&m, 0, sizeof m);
-  m.type = GP_SAMPLE;
-  m.u.sample.seq = s->seq;
-  m.u.sample.t_us = (uint32_t)llround(t_s * 1e6);
-  gg_motion_eval(s->motion, t_s, m.u.sample.ch);
-  memcpy(s->last_ch, m.u.sample.ch, sizeof s->last_ch);
-  if (s->cal_state == GP_CAL_VALID) m.u.sample.flags |= GP_SAMPLE_F_CALIBRATED;
-  for (int i = 0; i < GG_CHANNELS; i++)
-    if (m.u.sample.ch[i] == 0 || m.u.sample.ch[i] == GG_ADC_MAX)
-      m.u.sample.flags |= GP_SAMPLE_F_CLIPPED;
-  /* Like the firmware, the first SAMPLE says the glove has just started. */
-  if (s->slot == 0) m.u.sample.flags |= GP_SAMPLE_F_START;
-
-  if (s->stall_left) {
+  gp_sample x = slot_sample(s, t_s);
+  int fault = s->stall_left ? -1 : pick_fault(s);
+  if (s->stall_left)
     s->stall_left--;
-    s->slot++;
-    s->seq++;
-    return 0;
+  else if (fault == GG_F_STALL)
+    start_stall(s);
+  else {
+    if (info_due(s)) n += info_sent(s, out + n);
+    if (fault >= 0) s->injected[fault]++;
+    n += put_faulted(s, fault, &x, out + n);
+    s->expect.bytes += n;
   }
-  fault = pick_fault(s);
-  if (fault == GG_F_STALL) {
-    uint64_t k = gg_rng_range(&s->rng, s->cfg.stall_min, s->cfg.stall_max);
-    if (s->cfg.count != UINT64_MAX && k > s->cfg.count - 2 - s->slot)
-      k = s->cfg.count - 2 - s->slot;
-    /* The device keeps counting through the gap; nothing at all is sent. */
-    s->injected[GG_F_STALL]++;
-    s->stall_frames += k;
-    s->lost_pending += k;
-    s->stall_left = k - 1;
-    s->slot++;
-    s->seq++;
-    return 0;
-  }
-  if (info_due(s)) n += info_sent(s, out + n);
-  if (fault >= 0) s->injected[fault]++;
-  switch (fault) {
-  case GG_F_DROP:
-    s->lost_pending++;
-    break;
-  case GG_F_DUP:
-    n += put_intact(s, &m, out + n);
-    n += put_msg(&m, s->cfg.spec_hash, out + n);
-    s->expect.duplicates++;
-    break;
-  case GG_F_REORDER:
-    s->held_len = put_msg(&m, s->cfg.spec_hash, s->held_wire);
-    s->held_sample = m.u.sample;
-    s->held = 1;
-    s->force_intact = 1;
-    s->expect.reordered++;
-    break;
-  case GG_F_FLIP:
-    n += put_flipped(s, &m, out + n);
-    s->expect.crc_errors++;
-    s->lost_pending++;
-    break;
-  case GG_F_TRUNCATE:
-    n += put_truncated(s, &m, out + n);
-    s->expect.framing_errors++;
-    s->lost_pending++;
-    break;
-  case GG_F_GARBAGE:
-    n += put_garbage(s, out + n);
-    s->expect.oversize++;
-    n += put_intact(s, &m, out + n);
-    break;
-  case GG_F_WRONG_HASH:
-    if (!s->foreign_announced) {
-      n += put_info(s, s->foreign_hash, out + n);
-      s->foreign_announced = 1;
-      s->expect.spec_mismatch++;
-    }
-    n += put_msg(&m, s->foreign_hash, out + n);
-    s->expect.spec_mismatch++;
-    s->lost_pending++;
-    break;
-  case GG_F_UNKNOWN:
-    n += put_unknown(s, out + n);
-    s->expect.unknown_type++;
-    n += put_intact(s, &m, out + n);
-    break;
-  default:
-    n += put_intact(s, &m, out + n);
-    if (s->held && s->force_intact) {
-      /* The newer frame went first; now the held one arrives late. */
-      memcpy(out + n, s->held_wire, s->held_len);
-      n += s->held_len;
-      s->expect.frames++;
-      truth_line(s, &s->held_sample);
-      s->held = 0;
-      s->force_intact = 0;
-    }
-    break;
-  }
-  s->expect.bytes += n;
   s->slot++;
   s->seq++;
   return n;
@@ -297,11 +308,7 @@ size_t gg_stream_finish(gg_stream *s, uint8_t *out) {
   if (s->held) {
     /* Stopped before the frame it was to swap with: it goes out in order,
      * so the reorder never happened. */
-    gp_msg m;
-    memset(&m, 0, sizeof m);
-    m.type = GP_SAMPLE;
-    m.u.sample = s->held_sample;
-    n = put_intact(s, &m, out);
+    n = put_intact(s, &s->held_sample, out);
     s->expect.reordered--;
     s->injected[GG_F_REORDER]--;
     s->held = 0;
@@ -344,16 +351,13 @@ uint8_t *gg_sample_burst(long frames, size_t *len) {
   if (stream == NULL) return NULL;
   uint32_t r = 1; /* a linear congruential sequence: fixed, no seed */
   for (long i = 0; i < frames; i++) {
-    gp_msg m;
-    memset(&m, 0, sizeof m);
-    m.type = GP_SAMPLE;
-    m.u.sample.seq = (uint16_t)i;
-    m.u.sample.t_us = (uint32_t)(i * 4000);
+    uint16_t ch[GP_SAMPLE_CH_COUNT];
     for (unsigned c = 0; c < GP_SAMPLE_CH_COUNT; c++) {
       r = r * 1664525u + 1013904223u;
-      m.u.sample.ch[c] = (uint16_t)(r >> 20);
+      ch[c] = (uint16_t)(r >> 20);
     }
-    *len += gp_encode(&m, GP_SPEC_HASH, stream + *len, cap - *len);
+    gp_sample x = gp_glove_sample((uint16_t)i, (uint32_t)(i * 4000), ch);
+    *len += gp_glove_sample_encode(&x, GP_SPEC_HASH, stream + *len, cap - *len);
   }
   return stream;
 }

@@ -44,13 +44,92 @@ void gg_track_release(gg_track *t) {
   free(t);
 }
 
+/* Where the header put the time and each channel, and the time's unit. */
+typedef struct csv_cols {
+  int tcol, chcol[GG_CHANNELS];
+  double tscale; /* seconds per unit of the time column */
+} csv_cols;
+
+/* Cuts line at its commas, in place: the field count (at most max kept). */
+static int split_fields(char *line, char **fields, int max) {
+  int nf = 0;
+  char *p = line;
+  for (;;) {
+    if (nf < max) fields[nf++] = p;
+    p = strchr(p, ',');
+    if (!p) break;
+    *p++ = 0;
+  }
+  return nf;
+}
+
 /* Columns are found by name in the header: t_us (µs) or t / t_s (seconds),
  * and ch0..ch4 in ADC counts, which is what glove-dump --csv writes. */
+static int read_header(csv_cols *k, char **fields, int nf, const char *where, char *err,
+                       size_t errcap) {
+  for (int i = 0; i < nf; i++) {
+    if (strcmp(fields[i], "t_us") == 0) {
+      k->tcol = i;
+      k->tscale = 1e-6;
+    } else if (strcmp(fields[i], "t") == 0 || strcmp(fields[i], "t_s") == 0) {
+      k->tcol = i;
+      k->tscale = 1;
+    } else if (strncmp(fields[i], "ch", 2) == 0 && fields[i][2] >= '0' && fields[i][2] <= '4' &&
+               !fields[i][3]) {
+      k->chcol[fields[i][2] - '0'] = i;
+    }
+  }
+  if (k->tcol < 0) {
+    snprintf(err, errcap, "%s:1: header has no time column (t_us, t or t_s)", where);
+    return -1;
+  }
+  for (int c = 0; c < GG_CHANNELS; c++)
+    if (k->chcol[c] < 0) {
+      snprintf(err, errcap, "%s:1: header has no ch%d column", where, c);
+      return -1;
+    }
+  return 0;
+}
+
+/* One row's time (seconds) and channel values (0..1). */
+static int read_row(const csv_cols *k, char **fields, int nf, double *tv, double v[GG_CHANNELS],
+                    const char *where, char *err, size_t errcap) {
+  int col = 1;
+  for (int i = 0; i < nf; i++) {
+    int want = i == k->tcol;
+    int c;
+    for (c = 0; c < GG_CHANNELS && !want; c++) want = k->chcol[c] == i;
+    if (want) {
+      char *end;
+      double x;
+      errno = 0;
+      x = strtod(fields[i], &end);
+      if (errno || end == fields[i] || *end || !isfinite(x)) {
+        snprintf(err, errcap, "%s:%d: '%s' is not a finite number", where, col, fields[i]);
+        return -1;
+      }
+      if (i == k->tcol) *tv = x * k->tscale;
+      for (c = 0; c < GG_CHANNELS; c++)
+        if (k->chcol[c] == i) v[c] = x / GG_ADC_MAX;
+    }
+    col += (int)strlen(fields[i]) + 1;
+  }
+  int need = k->tcol;
+  for (int c = 0; c < GG_CHANNELS; c++)
+    if (k->chcol[c] > need) need = k->chcol[c];
+  if (nf <= need) {
+    snprintf(err, errcap, "%s:%d: row has %d columns, the header more", where, col, nf);
+    return -1;
+  }
+  return 0;
+}
+
 gg_track *gg_track_load_csv(const char *path, char *err, size_t errcap) {
   FILE *f = fopen(path, "r");
-  char line[4096];
-  int lineno = 0, tcol = -1, chcol[GG_CHANNELS] = { -1, -1, -1, -1, -1 }, have_header = 0;
-  double tscale = 1, t0 = 0, last = -INFINITY;
+  char line[4096], where[4200];
+  int lineno = 0, have_header = 0;
+  csv_cols k = { -1, { -1, -1, -1, -1, -1 }, 1 };
+  double t0 = 0, last = -INFINITY;
   size_t cap = 0;
   gg_track *t;
   if (!f) {
@@ -61,78 +140,25 @@ gg_track *gg_track_load_csv(const char *path, char *err, size_t errcap) {
   if (!t) goto oom;
   while (fgets(line, sizeof line, f)) {
     char *fields[64];
-    int nf = 0, col = 1;
-    char *p = line;
     lineno++;
     line[strcspn(line, "\r\n")] = 0;
     if (!line[0] || line[0] == '#') continue;
-    for (;;) {
-      if (nf < 64) fields[nf++] = p;
-      p = strchr(p, ',');
-      if (!p) break;
-      *p++ = 0;
-    }
+    int nf = split_fields(line, fields, 64);
+    snprintf(where, sizeof where, "%s:%d", path, lineno);
     if (!have_header) {
-      for (int i = 0; i < nf; i++) {
-        if (strcmp(fields[i], "t_us") == 0) {
-          tcol = i;
-          tscale = 1e-6;
-        } else if (strcmp(fields[i], "t") == 0 || strcmp(fields[i], "t_s") == 0) {
-          tcol = i;
-          tscale = 1;
-        } else if (strncmp(fields[i], "ch", 2) == 0 && fields[i][2] >= '0' && fields[i][2] <= '4' &&
-                   !fields[i][3]) {
-          chcol[fields[i][2] - '0'] = i;
-        }
-      }
-      if (tcol < 0) {
-        snprintf(err, errcap, "%s:%d:1: header has no time column (t_us, t or t_s)", path, lineno);
-        goto fail;
-      }
-      for (int c = 0; c < GG_CHANNELS; c++)
-        if (chcol[c] < 0) {
-          snprintf(err, errcap, "%s:%d:1: header has no ch%d column", path, lineno, c);
-          goto fail;
-        }
+      if (read_header(&k, fields, nf, where, err, errcap) != 0) goto fail;
       have_header = 1;
       continue;
     }
-    {
-      double v[GG_CHANNELS], tv = 0;
-      for (int i = 0; i < nf; i++) {
-        int want = i == tcol;
-        int c;
-        for (c = 0; c < GG_CHANNELS && !want; c++) want = chcol[c] == i;
-        if (want) {
-          char *end;
-          double x;
-          errno = 0;
-          x = strtod(fields[i], &end);
-          if (errno || end == fields[i] || *end || !isfinite(x)) {
-            snprintf(err, errcap, "%s:%d:%d: '%s' is not a finite number", path, lineno, col,
-                     fields[i]);
-            goto fail;
-          }
-          if (i == tcol) tv = x * tscale;
-          for (c = 0; c < GG_CHANNELS; c++)
-            if (chcol[c] == i) v[c] = x / GG_ADC_MAX;
-        }
-        col += (int)strlen(fields[i]) + 1;
-      }
-      if (nf <= tcol || nf <= chcol[0] || nf <= chcol[1] || nf <= chcol[2] || nf <= chcol[3] ||
-          nf <= chcol[4]) {
-        snprintf(err, errcap, "%s:%d:%d: row has %d columns, the header more", path, lineno, col,
-                 nf);
-        goto fail;
-      }
-      if (t->n == 0) t0 = tv;
-      if (tv - t0 < last) {
-        snprintf(err, errcap, "%s:%d:1: time goes backwards", path, lineno);
-        goto fail;
-      }
-      last = tv - t0;
-      if (track_push(t, &cap, tv - t0, v) != 0) goto oom;
+    double v[GG_CHANNELS], tv = 0;
+    if (read_row(&k, fields, nf, &tv, v, where, err, errcap) != 0) goto fail;
+    if (t->n == 0) t0 = tv;
+    if (tv - t0 < last) {
+      snprintf(err, errcap, "%s:1: time goes backwards", where);
+      goto fail;
     }
+    last = tv - t0;
+    if (track_push(t, &cap, tv - t0, v) != 0) goto oom;
   }
   fclose(f);
   if (t->n == 0) {
