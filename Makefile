@@ -4,7 +4,7 @@
 # build/firmware/.
 .PHONY: all deps build build-asan build-clang build-tsan firmware test test-native test-asan \
         test-clang test-tsan fuzz \
-        demo bench bench-count install format clean
+        demo bench bench-count install flash format clean
 
 JOBS      ?= $(shell nproc)
 BUILD     := build
@@ -118,6 +118,15 @@ test: test-native test-asan test-clang test-asan-clang test-tsan fuzz
 
 demo: build
 	@tools/demo.sh $(BUILD)
+
+# The glove's firmware into the Black Pill over USB DFU (tools/flash.sh):
+# hold BOOT0, tap NRST, release BOOT0, then `make flash`.
+# BOARD=blackpill_f411_8mhz for a board with an 8 MHz crystal; DRY_RUN=1
+# prints the dfu-util command and touches no USB. It builds nothing (make
+# firmware first), so that `sudo make flash` never writes into the build tree.
+BOARD ?= blackpill_f411
+flash:
+	@tools/flash.sh $(if $(filter 1,$(DRY_RUN)),--dry-run )$(abspath $(BUILD)/firmware/$(BOARD)/fw.bin)
 
 # Rewrites every C and C++ file in the one .clang-format style (the test
 # style_format fails on a file that is not).
