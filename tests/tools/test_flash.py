@@ -81,8 +81,9 @@ def main():
               % (want, r.stdout, r.stderr))
         r = run(["make", "-s", "-C", SRC, "flash", "DRY_RUN=1", "BUILD=" + build,
                  "BOARD=blackpill_f411_8mhz"])
-        check(r.returncode == 0 and r.stdout == want.replace("blackpill_f411", "blackpill_f411_8mhz")
-              + "\n", "make flash BOARD=blackpill_f411_8mhz flashes the 8 MHz image: " + r.stdout)
+        want_8mhz = want.replace("blackpill_f411", "blackpill_f411_8mhz")
+        check(r.returncode == 0 and r.stdout == want_8mhz + "\n",
+              "make flash BOARD=blackpill_f411_8mhz flashes the 8 MHz image: " + r.stdout)
         # The dry run needs no dfu-util: it never runs it.
         r = run([FLASH, "--dry-run", image], env=dict(os.environ, PATH=path_with(tmp, None)))
         check(r.returncode == 0 and r.stdout == want + "\n",
