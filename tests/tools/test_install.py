@@ -69,16 +69,27 @@ def render(page):
 
 def check_front_door():
     """The Makefile's promises, read from what it would run (make -n): the
-    build stays off the screen, sub-makes print no directory lines, and
-    make bench runs the benchmark."""
+    build's and apt's output go to logs in the build folder (V=1: to the
+    screen), sub-makes print no directory lines, and make bench runs the
+    benchmark. tools_deps runs the quiet steps themselves."""
     n = run(["make", "-n", "firmware"], cwd=SRC).stdout
     check("Entering directory" not in n, "make firmware prints no 'Entering directory' lines")
-    n = run(["make", "-n", "build"], cwd=SRC).stdout
-    builds = [l for l in n.splitlines() if l.startswith("cmake --build")]
-    check(builds and all(">/dev/null" in l.split("||")[0] for l in builds),
-          "make build keeps the build log off the screen: " + " / ".join(builds))
-    check(run(["make", "-n", "build", "V=1"], cwd=SRC).stdout.count(">/dev/null") == 0,
-          "make build V=1 shows the build log")
+    n = run(["make", "-n", "build", "BUILD=b"], cwd=SRC).stdout
+    steps = [l for l in n.splitlines() if re.match(r"(mkdir -p b && )?cmake (-S|--build)", l)]
+    check(len(steps) == 2 and ">b/build.log 2>&1" in steps[0].split("||")[0]
+          and ">>b/build.log 2>&1" in steps[1].split("||")[0]
+          and all("tail -n 25 b/build.log" in l and "the whole log: b/build.log" in l
+                  for l in steps),
+          "make build keeps CMake's output in BUILD/build.log, and a failed step prints its "
+          "last lines and the log's path: " + " / ".join(steps))
+    check("make: building b/ (log: b/build.log" in n, "make build names its log: " + n)
+    n = run(["make", "-n", "build", "V=1"], cwd=SRC).stdout
+    check("build.log" not in n and "cmake --build build" in n, "make build V=1 shows the build log")
+    n = run(["make", "-n", "deps", "BUILD=b"], cwd=SRC).stdout
+    check(n.strip() == "tools/install-deps.sh --log b/deps.log",
+          "make deps keeps apt's output in BUILD/deps.log: " + n)
+    n = run(["make", "-n", "deps", "V=1"], cwd=SRC).stdout
+    check(n.strip() == "tools/install-deps.sh", "make deps V=1 shows apt's output: " + n)
     n = run(["make", "-n", "bench"], cwd=SRC).stdout
     check("tools/protocol-bench/protocol-bench" in n, "make bench runs protocol-bench")
     n = run(["make", "-n", "test"], cwd=SRC).stdout
