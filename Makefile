@@ -4,7 +4,7 @@
 # build/firmware/.
 .PHONY: all deps build build-asan build-clang build-tsan firmware test test-native test-asan \
         test-clang test-tsan fuzz \
-        demo bench bench-count install format clean
+        demo bench bench-count install flash format clean
 
 JOBS      ?= $(shell nproc)
 BUILD     := build
@@ -23,27 +23,35 @@ UDEV_RULES_DIR ?= $(PREFIX)/lib/udev/rules.d
 endif
 
 # A build is a means, not the show: no "Entering directory" lines from make,
-# no per-file lines from CMake's generated makefiles; warnings, errors and
-# the one line per step below still come through. V=1 brings the log back.
+# and CMake's output (configure and build) goes to a log in the build
+# folder, named by the one line per step below; when a step fails, the
+# build runs again on one job (so that the first error ends the log) and
+# the log's last lines and its path are printed. V=1 shows it all instead.
 MAKEFLAGS += --no-print-directory
 ifeq ($(V),1)
-QUIET :=
-else
-QUIET := >/dev/null
-endif
-# Configures $(1) with the CMake flags $(2), then builds target(s) $(3)
-# quietly; on failure the build runs again in the foreground (one job, so
-# the first error is the last thing on screen).
 define cmake_build
-	@cmake -S . -B $(1) $(2) $(QUIET)
-	@echo "make: building $(1)/ (V=1 shows the build log)"
-	@cmake --build $(1) -j $(JOBS) $(3) $(QUIET) || cmake --build $(1) -j 1 $(3)
+	@cmake -S . -B $(1) $(2)
+	@cmake --build $(1) -j $(JOBS) $(3) || cmake --build $(1) -j 1 $(3)
 endef
+else
+# The log's last lines and its path, then failure: $(1) the build folder,
+# $(2) the step.
+build_failed = { tail -n 25 $(1)/build.log >&2; \
+  echo "make: $(2) $(1)/ failed; the whole log: $(1)/build.log" >&2; exit 1; }
+define cmake_build
+	@mkdir -p $(1) && cmake -S . -B $(1) $(2) >$(1)/build.log 2>&1 || $(call build_failed,$(1),configuring)
+	@echo "make: building $(1)/ (log: $(1)/build.log; V=1 shows it)"
+	@cmake --build $(1) -j $(JOBS) $(3) >>$(1)/build.log 2>&1 || \
+	  { cmake --build $(1) -j 1 $(3) >>$(1)/build.log 2>&1; $(call build_failed,$(1),building); }
+endef
+endif
 
 all: build
 
+# apt's output goes to $(BUILD)/deps.log, one line says what is installed
+# (V=1: apt's output on the screen).
 deps:
-	@tools/install-deps.sh
+	@tools/install-deps.sh$(if $(filter 1,$(V)),, --log $(BUILD)/deps.log)
 
 # PREFIX is built in too: scenes look for their models in the installed
 # PREFIX/share/marionette/scenes (host/scenes/FORMAT.md), so build and
@@ -118,6 +126,15 @@ test: test-native test-asan test-clang test-asan-clang test-tsan fuzz
 
 demo: build
 	@tools/demo.sh $(BUILD)
+
+# The glove's firmware into the Black Pill over USB DFU (tools/flash.sh):
+# hold BOOT0, tap NRST, release BOOT0, then `make flash`.
+# BOARD=blackpill_f411_8mhz for a board with an 8 MHz crystal; DRY_RUN=1
+# prints the dfu-util command and touches no USB. It builds nothing (make
+# firmware first), so that `sudo make flash` never writes into the build tree.
+BOARD ?= blackpill_f411
+flash:
+	@tools/flash.sh $(if $(filter 1,$(DRY_RUN)),--dry-run )$(abspath $(BUILD)/firmware/$(BOARD)/fw.bin)
 
 # Rewrites every C and C++ file in the one .clang-format style (the test
 # style_format fails on a file that is not).

@@ -2,7 +2,19 @@
 # Installs the Debian packages the project needs, and only those that are
 # missing, so that `make` works on a fresh Debian machine. Uses sudo when not
 # root. The package list is the one place that says what the project needs.
+#   tools/install-deps.sh [--log FILE]
+# With --log (what `make deps` passes, build/deps.log; V=1 leaves it out)
+# apt's output goes to FILE and one line says what is being done; if apt
+# fails, its last lines and the log's path are printed. Without --log
+# apt's output comes to the screen.
 set -euo pipefail
+
+log=""
+case "${1:-}" in
+  --log) [ $# -eq 2 ] && log=$2 || { echo "usage: tools/install-deps.sh [--log FILE]" >&2; exit 2; } ;;
+  "") ;;
+  *) echo "usage: tools/install-deps.sh [--log FILE]" >&2; exit 2 ;;
+esac
 
 PACKAGES=(
   # clang: the second compiler, whose build (make test-clang) must pin the
@@ -30,19 +42,39 @@ for p in "${PACKAGES[@]}"; do
     missing+=("$p")
   fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "deps: all ${#PACKAGES[@]} packages are installed"
+  exit 0
+fi
 
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then
-  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  command -v sudo >/dev/null || { echo "deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
   SUDO="sudo"
 fi
-echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
-# apt's own progress lines, so minutes of downloading never look like a hang.
 # Recommends are left out: they pulled in 466 packages (about 4.5 GB, most of
 # it documentation and GUI bits) where the build needs a fraction of that.
-$SUDO apt-get update
-$SUDO apt-get install -y --no-install-recommends -o Dpkg::Progress-Fancy=0 \
-  -o APT::Color=0 "${missing[@]}"
-echo "install-deps: done"
+# (&&: set -e does not stop a function that runs as an if's condition.)
+apt_steps() {
+  $SUDO apt-get update &&
+    $SUDO apt-get install -y --no-install-recommends -o Dpkg::Progress-Fancy=0 \
+      -o APT::Color=0 "${missing[@]}"
+}
+if [ -z "$log" ]; then
+  echo "deps: installing ${missing[*]}"
+  apt_steps
+else
+  mkdir -p "$(dirname "$log")"
+  echo "deps: installing ${missing[*]}" >"$log"
+  n=${#missing[@]}
+  echo "deps: installing $n package$([ "$n" = 1 ] || echo s) (log: $log)..."
+  # sudo asks for a password on the terminal itself, not on the log.
+  if ! apt_steps >>"$log" 2>&1; then
+    echo "deps: apt-get failed; the last lines of $log:" >&2
+    tail -n 15 "$log" >&2
+    echo "deps: the whole log: $log" >&2
+    exit 1
+  fi
+fi
+echo "deps: done, ${#missing[@]} installed"

@@ -2,18 +2,24 @@
 """`make install` puts the programs (marionette's run and render in the
 stage program under libexec), their man pages and the udev rule in place
 under DESTDIR; each man page renders without warnings and names every
-option its program's --help lists; the Makefile hands PREFIX and the udev
-folder to the install, keeps the build log off the screen, runs the
+option its program's --help lists; the installed theater unit passes
+systemd-analyze verify, and its command lines run against the installed
+tree and play a show from a glove (check_unit_runs); the Makefile hands
+PREFIX and the udev folder to the install, keeps the build log off the screen, runs the
 benchmark for make bench and the clang build's tests for make test.
 
 usage: test_install.py SOURCE_DIR BUILD_DIR
 """
 import os
 import re
+import shlex
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import threading
+import time
 
 SRC, BUILD = sys.argv[1], sys.argv[2]
 PREFIX = "/usr"
@@ -30,8 +36,8 @@ def check(ok, what):
         print("FAIL: " + what)
 
 
-def run(argv, **kw):
-    return subprocess.run(argv, capture_output=True, text=True, timeout=120, **kw)
+def run(argv, timeout=120, **kw):
+    return subprocess.run(argv, capture_output=True, text=True, timeout=timeout, **kw)
 
 
 def help_options(text):
@@ -63,16 +69,27 @@ def render(page):
 
 def check_front_door():
     """The Makefile's promises, read from what it would run (make -n): the
-    build stays off the screen, sub-makes print no directory lines, and
-    make bench runs the benchmark."""
+    build's and apt's output go to logs in the build folder (V=1: to the
+    screen), sub-makes print no directory lines, and make bench runs the
+    benchmark. tools_deps runs the quiet steps themselves."""
     n = run(["make", "-n", "firmware"], cwd=SRC).stdout
     check("Entering directory" not in n, "make firmware prints no 'Entering directory' lines")
-    n = run(["make", "-n", "build"], cwd=SRC).stdout
-    builds = [l for l in n.splitlines() if l.startswith("cmake --build")]
-    check(builds and all(">/dev/null" in l.split("||")[0] for l in builds),
-          "make build keeps the build log off the screen: " + " / ".join(builds))
-    check(run(["make", "-n", "build", "V=1"], cwd=SRC).stdout.count(">/dev/null") == 0,
-          "make build V=1 shows the build log")
+    n = run(["make", "-n", "build", "BUILD=b"], cwd=SRC).stdout
+    steps = [l for l in n.splitlines() if re.match(r"(mkdir -p b && )?cmake (-S|--build)", l)]
+    check(len(steps) == 2 and ">b/build.log 2>&1" in steps[0].split("||")[0]
+          and ">>b/build.log 2>&1" in steps[1].split("||")[0]
+          and all("tail -n 25 b/build.log" in l and "the whole log: b/build.log" in l
+                  for l in steps),
+          "make build keeps CMake's output in BUILD/build.log, and a failed step prints its "
+          "last lines and the log's path: " + " / ".join(steps))
+    check("make: building b/ (log: b/build.log" in n, "make build names its log: " + n)
+    n = run(["make", "-n", "build", "V=1"], cwd=SRC).stdout
+    check("build.log" not in n and "cmake --build build" in n, "make build V=1 shows the build log")
+    n = run(["make", "-n", "deps", "BUILD=b"], cwd=SRC).stdout
+    check(n.strip() == "tools/install-deps.sh --log b/deps.log",
+          "make deps keeps apt's output in BUILD/deps.log: " + n)
+    n = run(["make", "-n", "deps", "V=1"], cwd=SRC).stdout
+    check(n.strip() == "tools/install-deps.sh", "make deps V=1 shows apt's output: " + n)
     n = run(["make", "-n", "bench"], cwd=SRC).stdout
     check("tools/protocol-bench/protocol-bench" in n, "make bench runs protocol-bench")
     n = run(["make", "-n", "test"], cwd=SRC).stdout
@@ -94,6 +111,113 @@ def verify_unit(dest, unit):
              unit])
     check(r.returncode == 0 and r.stderr.strip() == "" and r.stdout.strip() == "",
           "systemd-analyze verify accepts the installed unit: " + (r.stderr + r.stdout).strip())
+
+
+def on_box(arg, dest):
+    """An argument of the unit's, with its paths under PREFIX and /dev moved
+    into the DESTDIR tree, the box's root here."""
+    return re.sub(r"(?<![\w.-])(%s/|/dev/)" % re.escape(PREFIX), lambda m: dest + m.group(1), arg)
+
+
+def run_show(argv, env, secs):
+    """argv started, let run secs seconds after its first status line (the
+    show's first frame), then stopped with SIGTERM as systemctl stop does.
+    Its exit status, stdout and stderr; status None when it never showed a
+    frame within a minute (it is then killed)."""
+    try:
+        p = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True)
+    except OSError as e:
+        return None, "", str(e)
+    out, err = [], []
+    readers = [threading.Thread(target=lambda f=f, to=to: to.extend(iter(f.readline, "")))
+               for f, to in ((p.stdout, out), (p.stderr, err))]
+    for t in readers:
+        t.start()
+    end = time.monotonic() + 60
+    while p.poll() is None and not out and time.monotonic() < end:
+        time.sleep(0.05)
+    started = bool(out)
+    if started and p.poll() is None:
+        time.sleep(secs)
+        p.send_signal(signal.SIGTERM)
+    try:
+        p.wait(timeout=60)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        p.wait()
+        started = False
+    for t in readers:
+        t.join()
+    return (p.returncode if started or p.returncode != 0 else None), "".join(out), "".join(err)
+
+
+def summary(out, key):
+    """A number from the show's summary (key: N ...), or -1."""
+    m = re.search(r"^%s: .*?(\d+)" % re.escape(key), out, re.M)
+    return int(m.group(1)) if m else -1
+
+
+def check_unit_runs(dest, text):
+    """The installed unit's own command lines, run against the installed
+    tree: %i is a glove serial number, and the glove's adapter, which the
+    udev rule links at /dev/marionette-glove-<serial>, is a link under
+    DESTDIR/dev to the pty of the installed glove-gen. ExecStartPre waits
+    for that link and returns once it is there. ExecStart asks for
+    --fullscreen, a screen through X, Wayland or KMS, which a test machine
+    has not: run as the unit runs it (no DISPLAY, no WAYLAND_DISPLAY), it
+    ends with one line and exit 1, which the unit restarts (or, on a
+    machine whose console it can take, it plays). Then the same command
+    line with --headless plays the show offscreen: it reads the glove over
+    the serial path, draws frames, and SIGTERM after 2 s (systemctl stop)
+    ends it with exit 0, which systemd counts as a clean stop.
+    The unit names no scene, so the program plays /etc/marionette/show.yaml,
+    else the default show at the build's prefix, which is not where DESTDIR
+    put it: the test names the installed default show (in DESTDIR) as the
+    scene. That the program picks it by itself is checked in
+    check_model_search."""
+    pre = [ln[len("ExecStartPre="):] for ln in text.splitlines() if ln.startswith("ExecStartPre=")]
+    start = [ln[len("ExecStart="):] for ln in text.splitlines() if ln.startswith("ExecStart=")]
+    if len(pre) != 1 or len(start) != 1:
+        check(False, "the unit has one ExecStartPre and one ExecStart line")
+        return
+    serial = "E66138935F2D3C28"
+    box = lambda line: [on_box(a.replace("%i", serial), dest) for a in shlex.split(line)]
+    os.makedirs(dest + "/dev", exist_ok=True)
+    try:
+        run(box(pre[0]), timeout=1.5)
+        check(False, "ExecStartPre waits while the glove's adapter is not plugged in")
+    except subprocess.TimeoutExpired:
+        pass
+    pty = dest + "/glove.pty"
+    gen = subprocess.Popen([dest + PREFIX + "/bin/glove-gen", "-o", "pty", "--path-file", pty,
+                            "--duration", "120", "--wait", "60", "--linger", "0", "-q"],
+                           stderr=subprocess.DEVNULL)
+    try:
+        end = time.monotonic() + 10
+        while not (os.path.exists(pty) and open(pty).read().strip()) and time.monotonic() < end:
+            time.sleep(0.05)
+        os.symlink(open(pty).readline().strip(), dest + "/dev/marionette-glove-" + serial)
+        try:
+            ok = run(box(pre[0]), timeout=10).returncode == 0
+        except subprocess.TimeoutExpired:
+            ok = False
+        check(ok, "ExecStartPre returns once the glove's adapter is there")
+        argv = box(start[0]) + [dest + PREFIX + "/share/marionette/scenes/humanoid.yaml"]
+        env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+        rc, out, err = run_show(argv, env, 2)
+        played = rc == 0 and summary(out, "frames shown") > 0
+        check((rc == 1 and err.count("\n") == 1 and "no screen" in err) or played,
+              "the unit's command line without a screen ends with one line and exit 1, or "
+              "plays: %s %s" % (rc, err.strip()))
+        rc, out, err = run_show(argv + ["--headless"], env, 2)
+        check(rc == 0 and summary(out, "frames shown") > 0 and summary(out, "glove samples") > 0
+              and re.search(r"^stage: headless .* [1-9]\d* frames drawn", out, re.M),
+              "the unit's command line with --headless plays the show from the glove, drawing "
+              "frames, and SIGTERM ends it with exit 0: status %s %s %s" % (rc, out, err))
+    finally:
+        gen.kill()
+        gen.wait()
 
 
 def check_model_search(dest):
@@ -176,6 +300,7 @@ def main():
         check("ExecStartPre=" in text and "RestartPreventExitStatus=2 3" in text,
               "the unit still waits for the glove's adapter and does not retry exit 2 or 3")
         verify_unit(dest, unit)
+        check_unit_runs(dest, text)
         check_model_search(dest)
         for prog, helps in PROGRAMS.items():
             exe = os.path.join(root, "bin", prog)
