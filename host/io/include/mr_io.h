@@ -16,6 +16,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* --- status ----------------------------------------------------------------- */
 
 /* The library's one status type. A read or write ends on one of the first
@@ -247,5 +251,9 @@ int mr_rec_is_recording(const void *buf, size_t len);
  * for pacing, Unix time for a recording's header. */
 uint64_t mr_io_monotonic_ns(void);
 uint64_t mr_io_unix_ns(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
