@@ -74,7 +74,7 @@ static void light_load_lands_every_frame_on_time(void **state) {
   mr_scheduler *sch = start(&s, MR_POLICY_SKIP);
   for (int i = 0; i < 1000; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   assert_int_equal(st.frames_skipped, 0);
   assert_int_equal(st.frames_simulated, 1000);
   assert_int_equal(st.frames_presented, 999); /* the last waits for the next tick */
@@ -102,7 +102,7 @@ static void heavy_renders_are_skipped_without_a_spiral(void **state) {
     s.advances_in_tick = 0;
     assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
     if (s.advances_in_tick > s.most_in_tick) s.most_in_tick = s.advances_in_tick;
-    mr_scheduler_stats_get(sch, &st);
+    mr_scheduler_get_stats(sch, &st);
     /* When the newest frame of the tick was simulated, how far its time
      * trailed the wall's. */
     worst = fmax(worst, s.tick_lag);
@@ -141,7 +141,7 @@ static void slow_physics_is_capped_not_chased(void **state) {
     if (s.advances_in_tick > s.most_in_tick) s.most_in_tick = s.advances_in_tick;
   }
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   printf("physics at half real time: at most %d frames a tick, %.2f s of %.2f given up, real-time "
          "factor %.3f\n",
          s.most_in_tick, st.dropped_time, st.wall_time, st.real_time_factor);
@@ -164,7 +164,7 @@ static void slow_policy_skips_nothing_and_reports_the_factor(void **state) {
   mr_scheduler *sch = start(&s, MR_POLICY_SLOW);
   for (int i = 0; i < 600; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   printf("slow policy, render 2 periods: %llu shown, %llu skipped, real-time factor %.3f\n",
          (unsigned long long)st.frames_presented, (unsigned long long)st.frames_skipped,
          st.real_time_factor);
@@ -188,7 +188,7 @@ static void a_sample_is_shown_within_two_frame_periods(void **state) {
     assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   }
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   printf("latency: p50 %.2f ms, p99 %.2f ms (two periods: %.2f ms)\n", st.latency_p50 * 1e3,
          st.latency_p99 * 1e3, 2e3 * s.period);
   assert_true(st.latency_p99 <= 2 * s.period + 1e-4);

@@ -193,7 +193,7 @@ static int write_path_file(const char *path, const char *what) {
 /* What the source did since the last look: a hang-up, a return. */
 static void tell(dump *D, mr_glove_counters *seen) {
   mr_glove_counters c;
-  mr_glove_counters_get(D->g, &c);
+  mr_glove_get_counters(D->g, &c);
   if (c.losses > seen->losses && !mr_glove_ended(D->g)) {
     fprintf(stderr,
             "glove-dump: %s: hang-up after %llu bytes (device unplugged or the other end "
@@ -245,7 +245,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
   mr_io_status st;
   const char *why = mr_glove_last_error(D->g, &st);
   mr_glove_counters c;
-  mr_glove_counters_get(D->g, &c);
+  mr_glove_get_counters(D->g, &c);
   if (rc < 0) {
     /* A SOURCE that does not parse is the user's usage, not a failure. */
     fprintf(stderr, "glove-dump: %s%s\n", why, st == MR_IO_ERR_SPEC ? " (see --help)" : "");

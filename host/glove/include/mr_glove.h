@@ -126,11 +126,11 @@ bool mr_glove_take_done(const mr_glove *g);
  * taken. */
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms);
 
-mr_glove_state mr_glove_state_get(const mr_glove *g);
+mr_glove_state mr_glove_get_state(const mr_glove *g);
 /* The glove's INFO, or NULL before one arrived. */
 const gp_info *mr_glove_info(const mr_glove *g);
 void mr_glove_latest(const mr_glove *g, mr_glove_reading *out);
-void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out);
+void mr_glove_get_counters(const mr_glove *g, mr_glove_counters *out);
 /* host time − device time, the smallest seen (the path's fixed delay
  * included) since the device clock last started afresh (a START flag, a
  * reconnect, a new INFO uid, a sequence restart), s; NAN before a sample. A sample's latency is its host time

@@ -472,7 +472,7 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   return taken;
 }
 
-mr_glove_state mr_glove_state_get(const mr_glove *g) {
+mr_glove_state mr_glove_get_state(const mr_glove *g) {
   return g != NULL ? g->state : MR_GLOVE_CONNECTING;
 }
 
@@ -484,7 +484,7 @@ void mr_glove_latest(const mr_glove *g, mr_glove_reading *out) {
   if (g != NULL && out != NULL) *out = g->latest;
 }
 
-void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out) {
+void mr_glove_get_counters(const mr_glove *g, mr_glove_counters *out) {
   if (g == NULL || out == NULL) return;
   *out = g->counters;
   out->decoder = g->dec.c;

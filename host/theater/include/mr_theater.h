@@ -152,7 +152,7 @@ mr_theater_status mr_scheduler_tick(mr_scheduler *s);
  * presentation of that frame. */
 void mr_scheduler_note_input(mr_scheduler *s, double t);
 
-void mr_scheduler_stats_get(const mr_scheduler *s, mr_scheduler_stats *out);
+void mr_scheduler_get_stats(const mr_scheduler *s, mr_scheduler_stats *out);
 
 #ifdef __cplusplus
 }

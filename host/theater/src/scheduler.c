@@ -202,7 +202,7 @@ mr_theater_status mr_scheduler_tick(mr_scheduler *s) {
   return MR_THEATER_OK;
 }
 
-void mr_scheduler_stats_get(const mr_scheduler *s, mr_scheduler_stats *out) {
+void mr_scheduler_get_stats(const mr_scheduler *s, mr_scheduler_stats *out) {
   if (s == NULL || out == NULL) return;
   *out = s->st;
   double now = s->started ? s->clock.now(s->clock.self) : 0.0;

@@ -140,7 +140,7 @@ static void tell_states(show *s, show_frame *f, const mr_channel_state now[MR_CO
 static void tell_errors(show *s, size_t g, double now) {
   show_glove *sg = &s->gloves[g];
   mr_glove_counters c;
-  mr_glove_counters_get(sg->glove, &c);
+  mr_glove_get_counters(sg->glove, &c);
   const gp_counters *n = &c.decoder, *o = &sg->told;
   uint32_t crc = n->crc_errors - o->crc_errors, framing = n->framing_errors - o->framing_errors,
            big = n->oversize - o->oversize, unknown = n->unknown_type - o->unknown_type,
@@ -164,7 +164,7 @@ static void tell_errors(show *s, size_t g, double now) {
 static void tell_glove(show *s, size_t g, double now) {
   show_glove *sg = &s->gloves[g];
   char line[600], said[420];
-  mr_glove_state st = mr_glove_state_get(sg->glove);
+  mr_glove_state st = mr_glove_get_state(sg->glove);
   if (st != sg->seen_state) {
     sg->seen_state = st;
     sg->seen_since = now;
@@ -188,7 +188,7 @@ static bool read_frame(show *s, size_t k) {
   const mr_glove *g = s->gloves[f->glove].glove;
   mr_glove_reading r;
   mr_glove_latest(g, &r);
-  if (r.samples == f->samples_seen || mr_glove_state_get(g) != MR_GLOVE_LIVE) return false;
+  if (r.samples == f->samples_seen || mr_glove_get_state(g) != MR_GLOVE_LIVE) return false;
   f->samples_seen = r.samples;
   mr_pose pose;
   mr_channel_state states[MR_CONTROL_CHANNELS];
@@ -227,7 +227,7 @@ static void record(void *user, double now, const uint8_t *bytes, size_t len) {
 static bool takes_over(const show *s) {
   for (size_t g = 0; g < s->n_gloves; g++) {
     const mr_glove *gl = s->gloves[g].glove;
-    if (!mr_glove_take_done(gl) || mr_glove_state_get(gl) != MR_GLOVE_LOST) return false;
+    if (!mr_glove_take_done(gl) || mr_glove_get_state(gl) != MR_GLOVE_LOST) return false;
   }
   return true;
 }
@@ -241,7 +241,7 @@ void mr_show_snapshot(const show *s, mr_show_frame *f) {
   if (s == NULL || f == NULL || f->n_frames != s->n_frames || f->n_particles != s->ip.n) return;
   f->t = mr_world_time(s->sw.world);
   f->hash = 0;
-  mr_scheduler_stats_get(s->sch, &f->stats);
+  mr_scheduler_get_stats(s->sch, &f->stats);
   for (size_t k = 0; k < s->n_frames; k++) {
     f->target[k] = s->frames[k].target;
     f->glove_of[k] = s->frames[k].glove;
@@ -252,9 +252,9 @@ void mr_show_snapshot(const show *s, mr_show_frame *f) {
   for (size_t g = 0; g < s->n_gloves; g++) {
     const mr_glove *gl = s->gloves[g].glove;
     mr_show_glove_view *v = &f->gloves[g];
-    v->state = mr_glove_state_get(gl);
+    v->state = mr_glove_get_state(gl);
     mr_glove_latest(gl, &v->reading);
-    mr_glove_counters_get(gl, &v->counters);
+    mr_glove_get_counters(gl, &v->counters);
     v->clock_offset = mr_glove_clock_offset(gl);
     mr_glove_describe(gl, f->t, v->describe, sizeof v->describe);
   }
@@ -483,7 +483,7 @@ static void gather(const show *s, mr_show_result *result) {
   if (s->ended)
     result->frames = s->end_stats;
   else if (s->sch != NULL)
-    mr_scheduler_stats_get(s->sch, &result->frames);
+    mr_scheduler_get_stats(s->sch, &result->frames);
   result->interpolated = s->interpolate;
   result->lead_mean = s->frames_stepped > 0 ? s->sum_lead / (double)s->frames_stepped : 0.0;
   result->lead_max = s->lead_max;
@@ -492,8 +492,8 @@ static void gather(const show *s, mr_show_result *result) {
     const mr_glove *g = s->gloves[i].glove;
     mr_show_glove_result *o = &result->glove[i];
     if (g == NULL) continue;
-    mr_glove_counters_get(g, &o->counters);
-    o->state = mr_glove_state_get(g);
+    mr_glove_get_counters(g, &o->counters);
+    o->state = mr_glove_get_state(g);
     mr_glove_reading r;
     mr_glove_latest(g, &r);
     o->samples = r.samples;
@@ -561,7 +561,7 @@ mr_show_status mr_show_tick(show *s) {
   if (mr_scheduler_tick(s->sch) == MR_THEATER_OK) return MR_SHOW_OK;
   /* Wall time stops with the show, not with whoever destroys it later (a
    * window may still be drawing its last frame). */
-  mr_scheduler_stats_get(s->sch, &s->end_stats);
+  mr_scheduler_get_stats(s->sch, &s->end_stats);
   s->ended = true;
   return s->err.status != MR_SHOW_OK ? s->err.status : MR_SHOW_ENDED;
 }

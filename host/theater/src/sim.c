@@ -339,7 +339,7 @@ static mr_scene_status run_frames(run *u) {
   while (mr_scheduler_tick(sch) == MR_THEATER_OK) {
   }
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   u->r->frames = st.frames_simulated;
   u->r->fps = u->fps;
   u->r->interpolated = u->interpolate;
