@@ -22,28 +22,29 @@ extern "C" {
 
 /* --- status ----------------------------------------------------------------- */
 
-/* The library's one status type. A read or write ends on one of the first
- * four; the MR_IO_ERR_* values are failures, and the mr_io_err that comes
- * with them says what failed and where (the path or spec first). Calls that
- * return an int give 0 on success and -1 with err->status set. */
+/* The library's one status type. A read or write ends on MR_IO_OK or on one
+ * of the outcomes above 0; the MR_IO_ERR_* values, below 0, are failures,
+ * and the mr_io_err that comes with them says what failed and where (the
+ * path or spec first). Calls that return an int give 0 on success and -1
+ * with err->status set. */
 typedef enum mr_io_status {
-  MR_IO_OK = 0,        /* bytes moved, or the call succeeded */
-  MR_IO_TIMEOUT,       /* nothing moved within the timeout; the link is still up */
-  MR_IO_EOF,           /* end of a file, a pipe or FIFO whose writer left */
-  MR_IO_HANGUP,        /* the link is gone: device unplugged, pty's other end
-                          closed, TCP peer closed or reset */
-  MR_IO_ERR_SYSTEM,    /* a system call failed; sys_errno says which errno */
-  MR_IO_ERR_SPEC,      /* an unparsable open spec ("tcp:nohost", "serial:@9"):
-                          the caller's usage, not the system's state */
-  MR_IO_ERR_SERIAL,    /* libserialport refused (not a serial port, bad setting) */
-  MR_IO_ERR_FORMAT,    /* a malformed recording; the message names the byte offset */
-  MR_IO_ERR_TRUNCATED, /* a recording's last chunk is cut short */
-  MR_IO_ERR_ARG,       /* a caller's argument is out of range */
+  MR_IO_OK = 0,             /* bytes moved, or the call succeeded */
+  MR_IO_TIMEOUT = 1,        /* nothing moved within the timeout; the link is still up */
+  MR_IO_EOF = 2,            /* end of a file, a pipe or FIFO whose writer left */
+  MR_IO_HANGUP = 3,         /* the link is gone: device unplugged, pty's other end
+                               closed, TCP peer closed or reset */
+  MR_IO_ERR_SYSTEM = -1,    /* a system call failed; sys_errno says which errno */
+  MR_IO_ERR_SPEC = -2,      /* an unparsable open spec ("tcp:nohost", "serial:@9"):
+                               the caller's usage, not the system's state */
+  MR_IO_ERR_SERIAL = -3,    /* libserialport refused (not a serial port, bad setting) */
+  MR_IO_ERR_FORMAT = -4,    /* a malformed recording; the message names the byte offset */
+  MR_IO_ERR_TRUNCATED = -5, /* a recording's last chunk is cut short */
+  MR_IO_ERR_ARG = -6,       /* a caller's argument is out of range */
 } mr_io_status;
 
 /* True for the MR_IO_ERR_* values. */
 static inline int mr_io_failed(mr_io_status st) {
-  return st >= MR_IO_ERR_SYSTEM;
+  return st < 0;
 }
 
 typedef struct mr_io_err {

@@ -25,10 +25,10 @@ typedef enum mr_solve_status {
   MR_SOLVE_OK = 0,
   MR_SOLVE_NOT_CONVERGED = 1, /* the iteration cap came first; x is the best found */
   MR_SOLVE_DEPENDENT = 2,     /* dependent rows found, their λ set to 0 (README.md) */
-  MR_SOLVE_ENOMEM = -1,
-  MR_SOLVE_NONFINITE = -2,   /* NaN or Inf in A or b; x untouched */
-  MR_SOLVE_UNAVAILABLE = -3, /* a NULL object, or a method outside the enum */
-  MR_SOLVE_BAD_ARG = -4      /* a particle out of range, or no row begun */
+  MR_SOLVE_ERR_NOMEM = -1,
+  MR_SOLVE_ERR_NONFINITE = -2,   /* NaN or Inf in A or b; x untouched */
+  MR_SOLVE_ERR_UNAVAILABLE = -3, /* a NULL object, or a method outside the enum */
+  MR_SOLVE_ERR_ARG = -4          /* a particle out of range, or no row begun */
 } mr_solve_status;
 /* "ok", "not converged", ...; "unknown" outside the enum. */
 const char *mr_solve_status_name(mr_solve_status s);
@@ -77,7 +77,7 @@ typedef struct mr_csr {
  * (0 = pinned). Rows have sorted columns, the diagonal is always stored,
  * and A is bitwise symmetric. While J's pattern (its rows' particles) and
  * the set of pinned particles are one of the last 8 met (up to 128 rows),
- * only the numbers are recomputed. MR_SOLVE_UNAVAILABLE for a NULL A, J,
+ * only the numbers are recomputed. MR_SOLVE_ERR_UNAVAILABLE for a NULL A, J,
  * or inv_mass. */
 mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass);
 /* Room for any J of up to rows rows, particles particles and entries

@@ -131,8 +131,8 @@ typedef struct mr_scheduler mr_scheduler;
 
 typedef enum mr_theater_status {
   MR_THEATER_OK = 0,
+  MR_THEATER_STOPPED = 1,  /* the advance hook asked to stop: an end, not a failure */
   MR_THEATER_ERR_ARG = -1, /* a NULL, a def not made by its maker, a bad field */
-  MR_THEATER_STOPPED = -2  /* the advance hook asked to stop */
 } mr_theater_status;
 
 /* A scheduler over a clock (copied) and hooks (copied). msg names a bad
