@@ -78,7 +78,9 @@ static void print_summary(const mr_scene *scene, const mr_sim_result *r, double 
   printf("simulated: %.3f s\n", r->sim_time);
   printf("wall: %.3f s\n", wall);
   if (r->frames > 0) printf("frames: %" PRIu64 " at %g fps\n", r->frames, r->fps);
-  if (r->frames > 0) printf("present: %s\n", r->interpolated ? "interpolate" : "land");
+  if (r->frames > 0)
+    printf("present: %s\n",
+           mr_present_mode_name(r->interpolated ? MR_PRESENT_INTERPOLATE : MR_PRESENT_LAND));
   if (r->interpolated)
     printf("physics ahead of frames: mean %.4g s, max %.4g s\n", r->lead_mean, r->lead_max);
   printf("steps: %" PRIu64 "\n", r->steps);

@@ -158,7 +158,6 @@ typedef enum mr_glove_cmd_state {
   MR_GLOVE_CMD_NACKED,   /* refused: nack_reason says why (GP_NACK_*) */
   MR_GLOVE_CMD_TIMED_OUT /* cmd_tries sends, no answer */
 } mr_glove_cmd_state;
-const char *mr_glove_cmd_state_name(mr_glove_cmd_state s);
 
 typedef struct mr_glove_cmd_result {
   mr_glove_cmd_state state;

@@ -8,11 +8,6 @@
 
 #include "glove_internal.h"
 
-const char *mr_glove_cmd_state_name(mr_glove_cmd_state s) {
-  static const char *const names[] = { "unknown", "pending", "acked", "nacked", "timed out" };
-  return (unsigned)s < sizeof names / sizeof names[0] ? names[s] : "unknown";
-}
-
 const char *mr_glove_cmd_name(uint8_t type) {
   switch (type) {
   case GP_PING:

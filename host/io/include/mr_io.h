@@ -78,7 +78,6 @@ typedef struct mr_io {
   int baud;       /* ttys and serial devices */
   int port;       /* TCP: the port actually bound or connected */
   int peer_seen;  /* MR_IO_PTY: a peer has opened the slave side */
-  int borrowed;   /* from mr_io_from_fd: the caller closes fd */
   char path[256]; /* file or device path, pty slave path, or host:port */
   void *sp;       /* libserialport's port, for MR_IO_SERIAL */
 } mr_io;
@@ -111,9 +110,6 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err);
  * worth a word (tcp-listen beyond the loopback: plain TCP has no
  * authentication) puts one line in note (if given), else note is "". */
 int mr_io_spec_check(const char *spec, int mode, char *note, size_t note_size, mr_io_err *err);
-
-/* Adopts an existing descriptor (not closed by mr_io_close). */
-void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name);
 
 /* Reads up to cap bytes, waiting at most timeout_ms (negative: forever).
  * MR_IO_OK sets *got > 0. Bytes that arrived before a hang-up are returned
@@ -150,7 +146,6 @@ mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_err *err);
 const char *mr_io_path(const mr_io *io);
 
 const char *mr_io_status_name(mr_io_status st);
-const char *mr_io_kind_name(mr_io_kind kind);
 
 void mr_io_close(mr_io *io);
 

@@ -45,16 +45,6 @@ static void io_reset(mr_io *io) {
   io->listen_fd = -1;
 }
 
-void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name) {
-  io_reset(io);
-  io->kind = kind;
-  io->fd = fd;
-  io->mode = MR_IO_READ | MR_IO_WRITE;
-  io->peer_seen = 1;
-  io->borrowed = 1;
-  snprintf(io->path, sizeof io->path, "%s", name ? name : "fd");
-}
-
 int mr_io_is_pty_slave(const char *path) {
   struct stat st;
   char real[4096];
@@ -420,32 +410,10 @@ const char *mr_io_status_name(mr_io_status st) {
   return "?";
 }
 
-const char *mr_io_kind_name(mr_io_kind kind) {
-  switch (kind) {
-  case MR_IO_STDIO:
-    return "stdio";
-  case MR_IO_FILE:
-    return "file";
-  case MR_IO_FIFO:
-    return "fifo";
-  case MR_IO_PTY:
-    return "pty";
-  case MR_IO_TTY:
-    return "tty";
-  case MR_IO_SERIAL:
-    return "serial";
-  case MR_IO_TCP:
-    return "tcp";
-  case MR_IO_TCP_LISTEN:
-    return "tcp-listen";
-  }
-  return "?";
-}
-
 void mr_io_close(mr_io *io) {
   if (io->kind == MR_IO_SERIAL) {
     mr_io_serial_close(io);
-  } else if (io->kind != MR_IO_STDIO && !io->borrowed && io->fd >= 0) {
+  } else if (io->kind != MR_IO_STDIO && io->fd >= 0) {
     close(io->fd);
   }
   if (io->listen_fd >= 0) close(io->listen_fd);

@@ -50,7 +50,6 @@ typedef enum mr_show_status {
   MR_SHOW_ERR_NOMEM = -7,
   MR_SHOW_ERR_THREAD = -8 /* the physics thread could not be started */
 } mr_show_status;
-const char *mr_show_status_name(mr_show_status s);
 
 typedef struct mr_show_error {
   mr_show_status status;
