@@ -265,7 +265,7 @@ static int report(const sim_args *a, const mr_scene *scene, const mr_sim_result 
 static int run_scene(const sim_args *a, mr_scene *scene) {
   csv_sink sink;
   if (csv_open(a->csv_path, &sink) != 0) return MR_EXIT_FAIL;
-  mr_sim_opts opts = mr_default_sim_opts();
+  mr_sim_def opts = mr_default_sim_def();
   opts.duration = a->duration;
   opts.on_step = a->csv_path ? on_step : NULL;
   opts.user = &sink;

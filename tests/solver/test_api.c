@@ -57,6 +57,34 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state) {
   test_system_free(&s);
 }
 
+/* A def filled by hand (no cookie from mr_default_solve_def) is refused
+ * before anything runs, with x untouched; the same fields from the maker,
+ * here a non-default method and tolerance, solve. */
+static void a_solve_def_not_from_its_maker_is_refused(void **state) {
+  (void)state;
+  test_system s;
+  test_system_random(&s, 20, 9);
+  mr_csr A = { 0 };
+  assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
+  double b[20], x[20];
+  test_rng rng = { 3 };
+  test_system_consistent_rhs(&s, &rng, b);
+  mr_solver *solver = mr_solver_create();
+  mr_solve_def o = mr_default_solve_def();
+  o.method = MR_SOLVE_CG;
+  o.tol = 1e-8;
+  mr_solve_def hand = o;
+  hand.cookie = 0;
+  for (int i = 0; i < 20; i++) x[i] = 7.5;
+  mr_solve_result r;
+  assert_int_equal(mr_solver_solve(solver, &hand, &A, b, x, &r), MR_SOLVE_ERR_UNAVAILABLE);
+  for (int i = 0; i < 20; i++) assert_true(x[i] == 7.5);
+  assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, &r), MR_SOLVE_OK);
+  mr_solver_destroy(solver);
+  mr_csr_free(&A);
+  test_system_free(&s);
+}
+
 /* LDLᵀ looks at A after solving, through the residual it measures: a NaN
  * is still caught in every entry of A, dense path or sparse, in a row the
  * factor drops (which the residual does not read), and when b = 0. */
@@ -313,6 +341,7 @@ static void workspace_reuse_matches_a_fresh_solver(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(nonfinite_input_is_rejected_and_x_untouched),
+    cmocka_unit_test(a_solve_def_not_from_its_maker_is_refused),
     cmocka_unit_test(ldlt_catches_a_nonfinite_entry_wherever_it_sits),
     cmocka_unit_test(empty_and_zero_systems),
     cmocka_unit_test(iteration_cap_reports_not_converged),

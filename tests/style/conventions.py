@@ -8,9 +8,10 @@ Usage: conventions.py RULE SOURCE_DIR, RULE one of:
              every failure (a name with ERR) below 0 and every other outcome
              above 0;
   cookie     every struct made by a default maker (mr_default_x_def(void))
-             is named mr_x_def and starts with `uint32_t cookie`, and the
-             library's code that takes it compares it with MR_DEF_COOKIE;
-             no other cookie macro exists;
+             is named mr_x_def and starts with `uint32_t cookie`, its
+             library stamps MR_DEF_COOKIE and compares cookies with it; no
+             other cookie macro exists (each library's own tests show that
+             the call taking a def refuses one not made by its maker);
   getters    no exported function ends in _get, and mr_object_get_noun is
              used only where mr_object_noun is a type's name;
   messages   a message comes back through `char *msg, size_t msg_size`, an
@@ -122,8 +123,9 @@ def check_cookie(root):
             lib = h.parent.parent
             makes = re.compile(r"\b" + re.escape(typ) + r"\b")
             users = [p.read_text() for p in lib.rglob("*.c")]
-            if not any(makes.search(t) and re.search(r"->cookie\b", t) for t in users):
-                bad.append(f"{where}: no code in {lib.relative_to(root)} reads {typ}'s cookie")
+            if not any(makes.search(t) and re.search(r"cookie = MR_DEF_COOKIE|\{\s*MR_DEF_COOKIE", t)
+                       for t in users):
+                bad.append(f"{where}: nothing in {lib.relative_to(root)} stamps MR_DEF_COOKIE")
             if not any(re.search(r"cookie\s*[!=]=\s*MR_DEF_COOKIE", t) for t in users):
                 bad.append(f"{where}: nothing in {lib.relative_to(root)} compares a cookie "
                            "with MR_DEF_COOKIE")

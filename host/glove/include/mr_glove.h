@@ -23,6 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
 #include "gp.h"
 #include "mr_io.h"
 
@@ -41,7 +42,7 @@ typedef enum mr_glove_state {
 const char *mr_glove_state_name(mr_glove_state s);
 
 typedef struct mr_glove_def {
-  uint32_t cookie;                  /* MR_GLOVE_COOKIE, set by mr_default_glove_def() */
+  uint32_t cookie;                  /* MR_DEF_COOKIE, set by mr_default_glove_def() */
   char source[MR_GLOVE_SOURCE_MAX]; /* serial:DEV[@BAUD], serial:auto, pty:PATH,
                                        pty (a new one, for a writer to open),
                                        file:PATH, PATH, -, tcp:HOST:PORT,
@@ -60,7 +61,6 @@ typedef struct mr_glove_def {
   double cmd_timeout; /* s before an unanswered command is sent again; default 0.25 */
   int cmd_tries;      /* sends before a command is given up; default 5 */
 } mr_glove_def;
-#define MR_GLOVE_COOKIE 0x6d72476cu
 mr_glove_def mr_default_glove_def(void);
 
 /* The latest reading. */

@@ -25,7 +25,7 @@ const char *mr_glove_state_name(mr_glove_state s) {
 mr_glove_def mr_default_glove_def(void) {
   mr_glove_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_GLOVE_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   snprintf(d.source, sizeof d.source, "serial:auto");
   d.lost_after = 0.5;
   d.retry_every = 0.5;
@@ -133,7 +133,7 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
     msg_size = sizeof dummy;
   }
   if (out != NULL) *out = NULL;
-  if (def == NULL || out == NULL || def->cookie != MR_GLOVE_COOKIE) {
+  if (def == NULL || out == NULL || def->cookie != MR_DEF_COOKIE) {
     snprintf(msg, msg_size, "expected a glove definition made by mr_default_glove_def");
     return MR_GLOVE_ERR_ARG;
   }

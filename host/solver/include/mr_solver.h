@@ -14,7 +14,9 @@
 #define MR_SOLVER_H
 
 #include <stddef.h>
+#include <stdint.h>
 
+#include "mr_def.h"
 #include "mr_solve_method.h"
 
 #ifdef __cplusplus
@@ -89,6 +91,7 @@ void mr_csr_free(mr_csr *A);
 /* ------------------------------------------------------------- solving */
 
 typedef struct mr_solve_def {
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_solve_def() */
   mr_solve_method method;
   double tol;       /* iterative methods: stop at ‖Ax − b‖ ≤ tol ‖b‖ */
   int max_iter;     /* iterative methods: sweeps or CG steps */
@@ -134,7 +137,8 @@ mr_solver *mr_solver_create(void);
 mr_solve_status mr_solver_reserve(mr_solver *s, int rows);
 void mr_solver_destroy(mr_solver *s);
 /* x is the warm start of the iterative methods and the result. Returns
- * r->status (r may be NULL; def NULL means the defaults). On
+ * r->status (r may be NULL; def NULL means the defaults; a def not made by
+ * mr_default_solve_def gives MR_SOLVE_ERR_UNAVAILABLE). On
  * MR_SOLVE_DEPENDENT the dependent rows' λ are 0; on a negative status x is
  * untouched. An iterative method that cannot finish hands the system to
  * LDLᵀ (r->fallback), so multipliers stay bounded whatever the method: an

@@ -8,7 +8,9 @@
 #include <string.h>
 
 mr_solve_def mr_default_solve_def(void) {
-  mr_solve_def d = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12, 0.0, MR_SOLVE_DENSE_DEFAULT };
+  mr_solve_def d = {
+    MR_DEF_COOKIE, MR_SOLVE_LDLT, 1e-10, 1000, 1e-12, 0.0, MR_SOLVE_DENSE_DEFAULT
+  };
   return d;
 }
 
@@ -241,8 +243,8 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
 
   mr_solve_def def = mr_default_solve_def();
   if (!o) o = &def;
-  if (!s || !A || (A->n > 0 && (!b || !x || !A->row_ptr)) || (int)o->method < 0 ||
-      (int)o->method >= MR_SOLVE_METHOD_COUNT)
+  if (!s || !A || (A->n > 0 && (!b || !x || !A->row_ptr)) || o->cookie != MR_DEF_COOKIE ||
+      (int)o->method < 0 || (int)o->method >= MR_SOLVE_METHOD_COUNT)
     return r->status = MR_SOLVE_ERR_UNAVAILABLE;
   if (A->n == 0) return r->status;
   /* ‖b‖ is finite exactly when b is. LDLᵀ's answer vouches for A

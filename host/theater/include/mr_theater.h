@@ -20,6 +20,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -90,14 +92,13 @@ const char *mr_policy_name(mr_policy p);
 int mr_policy_parse(const char *name, mr_policy *out);
 
 typedef struct mr_scheduler_def {
-  uint32_t cookie; /* MR_THEATER_COOKIE, set by mr_default_scheduler_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_scheduler_def() */
   double fps;      /* frames per second, > 0; default 60 */
   mr_policy policy;
   int max_catch_up; /* frames simulated in one tick at the most when behind;
                        past that the lag is dropped, so the loop never
                        spirals. Default 5 */
 } mr_scheduler_def;
-#define MR_THEATER_COOKIE 0x6d725468u
 mr_scheduler_def mr_default_scheduler_def(void);
 
 /* What the physics did to reach one frame time. */

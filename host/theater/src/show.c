@@ -62,7 +62,7 @@ typedef struct mr_show show;
 mr_show_def mr_default_show_def(void) {
   mr_show_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_SHOW_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   d.policy = MR_POLICY_SKIP;
   d.present = MR_PRESENT_SCENE;
   return d;
@@ -531,7 +531,7 @@ mr_show_status mr_show_create(const mr_scene *scene, const mr_show_def *def, con
   }
   s->scene = scene;
   if (hooks != NULL) s->hooks = *hooks;
-  if (scene == NULL || out == NULL || def == NULL || def->cookie != MR_SHOW_COOKIE ||
+  if (scene == NULL || out == NULL || def == NULL || def->cookie != MR_DEF_COOKIE ||
       clock == NULL || def->n_gloves == 0 || def->n_gloves > MR_SHOW_MAX_GLOVES) {
     fail(s, MR_SHOW_ERR_ARG, "expected a scene, a show definition with 1 to 8 gloves, and a clock");
   } else {

@@ -15,9 +15,10 @@
  * sliver of a step behind. */
 #define LAND_S 1e-9
 
-mr_sim_opts mr_default_sim_opts(void) {
-  mr_sim_opts o;
+mr_sim_def mr_default_sim_def(void) {
+  mr_sim_def o;
   memset(&o, 0, sizeof o);
+  o.cookie = MR_DEF_COOKIE;
   o.present = MR_PRESENT_SCENE;
   return o;
 }
@@ -136,7 +137,7 @@ static mr_scene_status run_fail(const mr_scene *s, mr_scene_error *err, mr_scene
  * running sums the means are made from at the end. */
 typedef struct run {
   const mr_scene *s;
-  const mr_sim_opts *opts;
+  const mr_sim_def *opts;
   mr_sim_result *r;
   mr_scene_world sw;
   double duration, fps, dt_max;
@@ -369,11 +370,17 @@ static void run_finish(run *u, double t) {
   r->hash = mr_world_state_hash(u->sw.world);
 }
 
-mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_opts *opts, mr_sim_result *r,
+mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_def *opts, mr_sim_result *r,
                            mr_scene_error *err) {
   memset(r, 0, sizeof *r);
   r->finite = true;
   r->dt_min = INFINITY;
+  if (opts != NULL && opts->cookie != MR_DEF_COOKIE) {
+    err->status = MR_SCENE_ERR_VALUE;
+    snprintf(err->message, sizeof err->message, "the sim def was not made by mr_default_sim_def");
+    snprintf(err->text, sizeof err->text, "%s: %s", s->path, err->message);
+    return err->status;
+  }
   run u;
   memset(&u, 0, sizeof u);
   u.s = s;
