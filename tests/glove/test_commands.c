@@ -230,7 +230,7 @@ static void a_take_carries_no_commands(void **state) {
   (void)state;
   const char *take = tt_tmp_file("t.mrec", "", 0);
   assert_non_null(take);
-  mr_io_err err;
+  mr_io_error err;
   mr_rec_writer w;
   assert_int_equal(mr_rec_writer_open(&w, take, GP_SPEC_HASH, 0, &err), 0);
   assert_int_equal(mr_rec_writer_close(&w, &err), 0);

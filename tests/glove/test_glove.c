@@ -27,7 +27,7 @@ typedef struct port {
 
 /* A new pty, and the symlink pointed at its slave side. */
 static void plug(port *p) {
-  mr_io_err err;
+  mr_io_error err;
   if (mr_io_open(&p->master, "pty", MR_IO_READ | MR_IO_WRITE, &err) != 0) fail_msg("%s", err.msg);
   unlink(p->link);
   assert_int_equal(symlink(mr_io_path(&p->master), p->link), 0);
@@ -43,7 +43,7 @@ static void send(port *p, const gp_msg *m, uint32_t hash) {
   size_t n = gp_encode(m, hash, wire, sizeof wire);
   assert_true(n > 0);
   size_t sent = 0;
-  mr_io_err err;
+  mr_io_error err;
   assert_int_equal(mr_io_write(&p->master, wire, n, 1000, &sent, &err), MR_IO_OK);
   assert_int_equal(sent, n);
 }

@@ -90,7 +90,7 @@ static int bad_option(int c, char **argv) {
 static int list_ports(void) {
   mr_serial_info ports[64];
   size_t n;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_serial_list(ports, 64, &n, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     return 1;
@@ -163,7 +163,7 @@ static void on_event(void *user, gp_event ev, const gp_msg *m, uint64_t byte) {
 static void on_bytes(void *user, double now, const uint8_t *bytes, size_t len) {
   dump *D = user;
   (void)now;
-  mr_io_err err;
+  mr_io_error err;
   if (!D->recording) return;
   if (mr_rec_writer_add(&D->rec, mr_io_monotonic_ns() - D->t0_ns, bytes, len, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
@@ -295,7 +295,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
       if (fclose(f) != 0) rc = 1;
     }
   }
-  mr_io_err err;
+  mr_io_error err;
   if (D->recording && mr_rec_writer_close(&D->rec, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     rc = 1;
@@ -438,7 +438,7 @@ static int parse(int argc, char **argv, dump *D, args *a) {
 int main(int argc, char **argv) {
   static dump D;
   static args A;
-  mr_io_err err;
+  mr_io_error err;
   struct sigaction sa;
   int rc = parse(argc, argv, &D, &A);
   if (rc >= 0) return rc;

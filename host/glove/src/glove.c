@@ -92,7 +92,7 @@ static bool file_is_take(const char *source) {
 
 mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *out) {
   char spec[MR_GLOVE_SOURCE_MAX + 16];
-  mr_io_err err;
+  mr_io_error err;
   memset(out, 0, sizeof *out);
   out->status = MR_IO_ERR_SPEC;
   if (source == NULL || strlen(source) >= MR_GLOVE_SOURCE_MAX) {
@@ -239,7 +239,7 @@ static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
 static int find_glove(mr_glove *g) {
   mr_serial_info ports[32];
   size_t n = 0;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_serial_list(ports, 32, &n, &err) != 0) {
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
     return -1;
@@ -276,7 +276,7 @@ static void try_open(mr_glove *g, double now) {
     g->next_open = now + g->def.retry_every;
     return;
   }
-  mr_io_err err;
+  mr_io_error err;
   if (mr_io_open(&g->io, g->spec, g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err) != 0) {
     g->counters.open_failures++;
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
@@ -440,7 +440,7 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   int taken = 0;
   for (int round = 0; round < 64; round++) {
     size_t got = 0;
-    mr_io_err err;
+    mr_io_error err;
     mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
     if (got > 0) {
       g->last_bytes = now;
@@ -546,7 +546,7 @@ int mr_glove_probe(const char *source, double wait_s, gp_info *info, bool *forei
     return -1;
   }
   mr_io io;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
     snprintf(msg, msg_size, "%s", err.msg);
     return -1;

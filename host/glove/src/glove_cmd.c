@@ -154,7 +154,7 @@ void mr_glove_cmd_poll(mr_glove *g, double now) {
     p->result.sends++;
     p->next_send = now + g->def.cmd_timeout;
     if (!g->open) continue;
-    mr_io_err err;
+    mr_io_error err;
     (void)mr_io_write(&g->io, p->wire, p->len, 100, NULL, &err); /* a loss shows on the read */
   }
 }

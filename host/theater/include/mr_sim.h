@@ -94,8 +94,8 @@ mr_scene_status mr_sim_run(const mr_scene *scene, const mr_sim_def *opts, mr_sim
                            mr_scene_error *err);
 
 /* Compares a run with the scene's expect: section. Returns 0 when every
- * expectation holds, else -1 with the first unmet one in why. */
-int mr_sim_check(const mr_scene *scene, const mr_sim_result *result, char *why, size_t why_size);
+ * expectation holds, else -1 with the first unmet one in msg. */
+int mr_sim_check(const mr_scene *scene, const mr_sim_result *result, char *msg, size_t msg_size);
 
 #ifdef __cplusplus
 }

@@ -215,7 +215,7 @@ static void read_gloves(show *s, double now) {
 static void record(void *user, double now, const uint8_t *bytes, size_t len) {
   show_glove *g = user;
   if (!g->recording) return;
-  mr_io_err err;
+  mr_io_error err;
   uint64_t t_ns = now > 0 ? (uint64_t)llround(now * 1e9) : 0;
   if (mr_rec_writer_add(&g->take, t_ns, bytes, len, &err) != 0) {
     snprintf(g->take_error, sizeof g->take_error, "%s", err.msg);
@@ -409,7 +409,7 @@ static int open_glove(show *s, size_t i, const char *source, const char *take_pa
   if (mr_glove_create(&gd, &g->glove, msg, sizeof msg) != MR_GLOVE_OK)
     return fail(s, MR_SHOW_ERR_GLOVE, msg), -1;
   if (take_path == NULL) return 0;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_rec_writer_open(&g->take, take_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0)
     return fail(s, MR_SHOW_ERR_TAKE, err.msg), -1;
   g->recording = g->take_open = true;
@@ -456,7 +456,7 @@ static void close_parts(show *s) {
   for (size_t i = 0; i < s->n_gloves; i++) {
     show_glove *g = &s->gloves[i];
     if (g->take_open) {
-      mr_io_err err;
+      mr_io_error err;
       if (mr_rec_writer_close(&g->take, &err) != 0) fail(s, MR_SHOW_ERR_TAKE, err.msg);
       g->take_open = g->recording = false;
     }

@@ -417,70 +417,71 @@ mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_def *opts, mr_sim_res
   return rc;
 }
 
-int mr_sim_check(const mr_scene *s, const mr_sim_result *r, char *why, size_t size) {
+int mr_sim_check(const mr_scene *s, const mr_sim_result *r, char *msg, size_t msg_size) {
   const mr_scene_expect *e = &s->expect;
   if (e->has_load_error) {
-    snprintf(why, size, "expected the load to fail with \"%s\", but the scene loaded",
+    snprintf(msg, msg_size, "expected the load to fail with \"%s\", but the scene loaded",
              e->load_error);
     return -1;
   }
   if (e->finite && !r->finite) {
-    snprintf(why, size, "expected a finite state throughout, got NaN or Inf");
+    snprintf(msg, msg_size, "expected a finite state throughout, got NaN or Inf");
     return -1;
   }
   if (!isnan(e->max_deviation) && !(r->max_deviation <= e->max_deviation)) {
-    snprintf(why, size, "expected max deviation <= %g, got %g", e->max_deviation, r->max_deviation);
+    snprintf(msg, msg_size, "expected max deviation <= %g, got %g", e->max_deviation,
+             r->max_deviation);
     return -1;
   }
   if (e->resets_min >= 0 && r->resets < (uint64_t)e->resets_min) {
-    snprintf(why, size, "expected at least %ld resets, got %llu", e->resets_min,
+    snprintf(msg, msg_size, "expected at least %ld resets, got %llu", e->resets_min,
              (unsigned long long)r->resets);
     return -1;
   }
   if (e->resets_max >= 0 && r->resets > (uint64_t)e->resets_max) {
-    snprintf(why, size, "expected at most %ld resets, got %llu", e->resets_max,
+    snprintf(msg, msg_size, "expected at most %ld resets, got %llu", e->resets_max,
              (unsigned long long)r->resets);
     return -1;
   }
   if (!isnan(e->min_mean_dt) && !(r->dt_mean >= e->min_mean_dt)) {
-    snprintf(why, size, "expected mean dt >= %g s, got %g s", e->min_mean_dt, r->dt_mean);
+    snprintf(msg, msg_size, "expected mean dt >= %g s, got %g s", e->min_mean_dt, r->dt_mean);
     return -1;
   }
   if (!isnan(e->min_string_stretch) && !(r->string_stretch >= e->min_string_stretch)) {
-    snprintf(why, size, "expected a string stretched to >= %g x its rest length, got %g x",
+    snprintf(msg, msg_size, "expected a string stretched to >= %g x its rest length, got %g x",
              e->min_string_stretch, r->string_stretch);
     return -1;
   }
   if (!isnan(e->max_string_stretch) && !(r->string_stretch <= e->max_string_stretch)) {
-    snprintf(why, size, "expected every string within %g x its rest length, got %g x",
+    snprintf(msg, msg_size, "expected every string within %g x its rest length, got %g x",
              e->max_string_stretch, r->string_stretch);
     return -1;
   }
   if (!isnan(e->max_speed) && !(r->max_speed <= e->max_speed)) {
-    snprintf(why, size, "expected speeds <= %g m/s, got %g m/s", e->max_speed, r->max_speed);
+    snprintf(msg, msg_size, "expected speeds <= %g m/s, got %g m/s", e->max_speed, r->max_speed);
     return -1;
   }
   if (!isnan(e->max_penetration) && !(r->max_penetration <= e->max_penetration)) {
-    snprintf(why, size, "expected penetration <= %g m, got %g m", e->max_penetration,
+    snprintf(msg, msg_size, "expected penetration <= %g m, got %g m", e->max_penetration,
              r->max_penetration);
     return -1;
   }
   if (!isnan(e->creep) && !(r->creep <= e->creep)) {
-    snprintf(why, size, "expected creep <= %g m after %g s, got %g m", e->creep, e->settle,
+    snprintf(msg, msg_size, "expected creep <= %g m after %g s, got %g m", e->creep, e->settle,
              r->creep);
     return -1;
   }
   if (!isnan(e->jitter) && !(r->jitter <= e->jitter)) {
-    snprintf(why, size, "expected speeds <= %g m/s after %g s (no jitter), got %g m/s", e->jitter,
-             e->settle, r->jitter);
+    snprintf(msg, msg_size, "expected speeds <= %g m/s after %g s (no jitter), got %g m/s",
+             e->jitter, e->settle, r->jitter);
     return -1;
   }
   /* The pin holds for a run of the scene's own length only. */
   if (e->has_state_hash && r->sim_time == s->duration && r->hash != e->state_hash) {
-    snprintf(why, size, "expected state hash 0x%016" PRIx64 ", got 0x%016" PRIx64, e->state_hash,
-             r->hash);
+    snprintf(msg, msg_size, "expected state hash 0x%016" PRIx64 ", got 0x%016" PRIx64,
+             e->state_hash, r->hash);
     return -1;
   }
-  if (size > 0) why[0] = '\0';
+  if (msg_size > 0) msg[0] = '\0';
   return 0;
 }
