@@ -83,7 +83,7 @@ static int fail(const calib *c, const char *why) {
   char said[400];
   fprintf(stderr, "marionette calibrate: %s (%s)\n", why,
           mr_glove_describe(c->g, now_s(c), said, sizeof said));
-  return mr_glove_state_get(c->g) == MR_GLOVE_MISMATCH ? MR_EXIT_MISMATCH : MR_EXIT_FAIL;
+  return mr_glove_get_state(c->g) == MR_GLOVE_MISMATCH ? MR_EXIT_MISMATCH : MR_EXIT_FAIL;
 }
 
 /* Sends a command and polls until it is answered; 0 when ACKed, else the
@@ -140,7 +140,7 @@ static int walk(calib *c, double step_time) {
         show_ranges(c);
         next_show = now_s(c) + 0.2;
       }
-      if (mr_glove_state_get(c->g) == MR_GLOVE_LOST) return fail(c, "the glove went away");
+      if (mr_glove_get_state(c->g) == MR_GLOVE_LOST) return fail(c, "the glove went away");
     }
     if (c->tty) printf("\n");
     show_ranges(c);
@@ -223,11 +223,11 @@ int mr_cmd_calibrate(int argc, char **argv) {
   c.t0 = (double)mr_io_monotonic_ns() * 1e-9;
   c.tty = isatty(STDOUT_FILENO) != 0;
   for (int k = 0; k < MR_GLOVE_CHANNELS; k++) c.lo[k] = INFINITY, c.hi[k] = -INFINITY;
-  while (mr_glove_state_get(c.g) != MR_GLOVE_LIVE && now_s(&c) < 5 && !stop_asked) {
+  while (mr_glove_get_state(c.g) != MR_GLOVE_LIVE && now_s(&c) < 5 && !stop_asked) {
     poll_glove(&c);
-    if (mr_glove_state_get(c.g) == MR_GLOVE_MISMATCH) break;
+    if (mr_glove_get_state(c.g) == MR_GLOVE_MISMATCH) break;
   }
-  if (mr_glove_state_get(c.g) != MR_GLOVE_LIVE)
+  if (mr_glove_get_state(c.g) != MR_GLOVE_LIVE)
     rc = fail(&c, "no glove is streaming there");
   else if ((rc = command(&c, GP_CAL_START)) == 0 && (rc = walk(&c, step_time)) == 0 &&
            (rc = command(&c, GP_CAL_SAVE)) == 0)

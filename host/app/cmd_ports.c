@@ -81,7 +81,7 @@ int mr_cmd_ports(int argc, char **argv) {
   }
   mr_serial_info ports[64];
   size_t n = 0;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_serial_list(ports, 64, &n, &err) != 0) {
     fprintf(stderr, "marionette list-ports: %s\n", err.msg);
     return MR_EXIT_FAIL;

@@ -247,7 +247,7 @@ static int stop_after_picture(void *user) {
 static int run_frames(job *j, const mr_scene *scene, char *text, size_t text_size) {
   const render_args *a = j->a;
   if (a->n_takes == 0) {
-    mr_sim_opts o = mr_default_sim_opts();
+    mr_sim_def o = mr_default_sim_def();
     o.fps = j->fps;
     o.duration = a->has_frame ? a->frame_t + 1.5 / j->fps : a->duration;
     o.on_frame = on_sim_frame;

@@ -225,7 +225,8 @@ static void summary(const status *st, const mr_scene *scene, const mr_show_resul
     printf("time given up to catch up: %.3f s\n", r->frames.dropped_time);
   printf("latency p50: %.1f ms\n", r->frames.latency_p50 * 1e3);
   printf("latency p99: %.1f ms\n", r->frames.latency_p99 * 1e3);
-  printf("present: %s\n", r->interpolated ? "interpolate" : "land");
+  printf("present: %s\n",
+         mr_present_mode_name(r->interpolated ? MR_PRESENT_INTERPOLATE : MR_PRESENT_LAND));
   printf("mapping: %s\n", r->mapping);
   if (r->interpolated)
     printf("physics ahead of frames: mean %.1f ms, max %.1f ms (input lag added)\n",

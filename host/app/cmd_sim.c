@@ -78,7 +78,9 @@ static void print_summary(const mr_scene *scene, const mr_sim_result *r, double 
   printf("simulated: %.3f s\n", r->sim_time);
   printf("wall: %.3f s\n", wall);
   if (r->frames > 0) printf("frames: %" PRIu64 " at %g fps\n", r->frames, r->fps);
-  if (r->frames > 0) printf("present: %s\n", r->interpolated ? "interpolate" : "land");
+  if (r->frames > 0)
+    printf("present: %s\n",
+           mr_present_mode_name(r->interpolated ? MR_PRESENT_INTERPOLATE : MR_PRESENT_LAND));
   if (r->interpolated)
     printf("physics ahead of frames: mean %.4g s, max %.4g s\n", r->lead_mean, r->lead_max);
   printf("steps: %" PRIu64 "\n", r->steps);
@@ -263,7 +265,7 @@ static int report(const sim_args *a, const mr_scene *scene, const mr_sim_result 
 static int run_scene(const sim_args *a, mr_scene *scene) {
   csv_sink sink;
   if (csv_open(a->csv_path, &sink) != 0) return MR_EXIT_FAIL;
-  mr_sim_opts opts = mr_default_sim_opts();
+  mr_sim_def opts = mr_default_sim_def();
   opts.duration = a->duration;
   opts.on_step = a->csv_path ? on_step : NULL;
   opts.user = &sink;

@@ -35,6 +35,7 @@ struct mr_frames_out {
 mr_frames_out_def mr_default_frames_out_def(void) {
   mr_frames_out_def d;
   memset(&d, 0, sizeof d);
+  d.cookie = MR_DEF_COOKIE;
   d.every = 1;
   d.fps = 30;
   d.sheet_cells = 24;
@@ -138,6 +139,10 @@ static int start_ffmpeg(mr_frames_out *fo, char *msg, size_t msg_size) {
 int mr_frames_out_open(const mr_frames_out_def *def, mr_frames_out **out, char *msg,
                        size_t msg_size) {
   *out = NULL;
+  if (def->cookie != MR_DEF_COOKIE) {
+    snprintf(msg, msg_size, "the frames' def was not made by mr_default_frames_out_def");
+    return -1;
+  }
   if (def->width <= 0 || def->height <= 0 || def->every < 1) {
     snprintf(msg, msg_size, "expected a frame size and --every of at least 1");
     return -1;

@@ -9,7 +9,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
+
 typedef struct mr_frames_out_def {
+  uint32_t cookie;   /* MR_DEF_COOKIE, set by mr_default_frames_out_def() */
   const char *dir;   /* PNG frames dir/frame_000000.png ...; NULL: none */
   int every;         /* a PNG every this many frames, default 1 */
   const char *mp4;   /* NULL: none */

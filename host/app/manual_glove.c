@@ -147,7 +147,7 @@ void mr_manual_update(mr_manual *m, double dt) {
 
 int mr_pty_glove_open(mr_pty_glove *g, double rate_hz, double now, char *msg, size_t msg_size) {
   memset(g, 0, sizeof *g);
-  mr_io_err err;
+  mr_io_error err;
   if (mr_io_open(&g->io, "pty", MR_IO_READ | MR_IO_WRITE, &err) != 0) {
     snprintf(msg, msg_size, "the keyboard's glove: %s", err.msg);
     return -1;
@@ -179,7 +179,7 @@ static size_t put_sample(mr_pty_glove *g, const double values[MR_MANUAL_CHANNELS
 
 void mr_pty_glove_pump(mr_pty_glove *g, const double values[MR_MANUAL_CHANNELS], double now) {
   if (!g->open) return;
-  mr_io_err err;
+  mr_io_error err;
   uint8_t buf[256];
   size_t got = 0;
   /* Commands from the host are read and dropped: this glove has no

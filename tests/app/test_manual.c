@@ -170,7 +170,7 @@ static void the_pty_glove_is_read_as_a_glove(void **state) {
     mr_glove_latest(g, &r);
     if (r.samples >= 20) break;
   }
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LIVE);
   assert_true(r.samples >= 20);
   const gp_info *info = mr_glove_info(g);
   assert_non_null(info);

@@ -154,7 +154,7 @@ static double closest_arms(uint32_t drop, uint32_t add) {
   s.world.effects = (s.world.effects & ~drop) | add;
   arms a = { particle_id(&s, "alice.shoulder_r"), particle_id(&s, "alice.hand_r"),
              particle_id(&s, "bob.shoulder_l"), particle_id(&s, "bob.hand_l"), 1e9 };
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.fps = 60;
   o.on_frame = on_frame;
   o.user = &a;

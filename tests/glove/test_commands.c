@@ -59,9 +59,9 @@ static void start(live *l, const char *extra) {
   char msg[200];
   assert_int_equal(mr_glove_create(&d, &l->g, msg, sizeof msg), MR_GLOVE_OK);
   l->t0 = (double)mr_io_monotonic_ns() * 1e-9;
-  while (mr_glove_state_get(l->g) != MR_GLOVE_LIVE && now_s(l) < 5)
+  while (mr_glove_get_state(l->g) != MR_GLOVE_LIVE && now_s(l) < 5)
     mr_glove_poll(l->g, now_s(l), 20);
-  assert_int_equal(mr_glove_state_get(l->g), MR_GLOVE_LIVE);
+  assert_int_equal(mr_glove_get_state(l->g), MR_GLOVE_LIVE);
 }
 
 static void stop(live *l) {
@@ -174,7 +174,7 @@ static void the_stream_stops_and_starts_on_command(void **state) {
   uint64_t before = samples(&l);
   run_for(&l, 1.5);
   assert_int_equal(samples(&l), before);
-  assert_int_equal(mr_glove_state_get(l.g), MR_GLOVE_LIVE);
+  assert_int_equal(mr_glove_get_state(l.g), MR_GLOVE_LIVE);
   assert_int_equal(send_and_wait(&l, command(GP_STREAM_ON)).state, MR_GLOVE_CMD_ACKED);
   run_for(&l, 0.5);
   assert_true(samples(&l) >= before + 100); /* 250 Hz */
@@ -212,17 +212,17 @@ static void a_new_baud_is_followed(void **state) {
   live l;
   start(&l, NULL);
   mr_glove_counters c0;
-  mr_glove_counters_get(l.g, &c0);
+  mr_glove_get_counters(l.g, &c0);
   mr_glove_cmd rate = { GP_SET_RATE, 250, 921600 };
   assert_int_equal(send_and_wait(&l, rate).state, MR_GLOVE_CMD_ACKED);
   uint64_t before = samples(&l);
   run_for(&l, 0.5);
   mr_glove_counters c1;
-  mr_glove_counters_get(l.g, &c1);
+  mr_glove_get_counters(l.g, &c1);
   assert_int_equal(c1.opens, c0.opens + 1);
   assert_int_equal(mr_glove_info(l.g)->baud, 921600);
   assert_true(samples(&l) >= before + 80);
-  assert_int_equal(mr_glove_state_get(l.g), MR_GLOVE_LIVE);
+  assert_int_equal(mr_glove_get_state(l.g), MR_GLOVE_LIVE);
   stop(&l);
 }
 
@@ -230,7 +230,7 @@ static void a_take_carries_no_commands(void **state) {
   (void)state;
   const char *take = tt_tmp_file("t.mrec", "", 0);
   assert_non_null(take);
-  mr_io_err err;
+  mr_io_error err;
   mr_rec_writer w;
   assert_int_equal(mr_rec_writer_open(&w, take, GP_SPEC_HASH, 0, &err), 0);
   assert_int_equal(mr_rec_writer_close(&w, &err), 0);

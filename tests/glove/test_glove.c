@@ -27,7 +27,7 @@ typedef struct port {
 
 /* A new pty, and the symlink pointed at its slave side. */
 static void plug(port *p) {
-  mr_io_err err;
+  mr_io_error err;
   if (mr_io_open(&p->master, "pty", MR_IO_READ | MR_IO_WRITE, &err) != 0) fail_msg("%s", err.msg);
   unlink(p->link);
   assert_int_equal(symlink(mr_io_path(&p->master), p->link), 0);
@@ -43,7 +43,7 @@ static void send(port *p, const gp_msg *m, uint32_t hash) {
   size_t n = gp_encode(m, hash, wire, sizeof wire);
   assert_true(n > 0);
   size_t sent = 0;
-  mr_io_err err;
+  mr_io_error err;
   assert_int_equal(mr_io_write(&p->master, wire, n, 1000, &sent, &err), MR_IO_OK);
   assert_int_equal(sent, n);
 }
@@ -153,16 +153,16 @@ static void the_lateness_is_measured_afresh_after_a_replug(void **state) {
   double now = stream(&p, g, 10.0, 0.5, 100000000u, &seq); /* device at 100 s */
   assert_true(fabs(lateness(g)) < 0.1);
   unplug(&p);
-  for (int i = 0; i < 50 && mr_glove_state_get(g) != MR_GLOVE_LOST; i++) mr_glove_poll(g, now, 10);
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LOST);
+  for (int i = 0; i < 50 && mr_glove_get_state(g) != MR_GLOVE_LOST; i++) mr_glove_poll(g, now, 10);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LOST);
   plug(&p);
   now += 2.0;
-  for (int i = 0; i < 50 && mr_glove_state_get(g) == MR_GLOVE_LOST; i++) {
+  for (int i = 0; i < 50 && mr_glove_get_state(g) == MR_GLOVE_LOST; i++) {
     mr_glove_poll(g, now, 10);
     send_sample_flags(&p, seq++, 0, 0);
     poll_for_samples(g, now);
   }
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LIVE);
   now = stream(&p, g, now, 1.0, 500000u, &seq); /* the device clock restarted */
   if (!(lateness(g) < 0.1)) fail_msg("%.3f s late a second after the replug", lateness(g));
   mr_glove_destroy(g);
@@ -218,7 +218,7 @@ static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
   send_info(&p, GP_SPEC_HASH);
   send_sample(&p, 1, 5000000, 2000); /* device time 5 s */
   assert_true(poll_for_samples(g, now) > 0);
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LIVE);
   const gp_info *info = mr_glove_info(g);
   assert_non_null(info);
   assert_int_equal(info->uid[0], 0xC0FFEE);
@@ -234,9 +234,9 @@ static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
   /* Unplugged: the read side hangs up, the glove is lost, its last values
    * held. */
   unplug(&p);
-  for (int i = 0; i < 50 && mr_glove_state_get(g) != MR_GLOVE_LOST; i++)
+  for (int i = 0; i < 50 && mr_glove_get_state(g) != MR_GLOVE_LOST; i++)
     mr_glove_poll(g, now + 0.1, 10);
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LOST);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LOST);
   mr_glove_latest(g, &r);
   assert_true(fabs(r.values[0] - 0.5) < 1e-12);
   mr_glove_describe(g, now + 0.6, line, sizeof line);
@@ -244,9 +244,9 @@ static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
 
   /* Retried every 0.5 s of the caller's clock while nothing is there. */
   mr_glove_counters c0, c1;
-  mr_glove_counters_get(g, &c0);
+  mr_glove_get_counters(g, &c0);
   for (int i = 1; i <= 8; i++) mr_glove_poll(g, now + 0.1 + 0.25 * i, 0);
-  mr_glove_counters_get(g, &c1);
+  mr_glove_get_counters(g, &c1);
   assert_int_equal(c1.open_failures - c0.open_failures, 4); /* 2 s: four tries */
 
   /* Plugged in again on a new pty: the stream resumes. */
@@ -259,16 +259,16 @@ static void a_live_glove_is_read_calibrated_lost_and_found_again(void **state) {
     resumed = poll_for_samples(g, now + 0.5 * i) > 0;
   }
   assert_true(resumed);
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LIVE);
   mr_glove_latest(g, &r);
   assert_true(fabs(r.values[0] - 0.7) < 1e-12);
-  mr_glove_counters_get(g, &c1);
+  mr_glove_get_counters(g, &c1);
   assert_int_equal(c1.opens, 2);
   assert_int_equal(c1.losses, 1);
 
   /* Silent for longer than lost_after while the port stays: lost too. */
   mr_glove_poll(g, now + 20.0, 0);
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LOST);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LOST);
   mr_glove_destroy(g);
   unplug(&p);
   rmdir(p.dir);
@@ -285,7 +285,7 @@ static void a_foreign_glove_is_a_spec_mismatch(void **state) {
   int seen = 0;
   for (int i = 0; i < 100 && !seen; i++) {
     mr_glove_poll(g, 1.0, 10);
-    seen = mr_glove_state_get(g) == MR_GLOVE_MISMATCH;
+    seen = mr_glove_get_state(g) == MR_GLOVE_MISMATCH;
   }
   assert_true(seen);
   mr_glove_describe(g, 1.0, line, sizeof line);
@@ -316,7 +316,7 @@ static void bad_sources_are_refused_by_name(void **state) {
   /* A port that is not there: connecting, and it says why. */
   g = glove_on("pty:/nonexistent/glove");
   mr_glove_poll(g, 0.0, 0);
-  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_CONNECTING);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_CONNECTING);
   char line[300];
   mr_glove_describe(g, 0.0, line, sizeof line);
   assert_non_null(strstr(line, "glove on pty:/nonexistent/glove: connecting ("));

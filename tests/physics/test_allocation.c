@@ -137,7 +137,7 @@ static void run_method(const char *method) {
     fail_msg("%s", err.text);
   watch w = { 0, 0, 0 };
   /* Long enough for 1 001 steps at the upper bound of 0.05 s. */
-  mr_sim_opts opts = mr_default_sim_opts();
+  mr_sim_def opts = mr_default_sim_def();
   opts.duration = 60.0;
   opts.on_step = on_step;
   opts.user = &w;

@@ -379,7 +379,7 @@ static void run_reports_every_step_to_the_callback(void **state) {
   mr_scene s;
   load(text, &s);
   tally t = { 0, 0, 0, 1 };
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.on_step = count_step;
   o.user = &t;
   mr_sim_result r;
@@ -414,7 +414,7 @@ static void unset_settings_are_the_papers(void **state) {
   assert_true(d.deviation_low == 1e-4 && d.deviation_high == 1e-2);
   assert_int_equal(d.integrator, MR_INTEGRATOR_RK4);
   /* The run's steps stay inside those bounds. */
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.duration = 1.0;
   mr_sim_result r;
   mr_scene_error e;
@@ -460,7 +460,7 @@ static void steps_land_on_frame_times_with_fps(void **state) {
   mr_scene s;
   load(text, &s);
   frames f = { 30.0, 0.0, 0, 0 };
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.on_step = check_frame_landing;
   o.user = &f;
   mr_sim_result r;

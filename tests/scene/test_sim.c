@@ -130,7 +130,7 @@ static void same_scene_same_state_hash(void **state) {
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load(scene_path, &s, &e), MR_SCENE_OK);
-  mr_sim_opts opts = mr_default_sim_opts();
+  mr_sim_def opts = mr_default_sim_def();
   opts.duration = 4.0;
   mr_sim_result r;
   assert_int_equal(mr_sim_run(&s, &opts, &r, &e), MR_SCENE_OK);
@@ -147,6 +147,28 @@ static void same_scene_same_state_hash(void **state) {
   mr_scene_free(&s);
   tt_output_free(&a);
   tt_output_free(&b);
+}
+
+/* A sim def filled by hand (no cookie from mr_default_sim_def) is refused
+ * with a line that names the maker, and no step runs; the same def from
+ * the maker, with a non-default duration, runs. */
+static void a_sim_def_not_from_its_maker_is_refused(void **state) {
+  (void)state;
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load(SCENES "/puppet.yaml", &s, &e), MR_SCENE_OK);
+  mr_sim_def hand;
+  memset(&hand, 0, sizeof hand);
+  hand.duration = 0.5;
+  mr_sim_result r;
+  assert_int_equal(mr_sim_run(&s, &hand, &r, &e), MR_SCENE_ERR_VALUE);
+  assert_non_null(strstr(e.text, "mr_default_sim_def"));
+  assert_int_equal(r.steps, 0);
+  mr_sim_def opts = mr_default_sim_def();
+  opts.duration = 0.5;
+  assert_int_equal(mr_sim_run(&s, &opts, &r, &e), MR_SCENE_OK);
+  assert_true(r.steps > 0 && r.sim_time > 0.5 - 1e-9 && r.sim_time < 0.5 + 1e-9);
+  mr_scene_free(&s);
 }
 
 /* "Simulate only the effects a scene calls for": passes of effects the
@@ -423,6 +445,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(load_errors_are_one_line_with_the_place),
     cmocka_unit_test(bad_usage_exits_2),
     cmocka_unit_test(same_scene_same_state_hash),
+    cmocka_unit_test(a_sim_def_not_from_its_maker_is_refused),
     cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
     cmocka_unit_test(csv_has_one_row_per_step_call),
     cmocka_unit_test(csv_resets_add_up_to_the_summary),

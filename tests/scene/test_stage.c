@@ -196,7 +196,7 @@ static void a_scene_without_stage_sections_still_shows_every_particle_and_link(v
   mr_scene s;
   load("t.yaml", PHYS, &s);
   const mr_stage_def *d = &s.stage;
-  assert_int_equal(d->cookie, MR_STAGE_COOKIE);
+  assert_int_equal(d->cookie, MR_DEF_COOKIE);
   assert_int_equal(d->n_models, 1 + 5); /* a capsule per constraint, a sphere per particle */
   assert_string_equal(d->models[0].name, "link:d-e");
   assert_int_equal(d->models[0].display, MR_DISPLAY_LINK);

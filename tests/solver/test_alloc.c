@@ -183,10 +183,10 @@ static void reserving_refuses_negative_sizes(void **state) {
   mr_jac J = { 0 };
   mr_csr A = { 0 };
   mr_solver *s = mr_solver_create();
-  assert_int_equal(mr_jac_reserve(&J, -1, 0), MR_SOLVE_BAD_ARG);
-  assert_int_equal(mr_csr_reserve(&A, 1, -1, 0), MR_SOLVE_BAD_ARG);
-  assert_int_equal(mr_solver_reserve(s, -1), MR_SOLVE_BAD_ARG);
-  assert_int_equal(mr_solver_reserve(NULL, 1), MR_SOLVE_BAD_ARG);
+  assert_int_equal(mr_jac_reserve(&J, -1, 0), MR_SOLVE_ERR_ARG);
+  assert_int_equal(mr_csr_reserve(&A, 1, -1, 0), MR_SOLVE_ERR_ARG);
+  assert_int_equal(mr_solver_reserve(s, -1), MR_SOLVE_ERR_ARG);
+  assert_int_equal(mr_solver_reserve(NULL, 1), MR_SOLVE_ERR_ARG);
   mr_solver_destroy(s);
 }
 

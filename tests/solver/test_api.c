@@ -41,8 +41,8 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state) {
       mr_solve_def o = mr_default_solve_def();
       o.method = methods[m];
       mr_solve_result r;
-      assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, &r), MR_SOLVE_NONFINITE);
-      assert_int_equal(r.status, MR_SOLVE_NONFINITE);
+      assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, &r), MR_SOLVE_ERR_NONFINITE);
+      assert_int_equal(r.status, MR_SOLVE_ERR_NONFINITE);
       for (int i = 0; i < 30; i++) assert_true(x[i] == 1234.5 + i);
       A.val[7] = saved_a;
       b[12] = saved_b;
@@ -51,7 +51,35 @@ static void nonfinite_input_is_rejected_and_x_untouched(void **state) {
   /* A NaN mass reaches A through the assembly and is caught there. */
   s.inv_mass[3] = NAN;
   assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
-  assert_int_equal(mr_solver_solve(solver, NULL, &A, b, x, NULL), MR_SOLVE_NONFINITE);
+  assert_int_equal(mr_solver_solve(solver, NULL, &A, b, x, NULL), MR_SOLVE_ERR_NONFINITE);
+  mr_solver_destroy(solver);
+  mr_csr_free(&A);
+  test_system_free(&s);
+}
+
+/* A def filled by hand (no cookie from mr_default_solve_def) is refused
+ * before anything runs, with x untouched; the same fields from the maker,
+ * here a non-default method and tolerance, solve. */
+static void a_solve_def_not_from_its_maker_is_refused(void **state) {
+  (void)state;
+  test_system s;
+  test_system_random(&s, 20, 9);
+  mr_csr A = { 0 };
+  assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
+  double b[20], x[20];
+  test_rng rng = { 3 };
+  test_system_consistent_rhs(&s, &rng, b);
+  mr_solver *solver = mr_solver_create();
+  mr_solve_def o = mr_default_solve_def();
+  o.method = MR_SOLVE_CG;
+  o.tol = 1e-8;
+  mr_solve_def hand = o;
+  hand.cookie = 0;
+  for (int i = 0; i < 20; i++) x[i] = 7.5;
+  mr_solve_result r;
+  assert_int_equal(mr_solver_solve(solver, &hand, &A, b, x, &r), MR_SOLVE_ERR_UNAVAILABLE);
+  for (int i = 0; i < 20; i++) assert_true(x[i] == 7.5);
+  assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, &r), MR_SOLVE_OK);
   mr_solver_destroy(solver);
   mr_csr_free(&A);
   test_system_free(&s);
@@ -78,7 +106,7 @@ static void ldlt_catches_a_nonfinite_entry_wherever_it_sits(void **state) {
       A.val[q] = q % 2 ? NAN : -INFINITY;
       for (int i = 0; i < 30; i++) x[i] = 7.0 + i;
       assert_int_equal(mr_solver_solve(solver, &o, &A, q % 3 ? b : zero, x, NULL),
-                       MR_SOLVE_NONFINITE);
+                       MR_SOLVE_ERR_NONFINITE);
       for (int i = 0; i < 30; i++) assert_true(x[i] == 7.0 + i);
       A.val[q] = saved;
     }
@@ -90,7 +118,7 @@ static void ldlt_catches_a_nonfinite_entry_wherever_it_sits(void **state) {
   double val[3] = { 1.0, NAN, 2.0 }, b3[3] = { 1.0, 1.0, 1.0 }, x3[3] = { 5, 5, 5 };
   mr_csr D = { .n = 3, .nnz = 3, .row_ptr = rp, .col = col, .val = val };
   mr_solve_result r;
-  assert_int_equal(mr_solver_solve(solver, NULL, &D, b3, x3, &r), MR_SOLVE_NONFINITE);
+  assert_int_equal(mr_solver_solve(solver, NULL, &D, b3, x3, &r), MR_SOLVE_ERR_NONFINITE);
   assert_true(x3[0] == 5 && x3[1] == 5 && x3[2] == 5);
   assert_int_equal(r.dependent, 0);
   mr_solver_destroy(solver);
@@ -201,16 +229,18 @@ static void name_list_and_status_names_come_from_the_tables(void **state) {
     assert_string_equal(mr_solve_method_name(m), list[count]);
   }
   assert_int_equal(count, MR_SOLVE_METHOD_COUNT);
-  const mr_solve_status all[] = { MR_SOLVE_OK,     MR_SOLVE_NOT_CONVERGED, MR_SOLVE_DEPENDENT,
-                                  MR_SOLVE_ENOMEM, MR_SOLVE_NONFINITE,     MR_SOLVE_UNAVAILABLE,
-                                  MR_SOLVE_BAD_ARG };
+  const mr_solve_status all[] = {
+    MR_SOLVE_OK,        MR_SOLVE_NOT_CONVERGED, MR_SOLVE_DEPENDENT,
+    MR_SOLVE_ERR_NOMEM, MR_SOLVE_ERR_NONFINITE, MR_SOLVE_ERR_UNAVAILABLE,
+    MR_SOLVE_ERR_ARG
+  };
   for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
     assert_string_not_equal(mr_solve_status_name(all[i]), "unknown");
     for (size_t j = 0; j < i; j++)
       assert_string_not_equal(mr_solve_status_name(all[i]), mr_solve_status_name(all[j]));
   }
   assert_string_equal(mr_solve_status_name((mr_solve_status)99), "unknown");
-  assert_string_equal(mr_solve_status_name(MR_SOLVE_ENOMEM), "out of memory");
+  assert_string_equal(mr_solve_status_name(MR_SOLVE_ERR_NOMEM), "out of memory");
 }
 
 static void names_parse_and_defaults(void **state) {
@@ -243,8 +273,8 @@ static void names_parse_and_defaults(void **state) {
   assert_int_equal(mr_csr_assemble(&A, &J, (const double[]){ 2.0 }), 0);
   double b[1] = { 3 }, x[1] = { 0 };
   o.method = (mr_solve_method)9;
-  assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_UNAVAILABLE);
-  assert_int_equal(mr_solver_solve(NULL, NULL, &A, b, x, NULL), MR_SOLVE_UNAVAILABLE);
+  assert_int_equal(mr_solver_solve(solver, &o, &A, b, x, NULL), MR_SOLVE_ERR_UNAVAILABLE);
+  assert_int_equal(mr_solver_solve(NULL, NULL, &A, b, x, NULL), MR_SOLVE_ERR_UNAVAILABLE);
   /* NULL options mean the defaults: 2 λ = 3. */
   assert_int_equal(mr_solver_solve(solver, NULL, &A, b, x, NULL), MR_SOLVE_OK);
   assert_near(x[0], 1.5, 1e-15);
@@ -311,6 +341,7 @@ static void workspace_reuse_matches_a_fresh_solver(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(nonfinite_input_is_rejected_and_x_untouched),
+    cmocka_unit_test(a_solve_def_not_from_its_maker_is_refused),
     cmocka_unit_test(ldlt_catches_a_nonfinite_entry_wherever_it_sits),
     cmocka_unit_test(empty_and_zero_systems),
     cmocka_unit_test(iteration_cap_reports_not_converged),

@@ -270,9 +270,9 @@ static void assembly_of_an_empty_jacobian(void **state) {
   assert_int_equal(mr_jac_reset(&J, 1), 0);
   mr_jac_begin_row(&J);
   mr_jac_add(&J, 0, d);
-  assert_int_equal(mr_csr_assemble(&A, &J, NULL), MR_SOLVE_UNAVAILABLE);
-  assert_int_equal(mr_csr_assemble(&A, NULL, d), MR_SOLVE_UNAVAILABLE);
-  assert_int_equal(mr_csr_assemble(NULL, &J, d), MR_SOLVE_UNAVAILABLE);
+  assert_int_equal(mr_csr_assemble(&A, &J, NULL), MR_SOLVE_ERR_UNAVAILABLE);
+  assert_int_equal(mr_csr_assemble(&A, NULL, d), MR_SOLVE_ERR_UNAVAILABLE);
+  assert_int_equal(mr_csr_assemble(NULL, &J, d), MR_SOLVE_ERR_UNAVAILABLE);
   mr_csr_free(&A);
   mr_jac_free(&J);
 }

@@ -15,7 +15,7 @@
 static void defaults_are_the_documented_ones(void **state) {
   (void)state;
   mr_stage_def d = mr_default_stage_def();
-  assert_int_equal(d.cookie, MR_STAGE_COOKIE);
+  assert_int_equal(d.cookie, MR_DEF_COOKIE);
   assert_int_equal(d.width, 1280);
   assert_int_equal(d.height, 720);
   assert_true(d.time_of_day == 0.5 && d.floor && d.backdrop && d.stars);
@@ -120,9 +120,39 @@ static void defs_naming_missing_points_are_refused_with_a_message(void **state) 
   d.lights.n_spots = 0;
   d.cookie = 0;
   refused(&d, rest, 3, MR_STAGE_ERR_ARG, "mr_default_stage_def");
-  d.cookie = MR_STAGE_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   rest[4] = NAN;
   refused(&d, rest, 3, MR_STAGE_ERR_VALUE, "point 1 starts at NaN");
+}
+
+/* Every def in a stage def is made by its maker, down to the models'
+ * materials, the spots and the cameras: one filled by hand (its cookie 0)
+ * is refused by name, and the same def from the maker is taken. */
+static void a_stage_def_holding_a_def_not_from_its_maker_is_refused(void **state) {
+  (void)state;
+  double rest[6] = { 0, 0, 0, 1, 0, 0 };
+  mr_model_def m = mr_default_model_def();
+  m.particles[0] = 1;
+  m.n_materials = 2;
+  mr_stage_def d = mr_default_stage_def();
+  d.models = &m;
+  d.n_models = 1;
+  d.lights.n_spots = 2;
+  d.n_cameras = 1;
+  mr_stage *s = NULL;
+  assert_int_equal(mr_stage_create(&d, rest, 2, &s, NULL, 0), MR_STAGE_OK);
+  mr_stage_destroy(s);
+  m.cookie = 0;
+  refused(&d, rest, 2, MR_STAGE_ERR_ARG, "mr_default_model_def");
+  m.cookie = MR_DEF_COOKIE;
+  m.materials[1].cookie = 0;
+  refused(&d, rest, 2, MR_STAGE_ERR_ARG, "material 1 was not made by mr_default_material_def");
+  m.materials[1] = mr_default_material_def();
+  d.lights.spots[1].cookie = 0;
+  refused(&d, rest, 2, MR_STAGE_ERR_ARG, "spot 1 was not made by mr_default_spot_def");
+  d.lights.spots[1] = mr_default_spot_def();
+  memset(&d.cameras[0], 0, sizeof d.cameras[0]);
+  refused(&d, rest, 2, MR_STAGE_ERR_ARG, "camera 0 was not made by mr_default_camera_def");
 }
 
 static void the_stage_keeps_its_own_copy_of_the_def(void **state) {
@@ -156,6 +186,7 @@ int main(void) {
     cmocka_unit_test(names_parse_back_to_their_values),
     cmocka_unit_test(the_built_in_sky_is_fixed_unit_and_above_the_horizon),
     cmocka_unit_test(defs_naming_missing_points_are_refused_with_a_message),
+    cmocka_unit_test(a_stage_def_holding_a_def_not_from_its_maker_is_refused),
     cmocka_unit_test(the_stage_keeps_its_own_copy_of_the_def),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

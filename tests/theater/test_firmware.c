@@ -86,7 +86,7 @@ typedef struct take_samples {
  * calibrates a glove without a saved range: by the ADC's full scale. */
 static void read_take(const char *path, take_samples *out) {
   mr_rec_reader r;
-  mr_io_err err;
+  mr_io_error err;
   assert_int_equal(mr_rec_reader_open(&r, path, &err), 0);
   gp_decoder dec;
   gp_decoder_init(&dec, GP_SPEC_HASH);

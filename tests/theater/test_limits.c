@@ -226,7 +226,7 @@ static void marionette_sim_keeps_a_track_frame_within_its_max_turn_rate(void **s
   memset(&pp, 0, sizeof pp);
   pp.id = sw.control_ids[0];
   mr_scene_world_free(&sw);
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.duration = 3.5;
   o.fps = 60;
   o.present = MR_PRESENT_LAND;

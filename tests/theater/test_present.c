@@ -42,7 +42,7 @@ static void keep(void *user, double t, const double *xyz, int n) {
 
 static void run(const mr_scene *s, mr_present_mode mode, frames *f, mr_sim_result *r) {
   memset(f, 0, sizeof *f);
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.fps = 60;
   o.present = mode;
   o.on_frame = keep;

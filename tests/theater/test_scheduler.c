@@ -79,7 +79,7 @@ static void light_load_lands_every_frame_on_time(void **state) {
   mr_scheduler *sch = start(&s, MR_POLICY_SKIP);
   for (int i = 0; i < 1000; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   assert_int_equal(st.frames_skipped, 0);
   assert_int_equal(st.frames_simulated, 1000);
   assert_int_equal(st.frames_presented, 999); /* the last waits for the next tick */
@@ -107,7 +107,7 @@ static void heavy_renders_are_skipped_without_a_spiral(void **state) {
     s.advances_in_tick = 0;
     assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
     if (s.advances_in_tick > s.most_in_tick) s.most_in_tick = s.advances_in_tick;
-    mr_scheduler_stats_get(sch, &st);
+    mr_scheduler_get_stats(sch, &st);
     /* When the newest frame of the tick was simulated, how far its time
      * trailed the wall's. */
     worst = fmax(worst, s.tick_lag);
@@ -146,7 +146,7 @@ static void slow_physics_is_capped_not_chased(void **state) {
     if (s.advances_in_tick > s.most_in_tick) s.most_in_tick = s.advances_in_tick;
   }
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   printf("physics at half real time: at most %d frames a tick, %.2f s of %.2f given up, real-time "
          "factor %.3f\n",
          s.most_in_tick, st.dropped_time, st.wall_time, st.real_time_factor);
@@ -169,7 +169,7 @@ static void slow_policy_skips_nothing_and_reports_the_factor(void **state) {
   mr_scheduler *sch = start(&s, MR_POLICY_SLOW);
   for (int i = 0; i < 600; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   printf("slow policy, render 2 periods: %llu shown, %llu skipped, real-time factor %.3f\n",
          (unsigned long long)st.frames_presented, (unsigned long long)st.frames_skipped,
          st.real_time_factor);
@@ -193,7 +193,7 @@ static void a_sample_is_shown_within_two_frame_periods(void **state) {
     assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   }
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   printf("latency: p50 %.2f ms, p99 %.2f ms (two periods: %.2f ms)\n", st.latency_p50 * 1e3,
          st.latency_p99 * 1e3, 2e3 * s.period);
   assert_true(st.latency_p99 <= 2 * s.period + 1e-4);
@@ -221,7 +221,7 @@ static void a_stall_past_the_cap_gives_its_lag_up_for_good(void **state) {
   assert_int_equal(s.advances_in_tick, 3);
   s.render_cost = 0;
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   assert_true(fabs(st.dropped_time - 8 * s.period) < 1e-9);
   s.origin += st.dropped_time;
   s.bad_delay = 0;
@@ -231,7 +231,7 @@ static void a_stall_past_the_cap_gives_its_lag_up_for_good(void **state) {
     if (s.advances_in_tick != 1)
       fail_msg("tick %d after the stall simulated %d frames", i + 1, s.advances_in_tick);
   }
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   assert_true(fabs(st.dropped_time - 8 * s.period) < 1e-9);
   assert_int_equal(s.bad_delay, 0);
   assert_int_equal(s.bad_landing, 0);
@@ -249,17 +249,17 @@ static void slow_policy_after_one_slow_frame_keeps_the_pace(void **state) {
   mr_scheduler *sch = start(&s, MR_POLICY_SLOW);
   mr_scheduler_stats st;
   for (int i = 0; i < 100; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   double lag_before = st.wall_time - st.sim_time;
   s.render_cost = 10 * s.period;
   assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   s.render_cost = 0;
   assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   double shown = st.last_present_wall;
   for (int i = 0; i < 100; i++) {
     assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
-    mr_scheduler_stats_get(sch, &st);
+    mr_scheduler_get_stats(sch, &st);
     if (fabs(st.last_present_wall - shown - s.period) > 1e-9)
       fail_msg("frame %d after the slow one came %.3f periods after the last", i + 1,
                (st.last_present_wall - shown) / s.period);
@@ -290,14 +290,14 @@ static void latency_counts_from_the_first_sample_of_a_frame(void **state) {
     assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   }
   assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK); /* shows the last of them */
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   print_message("latency p50 %.4f, p99 %.4f periods\n", st.latency_p50 / s.period,
                 st.latency_p99 / s.period);
   assert_true(st.latency_p50 >= 1.9 * s.period && st.latency_p50 <= 1.9 * s.period + 1.001e-4);
   assert_true(st.latency_p99 == st.latency_p50);
   for (int i = 0; i < 300; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   mr_scheduler_stats st2;
-  mr_scheduler_stats_get(sch, &st2);
+  mr_scheduler_get_stats(sch, &st2);
   assert_true(st2.latency_p50 == st.latency_p50 && st2.latency_p99 == st.latency_p99);
   mr_scheduler_destroy(sch);
 }
@@ -321,7 +321,7 @@ static void latency_quantiles_are_the_upper_edge_of_the_samples_bin(void **state
     assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
   }
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   print_message("p50 %.6f s, p99 %.6f s\n", st.latency_p50, st.latency_p99);
   assert_int_equal(st.frames_presented, 3);
   assert_true(fabs(st.latency_p50 - 12.4e-3) < 1e-12);

@@ -32,7 +32,7 @@ static void put(take *tk, double t, const gp_msg *m) {
   uint8_t wire[GP_MAX_WIRE + 2];
   size_t n = gp_encode(m, GP_SPEC_HASH, wire, sizeof wire);
   assert_true(n > 0);
-  mr_io_err err;
+  mr_io_error err;
   if (mr_rec_writer_add(&tk->w, (uint64_t)llround(t * 1e9), wire, n, &err) != 0)
     fail_msg("%s", err.msg);
 }
@@ -40,7 +40,7 @@ static void put(take *tk, double t, const gp_msg *m) {
 /* A take at path that opens with the INFO of a glove whose last uid word
  * is uid2, calibrated so that a raw reading r is the value r / 4000. */
 static void take_open(take *tk, const char *path, uint32_t uid2) {
-  mr_io_err err;
+  mr_io_error err;
   if (mr_rec_writer_open(&tk->w, path, GP_SPEC_HASH, 0, &err) != 0) fail_msg("%s", err.msg);
   tk->seq = 0;
   gp_msg m;
@@ -74,7 +74,7 @@ static void take_hold(take *tk, double from, double to, const double v[5]) {
 }
 
 static void take_close(take *tk) {
-  mr_io_err err;
+  mr_io_error err;
   if (mr_rec_writer_close(&tk->w, &err) != 0) fail_msg("%s", err.msg);
 }
 

@@ -36,7 +36,7 @@ static int setup(void **state) {
   if (g_dir == NULL) return -1;
   const char *path = tt_path(g_dir, "good.mrec");
   mr_rec_writer w;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_rec_writer_open(&w, path, GP_SPEC_HASH, 0, &err) != 0) return -1;
   for (int i = 0; i <= 40; i++) {
     gp_msg m;

@@ -109,7 +109,7 @@ static void tools_dump_output_record_keeps_every_byte_read(void **state) {
   char *want = tt_read_file(in, &len);
   uint8_t *got = malloc(len + 1);
   mr_rec_reader r;
-  mr_io_err err;
+  mr_io_error err;
   uint64_t t_ns, last = 0;
   const uint8_t *data;
   size_t n;

@@ -163,7 +163,7 @@ static size_t sample_wire(uint16_t seq, uint32_t t_us, uint8_t *w) {
 
 static void write_take(const char *name, int cut_last) {
   mr_rec_writer w;
-  mr_io_err err;
+  mr_io_error err;
   uint8_t buf[8 * GP_MAX_WIRE];
   size_t n = 0;
   gp_msg info;

@@ -70,7 +70,7 @@ static const char *save(const raw_file *f, size_t n) {
 }
 
 /* Reads all chunks; returns how many were complete and the final status. */
-static int read_all(const char *path, int *final_rc, mr_io_err *err) {
+static int read_all(const char *path, int *final_rc, mr_io_error *err) {
   mr_rec_reader r;
   uint64_t t;
   const uint8_t *d;
@@ -88,7 +88,7 @@ static int read_all(const char *path, int *final_rc, mr_io_err *err) {
 
 static void expect_open_error(const raw_file *f, size_t n, const char *where) {
   mr_rec_reader r;
-  mr_io_err err;
+  mr_io_error err;
   assert_int_equal(mr_rec_reader_open(&r, save(f, n), &err), -1);
   assert_int_equal(err.status, MR_IO_ERR_FORMAT);
   if (!strstr(err.msg, where)) fail_msg("'%s' does not name '%s'", err.msg, where);
@@ -98,7 +98,7 @@ static void tools_recording_write_then_read_back_identical(void **state) {
   const char *path = tt_path(g_dir, "ok.mrec");
   mr_rec_writer w;
   mr_rec_reader r;
-  mr_io_err err;
+  mr_io_error err;
   uint8_t *data = malloc(MR_REC_MAX_CHUNK + 8); /* chunk i starts at data + i */
   size_t lens[] = { 1, 21, 21, 300, 4096, MR_REC_MAX_CHUNK, 2 };
   uint64_t times[] = { 0, 0, 4000000, 4000000, 8000001, 9000000000ull, 9000000001ull };
@@ -132,7 +132,7 @@ static void tools_recording_write_then_read_back_identical(void **state) {
 static void tools_recording_writer_refuses_bad_chunks_and_stays_usable(void **state) {
   const char *path = tt_path(g_dir, "w.mrec");
   mr_rec_writer w;
-  mr_io_err err;
+  mr_io_error err;
   uint8_t b[4] = { 1, 2, 3, 4 };
   int final_rc;
   (void)state;
@@ -168,7 +168,7 @@ static void tools_recording_header_malformations_name_their_offset(void **state)
 
 static void tools_recording_longer_header_is_skipped(void **state) {
   raw_file f;
-  mr_io_err err;
+  mr_io_error err;
   int final_rc;
   (void)state;
   raw_header(&f, "MRSTREAM", 1, 40);
@@ -180,7 +180,7 @@ static void tools_recording_longer_header_is_skipped(void **state) {
 
 static void tools_recording_chunk_malformations_name_their_offset(void **state) {
   raw_file f;
-  mr_io_err err;
+  mr_io_error err;
   int final_rc;
   size_t at;
   char where[64];
@@ -215,7 +215,7 @@ static void tools_recording_chunk_malformations_name_their_offset(void **state) 
 
 static void tools_recording_truncated_last_chunk_keeps_the_rest(void **state) {
   raw_file f;
-  mr_io_err err;
+  mr_io_error err;
   int final_rc;
   size_t at;
   char where[64];
@@ -243,7 +243,7 @@ static void tools_recording_truncated_last_chunk_keeps_the_rest(void **state) {
 static void tools_recording_reader_takes_a_sniffed_prefix(void **state) {
   raw_file f;
   mr_rec_reader r;
-  mr_io_err err;
+  mr_io_error err;
   uint64_t t;
   const uint8_t *d;
   size_t len;

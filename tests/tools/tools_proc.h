@@ -12,7 +12,7 @@ extern const char *tt_glove_dump;
 void tt_take_args(int argc, char **argv);
 
 /* An mr_io call that must succeed; on failure the test stops with the
- * call and the mr_io_err message ("pty: posix_openpt: No such file or
+ * call and the mr_io_error message ("pty: posix_openpt: No such file or
  * directory"), not with a bare "-1 != 0". Needs cmocka. */
 #define tt_assert_io_ok(call, err)                                \
   do {                                                            \

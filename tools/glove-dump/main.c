@@ -90,7 +90,7 @@ static int bad_option(int c, char **argv) {
 static int list_ports(void) {
   mr_serial_info ports[64];
   size_t n;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_serial_list(ports, 64, &n, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     return 1;
@@ -163,7 +163,7 @@ static void on_event(void *user, gp_event ev, const gp_msg *m, uint64_t byte) {
 static void on_bytes(void *user, double now, const uint8_t *bytes, size_t len) {
   dump *D = user;
   (void)now;
-  mr_io_err err;
+  mr_io_error err;
   if (!D->recording) return;
   if (mr_rec_writer_add(&D->rec, mr_io_monotonic_ns() - D->t0_ns, bytes, len, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
@@ -193,7 +193,7 @@ static int write_path_file(const char *path, const char *what) {
 /* What the source did since the last look: a hang-up, a return. */
 static void tell(dump *D, mr_glove_counters *seen) {
   mr_glove_counters c;
-  mr_glove_counters_get(D->g, &c);
+  mr_glove_get_counters(D->g, &c);
   if (c.losses > seen->losses && !mr_glove_ended(D->g)) {
     fprintf(stderr,
             "glove-dump: %s: hang-up after %llu bytes (device unplugged or the other end "
@@ -245,7 +245,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
   mr_io_status st;
   const char *why = mr_glove_last_error(D->g, &st);
   mr_glove_counters c;
-  mr_glove_counters_get(D->g, &c);
+  mr_glove_get_counters(D->g, &c);
   if (rc < 0) {
     /* A SOURCE that does not parse is the user's usage, not a failure. */
     fprintf(stderr, "glove-dump: %s%s\n", why, st == MR_IO_ERR_SPEC ? " (see --help)" : "");
@@ -295,7 +295,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
       if (fclose(f) != 0) rc = 1;
     }
   }
-  mr_io_err err;
+  mr_io_error err;
   if (D->recording && mr_rec_writer_close(&D->rec, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
     rc = 1;
@@ -461,7 +461,7 @@ static int parse(int argc, char **argv, dump *D, args *a) {
 int main(int argc, char **argv) {
   static dump D;
   static args A;
-  mr_io_err err;
+  mr_io_error err;
   struct sigaction sa;
   int rc = parse(argc, argv, &D, &A);
   if (rc >= 0) return rc;

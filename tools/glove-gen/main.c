@@ -51,7 +51,7 @@ typedef struct glove {
  * (it ended its read, as `marionette run -t` or `head` do: not an error),
  * or -1 when the output failed. */
 static int send_bytes(glove *g, int idx, const uint8_t *buf, size_t len, uint64_t t_ns) {
-  mr_io_err err;
+  mr_io_error err;
   size_t off = 0;
   if (g->recording && len) {
     if (mr_rec_writer_add(&g->rec, t_ns, buf, len, &err) != 0) {
@@ -92,7 +92,7 @@ static void answer_host(glove *g, int idx, uint64_t t_ns) {
   uint8_t in[512], out[4 * 4 * GP_MAX_WIRE];
   for (int round = 0; round < 4 && !g->gone; round++) {
     size_t got = 0;
-    mr_io_err err;
+    mr_io_error err;
     mr_io_status st = mr_io_read(&g->io, in, sizeof in, 0, &got, &err);
     if (got > 0) {
       size_t n = gg_answer_feed(&g->answer, &g->stream, in, got, out, sizeof out);
@@ -152,7 +152,7 @@ static gg_stream_config stream_config(const options *o, int i) {
  * a device that is not there is the user's usage too); -1, or the exit
  * code. */
 static int open_output(glove *g, int i, const options *o) {
-  mr_io_err err;
+  mr_io_error err;
   g->duplex = is_duplex(g->spec);
   int mode = g->duplex ? MR_IO_READ | MR_IO_WRITE : MR_IO_WRITE;
   if (mr_io_spec_check(g->spec, mode, NULL, 0, &err) != 0 ||
@@ -172,7 +172,7 @@ static int open_output(glove *g, int i, const options *o) {
 /* Glove i ready to stream: its output, truth file and recording open; -1,
  * or the exit code. */
 static int open_glove(glove *g, int i, const options *o) {
-  mr_io_err err;
+  mr_io_error err;
   int rc = open_output(g, i, o);
   if (rc >= 0) return rc;
   gg_stream_config cfg = stream_config(o, i);
@@ -220,7 +220,7 @@ static int write_path_file(const glove *gloves, const options *o) {
 static int wait_for_reader(glove *g, int i, const options *o) {
   long long waited_ms = 0;
   for (;;) {
-    mr_io_err err;
+    mr_io_error err;
     mr_io_status st = g->io.kind == MR_IO_PTY ? mr_io_wait_peer(&g->io, 200, &err)
                                               : mr_io_accept(&g->io, 200, &err);
     if (st == MR_IO_OK) return -1;
@@ -307,7 +307,7 @@ static void finish_gloves(glove *gloves, const options *o, uint64_t t0) {
   for (int i = 0; i < o->n_out; i++) {
     glove *g = &gloves[i];
     size_t n = gg_stream_finish(&g->stream, buf);
-    mr_io_err err;
+    mr_io_error err;
     if (g->gone) continue;
     if (n && send_bytes(g, i, buf, n, mr_io_monotonic_ns() - t0) != 0) continue;
     if (g->io.kind == MR_IO_PTY) {
@@ -324,7 +324,7 @@ static void finish_gloves(glove *gloves, const options *o, uint64_t t0) {
 static int close_gloves(glove *gloves, int n_out, int rc) {
   for (int i = 0; i < n_out; i++) {
     glove *g = &gloves[i];
-    mr_io_err err;
+    mr_io_error err;
     if (g->truth) {
       gg_stream_write_expect(&g->stream, g->truth);
       if (fclose(g->truth) != 0) {

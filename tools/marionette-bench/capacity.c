@@ -163,7 +163,7 @@ static void on_crowd_frame(void *user, double t, const double *xyz, int n) {
 /* Runs sc for `seconds` at 60 frames a second presented by interpolation
  * (as bench_run_scene does), timing it frame by frame into c. */
 static int crowd_run(const mr_scene *sc, double seconds, crowd_clock *c, mr_sim_result *r) {
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.duration = seconds;
   o.fps = 60;
   o.present = MR_PRESENT_INTERPOLATE;

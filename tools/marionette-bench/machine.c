@@ -95,7 +95,7 @@ int bench_run_scene(const mr_scene *scene, double duration, size_t ee_index, dou
   memset(out, 0, sizeof *out);
   out->ee_index = ee_index;
   out->horizon = horizon;
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.duration = duration;
   o.fps = 60;
   o.present = MR_PRESENT_INTERPOLATE;

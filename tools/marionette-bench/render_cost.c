@@ -84,7 +84,7 @@ static void one_scene(bench *b, const char *rel, int frames, int w, int h) {
   char msg[1100] = "";
   bench_progress("render", "%s: %d frames at %dx%d", rel, frames, w, h);
   if (bench_drawing_open(&sc, w, h, &d.draw, msg, sizeof msg) == 0) {
-    mr_sim_opts o = mr_default_sim_opts();
+    mr_sim_def o = mr_default_sim_def();
     o.fps = 30;
     o.duration = (frames + 0.5) / 30.0;
     o.on_frame = draw_frame;

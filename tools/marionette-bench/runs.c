@@ -87,7 +87,7 @@ int bench_latency(bench *b) {
   c.cap = 60 * 13;
   c.cost = calloc((size_t)c.cap, sizeof *c.cost);
   double *lat = calloc((size_t)c.cap * 16, sizeof *lat);
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.fps = 60;
   o.present = MR_PRESENT_LAND;
   o.on_frame = on_frame_clock;
@@ -151,7 +151,7 @@ int bench_count_run(bench *b, const char *which) {
   }
   mr_scene sc;
   if (bench_load(b, scene, &sc) != 0) return -1;
-  mr_sim_opts o = mr_default_sim_opts();
+  mr_sim_def o = mr_default_sim_def();
   o.duration = 10.0;
   mr_sim_result r;
   mr_scene_error err;

@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
 #include "mr_pose.h"
 
 #ifdef __cplusplus
@@ -56,7 +57,7 @@ typedef struct mr_axis_def {
 } mr_axis_def;
 
 typedef struct mr_mapping_def {
-  uint32_t cookie; /* MR_CONTROL_COOKIE, set by mr_default_mapping_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_mapping_def() */
   char name[32];   /* e.g. "walk", "head-only" */
   mr_pose neutral; /* the frame's pose when every driven axis reads 0 */
   mr_axis_def axes[MR_DOF_COUNT];
@@ -66,7 +67,6 @@ typedef struct mr_mapping_def {
   /* A channel at 0 or 1 for longer than this (s) is taken as broken. */
   double stuck_after;
 } mr_mapping_def;
-#define MR_CONTROL_COOKIE 0x6d724374u
 
 /* The paper's five degrees of freedom: thumb → turn about z (±30°), index
  * → turn about x (±30°), middle → turn about y (±45°), ring → up and down

@@ -58,7 +58,7 @@ static mr_axis_def axis(int channel, double low, double high) {
 mr_mapping_def mr_default_mapping_def(void) {
   mr_mapping_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_CONTROL_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   snprintf(d.name, sizeof d.name, "default");
   d.neutral = mr_pose_identity();
   d.axes[MR_DOF_TURN_Z] = axis(0, -30, 30);
@@ -81,7 +81,7 @@ static int check_def(const mr_mapping_def *d, int i, char *msg, size_t size) {
     msg = dummy;
     size = sizeof dummy;
   }
-  if (d->cookie != MR_CONTROL_COOKIE)
+  if (d->cookie != MR_DEF_COOKIE)
     return snprintf(msg, size, "mapping %d was not made by mr_default_mapping_def", i), -1;
   if (!mr_pose_is_finite(&d->neutral))
     return snprintf(msg, size, "mapping '%s': the neutral pose is not finite", d->name), -1;

@@ -23,6 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
 #include "gp.h"
 #include "mr_io.h"
 
@@ -41,7 +42,7 @@ typedef enum mr_glove_state {
 const char *mr_glove_state_name(mr_glove_state s);
 
 typedef struct mr_glove_def {
-  uint32_t cookie;                  /* MR_GLOVE_COOKIE, set by mr_default_glove_def() */
+  uint32_t cookie;                  /* MR_DEF_COOKIE, set by mr_default_glove_def() */
   char source[MR_GLOVE_SOURCE_MAX]; /* serial:DEV[@BAUD], serial:auto, pty:PATH,
                                        pty (a new one, for a writer to open),
                                        file:PATH, PATH, -, tcp:HOST:PORT,
@@ -60,7 +61,6 @@ typedef struct mr_glove_def {
   double cmd_timeout; /* s before an unanswered command is sent again; default 0.25 */
   int cmd_tries;      /* sends before a command is given up; default 5 */
 } mr_glove_def;
-#define MR_GLOVE_COOKIE 0x6d72476cu
 mr_glove_def mr_default_glove_def(void);
 
 /* The latest reading. */
@@ -126,11 +126,11 @@ bool mr_glove_take_done(const mr_glove *g);
  * taken. */
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms);
 
-mr_glove_state mr_glove_state_get(const mr_glove *g);
+mr_glove_state mr_glove_get_state(const mr_glove *g);
 /* The glove's INFO, or NULL before one arrived. */
 const gp_info *mr_glove_info(const mr_glove *g);
 void mr_glove_latest(const mr_glove *g, mr_glove_reading *out);
-void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out);
+void mr_glove_get_counters(const mr_glove *g, mr_glove_counters *out);
 /* host time − device time, the smallest seen (the path's fixed delay
  * included) since the device clock last started afresh (a START flag, a
  * reconnect, a new INFO uid, a sequence restart), s; NAN before a sample. A sample's latency is its host time
@@ -158,7 +158,6 @@ typedef enum mr_glove_cmd_state {
   MR_GLOVE_CMD_NACKED,   /* refused: nack_reason says why (GP_NACK_*) */
   MR_GLOVE_CMD_TIMED_OUT /* cmd_tries sends, no answer */
 } mr_glove_cmd_state;
-const char *mr_glove_cmd_state_name(mr_glove_cmd_state s);
 
 typedef struct mr_glove_cmd_result {
   mr_glove_cmd_state state;

@@ -25,7 +25,7 @@ const char *mr_glove_state_name(mr_glove_state s) {
 mr_glove_def mr_default_glove_def(void) {
   mr_glove_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_GLOVE_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   snprintf(d.source, sizeof d.source, "serial:auto");
   d.lost_after = 0.5;
   d.retry_every = 0.5;
@@ -92,7 +92,7 @@ static bool file_is_take(const char *source) {
 
 mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *out) {
   char spec[MR_GLOVE_SOURCE_MAX + 16];
-  mr_io_err err;
+  mr_io_error err;
   memset(out, 0, sizeof *out);
   out->status = MR_IO_ERR_SPEC;
   if (source == NULL || strlen(source) >= MR_GLOVE_SOURCE_MAX) {
@@ -133,7 +133,7 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
     msg_size = sizeof dummy;
   }
   if (out != NULL) *out = NULL;
-  if (def == NULL || out == NULL || def->cookie != MR_GLOVE_COOKIE) {
+  if (def == NULL || out == NULL || def->cookie != MR_DEF_COOKIE) {
     snprintf(msg, msg_size, "expected a glove definition made by mr_default_glove_def");
     return MR_GLOVE_ERR_ARG;
   }
@@ -239,7 +239,7 @@ static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
 static int find_glove(mr_glove *g) {
   mr_serial_info ports[32];
   size_t n = 0;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_serial_list(ports, 32, &n, &err) != 0) {
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
     return -1;
@@ -276,7 +276,7 @@ static void try_open(mr_glove *g, double now) {
     g->next_open = now + g->def.retry_every;
     return;
   }
-  mr_io_err err;
+  mr_io_error err;
   if (mr_io_open(&g->io, g->spec, g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err) != 0) {
     g->counters.open_failures++;
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
@@ -440,7 +440,7 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   int taken = 0;
   for (int round = 0; round < 64; round++) {
     size_t got = 0;
-    mr_io_err err;
+    mr_io_error err;
     mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
     if (got > 0) {
       g->last_bytes = now;
@@ -472,7 +472,7 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   return taken;
 }
 
-mr_glove_state mr_glove_state_get(const mr_glove *g) {
+mr_glove_state mr_glove_get_state(const mr_glove *g) {
   return g != NULL ? g->state : MR_GLOVE_CONNECTING;
 }
 
@@ -484,7 +484,7 @@ void mr_glove_latest(const mr_glove *g, mr_glove_reading *out) {
   if (g != NULL && out != NULL) *out = g->latest;
 }
 
-void mr_glove_counters_get(const mr_glove *g, mr_glove_counters *out) {
+void mr_glove_get_counters(const mr_glove *g, mr_glove_counters *out) {
   if (g == NULL || out == NULL) return;
   *out = g->counters;
   out->decoder = g->dec.c;
@@ -546,7 +546,7 @@ int mr_glove_probe(const char *source, double wait_s, gp_info *info, bool *forei
     return -1;
   }
   mr_io io;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
     snprintf(msg, msg_size, "%s", err.msg);
     return -1;

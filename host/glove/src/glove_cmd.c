@@ -8,11 +8,6 @@
 
 #include "glove_internal.h"
 
-const char *mr_glove_cmd_state_name(mr_glove_cmd_state s) {
-  static const char *const names[] = { "unknown", "pending", "acked", "nacked", "timed out" };
-  return (unsigned)s < sizeof names / sizeof names[0] ? names[s] : "unknown";
-}
-
 const char *mr_glove_cmd_name(uint8_t type) {
   switch (type) {
   case GP_PING:
@@ -159,7 +154,7 @@ void mr_glove_cmd_poll(mr_glove *g, double now) {
     p->result.sends++;
     p->next_send = now + g->def.cmd_timeout;
     if (!g->open) continue;
-    mr_io_err err;
+    mr_io_error err;
     (void)mr_io_write(&g->io, p->wire, p->len, 100, NULL, &err); /* a loss shows on the read */
   }
 }

@@ -39,7 +39,7 @@ struct mr_glove {
   uint32_t seen_restarts; /* the decoder's seq_restarts at the last sample */
   uint32_t mismatch_hash;
   mr_glove_counters counters;
-  char last_error[sizeof(((mr_io_err *)0)->msg)];
+  char last_error[sizeof(((mr_io_error *)0)->msg)];
   mr_glove_tap_fn tap;
   void *tap_user;
   /* A take: chunks fed at their recorded times instead of a live source. */

@@ -15,14 +15,14 @@ bool mr_glove_take_done(const mr_glove *g) {
   return g != NULL && g->is_take && g->take_done;
 }
 
-static void take_failed(mr_glove *g, const mr_io_err *err) {
+static void take_failed(mr_glove *g, const mr_io_error *err) {
   snprintf(g->last_error, sizeof g->last_error, "%s", err->msg);
   g->take_error = err->status;
 }
 
 /* The take named by the source, opened at the first poll. */
 static int open_named(mr_glove *g, double now) {
-  mr_io_err err;
+  mr_io_error err;
   const char *src = g->def.source;
   const char *path = strncmp(src, "file:", 5) == 0 || strncmp(src, "take:", 5) == 0 ? src + 5 : src;
   if (mr_rec_reader_open(&g->take, path, &err) != 0) {
@@ -37,7 +37,7 @@ static int open_named(mr_glove *g, double now) {
 }
 
 int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, double now) {
-  mr_io_err err;
+  mr_io_error err;
   /* The reader takes these bytes before the descriptor's: they must live
    * as long as it reads. */
   free(g->take_prefix);
@@ -81,7 +81,7 @@ int mr_glove_take_play(mr_glove *g, double now) {
   if (!g->take_open && (g->take_done || open_named(g, now) != 0)) return 0;
   for (;;) {
     if (!g->have_chunk) {
-      mr_io_err err;
+      mr_io_error err;
       int rc = mr_rec_reader_next(&g->take, &g->chunk_t_ns, &g->chunk, &g->chunk_len, &err);
       if (rc != 1) {
         /* The end, or a take cut short (a show killed mid-chunk): what was

@@ -8,7 +8,7 @@
  * fails with "Inappropriate ioctl for device").
  *
  * Nothing here prints or aborts: every failure comes back as a status plus an
- * mr_io_err naming what and where.
+ * mr_io_error naming what and where.
  */
 #ifndef MR_IO_H
 #define MR_IO_H
@@ -16,37 +16,42 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* --- status ----------------------------------------------------------------- */
 
-/* The library's one status type. A read or write ends on one of the first
- * four; the MR_IO_ERR_* values are failures, and the mr_io_err that comes
- * with them says what failed and where (the path or spec first). Calls that
- * return an int give 0 on success and -1 with err->status set. */
+/* The library's one status type. A read or write ends on MR_IO_OK or on one
+ * of the outcomes above 0; the MR_IO_ERR_* values, below 0, are failures,
+ * and the mr_io_error that comes with them says what failed and where (the
+ * path or spec first). Calls that return an int give 0 on success and -1
+ * with err->status set. */
 typedef enum mr_io_status {
-  MR_IO_OK = 0,        /* bytes moved, or the call succeeded */
-  MR_IO_TIMEOUT,       /* nothing moved within the timeout; the link is still up */
-  MR_IO_EOF,           /* end of a file, a pipe or FIFO whose writer left */
-  MR_IO_HANGUP,        /* the link is gone: device unplugged, pty's other end
-                          closed, TCP peer closed or reset */
-  MR_IO_ERR_SYSTEM,    /* a system call failed; sys_errno says which errno */
-  MR_IO_ERR_SPEC,      /* an unparsable open spec ("tcp:nohost", "serial:@9"):
-                          the caller's usage, not the system's state */
-  MR_IO_ERR_SERIAL,    /* libserialport refused (not a serial port, bad setting) */
-  MR_IO_ERR_FORMAT,    /* a malformed recording; the message names the byte offset */
-  MR_IO_ERR_TRUNCATED, /* a recording's last chunk is cut short */
-  MR_IO_ERR_ARG,       /* a caller's argument is out of range */
+  MR_IO_OK = 0,             /* bytes moved, or the call succeeded */
+  MR_IO_TIMEOUT = 1,        /* nothing moved within the timeout; the link is still up */
+  MR_IO_EOF = 2,            /* end of a file, a pipe or FIFO whose writer left */
+  MR_IO_HANGUP = 3,         /* the link is gone: device unplugged, pty's other end
+                               closed, TCP peer closed or reset */
+  MR_IO_ERR_SYSTEM = -1,    /* a system call failed; sys_errno says which errno */
+  MR_IO_ERR_SPEC = -2,      /* an unparsable open spec ("tcp:nohost", "serial:@9"):
+                               the caller's usage, not the system's state */
+  MR_IO_ERR_SERIAL = -3,    /* libserialport refused (not a serial port, bad setting) */
+  MR_IO_ERR_FORMAT = -4,    /* a malformed recording; the message names the byte offset */
+  MR_IO_ERR_TRUNCATED = -5, /* a recording's last chunk is cut short */
+  MR_IO_ERR_ARG = -6,       /* a caller's argument is out of range */
 } mr_io_status;
 
 /* True for the MR_IO_ERR_* values. */
 static inline int mr_io_failed(mr_io_status st) {
-  return st >= MR_IO_ERR_SYSTEM;
+  return st < 0;
 }
 
-typedef struct mr_io_err {
+typedef struct mr_io_error {
   mr_io_status status;
   int sys_errno; /* for MR_IO_ERR_SYSTEM, else 0 */
   char msg[320];
-} mr_io_err;
+} mr_io_error;
 
 /* --- sources and sinks ------------------------------------------------------ */
 
@@ -73,7 +78,6 @@ typedef struct mr_io {
   int baud;       /* ttys and serial devices */
   int port;       /* TCP: the port actually bound or connected */
   int peer_seen;  /* MR_IO_PTY: a peer has opened the slave side */
-  int borrowed;   /* from mr_io_from_fd: the caller closes fd */
   char path[256]; /* file or device path, pty slave path, or host:port */
   void *sp;       /* libserialport's port, for MR_IO_SERIAL */
 } mr_io;
@@ -95,7 +99,7 @@ typedef struct mr_io {
  *   "serial:DEV[@BAUD]"      8N1 at BAUD (default 115200); a pty slave path is
  *                            recognised and opened through termios
  * Returns 0, or -1 with *err filled. */
-int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err);
+int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_error *err);
 
 /* Checks spec as mr_io_open would take it, opening nothing (so a serial
  * board is not reset by a raised DTR): 0, or -1 with *err filled, status
@@ -105,26 +109,23 @@ int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err);
  * file to read that is missing or a directory. A spec that is sound but
  * worth a word (tcp-listen beyond the loopback: plain TCP has no
  * authentication) puts one line in note (if given), else note is "". */
-int mr_io_spec_check(const char *spec, int mode, char *note, size_t note_size, mr_io_err *err);
-
-/* Adopts an existing descriptor (not closed by mr_io_close). */
-void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name);
+int mr_io_spec_check(const char *spec, int mode, char *note, size_t note_size, mr_io_error *err);
 
 /* Reads up to cap bytes, waiting at most timeout_ms (negative: forever).
  * MR_IO_OK sets *got > 0. Bytes that arrived before a hang-up are returned
  * first; the hang-up is reported by the next call. */
 mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t *got,
-                        mr_io_err *err);
+                        mr_io_error *err);
 
 /* Writes all len bytes, waiting at most timeout_ms for the link to take each
  * piece (negative: forever). On anything but MR_IO_OK, *sent (if not NULL)
  * says how many went out. */
 mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms, size_t *sent,
-                         mr_io_err *err);
+                         mr_io_error *err);
 
 /* MR_IO_TCP_LISTEN: waits for one peer and adopts it (later reads and writes
  * go to it). Other kinds: MR_IO_OK at once. */
-mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_io_err *err);
+mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_io_error *err);
 
 /* A connection accepted from "tcp-listen:": drops the peer and goes back to
  * listening on the same port, so the next read or write accepts the next
@@ -133,19 +134,18 @@ int mr_io_rearm(mr_io *io);
 
 /* MR_IO_PTY: waits until a peer has opened the slave side. Other kinds:
  * MR_IO_OK at once. */
-mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_err *err);
+mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_error *err);
 
 /* MR_IO_PTY: waits until the peer has read everything written, because
  * closing the master discards what the slave has not read yet. Other kinds:
  * MR_IO_OK at once. MR_IO_HANGUP if the peer left first. */
-mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_err *err);
+mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_error *err);
 
 /* The path or address the source is known by (for a created pty: the slave
  * path to hand to the peer). */
 const char *mr_io_path(const mr_io *io);
 
 const char *mr_io_status_name(mr_io_status st);
-const char *mr_io_kind_name(mr_io_kind kind);
 
 void mr_io_close(mr_io *io);
 
@@ -165,7 +165,7 @@ typedef struct mr_serial_info {
 } mr_serial_info;
 
 /* Fills up to cap entries, sets *n to how many ports exist. 0 or -1. */
-int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_io_err *err);
+int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_io_error *err);
 
 /* --- stream recordings (*.mrec; protocol/SPEC.md, "Stream recordings") ----- */
 
@@ -197,14 +197,14 @@ typedef struct mr_rec_writer {
 
 /* Creates (truncates) path and writes the header. 0 or -1. */
 int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
-                       uint64_t start_unix_ns, mr_io_err *err);
+                       uint64_t start_unix_ns, mr_io_error *err);
 /* Appends one chunk: 1..MR_REC_MAX_CHUNK bytes at t_ns since the start,
  * never earlier than the chunk before and at most MR_REC_MAX_GAP_NS after
  * it. 0 or -1. */
 int mr_rec_writer_add(mr_rec_writer *w, uint64_t t_ns, const void *data, size_t len,
-                      mr_io_err *err);
+                      mr_io_error *err);
 /* Flushes and closes; 0 or -1 (the file may be incomplete). */
-int mr_rec_writer_close(mr_rec_writer *w, mr_io_err *err);
+int mr_rec_writer_close(mr_rec_writer *w, mr_io_error *err);
 
 typedef struct mr_rec_reader {
   int fd;
@@ -222,12 +222,12 @@ typedef struct mr_rec_reader {
 
 /* Opens path and reads the header. 0, or -1 with the offending byte offset
  * in the message. */
-int mr_rec_reader_open(mr_rec_reader *r, const char *path, mr_io_err *err);
+int mr_rec_reader_open(mr_rec_reader *r, const char *path, mr_io_error *err);
 /* The same over an open descriptor whose first prefix_len bytes the caller has
  * already read (e.g. to sniff the magic); prefix must outlive the header
  * read. name appears in messages. */
 int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void *prefix,
-                          size_t prefix_len, mr_io_err *err);
+                          size_t prefix_len, mr_io_error *err);
 
 /* The next chunk: 1 with *t_ns, *data (valid until the next call) and *len
  * set; 0 at a clean end of file; -1 on a malformed chunk (MR_IO_ERR_FORMAT:
@@ -236,7 +236,7 @@ int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void
  * final chunk cut short (MR_IO_ERR_TRUNCATED: offset and bytes missing in the
  * message). Every chunk returned before an error is complete. */
 int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data, size_t *len,
-                       mr_io_err *err);
+                       mr_io_error *err);
 
 void mr_rec_reader_close(mr_rec_reader *r);
 
@@ -247,5 +247,9 @@ int mr_rec_is_recording(const void *buf, size_t len);
  * for pacing, Unix time for a recording's header. */
 uint64_t mr_io_monotonic_ns(void);
 uint64_t mr_io_unix_ns(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

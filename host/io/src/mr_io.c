@@ -45,16 +45,6 @@ static void io_reset(mr_io *io) {
   io->listen_fd = -1;
 }
 
-void mr_io_from_fd(mr_io *io, int fd, mr_io_kind kind, const char *name) {
-  io_reset(io);
-  io->kind = kind;
-  io->fd = fd;
-  io->mode = MR_IO_READ | MR_IO_WRITE;
-  io->peer_seen = 1;
-  io->borrowed = 1;
-  snprintf(io->path, sizeof io->path, "%s", name ? name : "fd");
-}
-
 int mr_io_is_pty_slave(const char *path) {
   struct stat st;
   char real[4096];
@@ -65,7 +55,7 @@ int mr_io_is_pty_slave(const char *path) {
   return 0;
 }
 
-static int parse_baud(const char *s, int *baud, const char *spec, mr_io_err *err) {
+static int parse_baud(const char *s, int *baud, const char *spec, mr_io_error *err) {
   char *end;
   long v;
   errno = 0;
@@ -94,7 +84,7 @@ typedef struct io_spec {
 } io_spec;
 
 /* "serial:DEV[@BAUD]" and character devices given by path. */
-static int parse_serial(io_spec *p, const char *dev_at_baud, const char *spec, mr_io_err *err) {
+static int parse_serial(io_spec *p, const char *dev_at_baud, const char *spec, mr_io_error *err) {
   const char *at = strrchr(dev_at_baud, '@');
   size_t n = at ? (size_t)(at - dev_at_baud) : strlen(dev_at_baud);
   p->kind = SPEC_SERIAL;
@@ -107,7 +97,7 @@ static int parse_serial(io_spec *p, const char *dev_at_baud, const char *spec, m
 }
 
 /* "tcp:HOST:PORT" and "tcp-listen:[HOST:]PORT". */
-static int parse_tcp(io_spec *p, const char *spec, mr_io_err *err) {
+static int parse_tcp(io_spec *p, const char *spec, mr_io_error *err) {
   int listen = spec[3] == '-';
   const char *rest = spec + (listen ? 11 : 4);
   const char *colon = strrchr(rest, ':');
@@ -150,7 +140,7 @@ static int is_mem_device(const struct stat *st) {
   return major(st->st_rdev) == 1;
 }
 
-static int parse_spec(const char *spec, int mode, io_spec *p, mr_io_err *err) {
+static int parse_spec(const char *spec, int mode, io_spec *p, mr_io_error *err) {
   struct stat st;
   memset(p, 0, sizeof *p);
   if (!spec || !*spec) return mr_io_err_set(err, MR_IO_ERR_SPEC, "empty source/sink spec");
@@ -188,7 +178,7 @@ static int is_loopback(const char *host) {
 
 /* A named device or file that is not there, or is a folder, is the user's
  * mistake, found before anything starts. */
-static int check_path(const io_spec *p, int mode, const char *spec, mr_io_err *err) {
+static int check_path(const io_spec *p, int mode, const char *spec, mr_io_error *err) {
   struct stat st;
   if (p->kind != SPEC_SERIAL && !(p->kind == SPEC_FILE && mode == MR_IO_READ)) return 0;
   if (p->kind == SPEC_FILE) spec = p->path;
@@ -207,7 +197,7 @@ static int check_path(const io_spec *p, int mode, const char *spec, mr_io_err *e
   return 0;
 }
 
-int mr_io_spec_check(const char *spec, int mode, char *note, size_t note_size, mr_io_err *err) {
+int mr_io_spec_check(const char *spec, int mode, char *note, size_t note_size, mr_io_error *err) {
   io_spec p;
   if (note && note_size) note[0] = 0;
   if (parse_spec(spec, mode, &p, err) != 0 || check_path(&p, mode, spec, err) != 0) return -1;
@@ -219,7 +209,7 @@ int mr_io_spec_check(const char *spec, int mode, char *note, size_t note_size, m
   return 0;
 }
 
-static int open_file(mr_io *io, const char *path, mr_io_err *err) {
+static int open_file(mr_io *io, const char *path, mr_io_error *err) {
   struct stat st;
   int flags = (io->mode & MR_IO_WRITE) ? ((io->mode & MR_IO_READ) ? O_RDWR : O_WRONLY) : O_RDONLY;
   if (io->mode & MR_IO_WRITE) {
@@ -239,7 +229,7 @@ static int open_file(mr_io *io, const char *path, mr_io_err *err) {
   return 0;
 }
 
-int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_err *err) {
+int mr_io_open(mr_io *io, const char *spec, int mode, mr_io_error *err) {
   io_spec p;
   io_reset(io);
   io->mode = mode;
@@ -277,7 +267,7 @@ static int is_gone_errno(int e) {
 }
 
 mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t *got,
-                        mr_io_err *err) {
+                        mr_io_error *err) {
   long long start = mr_io_now_ms();
   *got = 0;
   if (!(io->mode & MR_IO_READ)) {
@@ -330,7 +320,7 @@ mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t
 }
 
 mr_io_status mr_io_write(mr_io *io, const void *buf, size_t len, int timeout_ms, size_t *sent,
-                         mr_io_err *err) {
+                         mr_io_error *err) {
   long long start = mr_io_now_ms();
   const uint8_t *p = buf;
   size_t done = 0;
@@ -420,32 +410,10 @@ const char *mr_io_status_name(mr_io_status st) {
   return "?";
 }
 
-const char *mr_io_kind_name(mr_io_kind kind) {
-  switch (kind) {
-  case MR_IO_STDIO:
-    return "stdio";
-  case MR_IO_FILE:
-    return "file";
-  case MR_IO_FIFO:
-    return "fifo";
-  case MR_IO_PTY:
-    return "pty";
-  case MR_IO_TTY:
-    return "tty";
-  case MR_IO_SERIAL:
-    return "serial";
-  case MR_IO_TCP:
-    return "tcp";
-  case MR_IO_TCP_LISTEN:
-    return "tcp-listen";
-  }
-  return "?";
-}
-
 void mr_io_close(mr_io *io) {
   if (io->kind == MR_IO_SERIAL) {
     mr_io_serial_close(io);
-  } else if (io->kind != MR_IO_STDIO && !io->borrowed && io->fd >= 0) {
+  } else if (io->kind != MR_IO_STDIO && io->fd >= 0) {
     close(io->fd);
   }
   if (io->listen_fd >= 0) close(io->listen_fd);

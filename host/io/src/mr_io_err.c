@@ -5,7 +5,7 @@
 
 #include "mr_io_internal.h"
 
-int mr_io_err_set(mr_io_err *err, mr_io_status status, const char *fmt, ...) {
+int mr_io_err_set(mr_io_error *err, mr_io_status status, const char *fmt, ...) {
   if (err) {
     va_list ap;
     err->status = status;
@@ -17,7 +17,7 @@ int mr_io_err_set(mr_io_err *err, mr_io_status status, const char *fmt, ...) {
   return -1;
 }
 
-int mr_io_err_sys(mr_io_err *err, const char *fmt, ...) {
+int mr_io_err_sys(mr_io_error *err, const char *fmt, ...) {
   int e = errno;
   if (err) {
     va_list ap;

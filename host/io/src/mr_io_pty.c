@@ -42,7 +42,7 @@ static speed_t baud_to_speed(int baud) {
 
 /* Raw 8N1: no echo, no line editing, no CR/LF translation, no flow control,
  * reads return whatever has arrived. */
-static int set_raw(int fd, int baud, const char *path, mr_io_err *err) {
+static int set_raw(int fd, int baud, const char *path, mr_io_error *err) {
   struct termios t;
   speed_t sp = baud_to_speed(baud);
   if (tcgetattr(fd, &t) != 0) return mr_io_err_sys(err, "%s: tcgetattr", path);
@@ -60,7 +60,7 @@ static int set_raw(int fd, int baud, const char *path, mr_io_err *err) {
   return 0;
 }
 
-int mr_io_pty_create(mr_io *io, mr_io_err *err) {
+int mr_io_pty_create(mr_io *io, mr_io_error *err) {
   const char *name;
   int slave;
   io->fd = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
@@ -98,7 +98,7 @@ fail:
   return -1;
 }
 
-int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_io_err *err) {
+int mr_io_tty_open(mr_io *io, const char *path, int baud, mr_io_error *err) {
   int flags = (io->mode & MR_IO_WRITE) ? O_RDWR : O_RDONLY;
   io->fd = open(path, flags | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (io->fd < 0) return mr_io_err_sys(err, "%s: cannot open", path);
@@ -123,7 +123,7 @@ static int master_hup(const mr_io *io) {
   return poll(&p, 1, 0) == 1 && (p.revents & POLLHUP);
 }
 
-mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_err *err) {
+mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_error *err) {
   long long start = mr_io_now_ms();
   (void)err;
   if (io->kind != MR_IO_PTY || io->peer_seen) return MR_IO_OK;
@@ -149,7 +149,7 @@ mr_io_status mr_io_wait_peer(mr_io *io, int timeout_ms, mr_io_err *err) {
  * the worker has not caught up: under load it could stay behind for longer
  * than any fixed grace period, and closing the master then discarded the
  * end of the stream. */
-static mr_io_status queued_bytes(mr_io *io, int *queued, mr_io_err *err) {
+static mr_io_status queued_bytes(mr_io *io, int *queued, mr_io_error *err) {
   struct pollfd p;
   int fd = open(io->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
@@ -168,7 +168,7 @@ static mr_io_status queued_bytes(mr_io *io, int *queued, mr_io_err *err) {
   return MR_IO_OK;
 }
 
-mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_err *err) {
+mr_io_status mr_io_drain(mr_io *io, int timeout_ms, mr_io_error *err) {
   long long start = mr_io_now_ms();
   if (io->kind != MR_IO_PTY) return MR_IO_OK;
   /* Under load the reader can empty the line discipline while the flip

@@ -10,7 +10,7 @@
 
 #include "mr_io_internal.h"
 
-static int sp_fail(mr_io_err *err, enum sp_return rc, const char *what, const char *path) {
+static int sp_fail(mr_io_error *err, enum sp_return rc, const char *what, const char *path) {
   if (rc == SP_ERR_FAIL) {
     char *m = sp_last_error_message();
     mr_io_err_set(err, MR_IO_ERR_SERIAL, "%s: %s: %s", path, what, m ? m : "failed");
@@ -25,7 +25,7 @@ static int sp_fail(mr_io_err *err, enum sp_return rc, const char *what, const ch
   return -1;
 }
 
-int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_io_err *err) {
+int mr_io_serial_open(mr_io *io, const char *path, int baud, mr_io_error *err) {
   struct sp_port *port = NULL;
   struct stat st;
   enum sp_return rc;
@@ -87,7 +87,7 @@ static void copy_str(char *dst, size_t cap, const char *src) {
   snprintf(dst, cap, "%s", src ? src : "");
 }
 
-int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_io_err *err) {
+int mr_serial_list(mr_serial_info *out, size_t cap, size_t *n, mr_io_error *err) {
   struct sp_port **ports = NULL;
   enum sp_return rc = sp_list_ports(&ports);
   size_t i;

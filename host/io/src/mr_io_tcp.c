@@ -68,7 +68,7 @@ static int open_stream(const char *host, const char *port, int listening, int *g
   return fd;
 }
 
-int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_io_err *err) {
+int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_io_error *err) {
   int gai;
   int fd = open_stream(host, port, 0, &gai);
   if (gai != 0)
@@ -82,7 +82,7 @@ int mr_io_tcp_connect(mr_io *io, const char *host, const char *port, mr_io_err *
   return 0;
 }
 
-int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_err *err) {
+int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_error *err) {
   int gai;
   int fd = open_stream(host, port, 1, &gai);
   if (gai != 0)
@@ -98,7 +98,7 @@ int mr_io_tcp_listen(mr_io *io, const char *host, const char *port, mr_io_err *e
   return 0;
 }
 
-mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_io_err *err) {
+mr_io_status mr_io_accept(mr_io *io, int timeout_ms, mr_io_error *err) {
   struct pollfd p;
   int r, fd;
   if (io->kind != MR_IO_TCP_LISTEN) return MR_IO_OK;

@@ -36,7 +36,7 @@ int mr_rec_is_recording(const void *buf, size_t len) {
 }
 
 int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
-                       uint64_t start_unix_ns, mr_io_err *err) {
+                       uint64_t start_unix_ns, mr_io_error *err) {
   uint8_t h[MR_REC_HEADER_LEN];
   memset(w, 0, sizeof *w);
   w->fd = -1;
@@ -60,7 +60,7 @@ int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
 }
 
 int mr_rec_writer_add(mr_rec_writer *w, uint64_t t_ns, const void *data, size_t len,
-                      mr_io_err *err) {
+                      mr_io_error *err) {
   uint8_t h[MR_REC_CHUNK_HEADER_LEN];
   if (w->fd < 0) return mr_io_err_set(err, MR_IO_ERR_ARG, "%s: recording is not open", w->path);
   if (len == 0 || len > MR_REC_MAX_CHUNK)
@@ -89,7 +89,7 @@ int mr_rec_writer_add(mr_rec_writer *w, uint64_t t_ns, const void *data, size_t 
   return 0;
 }
 
-int mr_rec_writer_close(mr_rec_writer *w, mr_io_err *err) {
+int mr_rec_writer_close(mr_rec_writer *w, mr_io_error *err) {
   int rc = 0;
   if (w->fd < 0) return 0;
   if (fsync(w->fd) != 0 && errno != EINVAL && errno != EROFS)
@@ -123,7 +123,7 @@ static ssize_t read_full(mr_rec_reader *r, void *buf, size_t len) {
 }
 
 int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void *prefix,
-                          size_t prefix_len, mr_io_err *err) {
+                          size_t prefix_len, mr_io_error *err) {
   uint8_t h[MR_REC_HEADER_LEN];
   ssize_t got;
   memset(r, 0, sizeof *r);
@@ -172,7 +172,7 @@ int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void
   return 0;
 }
 
-int mr_rec_reader_open(mr_rec_reader *r, const char *path, mr_io_err *err) {
+int mr_rec_reader_open(mr_rec_reader *r, const char *path, mr_io_error *err) {
   int fd = open(path, O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     memset(r, 0, sizeof *r);
@@ -189,7 +189,7 @@ int mr_rec_reader_open(mr_rec_reader *r, const char *path, mr_io_err *err) {
 }
 
 int mr_rec_reader_next(mr_rec_reader *r, uint64_t *t_ns, const uint8_t **data, size_t *len,
-                       mr_io_err *err) {
+                       mr_io_error *err) {
   uint8_t h[MR_REC_CHUNK_HEADER_LEN];
   uint64_t at = r->offset, t;
   uint32_t n;

@@ -34,6 +34,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
 #include "mr_pose.h"
 #include "mr_solve_method.h"
 
@@ -67,10 +68,6 @@ typedef enum mr_status {
 const char *mr_status_name(mr_status s); /* "ok", "diverged", ... */
 
 /* ---------------------------------------------------------- definitions */
-
-/* Every mr_default_x_def() sets .cookie to this; every create/add call
- * refuses a definition without it. Never set it by hand. */
-#define MR_DEF_COOKIE 0x6d724466u
 
 /* ---------------------------------------------------------- force kinds */
 

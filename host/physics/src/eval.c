@@ -56,18 +56,18 @@ int mr_solve_rows(mr_world *w, int assemble) {
   w->stats.solves++;
   int st = mr_solver_solve(w->solver, &w->opts, &w->A, w->rhs, w->lambda, &r);
   w->stats.solver_iterations += (uint64_t)(r.iterations > 0 ? r.iterations : 0);
-  if (st == MR_SOLVE_NONFINITE) {
+  if (st == MR_SOLVE_ERR_NONFINITE) {
     /* NaN or Inf in the system (a callback curve, an exploded state): let it
      * reach the state, where the step sees it and resets the world (§7). */
     for (int i = 0; i < k; i++) w->lambda[i] = NAN;
     w->stats.solver_failures++;
     return 0;
   }
-  if (st == MR_SOLVE_ENOMEM || st == MR_SOLVE_UNAVAILABLE) {
+  if (st == MR_SOLVE_ERR_NOMEM || st == MR_SOLVE_ERR_UNAVAILABLE) {
     w->stats.solver_failures++;
     w->fail =
         mr_fail(w, MR_ERR_SOLVER, "solver %s: %s (%d rows)", mr_solve_method_name(w->opts.method),
-                st == MR_SOLVE_ENOMEM ? "out of memory" : "not built into this library", k);
+                st == MR_SOLVE_ERR_NOMEM ? "out of memory" : "not built into this library", k);
     return -1;
   }
   if (st == MR_SOLVE_NOT_CONVERGED) w->stats.solver_failures++;

@@ -22,8 +22,6 @@
 extern "C" {
 #endif
 
-#define MR_RENDER_COOKIE 0x6d725264u
-
 typedef enum mr_render_backend {
   MR_RENDER_AUTO = 0, /* the window's context when def.context is given, else
                          EGL, else OSMesa; headless (def.headless): EGL, else
@@ -62,7 +60,7 @@ typedef struct mr_render_context {
 } mr_render_context;
 
 typedef struct mr_render_def {
-  uint32_t cookie; /* MR_RENDER_COOKIE, set by mr_default_render_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_render_def() */
   mr_render_backend backend;
   mr_render_gl gl;   /* default AUTO */
   bool headless;     /* AUTO picks only headless backends */

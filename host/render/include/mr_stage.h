@@ -17,13 +17,13 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
 #include "mr_pose.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define MR_STAGE_COOKIE 0x6d725374u
 enum { MR_STAGE_NAME_MAX = 48, MR_STAGE_PATH_MAX = 512 };
 
 /* Where an item starts in its scene file (0, 0: not from a file). */
@@ -35,6 +35,7 @@ typedef struct mr_stage_pos {
  * a Phong material (OBJ, 3DS, FBX) is kept as diffuse -> base_color and
  * shininess s -> roughness sqrt(2 / (s + 2)). Colours are linear RGB(A). */
 typedef struct mr_material_def {
+  uint32_t cookie;     /* MR_DEF_COOKIE, set by mr_default_material_def() */
   float base_color[4]; /* default (0.8, 0.8, 0.8, 1) */
   float roughness;     /* 0..1, default 0.6 */
   float metallic;      /* 0..1, default 0 */
@@ -87,6 +88,7 @@ typedef enum mr_rigid_orient {
 enum { MR_STAGE_MAX_MATERIALS = 8, MR_SKIN_MAX_INFLUENCES = 4 };
 
 typedef struct mr_model_def {
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_model_def() */
   char name[MR_STAGE_NAME_MAX];
   mr_shape shape;
   char path[MR_STAGE_PATH_MAX];       /* MR_SHAPE_FILE: the model file, as the
@@ -122,6 +124,7 @@ typedef struct mr_model_def {
 mr_model_def mr_default_model_def(void);
 
 typedef struct mr_spot_def {
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_spot_def() */
   double position[3], target[3];
   double angle_deg; /* half-angle of the cone, default 25 */
   float color[3];   /* default white */
@@ -150,6 +153,7 @@ typedef struct mr_lights_def {
 /* A camera the scene names: `marionette render --camera NAME`, and the
  * window's number keys. */
 typedef struct mr_camera_def {
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_camera_def() */
   char name[MR_STAGE_NAME_MAX];
   double position[3], target[3];
   double fov_deg; /* vertical, default 45 */
@@ -165,7 +169,7 @@ typedef struct mr_star {
 } mr_star;
 
 typedef struct mr_stage_def {
-  uint32_t cookie;      /* MR_STAGE_COOKIE, set by mr_default_stage_def() */
+  uint32_t cookie;      /* MR_DEF_COOKIE, set by mr_default_stage_def() */
   mr_model_def *models; /* belongs to the def's owner */
   size_t n_models;
   mr_lights_def lights;

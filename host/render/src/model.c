@@ -21,7 +21,9 @@
 
 /* The shapes' surface until a scene gives one: mr_default_material_def's
  * values, kept here so that the loader stands alone. */
-static const mr_material_def default_material = { { 0.8f, 0.8f, 0.8f, 1.0f }, 0.6f, 0.0f, { 0 } };
+static const mr_material_def default_material = {
+  MR_DEF_COOKIE, { 0.8f, 0.8f, 0.8f, 1.0f }, 0.6f, 0.0f, { 0 }
+};
 
 static int fail(char *msg, size_t msg_size, const char *fmt, ...) {
   if (msg && msg_size) {

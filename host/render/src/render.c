@@ -106,8 +106,8 @@ mr_render_status mr_render_create(const mr_render_def *def, const mr_stage_def *
     msg_size = sizeof scratch;
   }
   if (out) *out = NULL;
-  if (!def || def->cookie != MR_RENDER_COOKIE || !stage || stage->cookie != MR_STAGE_COOKIE ||
-      !out || (unsigned)def->gl > MR_RENDER_GL_ES3) {
+  if (!def || def->cookie != MR_DEF_COOKIE || !stage || stage->cookie != MR_DEF_COOKIE || !out ||
+      (unsigned)def->gl > MR_RENDER_GL_ES3) {
     snprintf(msg, msg_size, "mr_render_create: a def not from its default maker, or NULL");
     return MR_RENDER_ERR_ARG;
   }

@@ -24,7 +24,7 @@ int mr_render_backend_parse(const char *name, mr_render_backend *out) {
 mr_render_def mr_default_render_def(void) {
   mr_render_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_RENDER_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   d.backend = MR_RENDER_AUTO;
   d.samples = 0;
   return d;

@@ -29,12 +29,12 @@ extern "C" {
 
 typedef enum mr_scene_status {
   MR_SCENE_OK = 0,
-  MR_SCENE_ERR_IO,     /* missing or unreadable file */
-  MR_SCENE_ERR_SYNTAX, /* not YAML, or not one document */
-  MR_SCENE_ERR_SCHEMA, /* unknown key, wrong type, missing key */
-  MR_SCENE_ERR_VALUE,  /* NaN, negative mass, coincident particles, ... */
-  MR_SCENE_ERR_BUILD,  /* the physics library refused the world */
-  MR_SCENE_ERR_NOMEM
+  MR_SCENE_ERR_IO = -1,     /* missing or unreadable file */
+  MR_SCENE_ERR_SYNTAX = -2, /* not YAML, or not one document */
+  MR_SCENE_ERR_SCHEMA = -3, /* unknown key, wrong type, missing key */
+  MR_SCENE_ERR_VALUE = -4,  /* NaN, negative mass, coincident particles, ... */
+  MR_SCENE_ERR_BUILD = -5,  /* the physics library refused the world */
+  MR_SCENE_ERR_NOMEM = -6
 } mr_scene_status;
 
 typedef struct mr_scene_error {

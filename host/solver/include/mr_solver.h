@@ -14,7 +14,9 @@
 #define MR_SOLVER_H
 
 #include <stddef.h>
+#include <stdint.h>
 
+#include "mr_def.h"
 #include "mr_solve_method.h"
 
 #ifdef __cplusplus
@@ -25,10 +27,10 @@ typedef enum mr_solve_status {
   MR_SOLVE_OK = 0,
   MR_SOLVE_NOT_CONVERGED = 1, /* the iteration cap came first; x is the best found */
   MR_SOLVE_DEPENDENT = 2,     /* dependent rows found, their λ set to 0 (README.md) */
-  MR_SOLVE_ENOMEM = -1,
-  MR_SOLVE_NONFINITE = -2,   /* NaN or Inf in A or b; x untouched */
-  MR_SOLVE_UNAVAILABLE = -3, /* a NULL object, or a method outside the enum */
-  MR_SOLVE_BAD_ARG = -4      /* a particle out of range, or no row begun */
+  MR_SOLVE_ERR_NOMEM = -1,
+  MR_SOLVE_ERR_NONFINITE = -2,   /* NaN or Inf in A or b; x untouched */
+  MR_SOLVE_ERR_UNAVAILABLE = -3, /* a NULL object, or a method outside the enum */
+  MR_SOLVE_ERR_ARG = -4          /* a particle out of range, or no row begun */
 } mr_solve_status;
 /* "ok", "not converged", ...; "unknown" outside the enum. */
 const char *mr_solve_status_name(mr_solve_status s);
@@ -77,7 +79,7 @@ typedef struct mr_csr {
  * (0 = pinned). Rows have sorted columns, the diagonal is always stored,
  * and A is bitwise symmetric. While J's pattern (its rows' particles) and
  * the set of pinned particles are one of the last 8 met (up to 128 rows),
- * only the numbers are recomputed. MR_SOLVE_UNAVAILABLE for a NULL A, J,
+ * only the numbers are recomputed. MR_SOLVE_ERR_UNAVAILABLE for a NULL A, J,
  * or inv_mass. */
 mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass);
 /* Room for any J of up to rows rows, particles particles and entries
@@ -89,6 +91,7 @@ void mr_csr_free(mr_csr *A);
 /* ------------------------------------------------------------- solving */
 
 typedef struct mr_solve_def {
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_solve_def() */
   mr_solve_method method;
   double tol;       /* iterative methods: stop at ‖Ax − b‖ ≤ tol ‖b‖ */
   int max_iter;     /* iterative methods: sweeps or CG steps */
@@ -134,7 +137,8 @@ mr_solver *mr_solver_create(void);
 mr_solve_status mr_solver_reserve(mr_solver *s, int rows);
 void mr_solver_destroy(mr_solver *s);
 /* x is the warm start of the iterative methods and the result. Returns
- * r->status (r may be NULL; def NULL means the defaults). On
+ * r->status (r may be NULL; def NULL means the defaults; a def not made by
+ * mr_default_solve_def gives MR_SOLVE_ERR_UNAVAILABLE). On
  * MR_SOLVE_DEPENDENT the dependent rows' λ are 0; on a negative status x is
  * untouched. An iterative method that cannot finish hands the system to
  * LDLᵀ (r->fallback), so multipliers stay bounded whatever the method: an

@@ -110,11 +110,11 @@ static int plan_reserve(struct mr_csr_plan *pl, int count, size_t k, size_t np, 
         mr_buf_reserve(&kp->masses, np, sizeof(double)) ||
         mr_buf_reserve(&kp->pstart, np + 1, si) || mr_buf_reserve(&kp->prow, ne, si) ||
         mr_buf_reserve(&kp->pent, ne, si) || mr_buf_reserve(&kp->tstart, ne + 1, si))
-      return MR_SOLVE_ENOMEM;
+      return MR_SOLVE_ERR_NOMEM;
   }
   if (mr_buf_reserve(&pl->mark, k, si) || mr_buf_reserve(&pl->cursor, k + 1, si) ||
       mr_buf_reserve(&pl->work, k, sizeof(double)))
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
@@ -129,10 +129,10 @@ static int plan_reserve_entries(struct mr_csr_plan *pl, int count, size_t nnz, s
      * nnz − n ints. See build_terms(). */
     if (mr_buf_reserve(&kp->col, nnz, si) || mr_buf_reserve(&kp->tslot, nnz + ne, si) ||
         mr_buf_reserve(&kp->teb, nnz + ne, si) || mr_buf_reserve(&kp->mirror, nnz, si))
-      return MR_SOLVE_ENOMEM;
+      return MR_SOLVE_ERR_NOMEM;
   }
   if (mr_buf_reserve(&pl->ucol, nnz, sizeof(int)) || mr_buf_reserve(&pl->val, nnz, sizeof(double)))
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
@@ -202,7 +202,7 @@ static int build_pattern(struct mr_csr_plan *pl, csr_kept *kp, const mr_jac *J) 
   int nnz = 0;
   for (int i = 0; i < k; i++) nnz += row_columns(kp, J, i, mark, NULL);
   if (plan_reserve_entries(pl, plans_for((size_t)k), (size_t)nnz, (size_t)J->row_ptr[k]) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   int *ucol = INTS(pl->ucol), *rp = INTS(kp->rp), *col = INTS(kp->col);
   memset(cnt, 0, ((size_t)k + 1) * sizeof *cnt);
   for (int i = 0; i < k; i++) mark[i] = -1;
@@ -278,11 +278,11 @@ static int replan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mas
   csr_kept *kp = &pl->kept[s];
   kp->valid = 0;
   if (plan_reserve(pl, plans_for(k), k, (size_t)J->n_particles, (size_t)ne) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   memset(pl->work.p, 0, k * sizeof(double));
   keep_source(kp, J, inv_mass, ne);
   particle_lists(kp, J, inv_mass, ne);
-  if (build_pattern(pl, kp, J) != 0) return MR_SOLVE_ENOMEM;
+  if (build_pattern(pl, kp, J) != 0) return MR_SOLVE_ERR_NOMEM;
   build_terms(kp, J, INTS(pl->mark), INTS(pl->cursor));
   kp->valid = 1;
   pl->builds++;
@@ -299,7 +299,7 @@ static int find_plan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_
     if (s < CSR_KEPT)
       pl->cur = s;
     else if (replan(pl, J, inv_mass, ne) != 0)
-      return MR_SOLVE_ENOMEM;
+      return MR_SOLVE_ERR_NOMEM;
   }
   pl->kept[pl->cur].used = ++pl->clock;
   return 0;
@@ -353,19 +353,19 @@ static void symmetrise(mr_csr *A, int *cursor) {
 }
 
 static int plan_of(mr_csr *A) {
-  if (!A->plan && !(A->plan = calloc(1, sizeof *A->plan))) return MR_SOLVE_ENOMEM;
+  if (!A->plan && !(A->plan = calloc(1, sizeof *A->plan))) return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
 mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries) {
-  if (!A || rows < 0 || particles < 0 || entries < 0) return MR_SOLVE_BAD_ARG;
+  if (!A || rows < 0 || particles < 0 || entries < 0) return MR_SOLVE_ERR_ARG;
   const size_t k = (size_t)rows, kept = k < CSR_KEPT_MAX_ROWS ? k : CSR_KEPT_MAX_ROWS;
   const size_t np = (size_t)particles, ne = (size_t)entries;
   if (plan_of(A) != 0 || plan_reserve(A->plan, 1, k, np, ne) != 0 ||
       plan_reserve_entries(A->plan, 1, k * k, ne) != 0 ||
       plan_reserve(A->plan, CSR_KEPT, kept, np, ne) != 0 ||
       plan_reserve_entries(A->plan, CSR_KEPT, kept * kept, ne) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return MR_SOLVE_OK;
 }
 
@@ -385,12 +385,12 @@ static void numeric_terms(mr_csr *A, const csr_kept *kp, const mr_jac *J, const 
 }
 
 mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_mass) {
-  if (!J || !A) return MR_SOLVE_UNAVAILABLE;
+  if (!J || !A) return MR_SOLVE_ERR_UNAVAILABLE;
   const int ne = J->rows > 0 ? J->row_ptr[J->rows] : 0;
-  if (ne > 0 && !inv_mass) return MR_SOLVE_UNAVAILABLE;
-  if (plan_of(A) != 0) return MR_SOLVE_ENOMEM;
+  if (ne > 0 && !inv_mass) return MR_SOLVE_ERR_UNAVAILABLE;
+  if (plan_of(A) != 0) return MR_SOLVE_ERR_NOMEM;
   struct mr_csr_plan *pl = A->plan;
-  if (find_plan(pl, J, inv_mass, ne) != 0) return MR_SOLVE_ENOMEM;
+  if (find_plan(pl, J, inv_mass, ne) != 0) return MR_SOLVE_ERR_NOMEM;
   const csr_kept *kp = &pl->kept[pl->cur];
   A->n = kp->rows;
   A->nnz = kp->nnz;

@@ -12,7 +12,7 @@ int mr_grow_to(void *pp, size_t *cap, size_t count, size_t elem_size) {
   size_t grown = *cap ? *cap : 16;
   while (grown < count) grown *= 2;
   void *q = realloc(*p, grown * elem_size);
-  if (!q) return MR_SOLVE_ENOMEM;
+  if (!q) return MR_SOLVE_ERR_NOMEM;
   *p = q;
   *cap = grown;
   return 0;
@@ -39,14 +39,14 @@ int mr_pattern_same(const mr_pattern *pat, const mr_csr *A) {
 int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz) {
   if (mr_buf_reserve(&pat->rp, n + 1, sizeof(int)) != 0 ||
       mr_buf_reserve(&pat->col, nnz, sizeof(int)) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
 int mr_pattern_keep(mr_pattern *pat, const mr_csr *A) {
   const int nnz = A->row_ptr[A->n];
   pat->valid = 0;
-  if (mr_pattern_reserve(pat, (size_t)A->n, (size_t)nnz) != 0) return MR_SOLVE_ENOMEM;
+  if (mr_pattern_reserve(pat, (size_t)A->n, (size_t)nnz) != 0) return MR_SOLVE_ERR_NOMEM;
   memcpy(pat->rp.p, A->row_ptr, ((size_t)A->n + 1) * sizeof(int));
   memcpy(pat->col.p, A->col, (size_t)nnz * sizeof(int));
   pat->n = A->n;

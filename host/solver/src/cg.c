@@ -38,8 +38,8 @@ int mr_cg(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
       mr_buf_reserve(&s->z, dn, sizeof(double)) != 0 ||
       mr_buf_reserve(&s->p, dn, sizeof(double)) != 0 ||
       mr_buf_reserve(&s->q, dn, sizeof(double)) != 0)
-    return MR_SOLVE_ENOMEM;
-  if (mr_screen_for_iteration(s, A, o->pivot_tol, x, r) != 0) return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
+  if (mr_screen_for_iteration(s, A, o->pivot_tol, x, r) != 0) return MR_SOLVE_ERR_NOMEM;
   const unsigned char *dep = s->dep.p;
   const double *inv_diag = s->inv_diag.p;
   double *res = s->r.p, *z = s->z.p, *p = s->p.p, *ap = s->q.p;

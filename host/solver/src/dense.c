@@ -46,7 +46,7 @@ int mr_dense_reserve(mr_dense *d, int rows) {
       mr_buf_reserve(&d->diag, n, sd) || mr_buf_reserve(&d->dropped, n, 1) ||
       mr_buf_reserve(&d->place, n * (n + 1), si) || mr_buf_reserve(&d->zero, n * (n + 1) / 2, si) ||
       mr_buf_reserve(&d->y, n, sd))
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   d->room = rows;
   return 0;
 }
@@ -211,7 +211,7 @@ int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
   int st = mr_ldlt_prepare(f, A);
   if (st != 0) return st;
   if (mr_dense_reserve(dn, n) != 0 || mr_buf_reserve(&f->skip, (size_t)n, 1) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   dn->perm = f->dperm.p; /* a reserve may have moved it */
   if (!dn->valid || dn->clock != f->clock || dn->n != n) {
     dn->n = n;

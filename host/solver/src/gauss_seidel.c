@@ -13,7 +13,7 @@
 int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
                     double *x, mr_solve_result *r) {
   const int n = A->n;
-  if (mr_screen_for_iteration(s, A, o->pivot_tol, x, r) != 0) return MR_SOLVE_ENOMEM;
+  if (mr_screen_for_iteration(s, A, o->pivot_tol, x, r) != 0) return MR_SOLVE_ERR_NOMEM;
   const unsigned char *dep = s->dep.p;
   const double *inv_diag = s->inv_diag.p;
 

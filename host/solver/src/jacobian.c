@@ -19,23 +19,23 @@ static int grow_entries(mr_jac *J, int entries) {
   size_t cap_p = J->cap_entries, cap_d = J->cap_entries;
   if (mr_grow(&J->particle, &cap_p, (size_t)entries, sizeof *J->particle) != 0 ||
       mr_grow(&J->d, &cap_d, (size_t)entries, sizeof *J->d) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   J->cap_entries = cap_p;
   return 0;
 }
 
 mr_solve_status mr_jac_reset(mr_jac *J, int n_particles) {
-  if (!J || n_particles < 0) return MR_SOLVE_BAD_ARG;
+  if (!J || n_particles < 0) return MR_SOLVE_ERR_ARG;
   J->rows = 0;
   J->n_particles = n_particles;
-  if (grow_rows(J, 0) != 0) return MR_SOLVE_ENOMEM;
+  if (grow_rows(J, 0) != 0) return MR_SOLVE_ERR_NOMEM;
   J->row_ptr[0] = 0;
   return MR_SOLVE_OK;
 }
 
 mr_solve_status mr_jac_reserve(mr_jac *J, int rows, int entries) {
-  if (!J || rows < 0 || entries < 0) return MR_SOLVE_BAD_ARG;
-  if (grow_rows(J, rows) != 0 || grow_entries(J, entries) != 0) return MR_SOLVE_ENOMEM;
+  if (!J || rows < 0 || entries < 0) return MR_SOLVE_ERR_ARG;
+  if (grow_rows(J, rows) != 0 || grow_entries(J, entries) != 0) return MR_SOLVE_ERR_NOMEM;
   return MR_SOLVE_OK;
 }
 
@@ -49,7 +49,7 @@ int mr_jac_begin_row(mr_jac *J) {
 }
 
 mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]) {
-  if (!J || J->rows == 0 || particle < 0 || particle >= J->n_particles) return MR_SOLVE_BAD_ARG;
+  if (!J || J->rows == 0 || particle < 0 || particle >= J->n_particles) return MR_SOLVE_ERR_ARG;
   int start = J->row_ptr[J->rows - 1];
   int end = J->row_ptr[J->rows];
   /* A constraint may name a particle twice (e.g. a term built from two
@@ -63,7 +63,7 @@ mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]) {
       return MR_SOLVE_OK;
     }
   }
-  if ((size_t)end + 1 > J->cap_entries && grow_entries(J, end + 1) != 0) return MR_SOLVE_ENOMEM;
+  if ((size_t)end + 1 > J->cap_entries && grow_entries(J, end + 1) != 0) return MR_SOLVE_ERR_NOMEM;
   J->particle[end] = particle;
   memcpy(J->d[end], d, sizeof J->d[end]);
   J->row_ptr[J->rows] = end + 1;

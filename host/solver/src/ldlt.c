@@ -70,7 +70,7 @@ static int reserve_order(mr_ldlt *f, size_t n) {
       mr_buf_reserve(&f->parent, n, si) || mr_buf_reserve(&f->lnz, n, si) ||
       mr_buf_reserve(&f->flag, n, si) || mr_buf_reserve(&f->stack, 2 * n, si) ||
       (n <= MR_MIN_DEGREE_MAX_N && mr_buf_reserve(&f->bits, n * ((n + 63) / 64), sizeof(uint64_t))))
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
@@ -80,7 +80,7 @@ static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l) {
       mr_buf_reserve(&f->z, n, sizeof(double)) || mr_buf_reserve(&f->skip, n, 1) ||
       mr_buf_reserve(&f->res, n, sizeof(double)) || mr_buf_reserve(&f->dx, n, sizeof(double)) ||
       mr_buf_reserve(&f->li, nnz_l, sizeof(int)) || mr_buf_reserve(&f->lx, nnz_l, sizeof(double)))
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
@@ -95,7 +95,7 @@ static int reserve_kept(mr_ldlt *f, size_t n, size_t nnz) {
     if (mr_pattern_reserve(&k->pattern, n, nnz) || mr_buf_reserve(&k->perm, n, si) ||
         mr_buf_reserve(&k->iperm, n, si) || mr_buf_reserve(&k->parent, n, si) ||
         mr_buf_reserve(&k->dperm, n, si) || mr_buf_reserve(&k->lp, n + 1, si))
-      return MR_SOLVE_ENOMEM;
+      return MR_SOLVE_ERR_NOMEM;
   }
   return 0;
 }
@@ -107,7 +107,7 @@ int mr_ldlt_reserve(mr_ldlt *f, int rows) {
                        rows < MR_SOLVE_DENSE_ROWS_MAX ? rows : MR_SOLVE_DENSE_ROWS_MAX) ||
       reserve_order(f, n) || reserve_factor(f, n, n * (n > 0 ? n - 1 : 0) / 2) ||
       mr_pattern_reserve(&f->pattern, n, n * n) || reserve_kept(f, kept_n, kept_n * kept_n))
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
@@ -128,7 +128,7 @@ static size_t profile_work(const mr_csr *A, const int *perm, const int *iperm, i
 
 int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l) {
   const int n = A->n;
-  if (reserve_order(f, (size_t)n)) return MR_SOLVE_ENOMEM;
+  if (reserve_order(f, (size_t)n)) return MR_SOLVE_ERR_NOMEM;
   int *perm = BUF(f, perm, int), *iperm = BUF(f, iperm, int), *cand = BUF(f, cand, int);
   int *parent = BUF(f, parent, int), *lnz = BUF(f, lnz, int), *flag = BUF(f, flag, int);
 
@@ -175,7 +175,7 @@ static int analyse(mr_ldlt *f, const mr_csr *A) {
   const int n = A->n;
   f->pattern.valid = 0;
   if (mr_ldlt_order(f, A, &f->nnz_l) != 0 || reserve_factor(f, (size_t)n, f->nnz_l) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   /* The lnz of the ordering kept, not of the last one tried. */
   int *lnz = BUF(f, lnz, int);
   symbolic(A, BUF(f, perm, int), BUF(f, iperm, int), BUF(f, parent, int), lnz, BUF(f, flag, int));
@@ -205,7 +205,7 @@ static int restore(mr_ldlt *f, int s, const mr_csr *A) {
   const mr_ldlt_kept *k = &f->kept[s];
   const size_t n = (size_t)A->n, si = sizeof(int);
   f->pattern.valid = 0;
-  if (reserve_order(f, n) || reserve_factor(f, n, k->nnz_l)) return MR_SOLVE_ENOMEM;
+  if (reserve_order(f, n) || reserve_factor(f, n, k->nnz_l)) return MR_SOLVE_ERR_NOMEM;
   memcpy(f->perm.p, k->perm.p, n * si);
   memcpy(f->iperm.p, k->iperm.p, n * si);
   memcpy(f->dperm.p, k->dperm.p, n * si);
@@ -226,7 +226,7 @@ static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
     if (f->kept[t].used < f->kept[s].used) s = t;
   mr_ldlt_kept *k = &f->kept[s];
   k->pattern.valid = 0;
-  if (reserve_kept(f, n, (size_t)A->row_ptr[A->n])) return MR_SOLVE_ENOMEM;
+  if (reserve_kept(f, n, (size_t)A->row_ptr[A->n])) return MR_SOLVE_ERR_NOMEM;
   memcpy(k->perm.p, f->perm.p, n * si);
   memcpy(k->iperm.p, f->iperm.p, n * si);
   memcpy(k->dperm.p, f->dperm.p, n * si);
@@ -384,7 +384,7 @@ int mr_ldlt_refine(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
   const int n = A->n;
   if (mr_buf_reserve(&f->res, (size_t)n, sizeof(double)) ||
       mr_buf_reserve(&f->dx, (size_t)n, sizeof(double)))
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   /* The rows skipped are the dropped and the regularised ones. */
   const int skipped = r->dependent + r->regularised > 0;
   if (!skipped) skip = NULL;

@@ -8,7 +8,9 @@
 #include <string.h>
 
 mr_solve_def mr_default_solve_def(void) {
-  mr_solve_def d = { MR_SOLVE_LDLT, 1e-10, 1000, 1e-12, 0.0, MR_SOLVE_DENSE_DEFAULT };
+  mr_solve_def d = {
+    MR_DEF_COOKIE, MR_SOLVE_LDLT, 1e-10, 1000, 1e-12, 0.0, MR_SOLVE_DENSE_DEFAULT
+  };
   return d;
 }
 
@@ -49,13 +51,13 @@ const char *mr_solve_status_name(mr_solve_status s) {
     return "not converged";
   case MR_SOLVE_DEPENDENT:
     return "dependent rows";
-  case MR_SOLVE_ENOMEM:
+  case MR_SOLVE_ERR_NOMEM:
     return "out of memory";
-  case MR_SOLVE_NONFINITE:
+  case MR_SOLVE_ERR_NONFINITE:
     return "not finite";
-  case MR_SOLVE_UNAVAILABLE:
+  case MR_SOLVE_ERR_UNAVAILABLE:
     return "unavailable";
-  case MR_SOLVE_BAD_ARG:
+  case MR_SOLVE_ERR_ARG:
     return "bad argument";
   }
   return "unknown";
@@ -66,12 +68,12 @@ mr_solver *mr_solver_create(void) {
 }
 
 mr_solve_status mr_solver_reserve(mr_solver *s, int rows) {
-  if (!s || rows < 0) return MR_SOLVE_BAD_ARG;
+  if (!s || rows < 0) return MR_SOLVE_ERR_ARG;
   mr_buf *const doubles[] = { &s->x, &s->r, &s->z, &s->p, &s->q, &s->inv_diag };
   for (size_t i = 0; i < sizeof doubles / sizeof doubles[0]; i++)
-    if (mr_buf_reserve(doubles[i], (size_t)rows, sizeof(double)) != 0) return MR_SOLVE_ENOMEM;
+    if (mr_buf_reserve(doubles[i], (size_t)rows, sizeof(double)) != 0) return MR_SOLVE_ERR_NOMEM;
   if (mr_buf_reserve(&s->dep, (size_t)rows, 1) != 0 || mr_ldlt_reserve(&s->ldlt, rows) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   return (mr_solve_status)mr_eigen_reserve(&s->eigen, rows);
 }
 
@@ -180,7 +182,7 @@ int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, dou
                             mr_solve_result *r) {
   if (mr_buf_reserve(&s->dep, (size_t)A->n, 1) != 0 ||
       mr_buf_reserve(&s->inv_diag, (size_t)A->n, sizeof(double)) != 0)
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   unsigned char *dep = s->dep.p;
   double *inv_diag = s->inv_diag.p;
   r->dependent = mr_screen_pairs(A, pivot_tol, dep, inv_diag);
@@ -241,27 +243,28 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
 
   mr_solve_def def = mr_default_solve_def();
   if (!o) o = &def;
-  if (!s || !A || (A->n > 0 && (!b || !x || !A->row_ptr)) || (int)o->method < 0 ||
-      (int)o->method >= MR_SOLVE_METHOD_COUNT)
-    return r->status = MR_SOLVE_UNAVAILABLE;
+  if (!s || !A || (A->n > 0 && (!b || !x || !A->row_ptr)) || o->cookie != MR_DEF_COOKIE ||
+      (int)o->method < 0 || (int)o->method >= MR_SOLVE_METHOD_COUNT)
+    return r->status = MR_SOLVE_ERR_UNAVAILABLE;
   if (A->n == 0) return r->status;
   /* ‖b‖ is finite exactly when b is. LDLᵀ's answer vouches for A
    * afterwards (vouched()); the other methods iterate on A and look first. */
   const double nb = mr_norm2(A->n, b);
   const int check_a_after = o->method == MR_SOLVE_LDLT;
-  if (!isfinite(nb) || (!check_a_after && !a_finite(A))) return r->status = MR_SOLVE_NONFINITE;
+  if (!isfinite(nb) || (!check_a_after && !a_finite(A))) return r->status = MR_SOLVE_ERR_NONFINITE;
 
   /* b = 0: λ = 0 solves every consistent system and is the smallest
      * answer; no method needs to iterate towards it. */
   if (nb == 0.0) {
-    if (!a_finite(A)) return r->status = MR_SOLVE_NONFINITE;
+    if (!a_finite(A)) return r->status = MR_SOLVE_ERR_NONFINITE;
     memset(x, 0, (size_t)A->n * sizeof *x);
     return r->status;
   }
 
   /* Work on a copy so that a failure (no memory, overflow) leaves the
      * caller's x as it was. A non-finite warm start is replaced by zero. */
-  if (mr_buf_reserve(&s->x, (size_t)A->n, sizeof(double)) != 0) return r->status = MR_SOLVE_ENOMEM;
+  if (mr_buf_reserve(&s->x, (size_t)A->n, sizeof(double)) != 0)
+    return r->status = MR_SOLVE_ERR_NOMEM;
   double *xw = s->x.p;
   if (all_finite((size_t)A->n, x))
     memcpy(xw, x, (size_t)A->n * sizeof *xw);
@@ -294,7 +297,7 @@ mr_solve_status mr_solver_solve(mr_solver *s, const mr_solve_def *o, const mr_cs
   if (st < 0) return r->status = (mr_solve_status)st;
   if (!vouched(&s->ldlt) && ((check_a_after && !a_finite(A)) || !all_finite((size_t)A->n, xw))) {
     r->iterations = r->dependent = r->regularised = r->dense = 0;
-    return r->status = MR_SOLVE_NONFINITE;
+    return r->status = MR_SOLVE_ERR_NONFINITE;
   }
   memcpy(x, xw, (size_t)A->n * sizeof *x);
   /* LDLᵀ's refinement test has measured this already when it stopped on

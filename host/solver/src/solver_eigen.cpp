@@ -222,7 +222,7 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
   if (!mr_pattern_same(&w.pattern, A)) {
     w.pattern.valid = 0; // until the analysis below is complete
     analyse(w, A);
-    if (mr_pattern_keep(&w.pattern, A) != 0) return MR_SOLVE_ENOMEM;
+    if (mr_pattern_keep(&w.pattern, A) != 0) return MR_SOLVE_ERR_NOMEM;
   }
   mr_csr_diagonal(A, w.adiag.data());
   for (int i = 0; i < n; i++) {
@@ -282,9 +282,9 @@ extern "C" int mr_eigen_solve(void **ws, const mr_solve_def *o, const mr_csr *A,
     if (!*ws) *ws = new EigenWorkspace();
     return solve(*static_cast<EigenWorkspace *>(*ws), o, A, b, x, r);
   } catch (const std::bad_alloc &) {
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   } catch (...) {
-    return MR_SOLVE_UNAVAILABLE;
+    return MR_SOLVE_ERR_UNAVAILABLE;
   }
 }
 
@@ -294,9 +294,9 @@ extern "C" int mr_eigen_reserve(void **ws, int rows) {
     reserve(*static_cast<EigenWorkspace *>(*ws), rows);
     return MR_SOLVE_OK;
   } catch (const std::bad_alloc &) {
-    return MR_SOLVE_ENOMEM;
+    return MR_SOLVE_ERR_NOMEM;
   } catch (...) {
-    return MR_SOLVE_UNAVAILABLE;
+    return MR_SOLVE_ERR_UNAVAILABLE;
   }
 }
 

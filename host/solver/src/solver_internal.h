@@ -14,7 +14,7 @@ extern "C" {
 /* The one growth rule for every array in the library: *pp (a T **) grows to
  * hold count elements of elem_size bytes, its capacity *cap doubling from
  * 16. Arrays never shrink, so a size seen once is never allocated again.
- * 0 or MR_SOLVE_ENOMEM (then *pp and *cap are as they were). */
+ * 0 or MR_SOLVE_ERR_NOMEM (then *pp and *cap are as they were). */
 int mr_grow_to(void *pp, size_t *cap, size_t count, size_t elem_size);
 static inline int mr_grow(void *pp, size_t *cap, size_t count, size_t elem_size) {
   /* The common case, inline: the physics adds every Jacobian entry
@@ -40,7 +40,7 @@ typedef struct mr_pattern {
   mr_buf rp, col;
 } mr_pattern;
 int mr_pattern_same(const mr_pattern *pat, const mr_csr *A);
-int mr_pattern_keep(mr_pattern *pat, const mr_csr *A); /* 0 or MR_SOLVE_ENOMEM */
+int mr_pattern_keep(mr_pattern *pat, const mr_csr *A); /* 0 or MR_SOLVE_ERR_NOMEM */
 int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz);
 void mr_pattern_free(mr_pattern *pat);
 
@@ -132,7 +132,7 @@ int mr_screen_pairs(const mr_csr *A, double pivot_tol, unsigned char *dep, doubl
 /* mr_screen_pairs as the iterative methods start, into s->dep and
  * s->inv_diag: the flagged rows' x set to 0 and their inverse diagonal to
  * 0 (they take no part), the others' inverse diagonal; their count in
- * r->dependent. 0 or MR_SOLVE_ENOMEM. */
+ * r->dependent. 0 or MR_SOLVE_ERR_NOMEM. */
 int mr_screen_for_iteration(mr_solver *s, const mr_csr *A, double pivot_tol, double *x,
                             mr_solve_result *r);
 int mr_gauss_seidel(mr_solver *s, const mr_solve_def *o, const mr_csr *A, const double *b,
@@ -152,7 +152,7 @@ typedef void (*mr_factored_solve)(const void *factored, const double *b, double 
  * flagged in skip (by the caller's row index; read only when r counts
  * dependent or regularised rows, which are the ones flagged); leaves
  * f->res_norm and f->res_known for the caller's report. 0 or
- * MR_SOLVE_ENOMEM. */
+ * MR_SOLVE_ERR_NOMEM. */
 int mr_ldlt_refine(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
                    double b_norm, double *x, mr_solve_result *r, const unsigned char *skip,
                    mr_factored_solve solve, const void *factored);
@@ -164,13 +164,13 @@ void mr_dense_free(mr_dense *d);
 /* The fill-reducing ordering the LDLᵀ uses, into f->perm (new → old) and
  * f->iperm, and the nonzeros of L below the diagonal it gives; and the
  * order with the least dense-factor work into f->dperm. Uses only f's
- * ordering scratch. 0 or MR_SOLVE_ENOMEM. */
+ * ordering scratch. 0 or MR_SOLVE_ERR_NOMEM. */
 int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l);
 /* Makes the analysis of A's pattern (orderings, symbolic factor) the one
- * in use: kept, or computed. 0 or MR_SOLVE_ENOMEM. */
+ * in use: kept, or computed. 0 or MR_SOLVE_ERR_NOMEM. */
 int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A);
 /* Room for any pattern of up to rows rows: L dense, A's pattern full.
- * 0 or MR_SOLVE_ENOMEM. */
+ * 0 or MR_SOLVE_ERR_NOMEM. */
 int mr_ldlt_reserve(mr_ldlt *f, int rows);
 
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs

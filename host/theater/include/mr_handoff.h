@@ -10,6 +10,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ------------------------------------------------------- triple buffer */
 
 /* Three slots the caller owns, one writer and one reader. The writer
@@ -46,5 +50,9 @@ bool mr_cmdq_pop(mr_cmdq *q, int *cmd);
 bool mr_cmdq_wait(mr_cmdq *q, double deadline);
 /* Commands pushed and popped so far. */
 void mr_cmdq_counts(mr_cmdq *q, uint64_t *pushed, uint64_t *popped);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* MR_HANDOFF_H */

@@ -26,6 +26,7 @@
 #ifndef MR_SHOW_H
 #define MR_SHOW_H
 
+#include "mr_def.h"
 #include "mr_glove.h"
 #include "mr_scene_world.h"
 #include "mr_sim.h"
@@ -50,7 +51,6 @@ typedef enum mr_show_status {
   MR_SHOW_ERR_NOMEM = -7,
   MR_SHOW_ERR_THREAD = -8 /* the physics thread could not be started */
 } mr_show_status;
-const char *mr_show_status_name(mr_show_status s);
 
 typedef struct mr_show_error {
   mr_show_status status;
@@ -59,7 +59,7 @@ typedef struct mr_show_error {
 } mr_show_error;
 
 typedef struct mr_show_def {
-  uint32_t cookie;  /* MR_SHOW_COOKIE, set by mr_default_show_def() */
+  uint32_t cookie;  /* MR_DEF_COOKIE, set by mr_default_show_def() */
   mr_policy policy; /* default skip */
   double duration;  /* s of show, <= 0: until stopped (or the takes' end) */
   double fps;       /* <= 0: the scene's sim.fps, else 60 */
@@ -81,7 +81,6 @@ typedef struct mr_show_def {
    * file: take) feeds the same bytes to the same frames. */
   const char *record[MR_SHOW_MAX_GLOVES];
 } mr_show_def;
-#define MR_SHOW_COOKIE 0x6d725369u
 mr_show_def mr_default_show_def(void);
 
 /* One glove as a frame shows it: copies, taken when the frame was made. */

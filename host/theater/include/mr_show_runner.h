@@ -31,7 +31,7 @@ typedef enum mr_show_cmd {
 } mr_show_cmd;
 
 typedef struct mr_show_runner_def {
-  uint32_t cookie;  /* MR_SHOW_RUNNER_COOKIE, set by mr_default_show_runner_def() */
+  uint32_t cookie;  /* MR_DEF_COOKIE, set by mr_default_show_runner_def() */
   bool threaded;    /* default true: the physics on a thread of its own */
   double slow_rate; /* show seconds per second in slow motion, default 0.25 */
   size_t queue;     /* commands held at most, default 64 */
@@ -42,7 +42,6 @@ typedef struct mr_show_runner_def {
   void *user;
   double poll; /* default 0.004 s */
 } mr_show_runner_def;
-#define MR_SHOW_RUNNER_COOKIE 0x6d725275u
 mr_show_runner_def mr_default_show_runner_def(void);
 
 typedef struct mr_show_runner mr_show_runner;

@@ -12,6 +12,7 @@
 #ifndef MR_SIM_H
 #define MR_SIM_H
 
+#include "mr_def.h"
 #include "mr_scene_world.h"
 
 #ifdef __cplusplus
@@ -45,15 +46,16 @@ int mr_present_mode_parse(const char *name, mr_present_mode *out);
  * world's state at t, or the state interpolated to t. */
 typedef void (*mr_sim_frame_fn)(void *user, double t, const double *xyz, int n);
 
-typedef struct mr_sim_opts {
+typedef struct mr_sim_def {
+  uint32_t cookie;          /* MR_DEF_COOKIE, set by mr_default_sim_def() */
   double duration;          /* simulated seconds; <= 0 (default): the scene's */
   double fps;               /* frames per second; <= 0 (default): the scene's sim.fps */
   mr_sim_step_fn on_step;   /* may be NULL (default) */
   void *user;               /* for the hooks */
   mr_present_mode present;  /* with sim.fps; default MR_PRESENT_SCENE */
   mr_sim_frame_fn on_frame; /* with sim.fps; may be NULL (default) */
-} mr_sim_opts;
-mr_sim_opts mr_default_sim_opts(void);
+} mr_sim_def;
+mr_sim_def mr_default_sim_def(void);
 
 typedef struct mr_sim_result {
   double sim_time;
@@ -88,12 +90,12 @@ typedef struct mr_sim_result {
 
 /* Builds the scene's world and runs it. Returns MR_SCENE_OK, or an error
  * (build refused, or the physics failed outright: the message says when). */
-mr_scene_status mr_sim_run(const mr_scene *scene, const mr_sim_opts *opts, mr_sim_result *result,
+mr_scene_status mr_sim_run(const mr_scene *scene, const mr_sim_def *opts, mr_sim_result *result,
                            mr_scene_error *err);
 
 /* Compares a run with the scene's expect: section. Returns 0 when every
- * expectation holds, else -1 with the first unmet one in why. */
-int mr_sim_check(const mr_scene *scene, const mr_sim_result *result, char *why, size_t why_size);
+ * expectation holds, else -1 with the first unmet one in msg. */
+int mr_sim_check(const mr_scene *scene, const mr_sim_result *result, char *msg, size_t msg_size);
 
 #ifdef __cplusplus
 }

@@ -20,6 +20,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -90,14 +92,13 @@ const char *mr_policy_name(mr_policy p);
 int mr_policy_parse(const char *name, mr_policy *out);
 
 typedef struct mr_scheduler_def {
-  uint32_t cookie; /* MR_THEATER_COOKIE, set by mr_default_scheduler_def() */
+  uint32_t cookie; /* MR_DEF_COOKIE, set by mr_default_scheduler_def() */
   double fps;      /* frames per second, > 0; default 60 */
   mr_policy policy;
   int max_catch_up; /* frames simulated in one tick at the most when behind;
                        past that the lag is dropped, so the loop never
                        spirals. Default 5 */
 } mr_scheduler_def;
-#define MR_THEATER_COOKIE 0x6d725468u
 mr_scheduler_def mr_default_scheduler_def(void);
 
 /* What the physics did to reach one frame time. */
@@ -131,8 +132,8 @@ typedef struct mr_scheduler mr_scheduler;
 
 typedef enum mr_theater_status {
   MR_THEATER_OK = 0,
+  MR_THEATER_STOPPED = 1,  /* the advance hook asked to stop: an end, not a failure */
   MR_THEATER_ERR_ARG = -1, /* a NULL, a def not made by its maker, a bad field */
-  MR_THEATER_STOPPED = -2  /* the advance hook asked to stop */
 } mr_theater_status;
 
 /* A scheduler over a clock (copied) and hooks (copied). msg names a bad
@@ -152,7 +153,7 @@ mr_theater_status mr_scheduler_tick(mr_scheduler *s);
  * presentation of that frame. */
 void mr_scheduler_note_input(mr_scheduler *s, double t);
 
-void mr_scheduler_stats_get(const mr_scheduler *s, mr_scheduler_stats *out);
+void mr_scheduler_get_stats(const mr_scheduler *s, mr_scheduler_stats *out);
 
 #ifdef __cplusplus
 }

@@ -54,7 +54,7 @@ int mr_policy_parse(const char *name, mr_policy *out) {
 }
 
 mr_scheduler_def mr_default_scheduler_def(void) {
-  mr_scheduler_def d = { MR_THEATER_COOKIE, 60.0, MR_POLICY_SKIP, 5 };
+  mr_scheduler_def d = { MR_DEF_COOKIE, 60.0, MR_POLICY_SKIP, 5 };
   return d;
 }
 
@@ -74,7 +74,7 @@ mr_theater_status mr_scheduler_create(const mr_scheduler_def *def, const mr_cloc
              "advance and present hooks");
     return MR_THEATER_ERR_ARG;
   }
-  if (def->cookie != MR_THEATER_COOKIE) {
+  if (def->cookie != MR_DEF_COOKIE) {
     snprintf(msg, msg_size, "the scheduler definition was not made by mr_default_scheduler_def");
     return MR_THEATER_ERR_ARG;
   }
@@ -202,7 +202,7 @@ mr_theater_status mr_scheduler_tick(mr_scheduler *s) {
   return MR_THEATER_OK;
 }
 
-void mr_scheduler_stats_get(const mr_scheduler *s, mr_scheduler_stats *out) {
+void mr_scheduler_get_stats(const mr_scheduler *s, mr_scheduler_stats *out) {
   if (s == NULL || out == NULL) return;
   *out = s->st;
   double now = s->started ? s->clock.now(s->clock.self) : 0.0;

@@ -62,7 +62,7 @@ typedef struct mr_show show;
 mr_show_def mr_default_show_def(void) {
   mr_show_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_SHOW_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   d.policy = MR_POLICY_SKIP;
   d.present = MR_PRESENT_SCENE;
   return d;
@@ -140,7 +140,7 @@ static void tell_states(show *s, show_frame *f, const mr_channel_state now[MR_CO
 static void tell_errors(show *s, size_t g, double now) {
   show_glove *sg = &s->gloves[g];
   mr_glove_counters c;
-  mr_glove_counters_get(sg->glove, &c);
+  mr_glove_get_counters(sg->glove, &c);
   const gp_counters *n = &c.decoder, *o = &sg->told;
   uint32_t crc = n->crc_errors - o->crc_errors, framing = n->framing_errors - o->framing_errors,
            big = n->oversize - o->oversize, unknown = n->unknown_type - o->unknown_type,
@@ -164,7 +164,7 @@ static void tell_errors(show *s, size_t g, double now) {
 static void tell_glove(show *s, size_t g, double now) {
   show_glove *sg = &s->gloves[g];
   char line[600], said[420];
-  mr_glove_state st = mr_glove_state_get(sg->glove);
+  mr_glove_state st = mr_glove_get_state(sg->glove);
   if (st != sg->seen_state) {
     sg->seen_state = st;
     sg->seen_since = now;
@@ -188,7 +188,7 @@ static bool read_frame(show *s, size_t k) {
   const mr_glove *g = s->gloves[f->glove].glove;
   mr_glove_reading r;
   mr_glove_latest(g, &r);
-  if (r.samples == f->samples_seen || mr_glove_state_get(g) != MR_GLOVE_LIVE) return false;
+  if (r.samples == f->samples_seen || mr_glove_get_state(g) != MR_GLOVE_LIVE) return false;
   f->samples_seen = r.samples;
   mr_pose pose;
   mr_channel_state states[MR_CONTROL_CHANNELS];
@@ -215,7 +215,7 @@ static void read_gloves(show *s, double now) {
 static void record(void *user, double now, const uint8_t *bytes, size_t len) {
   show_glove *g = user;
   if (!g->recording) return;
-  mr_io_err err;
+  mr_io_error err;
   uint64_t t_ns = now > 0 ? (uint64_t)llround(now * 1e9) : 0;
   if (mr_rec_writer_add(&g->take, t_ns, bytes, len, &err) != 0) {
     snprintf(g->take_error, sizeof g->take_error, "%s", err.msg);
@@ -227,7 +227,7 @@ static void record(void *user, double now, const uint8_t *bytes, size_t len) {
 static bool takes_over(const show *s) {
   for (size_t g = 0; g < s->n_gloves; g++) {
     const mr_glove *gl = s->gloves[g].glove;
-    if (!mr_glove_take_done(gl) || mr_glove_state_get(gl) != MR_GLOVE_LOST) return false;
+    if (!mr_glove_take_done(gl) || mr_glove_get_state(gl) != MR_GLOVE_LOST) return false;
   }
   return true;
 }
@@ -241,7 +241,7 @@ void mr_show_snapshot(const show *s, mr_show_frame *f) {
   if (s == NULL || f == NULL || f->n_frames != s->n_frames || f->n_particles != s->ip.n) return;
   f->t = mr_world_time(s->sw.world);
   f->hash = 0;
-  mr_scheduler_stats_get(s->sch, &f->stats);
+  mr_scheduler_get_stats(s->sch, &f->stats);
   for (size_t k = 0; k < s->n_frames; k++) {
     f->target[k] = s->frames[k].target;
     f->glove_of[k] = s->frames[k].glove;
@@ -252,9 +252,9 @@ void mr_show_snapshot(const show *s, mr_show_frame *f) {
   for (size_t g = 0; g < s->n_gloves; g++) {
     const mr_glove *gl = s->gloves[g].glove;
     mr_show_glove_view *v = &f->gloves[g];
-    v->state = mr_glove_state_get(gl);
+    v->state = mr_glove_get_state(gl);
     mr_glove_latest(gl, &v->reading);
-    mr_glove_counters_get(gl, &v->counters);
+    mr_glove_get_counters(gl, &v->counters);
     v->clock_offset = mr_glove_clock_offset(gl);
     mr_glove_describe(gl, f->t, v->describe, sizeof v->describe);
   }
@@ -409,7 +409,7 @@ static int open_glove(show *s, size_t i, const char *source, const char *take_pa
   if (mr_glove_create(&gd, &g->glove, msg, sizeof msg) != MR_GLOVE_OK)
     return fail(s, MR_SHOW_ERR_GLOVE, msg), -1;
   if (take_path == NULL) return 0;
-  mr_io_err err;
+  mr_io_error err;
   if (mr_rec_writer_open(&g->take, take_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0)
     return fail(s, MR_SHOW_ERR_TAKE, err.msg), -1;
   g->recording = g->take_open = true;
@@ -456,7 +456,7 @@ static void close_parts(show *s) {
   for (size_t i = 0; i < s->n_gloves; i++) {
     show_glove *g = &s->gloves[i];
     if (g->take_open) {
-      mr_io_err err;
+      mr_io_error err;
       if (mr_rec_writer_close(&g->take, &err) != 0) fail(s, MR_SHOW_ERR_TAKE, err.msg);
       g->take_open = g->recording = false;
     }
@@ -483,7 +483,7 @@ static void gather(const show *s, mr_show_result *result) {
   if (s->ended)
     result->frames = s->end_stats;
   else if (s->sch != NULL)
-    mr_scheduler_stats_get(s->sch, &result->frames);
+    mr_scheduler_get_stats(s->sch, &result->frames);
   result->interpolated = s->interpolate;
   result->lead_mean = s->frames_stepped > 0 ? s->sum_lead / (double)s->frames_stepped : 0.0;
   result->lead_max = s->lead_max;
@@ -492,8 +492,8 @@ static void gather(const show *s, mr_show_result *result) {
     const mr_glove *g = s->gloves[i].glove;
     mr_show_glove_result *o = &result->glove[i];
     if (g == NULL) continue;
-    mr_glove_counters_get(g, &o->counters);
-    o->state = mr_glove_state_get(g);
+    mr_glove_get_counters(g, &o->counters);
+    o->state = mr_glove_get_state(g);
     mr_glove_reading r;
     mr_glove_latest(g, &r);
     o->samples = r.samples;
@@ -531,7 +531,7 @@ mr_show_status mr_show_create(const mr_scene *scene, const mr_show_def *def, con
   }
   s->scene = scene;
   if (hooks != NULL) s->hooks = *hooks;
-  if (scene == NULL || out == NULL || def == NULL || def->cookie != MR_SHOW_COOKIE ||
+  if (scene == NULL || out == NULL || def == NULL || def->cookie != MR_DEF_COOKIE ||
       clock == NULL || def->n_gloves == 0 || def->n_gloves > MR_SHOW_MAX_GLOVES) {
     fail(s, MR_SHOW_ERR_ARG, "expected a scene, a show definition with 1 to 8 gloves, and a clock");
   } else {
@@ -561,7 +561,7 @@ mr_show_status mr_show_tick(show *s) {
   if (mr_scheduler_tick(s->sch) == MR_THEATER_OK) return MR_SHOW_OK;
   /* Wall time stops with the show, not with whoever destroys it later (a
    * window may still be drawing its last frame). */
-  mr_scheduler_stats_get(s->sch, &s->end_stats);
+  mr_scheduler_get_stats(s->sch, &s->end_stats);
   s->ended = true;
   return s->err.status != MR_SHOW_OK ? s->err.status : MR_SHOW_ENDED;
 }

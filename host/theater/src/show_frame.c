@@ -48,29 +48,3 @@ int mr_show_frame_copy(mr_show_frame *dst, const mr_show_frame *src) {
   memcpy(dst->xyz, src->xyz, 3 * (size_t)src->n_particles * sizeof *dst->xyz);
   return 0;
 }
-
-const char *mr_show_status_name(mr_show_status st) {
-  switch (st) {
-  case MR_SHOW_OK:
-    return "ok";
-  case MR_SHOW_ENDED:
-    return "ended";
-  case MR_SHOW_ERR_ARG:
-    return "bad argument";
-  case MR_SHOW_ERR_SCENE:
-    return "scene refused";
-  case MR_SHOW_ERR_MAPPING:
-    return "bad mapping";
-  case MR_SHOW_ERR_GLOVE:
-    return "bad glove source";
-  case MR_SHOW_ERR_TAKE:
-    return "take not written";
-  case MR_SHOW_ERR_PHYSICS:
-    return "physics stopped";
-  case MR_SHOW_ERR_NOMEM:
-    return "out of memory";
-  case MR_SHOW_ERR_THREAD:
-    return "no physics thread";
-  }
-  return "unknown";
-}

@@ -39,7 +39,7 @@ struct mr_show_runner {
 mr_show_runner_def mr_default_show_runner_def(void) {
   mr_show_runner_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_SHOW_RUNNER_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   d.threaded = true;
   d.slow_rate = 0.25;
   d.queue = 64;
@@ -174,7 +174,7 @@ mr_show_status mr_show_runner_start(const mr_scene *scene, const mr_show_def *de
                                     const mr_show_runner_def *rd, mr_show_runner **out,
                                     mr_show_error *err) {
   if (err != NULL) memset(err, 0, sizeof *err);
-  if (out == NULL || base == NULL || rd == NULL || rd->cookie != MR_SHOW_RUNNER_COOKIE ||
+  if (out == NULL || base == NULL || rd == NULL || rd->cookie != MR_DEF_COOKIE ||
       !(rd->slow_rate > 0) || rd->queue == 0 || !(rd->poll > 0))
     return refuse(err, MR_SHOW_ERR_ARG,
                   "expected a runner definition made by mr_default_show_runner_def, a clock and "

@@ -15,9 +15,10 @@
  * sliver of a step behind. */
 #define LAND_S 1e-9
 
-mr_sim_opts mr_default_sim_opts(void) {
-  mr_sim_opts o;
+mr_sim_def mr_default_sim_def(void) {
+  mr_sim_def o;
   memset(&o, 0, sizeof o);
+  o.cookie = MR_DEF_COOKIE;
   o.present = MR_PRESENT_SCENE;
   return o;
 }
@@ -136,7 +137,7 @@ static mr_scene_status run_fail(const mr_scene *s, mr_scene_error *err, mr_scene
  * running sums the means are made from at the end. */
 typedef struct run {
   const mr_scene *s;
-  const mr_sim_opts *opts;
+  const mr_sim_def *opts;
   mr_sim_result *r;
   mr_scene_world sw;
   double duration, fps, dt_max;
@@ -339,7 +340,7 @@ static mr_scene_status run_frames(run *u) {
   while (mr_scheduler_tick(sch) == MR_THEATER_OK) {
   }
   mr_scheduler_stats st;
-  mr_scheduler_stats_get(sch, &st);
+  mr_scheduler_get_stats(sch, &st);
   u->r->frames = st.frames_simulated;
   u->r->fps = u->fps;
   u->r->interpolated = u->interpolate;
@@ -369,11 +370,17 @@ static void run_finish(run *u, double t) {
   r->hash = mr_world_state_hash(u->sw.world);
 }
 
-mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_opts *opts, mr_sim_result *r,
+mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_def *opts, mr_sim_result *r,
                            mr_scene_error *err) {
   memset(r, 0, sizeof *r);
   r->finite = true;
   r->dt_min = INFINITY;
+  if (opts != NULL && opts->cookie != MR_DEF_COOKIE) {
+    err->status = MR_SCENE_ERR_VALUE;
+    snprintf(err->message, sizeof err->message, "the sim def was not made by mr_default_sim_def");
+    snprintf(err->text, sizeof err->text, "%s: %s", s->path, err->message);
+    return err->status;
+  }
   run u;
   memset(&u, 0, sizeof u);
   u.s = s;
@@ -410,70 +417,71 @@ mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_opts *opts, mr_sim_re
   return rc;
 }
 
-int mr_sim_check(const mr_scene *s, const mr_sim_result *r, char *why, size_t size) {
+int mr_sim_check(const mr_scene *s, const mr_sim_result *r, char *msg, size_t msg_size) {
   const mr_scene_expect *e = &s->expect;
   if (e->has_load_error) {
-    snprintf(why, size, "expected the load to fail with \"%s\", but the scene loaded",
+    snprintf(msg, msg_size, "expected the load to fail with \"%s\", but the scene loaded",
              e->load_error);
     return -1;
   }
   if (e->finite && !r->finite) {
-    snprintf(why, size, "expected a finite state throughout, got NaN or Inf");
+    snprintf(msg, msg_size, "expected a finite state throughout, got NaN or Inf");
     return -1;
   }
   if (!isnan(e->max_deviation) && !(r->max_deviation <= e->max_deviation)) {
-    snprintf(why, size, "expected max deviation <= %g, got %g", e->max_deviation, r->max_deviation);
+    snprintf(msg, msg_size, "expected max deviation <= %g, got %g", e->max_deviation,
+             r->max_deviation);
     return -1;
   }
   if (e->resets_min >= 0 && r->resets < (uint64_t)e->resets_min) {
-    snprintf(why, size, "expected at least %ld resets, got %llu", e->resets_min,
+    snprintf(msg, msg_size, "expected at least %ld resets, got %llu", e->resets_min,
              (unsigned long long)r->resets);
     return -1;
   }
   if (e->resets_max >= 0 && r->resets > (uint64_t)e->resets_max) {
-    snprintf(why, size, "expected at most %ld resets, got %llu", e->resets_max,
+    snprintf(msg, msg_size, "expected at most %ld resets, got %llu", e->resets_max,
              (unsigned long long)r->resets);
     return -1;
   }
   if (!isnan(e->min_mean_dt) && !(r->dt_mean >= e->min_mean_dt)) {
-    snprintf(why, size, "expected mean dt >= %g s, got %g s", e->min_mean_dt, r->dt_mean);
+    snprintf(msg, msg_size, "expected mean dt >= %g s, got %g s", e->min_mean_dt, r->dt_mean);
     return -1;
   }
   if (!isnan(e->min_string_stretch) && !(r->string_stretch >= e->min_string_stretch)) {
-    snprintf(why, size, "expected a string stretched to >= %g x its rest length, got %g x",
+    snprintf(msg, msg_size, "expected a string stretched to >= %g x its rest length, got %g x",
              e->min_string_stretch, r->string_stretch);
     return -1;
   }
   if (!isnan(e->max_string_stretch) && !(r->string_stretch <= e->max_string_stretch)) {
-    snprintf(why, size, "expected every string within %g x its rest length, got %g x",
+    snprintf(msg, msg_size, "expected every string within %g x its rest length, got %g x",
              e->max_string_stretch, r->string_stretch);
     return -1;
   }
   if (!isnan(e->max_speed) && !(r->max_speed <= e->max_speed)) {
-    snprintf(why, size, "expected speeds <= %g m/s, got %g m/s", e->max_speed, r->max_speed);
+    snprintf(msg, msg_size, "expected speeds <= %g m/s, got %g m/s", e->max_speed, r->max_speed);
     return -1;
   }
   if (!isnan(e->max_penetration) && !(r->max_penetration <= e->max_penetration)) {
-    snprintf(why, size, "expected penetration <= %g m, got %g m", e->max_penetration,
+    snprintf(msg, msg_size, "expected penetration <= %g m, got %g m", e->max_penetration,
              r->max_penetration);
     return -1;
   }
   if (!isnan(e->creep) && !(r->creep <= e->creep)) {
-    snprintf(why, size, "expected creep <= %g m after %g s, got %g m", e->creep, e->settle,
+    snprintf(msg, msg_size, "expected creep <= %g m after %g s, got %g m", e->creep, e->settle,
              r->creep);
     return -1;
   }
   if (!isnan(e->jitter) && !(r->jitter <= e->jitter)) {
-    snprintf(why, size, "expected speeds <= %g m/s after %g s (no jitter), got %g m/s", e->jitter,
-             e->settle, r->jitter);
+    snprintf(msg, msg_size, "expected speeds <= %g m/s after %g s (no jitter), got %g m/s",
+             e->jitter, e->settle, r->jitter);
     return -1;
   }
   /* The pin holds for a run of the scene's own length only. */
   if (e->has_state_hash && r->sim_time == s->duration && r->hash != e->state_hash) {
-    snprintf(why, size, "expected state hash 0x%016" PRIx64 ", got 0x%016" PRIx64, e->state_hash,
-             r->hash);
+    snprintf(msg, msg_size, "expected state hash 0x%016" PRIx64 ", got 0x%016" PRIx64,
+             e->state_hash, r->hash);
     return -1;
   }
-  if (size > 0) why[0] = '\0';
+  if (msg_size > 0) msg[0] = '\0';
   return 0;
 }

@@ -15,11 +15,11 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "mr_def.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-#define MR_WINDOW_COOKIE 0x6d725769u
 
 /* Which OpenGL the window's context speaks. */
 typedef enum mr_window_gl {
@@ -29,7 +29,7 @@ typedef enum mr_window_gl {
 } mr_window_gl;
 
 typedef struct mr_window_def {
-  uint32_t cookie;   /* MR_WINDOW_COOKIE, set by mr_default_window_def() */
+  uint32_t cookie;   /* MR_DEF_COOKIE, set by mr_default_window_def() */
   int width, height; /* default 1280 x 720 */
   mr_window_gl gl;   /* default AUTO */
   bool fullscreen;   /* the whole screen (the desktop's size) */

@@ -21,7 +21,7 @@
 mr_window_def mr_default_window_def(void) {
   mr_window_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_WINDOW_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   d.width = 1280;
   d.height = 720;
   d.gl = MR_WINDOW_GL_AUTO;
@@ -123,7 +123,7 @@ mr_window_status mr_window_create(const mr_window_def *def, mr_window **out, cha
     msg_size = sizeof scratch;
   }
   if (out) *out = NULL;
-  if (!def || def->cookie != MR_WINDOW_COOKIE || !out || (unsigned)def->gl > MR_WINDOW_GL_ES3 ||
+  if (!def || def->cookie != MR_DEF_COOKIE || !out || (unsigned)def->gl > MR_WINDOW_GL_ES3 ||
       def->width <= 0 || def->height <= 0) {
     snprintf(msg, msg_size, "mr_window_create: a def not from its default maker, or NULL");
     return MR_WINDOW_ERR_ARG;

@@ -180,7 +180,7 @@ fail:
  * and is reported on stderr. */
 gg_track *gg_track_load_mrec(const char *path, char *err, size_t errcap) {
   mr_rec_reader r;
-  mr_io_err e;
+  mr_io_error e;
   gp_decoder *d = malloc(sizeof *d);
   gg_track *t = track_new();
   size_t cap = 0;

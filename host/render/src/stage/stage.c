@@ -53,12 +53,19 @@ static size_t count_frame_points(const mr_stage_def *d) {
 /* Every world id the def names lies in 0..n-1, and every count is sane. */
 static mr_stage_status check_model(const mr_model_def *m, size_t n, char *msg, size_t size) {
   static const int needs[] = { 1, 2, 3, 0 };
+  if (m->cookie != MR_DEF_COOKIE)
+    return fail(msg, size, MR_STAGE_ERR_ARG, "model '%.*s' was not made by mr_default_model_def",
+                MR_STAGE_NAME_MAX, m->name);
   if ((int)m->display < 0 || m->display > MR_DISPLAY_FREEFORM)
     return fail(msg, size, MR_STAGE_ERR_ARG, "model '%s': display mode %d is unknown", m->name,
                 (int)m->display);
   if (m->n_materials < 0 || m->n_materials > MR_STAGE_MAX_MATERIALS)
     return fail(msg, size, MR_STAGE_ERR_ARG, "model '%s': %d materials, expected 0 to %d", m->name,
                 m->n_materials, MR_STAGE_MAX_MATERIALS);
+  for (int i = 0; i < m->n_materials; i++)
+    if (m->materials[i].cookie != MR_DEF_COOKIE)
+      return fail(msg, size, MR_STAGE_ERR_ARG,
+                  "model '%s': material %d was not made by mr_default_material_def", m->name, i);
   for (int i = 0; i < needs[m->display]; i++)
     if (m->particles[i] < 0 || (size_t)m->particles[i] >= n)
       return fail(msg, size, MR_STAGE_ERR_ARG,
@@ -88,7 +95,7 @@ static mr_stage_status check_ids(const int *ids, size_t count, size_t n, const c
 }
 
 static mr_stage_status check_def(const mr_stage_def *d, size_t n, char *msg, size_t size) {
-  if (d->cookie != MR_STAGE_COOKIE)
+  if (d->cookie != MR_DEF_COOKIE)
     return fail(msg, size, MR_STAGE_ERR_ARG, "the stage def was not made by mr_default_stage_def");
   if ((d->n_models > 0 && d->models == NULL) || (d->n_stars > 0 && d->star_list == NULL) ||
       (d->n_strings > 0 && d->strings == NULL) ||
@@ -98,6 +105,13 @@ static mr_stage_status check_def(const mr_stage_def *d, size_t n, char *msg, siz
       d->n_cameras > MR_STAGE_MAX_CAMERAS)
     return fail(msg, size, MR_STAGE_ERR_ARG, "%d spots and %d cameras, expected at most %d of each",
                 d->lights.n_spots, d->n_cameras, MR_STAGE_MAX_SPOTS);
+  for (int k = 0; k < d->lights.n_spots; k++)
+    if (d->lights.spots[k].cookie != MR_DEF_COOKIE)
+      return fail(msg, size, MR_STAGE_ERR_ARG, "spot %d was not made by mr_default_spot_def", k);
+  for (int k = 0; k < d->n_cameras; k++)
+    if (d->cameras[k].cookie != MR_DEF_COOKIE)
+      return fail(msg, size, MR_STAGE_ERR_ARG, "camera %d was not made by mr_default_camera_def",
+                  k);
   for (size_t k = 0; k < d->n_frames; k++)
     if (d->frame_point_count[k] < 0)
       return fail(msg, size, MR_STAGE_ERR_ARG, "control frame %zu has %d points", k,

@@ -18,6 +18,7 @@ static void set3(double out[3], double a, double b, double c) {
 mr_material_def mr_default_material_def(void) {
   mr_material_def m;
   memset(&m, 0, sizeof m);
+  m.cookie = MR_DEF_COOKIE;
   m.base_color[0] = m.base_color[1] = m.base_color[2] = 0.8f;
   m.base_color[3] = 1.0f;
   m.roughness = 0.6f;
@@ -27,6 +28,7 @@ mr_material_def mr_default_material_def(void) {
 mr_model_def mr_default_model_def(void) {
   mr_model_def d;
   memset(&d, 0, sizeof d);
+  d.cookie = MR_DEF_COOKIE;
   d.shape = MR_SHAPE_SPHERE;
   set3(d.scale, 1, 1, 1);
   d.place = mr_pose_identity();
@@ -43,6 +45,7 @@ mr_model_def mr_default_model_def(void) {
 mr_spot_def mr_default_spot_def(void) {
   mr_spot_def s;
   memset(&s, 0, sizeof s);
+  s.cookie = MR_DEF_COOKIE;
   set3(s.position, 0, 3, 2);
   set3(s.target, 0, 0.5, 0);
   s.angle_deg = 25;
@@ -54,6 +57,7 @@ mr_spot_def mr_default_spot_def(void) {
 mr_camera_def mr_default_camera_def(void) {
   mr_camera_def c;
   memset(&c, 0, sizeof c);
+  c.cookie = MR_DEF_COOKIE;
   set3(c.position, 0, 1, 3);
   set3(c.target, 0, 0.6, 0);
   c.fov_deg = 45;
@@ -73,7 +77,7 @@ static void default_lights(mr_lights_def *l) {
 mr_stage_def mr_default_stage_def(void) {
   mr_stage_def d;
   memset(&d, 0, sizeof d);
-  d.cookie = MR_STAGE_COOKIE;
+  d.cookie = MR_DEF_COOKIE;
   default_lights(&d.lights);
   d.floor = true;
   d.floor_size = 8;
