@@ -218,10 +218,119 @@ static void a_tcp_glove_gets_samples_again_after_every_reconnect(void **state) {
   }
 }
 
+enum { PEERS = 50 };
+
+/* Where a peer of the listening glove stands, seen from its own end. */
+typedef enum peer_state {
+  PEER_WAITING, /* connecting, or connected and neither served nor closed */
+  PEER_OPEN,    /* connected, nothing came back: served (or not yet refused) */
+  PEER_CLOSED   /* the glove closed it: end of stream or a reset */
+} peer_state;
+
+static peer_state peer_look(int fd) {
+  struct pollfd p = { fd, POLLIN | POLLOUT, 0 };
+  if (poll(&p, 1, 0) != 1) return PEER_WAITING;
+  int e = 0;
+  socklen_t len = sizeof e;
+  getsockopt(fd, SOL_SOCKET, SO_ERROR, &e, &len);
+  if (e == ECONNREFUSED || e == ECONNRESET) return PEER_CLOSED;
+  if (e != 0) fail_msg("a peer's connection failed: %s", strerror(e));
+  if (!(p.revents & (POLLIN | POLLHUP))) return p.revents & POLLOUT ? PEER_OPEN : PEER_WAITING;
+  char c;
+  ssize_t n = recv(fd, &c, 1, MSG_PEEK);
+  if (n == 0 || (n < 0 && errno == ECONNRESET)) return PEER_CLOSED;
+  fail_msg("the glove sent a peer something");
+  return PEER_WAITING;
+}
+
+static int connect_nonblocking(int port) {
+  int fd = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  assert_true(fd >= 0);
+  struct sockaddr_in sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sin_family = AF_INET;
+  sa.sin_port = htons((uint16_t)port);
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  int rc = connect(fd, (struct sockaddr *)&sa, sizeof sa);
+  assert_true(rc == 0 || errno == EINPROGRESS);
+  return fd;
+}
+
+/* Polls the glove (its clock held) until every peer is closed but one,
+ * within 20 s of real time: the one it serves. Its index. */
+static int settle(mr_glove *g, double now, const int *peers) {
+  uint64_t end = mr_io_monotonic_ns() + 20000000000ull;
+  int open = 0, closed = 0, served = -1;
+  while (mr_io_monotonic_ns() < end) {
+    mr_glove_poll(g, now, 10);
+    open = closed = 0;
+    for (int i = 0; i < PEERS; i++) {
+      peer_state st = peer_look(peers[i]);
+      closed += st == PEER_CLOSED;
+      if (st == PEER_OPEN) {
+        open++;
+        served = i;
+      }
+    }
+    if (closed == PEERS - 1 && open == 1) return served;
+  }
+  fail_msg("after 20 s: %d peers closed, %d connected and left open, %d connecting", closed, open,
+           PEERS - closed - open);
+  return -1;
+}
+
+/* Fifty peers at once on a listening glove, more than its backlog holds:
+ * one is served, the 49 others are closed, none hangs. The served peer's
+ * samples arrive; when it leaves, the next peer is served, and its clock,
+ * which started again with the sequence carried on, is measured afresh. */
+static void a_listening_glove_serves_one_of_fifty_peers_and_closes_the_rest(void **state) {
+  (void)state;
+  mr_glove *g = gw_glove("tcp-listen:127.0.0.1:0", 0.3, 0.2);
+  double now = 50.0;
+  mr_glove_poll(g, now, 0);
+  const char *where = mr_glove_io_path(g);
+  const char *colon = strrchr(where, ':');
+  assert_non_null(colon);
+  int port = atoi(colon + 1), peers[PEERS];
+  for (int i = 0; i < PEERS; i++) peers[i] = connect_nonblocking(port);
+  int served = settle(g, now, peers);
+  uint16_t seq = 0;
+  for (int i = 0; i < 50; i++) {
+    gp_msg m = gw_sample(seq++, 100000000u + 10000u * (uint32_t)i, 0, 2000);
+    assert_true(gw_send(peers[served], &m) > 0);
+    if (gw_poll_for_samples(g, now + 0.01 * i) == 0) fail_msg("sample %d not taken", i);
+  }
+  now += 0.5;
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LIVE);
+  assert_true(gw_lateness(g) < 1e-9);
+  for (int i = 0; i < PEERS; i++) close(peers[i]);
+
+  /* The next peer; the device clock went from 100 s back to 1 s. */
+  for (int i = 0; i < 100 && mr_glove_state_get(g) != MR_GLOVE_LOST; i++) mr_glove_poll(g, now, 10);
+  assert_int_equal(mr_glove_state_get(g), MR_GLOVE_LOST);
+  int next = connect_nonblocking(port);
+  for (int i = 0; i < 100; i++) {
+    gp_msg m = gw_sample(seq++, 1000000u + 10000u * (uint32_t)i, 0, 2000);
+    if (i == 0) {
+      struct pollfd p = { next, POLLOUT, 0 };
+      assert_int_equal(poll(&p, 1, 2000), 1);
+    }
+    assert_true(gw_send(next, &m) > 0);
+    if (gw_poll_for_samples(g, now + 0.01 * i) == 0) fail_msg("sample %d of the next peer", i);
+  }
+  if (!(gw_lateness(g) < 0.1)) fail_msg("%.3f s late with the next peer", gw_lateness(g));
+  mr_glove_counters c = counters(g);
+  assert_int_equal(c.opens, 1); /* one listening socket all along */
+  assert_int_equal(c.losses, 1);
+  close(next);
+  mr_glove_destroy(g);
+}
+
 int main(void) {
   signal(SIGPIPE, SIG_IGN);
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_tcp_glove_gets_samples_again_after_every_reconnect),
+    cmocka_unit_test(a_listening_glove_serves_one_of_fifty_peers_and_closes_the_rest),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
