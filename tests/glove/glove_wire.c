@@ -1,4 +1,5 @@
 /* What a glove sends, for the glove tests (glove_wire.h). */
+#define _DEFAULT_SOURCE /* symlink, mkdtemp */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -8,6 +9,7 @@
 #include <errno.h>
 #include <poll.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -83,6 +85,37 @@ size_t gw_send(int fd, const gp_msg *m) {
   uint8_t wire[GP_MAX_WIRE];
   size_t n = gw_encode(m, wire);
   return gw_write(fd, wire, n) == 0 ? n : 0;
+}
+
+void gw_port_plug(gw_port *p) {
+  mr_io_err err;
+  if (mr_io_open(&p->master, "pty", MR_IO_READ | MR_IO_WRITE, &err) != 0) fail_msg("%s", err.msg);
+  unlink(p->link);
+  assert_int_equal(symlink(mr_io_path(&p->master), p->link), 0);
+}
+
+void gw_port_make(gw_port *p) {
+  snprintf(p->dir, sizeof p->dir, "/tmp/mr-glove-XXXXXX");
+  assert_non_null(mkdtemp(p->dir));
+  snprintf(p->link, sizeof p->link, "%s/glove", p->dir);
+  snprintf(p->source, sizeof p->source, "pty:%s", p->link);
+  gw_port_plug(p);
+}
+
+void gw_port_unplug(gw_port *p) {
+  mr_io_close(&p->master);
+  unlink(p->link);
+}
+
+void gw_port_remove(gw_port *p) {
+  gw_port_unplug(p);
+  rmdir(p->dir);
+}
+
+size_t gw_port_send(gw_port *p, const gp_msg *m) {
+  size_t n = gw_send(p->master.fd, m);
+  assert_true(n > 0);
+  return n;
 }
 
 mr_glove *gw_glove(const char *source, double lost_after, double retry_every) {

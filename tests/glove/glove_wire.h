@@ -24,6 +24,19 @@ int gw_write(int fd, const void *buf, size_t len);
 /* gw_encode + gw_write; the bytes written, or 0 when the peer left. */
 size_t gw_send(int fd, const gp_msg *m);
 
+/* A glove's port: a real pty reached through a symlink, as udev names a
+ * glove, so that a replug (a new pty) keeps the name. */
+typedef struct gw_port {
+  mr_io master;
+  char dir[64], link[96], source[128]; /* source: "pty:LINK" */
+} gw_port;
+void gw_port_make(gw_port *p); /* a folder for the link, and a first pty */
+void gw_port_plug(gw_port *p);
+void gw_port_unplug(gw_port *p);
+void gw_port_remove(gw_port *p); /* unplugged, the folder gone */
+/* gw_send through the port; fails the test unless every byte went. */
+size_t gw_port_send(gw_port *p, const gp_msg *m);
+
 /* A glove on source with lost_after and retry_every (s) as given; fails
  * the test if it cannot be made. */
 mr_glove *gw_glove(const char *source, double lost_after, double retry_every);
