@@ -1,8 +1,8 @@
 /* TCP gloves over real sockets on 127.0.0.1. A `tcp:` glove whose server
  * drops it again and again (right after accept, before any byte, mid-frame,
- * with a reset, after a short stream) connects again each time, gets
- * samples again within a bound, reads "ms late" below 100 ms within a
- * second, and counts each loss once. A `tcp-listen:` glove serves one peer,
+ * with a reset, after a short stream), or goes away for a while and comes
+ * back, connects again each time, gets samples again within a bound, reads
+ * "ms late" below 100 ms within a second, and counts each loss once. A `tcp-listen:` glove serves one peer,
  * as documented: fifty peers that connect at once are each served or
  * closed, none is left hanging, and the served peer's samples arrive. The
  * glove runs on a virtual clock; the server is this test, on one thread. */
@@ -51,12 +51,16 @@ typedef struct server {
   int round;
 } server;
 
+/* A listening socket on 127.0.0.1: on *port, or on a free one when it is
+ * 0 (then *port says which). */
 static int listen_loopback(int *port) {
-  int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0), one = 1;
   assert_true(fd >= 0);
+  setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
   struct sockaddr_in sa;
   memset(&sa, 0, sizeof sa);
   sa.sin_family = AF_INET;
+  sa.sin_port = htons((uint16_t)*port);
   sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   assert_int_equal(bind(fd, (struct sockaddr *)&sa, sizeof sa), 0);
   assert_int_equal(listen(fd, 64), 0);
@@ -194,6 +198,26 @@ static void one_connection(server *s, int round, double retry_every) {
   close_as(s, p->how);
 }
 
+/* The server gone for 3 s: every connection refused, tried once per
+ * retry_every all along (the wait does not grow), and taken at the next
+ * try once the server listens again on the same port. */
+static void server_away_and_back(server *s, double retry_every) {
+  close(s->srv);
+  mr_glove_counters c0 = counters(s->g);
+  for (int i = 1; i <= 300; i++) mr_glove_poll(s->g, s->now + 0.01 * i, 0);
+  s->now += 3.0;
+  int tries = (int)(counters(s->g).open_failures - c0.open_failures);
+  int want = (int)(3.0 / retry_every);
+  if (tries < want - 1 || tries > want)
+    fail_msg("%d tries in 3 s with retry_every %.2f s", tries, retry_every);
+  s->srv = listen_loopback(&s->port);
+  s->round = ROUNDS;
+  if (reconnect(s) > retry_every + 0.011) fail_msg("not back within retry_every");
+  stream(s, 1.0, 123456789u, GP_SAMPLE_F_START);
+  assert_true(gw_lateness(s->g) <= 0.0045);
+  close_as(s, DROP_AFTER_FRAMES);
+}
+
 static void a_tcp_glove_gets_samples_again_after_every_reconnect(void **state) {
   (void)state;
   static const double retry[] = { 0.25, 0.5 };
@@ -206,9 +230,10 @@ static void a_tcp_glove_gets_samples_again_after_every_reconnect(void **state) {
     s.g = gw_glove(source, 0.5, retry[r]);
     s.now = 100.0;
     for (int round = 0; round < ROUNDS; round++) one_connection(&s, round, retry[r]);
+    server_away_and_back(&s, retry[r]);
     mr_glove_counters c = counters(s.g);
     assert_int_equal(c.losses, s.losses);
-    assert_int_equal(c.opens, ROUNDS + 2); /* two drops at accept */
+    assert_int_equal(c.opens, ROUNDS + 3); /* two drops at accept, the server back */
     /* The host's own delimiter, which ends a cut frame, is not a byte
      * received; each cut frame is one error. */
     assert_int_equal(c.decoder.bytes, s.bytes_sent);
