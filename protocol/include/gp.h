@@ -122,6 +122,7 @@ typedef struct gp_decoder {
   uint8_t overflow;       /* discarding until the next delimiter */
   uint8_t in_step;        /* a 0x00 has been seen: frames start where they should */
   uint8_t seq_high_start; /* the frame at seq_high carried GP_SAMPLE_F_START */
+  uint8_t new_link;       /* no SAMPLE since gp_decoder_new_link */
   uint16_t seq_high;      /* highest SAMPLE sequence number seen */
   uint32_t seq_high_t_us; /* and its device time */
   uint64_t seq_seen;      /* bit i: seq_high - i was seen */
@@ -135,6 +136,13 @@ typedef struct gp_decoder {
 } gp_decoder;
 
 void gp_decoder_init(gp_decoder *d, uint32_t spec_hash);
+
+/* The bytes that follow come over a new link (the receiver reopened the
+ * port or took a new connection): none of them repeats a frame from
+ * before, so the next SAMPLE, if it is not ahead of the highest sequence
+ * number seen, starts a new sequence (SPEC.md, section 9) instead of
+ * being taken for a duplicate or a late frame. The counters go on. */
+void gp_decoder_new_link(gp_decoder *d);
 
 /* Consumes bytes from data until one frame ends (or all n are consumed).
  * Returns how many bytes it consumed and stores what the frame was in *ev;

@@ -13,6 +13,10 @@ void gp_decoder_init(gp_decoder *d, uint32_t spec_hash) {
   d->spec_hash = spec_hash;
 }
 
+void gp_decoder_new_link(gp_decoder *d) {
+  d->new_link = 1;
+}
+
 const char *gp_event_name(gp_event ev) {
   switch (ev) {
   case GP_EV_NONE:
@@ -139,10 +143,14 @@ static gp_event sample_seq(gp_decoder *d, const gp_sample *s) {
   uint16_t seq = s->seq;
   int16_t delta = (int16_t)(uint16_t)(seq - d->seq_high);
   int start = (s->flags & GP_SAMPLE_F_START) != 0;
-  if (d->have_seq && start) {
+  /* A new link repeats nothing from the old one: a number at or behind
+   * the high is the glove counting again. */
+  int relinked = d->new_link && delta <= 0;
+  d->new_link = 0;
+  if (d->have_seq && (start || relinked)) {
     /* The glove's first SAMPLE since it booted. The one frame that looks the
      * same is a copy of the start frame already taken as high. */
-    if (delta == 0 && d->seq_high_start && s->t_us == d->seq_high_t_us) {
+    if (!relinked && delta == 0 && d->seq_high_start && s->t_us == d->seq_high_t_us) {
       d->c.duplicates++;
       return GP_EV_DUPLICATE;
     }

@@ -254,6 +254,48 @@ static void a_copy_of_the_start_frame_is_a_duplicate_not_a_restart(void **state)
   assert_int_equal(d.c.frames, 2);
 }
 
+/* After a new link (a reconnect) the glove counts from 0 again with no
+ * START flag, the old high only 20 ahead: a restart, every frame delivered,
+ * none a duplicate. A glove that kept counting shows its gap as lost, and
+ * the link only matters to its first SAMPLE: a copy after it is one. A
+ * start frame sent again over a new link is a restart, not its copy. */
+static void after_a_new_link_a_sequence_from_below_is_a_restart_not_duplicates(void **state) {
+  (void)state;
+  gp_decoder d;
+  gp_decoder_init(&d, GP_SPEC_HASH);
+  tally t = { 0 };
+  uint16_t first[21];
+  for (uint16_t i = 0; i <= 20; i++) first[i] = i;
+  send_samples(&d, &t, first, 21);
+  gp_decoder_new_link(&d);
+  const uint16_t again[] = { 0, 1, 2, 2 };
+  send_samples(&d, &t, again, 4);
+  assert_int_equal(d.c.seq_restarts, 1);
+  assert_int_equal(d.c.duplicates, 1);
+  assert_int_equal(d.c.lost + d.c.reordered, 0);
+  assert_int_equal(t.ev[GP_EV_FRAME], 24);
+  /* Kept counting through the unplug: 3 .. 9 lost, no restart. */
+  gp_decoder_new_link(&d);
+  const uint16_t on[] = { 10, 11 };
+  send_samples(&d, &t, on, 2);
+  assert_int_equal(d.c.lost, 7);
+  assert_int_equal(d.c.seq_restarts, 1);
+  /* The same high again on a new link is the glove counting again. */
+  gp_decoder_new_link(&d);
+  const uint16_t same[] = { 11 };
+  send_samples(&d, &t, same, 1);
+  assert_int_equal(d.c.seq_restarts, 2);
+  assert_int_equal(d.c.duplicates, 1);
+  /* A glove that boots to the very same start frame over each new link:
+   * no copy, a restart each time. */
+  uint8_t w[GP_MAX_WIRE];
+  feed(&d, w, start_sample(0, 1000, w), &t);
+  gp_decoder_new_link(&d);
+  feed(&d, w, start_sample(0, 1000, w), &t);
+  assert_int_equal(d.c.seq_restarts, 4);
+  assert_int_equal(d.c.duplicates, 1);
+}
+
 static void joining_a_stream_mid_way_costs_no_error_and_empty_frames_count_nowhere(void **state) {
   (void)state;
   uint8_t stream[8 * GP_MAX_WIRE];
@@ -297,6 +339,7 @@ int main(void) {
     cmocka_unit_test(a_jump_of_exactly_the_window_then_a_late_frame_inside_it_is_reordered),
     cmocka_unit_test(a_restart_from_any_number_is_a_restart_with_nothing_lost),
     cmocka_unit_test(a_copy_of_the_start_frame_is_a_duplicate_not_a_restart),
+    cmocka_unit_test(after_a_new_link_a_sequence_from_below_is_a_restart_not_duplicates),
     cmocka_unit_test(joining_a_stream_mid_way_costs_no_error_and_empty_frames_count_nowhere),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

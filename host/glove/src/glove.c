@@ -211,7 +211,11 @@ static bool is_stream(const mr_glove *g) {
 /* The source hung up (or ended, when at_end). A frame cut short by it ends
  * here, as one error, rather than fusing with the first bytes after the
  * replug; the delimiter is the host's, not the glove's, so it is not
- * counted as received. A listening socket waits for the next peer on the
+ * counted as received. What comes next comes over a new link, which
+ * repeats nothing from this one: a glove that counts its sequence again
+ * from below where it was is a restart, not a run of duplicates (a TCP
+ * glove whose connections were shorter than the sequence window gave no
+ * samples at all after a reconnect). A listening socket waits for the next peer on the
  * same port; anything else is closed and retried, or the glove ends, as
  * def.reconnect says. */
 static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
@@ -230,6 +234,7 @@ static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
   if (g->state != MR_GLOVE_MISMATCH) g->state = MR_GLOVE_LOST;
   if (why != g->last_error) snprintf(g->last_error, sizeof g->last_error, "%s", why);
   g->clock_fresh = true;
+  gp_decoder_new_link(&g->dec);
   g->next_open = now + g->def.retry_every;
   if (ends) g->ended = true;
 }
@@ -291,9 +296,10 @@ static void try_open(mr_glove *g, double now) {
   g->last_bytes = now;
   g->sniffing = !g->is_take && is_stream(g);
   g->sniffed = 0;
-  /* The decoder carries on: the loss ended any frame it held (mark_lost),
-   * so the new stream's first frame is read whole, and a glove that kept
-   * its sequence through the unplug shows what it lost meanwhile. */
+  /* The decoder carries on: the loss ended any frame it held and marked
+   * a new link (mark_lost), so the new stream's first frame is read whole,
+   * a glove that kept its sequence through the unplug shows what it lost
+   * meanwhile, and one that counts again is a restart. */
 }
 
 /* Raw ADC counts to 0..1: by the glove's own calibrated range when its INFO

@@ -116,13 +116,16 @@ int mr_glove_command(mr_glove *g, const mr_glove_cmd *cmd, double now, char *msg
              g->def.source, MR_GLOVE_MAX_PENDING);
     return -1;
   }
+  /* The slot is free while its tag is chosen: the tag it held may be
+   * taken again, and the tag 0 it would hold is left out by fresh_tag's
+   * own rule, not by chance. */
   memset(p, 0, sizeof *p);
+  p->result.tag = fresh_tag(g);
   p->used = true;
   p->serial = ++g->cmd_serial;
   p->cmd = *cmd;
   p->result.state = MR_GLOVE_CMD_PENDING;
   p->result.type = cmd->type;
-  p->result.tag = fresh_tag(g);
   p->len = encode(cmd, p->result.tag, p->wire);
   p->next_send = now;
   mr_glove_cmd_poll(g, now);

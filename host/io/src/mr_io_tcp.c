@@ -53,9 +53,11 @@ static int open_stream(const char *host, const char *port, int listening, int *g
     }
     if (listening) {
       setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-      /* A backlog of 16: a burst of connections waits to be refused, not
-       * dropped with its SYNs retried for a minute. */
-      if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, 16) == 0) break;
+      /* The system's largest backlog: a burst of connections waits whole
+       * in the queue to be closed. With 16, a burst of 50 left 16 peers
+       * whose handshake the kernel dropped while the queue was full
+       * connected on their side and never answered, for good. */
+      if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, SOMAXCONN) == 0) break;
     } else if (connect(fd, ai->ai_addr, ai->ai_addrlen) == 0) {
       break;
     }
