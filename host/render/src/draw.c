@@ -68,7 +68,7 @@ mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list,
   if (view->show_rigging && list) mr_lines_draw(r, list->lines, list->n_lines, &f);
   gl->Disable(GL_DEPTH_TEST);
   /* The text goes on after the resolve (or the smoothing), sharp. */
-  mr_fbo_resolve(r);
+  mr_fbo_resolve(r, list, &f);
   mr_text_draw(r, view->osd, view->n_osd);
   gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
   r->drawn = true;

@@ -35,6 +35,12 @@ int mr_fbo_create(mr_render *r, char *msg, size_t msg_size) {
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl->BindTexture(GL_TEXTURE_2D, 0);
     gl->GenVertexArrays(1, &r->post_vao);
+    gl->BindVertexArray(r->post_vao);
+    gl->GenBuffers(1, &r->post_vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, r->post_vbo);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), NULL);
+    gl->EnableVertexAttribArray(0);
+    gl->BindVertexArray(0);
   } else {
     gl->GenRenderbuffers(1, &r->rb_color_ms);
     gl->BindRenderbuffer(GL_RENDERBUFFER, r->rb_color_ms);
@@ -75,8 +81,9 @@ void mr_fbo_destroy(mr_render *r) {
   if (r->rb_color_out) gl->DeleteRenderbuffers(1, &r->rb_color_out);
   if (r->tex_frame) gl->DeleteTextures(1, &r->tex_frame);
   if (r->post_vao) gl->DeleteVertexArrays(1, &r->post_vao);
+  if (r->post_vbo) gl->DeleteBuffers(1, &r->post_vbo);
   r->fbo_ms = r->fbo_out = r->rb_color_ms = r->rb_depth_ms = r->rb_color_out = 0;
-  r->tex_frame = r->post_vao = 0;
+  r->tex_frame = r->post_vao = r->post_vbo = 0;
 }
 
 void mr_fbo_bind_draw(mr_render *r) {
@@ -84,31 +91,10 @@ void mr_fbo_bind_draw(mr_render *r) {
   r->gl.Viewport(0, 0, r->width, r->height);
 }
 
-/* The post pass: the drawn frame's texture through the edge-smoothing
- * shader into the output framebuffer. */
-static void smooth(mr_render *r) {
-  const mr_gl *gl = &r->gl;
-  gl->Disable(GL_DEPTH_TEST);
-  gl->Disable(GL_BLEND);
-  gl->UseProgram(r->prog_smooth);
-  mr_uniform_i(r, r->prog_smooth, "u_frame", 0);
-  gl->Uniform2f(gl->GetUniformLocation(r->prog_smooth, "u_texel"), 1.0f / (float)r->width,
-                1.0f / (float)r->height);
-  gl->ActiveTexture(GL_TEXTURE0);
-  gl->BindTexture(GL_TEXTURE_2D, r->tex_frame);
-  gl->BindVertexArray(r->post_vao);
-  gl->DrawArrays(GL_TRIANGLES, 0, 3);
-  gl->BindVertexArray(0);
-  gl->BindTexture(GL_TEXTURE_2D, 0);
-  gl->UseProgram(0);
-}
-
-void mr_fbo_resolve(mr_render *r) {
+void mr_fbo_resolve(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
   const mr_gl *gl = &r->gl;
   if (r->smooth) {
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_out);
-    gl->Viewport(0, 0, r->width, r->height);
-    smooth(r);
+    mr_post_smooth(r, list, f);
   } else {
     gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
     gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_out);

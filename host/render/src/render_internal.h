@@ -76,12 +76,13 @@ struct mr_render {
   mr_stage_def stage; /* a copy; its pointers are not used after create */
   /* The frame's targets (fbo.c): multisampled, then resolved; or, when
    * smoothed, one sample into a texture, then the post pass. */
-  GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out, tex_frame, post_vao;
+  GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out, tex_frame, post_vao, post_vbo;
   bool drawn;
   /* Programs (shaders.c). */
   GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text, prog_smooth;
   GLuint prog_mesh_skin, prog_depth_skin; /* 0 when the stage has no freeform model */
   GLuint prog_scenery;                    /* the floor and backdrop's lit program */
+  GLuint prog_smooth_stars;               /* the smoothing over the stars (post.c) */
   /* The sun's shadow map (shadow.c). */
   GLuint shadow_fbo, shadow_tex;
   int shadow_size;
@@ -108,10 +109,16 @@ void mr_fbo_destroy(mr_render *r);
 void mr_fbo_bind_draw(mr_render *r);
 /* Resolves (or smooths) the frame into the output framebuffer, and
  * leaves that bound for what is drawn over it (the on-screen text). */
-void mr_fbo_resolve(mr_render *r);
+void mr_fbo_resolve(mr_render *r, const mr_draw_list *list, const mr_frame *f);
 int mr_fbo_read_rgb(mr_render *r, uint8_t *rgb); /* -1: out of memory */
 /* Window: the last frame blitted into the window's back buffer. */
 void mr_fbo_blit_to_window(mr_render *r, int w, int h);
+
+/* post.c: the frame copied into the output framebuffer, and its edges
+ * smoothed where the draw list's models and the scenery's outlines are
+ * (at most MR_POST_MAX_VERTS vertices of regions). */
+#define MR_POST_MAX_VERTS 96
+void mr_post_smooth(mr_render *r, const mr_draw_list *list, const mr_frame *f);
 
 /* shaders.c */
 int mr_shaders_create(mr_render *r, char *msg, size_t msg_size);
@@ -124,6 +131,7 @@ void mr_uniform_v4(mr_render *r, GLuint prog, const char *name, const float *v);
 void mr_uniform_m4(mr_render *r, GLuint prog, const char *name, mat4 m);
 
 /* meshes.c */
+#define MR_BACKDROP_HALF_HEIGHT 0.8f /* the backdrop is 1.6 m tall */
 int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_path, char *msg,
                      size_t msg_size, mr_render_status *status);
 void mr_meshes_destroy(mr_render *r);
@@ -151,6 +159,9 @@ void mr_sky_light(const mr_stage_def *s, double time_of_day, mr_frame *f);
 int mr_sky_create(mr_render *r, char *msg, size_t msg_size);
 void mr_sky_destroy(mr_render *r);
 void mr_sky_draw_stars(mr_render *r, const mr_frame *f);
+/* The stars as points with prog (in use, taking the star shader's
+ * uniforms), pad pixels wider than they are drawn; nothing by day. */
+void mr_sky_star_points(mr_render *r, GLuint prog, const mr_frame *f, float pad);
 /* Linear to sRGB, as the shaders do it. */
 float mr_srgb(float linear);
 

@@ -179,24 +179,26 @@ const char mr_src_line_fs[] =
                                  "void main() { o_color = vec4(mr_to_srgb(v_color), 1.0); }\n";
 
 /* Stars: points on a sphere about the eye, inside the far plane, so the
- * floor and the backdrop hide them; they fade in as the sun sets. A star
+ * floor and the backdrop hide them; they fade in as the sun sets. The
+ * edge-smoothing pass draws them again, u_point_pad pixels wider, with
+ * its own fragment shader (post.c). A star
  * whose centre is outside the view is dropped (sent past the far plane):
  * desktop GL discards such a point, but ES clips points only at the near
  * and far planes and would draw the part that reaches into the frame. */
-const char mr_src_star_vs[] =
-    MR_GLSL_VERSION "layout(location = 0) in vec3 a_dir;\n"
-                    "layout(location = 1) in float a_bright;\n"
-                    "uniform mat4 u_view_proj;\n"
-                    "uniform vec3 u_eye;\n"
-                    "uniform float u_night, u_point_scale;\n"
-                    "out float v_alpha;\n"
-                    "void main() {\n"
-                    "  v_alpha = clamp(a_bright, 0.0, 1.0) * u_night;\n"
-                    "  gl_PointSize = (1.5 + 2.5 * clamp(a_bright, 0.0, 1.0)) * u_point_scale;\n"
-                    "  vec4 p = u_view_proj * vec4(u_eye + normalize(a_dir) * 50.0, 1.0);\n"
-                    "  if (any(greaterThan(abs(p.xy), vec2(p.w)))) p.z = 2.0 * p.w;\n"
-                    "  gl_Position = p;\n"
-                    "}\n";
+const char mr_src_star_vs[] = MR_GLSL_VERSION
+    "layout(location = 0) in vec3 a_dir;\n"
+    "layout(location = 1) in float a_bright;\n"
+    "uniform mat4 u_view_proj;\n"
+    "uniform vec3 u_eye;\n"
+    "uniform float u_night, u_point_scale, u_point_pad;\n"
+    "out float v_alpha;\n"
+    "void main() {\n"
+    "  v_alpha = clamp(a_bright, 0.0, 1.0) * u_night;\n"
+    "  gl_PointSize = (1.5 + 2.5 * clamp(a_bright, 0.0, 1.0)) * u_point_scale + u_point_pad;\n"
+    "  vec4 p = u_view_proj * vec4(u_eye + normalize(a_dir) * 50.0, 1.0);\n"
+    "  if (any(greaterThan(abs(p.xy), vec2(p.w)))) p.z = 2.0 * p.w;\n"
+    "  gl_Position = p;\n"
+    "}\n";
 
 const char mr_src_star_fs[] =
     MR_GLSL_VERSION "in float v_alpha;\n"
@@ -206,13 +208,11 @@ const char mr_src_star_fs[] =
                     "  o_color = vec4(1.0, 1.0, 0.95, v_alpha * (1.0 - smoothstep(0.5, 1.0, r)));\n"
                     "}\n";
 
-/* The post pass: one triangle that covers the frame, its corners from
- * the vertex's number (no buffer). */
-const char mr_src_post_vs[] = MR_GLSL_VERSION
-    "void main() {\n"
-    "  vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));\n"
-    "  gl_Position = vec4(p, 0.0, 1.0);\n"
-    "}\n";
+/* The post pass: the regions where an edge can be (post.c), in
+ * normalised device coordinates. */
+const char mr_src_post_vs[] =
+    MR_GLSL_VERSION "layout(location = 0) in vec2 a_pos;\n"
+                    "void main() { gl_Position = vec4(a_pos, 0.0, 1.0); }\n";
 
 /* Edge smoothing, for frames drawn with one sample (software GL, where
  * multisampling costs most of a frame). The luma of the pixel and its

@@ -106,13 +106,16 @@ int mr_shaders_create(mr_render *r, char *msg, size_t msg_size) {
   if (!r->prog_text) return -1;
   if (!r->smooth) return 0;
   r->prog_smooth = program(r, mr_src_post_vs, mr_src_smooth_fs, "edge smoothing", msg, msg_size);
-  return r->prog_smooth ? 0 : -1;
+  if (!r->prog_smooth) return -1;
+  r->prog_smooth_stars =
+      program(r, mr_src_star_vs, mr_src_smooth_fs, "edge smoothing of stars", msg, msg_size);
+  return r->prog_smooth_stars ? 0 : -1;
 }
 
 void mr_shaders_destroy(mr_render *r) {
-  GLuint *progs[] = { &r->prog_mesh,      &r->prog_scenery,    &r->prog_depth,
-                      &r->prog_mesh_skin, &r->prog_depth_skin, &r->prog_line,
-                      &r->prog_star,      &r->prog_text,       &r->prog_smooth };
+  GLuint *progs[] = { &r->prog_mesh,       &r->prog_scenery,     &r->prog_depth, &r->prog_mesh_skin,
+                      &r->prog_depth_skin, &r->prog_line,        &r->prog_star,  &r->prog_text,
+                      &r->prog_smooth,     &r->prog_smooth_stars };
   for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) {
     if (*progs[i]) r->gl.DeleteProgram(*progs[i]);
     *progs[i] = 0;
