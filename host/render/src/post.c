@@ -54,10 +54,11 @@ static void box_add_point(const mr_render *r, const mr_frame *f, const float p[3
   b->any = true;
 }
 
-/* A point and, when the sun casts, its shadow on the floor's plane and
- * on the backdrop's (shadow edges are edges too). */
-static void box_add(const mr_render *r, const mr_frame *f, const float p[3], box *b, regions *g) {
-  box_add_point(r, f, p, b, g);
+/* A point into b[0] and, when the sun casts, its shadow on the floor's
+ * plane into b[1] and on the backdrop's into b[2] (shadow edges are edges
+ * too; three boxes cover less than the one about them). */
+static void box_add(const mr_render *r, const mr_frame *f, const float p[3], box b[3], regions *g) {
+  box_add_point(r, f, p, &b[0], g);
   const float *sun = f->sun_dir;
   const mr_stage_def *s = &r->stage;
   if (!f->shadows) return;
@@ -66,13 +67,13 @@ static void box_add(const mr_render *r, const mr_frame *f, const float p[3], box
   for (int k = 0; k < 2; k++) {
     if (t[k] <= 0 || t[k] > 100) continue;
     float q[3] = { p[0] - t[k] * sun[0], p[1] - t[k] * sun[1], p[2] - t[k] * sun[2] };
-    box_add_point(r, f, q, b, g);
+    box_add_point(r, f, q, &b[1 + k], g);
   }
 }
 
 /* The 8 corners of a model's box moved by m. */
 static void box_add_model(const mr_render *r, const mr_frame *f, const mr_gpu_model *gm, mat4 m,
-                          box *b, regions *g) {
+                          box b[3], regions *g) {
   for (int k = 0; k < 8 && !g->full; k++) {
     vec4 p = { k & 1 ? gm->hi[0] : gm->lo[0], k & 2 ? gm->hi[1] : gm->lo[1],
                k & 4 ? gm->hi[2] : gm->lo[2], 1 },
@@ -84,7 +85,7 @@ static void box_add_model(const mr_render *r, const mr_frame *f, const mr_gpu_mo
 
 /* Everything the draw list moves: items, skins (their rest box moved by
  * each bone, as the shadow's fit does), rigging lines. */
-static void moving_box(const mr_render *r, const mr_draw_list *list, const mr_frame *f, box *b,
+static void moving_box(const mr_render *r, const mr_draw_list *list, const mr_frame *f, box b[3],
                        regions *g) {
   for (size_t i = 0; i < list->n_items && !g->full; i++) {
     const mr_draw_item *it = &list->items[i];
@@ -106,8 +107,8 @@ static void moving_box(const mr_render *r, const mr_draw_list *list, const mr_fr
     const mr_draw_line *l = &list->lines[i];
     float a[3] = { (float)l->a[0], (float)l->a[1], (float)l->a[2] };
     float e[3] = { (float)l->b[0], (float)l->b[1], (float)l->b[2] };
-    box_add_point(r, f, a, b, g); /* lines cast no shadow */
-    box_add_point(r, f, e, b, g);
+    box_add_point(r, f, a, &b[0], g); /* lines cast no shadow */
+    box_add_point(r, f, e, &b[0], g);
   }
 }
 
@@ -201,9 +202,10 @@ static void scenery_strips(const mr_render *r, const mr_frame *f, regions *g) {
 static void regions_make(const mr_render *r, const mr_draw_list *list, const mr_frame *f,
                          regions *g) {
   memset(g, 0, sizeof *g);
-  box b = { 0 };
-  if (list) moving_box(r, list, f, &b, g);
-  if (b.any && !g->full) add_box(r, g, &b);
+  box b[3] = { 0 };
+  if (list) moving_box(r, list, f, b, g);
+  for (int k = 0; k < 3; k++)
+    if (b[k].any && !g->full) add_box(r, g, &b[k]);
   if (!g->full) scenery_strips(r, f, g);
   if (g->full) {
     const float q[4][2] = { { 0, 0 },

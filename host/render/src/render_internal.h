@@ -81,7 +81,8 @@ struct mr_render {
   /* Programs (shaders.c). */
   GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text, prog_smooth;
   GLuint prog_mesh_skin, prog_depth_skin; /* 0 when the stage has no freeform model */
-  GLuint prog_scenery;                    /* the floor and backdrop's lit program */
+  GLuint prog_scenery;                    /* the floor's lit program (its checkerboard) */
+  GLuint prog_backdrop;                   /* the backdrop's */
   GLuint prog_smooth_stars;               /* the smoothing over the stars (post.c) */
   /* The sun's shadow map (shadow.c). */
   GLuint shadow_fbo, shadow_tex;

@@ -79,8 +79,8 @@ static const char mesh_vs_body[] =
  * the floor and the backdrop, untextured, of roughness 0.9, whose
  * exponent 2 / 0.81 - 2 is clamped to 1, so the lobe is the cosine
  * itself and the compiler drops the pow (scene.c draws them with that
- * roughness). The floor's checkerboard is worked out here from world x
- * and z. */
+ * roughness). The floor's checkerboard (MR_SCENERY 2; the backdrop is 1) is
+ * worked out here from world x and z. */
 static const char mesh_fs_body[] = MR_GLSL_SRGB
     "in vec3 v_world, v_normal;\n"
     "in vec2 v_uv;\n"
@@ -88,7 +88,7 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "uniform vec4 u_color;\n"
     "uniform vec3 u_emissive, u_color2, u_eye, u_ambient, u_sun_dir, u_sun_color;\n"
     "uniform float u_roughness, u_metallic, u_cell, u_shadow_texel;\n"
-    "uniform int u_textured, u_checker, u_shadows;\n"
+    "uniform int u_textured, u_shadows;\n"
     "uniform bool u_mirrored;\n"
     "uniform sampler2D u_texture;\n"
     "uniform sampler2DShadow u_shadow_map;\n"
@@ -127,10 +127,10 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "#if !MR_SCENERY\n"
     "  if (u_textured != 0) base *= texture(u_texture, v_uv).rgb;\n"
     "#endif\n"
-    "  if (u_checker != 0) {\n"
-    "    vec2 c = floor(v_world.xz / u_cell);\n"
-    "    if (mod(c.x + c.y, 2.0) >= 1.0) base = u_color2;\n"
-    "  }\n"
+    "#if MR_SCENERY == 2\n"
+    "  vec2 cell = floor(v_world.xz / u_cell);\n"
+    "  if (mod(cell.x + cell.y, 2.0) >= 1.0) base = u_color2;\n"
+    "#endif\n"
     "  vec3 n = normalize(v_normal);\n"
     "  if (gl_FrontFacing == u_mirrored) n = -n;\n"
     "  vec3 v = normalize(u_eye - v_world);\n"
@@ -160,10 +160,11 @@ int mr_src_mesh_vs_make(char *buf, size_t size, int skinned) {
   return n > 0 && (size_t)n < size ? 0 : -1;
 }
 
-int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps, int scenery) {
+int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps,
+                        mr_src_surface surface) {
   int n = snprintf(buf, size,
                    "%s#define MR_N_SPOTS %d\n#define MR_SHADOW_TAPS %d\n#define MR_SCENERY %d\n%s",
-                   MR_GLSL_VERSION, n_spots, shadow_taps, scenery ? 1 : 0, mesh_fs_body);
+                   MR_GLSL_VERSION, n_spots, shadow_taps, (int)surface, mesh_fs_body);
   return n > 0 && (size_t)n < size ? 0 : -1;
 }
 
