@@ -80,7 +80,9 @@ static const char mesh_vs_body[] =
  * exponent 2 / 0.81 - 2 is clamped to 1, so the lobe is the cosine
  * itself and the compiler drops the pow (scene.c draws them with that
  * roughness). The floor's checkerboard (MR_SCENERY 2; the backdrop is 1) is
- * worked out here from world x and z. */
+ * worked out here from world x and z. Their normals (the floor's +y, the
+ * backdrop's +z, as meshes.c makes them), no metal and no glow are
+ * constants too, so nothing is interpolated or worked out for them. */
 static const char mesh_fs_body[] = MR_GLSL_SRGB
     "in vec3 v_world, v_normal;\n"
     "in vec2 v_uv;\n"
@@ -116,11 +118,16 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  return texture(u_shadow_map, vec3(p.xy, z));\n"
     "#endif\n"
     "}\n"
+    "#if MR_SCENERY\n"
+    "#define METALLIC 0.0\n"
+    "#else\n"
+    "#define METALLIC u_metallic\n"
+    "#endif\n"
     "vec3 light(vec3 n, vec3 v, vec3 l, vec3 base, vec3 f0, float shin) {\n"
     "  float ndl = max(dot(n, l), 0.0);\n"
     "  vec3 h = normalize(l + v);\n"
     "  float spec = pow(max(dot(n, h), 0.0), shin) * (shin + 8.0) / 25.13;\n"
-    "  return (base * (1.0 - u_metallic) + f0 * spec) * ndl;\n"
+    "  return (base * (1.0 - METALLIC) + f0 * spec) * ndl;\n"
     "}\n"
     "void main() {\n"
     "  vec3 base = u_color.rgb;\n"
@@ -131,7 +138,13 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  vec2 cell = floor(v_world.xz / u_cell);\n"
     "  if (mod(cell.x + cell.y, 2.0) >= 1.0) base = u_color2;\n"
     "#endif\n"
+    "#if MR_SCENERY == 2\n"
+    "  vec3 n = vec3(0.0, 1.0, 0.0);\n"
+    "#elif MR_SCENERY == 1\n"
+    "  vec3 n = vec3(0.0, 0.0, 1.0);\n"
+    "#else\n"
     "  vec3 n = normalize(v_normal);\n"
+    "#endif\n"
     "  if (gl_FrontFacing == u_mirrored) n = -n;\n"
     "  vec3 v = normalize(u_eye - v_world);\n"
     "#if MR_SCENERY\n"
@@ -140,8 +153,12 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  float r = clamp(u_roughness, 0.05, 1.0);\n"
     "  float shin = clamp(2.0 / (r * r) - 2.0, 1.0, 1024.0);\n"
     "#endif\n"
-    "  vec3 f0 = mix(vec3(0.04), base, u_metallic);\n"
+    "  vec3 f0 = mix(vec3(0.04), base, METALLIC);\n"
+    "#if MR_SCENERY\n"
+    "  vec3 c = u_ambient * base;\n"
+    "#else\n"
     "  vec3 c = u_ambient * base + u_emissive;\n"
+    "#endif\n"
     "  float ndl = max(dot(n, u_sun_dir), 0.0);\n"
     "  c += u_sun_color * light(n, v, u_sun_dir, base, f0, shin) * sun_shadow(ndl);\n"
     "  for (int i = 0; i < MR_N_SPOTS; i++) {\n"
