@@ -78,6 +78,8 @@ struct mr_render {
    * smoothed, one sample into a texture, then the post pass. */
   GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out, tex_frame, post_vao, post_vbo;
   bool drawn;
+  uint8_t *read_buf; /* the read back's staging buffer (fbo.c) */
+  size_t read_size;
   /* Programs (shaders.c). */
   GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text, prog_smooth;
   GLuint prog_mesh_skin, prog_depth_skin; /* 0 when the stage has no freeform model */
