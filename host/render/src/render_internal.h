@@ -78,6 +78,10 @@ struct mr_render {
    * smoothed, one sample into a texture, then the post pass. */
   GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out, tex_frame, post_vao, post_vbo;
   bool drawn;
+  /* The still scenery, kept (still.c). */
+  GLuint still_fbo, still_color, still_depth;
+  float still_key[28];
+  bool still_kept;
   uint8_t *read_buf; /* the read back's staging buffer (fbo.c) */
   size_t read_size;
   /* Programs (shaders.c). */
@@ -146,8 +150,26 @@ void mr_pose_matrix(const mr_pose *p, mat4 out);
 /* Uploads a skin's bone matrices into the bone texture. */
 void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 
-/* scene.c: the lit scene, and the shadow pass's casters. */
-void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f);
+/* still.c: the sky, the backdrop and the floor, unshadowed, kept while
+ * the camera and the sun stay (software GL, one sample). */
+typedef struct mr_still_rects {
+  int backdrop[4], floor[4]; /* x, y, w, h on screen where shadows can fall; w 0: none */
+} mr_still_rects;
+int mr_still_create(mr_render *r, char *msg, size_t msg_size);
+void mr_still_destroy(mr_render *r);
+/* Copies the kept scenery (drawn again first when the camera or the sun
+ * moved) into the drawing framebuffer and leaves that bound; out says
+ * where the shadows can fall. False when nothing is kept: the frame is
+ * cleared and drawn whole. */
+bool mr_still_draw(mr_render *r, const mr_draw_list *list, const mr_frame *f, mr_still_rects *out);
+
+/* scene.c: the lit scene, and the shadow pass's casters. With still (the
+ * scenery kept), the backdrop and the floor are drawn again only inside
+ * its rectangles. */
+void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
+                       const mr_still_rects *still);
+/* The backdrop and (or) the floor, lit. */
+void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor);
 /* The casters into the shadow map, with the shadow programs, seen
  * through light_vp. */
 void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp);

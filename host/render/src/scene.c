@@ -87,16 +87,16 @@ static void set_model(mr_render *r, GLuint p, mat4 m) {
   mr_uniform_i(r, p, "u_mirrored", mirrors(m));
 }
 
-/* The backdrop, then the floor, each with its own program, whose shader
+/* The backdrop, then the floor (those asked for), each with its own program, whose shader
  * takes their roughness as given (shader_src.c). The backdrop goes first:
  * the floor runs on behind it (a band of pixels above where they meet),
  * and there it then fails the depth test before it is shaded. */
-static void draw_scenery(mr_render *r, const mr_frame *f) {
+void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor) {
   const mr_stage_def *s = &r->stage;
   mat4 id = GLM_MAT4_IDENTITY_INIT;
   mr_material_def m = mr_default_material_def();
   m.roughness = 0.9f;
-  if (s->backdrop) {
+  if (s->backdrop && backdrop) {
     GLuint p = r->prog_backdrop;
     r->gl.UseProgram(p);
     set_lights(r, p, f);
@@ -105,7 +105,7 @@ static void draw_scenery(mr_render *r, const mr_frame *f) {
     set_material(r, p, &m, &r->backdrop);
     mr_mesh_draw(r, &r->backdrop);
   }
-  if (s->floor) {
+  if (s->floor && floor) {
     GLuint p = r->prog_scenery;
     r->gl.UseProgram(p);
     set_lights(r, p, f);
@@ -178,7 +178,20 @@ static void draw_skins(mr_render *r, const mr_draw_list *list, GLuint prog, bool
 /* The items and skins first, then the backdrop and the floor, which they
  * hide in part: a fragment behind what is drawn already fails the depth
  * test before it is shaded. */
-void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
+/* The kept scenery's shadowed parts, each surface inside its rectangle. */
+static void draw_still_shadows(mr_render *r, const mr_frame *f, const mr_still_rects *still) {
+  const int *rects[2] = { still->backdrop, still->floor };
+  r->gl.Enable(GL_SCISSOR_TEST);
+  for (int k = 0; k < 2; k++) {
+    if (rects[k][2] <= 0 || rects[k][3] <= 0) continue;
+    r->gl.Scissor(rects[k][0], rects[k][1], rects[k][2], rects[k][3]);
+    mr_scene_draw_scenery(r, f, k == 0, k == 1);
+  }
+  r->gl.Disable(GL_SCISSOR_TEST);
+}
+
+void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
+                       const mr_still_rects *still) {
   r->gl.UseProgram(r->prog_mesh);
   set_lights(r, r->prog_mesh, f);
   if (list) draw_items(r, list, r->prog_mesh, true, false);
@@ -187,7 +200,10 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
     set_lights(r, r->prog_mesh_skin, f);
     draw_skins(r, list, r->prog_mesh_skin, true, false);
   }
-  draw_scenery(r, f);
+  if (!still)
+    mr_scene_draw_scenery(r, f, true, true);
+  else if (f->shadows)
+    draw_still_shadows(r, f, still);
   r->gl.UseProgram(0);
 }
 
