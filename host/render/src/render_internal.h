@@ -80,7 +80,7 @@ struct mr_render {
   bool drawn;
   /* The still scenery, kept (still.c). */
   GLuint still_fbo, still_color, still_depth;
-  float still_key[28];
+  float still_key[28], still_last[28]; /* what is kept; the last frame's */
   bool still_kept;
   uint8_t *read_buf; /* the read back's staging buffer (fbo.c) */
   size_t read_size;

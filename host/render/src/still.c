@@ -1,7 +1,8 @@
 /* The still part of a frame, kept from frame to frame in software GL:
  * the sky, the backdrop and the floor as the camera and the sun see them,
  * unshadowed, colour and depth. They change only when the camera, the day
- * knob or the frame's size does, and they were the dearest part of a
+ * knob or the frame's size does (they are kept once they have stayed for
+ * two frames), and they were the dearest part of a
  * 1280x720 frame (167 M of 291 M instructions for the humanoid, callgrind:
  * most pixels are floor and backdrop, each running the lit shader with the
  * sun, its shadow and the spots). Each frame the kept picture is copied
@@ -49,18 +50,24 @@ void mr_still_destroy(mr_render *r) {
   r->still_kept = false;
 }
 
-/* True when the kept picture was drawn for this frame's camera and sun;
- * keeps the frame's key otherwise. */
-static bool still_current(mr_render *r, const mr_frame *f) {
+/* What the kept picture is for, this frame: 1 the kept one, 0 none (the
+ * camera or the sun moved since the last frame: the frame is drawn
+ * whole, as a picture kept now would serve no other frame while an orbit
+ * drag or the day knob turns), -1 one to draw again (they have stayed
+ * for two frames). */
+static int still_state(mr_render *r, const mr_frame *f) {
   float k[KEY_LEN];
   memcpy(k, f->view_proj, 16 * sizeof(float));
   memcpy(k + 16, f->sun_dir, 3 * sizeof(float));
   memcpy(k + 19, f->sun_color, 3 * sizeof(float));
   memcpy(k + 22, f->ambient, 3 * sizeof(float));
   memcpy(k + 25, f->sky, 3 * sizeof(float));
-  bool same = r->still_kept && memcmp(k, r->still_key, sizeof k) == 0;
+  if (r->still_kept && memcmp(k, r->still_key, sizeof k) == 0) return 1;
+  bool stayed = memcmp(k, r->still_last, sizeof k) == 0;
+  memcpy(r->still_last, k, sizeof k);
+  if (!stayed) return 0;
   memcpy(r->still_key, k, sizeof k);
-  return same;
+  return -1;
 }
 
 /* The sky, the backdrop and the floor, unshadowed, into the kept
@@ -201,7 +208,9 @@ static void shadow_rect(const mr_render *r, const mr_draw_list *list, const mr_f
 bool mr_still_draw(mr_render *r, const mr_draw_list *list, const mr_frame *f, mr_still_rects *out) {
   memset(out, 0, sizeof *out);
   if (!r->still_fbo) return false;
-  if (!still_current(r, f)) still_redraw(r, f);
+  int state = still_state(r, f);
+  if (state == 0) return false;
+  if (state < 0) still_redraw(r, f);
   const mr_gl *gl = &r->gl;
   gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->still_fbo);
   gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_ms);
