@@ -3,7 +3,8 @@
  * that smooths the edges, unless samples are asked for; a shadow map that
  * is drawn again when a caster moves; the stage's spots, however many,
  * each lighting its cone; built-in shapes culled from the outside, even
- * mirrored. */
+ * mirrored; the still scenery kept between frames, and drawn again when
+ * the camera or the sun moves. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -225,6 +226,42 @@ static void test_a_mirrored_shape_is_drawn_from_the_outside(void **state) {
   for (size_t i = 0; i < 2; i++) mirrored(backends[i]);
 }
 
+/* One renderer draws a box at noon, then turned round the stage by the
+ * camera, then at evening, then its box moved: the sky, backdrop and
+ * floor it keeps between frames follow each change, and every frame is
+ * the one a new renderer draws of it, bit for bit. */
+static void kept(mr_render_backend b) {
+  fx_scene s;
+  fx_scene_init(&s);
+  s.models[0].shape = MR_SHAPE_BOX;
+  s.items[0].pose.position[1] = 0.5;
+  mr_render *r = fx_render(b, &s);
+  for (int step = 0; step < 4; step++) {
+    if (step == 1) s.view.eye[0] += 0.8;              /* the camera */
+    if (step == 2) s.view.time_of_day = 0.7;          /* the sun, low */
+    if (step == 3) s.items[0].pose.position[0] = 0.5; /* the shadow */
+    /* Drawn whole, then with what it kept. */
+    uint8_t *moved = fx_draw(r, &s);
+    uint8_t *frame = fx_draw(r, &s);
+    mr_render *fresh = fx_render(b, &s);
+    uint8_t *first = fx_draw(fresh, &s);
+    mr_render_destroy(fresh);
+    size_t n = differ(frame, first) + differ(moved, first);
+    if (n != 0)
+      fail_msg("%s: step %d: %zu pixels differ from a new renderer's", mr_render_backend_name(b),
+               step, n);
+    free(moved);
+    free(frame);
+    free(first);
+  }
+  mr_render_destroy(r);
+}
+
+static void test_the_kept_scenery_follows_the_camera_the_sun_and_the_shadows(void **state) {
+  (void)state;
+  for (size_t i = 0; i < 2; i++) kept(backends[i]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_in_software_a_frame_has_one_sample_and_only_its_edges_are_smoothed),
@@ -232,6 +269,7 @@ int main(void) {
     cmocka_unit_test(test_the_shadow_map_is_drawn_again_when_a_caster_moves),
     cmocka_unit_test(test_each_of_three_spots_lights_its_own_cone),
     cmocka_unit_test(test_a_mirrored_shape_is_drawn_from_the_outside),
+    cmocka_unit_test(test_the_kept_scenery_follows_the_camera_the_sun_and_the_shadows),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

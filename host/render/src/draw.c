@@ -55,20 +55,24 @@ mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list,
   mr_sky_light(&r->stage, view->time_of_day, &f);
   mr_shadow_draw(r, list, &f);
 
-  mr_fbo_bind_draw(r);
-  gl->ClearColor(mr_srgb(f.sky[0]), mr_srgb(f.sky[1]), mr_srgb(f.sky[2]), 1);
-  gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  mr_still_rects still;
+  bool kept = mr_still_draw(r, list, &f, &still);
+  if (!kept) {
+    mr_fbo_bind_draw(r);
+    gl->ClearColor(mr_srgb(f.sky[0]), mr_srgb(f.sky[1]), mr_srgb(f.sky[2]), 1);
+    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
   gl->Enable(GL_DEPTH_TEST);
   gl->DepthFunc(GL_LEQUAL);
   /* Model files do not agree on winding, and the floor and backdrop are
    * seen from both sides: nothing is culled. */
   gl->Disable(GL_CULL_FACE);
-  mr_scene_draw_lit(r, list, &f);
+  mr_scene_draw_lit(r, list, &f, kept ? &still : NULL);
   mr_sky_draw_stars(r, &f);
   if (view->show_rigging && list) mr_lines_draw(r, list->lines, list->n_lines, &f);
   gl->Disable(GL_DEPTH_TEST);
   /* The text goes on after the resolve (or the smoothing), sharp. */
-  mr_fbo_resolve(r);
+  mr_fbo_resolve(r, list, &f);
   mr_text_draw(r, view->osd, view->n_osd);
   gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
   r->drawn = true;

@@ -30,6 +30,7 @@
   X(PFNGLENABLEPROC, Enable)                                                 \
   X(PFNGLDISABLEPROC, Disable)                                               \
   X(PFNGLVIEWPORTPROC, Viewport)                                             \
+  X(PFNGLSCISSORPROC, Scissor)                                               \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \

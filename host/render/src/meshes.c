@@ -209,7 +209,7 @@ static void scenery_create(mr_render *r, const mr_stage_def *s) {
     upload_quad(r, &r->floor, c, u, v, n);
   }
   if (s->backdrop) {
-    const float half_h = 0.8f;
+    const float half_h = MR_BACKDROP_HALF_HEIGHT;
     const float c[3] = { 0, (float)s->floor_height + half_h, (float)-s->backdrop_distance },
                 u[3] = { h, 0, 0 }, v[3] = { 0, half_h, 0 }, n[3] = { 0, 0, 1 };
     upload_quad(r, &r->backdrop, c, u, v, n);

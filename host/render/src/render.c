@@ -87,8 +87,8 @@ static mr_render_status gl_objects_create(mr_render *r, const mr_render_def *def
                                           char *msg, size_t msg_size) {
   r->gl.Disable(GL_DITHER);
   if (mr_fbo_create(r, msg, msg_size) != 0 || mr_shaders_create(r, msg, msg_size) != 0 ||
-      mr_shadow_create(r, msg, msg_size) != 0 || mr_sky_create(r, msg, msg_size) != 0 ||
-      mr_lines_create(r) != 0)
+      mr_shadow_create(r, msg, msg_size) != 0 || mr_still_create(r, msg, msg_size) != 0 ||
+      mr_sky_create(r, msg, msg_size) != 0 || mr_lines_create(r) != 0)
     return MR_RENDER_ERR_GL;
   describe_quality(r);
   if (mr_text_create(r, def->font_path, msg, msg_size) != 0) return MR_RENDER_ERR_ARG;
@@ -143,6 +143,7 @@ void mr_render_destroy(mr_render *r) {
     mr_lines_destroy(r);
     mr_sky_destroy(r);
     mr_shadow_destroy(r);
+    mr_still_destroy(r);
     mr_shaders_destroy(r);
     mr_fbo_destroy(r);
   }

@@ -76,12 +76,20 @@ struct mr_render {
   mr_stage_def stage; /* a copy; its pointers are not used after create */
   /* The frame's targets (fbo.c): multisampled, then resolved; or, when
    * smoothed, one sample into a texture, then the post pass. */
-  GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out, tex_frame, post_vao;
+  GLuint fbo_ms, rb_color_ms, rb_depth_ms, fbo_out, rb_color_out, tex_frame, post_vao, post_vbo;
   bool drawn;
+  /* The still scenery, kept (still.c). */
+  GLuint still_fbo, still_color, still_depth;
+  float still_key[28], still_last[28]; /* what is kept; the last frame's */
+  bool still_kept;
+  uint8_t *read_buf; /* the read back's staging buffer (fbo.c) */
+  size_t read_size;
   /* Programs (shaders.c). */
   GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text, prog_smooth;
   GLuint prog_mesh_skin, prog_depth_skin; /* 0 when the stage has no freeform model */
-  GLuint prog_scenery;                    /* the floor and backdrop's lit program */
+  GLuint prog_scenery;                    /* the floor's lit program (its checkerboard) */
+  GLuint prog_backdrop;                   /* the backdrop's */
+  GLuint prog_smooth_stars;               /* the smoothing over the stars (post.c) */
   /* The sun's shadow map (shadow.c). */
   GLuint shadow_fbo, shadow_tex;
   int shadow_size;
@@ -108,10 +116,16 @@ void mr_fbo_destroy(mr_render *r);
 void mr_fbo_bind_draw(mr_render *r);
 /* Resolves (or smooths) the frame into the output framebuffer, and
  * leaves that bound for what is drawn over it (the on-screen text). */
-void mr_fbo_resolve(mr_render *r);
+void mr_fbo_resolve(mr_render *r, const mr_draw_list *list, const mr_frame *f);
 int mr_fbo_read_rgb(mr_render *r, uint8_t *rgb); /* -1: out of memory */
 /* Window: the last frame blitted into the window's back buffer. */
 void mr_fbo_blit_to_window(mr_render *r, int w, int h);
+
+/* post.c: the frame copied into the output framebuffer, and its edges
+ * smoothed where the draw list's models and the scenery's outlines are
+ * (at most MR_POST_MAX_VERTS vertices of regions). */
+#define MR_POST_MAX_VERTS 96
+void mr_post_smooth(mr_render *r, const mr_draw_list *list, const mr_frame *f);
 
 /* shaders.c */
 int mr_shaders_create(mr_render *r, char *msg, size_t msg_size);
@@ -124,6 +138,7 @@ void mr_uniform_v4(mr_render *r, GLuint prog, const char *name, const float *v);
 void mr_uniform_m4(mr_render *r, GLuint prog, const char *name, mat4 m);
 
 /* meshes.c */
+#define MR_BACKDROP_HALF_HEIGHT 0.8f /* the backdrop is 1.6 m tall */
 int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_path, char *msg,
                      size_t msg_size, mr_render_status *status);
 void mr_meshes_destroy(mr_render *r);
@@ -135,8 +150,26 @@ void mr_pose_matrix(const mr_pose *p, mat4 out);
 /* Uploads a skin's bone matrices into the bone texture. */
 void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 
-/* scene.c: the lit scene, and the shadow pass's casters. */
-void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f);
+/* still.c: the sky, the backdrop and the floor, unshadowed, kept while
+ * the camera and the sun stay (software GL, one sample). */
+typedef struct mr_still_rects {
+  int backdrop[4], floor[4]; /* x, y, w, h on screen where shadows can fall; w 0: none */
+} mr_still_rects;
+int mr_still_create(mr_render *r, char *msg, size_t msg_size);
+void mr_still_destroy(mr_render *r);
+/* Copies the kept scenery (drawn again first when the camera or the sun
+ * moved) into the drawing framebuffer and leaves that bound; out says
+ * where the shadows can fall. False when nothing is kept: the frame is
+ * cleared and drawn whole. */
+bool mr_still_draw(mr_render *r, const mr_draw_list *list, const mr_frame *f, mr_still_rects *out);
+
+/* scene.c: the lit scene, and the shadow pass's casters. With still (the
+ * scenery kept), the backdrop and the floor are drawn again only inside
+ * its rectangles. */
+void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
+                       const mr_still_rects *still);
+/* The backdrop and (or) the floor, lit. */
+void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor);
 /* The casters into the shadow map, with the shadow programs, seen
  * through light_vp. */
 void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp);
@@ -151,6 +184,9 @@ void mr_sky_light(const mr_stage_def *s, double time_of_day, mr_frame *f);
 int mr_sky_create(mr_render *r, char *msg, size_t msg_size);
 void mr_sky_destroy(mr_render *r);
 void mr_sky_draw_stars(mr_render *r, const mr_frame *f);
+/* The stars as points with prog (in use, taking the star shader's
+ * uniforms), pad pixels wider than they are drawn; nothing by day. */
+void mr_sky_star_points(mr_render *r, GLuint prog, const mr_frame *f, float pad);
 /* Linear to sRGB, as the shaders do it. */
 float mr_srgb(float linear);
 

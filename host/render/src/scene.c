@@ -87,29 +87,35 @@ static void set_model(mr_render *r, GLuint p, mat4 m) {
   mr_uniform_i(r, p, "u_mirrored", mirrors(m));
 }
 
-/* The floor and the backdrop, with the scenery program (in use), whose
- * shader takes their roughness as given (shader_src.c). */
-static void draw_scenery(mr_render *r) {
-  GLuint p = r->prog_scenery;
+/* The backdrop, then the floor (those asked for), each with its own program, whose shader
+ * takes their roughness as given (shader_src.c). The backdrop goes first:
+ * the floor runs on behind it (a band of pixels above where they meet),
+ * and there it then fails the depth test before it is shaded. */
+void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor) {
   const mr_stage_def *s = &r->stage;
   mat4 id = GLM_MAT4_IDENTITY_INIT;
-  set_model(r, p, id);
   mr_material_def m = mr_default_material_def();
   m.roughness = 0.9f;
-  if (s->floor) {
+  if (s->backdrop && backdrop) {
+    GLuint p = r->prog_backdrop;
+    r->gl.UseProgram(p);
+    set_lights(r, p, f);
+    set_model(r, p, id);
+    for (int k = 0; k < 3; k++) m.base_color[k] = s->backdrop_color[k];
+    set_material(r, p, &m, &r->backdrop);
+    mr_mesh_draw(r, &r->backdrop);
+  }
+  if (s->floor && floor) {
+    GLuint p = r->prog_scenery;
+    r->gl.UseProgram(p);
+    set_lights(r, p, f);
+    set_model(r, p, id);
     for (int k = 0; k < 3; k++) m.base_color[k] = s->floor_color[k];
     set_material(r, p, &m, &r->floor);
-    mr_uniform_i(r, p, "u_checker", 1);
     mr_uniform_v3(r, p, "u_color2", s->floor_color2);
     /* 16 squares a side. */
     mr_uniform_f(r, p, "u_cell", (float)(s->floor_size / 16.0));
     mr_mesh_draw(r, &r->floor);
-    mr_uniform_i(r, p, "u_checker", 0);
-  }
-  if (s->backdrop) {
-    for (int k = 0; k < 3; k++) m.base_color[k] = s->backdrop_color[k];
-    set_material(r, p, &m, &r->backdrop);
-    mr_mesh_draw(r, &r->backdrop);
   }
 }
 
@@ -172,7 +178,20 @@ static void draw_skins(mr_render *r, const mr_draw_list *list, GLuint prog, bool
 /* The items and skins first, then the backdrop and the floor, which they
  * hide in part: a fragment behind what is drawn already fails the depth
  * test before it is shaded. */
-void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
+/* The kept scenery's shadowed parts, each surface inside its rectangle. */
+static void draw_still_shadows(mr_render *r, const mr_frame *f, const mr_still_rects *still) {
+  const int *rects[2] = { still->backdrop, still->floor };
+  r->gl.Enable(GL_SCISSOR_TEST);
+  for (int k = 0; k < 2; k++) {
+    if (rects[k][2] <= 0 || rects[k][3] <= 0) continue;
+    r->gl.Scissor(rects[k][0], rects[k][1], rects[k][2], rects[k][3]);
+    mr_scene_draw_scenery(r, f, k == 0, k == 1);
+  }
+  r->gl.Disable(GL_SCISSOR_TEST);
+}
+
+void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
+                       const mr_still_rects *still) {
   r->gl.UseProgram(r->prog_mesh);
   set_lights(r, r->prog_mesh, f);
   if (list) draw_items(r, list, r->prog_mesh, true, false);
@@ -181,9 +200,10 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
     set_lights(r, r->prog_mesh_skin, f);
     draw_skins(r, list, r->prog_mesh_skin, true, false);
   }
-  r->gl.UseProgram(r->prog_scenery);
-  set_lights(r, r->prog_scenery, f);
-  draw_scenery(r);
+  if (!still)
+    mr_scene_draw_scenery(r, f, true, true);
+  else if (f->shadows)
+    draw_still_shadows(r, f, still);
   r->gl.UseProgram(0);
 }
 

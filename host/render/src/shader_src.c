@@ -13,11 +13,18 @@
 #include <stdio.h>
 
 #define MR_GLSL_VERSION ""
-#define MR_GLSL_SRGB                                                   \
-  "vec3 mr_to_srgb(vec3 c) {\n"                                        \
-  "  c = clamp(c, 0.0, 1.0);\n"                                        \
-  "  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055,\n" \
-  "             step(vec3(0.0031308), c));\n"                          \
+/* Linear to sRGB. Above the linear toe, 1.055 c^(1/2.4) - 0.055 is
+ * matched by a least-squares fit in c^(1/2), c^(1/4), c^(1/8) and c
+ * (worst error 0.02/255, so an 8-bit value moves by at most its
+ * rounding): three square roots, where pow is a log and an exponential
+ * worked out in software GL, about a tenth of a scenery pixel's
+ * instructions. */
+#define MR_GLSL_SRGB                                                                \
+  "vec3 mr_to_srgb(vec3 c) {\n"                                                     \
+  "  c = clamp(c, 0.0, 1.0);\n"                                                     \
+  "  vec3 s1 = sqrt(c), s2 = sqrt(s1), s3 = sqrt(s2);\n"                            \
+  "  vec3 hi = 0.6452007 * s1 + 0.7091280 * s2 - 0.3356885 * s3 - 0.0186766 * c;\n" \
+  "  return mix(c * 12.92, hi, step(vec3(0.0031308), c));\n"                        \
   "}\n"
 
 /* Meshes: an item's model matrix, or (MR_SKINNED) the blend of its
@@ -72,8 +79,10 @@ static const char mesh_vs_body[] =
  * the floor and the backdrop, untextured, of roughness 0.9, whose
  * exponent 2 / 0.81 - 2 is clamped to 1, so the lobe is the cosine
  * itself and the compiler drops the pow (scene.c draws them with that
- * roughness). The floor's checkerboard is worked out here from world x
- * and z. */
+ * roughness). The floor's checkerboard (MR_SCENERY 2; the backdrop is 1) is
+ * worked out here from world x and z. Their normals (the floor's +y, the
+ * backdrop's +z, as meshes.c makes them), no metal and no glow are
+ * constants too, so nothing is interpolated or worked out for them. */
 static const char mesh_fs_body[] = MR_GLSL_SRGB
     "in vec3 v_world, v_normal;\n"
     "in vec2 v_uv;\n"
@@ -81,7 +90,7 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "uniform vec4 u_color;\n"
     "uniform vec3 u_emissive, u_color2, u_eye, u_ambient, u_sun_dir, u_sun_color;\n"
     "uniform float u_roughness, u_metallic, u_cell, u_shadow_texel;\n"
-    "uniform int u_textured, u_checker, u_shadows;\n"
+    "uniform int u_textured, u_shadows;\n"
     "uniform bool u_mirrored;\n"
     "uniform sampler2D u_texture;\n"
     "uniform sampler2DShadow u_shadow_map;\n"
@@ -109,22 +118,33 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  return texture(u_shadow_map, vec3(p.xy, z));\n"
     "#endif\n"
     "}\n"
+    "#if MR_SCENERY\n"
+    "#define METALLIC 0.0\n"
+    "#else\n"
+    "#define METALLIC u_metallic\n"
+    "#endif\n"
     "vec3 light(vec3 n, vec3 v, vec3 l, vec3 base, vec3 f0, float shin) {\n"
     "  float ndl = max(dot(n, l), 0.0);\n"
     "  vec3 h = normalize(l + v);\n"
     "  float spec = pow(max(dot(n, h), 0.0), shin) * (shin + 8.0) / 25.13;\n"
-    "  return (base * (1.0 - u_metallic) + f0 * spec) * ndl;\n"
+    "  return (base * (1.0 - METALLIC) + f0 * spec) * ndl;\n"
     "}\n"
     "void main() {\n"
     "  vec3 base = u_color.rgb;\n"
     "#if !MR_SCENERY\n"
     "  if (u_textured != 0) base *= texture(u_texture, v_uv).rgb;\n"
     "#endif\n"
-    "  if (u_checker != 0) {\n"
-    "    vec2 c = floor(v_world.xz / u_cell);\n"
-    "    if (mod(c.x + c.y, 2.0) >= 1.0) base = u_color2;\n"
-    "  }\n"
+    "#if MR_SCENERY == 2\n"
+    "  vec2 cell = floor(v_world.xz / u_cell);\n"
+    "  if (mod(cell.x + cell.y, 2.0) >= 1.0) base = u_color2;\n"
+    "#endif\n"
+    "#if MR_SCENERY == 2\n"
+    "  vec3 n = vec3(0.0, 1.0, 0.0);\n"
+    "#elif MR_SCENERY == 1\n"
+    "  vec3 n = vec3(0.0, 0.0, 1.0);\n"
+    "#else\n"
     "  vec3 n = normalize(v_normal);\n"
+    "#endif\n"
     "  if (gl_FrontFacing == u_mirrored) n = -n;\n"
     "  vec3 v = normalize(u_eye - v_world);\n"
     "#if MR_SCENERY\n"
@@ -133,17 +153,20 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  float r = clamp(u_roughness, 0.05, 1.0);\n"
     "  float shin = clamp(2.0 / (r * r) - 2.0, 1.0, 1024.0);\n"
     "#endif\n"
-    "  vec3 f0 = mix(vec3(0.04), base, u_metallic);\n"
+    "  vec3 f0 = mix(vec3(0.04), base, METALLIC);\n"
+    "#if MR_SCENERY\n"
+    "  vec3 c = u_ambient * base;\n"
+    "#else\n"
     "  vec3 c = u_ambient * base + u_emissive;\n"
+    "#endif\n"
     "  float ndl = max(dot(n, u_sun_dir), 0.0);\n"
     "  c += u_sun_color * light(n, v, u_sun_dir, base, f0, shin) * sun_shadow(ndl);\n"
     "  for (int i = 0; i < MR_N_SPOTS; i++) {\n"
     "    vec3 d = u_spot_pos[i] - v_world;\n"
-    "    float dist = length(d);\n"
-    "    vec3 l = d / dist;\n"
+    "    float d2 = dot(d, d);\n"
+    "    vec3 l = d * inversesqrt(d2);\n"
     "    float cone = smoothstep(u_spot_cos[i].x, u_spot_cos[i].y, dot(-l, u_spot_dir[i]));\n"
-    "    c += u_spot_color[i] * cone / (1.0 + 0.05 * dist * dist) * light(n, v, l, base, f0, "
-    "shin);\n"
+    "    c += u_spot_color[i] * (cone / (1.0 + 0.05 * d2)) * light(n, v, l, base, f0, shin);\n"
     "  }\n"
     "  o_color = vec4(mr_to_srgb(c), 1.0);\n"
     "}\n";
@@ -154,10 +177,11 @@ int mr_src_mesh_vs_make(char *buf, size_t size, int skinned) {
   return n > 0 && (size_t)n < size ? 0 : -1;
 }
 
-int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps, int scenery) {
+int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps,
+                        mr_src_surface surface) {
   int n = snprintf(buf, size,
                    "%s#define MR_N_SPOTS %d\n#define MR_SHADOW_TAPS %d\n#define MR_SCENERY %d\n%s",
-                   MR_GLSL_VERSION, n_spots, shadow_taps, scenery ? 1 : 0, mesh_fs_body);
+                   MR_GLSL_VERSION, n_spots, shadow_taps, (int)surface, mesh_fs_body);
   return n > 0 && (size_t)n < size ? 0 : -1;
 }
 
@@ -179,24 +203,26 @@ const char mr_src_line_fs[] =
                                  "void main() { o_color = vec4(mr_to_srgb(v_color), 1.0); }\n";
 
 /* Stars: points on a sphere about the eye, inside the far plane, so the
- * floor and the backdrop hide them; they fade in as the sun sets. A star
+ * floor and the backdrop hide them; they fade in as the sun sets. The
+ * edge-smoothing pass draws them again, u_point_pad pixels wider, with
+ * its own fragment shader (post.c). A star
  * whose centre is outside the view is dropped (sent past the far plane):
  * desktop GL discards such a point, but ES clips points only at the near
  * and far planes and would draw the part that reaches into the frame. */
-const char mr_src_star_vs[] =
-    MR_GLSL_VERSION "layout(location = 0) in vec3 a_dir;\n"
-                    "layout(location = 1) in float a_bright;\n"
-                    "uniform mat4 u_view_proj;\n"
-                    "uniform vec3 u_eye;\n"
-                    "uniform float u_night, u_point_scale;\n"
-                    "out float v_alpha;\n"
-                    "void main() {\n"
-                    "  v_alpha = clamp(a_bright, 0.0, 1.0) * u_night;\n"
-                    "  gl_PointSize = (1.5 + 2.5 * clamp(a_bright, 0.0, 1.0)) * u_point_scale;\n"
-                    "  vec4 p = u_view_proj * vec4(u_eye + normalize(a_dir) * 50.0, 1.0);\n"
-                    "  if (any(greaterThan(abs(p.xy), vec2(p.w)))) p.z = 2.0 * p.w;\n"
-                    "  gl_Position = p;\n"
-                    "}\n";
+const char mr_src_star_vs[] = MR_GLSL_VERSION
+    "layout(location = 0) in vec3 a_dir;\n"
+    "layout(location = 1) in float a_bright;\n"
+    "uniform mat4 u_view_proj;\n"
+    "uniform vec3 u_eye;\n"
+    "uniform float u_night, u_point_scale, u_point_pad;\n"
+    "out float v_alpha;\n"
+    "void main() {\n"
+    "  v_alpha = clamp(a_bright, 0.0, 1.0) * u_night;\n"
+    "  gl_PointSize = (1.5 + 2.5 * clamp(a_bright, 0.0, 1.0)) * u_point_scale + u_point_pad;\n"
+    "  vec4 p = u_view_proj * vec4(u_eye + normalize(a_dir) * 50.0, 1.0);\n"
+    "  if (any(greaterThan(abs(p.xy), vec2(p.w)))) p.z = 2.0 * p.w;\n"
+    "  gl_Position = p;\n"
+    "}\n";
 
 const char mr_src_star_fs[] =
     MR_GLSL_VERSION "in float v_alpha;\n"
@@ -206,13 +232,11 @@ const char mr_src_star_fs[] =
                     "  o_color = vec4(1.0, 1.0, 0.95, v_alpha * (1.0 - smoothstep(0.5, 1.0, r)));\n"
                     "}\n";
 
-/* The post pass: one triangle that covers the frame, its corners from
- * the vertex's number (no buffer). */
-const char mr_src_post_vs[] = MR_GLSL_VERSION
-    "void main() {\n"
-    "  vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));\n"
-    "  gl_Position = vec4(p, 0.0, 1.0);\n"
-    "}\n";
+/* The post pass: the regions where an edge can be (post.c), in
+ * normalised device coordinates. */
+const char mr_src_post_vs[] =
+    MR_GLSL_VERSION "layout(location = 0) in vec2 a_pos;\n"
+                    "void main() { gl_Position = vec4(a_pos, 0.0, 1.0); }\n";
 
 /* Edge smoothing, for frames drawn with one sample (software GL, where
  * multisampling costs most of a frame). The luma of the pixel and its

@@ -75,18 +75,22 @@ static bool has_skins(const mr_stage_def *s) {
 static int mesh_programs(mr_render *r, char *msg, size_t msg_size) {
   int n_spots = r->stage.lights.n_spots < 8 ? r->stage.lights.n_spots : 8;
   n_spots = n_spots > 0 ? n_spots : 0;
-  char vs[4096], vs_skin[4096], fs[8192], fs_scenery[8192];
+  char vs[4096], vs_skin[4096], fs[8192], fs_floor[8192], fs_backdrop[8192];
   if (mr_src_mesh_vs_make(vs, sizeof vs, 0) != 0 ||
       mr_src_mesh_vs_make(vs_skin, sizeof vs_skin, 1) != 0 ||
-      mr_src_mesh_fs_make(fs, sizeof fs, n_spots, r->shadow_taps, 0) != 0 ||
-      mr_src_mesh_fs_make(fs_scenery, sizeof fs_scenery, n_spots, r->shadow_taps, 1) != 0) {
+      mr_src_mesh_fs_make(fs, sizeof fs, n_spots, r->shadow_taps, MR_SRC_ITEMS) != 0 ||
+      mr_src_mesh_fs_make(fs_floor, sizeof fs_floor, n_spots, r->shadow_taps, MR_SRC_FLOOR) != 0 ||
+      mr_src_mesh_fs_make(fs_backdrop, sizeof fs_backdrop, n_spots, r->shadow_taps,
+                          MR_SRC_BACKDROP) != 0) {
     snprintf(msg, msg_size, "a mesh shader's source does not fit its buffer");
     return -1;
   }
   r->prog_mesh = program(r, vs, fs, "mesh", msg, msg_size);
   if (!r->prog_mesh) return -1;
-  r->prog_scenery = program(r, vs, fs_scenery, "scenery", msg, msg_size);
+  r->prog_scenery = program(r, vs, fs_floor, "floor", msg, msg_size);
   if (!r->prog_scenery) return -1;
+  r->prog_backdrop = program(r, vs, fs_backdrop, "backdrop", msg, msg_size);
+  if (!r->prog_backdrop) return -1;
   r->prog_depth = program(r, vs, mr_src_depth_fs, "shadow", msg, msg_size);
   if (!r->prog_depth) return -1;
   if (!has_skins(&r->stage)) return 0;
@@ -106,13 +110,16 @@ int mr_shaders_create(mr_render *r, char *msg, size_t msg_size) {
   if (!r->prog_text) return -1;
   if (!r->smooth) return 0;
   r->prog_smooth = program(r, mr_src_post_vs, mr_src_smooth_fs, "edge smoothing", msg, msg_size);
-  return r->prog_smooth ? 0 : -1;
+  if (!r->prog_smooth) return -1;
+  r->prog_smooth_stars =
+      program(r, mr_src_star_vs, mr_src_smooth_fs, "edge smoothing of stars", msg, msg_size);
+  return r->prog_smooth_stars ? 0 : -1;
 }
 
 void mr_shaders_destroy(mr_render *r) {
-  GLuint *progs[] = { &r->prog_mesh,      &r->prog_scenery,    &r->prog_depth,
-                      &r->prog_mesh_skin, &r->prog_depth_skin, &r->prog_line,
-                      &r->prog_star,      &r->prog_text,       &r->prog_smooth };
+  GLuint *progs[] = { &r->prog_mesh,      &r->prog_scenery,    &r->prog_backdrop,    &r->prog_depth,
+                      &r->prog_mesh_skin, &r->prog_depth_skin, &r->prog_line,        &r->prog_star,
+                      &r->prog_text,      &r->prog_smooth,     &r->prog_smooth_stars };
   for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) {
     if (*progs[i]) r->gl.DeleteProgram(*progs[i]);
     *progs[i] = 0;

@@ -70,29 +70,36 @@ void mr_sky_destroy(mr_render *r) {
   r->n_stars = 0;
 }
 
-/* After the scene: depth-tested (the floor and backdrop hide them) but
- * not written, added onto the sky. */
-void mr_sky_draw_stars(mr_render *r, const mr_frame *f) {
+void mr_sky_star_points(mr_render *r, GLuint prog, const mr_frame *f, float pad) {
   float night = 1 - f->day;
   if (r->n_stars == 0 || night <= 0) return;
   const mr_gl *gl = &r->gl;
-  gl->UseProgram(r->prog_star);
-  mr_uniform_m4(r, r->prog_star, "u_view_proj", (vec4 *)f->view_proj);
-  mr_uniform_v3(r, r->prog_star, "u_eye", f->eye);
-  mr_uniform_f(r, r->prog_star, "u_night", night);
+  mr_uniform_m4(r, prog, "u_view_proj", (vec4 *)f->view_proj);
+  mr_uniform_v3(r, prog, "u_eye", f->eye);
+  mr_uniform_f(r, prog, "u_night", night);
   /* Sized for 720 rows, never under a pixel's worth. */
   float scale = (float)r->height / 720.0f;
-  mr_uniform_f(r, r->prog_star, "u_point_scale", scale > 1 ? scale : 1);
+  mr_uniform_f(r, prog, "u_point_scale", scale > 1 ? scale : 1);
+  mr_uniform_f(r, prog, "u_point_pad", pad);
   /* ES always takes gl_PointSize, and has no such switch. */
   if (!r->gles) gl->Enable(GL_PROGRAM_POINT_SIZE);
-  gl->Enable(GL_BLEND);
-  gl->BlendFunc(GL_SRC_ALPHA, GL_ONE);
-  gl->DepthMask(GL_FALSE);
   gl->BindVertexArray(r->star_vao);
   gl->DrawArrays(GL_POINTS, 0, r->n_stars);
   gl->BindVertexArray(0);
+  if (!r->gles) gl->Disable(GL_PROGRAM_POINT_SIZE);
+}
+
+/* After the scene: depth-tested (the floor and backdrop hide them) but
+ * not written, added onto the sky. */
+void mr_sky_draw_stars(mr_render *r, const mr_frame *f) {
+  if (r->n_stars == 0 || f->day >= 1) return;
+  const mr_gl *gl = &r->gl;
+  gl->UseProgram(r->prog_star);
+  gl->Enable(GL_BLEND);
+  gl->BlendFunc(GL_SRC_ALPHA, GL_ONE);
+  gl->DepthMask(GL_FALSE);
+  mr_sky_star_points(r, r->prog_star, f, 0);
   gl->DepthMask(GL_TRUE);
   gl->Disable(GL_BLEND);
-  if (!r->gles) gl->Disable(GL_PROGRAM_POINT_SIZE);
   gl->UseProgram(0);
 }
