@@ -115,7 +115,9 @@ static int one_show(bench *b, const char *scene, double seconds, int busy) {
     return -1;
   }
   double shown = field(text, "frames shown"), sim = field(text, "simulated");
+  /* The run prints the time given up only when some was. */
   double given = field(text, "time given up to catch up");
+  if (isnan(given)) given = 0.0;
   double p50 = field(text, "latency p50"), p99 = field(text, "latency p99");
   /* Wall time is show time over the real-time factor. */
   double fps = shown / (sim / rt);
