@@ -190,8 +190,9 @@ static void every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_ove
              e->d_name, s.stage.orbit_distance, s.stage.orbit_elevation_deg, fr.inside, fr.clear,
              fr.t_worst, f.count);
     if (!(fr.inside > 0 && fr.clear > 0))
-      fail_msg("%s: out of the picture by %.3f or over the overlay by %.3f at t %.1f s", e->d_name,
-               -fr.inside, -fr.clear, fr.t_worst);
+      fail_msg("%s: inside the picture by %.3f and clear of the overlay by %.3f at t %.1f s; "
+               "both must be above 0",
+               e->d_name, fr.inside, fr.clear, fr.t_worst);
     free(f.t);
     free(f.xyz);
     mr_scene_free(&s);
