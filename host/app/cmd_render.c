@@ -208,6 +208,7 @@ static void one_picture(job *j, double t, const double *xyz, size_t n) {
 
 static void frame(job *j, double t, const double *xyz, size_t n) {
   if (j->failed) return;
+  mr_stageview_track(&j->sv, t, xyz, n);
   if (j->a->has_frame) {
     one_picture(j, t, xyz, n);
     return;

@@ -30,6 +30,22 @@ static void start_camera(mr_stageview *sv) {
   sv->time_of_day = d->time_of_day;
   sv->show_osd = true;
   sv->show_rigging = true;
+  sv->follow = mr_follow_start(MR_FOLLOW_TIME);
+}
+
+void mr_stageview_track(mr_stageview *sv, double t, const double *xyz, size_t n) {
+  if (!sv->scene->stage.follow || n == 0) return;
+  double mid[3];
+  mr_box_middle(xyz, n, mid);
+  for (int c = 0; c < 3; c++)
+    if (!isfinite(mid[c])) return;
+  if (!sv->follow.started) {
+    for (int c = 0; c < 3; c++) sv->follow_offset[c] = sv->orbit.target[c] - mid[c];
+    sv->follow_t = t;
+  }
+  mr_follow_step(&sv->follow, mid, t - sv->follow_t);
+  sv->follow_t = t;
+  for (int c = 0; c < 3; c++) sv->orbit.target[c] = sv->follow.pos[c] + sv->follow_offset[c];
 }
 
 /* The window of wdef at the size the renderer will take, on rdef's

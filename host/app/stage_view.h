@@ -25,6 +25,10 @@ typedef struct mr_stageview {
   /* The camera: -1 the orbit camera, else the scene's camera k. */
   int camera;
   mr_orbit orbit; /* the orbit camera (mr_stage's maths) */
+  /* `camera: follow`: the orbit's target is follow.pos + follow_offset,
+   * follow chasing the middle of the points' box (mr_stageview_track). */
+  mr_follow follow;
+  double follow_offset[3], follow_t;
   double time_of_day;
   int material_turn; /* times the models were told to change materials */
   bool show_osd, show_rigging;
@@ -48,6 +52,11 @@ void mr_stageview_close(mr_stageview *sv);
 /* The points at xyz (3 n: scene particles, then control points) drawn
  * with the current view. -1 with msg on a renderer failure. */
 int mr_stageview_draw(mr_stageview *sv, const double *xyz, size_t n, char *msg, size_t msg_size);
+/* The show's time t and its points (as mr_stageview_draw's) for the
+ * camera that follows (`camera: follow`): called for every frame of the
+ * show, drawn or not, so that the camera moves the same whichever frames
+ * are drawn. Nothing without `camera: follow`. */
+void mr_stageview_track(mr_stageview *sv, double t, const double *xyz, size_t n);
 /* The latest draw list again with the current view (paused, orbiting). */
 int mr_stageview_redraw(mr_stageview *sv, char *msg, size_t msg_size);
 /* The last frame drawn, RGB top row first (sv->width x sv->height). */

@@ -215,30 +215,29 @@ static void osd_lines(mr_live *lv, const mr_show_frame *f) {
   osd_rates(lv, &s);
   uint64_t skipped = s.frames_simulated > lv->drawn ? s.frames_simulated - lv->drawn : 0;
   mr_stageview_osd_clear(sv);
-  mr_stageview_osd(sv, "t %.2f s  fps %.1f  skipped %llu  dt %.2f ms  resets %llu%s%s", f->t,
-                   lv->fps, (unsigned long long)skipped, lv->dt_mean * 1e3,
-                   (unsigned long long)s.resets, lv->paused ? "  PAUSED" : "",
-                   lv->slow ? "  SLOW x0.25" : "");
-  mr_stageview_osd(sv, "latency p50 %.1f ms  p99 %.1f ms", s.latency_p50 * 1e3,
-                   s.latency_p99 * 1e3);
-  for (size_t g = 0; g < f->n_gloves && g < MR_OSD_LINES - 4; g++) {
+  mr_stageview_osd(sv, "t %.2f s  %.0f fps  dt %.1f ms%s%s", f->t, lv->fps, lv->dt_mean * 1e3,
+                   lv->paused ? "  PAUSED" : "", lv->slow ? "  SLOW x0.25" : "");
+  mr_stageview_osd(sv, "lag %.0f/%.0f ms  skip %llu  resets %llu", s.latency_p50 * 1e3,
+                   s.latency_p99 * 1e3, (unsigned long long)skipped, (unsigned long long)s.resets);
+  /* The overlay is MR_OSD_ROWS lines: the first gloves get one each. */
+  for (size_t g = 0; g < f->n_gloves && g < MR_OSD_ROWS - 3; g++) {
     const mr_show_glove_view *v = &f->gloves[g];
     const mr_glove_reading r = v->reading;
     double late = r.host_t - r.device_t - v->clock_offset;
     char lateness[48] = "";
     if (r.samples > 0 && isfinite(late))
-      snprintf(lateness, sizeof lateness, ", %.1f ms late", late * 1e3);
-    mr_stageview_osd(sv, "glove %zu%s: %s%s, %llu samples", g + 1,
-                     lv->manual_on && g == 0 ? " (keys, mouse, pad)" : "",
-                     mr_glove_state_name(v->state), lateness, (unsigned long long)r.samples);
+      snprintf(lateness, sizeof lateness, " %.0f ms late", late * 1e3);
+    mr_stageview_osd(sv, "glove %zu%s %s%s", g + 1, lv->manual_on && g == 0 ? " keys" : "",
+                     mr_glove_state_name(v->state), lateness);
   }
   const char *cam = sv->camera >= 0 ? sv->scene->stage.cameras[sv->camera].name : "orbit";
-  mr_stageview_osd(sv, "camera %s  day %.2f  (h: hide, q: quit)", cam, sv->time_of_day);
+  mr_stageview_osd(sv, "%s  day %.2f  h hides, q quits", cam, sv->time_of_day);
 }
 
 void mr_live_present(mr_live *lv, const mr_show_frame *f) {
   if (lv->failed) return;
   lv->show_t = f->t;
+  mr_stageview_track(&lv->sv, f->t, f->xyz, (size_t)f->n_particles);
   osd_lines(lv, f);
   if (mr_stageview_draw(&lv->sv, f->xyz, (size_t)f->n_particles, lv->msg, sizeof lv->msg) != 0) {
     lv->failed = lv->quit = true;

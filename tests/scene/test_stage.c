@@ -115,6 +115,8 @@ static const char full[] = PHYS
     "  spheres: true\n"
     "camera:\n"
     "  orbit: {target: [0, 1, 0], distance: 4, azimuth: 30, elevation: 20, fov: 50}\n"
+    "  follow: true\n"
+    "  facing: 15\n"
     "  views:\n"
     "    - {name: front, position: [0, 1, 3], target: [0, 1, 0], fov: 40}\n"
     "    - {name: side, position: [3, 1, 0]}\n";
@@ -176,6 +178,7 @@ static void every_stage_key_is_read_back(void **state) {
   assert_true(d->show_frames && d->frame_color[0] == 0.3f);
   assert_true(d->orbit_target[1] == 1 && d->orbit_distance == 4 && d->orbit_azimuth_deg == 30);
   assert_true(d->orbit_elevation_deg == 20 && d->fov_deg == 50);
+  assert_true(d->follow && d->facing_deg == 15);
   assert_int_equal(d->n_cameras, 2);
   assert_string_equal(d->cameras[1].name, "side");
   assert_true(d->cameras[0].fov_deg == 40 && d->cameras[1].fov_deg == 45);
@@ -214,9 +217,13 @@ static void a_scene_without_stage_sections_still_shows_every_particle_and_link(v
   assert_int_equal(d->n_strings, 2);
   assert_int_equal(d->n_frames, 1);
   assert_true(d->floor_height == -0.5);
-  /* The camera looks at the middle of the points, from far enough back. */
-  assert_true(d->orbit_target[0] == 1.5 && d->orbit_target[1] == 2 && d->orbit_target[2] == 0.5);
+  /* The audience's camera: in front (+z), a little below the middle of
+   * the points and looking up, from far enough back (test_view.c frames
+   * every example scene with it). */
+  assert_true(fabs(d->orbit_target[0] - 1.5) < 1e-9 && d->orbit_azimuth_deg == 0);
+  assert_true(d->orbit_elevation_deg < 0 && d->orbit_elevation_deg > -10);
   assert_true(d->orbit_distance > 2 && d->orbit_distance < 10);
+  assert_false(d->follow);
   assert_int_equal(d->n_cameras, 0);
   assert_true(d->width == 1280 && d->height == 720);
   /* The shadow map's size and filter are the renderer's to choose. */
@@ -273,6 +280,25 @@ static void a_freeform_puppet_binds_every_particle_of_it(void **state) {
   "    - {name: a, position: [0, 1, 0], mass: 1}\n" \
   "    - {name: b, position: [1, 1, 0], mass: 1}\n" \
   "    - {name: c, position: [2, 1, 0], mass: 1}\n"
+
+/* `camera: follow` and `camera: {facing: 90}` without an orbit: the
+ * audience's camera follows, or sits on the side the puppets face. */
+static void the_audience_camera_sits_where_the_puppets_face_and_may_follow(void **state) {
+  (void)state;
+  mr_scene s;
+  load("t.yaml", SMALL "camera: follow\n", &s);
+  assert_true(s.stage.follow && s.stage.orbit_azimuth_deg == 0);
+  mr_scene_free(&s);
+  load("t.yaml", SMALL "camera: {facing: 90, follow: false}\n", &s);
+  assert_true(!s.stage.follow && s.stage.orbit_azimuth_deg == 90);
+  /* Seen from +x, the points' spread along x is depth: the middle's y
+   * and z stay, the eye stands out along +x. */
+  double eye[3];
+  mr_orbit o = mr_orbit_of_stage(&s.stage);
+  mr_orbit_eye(&o, eye);
+  assert_true(eye[0] > 2 && fabs(eye[2] - s.stage.orbit_target[2]) < 1e-9);
+  mr_scene_free(&s);
+}
 
 static void mistakes_are_refused_at_their_place(void **state) {
   (void)state;
@@ -352,6 +378,9 @@ static void mistakes_are_refused_at_their_place(void **state) {
       "t.yaml:7:33: unknown key 'colour' in stage.backdrop; expected one of: distance, color" },
     { SMALL "stage: {constellations: [{name: k, stars: [[0, 95, 1]]}]}\n",
       "t.yaml:7:48: expected star elevation between -90 and 90 °, got 95" },
+    { SMALL "camera: followme\n",
+      "t.yaml:7:9: expected follow or a mapping for camera, got 'followme'" },
+    { SMALL "camera: {follow: 1}\n", "t.yaml:7:18: expected true or false for follow, got '1'" },
     { SMALL "camera: {orbit: {elevation: 90}}\n",
       "t.yaml:7:29: expected elevation between -89 and 89 °, got 90" },
     { SMALL "camera: {orbit: {elevation: -90}}\n",
@@ -428,6 +457,7 @@ int main(void) {
     cmocka_unit_test(every_stage_key_is_read_back),
     cmocka_unit_test(a_scene_without_stage_sections_still_shows_every_particle_and_link),
     cmocka_unit_test(a_freeform_puppet_binds_every_particle_of_it),
+    cmocka_unit_test(the_audience_camera_sits_where_the_puppets_face_and_may_follow),
     cmocka_unit_test(mistakes_are_refused_at_their_place),
     cmocka_unit_test(format_md_stage_example_loads),
   };

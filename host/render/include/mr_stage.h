@@ -210,6 +210,12 @@ typedef struct mr_stage_def {
   double orbit_distance;                         /* default 2.5 */
   double orbit_azimuth_deg, orbit_elevation_deg; /* default 0, 12 */
   double fov_deg;                                /* default 45 */
+  /* `camera: follow`: the orbit's target follows the middle of the
+   * puppets' and bars' box, critically damped (mr_follow), default false. */
+  bool follow;
+  /* `camera.facing`: the side the puppets face at their start, degrees
+   * about +y from +z; the audience's camera sits there. Default 0. */
+  double facing_deg;
   mr_camera_def cameras[MR_STAGE_MAX_CAMERAS];
   int n_cameras;
   /* The picture (the scene's `stage.size`): default 1280 x 720. */
@@ -239,6 +245,42 @@ void mr_orbit_turn(mr_orbit *o, double d_azimuth_deg, double d_elevation_deg);
 void mr_orbit_zoom(mr_orbit *o, double steps);
 /* Where the eye stands. */
 void mr_orbit_eye(const mr_orbit *o, double eye[3]);
+
+/* Where p falls in the picture of a camera at eye looking at target (up
+ * +y, vertical field of view fov_deg, width / height = aspect), as the
+ * renderer projects it: ndc in -1..1 across the view, x to the right, y
+ * up. Returns p's depth in front of the eye (m); ndc is meaningless when
+ * that is not above 0. */
+double mr_view_project(const double eye[3], const double target[3], double fov_deg, double aspect,
+                       const double p[3], double ndc[2]);
+
+/* A critically damped follower (`camera: follow`): pos is pulled towards
+ * a goal with time constant `time` s and never overshoots a goal that
+ * stands still; its velocity never jumps, so a camera on it does not
+ * jitter with the goal. mr_follow_step advances it by dt exactly (the
+ * closed form for a goal held over dt); the first step jumps to the goal. */
+typedef struct mr_follow {
+  double pos[3], vel[3];
+  double time; /* s, default MR_FOLLOW_TIME */
+  bool started;
+} mr_follow;
+#define MR_FOLLOW_TIME 0.3
+mr_follow mr_follow_start(double time);
+void mr_follow_step(mr_follow *f, const double goal[3], double dt);
+/* The middle of the box around n points (3 n), what `camera: follow`
+ * follows; (0, 0, 0) for none. */
+void mr_box_middle(const double *xyz, size_t n, double mid[3]);
+
+/* The on-screen display (the window's overlay): at most MR_OSD_ROWS lines
+ * of MR_OSD_COLUMNS characters, in a monospaced font MR_OSD_FONT_PX(height)
+ * pixels high, in the picture's bottom left corner over a translucent box.
+ * mr_osd_rect gives that box for rows lines of at most columns characters
+ * in a picture width x height: x, y (top), w, h in pixels, y down. The
+ * renderer draws it there; the audience's camera frames the show clear
+ * of it. */
+enum { MR_OSD_ROWS = 5, MR_OSD_COLUMNS = 44 };
+double mr_osd_font_px(int height);
+void mr_osd_rect(int width, int height, int rows, int columns, double rect[4]);
 
 /* The built-in constellations: a few recognisable patterns and a field of
  * faint stars, fixed (no randomness at run time), so frames are

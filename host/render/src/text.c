@@ -1,6 +1,9 @@
 /* The on-screen display: a monospaced font (DejaVu Sans Mono, as Debian
  * ships it, or def.font_path) baked by stb_truetype into an atlas at
- * create, and lines of text drawn top left over a translucent box. */
+ * create, and at most MR_OSD_ROWS lines of MR_OSD_COLUMNS characters drawn
+ * in the bottom left corner over a translucent box, the box mr_osd_rect
+ * gives (mr_stage.h), so that the audience's camera can frame the show
+ * clear of it. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,9 +69,7 @@ int mr_text_create(mr_render *r, const char *font_path, char *msg, size_t msg_si
     return -1;
   }
   r->text = t;
-  /* 18 px at 720 rows, never under 12. */
-  t->px = (float)r->height / 40.0f;
-  if (t->px < 12) t->px = 12;
+  t->px = (float)mr_osd_font_px(r->height);
   unsigned char *atlas = bake(t, font_path ? font_path : MR_DEFAULT_FONT, msg, msg_size);
   if (!atlas) return -1;
   const mr_gl *gl = &r->gl;
@@ -111,35 +112,48 @@ static float *quad(float *v, float x0, float y0, float x1, float y1, float s0, f
   return v + 24;
 }
 
-/* The box's quad first, then each glyph's; returns the quads written. */
-static size_t layout(const mr_text *t, const char *const *lines, size_t n, float *v) {
+/* The box's quad first (mr_osd_rect's), then each glyph's; returns the
+ * quads written. Lines past MR_OSD_ROWS and characters past
+ * MR_OSD_COLUMNS are left out. */
+static size_t layout(const mr_text *t, int width, int height, const char *const *lines, size_t n,
+                     float *v) {
   const float pad = t->px * 0.4f, line_h = t->px * 1.2f;
-  float width = 0, *p = v + 24;
+  size_t columns = 0;
+  for (size_t i = 0; i < n; i++) {
+    size_t len = lines[i] ? strlen(lines[i]) : 0;
+    if (len > columns) columns = len;
+  }
+  if (columns > MR_OSD_COLUMNS) columns = MR_OSD_COLUMNS;
+  double box[4];
+  mr_osd_rect(width, height, (int)n, (int)columns, box);
+  float *p = quad(v, (float)box[0], (float)box[1], (float)(box[0] + box[2]),
+                  (float)(box[1] + box[3]), 0, 0, 0, 0);
   size_t quads = 1;
   for (size_t i = 0; i < n; i++) {
-    float x = pad, y = pad + t->px * 0.85f + line_h * (float)i;
-    for (const char *c = lines[i] ? lines[i] : ""; *c; c++) {
-      int k = (unsigned char)*c - FIRST_CHAR;
+    float x = (float)box[0] + pad;
+    float y = (float)box[1] + pad + t->px * 0.85f + line_h * (float)i;
+    const char *c = lines[i] ? lines[i] : "";
+    for (size_t j = 0; c[j] && j < MR_OSD_COLUMNS; j++) {
+      int k = (unsigned char)c[j] - FIRST_CHAR;
       if (k < 0 || k >= N_CHARS) k = '?' - FIRST_CHAR;
       stbtt_aligned_quad q;
       stbtt_GetBakedQuad(t->chars, ATLAS, ATLAS, k, &x, &y, &q, 1);
       p = quad(p, q.x0, q.y0, q.x1, q.y1, q.s0, q.t0, q.s1, q.t1);
       quads++;
     }
-    if (x > width) width = x;
   }
-  quad(v, 0, 0, width + pad, pad * 2 + line_h * (float)n, 0, 0, 0, 0);
   return quads;
 }
 
 void mr_text_draw(mr_render *r, const char *const *lines, size_t n) {
   mr_text *t = r->text;
   if (!t || !lines || n == 0) return;
+  if (n > MR_OSD_ROWS) n = MR_OSD_ROWS;
   size_t chars = 0;
   for (size_t i = 0; i < n; i++) chars += lines[i] ? strlen(lines[i]) : 0;
   float *v = malloc((chars + 1) * 24 * sizeof(float));
   if (!v) return;
-  size_t quads = layout(t, lines, n, v);
+  size_t quads = layout(t, r->width, r->height, lines, n, v);
   const mr_gl *gl = &r->gl;
   gl->BindBuffer(GL_ARRAY_BUFFER, t->vbo);
   gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(quads * 24 * sizeof(float)), v, GL_STREAM_DRAW);

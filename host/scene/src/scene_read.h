@@ -202,5 +202,8 @@ int mr_scene_stage_reserve_models(mr_reader *r, const mr_ynode *at, size_t more)
  * lines, collision spheres, models when the file has none, the floor's
  * height, a camera that frames the puppets (scene_rigging.c). */
 int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root);
+/* The audience's camera (scene_audience.c) into the stage's orbit, for a
+ * scene without camera.orbit; -1 when memory runs out. */
+int mr_scene_frame_audience(mr_scene *s);
 
 #endif

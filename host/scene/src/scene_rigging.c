@@ -134,37 +134,6 @@ static int collision_spheres(mr_reader *r) {
   return rc;
 }
 
-/* No camera: section: the orbit camera looks at the middle of every
- * point's start place, from far enough to see them all. */
-static void frame_the_points(mr_scene *s) {
-  size_t n = s->n_particles + s->n_control_points;
-  if (n == 0) return;
-  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-  for (size_t i = 0; i < n; i++) {
-    double p[3];
-    if (i < s->n_particles) {
-      memcpy(p, s->particles[i].def.position, sizeof p);
-    } else {
-      size_t j = i - s->n_particles;
-      mr_pose pose;
-      mr_scene_frame_pose_at(s, s->control_points[j].frame, 0, &pose);
-      mr_scene_control_point_world(s, j, &pose, p);
-    }
-    for (int c = 0; c < 3; c++) {
-      lo[c] = fmin(lo[c], p[c]);
-      hi[c] = fmax(hi[c], p[c]);
-    }
-  }
-  double half = 0;
-  for (int c = 0; c < 3; c++) {
-    s->stage.orbit_target[c] = (lo[c] + hi[c]) / 2;
-    half += (hi[c] - lo[c]) * (hi[c] - lo[c]) / 4;
-  }
-  /* A sphere of radius R fills a vertical field of view f from R / sin(f/2). */
-  double d = 1.2 * sqrt(half) / mr_sin(s->stage.fov_deg * 3.14159265358979323846 / 360.0);
-  s->stage.orbit_distance = fmin(fmax(d, 1.0), 1e5);
-}
-
 int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root) {
   mr_scene *s = r->scene;
   if (s->floor.present) s->stage.floor_height = s->floor.def.offset;
@@ -173,6 +142,10 @@ int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root) {
   const mr_ynode *stage = mr_scene_yaml_get(root, "stage");
   const mr_ynode *spheres = stage ? mr_scene_yaml_get(stage, "spheres") : NULL;
   if (spheres != NULL && strcmp(spheres->text, "true") == 0 && collision_spheres(r) != 0) return -1;
-  if (mr_scene_yaml_get(root, "camera") == NULL) frame_the_points(s);
+  const mr_ynode *camera = mr_scene_yaml_get(root, "camera");
+  if (camera != NULL && camera->kind == MR_YNODE_MAP && mr_scene_yaml_get(camera, "orbit") != NULL)
+    return 0;
+  if (mr_scene_frame_audience(s) != 0)
+    return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
   return 0;
 }

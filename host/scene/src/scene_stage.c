@@ -289,11 +289,24 @@ static int read_view(mr_reader *r, const mr_ynode *n, int k) {
   return 0;
 }
 
+/* `camera: follow` is `camera: {follow: true}`. */
 static int read_camera(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "orbit", "views", NULL };
+  static const char *const keys[] = { "orbit", "views", "follow", "facing", NULL };
+  static const mr_scene_field fields[] = {
+    { "facing", MR_SCENE_FIELD_NUMBER, offsetof(mr_stage_def, facing_deg), 0, 0 },
+  };
   mr_stage_def *d = &r->scene->stage;
   const mr_ynode *v;
+  if (n->kind == MR_YNODE_SCALAR) {
+    if (n->quoted || strcmp(n->text, "follow") != 0)
+      return mr_scene_read_fail(r, n, MR_SCENE_ERR_VALUE,
+                                "expected follow or a mapping for camera, got '%s'", n->text);
+    d->follow = true;
+    return 0;
+  }
   if (mr_scene_read_map(r, n, "camera", keys) != 0 ||
+      mr_scene_read_fields(r, n, fields, 1, d) != 0 ||
+      read_bool_at(r, n, "follow", &d->follow) != 0 ||
       mr_scene_read_optional(r, n, "orbit", read_orbit) != 0)
     return -1;
   if ((v = mr_scene_yaml_get(n, "views")) == NULL) return 0;

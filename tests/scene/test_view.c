@@ -1,0 +1,318 @@
+/* The audience's view (issue 21): every example scene, run as the theater
+ * runs it, seen through its default camera (the scene's orbit, which for
+ * the examples is the audience's camera of scene_audience.c, followed as
+ * the window and `marionette render` follow it with `camera: follow`).
+ *
+ * Framing: at t = 0 and at every tenth of a second after, the box around
+ * each puppet's particles and the box around each control bar's points,
+ * projected as the renderer projects them, lie inside the picture, and
+ * neither overlaps the overlay's box (mr_osd_rect, as many rows and
+ * columns as the overlay ever shows).
+ *
+ * Facing: a puppet with a face (a particle named nose, chin, beak or
+ * snout) has as its face normal the horizontal direction from its neck
+ * (else its head, else its crown) to that particle; at t = 0 it points
+ * towards the camera's eye within 30°. The two humanoids (humanoid.yaml,
+ * puppet.yaml) have faces; so do the bird and the dragon. Run with -v to
+ * print each scene's margins and angles. */
+#include <dirent.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mr_scene.h"
+#include "mr_scene_world.h"
+#include "mr_sim.h"
+#include "mr_stage.h"
+
+static int verbose;
+
+/* The frames of a run: t and the points (3 n each). */
+typedef struct frames {
+  double *t, *xyz;
+  size_t n, count, cap;
+} frames;
+
+static void on_frame(void *user, double t, const double *xyz, int n) {
+  frames *f = user;
+  if (f->count == f->cap) {
+    f->cap = f->cap ? 2 * f->cap : 64;
+    f->t = realloc(f->t, f->cap * sizeof *f->t);
+    f->xyz = realloc(f->xyz, f->cap * 3 * (size_t)n * sizeof *f->xyz);
+    assert_non_null(f->t);
+    assert_non_null(f->xyz);
+  }
+  f->n = (size_t)n;
+  f->t[f->count] = t;
+  memcpy(f->xyz + f->count * 3 * (size_t)n, xyz, 3 * (size_t)n * sizeof *xyz);
+  f->count++;
+}
+
+static void run(const mr_scene *s, double duration, frames *f) {
+  memset(f, 0, sizeof *f);
+  mr_sim_def def = mr_default_sim_def();
+  def.duration = duration;
+  def.fps = 10;
+  def.on_frame = on_frame;
+  def.user = f;
+  mr_sim_result r;
+  mr_scene_error err;
+  assert_int_equal(mr_sim_run(s, &def, &r, &err), MR_SCENE_OK);
+  assert_true(f->count >= 4 && f->t[0] == 0);
+}
+
+/* A group of points as the picture shows it: its box in -1..1, y up. */
+typedef struct box {
+  double lo[2], hi[2];
+} box;
+
+/* Each point is drawn at least a joint's size (3 cm, or its collision
+ * radius) across: its box grows by that much each side. */
+static box project(const mr_scene *s, const double *xyz, size_t first, size_t count,
+                   const double eye[3], const double target[3], double fov, double aspect) {
+  box b = { { INFINITY, INFINITY }, { -INFINITY, -INFINITY } };
+  for (size_t i = first; i < first + count; i++) {
+    double r = i < s->n_particles ? fmax(s->particles[i].def.radius, 0.03) : 0.03, ndc[2];
+    double depth = mr_view_project(eye, target, fov, aspect, xyz + 3 * i, ndc);
+    assert_true(depth > 0.05);
+    double grow = r / (depth * tan(fov * 3.14159265358979323846 / 360));
+    for (int c = 0; c < 2; c++) {
+      double g = c == 0 ? grow / aspect : grow;
+      b.lo[c] = fmin(b.lo[c], ndc[c] - g);
+      b.hi[c] = fmax(b.hi[c], ndc[c] + g);
+    }
+  }
+  return b;
+}
+
+/* How far b stays inside the picture (negative: out), and from the
+ * overlay's box (negative: over it), in units of the picture's half
+ * size. */
+static double inside(const box *b) {
+  return fmin(fmin(1 + b->lo[0], 1 - b->hi[0]), fmin(1 + b->lo[1], 1 - b->hi[1]));
+}
+
+static double clear_of(const box *b, const box *osd) {
+  return fmax(fmax(osd->lo[0] - b->hi[0], b->lo[0] - osd->hi[0]),
+              fmax(osd->lo[1] - b->hi[1], b->lo[1] - osd->hi[1]));
+}
+
+static box osd_box(const mr_stage_def *st) {
+  double r[4];
+  mr_osd_rect(st->width, st->height, MR_OSD_ROWS, MR_OSD_COLUMNS, r);
+  box b = { { 2 * r[0] / st->width - 1, 1 - 2 * (r[1] + r[3]) / st->height },
+            { 2 * (r[0] + r[2]) / st->width - 1, 1 - 2 * r[1] / st->height } };
+  return b;
+}
+
+typedef struct framing {
+  double inside, clear; /* the least over every group and frame */
+  double t_worst;
+} framing;
+
+/* Every puppet and every bar of s, over the run f, through s's default
+ * camera (following the points' middle with `camera: follow`). */
+static framing frame_show(const mr_scene *s, const frames *f) {
+  const mr_stage_def *st = &s->stage;
+  const double aspect = (double)st->width / st->height;
+  const box osd = osd_box(st);
+  mr_orbit o = mr_orbit_of_stage(st);
+  mr_follow follow = mr_follow_start(MR_FOLLOW_TIME);
+  double offset[3] = { 0, 0, 0 };
+  framing out = { INFINITY, INFINITY, 0 };
+  for (size_t k = 0; k < f->count; k++) {
+    const double *xyz = f->xyz + k * 3 * f->n;
+    if (st->follow) {
+      double mid[3];
+      mr_box_middle(xyz, f->n, mid);
+      if (k == 0)
+        for (int c = 0; c < 3; c++) offset[c] = o.target[c] - mid[c];
+      mr_follow_step(&follow, mid, k == 0 ? 0 : f->t[k] - f->t[k - 1]);
+      for (int c = 0; c < 3; c++) o.target[c] = follow.pos[c] + offset[c];
+    }
+    double eye[3];
+    mr_orbit_eye(&o, eye);
+    size_t groups = (s->n_puppets ? s->n_puppets : 1) + s->n_frames;
+    for (size_t g = 0; g < groups; g++) {
+      size_t first = 0, count = s->n_particles;
+      if (g < s->n_puppets) {
+        first = s->puppets[g].first;
+        count = s->puppets[g].count;
+      } else if (g >= (s->n_puppets ? s->n_puppets : 1)) {
+        const mr_scene_frame *fr = &s->frames[g - (s->n_puppets ? s->n_puppets : 1)];
+        first = s->n_particles + fr->first_point;
+        count = fr->n_points;
+      }
+      if (count == 0) continue;
+      box b = project(s, xyz, first, count, eye, o.target, o.fov_deg, aspect);
+      double in = inside(&b), cl = clear_of(&b, &osd);
+      if (fmin(in, cl) < fmin(out.inside, out.clear)) out.t_worst = f->t[k];
+      out.inside = fmin(out.inside, in);
+      out.clear = fmin(out.clear, cl);
+    }
+  }
+  return out;
+}
+
+static void load(const char *path, mr_scene *s) {
+  mr_scene_error err;
+  mr_scene_status st = mr_scene_load(path, s, &err);
+  if (st != MR_SCENE_OK) fail_msg("%s", err.text);
+}
+
+/* Every example scene, as shown: in the picture, clear of the overlay. */
+static void every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay(void **state) {
+  (void)state;
+  DIR *dir = opendir(MR_SCENES_DIR);
+  assert_non_null(dir);
+  int scenes = 0;
+  struct dirent *e;
+  while ((e = readdir(dir)) != NULL) {
+    size_t len = strlen(e->d_name);
+    if (len < 6 || strcmp(e->d_name + len - 5, ".yaml") != 0) continue;
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", MR_SCENES_DIR, e->d_name);
+    mr_scene s;
+    load(path, &s);
+    frames f;
+    run(&s, s.duration, &f);
+    framing fr = frame_show(&s, &f);
+    if (verbose)
+      printf("%-14s distance %.2f m  elevation %.0f  inside by %.3f  clear of the overlay by "
+             "%.3f  (worst at t %.1f s, %zu frames)\n",
+             e->d_name, s.stage.orbit_distance, s.stage.orbit_elevation_deg, fr.inside, fr.clear,
+             fr.t_worst, f.count);
+    if (!(fr.inside > 0 && fr.clear > 0))
+      fail_msg("%s: inside the picture by %.3f and clear of the overlay by %.3f at t %.1f s; "
+               "both must be above 0",
+               e->d_name, fr.inside, fr.clear, fr.t_worst);
+    free(f.t);
+    free(f.xyz);
+    mr_scene_free(&s);
+    scenes++;
+  }
+  closedir(dir);
+  assert_true(scenes >= 8);
+}
+
+/* A puppet carried 6 m across the stage and back: the camera that
+ * follows keeps it in the picture, at twice the size a camera framing
+ * the whole walk shows it. */
+#define WALK                                                                                \
+  "sim: {duration: 8}\n"                                                                    \
+  "physics:\n"                                                                              \
+  "  effects: [gravity, drag, constraints, strings, control]\n"                             \
+  "  drag: 0.2\n"                                                                           \
+  "  particles:\n"                                                                          \
+  "    - {name: head, position: [-3.0, 1.0, 0], mass: 0.2}\n"                               \
+  "    - {name: feet, position: [-3.0, 0.4, 0], mass: 0.2}\n"                               \
+  "  constraints: [{between: [head, feet]}]\n"                                              \
+  "  control:\n"                                                                            \
+  "    pose: {position: [-3.0, 1.4, 0]}\n"                                                  \
+  "    points: [{name: bar_l, offset: [-0.1, 0, 0]}, {name: bar_r, offset: [0.1, 0, 0]}]\n" \
+  "    track:\n"                                                                            \
+  "      keyframes:\n"                                                                      \
+  "        - {t: 0, position: [-3.0, 1.4, 0]}\n"                                            \
+  "        - {t: 4, position: [3.0, 1.4, 0]}\n"                                             \
+  "        - {t: 8, position: [-3.0, 1.4, 0]}\n"                                            \
+  "  strings: [{from: bar_l, to: head}, {from: bar_r, to: head}]\n"
+
+static void load_text(const char *text, mr_scene *s) {
+  mr_scene_error err;
+  if (mr_scene_load_text("walk.yaml", text, strlen(text), s, &err) != MR_SCENE_OK)
+    fail_msg("%s", err.text);
+}
+
+static void a_camera_that_follows_keeps_a_walking_puppet_in_view_and_near(void **state) {
+  (void)state;
+  mr_scene still, follows;
+  load_text(WALK, &still);
+  load_text(WALK "camera: follow\n", &follows);
+  frames f;
+  run(&follows, 8, &f);
+  framing a = frame_show(&still, &f), b = frame_show(&follows, &f);
+  if (verbose)
+    printf("walk: still %.2f m inside by %.3f; follow %.2f m inside by %.3f, clear by %.3f\n",
+           still.stage.orbit_distance, a.inside, follows.stage.orbit_distance, b.inside, b.clear);
+  assert_true(a.inside > 0 && b.inside > 0 && b.clear > 0);
+  assert_true(follows.stage.orbit_distance < 0.5 * still.stage.orbit_distance);
+  free(f.t);
+  free(f.xyz);
+  mr_scene_free(&still);
+  mr_scene_free(&follows);
+}
+
+/* The face normal of the puppet whose particles are named with prefix
+ * (e.g. "alice." or ""): 0 and the normal, or -1 without a face. */
+static int face_normal(const mr_scene *s, const char *prefix, double n[3], size_t *at) {
+  static const char *const faces[] = { "nose", "chin", "beak", "snout" };
+  static const char *const pivots[] = { "neck", "head", "crown" };
+  size_t face = (size_t)-1, pivot = (size_t)-1;
+  char name[128];
+  for (int i = 0; i < 4 && face == (size_t)-1; i++) {
+    snprintf(name, sizeof name, "%s%s", prefix, faces[i]);
+    face = mr_scene_find_particle(s, name);
+  }
+  for (int i = 0; i < 3 && pivot == (size_t)-1; i++) {
+    snprintf(name, sizeof name, "%s%s", prefix, pivots[i]);
+    pivot = mr_scene_find_particle(s, name);
+  }
+  if (face == (size_t)-1 || pivot == (size_t)-1 || face >= s->n_particles) return -1;
+  const double *f = s->particles[face].def.position, *p = s->particles[pivot].def.position;
+  double d[3] = { f[0] - p[0], 0, f[2] - p[2] }, l = hypot(d[0], d[2]);
+  assert_true(l > 1e-6);
+  for (int c = 0; c < 3; c++) n[c] = d[c] / l;
+  *at = face;
+  return 0;
+}
+
+static void every_puppet_with_a_face_faces_the_camera_at_the_start(void **state) {
+  (void)state;
+  static const char *const scenes[] = { "humanoid.yaml", "puppet.yaml", "bird.yaml",
+                                        "dragon.yaml",   "clash.yaml",  "duet.yaml" };
+  int faces = 0;
+  for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", MR_SCENES_DIR, scenes[k]);
+    mr_scene s;
+    load(path, &s);
+    mr_orbit o = mr_orbit_of_stage(&s.stage);
+    double eye[3];
+    mr_orbit_eye(&o, eye);
+    size_t puppets = s.n_puppets ? s.n_puppets : 1;
+    for (size_t p = 0; p < puppets; p++) {
+      char prefix[80] = "";
+      if (s.n_puppets) snprintf(prefix, sizeof prefix, "%s.", s.puppets[p].name);
+      double n[3];
+      size_t at;
+      if (face_normal(&s, prefix, n, &at) != 0) continue;
+      const double *x = s.particles[at].def.position;
+      double to[3] = { eye[0] - x[0], eye[1] - x[1], eye[2] - x[2] };
+      double c = (n[0] * to[0] + n[1] * to[1] + n[2] * to[2]) /
+                 sqrt(to[0] * to[0] + to[1] * to[1] + to[2] * to[2]);
+      double angle = acos(fmax(-1, fmin(1, c))) * 180 / 3.14159265358979323846;
+      if (verbose) printf("%-14s %-8s faces the camera within %.1f°\n", scenes[k], prefix, angle);
+      if (!(angle < 30)) fail_msg("%s %s turns %.1f° from the camera", scenes[k], prefix, angle);
+      faces++;
+    }
+    mr_scene_free(&s);
+  }
+  assert_true(faces >= 4);
+}
+
+int main(int argc, char **argv) {
+  verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay),
+    cmocka_unit_test(a_camera_that_follows_keeps_a_walking_puppet_in_view_and_near),
+    cmocka_unit_test(every_puppet_with_a_face_faces_the_camera_at_the_start),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
