@@ -135,6 +135,10 @@ static int play_keys(mr_live *lv) {
   int played = 0;
   double now = lv->show_t + (lv->paused ? wall(lv) - lv->pause_wall : 0.0);
   for (int i = 0; i < lv->n_keys; i++) {
+    /* A screenshot shows the frame as the keys before it left it: on a
+     * slow box several keys fall due between two frames, and a later one
+     * (m, say) would otherwise reach the shot, or a second p be lost. */
+    if (lv->shot_asked) break;
     mr_key_press *k = &lv->keys[i];
     mr_window_event ev;
     memset(&ev, 0, sizeof ev);
