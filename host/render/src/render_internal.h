@@ -43,6 +43,10 @@ typedef struct mr_gpu_mesh {
 typedef struct mr_gpu_model {
   mr_gpu_mesh *meshes;
   size_t n_meshes;
+  /* A built-in shape's coarser levels of meshes[0] (shapes.h, level k + 1
+   * in lods[k]), drawn where the shape is small (mr_mesh_level). */
+  mr_gpu_mesh lods[2];
+  int n_lods;
   mr_material_def materials[MR_STAGE_MAX_MATERIALS];
   int n_materials;
   bool skinned, cast_shadow;
@@ -143,6 +147,18 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
                      size_t msg_size, mr_render_status *status);
 void mr_meshes_destroy(mr_render *r);
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m);
+/* How many pixels (or shadow texels) a metre covers where a model is
+ * drawn: k at 1 m from the eye, falling as the distance grows, or (ortho,
+ * the sun's view) k everywhere. */
+typedef struct mr_lod_scale {
+  vec3 eye;
+  float k;
+  bool ortho;
+} mr_lod_scale;
+/* Mesh k of gm as drawn with model matrix m: for a built-in shape's one
+ * mesh, the coarsest level whose outline stays within half a pixel of the
+ * round shape's at that size; otherwise meshes[k]. */
+const mr_gpu_mesh *mr_mesh_level(const mr_gpu_model *gm, size_t k, mat4 m, const mr_lod_scale *s);
 /* The model matrix of a draw item: scale, then pose. */
 void mr_item_matrix(const mr_draw_item *item, mat4 out);
 /* A pose as a matrix (a skin's bone: rest to now). */

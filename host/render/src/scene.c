@@ -135,9 +135,10 @@ static void cull(mr_render *r, const mr_gpu_model *gm, mat4 m) {
 }
 
 /* The items (not skins), with prog; lit sets each mesh's material, and
- * casters draws only the models that cast. */
-static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit,
-                       bool casters) {
+ * casters draws only the models that cast; a built-in shape at the level
+ * its size in pixels (or shadow texels) by ls asks for. */
+static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit, bool casters,
+                       const mr_lod_scale *ls) {
   for (size_t i = 0; i < list->n_items; i++) {
     const mr_draw_item *it = &list->items[i];
     if (it->model < 0 || (size_t)it->model >= r->n_models) continue;
@@ -149,7 +150,7 @@ static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool
     cull(r, gm, m);
     for (size_t k = 0; k < gm->n_meshes; k++) {
       if (lit) set_material(r, prog, worn(gm, &gm->meshes[k], it->material), &gm->meshes[k]);
-      mr_mesh_draw(r, &gm->meshes[k]);
+      mr_mesh_draw(r, mr_mesh_level(gm, k, m, ls));
     }
   }
   r->gl.Disable(GL_CULL_FACE);
@@ -194,7 +195,10 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
                        const mr_still_rects *still) {
   r->gl.UseProgram(r->prog_mesh);
   set_lights(r, r->prog_mesh, f);
-  if (list) draw_items(r, list, r->prog_mesh, true, false);
+  /* Pixels a metre at 1 m: half the frame's height over tan(fov / 2). */
+  mr_lod_scale ls = { .k = f->proj[1][1] * 0.5f * (float)r->height };
+  glm_vec3_copy((float *)f->eye, ls.eye);
+  if (list) draw_items(r, list, r->prog_mesh, true, false, &ls);
   if (list && list->n_skins > 0 && r->prog_mesh_skin) {
     r->gl.UseProgram(r->prog_mesh_skin);
     set_lights(r, r->prog_mesh_skin, f);
@@ -210,13 +214,16 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
 void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp) {
   mat4 id = GLM_MAT4_IDENTITY_INIT;
   GLuint progs[2] = { r->prog_depth, r->prog_depth_skin };
+  /* Texels a metre: the sun's box is square and its view turns only. */
+  vec3 row = { light_vp[0][0], light_vp[1][0], light_vp[2][0] };
+  mr_lod_scale ls = { .k = glm_vec3_norm(row) * 0.5f * (float)r->shadow_size, .ortho = true };
   for (int k = 0; k < 2; k++) {
     if (!progs[k] || (k == 1 && list->n_skins == 0)) continue;
     r->gl.UseProgram(progs[k]);
     mr_uniform_m4(r, progs[k], "u_view_proj", light_vp);
     mr_uniform_m4(r, progs[k], "u_light_vp", id);
     if (k == 0)
-      draw_items(r, list, progs[k], false, true);
+      draw_items(r, list, progs[k], false, true, &ls);
     else
       draw_skins(r, list, progs[k], false, true);
   }

@@ -13,6 +13,17 @@
  * when s is not a built-in shape or memory runs out (out left empty). */
 int mr_shape_mesh(mr_shape s, mr_mesh *out);
 
+/* The built-in shapes come in MR_SHAPE_LEVELS tessellations, level 0 the
+ * finest (mr_shape_mesh's: 32 segments round), each next one half as
+ * many segments and rings (16, then 8), for shapes drawn small. */
+enum { MR_SHAPE_LEVELS = 3 };
+
+/* Shape s at `level` (0 .. MR_SHAPE_LEVELS - 1), as mr_shape_mesh. */
+int mr_shape_mesh_lod(mr_shape s, int level, mr_mesh *out);
+
+/* The segments round of `level`; 0 for a level that is not one. */
+int mr_shape_segments(int level);
+
 /* Allocates a mesh's arrays for n_vertices and n_triangles (uvs too when
  * with_uvs). Returns 0, or -1 with the mesh left empty. */
 int mr_mesh_alloc(mr_mesh *m, size_t n_vertices, size_t n_triangles, int with_uvs);
