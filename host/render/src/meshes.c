@@ -303,15 +303,16 @@ const mr_gpu_mesh *mr_mesh_level(const mr_gpu_model *gm, size_t k, mat4 m, const
    * turn about y (a link stretches y only). */
   float rx = (gm->hi[0] - gm->lo[0]) * glm_vec3_norm(m[0]);
   float rz = (gm->hi[2] - gm->lo[2]) * glm_vec3_norm(m[2]);
-  float radius = 0.5f * fmaxf(rx, rz), px = radius * s->k;
-  if (!s->ortho) {
-    vec4 c = { 0.5f * (gm->lo[0] + gm->hi[0]), 0.5f * (gm->lo[1] + gm->hi[1]),
-               0.5f * (gm->lo[2] + gm->hi[2]), 1 },
-         w;
-    glm_mat4_mulv(m, c, w);
-    float d = glm_vec3_distance(w, (float *)s->eye) - radius;
-    px = d > 0.05f ? px / d : INFINITY;
-  }
+  float radius = 0.5f * fmaxf(rx, rz), px = INFINITY;
+  vec4 c = { 0.5f * (gm->lo[0] + gm->hi[0]), 0.5f * (gm->lo[1] + gm->hi[1]),
+             0.5f * (gm->lo[2] + gm->hi[2]), 1 },
+       w;
+  glm_mat4_mulv(m, c, w);
+  float d = glm_vec3_distance(w, (float *)s->eye) - radius;
+  if (d > 0.05f) px = radius * s->k / d;
+  /* A shadow is seen on the frame: as fine as its pixels there, or as
+   * the map's texels where they are coarser. */
+  if (s->k_map > 0) px = fminf(px, radius * s->k_map);
   int level = 0;
   while (level < gm->n_lods &&
          px * (1.0f - cosf(GLM_PIf / (float)mr_shape_segments(level + 1))) <= MAX_OFF_PX)

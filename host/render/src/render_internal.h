@@ -147,13 +147,12 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
                      size_t msg_size, mr_render_status *status);
 void mr_meshes_destroy(mr_render *r);
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m);
-/* How many pixels (or shadow texels) a metre covers where a model is
- * drawn: k at 1 m from the eye, falling as the distance grows, or (ortho,
- * the sun's view) k everywhere. */
+/* How many pixels a metre covers where a model is drawn: k at 1 m from
+ * the eye, falling as the distance grows; and, drawn into the shadow map,
+ * no more than its texels a metre, k_map (0: not). */
 typedef struct mr_lod_scale {
   vec3 eye;
-  float k;
-  bool ortho;
+  float k, k_map;
 } mr_lod_scale;
 /* Mesh k of gm as drawn with model matrix m: for a built-in shape's one
  * mesh, the coarsest level whose outline stays within half a pixel of the
@@ -188,7 +187,7 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
 void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor);
 /* The casters into the shadow map, with the shadow programs, seen
  * through light_vp. */
-void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp);
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_frame *f);
 
 /* shadow.c */
 int mr_shadow_create(mr_render *r, char *msg, size_t msg_size);

@@ -134,6 +134,14 @@ static void cull(mr_render *r, const mr_gpu_model *gm, mat4 m) {
   r->gl.CullFace(mirrors(m) ? GL_FRONT : GL_BACK);
 }
 
+/* The lit pass's scale: pixels a metre at 1 m, half the frame's height
+ * over tan(fov / 2). */
+static mr_lod_scale lod_scale(const mr_render *r, const mr_frame *f) {
+  mr_lod_scale ls = { .k = f->proj[1][1] * 0.5f * (float)r->height };
+  glm_vec3_copy((float *)f->eye, ls.eye);
+  return ls;
+}
+
 /* The items (not skins), with prog; lit sets each mesh's material, and
  * casters draws only the models that cast; a built-in shape at the level
  * its size in pixels (or shadow texels) by ls asks for. */
@@ -195,9 +203,7 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
                        const mr_still_rects *still) {
   r->gl.UseProgram(r->prog_mesh);
   set_lights(r, r->prog_mesh, f);
-  /* Pixels a metre at 1 m: half the frame's height over tan(fov / 2). */
-  mr_lod_scale ls = { .k = f->proj[1][1] * 0.5f * (float)r->height };
-  glm_vec3_copy((float *)f->eye, ls.eye);
+  mr_lod_scale ls = lod_scale(r, f);
   if (list) draw_items(r, list, r->prog_mesh, true, false, &ls);
   if (list && list->n_skins > 0 && r->prog_mesh_skin) {
     r->gl.UseProgram(r->prog_mesh_skin);
@@ -211,16 +217,18 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
   r->gl.UseProgram(0);
 }
 
-void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp) {
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
   mat4 id = GLM_MAT4_IDENTITY_INIT;
   GLuint progs[2] = { r->prog_depth, r->prog_depth_skin };
-  /* Texels a metre: the sun's box is square and its view turns only. */
-  vec3 row = { light_vp[0][0], light_vp[1][0], light_vp[2][0] };
-  mr_lod_scale ls = { .k = glm_vec3_norm(row) * 0.5f * (float)r->shadow_size, .ortho = true };
+  /* The map's texels a metre: the sun's box is square and its view
+   * turns only. */
+  vec3 row = { f->light_vp[0][0], f->light_vp[1][0], f->light_vp[2][0] };
+  mr_lod_scale ls = lod_scale(r, f);
+  ls.k_map = glm_vec3_norm(row) * 0.5f * (float)r->shadow_size;
   for (int k = 0; k < 2; k++) {
     if (!progs[k] || (k == 1 && list->n_skins == 0)) continue;
     r->gl.UseProgram(progs[k]);
-    mr_uniform_m4(r, progs[k], "u_view_proj", light_vp);
+    mr_uniform_m4(r, progs[k], "u_view_proj", (vec4 *)f->light_vp);
     mr_uniform_m4(r, progs[k], "u_light_vp", id);
     if (k == 0)
       draw_items(r, list, progs[k], false, true, &ls);
