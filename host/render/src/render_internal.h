@@ -167,8 +167,12 @@ void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 
 /* still.c: the sky, the backdrop and the floor, unshadowed, kept while
  * the camera and the sun stay (software GL, one sample). */
+/* Where on screen shadows can fall on the backdrop and on the floor: up
+ * to MR_STILL_BANDS rectangles (x, y, w, h) each, bands of rows. */
+#define MR_STILL_BANDS 8
 typedef struct mr_still_rects {
-  int backdrop[4], floor[4]; /* x, y, w, h on screen where shadows can fall; w 0: none */
+  int backdrop[MR_STILL_BANDS][4], floor[MR_STILL_BANDS][4];
+  int n_backdrop, n_floor;
 } mr_still_rects;
 int mr_still_create(mr_render *r, char *msg, size_t msg_size);
 void mr_still_destroy(mr_render *r);
@@ -185,6 +189,9 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
                        const mr_still_rects *still);
 /* The backdrop and (or) the floor, lit. */
 void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor);
+/* The backdrop (or the floor), lit, only inside each of n rectangles. */
+void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, const int (*rects)[4],
+                              int n);
 /* The casters into the shadow map, with the shadow programs, seen
  * through light_vp. */
 void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_frame *f);

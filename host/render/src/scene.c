@@ -87,36 +87,51 @@ static void set_model(mr_render *r, GLuint p, mat4 m) {
   mr_uniform_i(r, p, "u_mirrored", mirrors(m));
 }
 
+/* The backdrop's (or the floor's) program with the frame's lights and
+ * its material, in use; its mesh, or NULL when the stage has none. */
+static const mr_gpu_mesh *scenery_begin(mr_render *r, const mr_frame *f, bool backdrop) {
+  const mr_stage_def *s = &r->stage;
+  if (backdrop ? !s->backdrop : !s->floor) return NULL;
+  mat4 id = GLM_MAT4_IDENTITY_INIT;
+  mr_material_def m = mr_default_material_def();
+  m.roughness = 0.9f;
+  GLuint p = backdrop ? r->prog_backdrop : r->prog_scenery;
+  const mr_gpu_mesh *mesh = backdrop ? &r->backdrop : &r->floor;
+  r->gl.UseProgram(p);
+  set_lights(r, p, f);
+  set_model(r, p, id);
+  const float *color = backdrop ? s->backdrop_color : s->floor_color;
+  for (int k = 0; k < 3; k++) m.base_color[k] = color[k];
+  set_material(r, p, &m, mesh);
+  if (!backdrop) {
+    mr_uniform_v3(r, p, "u_color2", s->floor_color2);
+    /* 16 squares a side. */
+    mr_uniform_f(r, p, "u_cell", (float)(s->floor_size / 16.0));
+  }
+  return mesh;
+}
+
 /* The backdrop, then the floor (those asked for), each with its own program, whose shader
  * takes their roughness as given (shader_src.c). The backdrop goes first:
  * the floor runs on behind it (a band of pixels above where they meet),
  * and there it then fails the depth test before it is shaded. */
 void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor) {
-  const mr_stage_def *s = &r->stage;
-  mat4 id = GLM_MAT4_IDENTITY_INIT;
-  mr_material_def m = mr_default_material_def();
-  m.roughness = 0.9f;
-  if (s->backdrop && backdrop) {
-    GLuint p = r->prog_backdrop;
-    r->gl.UseProgram(p);
-    set_lights(r, p, f);
-    set_model(r, p, id);
-    for (int k = 0; k < 3; k++) m.base_color[k] = s->backdrop_color[k];
-    set_material(r, p, &m, &r->backdrop);
-    mr_mesh_draw(r, &r->backdrop);
+  const mr_gpu_mesh *mesh;
+  if (backdrop && (mesh = scenery_begin(r, f, true))) mr_mesh_draw(r, mesh);
+  if (floor && (mesh = scenery_begin(r, f, false))) mr_mesh_draw(r, mesh);
+}
+
+void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, const int (*rects)[4],
+                              int n) {
+  const mr_gpu_mesh *mesh = n > 0 ? scenery_begin(r, f, backdrop) : NULL;
+  if (!mesh) return;
+  r->gl.Enable(GL_SCISSOR_TEST);
+  for (int k = 0; k < n; k++) {
+    if (rects[k][2] <= 0 || rects[k][3] <= 0) continue;
+    r->gl.Scissor(rects[k][0], rects[k][1], rects[k][2], rects[k][3]);
+    mr_mesh_draw(r, mesh);
   }
-  if (s->floor && floor) {
-    GLuint p = r->prog_scenery;
-    r->gl.UseProgram(p);
-    set_lights(r, p, f);
-    set_model(r, p, id);
-    for (int k = 0; k < 3; k++) m.base_color[k] = s->floor_color[k];
-    set_material(r, p, &m, &r->floor);
-    mr_uniform_v3(r, p, "u_color2", s->floor_color2);
-    /* 16 squares a side. */
-    mr_uniform_f(r, p, "u_cell", (float)(s->floor_size / 16.0));
-    mr_mesh_draw(r, &r->floor);
-  }
+  r->gl.Disable(GL_SCISSOR_TEST);
 }
 
 /* A built-in shape is closed and wound counter-clockwise seen from
@@ -187,16 +202,10 @@ static void draw_skins(mr_render *r, const mr_draw_list *list, GLuint prog, bool
 /* The items and skins first, then the backdrop and the floor, which they
  * hide in part: a fragment behind what is drawn already fails the depth
  * test before it is shaded. */
-/* The kept scenery's shadowed parts, each surface inside its rectangle. */
+/* The kept scenery's shadowed parts, each surface inside its rectangles. */
 static void draw_still_shadows(mr_render *r, const mr_frame *f, const mr_still_rects *still) {
-  const int *rects[2] = { still->backdrop, still->floor };
-  r->gl.Enable(GL_SCISSOR_TEST);
-  for (int k = 0; k < 2; k++) {
-    if (rects[k][2] <= 0 || rects[k][3] <= 0) continue;
-    r->gl.Scissor(rects[k][0], rects[k][1], rects[k][2], rects[k][3]);
-    mr_scene_draw_scenery(r, f, k == 0, k == 1);
-  }
-  r->gl.Disable(GL_SCISSOR_TEST);
+  mr_scene_draw_scenery_in(r, f, true, (const int(*)[4])still->backdrop, still->n_backdrop);
+  mr_scene_draw_scenery_in(r, f, false, (const int(*)[4])still->floor, still->n_floor);
 }
 
 void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
