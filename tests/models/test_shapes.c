@@ -190,6 +190,56 @@ static void test_each_coarser_level_halves_the_segments_and_is_placed_alike(void
   assert_int_equal(mr_shape_segments(3), 0);
 }
 
+/* Every built-in shape, at every level, is closed and wound outward (its
+ * box's faces apart at the corners, welded by position); turned inside
+ * out, with a triangle gone, or with a second copy of a part inside out,
+ * it is not, and its back faces must then be drawn. */
+static void test_a_closed_outward_mesh_is_told_from_an_open_or_inside_out_one(void **state) {
+  (void)state;
+  for (mr_shape s = MR_SHAPE_SPHERE; s <= MR_SHAPE_CONE; s++) {
+    for (int level = 0; level < MR_SHAPE_LEVELS; level++) {
+      mr_mesh m;
+      assert_int_equal(mr_shape_mesh_lod(s, level, &m), 0);
+      assert_true(mr_mesh_is_closed_outward(&m));
+      for (size_t t = 0; t < m.n_indices; t += 3) { /* inside out */
+        uint32_t k = m.indices[t + 1];
+        m.indices[t + 1] = m.indices[t + 2], m.indices[t + 2] = k;
+      }
+      assert_false(mr_mesh_is_closed_outward(&m));
+      m.n_indices -= 3; /* a hole, and inside out */
+      assert_false(mr_mesh_is_closed_outward(&m));
+      mr_mesh_release(&m);
+    }
+  }
+  mr_mesh m;
+  assert_int_equal(mr_shape_mesh(MR_SHAPE_SPHERE, &m), 0);
+  m.n_indices -= 3; /* a hole */
+  assert_false(mr_mesh_is_closed_outward(&m));
+  mr_mesh_release(&m);
+  /* Two boxes, one inside out: the volumes would add up positive. */
+  mr_mesh one, two;
+  assert_int_equal(mr_shape_mesh(MR_SHAPE_BOX, &one), 0);
+  assert_int_equal(mr_mesh_alloc(&two, 2 * one.n_vertices, 2 * one.n_indices / 3, 1), 0);
+  for (size_t v = 0; v < one.n_vertices; v++)
+    for (int i = 0; i < 3; i++) {
+      two.positions[3 * v + i] = 2 * one.positions[3 * v + i];
+      two.positions[3 * (one.n_vertices + v) + i] = one.positions[3 * v + i] + (i == 0 ? 5 : 0);
+      two.normals[3 * v + i] = two.normals[3 * (one.n_vertices + v) + i] = one.normals[3 * v + i];
+    }
+  for (size_t t = 0; t < one.n_indices; t++) {
+    two.indices[t] = one.indices[t];
+    two.indices[one.n_indices + t] = (uint32_t)one.n_vertices + one.indices[t];
+  }
+  assert_true(mr_mesh_is_closed_outward(&two));
+  for (size_t t = one.n_indices; t < two.n_indices; t += 3) {
+    uint32_t k = two.indices[t + 1];
+    two.indices[t + 1] = two.indices[t + 2], two.indices[t + 2] = k;
+  }
+  assert_false(mr_mesh_is_closed_outward(&two));
+  mr_mesh_release(&one);
+  mr_mesh_release(&two);
+}
+
 static void test_a_shape_that_is_not_built_in_is_refused(void **state) {
   (void)state;
   mr_model_def d = shape_def((mr_shape)99);
@@ -207,6 +257,7 @@ int main(void) {
     cmocka_unit_test(test_a_stretched_turned_sphere_has_the_ellipsoids_normals),
     cmocka_unit_test(test_a_mirroring_scale_keeps_faces_outward),
     cmocka_unit_test(test_each_coarser_level_halves_the_segments_and_is_placed_alike),
+    cmocka_unit_test(test_a_closed_outward_mesh_is_told_from_an_open_or_inside_out_one),
     cmocka_unit_test(test_a_shape_that_is_not_built_in_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

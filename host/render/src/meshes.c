@@ -131,17 +131,21 @@ static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
   }
   gm->n_meshes = model->n_meshes;
   gm->skinned = def->display == MR_DISPLAY_FREEFORM;
-  gm->closed = def->shape != MR_SHAPE_FILE;
   gm->cast_shadow = def->cast_shadow;
   gm->n_bones = def->n_bones;
   gm->n_materials = def->n_materials;
   memcpy(gm->materials, def->materials, sizeof gm->materials);
   bounds(gm, model);
   gm->n_lods = gm->skinned ? 0 : (int)model->n_lods;
-  for (int k = 0; k < gm->n_lods; k++) upload_mesh(r, &gm->lods[k], &model->lods[k], NULL, NULL);
+  for (int k = 0; k < gm->n_lods; k++) {
+    upload_mesh(r, &gm->lods[k], &model->lods[k], NULL, NULL);
+    gm->lods[k].closed = true;
+  }
   for (size_t i = 0; i < model->n_meshes; i++) {
     if (!gm->skinned) {
       upload_mesh(r, &gm->meshes[i], &model->meshes[i], NULL, NULL);
+      gm->meshes[i].closed =
+          def->shape != MR_SHAPE_FILE || mr_mesh_is_closed_outward(&model->meshes[i]);
     } else if (!def->bones_rest || def->n_bones < 1 ||
                skin_mesh(r, &gm->meshes[i], &model->meshes[i], def) != 0) {
       snprintf(why, why_size, "cannot bind the mesh to its %d bones", def->n_bones);

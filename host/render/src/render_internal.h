@@ -38,6 +38,7 @@ typedef struct mr_gpu_mesh {
   GLsizei n_indices;
   GLuint texture;           /* base colour, 0: none */
   mr_material_def material; /* the file's own */
+  bool closed;              /* closed, wound counter-clockwise outside: culled */
 } mr_gpu_mesh;
 
 typedef struct mr_gpu_model {
@@ -50,7 +51,6 @@ typedef struct mr_gpu_model {
   mr_material_def materials[MR_STAGE_MAX_MATERIALS];
   int n_materials;
   bool skinned, cast_shadow;
-  bool closed; /* a built-in shape: closed, wound counter-clockwise outside */
   int n_bones;
   float lo[3], hi[3]; /* the meshes' bounds, in the model's own axes (skins: at rest) */
 } mr_gpu_model;

@@ -134,14 +134,15 @@ void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, co
   r->gl.Disable(GL_SCISSOR_TEST);
 }
 
-/* A built-in shape is closed and wound counter-clockwise seen from
- * outside, so its back faces, hidden behind its front, are culled before
- * they are set up and rasterised (software GL spends a third of a small
- * frame on triangles). A model matrix that mirrors turns the winding
- * round. Model files do not agree on winding, and skins and the scenery
- * are seen from both sides: never culled. */
-static void cull(mr_render *r, const mr_gpu_model *gm, mat4 m) {
-  if (!gm->closed) {
+/* A closed mesh wound counter-clockwise seen from outside (every built-in
+ * shape, and each model file's mesh found so at load, meshes.c) hides its
+ * back faces behind its front ones, so they are culled before they are
+ * set up and rasterised (software GL spends a third of a small frame on
+ * triangles, and shades a tiny one's whole 4 x 4 block). A model matrix
+ * that mirrors turns the winding round. Other model files' meshes, skins
+ * and the scenery are seen from both sides: never culled. */
+static void cull(mr_render *r, const mr_gpu_mesh *mesh, mat4 m) {
+  if (!mesh->closed) {
     r->gl.Disable(GL_CULL_FACE);
     return;
   }
@@ -170,10 +171,11 @@ static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool
     mat4 m;
     mr_item_matrix(it, m);
     set_model(r, prog, m);
-    cull(r, gm, m);
     for (size_t k = 0; k < gm->n_meshes; k++) {
       if (lit) set_material(r, prog, worn(gm, &gm->meshes[k], it->material), &gm->meshes[k]);
-      mr_mesh_draw(r, mr_mesh_level(gm, k, m, ls));
+      const mr_gpu_mesh *mesh = mr_mesh_level(gm, k, m, ls);
+      cull(r, mesh, m);
+      mr_mesh_draw(r, mesh);
     }
   }
   r->gl.Disable(GL_CULL_FACE);

@@ -4,6 +4,7 @@
 #include "shapes.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -227,4 +228,109 @@ int mr_shape_mesh(mr_shape s, mr_mesh *out) {
 
 int mr_shape_segments(int level) {
   return level < 0 || level >= MR_SHAPE_LEVELS ? 0 : SEGMENTS >> level;
+}
+
+/* A vertex's position on a grid a millionth of the mesh's size (a seam's
+ * sin 2 pi is not quite sin 0), and its index, sorted to weld them. */
+typedef struct welded {
+  long long p[3];
+  uint32_t i;
+} welded;
+
+static int by_position(const void *a, const void *b) {
+  const welded *x = a, *y = b;
+  for (int k = 0; k < 3; k++)
+    if (x->p[k] != y->p[k]) return x->p[k] < y->p[k] ? -1 : 1;
+  return 0;
+}
+
+static bool weld(const mr_mesh *m, welded *w) {
+  double size = 0;
+  for (size_t v = 0; v < 3 * m->n_vertices; v++) size = fmax(size, fabs(m->positions[v]));
+  double grid = size > 0 ? 1e-6 * size : 1;
+  for (size_t v = 0; v < m->n_vertices; v++) {
+    for (int k = 0; k < 3; k++) {
+      double q = m->positions[3 * v + (size_t)k] / grid;
+      if (!(fabs(q) < 1e15)) return false;
+      w[v].p[k] = llround(q);
+    }
+    w[v].i = (uint32_t)v;
+  }
+  return true;
+}
+
+static int by_key(const void *a, const void *b) {
+  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+  return (x > y) - (x < y);
+}
+
+static uint32_t root(uint32_t *up, uint32_t i) {
+  while (up[i] != i) i = up[i] = up[up[i]];
+  return i;
+}
+
+/* Each directed edge once and its reverse once: every edge is shared by
+ * two triangles wound the same way round. */
+static bool edges_pair(const mr_mesh *m, const uint32_t *id, uint64_t *e) {
+  size_t n = m->n_indices;
+  for (size_t t = 0; t < n; t += 3) {
+    for (int k = 0; k < 3; k++) {
+      uint32_t a = id[m->indices[t + (size_t)k]], b = id[m->indices[t + (size_t)(k + 1) % 3]];
+      if (a == b) return false;
+      e[t + (size_t)k] = (uint64_t)a << 32 | b;
+    }
+  }
+  qsort(e, n, sizeof *e, by_key);
+  for (size_t k = 0; k < n; k++) {
+    uint64_t rev = e[k] << 32 | e[k] >> 32;
+    if ((k + 1 < n && e[k + 1] == e[k]) || !bsearch(&rev, e, n, sizeof *e, by_key)) return false;
+  }
+  return true;
+}
+
+/* Each connected part encloses a positive volume (its triangles turn
+ * counter-clockwise seen from outside). */
+static bool parts_outward(const mr_mesh *m, const uint32_t *id, uint32_t *up, double *vol,
+                          uint32_t n_ids) {
+  for (uint32_t i = 0; i < n_ids; i++) up[i] = i, vol[i] = 0;
+  for (size_t t = 0; t < m->n_indices; t += 3) {
+    uint32_t a = root(up, id[m->indices[t]]);
+    for (int k = 1; k < 3; k++) up[root(up, id[m->indices[t + (size_t)k]])] = a;
+  }
+  for (size_t t = 0; t < m->n_indices; t += 3) {
+    const float *a = &m->positions[3 * m->indices[t]], *b = &m->positions[3 * m->indices[t + 1]],
+                *c = &m->positions[3 * m->indices[t + 2]];
+    double cx = (double)b[1] * c[2] - (double)b[2] * c[1];
+    double cy = (double)b[2] * c[0] - (double)b[0] * c[2];
+    double cz = (double)b[0] * c[1] - (double)b[1] * c[0];
+    vol[root(up, id[m->indices[t]])] += a[0] * cx + a[1] * cy + a[2] * cz;
+  }
+  for (uint32_t i = 0; i < n_ids; i++)
+    if (up[i] == i && vol[i] <= 0) return false;
+  return true;
+}
+
+bool mr_mesh_is_closed_outward(const mr_mesh *m) {
+  size_t n = m->n_vertices;
+  if (n == 0 || m->n_indices == 0 || m->n_indices % 3 != 0 || n >= UINT32_MAX) return false;
+  welded *w = malloc(n * sizeof *w);
+  uint32_t *id = malloc(n * sizeof *id), *up = malloc(n * sizeof *up);
+  uint64_t *e = malloc(m->n_indices * sizeof *e);
+  double *vol = malloc(n * sizeof *vol);
+  bool ok = w && id && up && e && vol && weld(m, w);
+  if (ok) {
+    qsort(w, n, sizeof *w, by_position);
+    uint32_t n_ids = 0;
+    for (size_t v = 0; v < n; v++) {
+      if (v > 0 && by_position(&w[v - 1], &w[v]) != 0) n_ids++;
+      id[w[v].i] = n_ids;
+    }
+    ok = edges_pair(m, id, e) && parts_outward(m, id, up, vol, n_ids + 1);
+  }
+  free(w);
+  free(id);
+  free(up);
+  free(e);
+  free(vol);
+  return ok;
 }

@@ -3,6 +3,7 @@
 #ifndef MR_RENDER_SHAPES_H
 #define MR_RENDER_SHAPES_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "model.h"
@@ -27,6 +28,14 @@ int mr_shape_segments(int level);
 /* Allocates a mesh's arrays for n_vertices and n_triangles (uvs too when
  * with_uvs). Returns 0, or -1 with the mesh left empty. */
 int mr_mesh_alloc(mr_mesh *m, size_t n_vertices, size_t n_triangles, int with_uvs);
+
+/* True when the mesh is closed and wound counter-clockwise seen from
+ * outside: vertices at the same position taken as one, every edge is
+ * shared by two triangles that run it in opposite directions, and each
+ * connected part encloses a positive volume. Its back faces are then
+ * hidden behind its front ones and can be culled. False too when memory
+ * runs out. */
+bool mr_mesh_is_closed_outward(const mr_mesh *m);
 
 /* Frees a mesh's arrays and empties it. */
 void mr_mesh_release(mr_mesh *m);
