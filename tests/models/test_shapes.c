@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "model.h"
+#include "shapes.h"
 #include "mr_pose.h"
 
 static mr_model_def shape_def(mr_shape s) {
@@ -151,6 +152,94 @@ static void test_a_mirroring_scale_keeps_faces_outward(void **state) {
   }
 }
 
+/* The coarser levels (shapes drawn small): the sphere at 16 segments and
+ * 8 rings, then 8 and 4; placed as the finest one is (stretched, turned,
+ * moved, mirrored), their faces still outward, their corners inside its
+ * box; a model file has none. */
+static void test_each_coarser_level_halves_the_segments_and_is_placed_alike(void **state) {
+  (void)state;
+  static const size_t verts[2] = { 9 * 17, 5 * 9 }, tris[2] = { 2 * 16 * 7, 2 * 8 * 3 };
+  mr_model_def d = shape_def(MR_SHAPE_SPHERE);
+  const double at[3] = { 1, 2, 3 }, turn[3] = { 0, 90, 0 };
+  d.scale[0] = -2;
+  d.place = mr_pose_from_euler_deg(at, turn);
+  mr_model m;
+  char msg[256] = "";
+  assert_int_equal(mr_model_load(&d, &m, msg, sizeof msg), 0);
+  assert_int_equal(m.n_lods, 2);
+  for (size_t k = 0; k < m.n_lods; k++) {
+    const mr_mesh *lod = &m.lods[k];
+    assert_int_equal(lod->n_vertices, verts[k]);
+    assert_int_equal(lod->n_indices, 3 * tris[k]);
+    for (size_t v = 0; v < lod->n_vertices; v++) {
+      const float *p = &lod->positions[3 * v];
+      /* On the ellipsoid (x / 2)² + y² + z² = 1/4, in its own axes. */
+      double x = -(p[2] - 3), y = p[1] - 2, z = p[0] - 1;
+      assert_float_equal(x * x / 4 + y * y + z * z, 0.25, 1e-5);
+      for (int i = 0; i < 3; i++) {
+        assert_true(p[i] >= m.bounds_min[i] - 1e-5f && p[i] <= m.bounds_max[i] + 1e-5f);
+      }
+    }
+    assert_faces_outward(lod);
+  }
+  mr_model_free(&m);
+  assert_int_equal(m.n_lods, 0);
+  assert_int_equal(mr_shape_segments(0), 32);
+  assert_int_equal(mr_shape_segments(1), 16);
+  assert_int_equal(mr_shape_segments(2), 8);
+  assert_int_equal(mr_shape_segments(3), 0);
+}
+
+/* Every built-in shape, at every level, is closed and wound outward (its
+ * box's faces apart at the corners, welded by position); turned inside
+ * out, with a triangle gone, or with a second copy of a part inside out,
+ * it is not, and its back faces must then be drawn. */
+static void test_a_closed_outward_mesh_is_told_from_an_open_or_inside_out_one(void **state) {
+  (void)state;
+  for (mr_shape s = MR_SHAPE_SPHERE; s <= MR_SHAPE_CONE; s++) {
+    for (int level = 0; level < MR_SHAPE_LEVELS; level++) {
+      mr_mesh m;
+      assert_int_equal(mr_shape_mesh_lod(s, level, &m), 0);
+      assert_true(mr_mesh_is_closed_outward(&m));
+      for (size_t t = 0; t < m.n_indices; t += 3) { /* inside out */
+        uint32_t k = m.indices[t + 1];
+        m.indices[t + 1] = m.indices[t + 2], m.indices[t + 2] = k;
+      }
+      assert_false(mr_mesh_is_closed_outward(&m));
+      m.n_indices -= 3; /* a hole, and inside out */
+      assert_false(mr_mesh_is_closed_outward(&m));
+      mr_mesh_release(&m);
+    }
+  }
+  mr_mesh m;
+  assert_int_equal(mr_shape_mesh(MR_SHAPE_SPHERE, &m), 0);
+  m.n_indices -= 3; /* a hole */
+  assert_false(mr_mesh_is_closed_outward(&m));
+  mr_mesh_release(&m);
+  /* Two boxes, one inside out: the volumes would add up positive. */
+  mr_mesh one, two;
+  assert_int_equal(mr_shape_mesh(MR_SHAPE_BOX, &one), 0);
+  assert_int_equal(mr_mesh_alloc(&two, 2 * one.n_vertices, 2 * one.n_indices / 3, 1), 0);
+  for (size_t v = 0; v < one.n_vertices; v++)
+    for (int i = 0; i < 3; i++) {
+      two.positions[3 * v + i] = 2 * one.positions[3 * v + i];
+      two.positions[3 * (one.n_vertices + v) + i] = one.positions[3 * v + i] + (i == 0 ? 5 : 0);
+      two.normals[3 * v + i] = two.normals[3 * (one.n_vertices + v) + i] = one.normals[3 * v + i];
+    }
+  for (size_t t = 0; t < one.n_indices; t++) {
+    two.indices[t] = one.indices[t];
+    two.indices[one.n_indices + t] = (uint32_t)one.n_vertices + one.indices[t];
+  }
+  assert_true(mr_mesh_is_closed_outward(&two));
+  for (size_t t = one.n_indices; t < two.n_indices; t += 3) {
+    uint32_t k = two.indices[t + 1];
+    two.indices[t + 1] = two.indices[t + 2], two.indices[t + 2] = k;
+  }
+  assert_false(mr_mesh_is_closed_outward(&two));
+  mr_mesh_release(&one);
+  mr_mesh_release(&two);
+}
+
 static void test_a_shape_that_is_not_built_in_is_refused(void **state) {
   (void)state;
   mr_model_def d = shape_def((mr_shape)99);
@@ -167,6 +256,8 @@ int main(void) {
     cmocka_unit_test(test_the_sphere_is_smooth_with_normals_along_its_radius),
     cmocka_unit_test(test_a_stretched_turned_sphere_has_the_ellipsoids_normals),
     cmocka_unit_test(test_a_mirroring_scale_keeps_faces_outward),
+    cmocka_unit_test(test_each_coarser_level_halves_the_segments_and_is_placed_alike),
+    cmocka_unit_test(test_a_closed_outward_mesh_is_told_from_an_open_or_inside_out_one),
     cmocka_unit_test(test_a_shape_that_is_not_built_in_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

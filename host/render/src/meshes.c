@@ -2,12 +2,14 @@
  * (mr_model_load) and uploaded, with, for a freeform model, each vertex's
  * bones and weights (mr_stage_skin_bind); the floor and the backdrop are
  * meshes too. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "model.h"
 #include "render_internal.h"
+#include "shapes.h"
 
 enum { BUF_POS, BUF_NORMAL, BUF_UV, BUF_BONES, BUF_WEIGHTS, BUF_INDEX };
 
@@ -129,15 +131,21 @@ static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
   }
   gm->n_meshes = model->n_meshes;
   gm->skinned = def->display == MR_DISPLAY_FREEFORM;
-  gm->closed = def->shape != MR_SHAPE_FILE;
   gm->cast_shadow = def->cast_shadow;
   gm->n_bones = def->n_bones;
   gm->n_materials = def->n_materials;
   memcpy(gm->materials, def->materials, sizeof gm->materials);
   bounds(gm, model);
+  gm->n_lods = gm->skinned ? 0 : (int)model->n_lods;
+  for (int k = 0; k < gm->n_lods; k++) {
+    upload_mesh(r, &gm->lods[k], &model->lods[k], NULL, NULL);
+    gm->lods[k].closed = true;
+  }
   for (size_t i = 0; i < model->n_meshes; i++) {
     if (!gm->skinned) {
       upload_mesh(r, &gm->meshes[i], &model->meshes[i], NULL, NULL);
+      gm->meshes[i].closed =
+          def->shape != MR_SHAPE_FILE || mr_mesh_is_closed_outward(&model->meshes[i]);
     } else if (!def->bones_rest || def->n_bones < 1 ||
                skin_mesh(r, &gm->meshes[i], &model->meshes[i], def) != 0) {
       snprintf(why, why_size, "cannot bind the mesh to its %d bones", def->n_bones);
@@ -270,6 +278,7 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
 void mr_meshes_destroy(mr_render *r) {
   for (size_t i = 0; i < r->n_models; i++) {
     for (size_t k = 0; k < r->models[i].n_meshes; k++) mesh_free(r, &r->models[i].meshes[k]);
+    for (int k = 0; k < r->models[i].n_lods; k++) mesh_free(r, &r->models[i].lods[k]);
     free(r->models[i].meshes);
   }
   free(r->models);
@@ -286,6 +295,33 @@ void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m) {
   r->gl.BindVertexArray(m->vao);
   r->gl.DrawElements(GL_TRIANGLES, m->n_indices, GL_UNSIGNED_INT, NULL);
   r->gl.BindVertexArray(0);
+}
+
+/* A shape's outline is a polygon of n segments about a circle of r
+ * pixels, off it by at most r (1 - cos(pi / n)). */
+#define MAX_OFF_PX 0.5f
+
+const mr_gpu_mesh *mr_mesh_level(const mr_gpu_model *gm, size_t k, mat4 m, const mr_lod_scale *s) {
+  if (gm->n_lods == 0 || k != 0 || !s) return &gm->meshes[k];
+  /* The round part's radius: the widest of its x and z, which the shapes
+   * turn about y (a link stretches y only). */
+  float rx = (gm->hi[0] - gm->lo[0]) * glm_vec3_norm(m[0]);
+  float rz = (gm->hi[2] - gm->lo[2]) * glm_vec3_norm(m[2]);
+  float radius = 0.5f * fmaxf(rx, rz), px = INFINITY;
+  vec4 c = { 0.5f * (gm->lo[0] + gm->hi[0]), 0.5f * (gm->lo[1] + gm->hi[1]),
+             0.5f * (gm->lo[2] + gm->hi[2]), 1 },
+       w;
+  glm_mat4_mulv(m, c, w);
+  float d = glm_vec3_distance(w, (float *)s->eye) - radius;
+  if (d > 0.05f) px = radius * s->k / d;
+  /* A shadow is seen on the frame: as fine as its pixels there, or as
+   * the map's texels where they are coarser. */
+  if (s->k_map > 0) px = fminf(px, radius * s->k_map);
+  int level = 0;
+  while (level < gm->n_lods &&
+         px * (1.0f - cosf(GLM_PIf / (float)mr_shape_segments(level + 1))) <= MAX_OFF_PX)
+    level++;
+  return level == 0 ? &gm->meshes[0] : &gm->lods[level - 1];
 }
 
 /* mr_pose (double, w x y z) to a cglm matrix (float; cglm's quaternions

@@ -240,9 +240,17 @@ static int load_file(const char *path, mr_model *out, char *msg, size_t msg_size
 /* Positions that are not numbers are refused: nothing sensible can be
  * drawn from them. A normal that is not one (Assimp makes NaN for a
  * triangle of no area) only loses its shading: it is set to +y. */
+_Static_assert(MR_SHAPE_LEVELS - 1 <= sizeof((mr_model *)0)->lods / sizeof(mr_mesh),
+               "a model holds every coarser level of a shape");
+
+/* Mesh k of the model, its coarser levels after its meshes. */
+static mr_mesh *mesh_at(mr_model *m, size_t k) {
+  return k < m->n_meshes ? &m->meshes[k] : &m->lods[k - m->n_meshes];
+}
+
 static int check_finite(mr_model *m, char *msg, size_t msg_size) {
-  for (size_t k = 0; k < m->n_meshes; k++) {
-    mr_mesh *mesh = &m->meshes[k];
+  for (size_t k = 0; k < m->n_meshes + m->n_lods; k++) {
+    mr_mesh *mesh = mesh_at(m, k);
     for (size_t v = 0; v < mesh->n_vertices; v++) {
       const float *p = &mesh->positions[3 * v];
       float *n = &mesh->normals[3 * v];
@@ -266,8 +274,8 @@ static int check_finite(mr_model *m, char *msg, size_t msg_size) {
  * faces inside out, so their winding is reversed. */
 static void place_model(mr_model *m, const double s[3], const mr_pose *pose) {
   int mirror = s[0] * s[1] * s[2] < 0;
-  for (size_t k = 0; k < m->n_meshes; k++) {
-    mr_mesh *mesh = &m->meshes[k];
+  for (size_t k = 0; k < m->n_meshes + m->n_lods; k++) {
+    mr_mesh *mesh = mesh_at(m, k);
     for (size_t v = 0; v < mesh->n_vertices; v++) {
       float *p = &mesh->positions[3 * v], *n = &mesh->normals[3 * v];
       double ps[3] = { p[0] * s[0], p[1] * s[1], p[2] * s[2] }, pw[3];
@@ -326,6 +334,12 @@ int mr_model_load(const mr_model_def *def, mr_model *out, char *msg, size_t msg_
              ? 0
              : fail(msg, msg_size, "not a built-in shape, or out of memory");
     if (rc == 0) out->n_meshes = 1, out->meshes[0].material = default_material;
+    for (int k = 1; rc == 0 && k < MR_SHAPE_LEVELS; k++) {
+      rc = mr_shape_mesh_lod(def->shape, k, &out->lods[k - 1]) == 0
+               ? 0
+               : fail(msg, msg_size, "out of memory");
+      if (rc == 0) out->n_lods++, out->lods[k - 1].material = default_material;
+    }
   }
   if (rc == 0) rc = check_finite(out, msg, msg_size);
   if (rc != 0) {
@@ -340,6 +354,7 @@ int mr_model_load(const mr_model_def *def, mr_model *out, char *msg, size_t msg_
 void mr_model_free(mr_model *m) {
   if (!m) return;
   for (size_t k = 0; k < m->n_meshes; k++) mr_mesh_release(&m->meshes[k]);
+  for (size_t k = 0; k < m->n_lods; k++) mr_mesh_release(&m->lods[k]);
   free(m->meshes);
   memset(m, 0, sizeof *m);
 }

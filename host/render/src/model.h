@@ -25,6 +25,10 @@ typedef struct mr_mesh {
 typedef struct mr_model {
   mr_mesh *meshes;
   size_t n_meshes;
+  /* A built-in shape's coarser levels of meshes[0] (shapes.h), placed as
+   * it is: lods[k] is level k + 1. Empty for a model file. */
+  mr_mesh lods[2];
+  size_t n_lods;
   float bounds_min[3], bounds_max[3]; /* after placement */
 } mr_model;
 

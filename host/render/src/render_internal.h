@@ -38,15 +38,19 @@ typedef struct mr_gpu_mesh {
   GLsizei n_indices;
   GLuint texture;           /* base colour, 0: none */
   mr_material_def material; /* the file's own */
+  bool closed;              /* closed, wound counter-clockwise outside: culled */
 } mr_gpu_mesh;
 
 typedef struct mr_gpu_model {
   mr_gpu_mesh *meshes;
   size_t n_meshes;
+  /* A built-in shape's coarser levels of meshes[0] (shapes.h, level k + 1
+   * in lods[k]), drawn where the shape is small (mr_mesh_level). */
+  mr_gpu_mesh lods[2];
+  int n_lods;
   mr_material_def materials[MR_STAGE_MAX_MATERIALS];
   int n_materials;
   bool skinned, cast_shadow;
-  bool closed; /* a built-in shape: closed, wound counter-clockwise outside */
   int n_bones;
   float lo[3], hi[3]; /* the meshes' bounds, in the model's own axes (skins: at rest) */
 } mr_gpu_model;
@@ -143,6 +147,17 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
                      size_t msg_size, mr_render_status *status);
 void mr_meshes_destroy(mr_render *r);
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m);
+/* How many pixels a metre covers where a model is drawn: k at 1 m from
+ * the eye, falling as the distance grows; and, drawn into the shadow map,
+ * no more than its texels a metre, k_map (0: not). */
+typedef struct mr_lod_scale {
+  vec3 eye;
+  float k, k_map;
+} mr_lod_scale;
+/* Mesh k of gm as drawn with model matrix m: for a built-in shape's one
+ * mesh, the coarsest level whose outline stays within half a pixel of the
+ * round shape's at that size; otherwise meshes[k]. */
+const mr_gpu_mesh *mr_mesh_level(const mr_gpu_model *gm, size_t k, mat4 m, const mr_lod_scale *s);
 /* The model matrix of a draw item: scale, then pose. */
 void mr_item_matrix(const mr_draw_item *item, mat4 out);
 /* A pose as a matrix (a skin's bone: rest to now). */
@@ -152,8 +167,12 @@ void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 
 /* still.c: the sky, the backdrop and the floor, unshadowed, kept while
  * the camera and the sun stay (software GL, one sample). */
+/* Where on screen shadows can fall on the backdrop and on the floor: up
+ * to MR_STILL_BANDS rectangles (x, y, w, h) each, bands of rows. */
+#define MR_STILL_BANDS 8
 typedef struct mr_still_rects {
-  int backdrop[4], floor[4]; /* x, y, w, h on screen where shadows can fall; w 0: none */
+  int backdrop[MR_STILL_BANDS][4], floor[MR_STILL_BANDS][4];
+  int n_backdrop, n_floor;
 } mr_still_rects;
 int mr_still_create(mr_render *r, char *msg, size_t msg_size);
 void mr_still_destroy(mr_render *r);
@@ -170,9 +189,12 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
                        const mr_still_rects *still);
 /* The backdrop and (or) the floor, lit. */
 void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor);
+/* The backdrop (or the floor), lit, only inside each of n rectangles. */
+void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, const int (*rects)[4],
+                              int n);
 /* The casters into the shadow map, with the shadow programs, seen
  * through light_vp. */
-void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp);
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_frame *f);
 
 /* shadow.c */
 int mr_shadow_create(mr_render *r, char *msg, size_t msg_size);

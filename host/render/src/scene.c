@@ -87,46 +87,62 @@ static void set_model(mr_render *r, GLuint p, mat4 m) {
   mr_uniform_i(r, p, "u_mirrored", mirrors(m));
 }
 
+/* The backdrop's (or the floor's) program with the frame's lights and
+ * its material, in use; its mesh, or NULL when the stage has none. */
+static const mr_gpu_mesh *scenery_begin(mr_render *r, const mr_frame *f, bool backdrop) {
+  const mr_stage_def *s = &r->stage;
+  if (backdrop ? !s->backdrop : !s->floor) return NULL;
+  mat4 id = GLM_MAT4_IDENTITY_INIT;
+  mr_material_def m = mr_default_material_def();
+  m.roughness = 0.9f;
+  GLuint p = backdrop ? r->prog_backdrop : r->prog_scenery;
+  const mr_gpu_mesh *mesh = backdrop ? &r->backdrop : &r->floor;
+  r->gl.UseProgram(p);
+  set_lights(r, p, f);
+  set_model(r, p, id);
+  const float *color = backdrop ? s->backdrop_color : s->floor_color;
+  for (int k = 0; k < 3; k++) m.base_color[k] = color[k];
+  set_material(r, p, &m, mesh);
+  if (!backdrop) {
+    mr_uniform_v3(r, p, "u_color2", s->floor_color2);
+    /* 16 squares a side. */
+    mr_uniform_f(r, p, "u_cell", (float)(s->floor_size / 16.0));
+  }
+  return mesh;
+}
+
 /* The backdrop, then the floor (those asked for), each with its own program, whose shader
  * takes their roughness as given (shader_src.c). The backdrop goes first:
  * the floor runs on behind it (a band of pixels above where they meet),
  * and there it then fails the depth test before it is shaded. */
 void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor) {
-  const mr_stage_def *s = &r->stage;
-  mat4 id = GLM_MAT4_IDENTITY_INIT;
-  mr_material_def m = mr_default_material_def();
-  m.roughness = 0.9f;
-  if (s->backdrop && backdrop) {
-    GLuint p = r->prog_backdrop;
-    r->gl.UseProgram(p);
-    set_lights(r, p, f);
-    set_model(r, p, id);
-    for (int k = 0; k < 3; k++) m.base_color[k] = s->backdrop_color[k];
-    set_material(r, p, &m, &r->backdrop);
-    mr_mesh_draw(r, &r->backdrop);
-  }
-  if (s->floor && floor) {
-    GLuint p = r->prog_scenery;
-    r->gl.UseProgram(p);
-    set_lights(r, p, f);
-    set_model(r, p, id);
-    for (int k = 0; k < 3; k++) m.base_color[k] = s->floor_color[k];
-    set_material(r, p, &m, &r->floor);
-    mr_uniform_v3(r, p, "u_color2", s->floor_color2);
-    /* 16 squares a side. */
-    mr_uniform_f(r, p, "u_cell", (float)(s->floor_size / 16.0));
-    mr_mesh_draw(r, &r->floor);
-  }
+  const mr_gpu_mesh *mesh;
+  if (backdrop && (mesh = scenery_begin(r, f, true))) mr_mesh_draw(r, mesh);
+  if (floor && (mesh = scenery_begin(r, f, false))) mr_mesh_draw(r, mesh);
 }
 
-/* A built-in shape is closed and wound counter-clockwise seen from
- * outside, so its back faces, hidden behind its front, are culled before
- * they are set up and rasterised (software GL spends a third of a small
- * frame on triangles). A model matrix that mirrors turns the winding
- * round. Model files do not agree on winding, and skins and the scenery
- * are seen from both sides: never culled. */
-static void cull(mr_render *r, const mr_gpu_model *gm, mat4 m) {
-  if (!gm->closed) {
+void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, const int (*rects)[4],
+                              int n) {
+  const mr_gpu_mesh *mesh = n > 0 ? scenery_begin(r, f, backdrop) : NULL;
+  if (!mesh) return;
+  r->gl.Enable(GL_SCISSOR_TEST);
+  for (int k = 0; k < n; k++) {
+    if (rects[k][2] <= 0 || rects[k][3] <= 0) continue;
+    r->gl.Scissor(rects[k][0], rects[k][1], rects[k][2], rects[k][3]);
+    mr_mesh_draw(r, mesh);
+  }
+  r->gl.Disable(GL_SCISSOR_TEST);
+}
+
+/* A closed mesh wound counter-clockwise seen from outside (every built-in
+ * shape, and each model file's mesh found so at load, meshes.c) hides its
+ * back faces behind its front ones, so they are culled before they are
+ * set up and rasterised (software GL spends a third of a small frame on
+ * triangles, and shades a tiny one's whole 4 x 4 block). A model matrix
+ * that mirrors turns the winding round. Other model files' meshes, skins
+ * and the scenery are seen from both sides: never culled. */
+static void cull(mr_render *r, const mr_gpu_mesh *mesh, mat4 m) {
+  if (!mesh->closed) {
     r->gl.Disable(GL_CULL_FACE);
     return;
   }
@@ -134,10 +150,19 @@ static void cull(mr_render *r, const mr_gpu_model *gm, mat4 m) {
   r->gl.CullFace(mirrors(m) ? GL_FRONT : GL_BACK);
 }
 
+/* The lit pass's scale: pixels a metre at 1 m, half the frame's height
+ * over tan(fov / 2). */
+static mr_lod_scale lod_scale(const mr_render *r, const mr_frame *f) {
+  mr_lod_scale ls = { .k = f->proj[1][1] * 0.5f * (float)r->height };
+  glm_vec3_copy((float *)f->eye, ls.eye);
+  return ls;
+}
+
 /* The items (not skins), with prog; lit sets each mesh's material, and
- * casters draws only the models that cast. */
-static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit,
-                       bool casters) {
+ * casters draws only the models that cast; a built-in shape at the level
+ * its size in pixels (or shadow texels) by ls asks for. */
+static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool lit, bool casters,
+                       const mr_lod_scale *ls) {
   for (size_t i = 0; i < list->n_items; i++) {
     const mr_draw_item *it = &list->items[i];
     if (it->model < 0 || (size_t)it->model >= r->n_models) continue;
@@ -146,10 +171,11 @@ static void draw_items(mr_render *r, const mr_draw_list *list, GLuint prog, bool
     mat4 m;
     mr_item_matrix(it, m);
     set_model(r, prog, m);
-    cull(r, gm, m);
     for (size_t k = 0; k < gm->n_meshes; k++) {
       if (lit) set_material(r, prog, worn(gm, &gm->meshes[k], it->material), &gm->meshes[k]);
-      mr_mesh_draw(r, &gm->meshes[k]);
+      const mr_gpu_mesh *mesh = mr_mesh_level(gm, k, m, ls);
+      cull(r, mesh, m);
+      mr_mesh_draw(r, mesh);
     }
   }
   r->gl.Disable(GL_CULL_FACE);
@@ -178,23 +204,18 @@ static void draw_skins(mr_render *r, const mr_draw_list *list, GLuint prog, bool
 /* The items and skins first, then the backdrop and the floor, which they
  * hide in part: a fragment behind what is drawn already fails the depth
  * test before it is shaded. */
-/* The kept scenery's shadowed parts, each surface inside its rectangle. */
+/* The kept scenery's shadowed parts, each surface inside its rectangles. */
 static void draw_still_shadows(mr_render *r, const mr_frame *f, const mr_still_rects *still) {
-  const int *rects[2] = { still->backdrop, still->floor };
-  r->gl.Enable(GL_SCISSOR_TEST);
-  for (int k = 0; k < 2; k++) {
-    if (rects[k][2] <= 0 || rects[k][3] <= 0) continue;
-    r->gl.Scissor(rects[k][0], rects[k][1], rects[k][2], rects[k][3]);
-    mr_scene_draw_scenery(r, f, k == 0, k == 1);
-  }
-  r->gl.Disable(GL_SCISSOR_TEST);
+  mr_scene_draw_scenery_in(r, f, true, (const int(*)[4])still->backdrop, still->n_backdrop);
+  mr_scene_draw_scenery_in(r, f, false, (const int(*)[4])still->floor, still->n_floor);
 }
 
 void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
                        const mr_still_rects *still) {
   r->gl.UseProgram(r->prog_mesh);
   set_lights(r, r->prog_mesh, f);
-  if (list) draw_items(r, list, r->prog_mesh, true, false);
+  mr_lod_scale ls = lod_scale(r, f);
+  if (list) draw_items(r, list, r->prog_mesh, true, false, &ls);
   if (list && list->n_skins > 0 && r->prog_mesh_skin) {
     r->gl.UseProgram(r->prog_mesh_skin);
     set_lights(r, r->prog_mesh_skin, f);
@@ -207,16 +228,21 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
   r->gl.UseProgram(0);
 }
 
-void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, mat4 light_vp) {
+void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
   mat4 id = GLM_MAT4_IDENTITY_INIT;
   GLuint progs[2] = { r->prog_depth, r->prog_depth_skin };
+  /* The map's texels a metre: the sun's box is square and its view
+   * turns only. */
+  vec3 row = { f->light_vp[0][0], f->light_vp[1][0], f->light_vp[2][0] };
+  mr_lod_scale ls = lod_scale(r, f);
+  ls.k_map = glm_vec3_norm(row) * 0.5f * (float)r->shadow_size;
   for (int k = 0; k < 2; k++) {
     if (!progs[k] || (k == 1 && list->n_skins == 0)) continue;
     r->gl.UseProgram(progs[k]);
-    mr_uniform_m4(r, progs[k], "u_view_proj", light_vp);
+    mr_uniform_m4(r, progs[k], "u_view_proj", (vec4 *)f->light_vp);
     mr_uniform_m4(r, progs[k], "u_light_vp", id);
     if (k == 0)
-      draw_items(r, list, progs[k], false, true);
+      draw_items(r, list, progs[k], false, true, &ls);
     else
       draw_skins(r, list, progs[k], false, true);
   }

@@ -220,7 +220,7 @@ void mr_shadow_draw(mr_render *r, const mr_draw_list *list, mr_frame *f) {
   gl->Enable(GL_DEPTH_TEST);
   gl->Enable(GL_POLYGON_OFFSET_FILL);
   gl->PolygonOffset(2.0f, 4.0f);
-  mr_scene_draw_casters(r, list, f->light_vp);
+  mr_scene_draw_casters(r, list, f);
   gl->Disable(GL_POLYGON_OFFSET_FILL);
   gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
   r->shadow_drawn = true;

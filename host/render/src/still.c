@@ -7,12 +7,14 @@
  * most pixels are floor and backdrop, each running the lit shader with the
  * sun, its shadow and the spots). Each frame the kept picture is copied
  * into the drawing framebuffer (a same-size blit, a copy of memory), and
- * the backdrop and the floor are lit again only inside the screen
- * rectangles where the casters' shadows can fall; everywhere else the
+ * the backdrop and the floor are lit again only where the casters'
+ * shadows can fall (bands of screen rows across the convex hull of their
+ * boxes moved along the sun onto each surface); everywhere else the
  * shadow term is exactly 1 and the kept pixel is the pixel the shader
  * would give. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "render_internal.h"
@@ -127,82 +129,193 @@ static void caster_points(const mr_render *r, const mr_draw_list *list, point_fn
 }
 
 /* A plane the shadows fall on, axis a (1: the floor's y, 2: the
- * backdrop's z) at `at`; the box of the shadows' points on it, in the
- * other two axes (u, v). */
-typedef struct plane_box {
+ * backdrop's z) at `at`; the shadows' points on it, in the other two axes
+ * (u, v), each as the 4 corners of a square of side 2 margin about it
+ * (the shadow filter reaches that far). */
+typedef struct plane_pts {
   int axis, u, v;
-  float at, sun[3], lo[2], hi[2];
-  bool any, all;
-} plane_box;
+  float at, sun[3], margin;
+  float (*p)[2];
+  size_t n, cap;
+  bool all; /* the sun along the plane, or memory ran out: anywhere */
+} plane_pts;
 
 static void shadow_point(const float p[3], void *user) {
-  plane_box *b = user;
+  plane_pts *b = user;
   float s = b->sun[b->axis];
   if (s < 0.01f) { /* the sun along the plane: its shadows reach anywhere */
     b->all = true;
     return;
   }
-  float t = (p[b->axis] - b->at) / s;
-  if (t < 0) t = 0; /* behind the plane: a part crossing it shadows it from there */
-  float q[2] = { p[b->u] - t * b->sun[b->u], p[b->v] - t * b->sun[b->v] };
-  for (int k = 0; k < 2; k++) {
-    if (!b->any || q[k] < b->lo[k]) b->lo[k] = q[k];
-    if (!b->any || q[k] > b->hi[k]) b->hi[k] = q[k];
-  }
-  b->any = true;
-}
-
-/* The screen rectangle (x, y, w, h) of the world rectangle lo..hi on the
- * plane, a margin about it; the whole frame when a corner is at or
- * behind the eye. */
-static void screen_rect(const mr_render *r, const mr_frame *f, const plane_box *b, int rect[4]) {
-  float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
-  for (int c = 0; c < 4; c++) {
-    vec4 p = { 0, 0, 0, 1 }, q;
-    p[b->axis] = b->at;
-    p[b->u] = c & 1 ? b->hi[0] : b->lo[0];
-    p[b->v] = c & 2 ? b->hi[1] : b->lo[1];
-    glm_mat4_mulv((vec4 *)f->view_proj, p, q);
-    if (q[3] < 0.05f) {
-      rect[0] = rect[1] = 0;
-      rect[2] = r->width;
-      rect[3] = r->height;
+  if (b->all) return;
+  if (b->n + 4 > b->cap) {
+    size_t cap = b->cap ? 2 * b->cap : 256;
+    float(*q)[2] = realloc(b->p, cap * sizeof *q);
+    if (!q) {
+      b->all = true;
       return;
     }
-    float x = (q[0] / q[3] * 0.5f + 0.5f) * (float)r->width;
-    float y = (q[1] / q[3] * 0.5f + 0.5f) * (float)r->height;
-    x0 = fminf(x0, x), y0 = fminf(y0, y), x1 = fmaxf(x1, x), y1 = fmaxf(y1, y);
+    b->p = q, b->cap = cap;
   }
-  x0 = fmaxf(x0 - 2, 0), y0 = fmaxf(y0 - 2, 0);
-  x1 = fminf(x1 + 2, (float)r->width), y1 = fminf(y1 + 2, (float)r->height);
-  rect[0] = (int)floorf(x0), rect[1] = (int)floorf(y0);
-  rect[2] = x1 > x0 ? (int)ceilf(x1) - rect[0] : 0;
-  rect[3] = y1 > y0 ? (int)ceilf(y1) - rect[1] : 0;
+  float t = (p[b->axis] - b->at) / s;
+  if (t < 0) t = 0; /* behind the plane: a part crossing it shadows it from there */
+  float u = p[b->u] - t * b->sun[b->u], v = p[b->v] - t * b->sun[b->v];
+  for (int k = 0; k < 4; k++) {
+    b->p[b->n][0] = u + (k & 1 ? b->margin : -b->margin);
+    b->p[b->n][1] = v + (k & 2 ? b->margin : -b->margin);
+    b->n++;
+  }
+}
+
+static int by_u_then_v(const void *a, const void *b) {
+  const float *x = a, *y = b;
+  if (x[0] != y[0]) return x[0] < y[0] ? -1 : 1;
+  return (x[1] > y[1]) - (x[1] < y[1]);
+}
+
+static float turn(const float o[2], const float a[2], const float b[2]) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+/* The convex hull of b's points, counter-clockwise, into b->p; its
+ * count (monotone chain; the points are sorted in place). */
+static size_t hull(plane_pts *b, float (*h)[2]) {
+  size_t n = b->n, k = 0;
+  qsort(b->p, n, sizeof *b->p, by_u_then_v);
+  for (size_t i = 0; i < n; i++) {
+    while (k >= 2 && turn(h[k - 2], h[k - 1], b->p[i]) <= 0) k--;
+    memcpy(h[k++], b->p[i], sizeof *h);
+  }
+  for (size_t i = n - 1, lo = k + 1; i-- > 0;) {
+    while (k >= lo && turn(h[k - 2], h[k - 1], b->p[i]) <= 0) k--;
+    memcpy(h[k++], b->p[i], sizeof *h);
+  }
+  return k > 1 ? k - 1 : k;
+}
+
+/* The polygon poly (n corners, room for n + 1 more) cut by the line
+ * where coordinate c is `at`, keeping the side sign * (x - at) <= 0. */
+static size_t clip(float (*poly)[2], size_t n, int c, float at, float sign, float (*out)[2]) {
+  size_t m = 0;
+  for (size_t i = 0; i < n; i++) {
+    const float *a = poly[i], *e = poly[(i + 1) % n];
+    float da = sign * (a[c] - at), de = sign * (e[c] - at);
+    if (da <= 0) memcpy(out[m++], a, sizeof *out);
+    if ((da < 0 && de > 0) || (da > 0 && de < 0)) {
+      float t = da / (da - de);
+      out[m][0] = a[0] + t * (e[0] - a[0]);
+      out[m][1] = a[1] + t * (e[1] - a[1]);
+      m++;
+    }
+  }
+  return m;
+}
+
+/* The screen's x extent of the polygon's part between rows ya and yb. */
+static bool band_extent(float (*s)[2], size_t n, float ya, float yb, float *x0, float *x1) {
+  bool any = false;
+  for (size_t i = 0; i < n; i++) {
+    const float *a = s[i], *e = s[(i + 1) % n];
+    float dy = e[1] - a[1], lo = 0, hi = 1;
+    if (fabsf(dy) < 1e-6f) {
+      if (a[1] < ya || a[1] > yb) continue;
+    } else {
+      float ta = (ya - a[1]) / dy, tb = (yb - a[1]) / dy;
+      lo = fmaxf(0, fminf(ta, tb)), hi = fminf(1, fmaxf(ta, tb));
+      if (lo > hi) continue;
+    }
+    for (int k = 0; k < 2; k++) {
+      float x = a[0] + (k ? hi : lo) * (e[0] - a[0]);
+      *x0 = any ? fminf(*x0, x) : x, *x1 = any ? fmaxf(*x1, x) : x;
+      any = true;
+    }
+  }
+  return any;
+}
+
+/* The screen polygon cut into bands of rows, a rectangle each (a 2-pixel
+ * margin about it), clipped to the frame. Returns how many. */
+static int bands(const mr_render *r, float (*s)[2], size_t n, int rects[][4]) {
+  float y0 = s[0][1], y1 = s[0][1];
+  for (size_t i = 1; i < n; i++) y0 = fminf(y0, s[i][1]), y1 = fmaxf(y1, s[i][1]);
+  int top = (int)ceilf(fminf(y1 + 2, (float)r->height)), bottom = (int)floorf(fmaxf(y0 - 2, 0));
+  if (top <= bottom) return 0;
+  int nb = (top - bottom + 15) / 16, m = 0; /* at least 16 rows a band */
+  if (nb > MR_STILL_BANDS) nb = MR_STILL_BANDS;
+  for (int k = 0; k < nb; k++) {
+    int ya = bottom + (top - bottom) * k / nb, yb = bottom + (top - bottom) * (k + 1) / nb;
+    float x0, x1;
+    if (!band_extent(s, n, (float)ya - 2, (float)yb + 2, &x0, &x1)) continue;
+    x0 = fmaxf(x0 - 2, 0), x1 = fminf(x1 + 2, (float)r->width);
+    if (x1 <= x0) continue;
+    rects[m][0] = (int)floorf(x0), rects[m][1] = ya;
+    rects[m][2] = (int)ceilf(x1) - rects[m][0], rects[m][3] = yb - ya;
+    m++;
+  }
+  return m;
+}
+
+/* The hull on the plane (u, v) onto the screen; false when a corner is at
+ * or behind the eye. */
+static bool to_screen(const mr_render *r, const mr_frame *f, const plane_pts *b, float (*h)[2],
+                      size_t n, float (*s)[2]) {
+  for (size_t i = 0; i < n; i++) {
+    vec4 p = { 0, 0, 0, 1 }, q;
+    p[b->axis] = b->at, p[b->u] = h[i][0], p[b->v] = h[i][1];
+    glm_mat4_mulv((vec4 *)f->view_proj, p, q);
+    if (q[3] < 0.05f) return false;
+    s[i][0] = (q[0] / q[3] * 0.5f + 0.5f) * (float)r->width;
+    s[i][1] = (q[1] / q[3] * 0.5f + 0.5f) * (float)r->height;
+  }
+  return true;
 }
 
 /* Where on screen the casters' shadows can fall on the surface (the
- * backdrop, or the floor), clipped to the surface: a rectangle, or
- * nothing (w = 0). */
-static void shadow_rect(const mr_render *r, const mr_draw_list *list, const mr_frame *f, bool floor,
-                        int rect[4]) {
+ * backdrop, or the floor): the convex hull of their boxes' corners moved
+ * along the sun onto it, clipped to the surface, in bands of rows (a
+ * long shadow thrown aslant by a low sun fills a fraction of its screen
+ * box). Returns how many rectangles. */
+static int shadow_rects(const mr_render *r, const mr_draw_list *list, const mr_frame *f, bool floor,
+                        int rects[][4]) {
   const mr_stage_def *s = &r->stage;
-  const float h = (float)(s->floor_size * 0.5), margin = 0.05f;
-  plane_box b = { .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1 };
+  const float h = (float)(s->floor_size * 0.5);
+  plane_pts b = { .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
   b.at = floor ? (float)s->floor_height : (float)-s->backdrop_distance;
   memcpy(b.sun, f->sun_dir, sizeof b.sun);
   caster_points(r, list, shadow_point, &b);
   /* The surface's own extent (meshes.c). */
   float lo[2] = { -h, floor ? -h : (float)s->floor_height };
   float hi[2] = { h, floor ? h : (float)s->floor_height + 2 * MR_BACKDROP_HALF_HEIGHT };
-  for (int k = 0; k < 2 && !b.all; k++) {
-    lo[k] = fmaxf(lo[k], b.lo[k] - margin);
-    hi[k] = fminf(hi[k], b.hi[k] + margin);
+  int m = 0;
+  size_t room = (b.all ? 4 : b.n) + 8;
+  float(*p)[2] = malloc(2 * room * sizeof *p), (*q)[2] = p ? p + room : NULL;
+  if (p && (b.all || b.n > 0)) {
+    size_t n = 4;
+    if (b.all) {
+      const float c[4][2] = {
+        { lo[0], lo[1] }, { hi[0], lo[1] }, { hi[0], hi[1] }, { lo[0], hi[1] }
+      };
+      memcpy(p, c, sizeof c);
+    } else {
+      n = hull(&b, p);
+    }
+    for (int c = 0; c < 2 && n > 0; c++) {
+      n = clip(p, n, c, hi[c], 1, q);
+      n = clip(q, n, c, lo[c], -1, p);
+    }
+    if (n >= 3 && to_screen(r, f, &b, p, n, q)) {
+      m = bands(r, q, n, rects);
+    } else if (n >= 3) {
+      rects[0][0] = rects[0][1] = 0, rects[0][2] = r->width, rects[0][3] = r->height;
+      m = 1;
+    }
+  } else if (!p && (b.all || b.n > 0)) {
+    rects[0][0] = rects[0][1] = 0, rects[0][2] = r->width, rects[0][3] = r->height;
+    m = 1;
   }
-  rect[2] = rect[3] = 0;
-  if ((!b.any && !b.all) || lo[0] >= hi[0] || lo[1] >= hi[1]) return;
-  memcpy(b.lo, lo, sizeof lo);
-  memcpy(b.hi, hi, sizeof hi);
-  screen_rect(r, f, &b, rect);
+  free(p);
+  free(b.p);
+  return m;
 }
 
 bool mr_still_draw(mr_render *r, const mr_draw_list *list, const mr_frame *f, mr_still_rects *out) {
@@ -218,8 +331,8 @@ bool mr_still_draw(mr_render *r, const mr_draw_list *list, const mr_frame *f, mr
                       GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   mr_fbo_bind_draw(r);
   if (f->shadows && list) {
-    if (r->stage.backdrop) shadow_rect(r, list, f, false, out->backdrop);
-    if (r->stage.floor) shadow_rect(r, list, f, true, out->floor);
+    if (r->stage.backdrop) out->n_backdrop = shadow_rects(r, list, f, false, out->backdrop);
+    if (r->stage.floor) out->n_floor = shadow_rects(r, list, f, true, out->floor);
   }
   return true;
 }
