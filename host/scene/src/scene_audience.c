@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mr_pose.h"
 #include "scene_read.h"
 
 enum { SAMPLES = 96 };
@@ -104,12 +105,12 @@ typedef struct axes {
 
 static axes axes_of(double az, double el) {
   axes a;
-  a.back[0] = cos(el) * sin(az);
-  a.back[1] = sin(el);
-  a.back[2] = cos(el) * cos(az);
-  a.right[0] = cos(az);
+  a.back[0] = mr_cos(el) * mr_sin(az);
+  a.back[1] = mr_sin(el);
+  a.back[2] = mr_cos(el) * mr_cos(az);
+  a.right[0] = mr_cos(az);
   a.right[1] = 0;
-  a.right[2] = -sin(az);
+  a.right[2] = -mr_sin(az);
   /* up = right x forward, forward = -back */
   a.up[0] = -(a.right[1] * a.back[2] - a.right[2] * a.back[1]);
   a.up[1] = -(a.right[2] * a.back[0] - a.right[0] * a.back[2]);
@@ -186,7 +187,8 @@ int mr_scene_frame_audience(mr_scene *s) {
   /* The overlay's box and its corner's margin, from the bottom edge. */
   double osd[4];
   mr_osd_rect(st->width, st->height, MR_OSD_ROWS, MR_OSD_COLUMNS, osd);
-  const double t = tan(st->fov_deg * DEG / 2), aspect = (double)st->width / st->height;
+  const double half = st->fov_deg * DEG / 2, t = mr_sin(half) / mr_cos(half),
+               aspect = (double)st->width / st->height;
   const double osd_ndc = 2 * (st->height - osd[1]) / st->height;
   const bounds b = { t * aspect * (1 - MARGIN), t * (-1 + MARGIN + osd_ndc), t * (1 - MARGIN) };
   double shift = 0;
