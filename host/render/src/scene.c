@@ -2,6 +2,7 @@
  * wearing its material under ambient, sun (with its shadow) and spots;
  * and the same items again as the sun's shadow casters. */
 #include <math.h>
+#include <string.h>
 #include <stdio.h>
 
 #include "render_internal.h"
@@ -236,10 +237,14 @@ void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_fram
   vec3 row = { f->light_vp[0][0], f->light_vp[1][0], f->light_vp[2][0] };
   mr_lod_scale ls = lod_scale(r, f);
   ls.k_map = glm_vec3_norm(row) * 0.5f * (float)r->shadow_size;
+  /* A copy, not a cast of the const frame's matrix: some GCC builds then
+   * take the cast pointer for one row and refuse the 64-byte read. */
+  mat4 light_vp;
+  memcpy(light_vp, f->light_vp, sizeof light_vp);
   for (int k = 0; k < 2; k++) {
     if (!progs[k] || (k == 1 && list->n_skins == 0)) continue;
     r->gl.UseProgram(progs[k]);
-    mr_uniform_m4(r, progs[k], "u_view_proj", (vec4 *)f->light_vp);
+    mr_uniform_m4(r, progs[k], "u_view_proj", light_vp);
     mr_uniform_m4(r, progs[k], "u_light_vp", id);
     if (k == 0)
       draw_items(r, list, progs[k], false, true, &ls);
