@@ -96,16 +96,13 @@ void mr_fbo_bind_draw(mr_render *r) {
 
 void mr_fbo_resolve(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
   const mr_gl *gl = &r->gl;
-  if (r->smooth) {
-    mr_post_smooth(r, list, f);
-  } else {
-    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
-    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_out);
-    gl->BlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT,
-                        GL_NEAREST);
-  }
+  gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
+  gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_out);
+  gl->BlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
   gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_out);
   gl->Viewport(0, 0, r->width, r->height);
+  if (r->smooth) mr_post_smooth(r, list, f);
 }
 
 /* Reads the bound read framebuffer's w x h as RGB, top row first (GL's

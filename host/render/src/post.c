@@ -220,12 +220,6 @@ static void regions_make(const mr_render *r, const mr_draw_list *list, const mr_
 
 void mr_post_smooth(mr_render *r, const mr_draw_list *list, const mr_frame *f) {
   const mr_gl *gl = &r->gl;
-  gl->BindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo_ms);
-  gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, r->fbo_out);
-  gl->BlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT,
-                      GL_NEAREST);
-  gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo_out);
-  gl->Viewport(0, 0, r->width, r->height);
   regions g;
   regions_make(r, list, f, &g);
   gl->Disable(GL_DEPTH_TEST);

@@ -125,9 +125,9 @@ int mr_fbo_read_rgb(mr_render *r, uint8_t *rgb); /* -1: out of memory */
 /* Window: the last frame blitted into the window's back buffer. */
 void mr_fbo_blit_to_window(mr_render *r, int w, int h);
 
-/* post.c: the frame copied into the output framebuffer, and its edges
- * smoothed where the draw list's models and the scenery's outlines are
- * (at most MR_POST_MAX_VERTS vertices of regions). */
+/* post.c: the frame, already copied into the bound output framebuffer,
+ * smoothed at its edges where the draw list's models and the scenery's
+ * outlines are (at most MR_POST_MAX_VERTS vertices of regions). */
 #define MR_POST_MAX_VERTS 96
 void mr_post_smooth(mr_render *r, const mr_draw_list *list, const mr_frame *f);
 
