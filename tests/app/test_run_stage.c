@@ -345,7 +345,8 @@ static int pixels_apart(const char *a, const char *b) {
  * changes while the show runs), which only the rods' pixels show. The
  * overlay is hidden (its frame rate changes from frame to frame), and
  * the shots wait 2 s for the pause: under a sanitizer on a busy box a
- * frame takes over a second, and the physics runs ahead of it. */
+ * frame takes over a second, and the physics runs ahead of it. The second
+ * shot and m fall due together: the shot shows the frame before m. */
 static void the_m_key_changes_what_the_puppet_wears(void **state) {
   (void)state;
   char xvfb[512];
@@ -362,7 +363,7 @@ static void the_m_key_changes_what_the_puppet_wears(void **state) {
                    "run",
                    STICK,
                    "--keys",
-                   "0.2:h,1:space,3:p,3.5:p,4:m,4.5:p,5:q",
+                   "0.2:h,1:space,3:p,3.5:p,3.5:m,4.5:p,5:q",
                    "--size",
                    "320x180",
                    "-o",

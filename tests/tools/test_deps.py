@@ -24,7 +24,7 @@ SRC = sys.argv[1]
 DEPS = os.path.join(SRC, "tools", "install-deps.sh")
 failures = []
 
-STUBS = {
+STAND_INS = {
     "dpkg-query": """
 pkg=${@: -1}
 echo "$pkg" >> "$T/queried.txt"
@@ -60,7 +60,7 @@ class Box:
         self.dir = tempfile.mkdtemp(dir=tmp)
         bin_dir = os.path.join(self.dir, "bin")
         os.makedirs(bin_dir)
-        for name, body in STUBS.items():
+        for name, body in STAND_INS.items():
             path = os.path.join(bin_dir, name)
             with open(path, "w") as f:
                 f.write("#!%s\nT=%s\n%s" % (shutil.which("bash"), self.dir, body))

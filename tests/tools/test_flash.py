@@ -53,13 +53,13 @@ def path_with(tmp, listing):
     for tool in ("bash", "grep"):
         os.symlink(shutil.which(tool), os.path.join(bin_dir, tool))
     if listing is not None:
-        stub = os.path.join(bin_dir, "dfu-util")
-        with open(stub, "w") as f:
+        stand_in = os.path.join(bin_dir, "dfu-util")
+        with open(stand_in, "w") as f:
             f.write("#!%s\n" % shutil.which("bash"))
             f.write('case " $* " in *" -l "*) printf "dfu-util 0.11\\n\\n%%s\\n" "%s";;\n'
                     % listing.replace('"', '\\"'))
             f.write('*) echo "$*" >> "%s/calls.txt";; esac\n' % tmp)
-        os.chmod(stub, 0o755)
+        os.chmod(stand_in, 0o755)
     return bin_dir
 
 
