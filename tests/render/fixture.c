@@ -17,6 +17,10 @@ void fx_scene_init(fx_scene *s) {
   s->stage.width = FX_W;
   s->stage.height = FX_H;
   s->stage.models = s->models;
+  /* The theater's set stands between this camera and the sphere's
+   * surroundings; it has tests of its own (test_set.c), and these look
+   * at the lights, the models and the camera without it. */
+  s->stage.proscenium = s->stage.wings = s->stage.footlights = false;
   const float red[3] = { 0.9f, 0.05f, 0.05f };
   fx_add(s, MR_SHAPE_SPHERE, red, 0, 0.6, 0, 0.4);
   s->view = mr_default_render_view(&s->stage);

@@ -19,7 +19,8 @@ typedef struct fx_scene {
   mr_render_view view;
 } fx_scene;
 
-/* The default stage and view, and one item: a red sphere 0.4 m across,
+/* The default stage without the theater's set, the default view, and
+ * one item: a red sphere 0.4 m across,
  * its centre at (0, 0.6, 0), the orbit camera's target. */
 void fx_scene_init(fx_scene *s);
 /* Adds a model and an item of it at (x, y, z); returns its index. */

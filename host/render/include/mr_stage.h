@@ -173,8 +173,9 @@ typedef struct mr_stage_def {
   mr_model_def *models; /* belongs to the def's owner */
   size_t n_models;
   mr_lights_def lights;
-  /* Scenery: a floor at floor_height (a checkerboard of two colours,
-   * floor_size m a side) and a backdrop wall behind the stage. */
+  /* Scenery: a floor at floor_height (boards of board_width, each a tone
+   * between floor_color and floor_color2, floor_size m a side) and a
+   * backdrop wall behind the stage. */
   bool floor;          /* default true */
   double floor_height; /* default 0 */
   double floor_size;   /* default 8 */
@@ -182,6 +183,29 @@ typedef struct mr_stage_def {
   bool backdrop;            /* default true */
   double backdrop_distance; /* m behind the origin along -z, default 3 */
   float backdrop_color[3];
+  /* The theater's set, drawn with the scenery (and kept with it where
+   * that is kept): built-in boxes and spheres made in C (set.c). It stands
+   * on the floor, turned to face the audience (facing_deg). The
+   * proscenium is an arch around the stage's opening, set_width x
+   * set_height m, its middle set_middle m to the audience's right of the
+   * origin, its plane set_front m in front of the origin; the stage's
+   * front edge is just in front of it, and the boards end there. 0 (the
+   * default) for the size or the plane: from the show (a scene sizes
+   * them so that the opening holds every puppet and bar over the whole
+   * show; with nothing sized, 3 x 2.2 m at 1 m). */
+  bool proscenium;           /* default true */
+  float proscenium_color[3]; /* default dark red */
+  float trim_color[3];       /* the arch's edging, default gold */
+  double set_width, set_height, set_front, set_middle;
+  bool wings;          /* two pairs of legs (flats) either side, behind the arch; default true */
+  float wing_color[3]; /* default near black */
+  /* A row of small lamps along the stage's front edge, glowing, and a
+   * warm light from them (a line light at the row) on what is above. */
+  bool footlights;            /* default true */
+  float footlight_color[3];   /* default warm (1, 0.72, 0.42) */
+  double footlight_intensity; /* default 1 */
+  bool bridge;        /* the puppeteer's walkway, above and behind the backdrop; default false */
+  double board_width; /* the floor's boards, m across, default 0.16 */
   /* Day and night (§3.3: "day can turn into night at the turn of a knob").
    * time_of_day 0..1: 0 and 1 midnight, 0.5 noon. It sets the sun's
    * height, the sky's colour between sky_day and sky_night, and how

@@ -68,7 +68,11 @@ static void upload_mesh(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m, const in
   if (m->texture && m->uvs) upload_texture(r, g, m);
 }
 
-static void mesh_free(mr_render *r, mr_gpu_mesh *g) {
+void mr_mesh_upload(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m) {
+  upload_mesh(r, g, m, NULL, NULL);
+}
+
+void mr_mesh_free(mr_render *r, mr_gpu_mesh *g) {
   const mr_gl *gl = &r->gl;
   for (int i = 0; i < 6; i++)
     if (g->buffers[i]) gl->DeleteBuffers(1, &g->buffers[i]);
@@ -206,15 +210,39 @@ static void upload_quad(mr_render *r, mr_gpu_mesh *g, const float c[3], const fl
   upload_mesh(r, g, &m, NULL, NULL);
 }
 
-/* The floor, floor_size a side at floor_height; the backdrop, a wall as
+/* The floor's outline (a fan of triangles) at height y, facing up. */
+static void upload_floor(mr_render *r, mr_gpu_mesh *g, float xz[5][2], size_t n, float y) {
+  float pos[15], nor[15];
+  uint32_t idx[9];
+  for (size_t i = 0; i < n; i++) {
+    pos[3 * i] = xz[i][0], pos[3 * i + 1] = y, pos[3 * i + 2] = xz[i][1];
+    nor[3 * i] = 0, nor[3 * i + 1] = 1, nor[3 * i + 2] = 0;
+  }
+  /* The outline runs counter-clockwise seen from below (x, then z): turn
+   * each triangle round to face up. */
+  for (size_t t = 0; t + 2 < n; t++)
+    idx[3 * t] = 0, idx[3 * t + 1] = (uint32_t)(t + 2), idx[3 * t + 2] = (uint32_t)(t + 1);
+  mr_mesh m;
+  memset(&m, 0, sizeof m);
+  m.positions = pos;
+  m.normals = nor;
+  m.n_vertices = n;
+  m.indices = idx;
+  m.n_indices = 3 * (n - 2);
+  m.material = mr_default_material_def();
+  upload_mesh(r, g, &m, NULL, NULL);
+}
+
+/* The floor, floor_size a side at floor_height, cut at the stage's front
+ * edge when the theater's set has one (set.c); the backdrop, a wall as
  * wide as the floor and 1.6 m tall, backdrop_distance behind the origin,
  * low enough that the sky shows above it from the orbit camera. */
 static void scenery_create(mr_render *r, const mr_stage_def *s) {
   const float h = (float)(s->floor_size * 0.5);
   if (s->floor) {
-    const float c[3] = { 0, (float)s->floor_height, 0 }, u[3] = { h, 0, 0 }, v[3] = { 0, 0, h },
-                n[3] = { 0, 1, 0 };
-    upload_quad(r, &r->floor, c, u, v, n);
+    float xz[5][2];
+    size_t n = mr_set_floor_outline(s, h, xz);
+    if (n >= 3) upload_floor(r, &r->floor, xz, n, (float)s->floor_height);
   }
   if (s->backdrop) {
     const float half_h = MR_BACKDROP_HALF_HEIGHT;
@@ -247,6 +275,10 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
   *status = MR_RENDER_ERR_GL;
   if (bone_texture_create(r, stage, msg, msg_size) != 0) return -1;
   scenery_create(r, stage);
+  if (mr_set_create(r, msg, msg_size) != 0) {
+    *status = MR_RENDER_ERR_NOMEM;
+    return -1;
+  }
   r->models = calloc(stage->n_models ? stage->n_models : 1, sizeof *r->models);
   if (!r->models) {
     *status = MR_RENDER_ERR_NOMEM;
@@ -277,15 +309,16 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
 
 void mr_meshes_destroy(mr_render *r) {
   for (size_t i = 0; i < r->n_models; i++) {
-    for (size_t k = 0; k < r->models[i].n_meshes; k++) mesh_free(r, &r->models[i].meshes[k]);
-    for (int k = 0; k < r->models[i].n_lods; k++) mesh_free(r, &r->models[i].lods[k]);
+    for (size_t k = 0; k < r->models[i].n_meshes; k++) mr_mesh_free(r, &r->models[i].meshes[k]);
+    for (int k = 0; k < r->models[i].n_lods; k++) mr_mesh_free(r, &r->models[i].lods[k]);
     free(r->models[i].meshes);
   }
   free(r->models);
   r->models = NULL;
   r->n_models = 0;
-  mesh_free(r, &r->floor);
-  mesh_free(r, &r->backdrop);
+  mr_mesh_free(r, &r->floor);
+  mr_mesh_free(r, &r->backdrop);
+  mr_set_destroy(r);
   if (r->bone_tex) r->gl.DeleteTextures(1, &r->bone_tex);
   r->bone_tex = 0;
 }

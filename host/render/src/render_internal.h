@@ -65,6 +65,17 @@ typedef struct mr_frame {
 
 struct mr_text; /* text.c */
 
+/* The theater's set (set.c): its meshes, one per material. */
+enum {
+  MR_SET_ARCH,
+  MR_SET_TRIM,
+  MR_SET_DARK,
+  MR_SET_SKIRT,
+  MR_SET_LAMP,
+  MR_SET_WOOD,
+  MR_SET_PARTS
+};
+
 struct mr_render {
   mr_render_backend backend;
   const mr_backend_ops *ops;
@@ -105,6 +116,10 @@ struct mr_render {
   size_t n_models;
   mr_gpu_mesh floor, backdrop;
   GLuint bone_tex;
+  /* The theater's set (set.c): meshes in world coordinates, each wearing
+   * its own material; the footlights' row (a line light) and colour. */
+  mr_gpu_mesh set[MR_SET_PARTS];
+  float foot_a[3], foot_ab[3], foot_color[3];
   /* Stars and lines (sky.c, lines.c). */
   GLuint star_vao, star_vbo, line_vao, line_vbo;
   GLsizei n_stars;
@@ -165,6 +180,35 @@ void mr_pose_matrix(const mr_pose *p, mat4 out);
 /* Uploads a skin's bone matrices into the bone texture. */
 void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 
+/* A mesh uploaded (no bones), and freed. */
+struct mr_mesh;
+void mr_mesh_upload(mr_render *r, mr_gpu_mesh *g, const struct mr_mesh *m);
+void mr_mesh_free(mr_render *r, mr_gpu_mesh *g);
+
+/* set.c: the theater's set. Its axes: right (the audience's right),
+ * front (towards the audience), both level, and the origin on the floor
+ * in the arch's plane at the opening's middle; the opening width x
+ * height, the posts' width and the header's height; how far the backdrop
+ * stands behind the arch; edge: the stage has a front edge (the boards
+ * end MR_SET_APRON m in front of the arch). */
+#define MR_SET_APRON 0.35f
+typedef struct mr_set_frame {
+  float origin[3], right[3], front[3];
+  float width, height, post, header, deep;
+  bool edge;
+} mr_set_frame;
+void mr_set_frame_of(const mr_stage_def *s, mr_set_frame *f);
+/* A point in the set's axes, in the world. */
+void mr_set_to_world(const mr_set_frame *f, const float p[3], float out[3]);
+int mr_set_create(mr_render *r, char *msg, size_t msg_size);
+void mr_set_destroy(mr_render *r);
+/* True when the stage has any part of the set. */
+bool mr_set_any(const mr_render *r);
+/* The floor's outline, the square of half-side h cut at the stage's
+ * front edge: its corners' x and z, counter-clockwise from above; how
+ * many (3 to 5). */
+size_t mr_set_floor_outline(const mr_stage_def *s, float h, float xz[5][2]);
+
 /* still.c: the sky, the backdrop and the floor, unshadowed, kept while
  * the camera and the sun stay (software GL, one sample). */
 /* Where on screen shadows can fall on the backdrop and on the floor: up
@@ -189,6 +233,8 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
                        const mr_still_rects *still);
 /* The backdrop and (or) the floor, lit. */
 void mr_scene_draw_scenery(mr_render *r, const mr_frame *f, bool backdrop, bool floor);
+/* The theater's set, lit (no shadows fall on it). */
+void mr_scene_draw_set(mr_render *r, const mr_frame *f);
 /* The backdrop (or the floor), lit, only inside each of n rectangles. */
 void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, const int (*rects)[4],
                               int n);

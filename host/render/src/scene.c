@@ -64,6 +64,9 @@ static void set_lights(mr_render *r, GLuint p, const mr_frame *f) {
     snprintf(name, sizeof name, "u_spot_cos[%d]", i);
     r->gl.Uniform2f(r->gl.GetUniformLocation(p, name), (float)cos(a), (float)cos(a * 0.8));
   }
+  mr_uniform_v3(r, p, "u_foot_a", r->foot_a);
+  mr_uniform_v3(r, p, "u_foot_ab", r->foot_ab);
+  mr_uniform_v3(r, p, "u_foot_color", r->foot_color);
   mr_uniform_i(r, p, "u_shadows", f->shadows ? 1 : 0);
   mr_uniform_m4(r, p, "u_light_vp", (vec4 *)f->light_vp);
   mr_uniform_f(r, p, "u_shadow_texel", r->shadow_size > 0 ? 1.0f / (float)r->shadow_size : 0);
@@ -105,11 +108,31 @@ static const mr_gpu_mesh *scenery_begin(mr_render *r, const mr_frame *f, bool ba
   for (int k = 0; k < 3; k++) m.base_color[k] = color[k];
   set_material(r, p, &m, mesh);
   if (!backdrop) {
+    mr_set_frame sf;
+    mr_set_frame_of(s, &sf);
     mr_uniform_v3(r, p, "u_color2", s->floor_color2);
-    /* 16 squares a side. */
-    mr_uniform_f(r, p, "u_cell", (float)(s->floor_size / 16.0));
+    mr_uniform_v3(r, p, "u_board_right", sf.right);
+    mr_uniform_f(r, p, "u_board", (float)s->board_width);
   }
   return mesh;
+}
+
+void mr_scene_draw_set(mr_render *r, const mr_frame *f) {
+  if (!mr_set_any(r)) return;
+  mat4 id = GLM_MAT4_IDENTITY_INIT;
+  GLuint p = r->prog_mesh;
+  r->gl.UseProgram(p);
+  set_lights(r, p, f);
+  set_model(r, p, id);
+  /* Boxes and spheres, closed and wound counter-clockwise outside. */
+  r->gl.Enable(GL_CULL_FACE);
+  r->gl.CullFace(GL_BACK);
+  for (int k = 0; k < MR_SET_PARTS; k++) {
+    if (!r->set[k].vao) continue;
+    set_material(r, p, &r->set[k].material, &r->set[k]);
+    mr_mesh_draw(r, &r->set[k]);
+  }
+  r->gl.Disable(GL_CULL_FACE);
 }
 
 /* The backdrop, then the floor (those asked for), each with its own program, whose shader
@@ -222,9 +245,10 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
     set_lights(r, r->prog_mesh_skin, f);
     draw_skins(r, list, r->prog_mesh_skin, true, false);
   }
-  if (!still)
+  if (!still) {
+    mr_scene_draw_set(r, f);
     mr_scene_draw_scenery(r, f, true, true);
-  else if (f->shadows)
+  } else if (f->shadows)
     draw_still_shadows(r, f, still);
   r->gl.UseProgram(0);
 }

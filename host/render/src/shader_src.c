@@ -79,8 +79,15 @@ static const char mesh_vs_body[] =
  * the floor and the backdrop, untextured, of roughness 0.9, whose
  * exponent 2 / 0.81 - 2 is clamped to 1, so the lobe is the cosine
  * itself and the compiler drops the pow (scene.c draws them with that
- * roughness). The floor's checkerboard (MR_SCENERY 2; the backdrop is 1) is
- * worked out here from world x and z. Their normals (the floor's +y, the
+ * roughness). The floor's boards (MR_SCENERY 2; the backdrop is 1) are
+ * worked out here from world x and z: boards u_board m across running
+ * towards the audience (across u_board_right), in lengths of 1.7 m whose
+ * joints are staggered board by board, each length a tone between
+ * u_color and u_color2 (a hash of its place) with a faint grain, and dark
+ * seams between them, blurred over a pixel (fwidth) so that far boards
+ * do not shimmer. MR_FOOTLIGHTS: the footlights' warm light, a line
+ * light along their row (u_foot_a to u_foot_a + u_foot_ab; the nearest
+ * point of it lights a pixel, diffuse only, falling as 1 / (1 + d^2)). Their normals (the floor's +y, the
  * backdrop's +z, as meshes.c makes them), no metal and no glow are
  * constants too, so nothing is interpolated or worked out for them. */
 static const char mesh_fs_body[] = MR_GLSL_SRGB
@@ -96,6 +103,8 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "uniform sampler2DShadow u_shadow_map;\n"
     "uniform vec3 u_spot_pos[8], u_spot_dir[8], u_spot_color[8];\n"
     "uniform vec2 u_spot_cos[8];\n"
+    "uniform vec3 u_foot_a, u_foot_ab, u_foot_color, u_board_right;\n"
+    "uniform float u_board;\n"
     "out vec4 o_color;\n"
     "float sun_shadow(float ndl) {\n"
     "  if (u_shadows == 0) return 1.0;\n"
@@ -129,14 +138,32 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  float spec = pow(max(dot(n, h), 0.0), shin) * (shin + 8.0) / 25.13;\n"
     "  return (base * (1.0 - METALLIC) + f0 * spec) * ndl;\n"
     "}\n"
+    "float hash(vec2 p) { return fract(sin(dot(p, vec2(12.9898, 78.233))) * 43758.5453); }\n"
+    "vec3 boards(vec3 c) {\n"
+    "  vec2 right = u_board_right.xz, front = vec2(-right.y, right.x);\n"
+    "  float u = dot(v_world.xz, right) / u_board + 0.5, i = floor(u);\n"
+    "  float s = dot(v_world.xz, front) / 1.7 + hash(vec2(i, 7.0)), j = floor(s);\n"
+    "  float h = hash(vec2(i, j));\n"
+    "  c = mix(c, u_color2, h) * (0.93 + 0.07 * sin(u * 9.0 + s * 50.0 + h * 30.0));\n"
+    "  vec2 e = vec2(fwidth(u), fwidth(s)) + 1e-5;\n"
+    "  vec2 edge = min(fract(vec2(u, s)), 1.0 - fract(vec2(u, s)));\n"
+    "  vec2 seam = smoothstep(vec2(0.04, 0.006), vec2(0.04, 0.006) + e, edge);\n"
+    "  return c * mix(0.35, 1.0, seam.x * seam.y);\n"
+    "}\n"
+    "vec3 footlight(vec3 n, vec3 base) {\n"
+    "  vec3 q = u_foot_a + clamp(dot(v_world - u_foot_a, u_foot_ab) /\n"
+    "                                max(dot(u_foot_ab, u_foot_ab), 1e-6), 0.0, 1.0) * u_foot_ab;\n"
+    "  vec3 d = q - v_world;\n"
+    "  float d2 = max(dot(d, d), 1e-4);\n"
+    "  return u_foot_color * base * (max(dot(n, d), 0.0) * inversesqrt(d2) / (1.0 + d2));\n"
+    "}\n"
     "void main() {\n"
     "  vec3 base = u_color.rgb;\n"
     "#if !MR_SCENERY\n"
     "  if (u_textured != 0) base *= texture(u_texture, v_uv).rgb;\n"
     "#endif\n"
     "#if MR_SCENERY == 2\n"
-    "  vec2 cell = floor(v_world.xz / u_cell);\n"
-    "  if (mod(cell.x + cell.y, 2.0) >= 1.0) base = u_color2;\n"
+    "  base = boards(base);\n"
     "#endif\n"
     "#if MR_SCENERY == 2\n"
     "  vec3 n = vec3(0.0, 1.0, 0.0);\n"
@@ -168,6 +195,9 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "    float cone = smoothstep(u_spot_cos[i].x, u_spot_cos[i].y, dot(-l, u_spot_dir[i]));\n"
     "    c += u_spot_color[i] * (cone / (1.0 + 0.05 * d2)) * light(n, v, l, base, f0, shin);\n"
     "  }\n"
+    "#if MR_FOOTLIGHTS\n"
+    "  c += footlight(n, base);\n"
+    "#endif\n"
     "  o_color = vec4(mr_to_srgb(c), 1.0);\n"
     "}\n";
 
@@ -178,10 +208,12 @@ int mr_src_mesh_vs_make(char *buf, size_t size, int skinned) {
 }
 
 int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps,
-                        mr_src_surface surface) {
+                        mr_src_surface surface, int footlights) {
   int n = snprintf(buf, size,
-                   "%s#define MR_N_SPOTS %d\n#define MR_SHADOW_TAPS %d\n#define MR_SCENERY %d\n%s",
-                   MR_GLSL_VERSION, n_spots, shadow_taps, (int)surface, mesh_fs_body);
+                   "%s#define MR_N_SPOTS %d\n#define MR_SHADOW_TAPS %d\n#define MR_SCENERY %d\n"
+                   "#define MR_FOOTLIGHTS %d\n%s",
+                   MR_GLSL_VERSION, n_spots, shadow_taps, (int)surface, footlights ? 1 : 0,
+                   mesh_fs_body);
   return n > 0 && (size_t)n < size ? 0 : -1;
 }
 

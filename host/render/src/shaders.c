@@ -75,13 +75,14 @@ static bool has_skins(const mr_stage_def *s) {
 static int mesh_programs(mr_render *r, char *msg, size_t msg_size) {
   int n_spots = r->stage.lights.n_spots < 8 ? r->stage.lights.n_spots : 8;
   n_spots = n_spots > 0 ? n_spots : 0;
-  char vs[4096], vs_skin[4096], fs[8192], fs_floor[8192], fs_backdrop[8192];
+  const int foot = r->stage.footlights, taps = r->shadow_taps;
+  char vs[4096], vs_skin[4096], fs[12288], fs_floor[12288], fs_backdrop[12288];
   if (mr_src_mesh_vs_make(vs, sizeof vs, 0) != 0 ||
       mr_src_mesh_vs_make(vs_skin, sizeof vs_skin, 1) != 0 ||
-      mr_src_mesh_fs_make(fs, sizeof fs, n_spots, r->shadow_taps, MR_SRC_ITEMS) != 0 ||
-      mr_src_mesh_fs_make(fs_floor, sizeof fs_floor, n_spots, r->shadow_taps, MR_SRC_FLOOR) != 0 ||
-      mr_src_mesh_fs_make(fs_backdrop, sizeof fs_backdrop, n_spots, r->shadow_taps,
-                          MR_SRC_BACKDROP) != 0) {
+      mr_src_mesh_fs_make(fs, sizeof fs, n_spots, taps, MR_SRC_ITEMS, foot) != 0 ||
+      mr_src_mesh_fs_make(fs_floor, sizeof fs_floor, n_spots, taps, MR_SRC_FLOOR, foot) != 0 ||
+      mr_src_mesh_fs_make(fs_backdrop, sizeof fs_backdrop, n_spots, taps, MR_SRC_BACKDROP, foot) !=
+          0) {
     snprintf(msg, msg_size, "a mesh shader's source does not fit its buffer");
     return -1;
   }

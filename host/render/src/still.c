@@ -1,5 +1,6 @@
 /* The still part of a frame, kept from frame to frame in software GL:
- * the sky, the backdrop and the floor as the camera and the sun see them,
+ * the sky, the theater's set, the backdrop and the floor as the camera
+ * and the sun see them,
  * unshadowed, colour and depth. They change only when the camera, the day
  * knob or the frame's size does (they are kept once they have stayed for
  * two frames), and they were the dearest part of a
@@ -23,7 +24,9 @@
 #define KEY_LEN (16 + 4 * 3)
 
 int mr_still_create(mr_render *r, char *msg, size_t msg_size) {
-  if (!r->smooth || (!r->stage.floor && !r->stage.backdrop)) return 0;
+  const mr_stage_def *s = &r->stage;
+  const bool set = s->proscenium || s->wings || s->footlights || s->bridge;
+  if (!r->smooth || (!s->floor && !s->backdrop && !set)) return 0;
   const mr_gl *gl = &r->gl;
   gl->GenRenderbuffers(1, &r->still_color);
   gl->BindRenderbuffer(GL_RENDERBUFFER, r->still_color);
@@ -85,6 +88,8 @@ static void still_redraw(mr_render *r, const mr_frame *f) {
   gl->Disable(GL_CULL_FACE);
   mr_frame lit = *f;
   lit.shadows = false;
+  /* The set first: the arch hides part of the boards and the backdrop. */
+  mr_scene_draw_set(r, &lit);
   mr_scene_draw_scenery(r, &lit, true, true);
   gl->UseProgram(0);
   r->still_kept = true;

@@ -65,26 +65,37 @@ static void points_at(const mr_scene *s, const long *frame_of, double t, double 
   }
 }
 
-/* The show's reach about mid: SAMPLES + 1 moments of every point, each
- * moment moved by its own middle's offset from mid when the camera
- * follows. 3 n (SAMPLES + 1) doubles, or NULL. */
-static double *reach(const mr_scene *s, double mid[3]) {
+double *mr_scene_show_points(const mr_scene *s, size_t extra, size_t *count) {
   size_t n = s->n_particles + s->n_control_points;
   long *frame_of = malloc((s->n_particles + 1) * sizeof *frame_of);
-  double *all = malloc(3 * n * (SAMPLES + 1) * sizeof *all);
+  double *all = malloc(3 * (n * (SAMPLES + 1) + extra) * sizeof *all);
   if (frame_of == NULL || all == NULL) {
     free(frame_of);
     free(all);
     return NULL;
   }
   for (size_t i = 0; i < s->n_particles; i++) frame_of[i] = frame_of_particle(s, i);
+  for (int j = 0; j <= SAMPLES; j++)
+    points_at(s, frame_of, s->duration * j / SAMPLES, all + 3 * n * (size_t)j);
+  free(frame_of);
+  *count = n * (SAMPLES + 1);
+  return all;
+}
+
+/* The show's reach about mid: SAMPLES + 1 moments of every point, each
+ * moment moved by its own middle's offset from mid when the camera
+ * follows. 3 n (SAMPLES + 1) doubles, with room for `extra` points after
+ * them, or NULL. */
+static double *reach(const mr_scene *s, size_t extra, double mid[3]) {
+  size_t n = s->n_particles + s->n_control_points, count;
+  double *all = mr_scene_show_points(s, extra, &count);
+  if (all == NULL) return NULL;
   /* The camera that follows lags its goal (by 2 time v at speed v): its
    * target is where the window's follower is, run on the same moments. */
   double mid0[3];
   mr_follow follow = mr_follow_start(MR_FOLLOW_TIME);
   for (int j = 0; j <= SAMPLES; j++) {
     double *xyz = all + 3 * n * (size_t)j, m[3];
-    points_at(s, frame_of, s->duration * j / SAMPLES, xyz);
     mr_box_middle(xyz, n, m);
     if (j == 0) memcpy(mid0, m, sizeof mid0);
     if (!s->stage.follow) continue;
@@ -92,7 +103,6 @@ static double *reach(const mr_scene *s, double mid[3]) {
     for (size_t i = 0; i < n; i++)
       for (int c = 0; c < 3; c++) xyz[3 * i + c] += mid0[c] - follow.pos[c];
   }
-  free(frame_of);
   mr_box_middle(all, n * (SAMPLES + 1), mid);
   return all;
 }
@@ -173,8 +183,11 @@ int mr_scene_frame_audience(mr_scene *s) {
   size_t n = (s->n_particles + s->n_control_points) * (SAMPLES + 1);
   if (n == 0) return 0;
   double mid[3];
-  double *all = reach(s, mid);
+  double *all = reach(s, MR_SET_FRAMED, mid);
   if (all == NULL) return -1;
+  /* The proscenium's opening is framed too (not with a camera that
+   * follows, which moves past it), so the audience sees the theater. */
+  if (st->proscenium && !st->follow) n += mr_scene_set_framed(st, all + 3 * n);
   const double az = st->facing_deg * DEG, el = ELEVATION_DEG * DEG;
   const axes a = axes_of(az, el);
   for (size_t i = 0; i < n; i++) {

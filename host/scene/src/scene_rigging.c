@@ -142,6 +142,8 @@ int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root) {
   const mr_ynode *stage = mr_scene_yaml_get(root, "stage");
   const mr_ynode *spheres = stage ? mr_scene_yaml_get(stage, "spheres") : NULL;
   if (spheres != NULL && strcmp(spheres->text, "true") == 0 && collision_spheres(r) != 0) return -1;
+  if (mr_scene_size_set(s) != 0)
+    return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
   const mr_ynode *camera = mr_scene_yaml_get(root, "camera");
   if (camera != NULL && camera->kind == MR_YNODE_MAP && mr_scene_yaml_get(camera, "orbit") != NULL)
     return 0;

@@ -118,18 +118,20 @@ static int read_switch(mr_reader *r, const mr_ynode *v, const char *what, bool *
 }
 
 static int read_floor_and_backdrop(mr_reader *r, const mr_ynode *n) {
-  static const char *const floor_keys[] = { "size", "color", "color2", NULL };
+  static const char *const floor_keys[] = { "size", "color", "color2", "board", NULL };
   static const char *const back_keys[] = { "distance", "color", NULL };
   static const mr_scene_field size = { "size", MR_SCENE_FIELD_POSITIVE,
                                        offsetof(mr_stage_def, floor_size), 0, 0 };
   static const mr_scene_field dist = { "distance", MR_SCENE_FIELD_POSITIVE,
                                        offsetof(mr_stage_def, backdrop_distance), 0, 0 };
+  static const mr_scene_field board = { "board", MR_SCENE_FIELD_POSITIVE,
+                                        offsetof(mr_stage_def, board_width), 0, 0 };
   mr_stage_def *d = &r->scene->stage;
   const mr_ynode *v = mr_scene_yaml_get(n, "floor");
   int rc;
   if (v != NULL && (rc = read_switch(r, v, "stage.floor", &d->floor)) != 0) {
     if (rc < 0 || mr_scene_read_map(r, v, "stage.floor", floor_keys) != 0 ||
-        mr_scene_read_field(r, v, &size, d) != 0 ||
+        mr_scene_read_field(r, v, &size, d) != 0 || mr_scene_read_field(r, v, &board, d) != 0 ||
         read_rgb_at(r, v, "color", d->floor_color) != 0 ||
         read_rgb_at(r, v, "color2", d->floor_color2) != 0)
       return -1;
@@ -142,6 +144,54 @@ static int read_floor_and_backdrop(mr_reader *r, const mr_ynode *n) {
       return -1;
   }
   return 0;
+}
+
+/* The theater's set: stage.proscenium, .wings and .footlights, each
+ * false, true, or a mapping of its settings (which turns it on); and
+ * stage.bridge, true or false. */
+static int read_proscenium(mr_reader *r, const mr_ynode *v, mr_stage_def *d) {
+  static const char *const keys[] = {
+    "width", "height", "distance", "middle", "color", "trim", NULL
+  };
+  static const mr_scene_field fields[] = {
+    { "width", MR_SCENE_FIELD_POSITIVE, offsetof(mr_stage_def, set_width), 0, 0 },
+    { "height", MR_SCENE_FIELD_POSITIVE, offsetof(mr_stage_def, set_height), 0, 0 },
+    { "distance", MR_SCENE_FIELD_POSITIVE, offsetof(mr_stage_def, set_front), 0, 0 },
+    { "middle", MR_SCENE_FIELD_NUMBER, offsetof(mr_stage_def, set_middle), 0, 0 },
+  };
+  int rc = read_switch(r, v, "stage.proscenium", &d->proscenium);
+  if (rc <= 0) return rc;
+  if (mr_scene_read_map(r, v, "stage.proscenium", keys) != 0 ||
+      mr_scene_read_fields(r, v, fields, 4, d) != 0 ||
+      read_rgb_at(r, v, "color", d->proscenium_color) != 0 ||
+      read_rgb_at(r, v, "trim", d->trim_color) != 0)
+    return -1;
+  return 0;
+}
+
+static int read_set(mr_reader *r, const mr_ynode *n) {
+  static const char *const wing_keys[] = { "color", NULL };
+  static const char *const foot_keys[] = { "color", "intensity", NULL };
+  static const mr_scene_field intensity = { "intensity", MR_SCENE_FIELD_NONNEG,
+                                            offsetof(mr_stage_def, footlight_intensity), 0, 0 };
+  mr_stage_def *d = &r->scene->stage;
+  const mr_ynode *v;
+  int rc;
+  if ((v = mr_scene_yaml_get(n, "proscenium")) != NULL && read_proscenium(r, v, d) != 0) return -1;
+  v = mr_scene_yaml_get(n, "wings");
+  if (v != NULL && (rc = read_switch(r, v, "stage.wings", &d->wings)) != 0) {
+    if (rc < 0 || mr_scene_read_map(r, v, "stage.wings", wing_keys) != 0 ||
+        read_rgb_at(r, v, "color", d->wing_color) != 0)
+      return -1;
+  }
+  v = mr_scene_yaml_get(n, "footlights");
+  if (v != NULL && (rc = read_switch(r, v, "stage.footlights", &d->footlights)) != 0) {
+    if (rc < 0 || mr_scene_read_map(r, v, "stage.footlights", foot_keys) != 0 ||
+        mr_scene_read_field(r, v, &intensity, d) != 0 ||
+        read_rgb_at(r, v, "color", d->footlight_color) != 0)
+      return -1;
+  }
+  return read_bool_at(r, n, "bridge", &d->bridge);
 }
 
 /* [azimuth, elevation, brightness] into the scene's star list. */
@@ -208,8 +258,10 @@ static int read_rigging(mr_reader *r, const mr_ynode *n, const char *key, bool *
 }
 
 static int read_stage_section(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "size",    "time_of_day", "floor",   "backdrop",       "sky",
-                                      "strings", "frames",      "spheres", "constellations", NULL };
+  static const char *const keys[] = { "size", "time_of_day", "floor", "backdrop", "sky", "strings",
+                                      "frames", "spheres", "constellations",
+                                      /* the theater's set */
+                                      "proscenium", "wings", "footlights", "bridge", NULL };
   static const mr_scene_field tod = { "time_of_day", MR_SCENE_FIELD_UNIT,
                                       offsetof(mr_stage_def, time_of_day), 0, 0 };
   mr_stage_def *d = &r->scene->stage;
@@ -218,7 +270,7 @@ static int read_stage_section(mr_reader *r, const mr_ynode *n) {
   if (mr_scene_read_map(r, n, "stage", keys) != 0 ||
       mr_scene_read_optional(r, n, "size", read_size) != 0 ||
       mr_scene_read_field(r, n, &tod, d) != 0 || read_floor_and_backdrop(r, n) != 0 ||
-      mr_scene_read_optional(r, n, "sky", read_sky) != 0 ||
+      read_set(r, n) != 0 || mr_scene_read_optional(r, n, "sky", read_sky) != 0 ||
       mr_scene_read_optional(r, n, "constellations", read_constellations) != 0 ||
       read_rigging(r, n, "strings", &d->show_strings, d->string_color) != 0 ||
       read_rigging(r, n, "frames", &d->show_frames, d->frame_color) != 0 ||

@@ -86,6 +86,16 @@ mr_stage_def mr_default_stage_def(void) {
   d.backdrop = true;
   d.backdrop_distance = 3;
   set3f(d.backdrop_color, 0.3f, 0.25f, 0.35f);
+  d.proscenium = true;
+  set3f(d.proscenium_color, 0.32f, 0.025f, 0.035f);
+  set3f(d.trim_color, 0.78f, 0.55f, 0.16f);
+  d.wings = true;
+  set3f(d.wing_color, 0.018f, 0.016f, 0.02f);
+  d.footlights = true;
+  set3f(d.footlight_color, 1.0f, 0.72f, 0.42f);
+  d.footlight_intensity = 1;
+  d.bridge = false;
+  d.board_width = 0.16;
   d.time_of_day = 0.5;
   set3f(d.sky_day, 0.45f, 0.65f, 0.9f);
   set3f(d.sky_night, 0.02f, 0.02f, 0.06f);
