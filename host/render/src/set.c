@@ -159,17 +159,45 @@ static void stage_front(batch *skirt, const mr_set_frame *f, float floor_half) {
   add_box(skirt, f, -w, -3, -ARCH_DEPTH, w, -0.002f, MR_SET_APRON);
 }
 
+/* Where the scene's own camera (the audience's) stands, in the set's
+ * axes. */
+static void eye_in_set(const mr_stage_def *s, const mr_set_frame *f, float e[3]) {
+  mr_orbit o = mr_orbit_of_stage(s);
+  double w[3];
+  mr_orbit_eye(&o, w);
+  float d[3] = { (float)w[0] - f->origin[0], (float)w[1] - f->origin[1],
+                 (float)w[2] - f->origin[2] };
+  e[0] = d[0] * f->right[0] + d[2] * f->right[2];
+  e[1] = d[1];
+  e[2] = d[0] * f->front[0] + d[2] * f->front[2];
+}
+
 /* Legs (tall flats either side) and borders (across the top), two pairs
- * between the arch and the backdrop. Their inner edges stay at the
- * opening's, so what the opening shows they do not hide. */
-static void wings(batch *black, const mr_set_frame *f) {
-  const float w = f->width / 2, top = f->height + f->header;
+ * between the arch and the backdrop. Each is set on the audience's
+ * sightline past a line a little inside the opening's edge (as a theater
+ * sets its masking), so that from the seats they show as a dark band
+ * inside the arch and do not narrow the stage into a tunnel. They never
+ * hide a puppet: a scene keeps the show within (w - 0.25) / 1.2 of the
+ * opening's middle (half-width w) and 0.25 m under its top (scene_set.c),
+ * and a flat stands no nearer the middle than 0.85 w, nor lower than
+ * 0.2 m under the top; a line from the eye to a point of the show stays
+ * between the two, inside those. */
+static void wings(batch *black, const mr_stage_def *s, const mr_set_frame *f) {
+  const float w = f->width / 2, h = f->height, top = f->height + f->header;
+  float e[3];
+  eye_in_set(s, f, e);
   for (int k = 1; k <= 2; k++) {
-    const float z = -f->deep * (k == 1 ? 0.3f : 0.62f), t = 0.03f, out = w + 0.9f,
-                in = w + 0.06f * (float)k;
-    add_box(black, f, -out, 0, z - t, -in, top, z);
-    add_box(black, f, in, 0, z - t, out, top, z);
-    add_box(black, f, -out, f->height + 0.08f * (float)k, z - t, out, top + 0.6f, z);
+    const float z = -f->deep * (k == 1 ? 0.3f : 0.62f), t = 0.03f;
+    /* How much larger the opening looks there than in the arch's plane
+     * (1 with the eye behind the arch or level with it). */
+    const float grow = e[2] > 0.3f ? (e[2] - z) / e[2] : 1.0f;
+    const float in_r = fmaxf(e[0] + (0.85f * w - e[0]) * grow, 0.85f * w);
+    const float in_l = fmaxf(-e[0] + (0.85f * w + e[0]) * grow, 0.85f * w);
+    const float low = fmaxf(e[1] + (h - 0.15f - e[1]) * grow, h - 0.2f);
+    const float out = fmaxf(in_l, in_r) + 1.2f;
+    add_box(black, f, -out, 0, z - t, -in_l, fmaxf(top, low + 0.5f), z);
+    add_box(black, f, in_r, 0, z - t, out, fmaxf(top, low + 0.5f), z);
+    add_box(black, f, -out, low, z - t, out, low + 0.6f + top - h, z);
   }
 }
 
@@ -249,7 +277,7 @@ int mr_set_create(mr_render *r, char *msg, size_t msg_size) {
   }
   if (s->proscenium) arch(&b[MR_SET_ARCH], &b[MR_SET_TRIM], &b[MR_SET_DARK], &f);
   if (f.edge && s->floor) stage_front(&b[MR_SET_SKIRT], &f, (float)s->floor_size / 2);
-  if (s->wings) wings(&b[MR_SET_DARK], &f);
+  if (s->wings) wings(&b[MR_SET_DARK], s, &f);
   if (s->footlights) footlights(r, &b[MR_SET_LAMP], &b[MR_SET_DARK], &f, &unit);
   if (s->bridge) bridge(&b[MR_SET_WOOD], &f, (float)s->floor_height + 2 * MR_BACKDROP_HALF_HEIGHT);
   mr_mesh_release(&unit);
