@@ -7,7 +7,8 @@
  * each puppet's particles and the box around each control bar's points,
  * projected as the renderer projects them, lie inside the picture, and
  * neither overlaps the overlay's box (mr_osd_rect, as many rows and
- * columns as the overlay ever shows).
+ * columns as the overlay ever shows), and inside the proscenium's
+ * opening as it is projected.
  *
  * Facing: a puppet with a face (a particle named nose, chin, beak or
  * snout) has as its face normal the horizontal direction from its neck
@@ -115,7 +116,34 @@ static box osd_box(const mr_stage_def *st) {
 typedef struct framing {
   double inside, clear; /* the least over every group and frame */
   double t_worst;
+  double opening; /* how far inside the proscenium's opening, the least */
 } framing;
+
+/* The proscenium's opening (mr_stage.h: set_width x set_height, its
+ * middle set_middle to the audience's right, in the plane set_front in
+ * front of the origin, turned by facing_deg) as the picture shows it:
+ * the rectangle inside its four projected corners. */
+static box opening_box(const mr_stage_def *st, const double eye[3], const double target[3],
+                       double aspect) {
+  const double az = st->facing_deg * 3.14159265358979323846 / 180;
+  const double right[3] = { cos(az), 0, -sin(az) }, front[3] = { sin(az), 0, cos(az) };
+  double ndc[4][2];
+  for (int k = 0; k < 4; k++) {
+    const double x = st->set_middle + (k & 1 ? 0.5 : -0.5) * st->set_width;
+    double p[3];
+    for (int c = 0; c < 3; c++) p[c] = x * right[c] + st->set_front * front[c];
+    p[1] = st->floor_height + (k & 2 ? st->set_height : 0);
+    assert_true(mr_view_project(eye, target, st->fov_deg, aspect, p, ndc[k]) > 0.05);
+  }
+  box b = { { fmax(ndc[0][0], ndc[2][0]), fmax(ndc[0][1], ndc[1][1]) },
+            { fmin(ndc[1][0], ndc[3][0]), fmin(ndc[2][1], ndc[3][1]) } };
+  return b;
+}
+
+static double within(const box *b, const box *outer) {
+  return fmin(fmin(b->lo[0] - outer->lo[0], outer->hi[0] - b->hi[0]),
+              fmin(b->lo[1] - outer->lo[1], outer->hi[1] - b->hi[1]));
+}
 
 /* Every puppet and every bar of s, over the run f, through s's default
  * camera (following the points' middle with `camera: follow`). */
@@ -126,7 +154,7 @@ static framing frame_show(const mr_scene *s, const frames *f) {
   mr_orbit o = mr_orbit_of_stage(st);
   mr_follow follow = mr_follow_start(MR_FOLLOW_TIME);
   double offset[3] = { 0, 0, 0 };
-  framing out = { INFINITY, INFINITY, 0 };
+  framing out = { INFINITY, INFINITY, 0, INFINITY };
   for (size_t k = 0; k < f->count; k++) {
     const double *xyz = f->xyz + k * 3 * f->n;
     if (st->follow) {
@@ -139,6 +167,7 @@ static framing frame_show(const mr_scene *s, const frames *f) {
     }
     double eye[3];
     mr_orbit_eye(&o, eye);
+    const box opening = opening_box(st, eye, o.target, aspect);
     size_t groups = (s->n_puppets ? s->n_puppets : 1) + s->n_frames;
     for (size_t g = 0; g < groups; g++) {
       size_t first = 0, count = s->n_particles;
@@ -156,6 +185,7 @@ static framing frame_show(const mr_scene *s, const frames *f) {
       if (fmin(in, cl) < fmin(out.inside, out.clear)) out.t_worst = f->t[k];
       out.inside = fmin(out.inside, in);
       out.clear = fmin(out.clear, cl);
+      out.opening = fmin(out.opening, within(&b, &opening));
     }
   }
   return out;
@@ -167,8 +197,12 @@ static void load(const char *path, mr_scene *s) {
   if (st != MR_SCENE_OK) fail_msg("%s", err.text);
 }
 
-/* Every example scene, as shown: in the picture, clear of the overlay. */
-static void every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay(void **state) {
+/* Every example scene, as shown: in the picture, clear of the overlay,
+ * and inside the proscenium's opening (the arch stands in front of the
+ * show and would hide what reaches past it). */
+static void
+every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay_and_inside_the_arch(
+    void **state) {
   (void)state;
   DIR *dir = opendir(MR_SCENES_DIR);
   assert_non_null(dir);
@@ -193,6 +227,11 @@ static void every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_ove
       fail_msg("%s: inside the picture by %.3f and clear of the overlay by %.3f at t %.1f s; "
                "both must be above 0",
                e->d_name, fr.inside, fr.clear, fr.t_worst);
+    if (verbose) printf("%-14s inside the proscenium's opening by %.3f\n", e->d_name, fr.opening);
+    if (!(fr.opening > 0))
+      fail_msg("%s: a puppet or bar reaches %.3f past the proscenium's opening; the arch "
+               "must frame the whole show",
+               e->d_name, -fr.opening);
     free(f.t);
     free(f.xyz);
     mr_scene_free(&s);
@@ -310,7 +349,8 @@ static void every_puppet_with_a_face_faces_the_camera_at_the_start(void **state)
 int main(int argc, char **argv) {
   verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay),
+    cmocka_unit_test(
+        every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay_and_inside_the_arch),
     cmocka_unit_test(a_camera_that_follows_keeps_a_walking_puppet_in_view_and_near),
     cmocka_unit_test(every_puppet_with_a_face_faces_the_camera_at_the_start),
   };
