@@ -24,6 +24,7 @@
 #define ARCH_DEPTH   0.12f
 #define TRIM         0.05f /* the gold edging's width */
 #define LAMP_RADIUS  0.028f
+#define LAMP_HEIGHT  0.048f /* its middle above the boards: half over the lip */
 #define LAMP_SPACING 0.24f
 
 static const float DEG = 3.14159265f / 180.0f;
@@ -206,10 +207,10 @@ static void wings(batch *black, const mr_stage_def *s, const mr_set_frame *f) {
 static void footlights(mr_render *r, batch *lamp, batch *black, const mr_set_frame *f,
                        const mr_mesh *unit) {
   const float w = f->width / 2 - 0.1f, z = MR_SET_APRON - 0.09f;
-  add_box(black, f, -w - 0.05f, 0, MR_SET_APRON - 0.04f, w + 0.05f, 0.05f, MR_SET_APRON);
+  add_box(black, f, -w - 0.05f, 0, MR_SET_APRON - 0.04f, w + 0.05f, 0.04f, MR_SET_APRON);
   int n = (int)floorf(2 * w / LAMP_SPACING) + 1;
   for (int i = 0; i < n; i++) {
-    const float c[3] = { -w + (float)i * 2 * w / (float)(n > 1 ? n - 1 : 1), LAMP_RADIUS, z };
+    const float c[3] = { -w + (float)i * 2 * w / (float)(n > 1 ? n - 1 : 1), LAMP_HEIGHT, z };
     add_sphere(lamp, f, unit, c, LAMP_RADIUS);
   }
   const float a[3] = { -w, 0.06f, z + 0.05f }, b[3] = { w, 0.06f, z + 0.05f };
