@@ -32,12 +32,13 @@ for run in puppet fig10 decode; do
 done
 
 # One humanoid frame drawn and read back on one llvmpipe thread, at
-# 640x360 and at 1280x720 (a dump each, counted after the shaders are
-# compiled; a particle nudged so the shadow map is drawn again).
+# 640x360 and at 1280x720, and at 1280x720 without the theater's set (a
+# dump each, counted after the shaders are compiled; a particle nudged so
+# the shadow map is drawn again).
 valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$scratch/render.out" \
   "$bench" --count render >/dev/null 2>"$scratch/render.log" ||
   { cat "$scratch/render.log" >&2; exit 1; }
-for d in 1 2; do
+for d in 1 2 3; do
   total=$(sed -n 's/^totals: //p' "$scratch/render.out.$d" | head -1)
   size=$(sed -n 's/^desc: Trigger: Client Request: render //p' "$scratch/render.out.$d")
   printf '%-34s %15s instructions\n' "humanoid frame drawn, $size" "$total"
