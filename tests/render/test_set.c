@@ -189,11 +189,46 @@ static void test_the_floor_is_boards_with_seams_and_tones_not_a_checkerboard(voi
   for (size_t i = 0; i < 2; i++) boards(backends[i]);
 }
 
+/* From the wings, above them: the bridge's deck (the opening 0.8 m in
+ * front, the backdrop 3 m behind the origin, so the deck runs from 0.15
+ * to 0.95 m behind it, its top 0.35 m above the backdrop's 1.6 m) is
+ * there, in the floor's wood, only when asked. */
+static void bridge(mr_render_backend b) {
+  fx_scene s;
+  with_set(&s);
+  s.stage.n_models = 0;
+  s.list.n_items = 0;
+  const double eye[3] = { 2.5, 3.2, 0.3 }, target[3] = { 0, 1.9, -3.5 };
+  memcpy(s.view.eye, eye, sizeof eye);
+  memcpy(s.view.target, target, sizeof target);
+  mr_render *r = fx_render(b, &s);
+  uint8_t *off = fx_draw(r, &s);
+  mr_render_destroy(r);
+  s.stage.bridge = true;
+  r = fx_render(b, &s);
+  uint8_t *on = fx_draw(r, &s);
+  mr_render_destroy(r);
+  fx_save("set_bridge", on);
+  const double deck[3] = { 0, 1.95, -3.55 };
+  const uint8_t *p = at(on, &s.view, deck), *q = at(off, &s.view, deck);
+  if (!(p[0] > p[2] + 20 && abs(p[0] - q[0]) + abs(p[1] - q[1]) + abs(p[2] - q[2]) > 60))
+    fail_msg("the deck is (%d, %d, %d), without the bridge (%d, %d, %d)", p[0], p[1], p[2], q[0],
+             q[1], q[2]);
+  free(on);
+  free(off);
+}
+
+static void test_the_bridge_stands_behind_the_backdrop_only_when_asked(void **state) {
+  (void)state;
+  for (size_t i = 0; i < 2; i++) bridge(backends[i]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_the_arch_is_drawn_where_its_def_puts_it_and_goes_when_turned_off),
     cmocka_unit_test(test_the_footlights_glow_and_light_a_puppet_from_below),
     cmocka_unit_test(test_the_floor_is_boards_with_seams_and_tones_not_a_checkerboard),
+    cmocka_unit_test(test_the_bridge_stands_behind_the_backdrop_only_when_asked),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
