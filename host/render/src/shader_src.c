@@ -83,9 +83,11 @@ static const char mesh_vs_body[] =
  * worked out here from world x and z: boards u_board m across running
  * towards the audience (across u_board_right), in lengths of 1.7 m whose
  * joints are staggered board by board, each length a tone between
- * u_color and u_color2 (a hash of its place) with a faint grain, and dark
- * seams between them, blurred over a pixel (fwidth) so that far boards
- * do not shimmer. MR_FOOTLIGHTS: the footlights' warm light, a line
+ * u_color and u_color2 (a hash of its place), flat (a grain that
+ * varied within a length moved pixels by rounding between two otherwise
+ * equal frames, and the smoothing test holds frames equal away from
+ * edges), and dark seams between them, blurred over a pixel (fwidth) so
+ * that far boards do not shimmer. MR_FOOTLIGHTS: the footlights' warm light, a line
  * light along their row (u_foot_a to u_foot_a + u_foot_ab; the nearest
  * point of it lights a pixel, diffuse only, falling as 1 / (1 + d^2)). Their normals (the floor's +y, the
  * backdrop's +z, as meshes.c makes them), no metal and no glow are
@@ -144,7 +146,7 @@ static const char mesh_fs_body[] = MR_GLSL_SRGB
     "  float u = dot(v_world.xz, right) / u_board + 0.5, i = floor(u);\n"
     "  float s = dot(v_world.xz, front) / 1.7 + hash(vec2(i, 7.0)), j = floor(s);\n"
     "  float h = hash(vec2(i, j));\n"
-    "  c = mix(c, u_color2, h) * (0.93 + 0.07 * sin(u * 9.0 + s * 50.0 + h * 30.0));\n"
+    "  c = mix(c, u_color2, h);\n"
     "  vec2 e = vec2(fwidth(u), fwidth(s)) + 1e-5;\n"
     "  vec2 edge = min(fract(vec2(u, s)), 1.0 - fract(vec2(u, s)));\n"
     "  vec2 seam = smoothstep(vec2(0.04, 0.006), vec2(0.04, 0.006) + e, edge);\n"
