@@ -82,14 +82,11 @@ double *mr_scene_show_points(const mr_scene *s, size_t extra, size_t *count) {
   return all;
 }
 
-/* The show's reach about mid: SAMPLES + 1 moments of every point, each
+/* The show's reach about mid: all (mr_scene_show_points') with each
  * moment moved by its own middle's offset from mid when the camera
- * follows. 3 n (SAMPLES + 1) doubles, with room for `extra` points after
- * them, or NULL. */
-static double *reach(const mr_scene *s, size_t extra, double mid[3]) {
-  size_t n = s->n_particles + s->n_control_points, count;
-  double *all = mr_scene_show_points(s, extra, &count);
-  if (all == NULL) return NULL;
+ * follows. */
+static void reach(const mr_scene *s, double *all, double mid[3]) {
+  size_t n = s->n_particles + s->n_control_points;
   /* The camera that follows lags its goal (by 2 time v at speed v): its
    * target is where the window's follower is, run on the same moments. */
   double mid0[3];
@@ -104,7 +101,6 @@ static double *reach(const mr_scene *s, size_t extra, double mid[3]) {
       for (int c = 0; c < 3; c++) xyz[3 * i + c] += mid0[c] - follow.pos[c];
   }
   mr_box_middle(all, n * (SAMPLES + 1), mid);
-  return all;
 }
 
 /* The camera's axes for an eye on azimuth az, elevation el about the
@@ -178,13 +174,12 @@ static double fit(const double *rel, size_t n, const bounds *b, double *shift) {
   return hi;
 }
 
-int mr_scene_frame_audience(mr_scene *s) {
+void mr_scene_frame_audience(mr_scene *s, double *all) {
   mr_stage_def *st = &s->stage;
   size_t n = (s->n_particles + s->n_control_points) * (SAMPLES + 1);
-  if (n == 0) return 0;
+  if (n == 0 || all == NULL) return;
   double mid[3];
-  double *all = reach(s, MR_SET_FRAMED, mid);
-  if (all == NULL) return -1;
+  reach(s, all, mid);
   /* The proscenium's opening is framed too (not with a camera that
    * follows, which moves past it), so the audience sees the theater. */
   if (st->proscenium && !st->follow) n += mr_scene_set_framed(st, all + 3 * n);
@@ -206,10 +201,8 @@ int mr_scene_frame_audience(mr_scene *s) {
   const bounds b = { t * aspect * (1 - MARGIN), t * (-1 + MARGIN + osd_ndc), t * (1 - MARGIN) };
   double shift = 0;
   double d = fit(all, n, &b, &shift);
-  free(all);
   for (int c = 0; c < 3; c++) st->orbit_target[c] = mid[c] + shift * a.up[c];
   st->orbit_distance = fmin(d, 1e5);
   st->orbit_azimuth_deg = st->facing_deg;
   st->orbit_elevation_deg = ELEVATION_DEG;
-  return 0;
 }

@@ -202,17 +202,19 @@ int mr_scene_stage_reserve_models(mr_reader *r, const mr_ynode *at, size_t more)
  * lines, collision spheres, models when the file has none, the floor's
  * height, a camera that frames the puppets (scene_rigging.c). */
 int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root);
-/* The audience's camera (scene_audience.c) into the stage's orbit, for a
- * scene without camera.orbit; -1 when memory runs out. */
-int mr_scene_frame_audience(mr_scene *s);
 /* Every point of the show (particles, then control points) at evenly
  * spaced moments over sim.duration, as scene_audience.c estimates them
  * without the physics: 3 *count doubles with room for `extra` points
  * after them, or NULL when memory runs out. */
 double *mr_scene_show_points(const mr_scene *s, size_t extra, size_t *count);
-/* The theater's set sized from the show where the scene left its size
- * at 0 (scene_set.c); -1 when memory runs out. */
-int mr_scene_size_set(mr_scene *s);
+/* The audience's camera (scene_audience.c) into the stage's orbit, for a
+ * scene without camera.orbit, from the show's points (as
+ * mr_scene_show_points gives them, with room for MR_SET_FRAMED more),
+ * which it overwrites; nothing without points. */
+void mr_scene_frame_audience(mr_scene *s, double *show);
+/* The theater's set sized from the show's count points where the scene
+ * left its size at 0 (scene_set.c). */
+void mr_scene_size_set(mr_scene *s, const double *show, size_t count);
 /* The points of the set the audience's camera frames (the proscenium's
  * opening and a band of the arch about it), at most MR_SET_FRAMED, into
  * xyz; returns how many. */

@@ -142,12 +142,17 @@ int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root) {
   const mr_ynode *stage = mr_scene_yaml_get(root, "stage");
   const mr_ynode *spheres = stage ? mr_scene_yaml_get(stage, "spheres") : NULL;
   if (spheres != NULL && strcmp(spheres->text, "true") == 0 && collision_spheres(r) != 0) return -1;
-  if (mr_scene_size_set(s) != 0)
+  /* The show's reach, estimated once: the set is sized from it, and the
+   * audience's camera (without camera.orbit) frames it. */
+  size_t n = 0;
+  double *show = NULL;
+  if (s->n_particles + s->n_control_points > 0 &&
+      (show = mr_scene_show_points(s, MR_SET_FRAMED, &n)) == NULL)
     return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  mr_scene_size_set(s, show, n);
   const mr_ynode *camera = mr_scene_yaml_get(root, "camera");
-  if (camera != NULL && camera->kind == MR_YNODE_MAP && mr_scene_yaml_get(camera, "orbit") != NULL)
-    return 0;
-  if (mr_scene_frame_audience(s) != 0)
-    return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  if (camera == NULL || camera->kind != MR_YNODE_MAP || mr_scene_yaml_get(camera, "orbit") == NULL)
+    mr_scene_frame_audience(s, show);
+  free(show);
   return 0;
 }

@@ -11,7 +11,6 @@
  * the opening is a rectangle (convex) holding both ends' sideways and
  * upward places: the crossing is inside the opening. */
 #include <math.h>
-#include <stdlib.h>
 
 #include "mr_pose.h"
 #include "scene_read.h"
@@ -38,13 +37,9 @@ static double dot3(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-int mr_scene_size_set(mr_scene *s) {
+void mr_scene_size_set(mr_scene *s, const double *all, size_t n) {
   mr_stage_def *st = &s->stage;
-  if (st->set_width > 0 && st->set_height > 0 && st->set_front > 0) return 0;
-  size_t n = 0;
-  double *all = NULL;
-  if (s->n_particles + s->n_control_points > 0 && (all = mr_scene_show_points(s, 0, &n)) == NULL)
-    return -1;
+  if (all == NULL) n = 0;
   double right[3], front[3], lo = 0, hi = 0, top = 0, ahead = 0;
   set_axes(st, right, front);
   for (size_t i = 0; i < n; i++) {
@@ -52,7 +47,6 @@ int mr_scene_size_set(mr_scene *s) {
     lo = i ? fmin(lo, x) : x, hi = i ? fmax(hi, x) : x;
     top = i ? fmax(top, p[1]) : p[1], ahead = i ? fmax(ahead, z) : z;
   }
-  free(all);
   double height = ALONE_HEIGHT, width = ALONE_WIDTH, middle = 0, plane = ALONE_FRONT;
   if (n > 0) {
     height = fmax(top - st->floor_height + TOP_ROOM, 1.0);
@@ -64,7 +58,6 @@ int mr_scene_size_set(mr_scene *s) {
   if (!(st->set_width > 0)) st->set_width = width, st->set_middle = middle;
   if (!(st->set_height > 0)) st->set_height = height;
   if (!(st->set_front > 0)) st->set_front = plane;
-  return 0;
 }
 
 /* A band of the arch about the opening's top corners that the audience
