@@ -6,7 +6,9 @@
 # each PNG checked to be 200 KB or less, so that the repository stays
 # small. Each still is taken while the curtain is open (at least 1.5 s
 # after the show starts and 1.5 s before it ends) and the puppets face the
-# audience; the six examples with goldens (tests/pictures/pictures.h) are
+# audience (humanoid-end.png is the README's "after" of the humanoid's
+# last turn, beside before-humanoid.png, which an earlier build drew and
+# no build draws again); the six examples with goldens (tests/pictures/pictures.h) are
 # drawn at the goldens' frames, so a picture here is its golden's scene at
 # twice the size. The same build draws the same pictures, byte for byte;
 # commit them after looking at them.
@@ -38,6 +40,7 @@ PICTURES=(
   "ghost ghost.yaml 5"
   "puppet puppet.yaml 6"
   "duet duet.yaml 4"
+  "humanoid-end humanoid.yaml 14"
   "mode-particle modes/particle.yaml 2.5"
   "mode-link modes/link.yaml 2"
   "mode-rigid modes/rigid.yaml 3"
