@@ -4,7 +4,7 @@
 # build/firmware/.
 .PHONY: all deps build build-asan build-clang build-tsan firmware test test-native test-asan \
         test-clang test-tsan fuzz \
-        demo bench bench-count install flash format clean
+        demo gallery bench bench-count install flash format clean
 
 JOBS      ?= $(shell nproc)
 BUILD     := build
@@ -126,6 +126,11 @@ test: test-native test-asan test-clang test-asan-clang test-tsan fuzz
 
 demo: build
 	@tools/demo.sh $(BUILD)
+
+# The README's gallery: one still of each example scene and of each display
+# mode, drawn by marionette render into docs/pictures/ (tools/gallery.sh).
+gallery: build
+	@tools/gallery.sh $(BUILD)
 
 # The glove's firmware into the Black Pill over USB DFU (tools/flash.sh):
 # hold BOOT0, tap NRST, release BOOT0, then `make flash`.

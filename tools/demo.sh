@@ -2,11 +2,14 @@
 # The built-in show (`make demo`): glove-gen plays a synthetic glove (its
 # built-in motion, each finger a slow sine) on a pty, and `marionette run`
 # reads it as it would read a real glove, through the control mapping, and
-# draws the puppet. With a display the show is in a window for 20 s (keys:
-# `marionette run --help`); without one it is drawn headless into frames, an
-# MP4 and a contact sheet under BUILD/demo/, and a one-screen summary ends
-# it. MR_DEMO_HEADLESS=1 asks for the headless show even with a display;
-# MR_DEMO_SECONDS sets its length.
+# draws the puppet. The show lasts as long as the scene's (sim.duration, 16 s
+# for the humanoid), so the stage's curtain opens at its start and closes at
+# its end. With a display it is in a window (keys: `marionette run --help`);
+# without one it is drawn headless at 1280x720 into frames, an MP4 and a
+# contact sheet under BUILD/demo/ (the sheet's first cell at 0 s, its last
+# at the end), and a one-screen summary ends it. MR_DEMO_HEADLESS=1 asks
+# for the headless show even with a display; MR_DEMO_SECONDS sets its
+# length, MR_DEMO_SIZE its size.
 set -euo pipefail
 
 BUILD=${1:-build}
@@ -30,7 +33,10 @@ trap cleanup EXIT
 
 window=0
 if [ -n "${DISPLAY:-}" ] && [ "${MR_DEMO_HEADLESS:-0}" != 1 ]; then window=1; fi
-secs=${MR_DEMO_SECONDS:-$([ $window = 1 ] && echo 20 || echo 8)}
+# The scene's sim.duration, whole seconds.
+duration=$(sed -n '/^sim:/,/^[^ #]/s/^  duration: *\([0-9]*\).*/\1/p' "$SCENE" | head -n1)
+secs=${MR_DEMO_SECONDS:-${duration:-16}}
+size=${MR_DEMO_SIZE:-1280x720}
 
 # The glove: a pty of its own, waiting for the show to open it. It plays
 # longer than the show may take on a slow machine (a software renderer
@@ -51,9 +57,9 @@ if [ $window = 1 ]; then
 fi
 
 rm -rf "$OUT"
-echo "== the built-in show: $(basename "$SCENE"), $secs s headless (no display), a synthetic glove on $glove =="
+echo "== the built-in show: $(basename "$SCENE"), $secs s headless at $size (no display), a synthetic glove on $glove =="
 set +e
-"$RUN" run "$SCENE" --glove "$glove" --time "$secs" --headless -o "$OUT" --size 640x360 -q \
+"$RUN" run "$SCENE" --glove "$glove" --time "$secs" --headless -o "$OUT" --size "$size" -q \
   >"$tmp/run.out" 2>"$tmp/run.err"
 rc=$?
 set -e

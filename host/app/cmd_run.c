@@ -486,6 +486,17 @@ static void draw_loop(status *st) {
   if (mr_show_runner_latest(st->r, &f) && f != NULL) present(st, f);
 }
 
+/* On this thread the scheduler shows a frame a tick after it was made,
+ * so the frame the show ended on is never shown, and under load the last
+ * few may have been skipped: the stage draws it now, so that the pictures
+ * end where the show did (the curtain closed), as the drawing loop ends
+ * on the newest frame when the physics has a thread of its own. */
+static void draw_last(status *st) {
+  const mr_show_frame *f = NULL;
+  if (st->lv == NULL || !mr_show_runner_latest(st->r, &f) || f == NULL) return;
+  if (st->lv->drawn == 0 || f->t > st->lv->show_t) present(st, f);
+}
+
 /* The physics on a thread of its own in a window (or with --thread on),
  * else on this one. */
 static bool threaded(const args *a, const status *st) {
@@ -520,11 +531,13 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   mr_show_status rc = mr_show_runner_start(scene, &a->def, &clock, &hooks, &rd, &st->r, &err);
   if (rc == MR_SHOW_OK) {
     lv.runner = st->r;
-    if (rd.threaded)
+    if (rd.threaded) {
       draw_loop(st);
-    else
+    } else {
       while (mr_show_runner_tick(st->r) == MR_SHOW_OK) {
       }
+      draw_last(st);
+    }
     rc = mr_show_runner_finish(st->r, &r, &err);
   }
   if (rc == MR_SHOW_OK) summary(st, scene, &r);

@@ -1,11 +1,18 @@
-/* The contact sheet. Frames come one at a time and the count is not known
- * ahead (a live show ends when it is stopped), so the sheet keeps every
- * stride-th frame and, when twice the cells are held, drops every other
- * one and doubles the stride: what is held stays evenly spread over the
- * show, in bounded memory. At the end, cells of them are picked evenly. */
+/* The contact sheet. Frames come one at a time and neither their count
+ * nor the show's length is known ahead (a live show ends when it is
+ * stopped), and show time may fall unevenly on them (renders skipped
+ * under load). So the sheet holds frames at least a step of show time
+ * apart: every frame at first; when twice the cells are held, the step
+ * grows to the time held over one and a half times the cells and the
+ * held are thinned to it, so what is held stays spread evenly over show
+ * time, in bounded memory. The frame offered last is
+ * kept too, held or not, so that the sheet ends where the show ended (a
+ * curtain closing). At the end, cells of them are picked at even steps of
+ * show time, the first and the last frame always among them. */
 #include "sheet.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +33,8 @@ struct mr_sheet {
   int width, height, tw, th, cells;
   thumb *held; /* up to 2 cells */
   int n_held;
-  uint64_t offered, stride;
+  thumb last;  /* the frame offered last when it is not held, else rgb NULL */
+  double step; /* the least show time between two held frames, s */
 };
 
 mr_sheet *mr_sheet_create(int width, int height, int cells) {
@@ -38,7 +46,6 @@ mr_sheet *mr_sheet_create(int width, int height, int cells) {
   sh->tw = width < THUMB_W ? width : THUMB_W;
   sh->th = (int)lround((double)height * sh->tw / width);
   if (sh->th < 1) sh->th = 1;
-  sh->stride = 1;
   sh->held = calloc((size_t)sh->cells * 2, sizeof *sh->held);
   if (sh->held == NULL) {
     free(sh);
@@ -51,6 +58,7 @@ void mr_sheet_destroy(mr_sheet *sh) {
   if (sh == NULL) return;
   for (int i = 0; i < sh->n_held; i++) free(sh->held[i].rgb);
   free(sh->held);
+  free(sh->last.rgb);
   free(sh);
 }
 
@@ -72,31 +80,90 @@ static void shrink(const mr_sheet *sh, const uint8_t *rgb, uint8_t *out) {
   }
 }
 
-void mr_sheet_offer(mr_sheet *sh, const uint8_t *rgb, double t) {
-  uint64_t i = sh->offered++;
-  if (i % sh->stride != 0) return;
-  if (sh->n_held == 2 * sh->cells) {
-    int k = 0;
-    for (int j = 0; j < sh->n_held; j++) {
-      if (j % 2 == 0)
-        sh->held[k++] = sh->held[j];
-      else
-        free(sh->held[j].rgb);
-    }
-    sh->n_held = k;
-    sh->stride *= 2;
-    if (i % sh->stride != 0) return;
+/* Thins the held frames to a grown step: each kept one at least a step
+ * after the one kept before, the first always kept; every other one when
+ * that keeps them all (show time standing still). */
+static void thin(mr_sheet *sh) {
+  double span = sh->held[sh->n_held - 1].t - sh->held[0].t;
+  /* About one and a half cells' worth kept: enough for every cell, and
+   * room for as many again before the next thinning. */
+  sh->step = fmax(sh->step, span / (1.5 * sh->cells));
+  int k = 1;
+  for (int j = 1; j < sh->n_held; j++) {
+    if (sh->held[j].t >= sh->held[k - 1].t + sh->step && sh->step > 0)
+      sh->held[k++] = sh->held[j];
+    else
+      free(sh->held[j].rgb);
   }
-  uint8_t *small = malloc((size_t)sh->tw * sh->th * 3);
-  if (small == NULL) return; /* a sheet with a thumbnail fewer */
-  shrink(sh, rgb, small);
-  sh->held[sh->n_held].rgb = small;
-  sh->held[sh->n_held].t = t;
-  sh->n_held++;
+  if (sh->step > 0) {
+    sh->n_held = k;
+    return;
+  }
+  for (int j = 1; j < sh->n_held; j++) sh->held[j].rgb = NULL; /* freed above */
+  sh->n_held = 1;
+}
+
+/* Whether a frame at t is held: a step after the last held, room made. */
+static bool holds(mr_sheet *sh, double t) {
+  if (sh->n_held > 0 && t < sh->held[sh->n_held - 1].t + sh->step) return false;
+  if (sh->n_held < 2 * sh->cells) return true;
+  thin(sh);
+  return sh->n_held < 2 * sh->cells && t >= sh->held[sh->n_held - 1].t + sh->step;
+}
+
+void mr_sheet_offer(mr_sheet *sh, const uint8_t *rgb, double t) {
+  size_t bytes = (size_t)sh->tw * sh->th * 3;
+  if (holds(sh, t)) {
+    uint8_t *small = malloc(bytes);
+    if (small == NULL) return; /* a sheet with a thumbnail fewer */
+    shrink(sh, rgb, small);
+    sh->held[sh->n_held].rgb = small;
+    sh->held[sh->n_held].t = t;
+    sh->n_held++;
+    free(sh->last.rgb); /* the last frame is a held one now */
+    sh->last.rgb = NULL;
+    return;
+  }
+  /* Not held: it becomes the last frame, in the room of the one before. */
+  if (sh->last.rgb == NULL && (sh->last.rgb = malloc(bytes)) == NULL) return;
+  shrink(sh, rgb, sh->last.rgb);
+  sh->last.t = t;
+}
+
+/* The frames to pick from, in show order: the held, then the last. */
+static int candidates(const mr_sheet *sh) {
+  return sh->n_held + (sh->last.rgb != NULL ? 1 : 0);
+}
+
+static const thumb *candidate(const mr_sheet *sh, int j) {
+  return j < sh->n_held ? &sh->held[j] : &sh->last;
 }
 
 int mr_sheet_cells(const mr_sheet *sh) {
-  return sh->n_held < sh->cells ? sh->n_held : sh->cells;
+  int n = candidates(sh);
+  return n < sh->cells ? n : sh->cells;
+}
+
+int mr_sheet_pick(const mr_sheet *sh, int *picks, int n) {
+  int total = candidates(sh), cells = mr_sheet_cells(sh);
+  if (n > cells) n = cells;
+  if (n <= 0) return 0;
+  double t0 = candidate(sh, 0)->t, t1 = candidate(sh, total - 1)->t;
+  int prev = -1;
+  for (int k = 0; k < n; k++) {
+    /* The frame nearest to its even step of time, after the one before
+     * and leaving one for each cell still to come. */
+    double goal = n > 1 ? t0 + (t1 - t0) * k / (n - 1) : t0;
+    int lo = prev + 1, hi = total - (n - k), best = lo;
+    for (int j = lo + 1; j <= hi; j++)
+      if (fabs(candidate(sh, j)->t - goal) < fabs(candidate(sh, best)->t - goal)) best = j;
+    picks[k] = prev = best;
+  }
+  return n;
+}
+
+double mr_sheet_time(const mr_sheet *sh, int pick) {
+  return candidate(sh, pick)->t;
 }
 
 /* The font, read once; NULL when the system has none. */
@@ -160,25 +227,26 @@ void mr_sheet_text(uint8_t *rgb, int width, int height, int x, int y, int px, co
 }
 
 int mr_sheet_write(const mr_sheet *sh, const char *path) {
-  int n = mr_sheet_cells(sh);
+  int *picks = malloc((size_t)sh->cells * sizeof *picks);
+  if (picks == NULL) return -1;
+  int n = mr_sheet_pick(sh, picks, sh->cells);
   int cols = n < 6 ? (n > 0 ? n : 1) : 6, rows = n > 0 ? (n + cols - 1) / cols : 1;
   int w = cols * (sh->tw + GAP) + GAP, h = rows * (sh->th + GAP) + GAP;
   uint8_t *img = malloc((size_t)w * h * 3);
-  if (img == NULL) return -1;
+  if (img == NULL) return free(picks), -1;
   memset(img, 24, (size_t)w * h * 3);
   for (int k = 0; k < n; k++) {
-    /* Evenly over what is held, first and last included. */
-    int j = n > 1 ? (int)lround((double)k * (sh->n_held - 1) / (n - 1)) : 0;
-    const thumb *th = &sh->held[j];
+    const thumb *th = candidate(sh, picks[k]);
     int x0 = GAP + (k % cols) * (sh->tw + GAP), y0 = GAP + (k / cols) * (sh->th + GAP);
     for (int y = 0; y < sh->th; y++)
       memcpy(&img[((size_t)(y0 + y) * w + x0) * 3], &th->rgb[(size_t)y * sh->tw * 3],
              (size_t)sh->tw * 3);
     char label[32];
-    snprintf(label, sizeof label, "%.2f s", th->t);
+    snprintf(label, sizeof label, "%.2f s", mr_sheet_time(sh, picks[k]));
     mr_sheet_text(img, w, h, x0 + 2, y0 + 2, 14, label);
   }
   int ok = stbi_write_png(path, w, h, 3, img, w * 3);
   free(img);
+  free(picks);
   return ok ? 0 : -1;
 }

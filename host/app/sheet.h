@@ -14,6 +14,11 @@ void mr_sheet_destroy(mr_sheet *sh);
 void mr_sheet_offer(mr_sheet *sh, const uint8_t *rgb, double t);
 /* The thumbnails that the sheet will show. */
 int mr_sheet_cells(const mr_sheet *sh);
+/* Which frames the sheet shows, in order, into picks (at most n): evenly
+ * over show time, the first and the last frame offered always among them.
+ * Returns how many; mr_sheet_time gives each one's time. */
+int mr_sheet_pick(const mr_sheet *sh, int *picks, int n);
+double mr_sheet_time(const mr_sheet *sh, int pick);
 /* The sheet as a PNG; 0 or -1. */
 int mr_sheet_write(const mr_sheet *sh, const char *path);
 

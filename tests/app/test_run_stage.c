@@ -280,6 +280,47 @@ static void the_headless_video_lasts_as_long_as_the_show(void **state) {
   free(dir);
 }
 
+/* A headless show of 2 s draws the frame it ends on: the status line of
+ * its second 2 is printed when that frame is shown, and the scheduler
+ * alone (a frame shown a tick after it is made) would never show it. At a
+ * size where every render is slow (renders skipped) as at one where none
+ * is. */
+static void a_headless_show_draws_the_frame_it_ends_on(void **state) {
+  (void)state;
+  static const char *const sizes[] = { "64x36", "1280x720" };
+  for (int i = 0; i < 2; i++) {
+    char *dir = tt_tmpdir();
+    char *argv[] = { marionette,
+                     "run",
+                     "--backend",
+                     MR_APP_TEST_BACKEND,
+                     STICK,
+                     "--time",
+                     "2",
+                     "-o",
+                     dir,
+                     "--size",
+                     (char *)sizes[i],
+                     "--headless",
+                     "--keys",
+                     "0.5:right/0.5",
+                     "--no-sheet",
+                     NULL };
+    tt_output o;
+    assert_int_equal(tt_capture(argv, &o), 0);
+    if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+    char shown[64], skipped[64];
+    assert_int_equal(tt_field(o.out, "frames shown", shown, sizeof shown), 0);
+    assert_int_equal(tt_field(o.out, "frames skipped", skipped, sizeof skipped), 0);
+    print_message("%s: %s frames shown, %s skipped\n", sizes[i], shown, skipped);
+    if (strstr(o.out, "t 2 s: ") == NULL)
+      fail_msg("%s: the frame at 2 s was not shown:\n%s", sizes[i], o.out);
+    tt_output_free(&o);
+    tt_rmdir(dir);
+    free(dir);
+  }
+}
+
 /* Under Xvfb: the window opens, draws, the p key takes a screenshot of
  * the size asked, and q ends the show with status 0. */
 static void the_window_opens_draws_and_takes_a_screenshot_under_xvfb(void **state) {
@@ -402,6 +443,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(pause_slow_motion_and_reset_act_on_the_show),
     cmocka_unit_test(a_recorded_take_renders_the_same_frames_twice),
     cmocka_unit_test(the_headless_video_lasts_as_long_as_the_show),
+    cmocka_unit_test(a_headless_show_draws_the_frame_it_ends_on),
     cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
     cmocka_unit_test(the_m_key_changes_what_the_puppet_wears),
   };

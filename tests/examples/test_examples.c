@@ -72,7 +72,7 @@ static void humanoid_bows_and_dances_within_its_bounds(void **state) {
   example_runs("humanoid");
 }
 
-static void dragon_flies_its_circle_within_its_bounds(void **state) {
+static void dragon_flies_its_figure_of_eight_within_its_bounds(void **state) {
   (void)state;
   example_runs("dragon");
 }
@@ -184,7 +184,7 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(stick_figure_walks_within_its_bounds),
     cmocka_unit_test(humanoid_bows_and_dances_within_its_bounds),
-    cmocka_unit_test(dragon_flies_its_circle_within_its_bounds),
+    cmocka_unit_test(dragon_flies_its_figure_of_eight_within_its_bounds),
     cmocka_unit_test(bird_flaps_with_its_sphere_tree_tested),
     cmocka_unit_test(clash_runs_within_its_bounds),
     cmocka_unit_test(clash_puppets_collide),

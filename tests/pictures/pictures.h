@@ -26,9 +26,9 @@ static const picture modes[] = {
  * humanoid turning, the dragon's wings spread, the bird's tree in flight,
  * the clash's puppets meeting arm first, the ghost rocking. */
 static const picture examples[] = {
-  { "stick", "stick.yaml", "5" },   { "humanoid", "humanoid.yaml", "6" },
-  { "dragon", "dragon.yaml", "5" }, { "bird", "bird.yaml", "5" },
-  { "clash", "clash.yaml", "7" },   { "ghost", "ghost.yaml", "5" },
+  { "stick", "stick.yaml", "5" },     { "humanoid", "humanoid.yaml", "6" },
+  { "dragon", "dragon.yaml", "8.5" }, { "bird", "bird.yaml", "5" },
+  { "clash", "clash.yaml", "7" },     { "ghost", "ghost.yaml", "5" },
 };
 
 #define N_OF(a) (sizeof(a) / sizeof((a)[0]))

@@ -14,8 +14,11 @@
  * snout) has as its face normal the horizontal direction from its neck
  * (else its head, else its crown) to that particle; at t = 0 it points
  * towards the camera's eye within 30°. The two humanoids (humanoid.yaml,
- * puppet.yaml) have faces; so do the bird and the dragon. Run with -v to
- * print each scene's margins and angles. */
+ * puppet.yaml) have faces; so do the bird and the dragon. Through the
+ * show, every puppet's start facing (its face normal, else camera.facing),
+ * turned as its control frame's track turns it, stays within 60° of the
+ * way to the eye: a puppet may turn to the side, never its back. Run with
+ * -v to print each scene's margins and angles. */
 #include <dirent.h>
 #include <math.h>
 #include <setjmp.h>
@@ -28,12 +31,19 @@
 
 #include <cmocka.h>
 
+#include "mr_control.h"
+
 #include "mr_scene.h"
 #include "mr_scene_world.h"
 #include "mr_sim.h"
 #include "mr_stage.h"
 
 static int verbose;
+
+/* The facing test's moments over the show (a quarter of a second apart
+ * in a 16 s show) and the widest turn from the audience it allows. */
+enum { FACING_SAMPLES = 64 };
+static const double FACING_MAX_DEG = 60;
 
 /* The frames of a run: t and the points (3 n each). */
 typedef struct frames {
@@ -346,6 +356,179 @@ static void every_puppet_with_a_face_faces_the_camera_at_the_start(void **state)
   assert_true(faces >= 4);
 }
 
+/* The frame puppet p hangs from (its own, else the scene's), or -1. */
+static long frame_of_puppet(const mr_scene *s, size_t p) {
+  long scene_frame = -1;
+  for (size_t k = 0; k < s->n_frames; k++) {
+    if (s->n_puppets && strcmp(s->frames[k].puppet, s->puppets[p].name) == 0) return (long)k;
+    if (s->frames[k].puppet[0] == '\0' && scene_frame < 0) scene_frame = (long)k;
+  }
+  return scene_frame;
+}
+
+/* Where puppet p faces at its start, from where (its face, else the
+ * middle of its particles): its face normal, else the side the scene's
+ * puppets face (camera.facing). */
+static void start_facing(const mr_scene *s, size_t p, double n[3], double at[3]) {
+  char prefix[80] = "";
+  if (s->n_puppets) snprintf(prefix, sizeof prefix, "%s.", s->puppets[p].name);
+  size_t face;
+  if (face_normal(s, prefix, n, &face) == 0) {
+    memcpy(at, s->particles[face].def.position, 3 * sizeof *at);
+    return;
+  }
+  const double f = s->stage.facing_deg * 3.14159265358979323846 / 180;
+  n[0] = sin(f);
+  n[1] = 0;
+  n[2] = cos(f);
+  size_t first = s->n_puppets ? s->puppets[p].first : 0;
+  size_t count = s->n_puppets ? s->puppets[p].count : s->n_particles;
+  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+  for (size_t i = first; i < first + count; i++)
+    for (int c = 0; c < 3; c++) {
+      lo[c] = fmin(lo[c], s->particles[i].def.position[c]);
+      hi[c] = fmax(hi[c], s->particles[i].def.position[c]);
+    }
+  for (int c = 0; c < 3; c++) at[c] = (lo[c] + hi[c]) / 2;
+}
+
+/* The angle (degrees) between n and the way from x to the eye. */
+static double angle_to(const double n[3], const double x[3], const double eye[3]) {
+  double to[3] = { eye[0] - x[0], eye[1] - x[1], eye[2] - x[2] };
+  double c = (n[0] * to[0] + n[1] * to[1] + n[2] * to[2]) /
+             (sqrt(to[0] * to[0] + to[1] * to[1] + to[2] * to[2]) *
+              sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+  return acos(fmax(-1, fmin(1, c))) * 180 / 3.14159265358979323846;
+}
+
+/* Puppet p's start facing and where it is seen from, in its frame's
+ * start pose (local), and the default camera's eye. */
+typedef struct facing {
+  double n[3], x[3], eye[3];
+  long frame;
+} facing;
+
+static facing facing_of(const mr_scene *s, size_t p) {
+  facing f;
+  double n0[3], x0[3];
+  start_facing(s, p, n0, x0);
+  mr_orbit o = mr_orbit_of_stage(&s->stage);
+  mr_orbit_eye(&o, f.eye);
+  f.frame = frame_of_puppet(s, p);
+  mr_pose start;
+  mr_scene_frame_pose_at(s, f.frame < 0 ? 0 : (size_t)f.frame, 0, &start);
+  double d[3] = { x0[0] - start.position[0], x0[1] - start.position[1], x0[2] - start.position[2] };
+  mr_pose_unrotate(start.orientation, d, f.x);
+  mr_pose_unrotate(start.orientation, n0, f.n);
+  return f;
+}
+
+/* The angle between the facing with its frame at pose now and the way to
+ * the eye (degrees). */
+static double facing_angle(const facing *f, const mr_pose *now) {
+  double x[3], n[3];
+  mr_pose_apply(now, f->x, x);
+  mr_pose_rotate(now->orientation, f->n, n);
+  return angle_to(n, x, f->eye);
+}
+
+/* The largest angle over the show between puppet p's facing, turned by its
+ * frame's track since the start, and the way to the default camera's eye;
+ * *when gets its time. */
+static double worst_facing(const mr_scene *s, size_t p, double *when) {
+  facing f = facing_of(s, p);
+  double worst = -1;
+  *when = 0;
+  for (int j = 0; j <= FACING_SAMPLES; j++) {
+    double t = s->duration * j / FACING_SAMPLES;
+    mr_pose now;
+    mr_scene_frame_pose_at(s, f.frame < 0 ? 0 : (size_t)f.frame, t, &now);
+    double a = facing_angle(&f, &now);
+    if (a > worst) {
+      worst = a;
+      *when = t;
+    }
+  }
+  return worst;
+}
+
+/* Every puppet of every example scene performs facing the audience: its
+ * start facing, turned as its control frame's track turns it (no physics),
+ * stays within 60° of the way to the default camera at 65 moments evenly
+ * over the show, t = 0 and its end included. A turn to the side is fine; showing
+ * the audience its back is not. */
+static void every_puppet_of_every_example_faces_the_audience_through_the_show(void **state) {
+  (void)state;
+  DIR *dir = opendir(MR_SCENES_DIR);
+  assert_non_null(dir);
+  int scenes = 0;
+  struct dirent *e;
+  while ((e = readdir(dir)) != NULL) {
+    size_t len = strlen(e->d_name);
+    if (len < 6 || strcmp(e->d_name + len - 5, ".yaml") != 0) continue;
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", MR_SCENES_DIR, e->d_name);
+    mr_scene s;
+    load(path, &s);
+    for (size_t p = 0; p < (s.n_puppets ? s.n_puppets : 1); p++) {
+      double when, worst = worst_facing(&s, p, &when);
+      const char *who = s.n_puppets ? s.puppets[p].name : "";
+      if (verbose)
+        printf("%-14s %-8s faces the audience within %5.1f° (widest at t %.2f s)\n", e->d_name, who,
+               worst, when);
+      if (!(worst < FACING_MAX_DEG))
+        fail_msg("%s %s turns %.1f° from the audience at t %.2f s; at most %.0f° allowed",
+                 e->d_name, who, worst, when, FACING_MAX_DEG);
+    }
+    mr_scene_free(&s);
+    scenes++;
+  }
+  closedir(dir);
+  assert_true(scenes >= 8);
+}
+
+/* The built-in show (`make demo`) drives humanoid.yaml by glove through
+ * its mapping (the scene's first, else the paper's default) about the
+ * frame's start pose. Whatever the glove does, the humanoid does not turn
+ * its back: every channel held at 0, at the middle and at 1, in every
+ * combination (3^5 hands), for a second each so the filters settle, puts
+ * its face within 60° of the audience's camera. */
+static void a_glove_never_turns_the_demo_humanoid_from_the_audience(void **state) {
+  (void)state;
+  char path[1024];
+  snprintf(path, sizeof path, "%s/humanoid.yaml", MR_SCENES_DIR);
+  mr_scene s;
+  load(path, &s);
+  assert_true(s.n_frames >= 1);
+  mr_mapping_def m = s.n_mappings ? s.mappings[0].def : mr_default_mapping_def();
+  m.neutral = s.frames[0].pose;
+  facing f = facing_of(&s, 0);
+  double worst = -1, at[MR_CONTROL_CHANNELS] = { 0 };
+  for (int hand = 0; hand < 243; hand++) {
+    mr_control *c = NULL;
+    assert_int_equal(mr_control_create(&m, 1, &c, NULL, 0), MR_CONTROL_OK);
+    double v[MR_CONTROL_CHANNELS];
+    for (int ch = 0, h = hand; ch < MR_CONTROL_CHANNELS; ch++, h /= 3) v[ch] = 0.5 * (h % 3);
+    mr_pose pose;
+    for (int k = 0; k <= 100; k++)
+      assert_int_equal(mr_control_update(c, v, k * 0.01, &pose, NULL), MR_CONTROL_OK);
+    mr_control_destroy(c);
+    double a = facing_angle(&f, &pose);
+    if (a > worst) {
+      worst = a;
+      memcpy(at, v, sizeof at);
+    }
+  }
+  if (verbose)
+    printf("humanoid.yaml by glove (mapping %s): within %.1f° of the audience (widest at "
+           "%.1f %.1f %.1f %.1f %.1f)\n",
+           m.name, worst, at[0], at[1], at[2], at[3], at[4]);
+  if (!(worst < FACING_MAX_DEG))
+    fail_msg("humanoid.yaml by glove turns %.1f° from the audience at %.1f %.1f %.1f %.1f %.1f",
+             worst, at[0], at[1], at[2], at[3], at[4]);
+  mr_scene_free(&s);
+}
+
 int main(int argc, char **argv) {
   verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
   const struct CMUnitTest tests[] = {
@@ -353,6 +536,8 @@ int main(int argc, char **argv) {
         every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay_and_inside_the_arch),
     cmocka_unit_test(a_camera_that_follows_keeps_a_walking_puppet_in_view_and_near),
     cmocka_unit_test(every_puppet_with_a_face_faces_the_camera_at_the_start),
+    cmocka_unit_test(every_puppet_of_every_example_faces_the_audience_through_the_show),
+    cmocka_unit_test(a_glove_never_turns_the_demo_humanoid_from_the_audience),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
