@@ -26,6 +26,7 @@ const char mr_stage_opts_help[] =
     "                      instead of the orbit camera\n"
     "  --day X             the day knob, 0..1: 0 and 1 midnight, 0.5 noon\n"
     "                      (default: the scene's stage.time_of_day)\n"
+    "  --spheres           draw the collision spheres too (stage.spheres: true)\n"
     "  --gl API            the OpenGL to draw with: auto (default: desktop\n"
     "                      OpenGL 3.3 core, else OpenGL ES 3.0), core, or es3\n"
     "                      (OpenGL ES 3.0; the window or egl backend)\n";
@@ -115,6 +116,7 @@ int mr_stage_opts_take(mr_stage_opts *o, const char *cmd, int argc, char **argv,
   const char *opt = argv[*i];
   if (strcmp(opt, "--no-mp4") == 0) return o->no_mp4 = true, 1;
   if (strcmp(opt, "--no-sheet") == 0) return o->no_sheet = true, 1;
+  if (strcmp(opt, "--spheres") == 0) return o->spheres = true, 1;
   for (int k = 0; valued[k] != NULL; k++) {
     if (strcmp(opt, valued[k]) != 0) continue;
     if (*i + 1 >= argc) {
@@ -156,6 +158,7 @@ mr_frames_out_def mr_stage_opts_outputs(mr_stage_opts *o, double fps, int width,
 
 int mr_stage_opts_apply(const mr_stage_opts *o, const char *cmd, mr_stageview *sv) {
   if (!isnan(o->day)) mr_stageview_set_day(sv, o->day);
+  if (o->spheres) mr_stage_show_spheres(sv->stage, true);
   if (o->camera == NULL) return 0;
   int k = mr_stageview_find_camera(sv, o->camera);
   if (k >= 0) {

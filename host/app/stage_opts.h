@@ -17,7 +17,8 @@ typedef struct mr_stage_opts {
   int width, height; /* --size WxH; 0: the scene's */
   int samples;       /* --samples N; 0: the renderer's default */
   const char *camera;
-  double day; /* --day, NaN: the scene's */
+  double day;   /* --day, NaN: the scene's */
+  bool spheres; /* --spheres: the collision spheres drawn too */
   mr_render_backend backend;
   mr_render_gl gl; /* --gl auto|core|es3, default auto */
   char mp4_buf[600], sheet_buf[600];

@@ -88,6 +88,8 @@ static void stage_key(mr_live *lv, int key) {
     mr_stageview_set_day(sv, sv->time_of_day + 0.5);
   } else if (key == 'm') {
     mr_stageview_next_material(sv);
+  } else if (key == 'c') {
+    mr_stage_show_spheres(sv->stage, !mr_stage_get_def(sv->stage)->show_spheres);
   } else if (key == '[' || key == ']') {
     mr_stageview_set_day(sv, sv->time_of_day + (key == ']' ? DAY_STEP : -DAY_STEP));
   } else if (key == 'h' || key == MR_WINDOW_KEY_F1) {

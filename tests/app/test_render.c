@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -132,6 +133,65 @@ static void every_and_frame_choose_which_frames_are_written(void **state) {
   free(one);
 }
 
+/* The bird at its start, 320 x 180, into png; --spheres when asked. */
+static void bird_into(const char *png, bool spheres) {
+  char *argv[] = { marionette,
+                   "render",
+                   MR_SOURCE_DIR "/host/scenes/bird.yaml",
+                   "--backend",
+                   MR_APP_TEST_BACKEND,
+                   "-o",
+                   (char *)png,
+                   "--frame",
+                   "0",
+                   "--size",
+                   "320x180",
+                   "-q",
+                   spheres ? "--spheres" : NULL,
+                   NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  tt_output_free(&o);
+}
+
+/* Pixels that differ by more than a little between two pictures. */
+static int pixels_apart(const char *a, const char *b) {
+  int wa = 0, ha = 0, wb = 0, hb = 0;
+  uint8_t *pa = at_png_rgb(a, &wa, &ha), *pb = at_png_rgb(b, &wb, &hb);
+  assert_true(pa != NULL && pb != NULL && wa == wb && ha == hb);
+  int n = 0;
+  for (int i = 0; i < wa * ha; i++) {
+    int d = 0;
+    for (int c = 0; c < 3; c++) d += abs((int)pa[3 * i + c] - (int)pb[3 * i + c]);
+    n += d > 30;
+  }
+  free(pa);
+  free(pb);
+  return n;
+}
+
+/* The bird's collision spheres are not drawn unless asked for: with
+ * --spheres its body, wings and tail wear pale balls, a few hundred
+ * pixels at this size, and nothing else in the picture moves. */
+static void collision_spheres_are_drawn_only_with_the_spheres_option(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  char plain[600], again[600], balls[600];
+  snprintf(plain, sizeof plain, "%s", tt_path(dir, "plain.png"));
+  snprintf(again, sizeof again, "%s", tt_path(dir, "again.png"));
+  snprintf(balls, sizeof balls, "%s", tt_path(dir, "spheres.png"));
+  bird_into(plain, false);
+  bird_into(again, false);
+  bird_into(balls, true);
+  assert_int_equal(pixels_apart(plain, again), 0);
+  int shown = pixels_apart(plain, balls);
+  print_message("%d pixels show the spheres\n", shown);
+  assert_true(shown > 150 && shown < 320 * 180 / 8);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* Without ffmpeg on PATH: frames and the sheet, no MP4, and a note. */
 static void without_ffmpeg_there_is_a_note_and_no_video(void **state) {
   (void)state;
@@ -226,6 +286,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(the_same_scene_and_options_give_the_same_png_bytes),
     cmocka_unit_test(every_and_frame_choose_which_frames_are_written),
     cmocka_unit_test(without_ffmpeg_there_is_a_note_and_no_video),
+    cmocka_unit_test(collision_spheres_are_drawn_only_with_the_spheres_option),
     cmocka_unit_test(bad_usage_is_one_line_and_status_2),
     cmocka_unit_test(a_missing_model_names_its_place_and_path_with_status_1),
   };

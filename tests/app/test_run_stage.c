@@ -381,37 +381,23 @@ static int pixels_apart(const char *a, const char *b) {
   return n;
 }
 
-/* Under Xvfb, paused: two screenshots are the same picture, and after m
- * the stick figure's rods wear their red lacquer (§3.3: a material
- * changes while the show runs), which only the rods' pixels show. The
+/* Under Xvfb, paused: two screenshots of scene are the same picture, and
+ * a third after a key: the pixels it changed (-1: no xvfb-run). The
  * overlay is hidden (its frame rate changes from frame to frame), and
  * the shots wait 2 s for the pause: under a sanitizer on a busy box a
  * frame takes over a second, and the physics runs ahead of it. The second
- * shot and m fall due together: the shot shows the frame before m. */
-static void the_m_key_changes_what_the_puppet_wears(void **state) {
-  (void)state;
+ * shot and the key fall due together: the shot shows the frame before. */
+static int pixels_changed_by_key(const char *scene, const char *keys) {
   char xvfb[512];
-  if (at_which("xvfb-run", xvfb, sizeof xvfb) != 0) skip();
+  if (at_which("xvfb-run", xvfb, sizeof xvfb) != 0) return -1;
 #ifdef MR_APP_TEST_SANITIZE
   setenv("ASAN_OPTIONS", "detect_leaks=0", 1); /* as the window test above */
 #endif
   char *dir = tt_tmpdir();
-  char *argv[] = { xvfb,
-                   "-a",
-                   "-s",
-                   "-screen 0 640x480x24",
-                   marionette,
-                   "run",
-                   STICK,
-                   "--keys",
-                   "0.2:h,1:space,3:p,3.5:p,3.5:m,4.5:p,5:q",
-                   "--size",
-                   "320x180",
-                   "-o",
-                   dir,
-                   "--time",
-                   "20",
-                   NULL };
+  char *argv[] = { xvfb,         "-a",     "-s",          "-screen 0 640x480x24",
+                   marionette,   "run",    (char *)scene, "--keys",
+                   (char *)keys, "--size", "320x180",     "-o",
+                   dir,          "--time", "20",          NULL };
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
@@ -421,13 +407,34 @@ static void the_m_key_changes_what_the_puppet_wears(void **state) {
   snprintf(s2, sizeof s2, "%s", tt_path(dir, "shot_002.png"));
   assert_int_equal(pixels_apart(s0, s1), 0);
   int changed = pixels_apart(s1, s2);
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+  return changed;
+}
+
+/* After m the stick figure's rods wear their red lacquer (§3.3: a
+ * material changes while the show runs), which only the rods' pixels
+ * show. */
+static void the_m_key_changes_what_the_puppet_wears(void **state) {
+  (void)state;
+  int changed = pixels_changed_by_key(STICK, "0.2:h,1:space,3:p,3.5:p,3.5:m,4.5:p,5:q");
+  if (changed < 0) skip();
   print_message("%d pixels changed with the materials\n", changed);
   /* The rods are thin: a few dozen pixels at this size, a small part of
    * the 57 600. */
   assert_true(changed >= 20 && changed < 3000);
-  tt_output_free(&o);
-  tt_rmdir(dir);
-  free(dir);
+}
+
+/* The bird's collision spheres are hidden until c shows them: pale balls
+ * over its body, wings and tail. */
+static void the_c_key_shows_the_collision_spheres(void **state) {
+  (void)state;
+  int changed = pixels_changed_by_key(MR_SOURCE_DIR "/host/scenes/bird.yaml",
+                                      "0.2:h,1:space,3:p,3.5:p,3.5:c,4.5:p,5:q");
+  if (changed < 0) skip();
+  print_message("%d pixels changed with the spheres\n", changed);
+  assert_true(changed >= 300 && changed < 320 * 180 / 4);
 }
 
 int main(int argc, char **argv) {
@@ -446,6 +453,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_headless_show_draws_the_frame_it_ends_on),
     cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
     cmocka_unit_test(the_m_key_changes_what_the_puppet_wears),
+    cmocka_unit_test(the_c_key_shows_the_collision_spheres),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,7 +2,7 @@
  * own models: section (not the loader's default capsules and balls), its
  * model files exist, and across the set every display mode of §3.3 is
  * used at least once; one scene is at night with stars, one has spot
- * lights, and the bird draws its sphere tree. */
+ * lights. puppet.yaml, the README's first run, is one of them. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -17,7 +17,8 @@
 #include "mr_scene.h"
 #include "proc.h"
 
-static const char *const examples[] = { "stick", "humanoid", "dragon", "bird", "clash", "ghost" };
+static const char *const examples[] = { "puppet", "stick", "humanoid", "dragon",
+                                        "bird",   "clash", "ghost" };
 enum { N_EXAMPLES = sizeof examples / sizeof examples[0] };
 
 static const char *scene_path(const char *name) {

@@ -111,7 +111,7 @@ static const char full[] = PHYS
     "  constellations:\n"
     "    - {name: kite, stars: [[0, 90, 1.0], [90, 0, 0.5]]}\n"
     "  strings: {show: false, color: [0.2, 0.2, 0.2]}\n"
-    "  frames: {show: true, color: [0.3, 0.3, 0.3]}\n"
+    "  frames: {show: true, color: [0.3, 0.3, 0.3], style: solid, thickness: 0.04}\n"
     "  spheres: true\n"
     "camera:\n"
     "  orbit: {target: [0, 1, 0], distance: 4, azimuth: 30, elevation: 20, fov: 50}\n"
@@ -126,7 +126,7 @@ static void every_stage_key_is_read_back(void **state) {
   mr_scene s;
   load("scenes/t.yaml", full, &s);
   const mr_stage_def *d = &s.stage;
-  assert_int_equal(d->n_models, 6); /* five, and d's collision sphere */
+  assert_int_equal(d->n_models, 8); /* five, the frame's two bars, d's collision sphere */
   const mr_model_def *m = d->models;
   assert_string_equal(m[0].name, "m_particle");
   assert_int_equal(m[0].shape, MR_SHAPE_CONE);
@@ -158,8 +158,20 @@ static void every_stage_key_is_read_back(void **state) {
   assert_int_equal(m[4].n_bones, 4);
   assert_int_equal(m[4].influences, 2);
   assert_true(m[4].bones[3] == 3 && m[4].bones_rest[3 * 3] == 2 && m[4].bones_rest[1] == 1);
-  assert_string_equal(m[5].name, "sphere:d");
-  assert_true(m[5].particles[0] == 3 && fabs(m[5].scale[1] - 0.2) < 1e-12);
+  /* The wooden control: p at the corner of the frame's L, q and r each
+   * 1 m from it, joined by two bars (the third, q-r, would be longer). */
+  assert_string_equal(m[5].name, "bar:p-q");
+  assert_string_equal(m[6].name, "bar:p-r");
+  for (int i = 5; i < 7; i++) {
+    assert_int_equal(m[i].display, MR_DISPLAY_LINK);
+    assert_int_equal(m[i].shape, MR_SHAPE_CAPSULE);
+    assert_true(m[i].scale[0] == 0.04 && m[i].scale[1] == 1 && m[i].scale[2] == 0.04);
+    assert_true(m[i].materials[0].base_color[0] == 0.3f && !m[i].collision);
+  }
+  assert_true(m[5].particles[0] == 5 && m[5].particles[1] == 6 && m[6].particles[1] == 7);
+  assert_string_equal(m[7].name, "sphere:d");
+  assert_true(m[7].particles[0] == 3 && fabs(m[7].scale[1] - 0.2) < 1e-12 && m[7].collision);
+  assert_true(d->show_spheres && d->frame_style == MR_FRAMES_SOLID && d->frame_thickness == 0.04);
   const mr_lights_def *l = &d->lights;
   assert_true(l->ambient[2] == 0.3f && l->sun_color[2] == 0.25f && l->sun_intensity == 2);
   assert_true(!l->shadows && l->shadow_size == 1024 && l->shadow_filter == 9);
@@ -200,7 +212,9 @@ static void a_scene_without_stage_sections_still_shows_every_particle_and_link(v
   load("t.yaml", PHYS, &s);
   const mr_stage_def *d = &s.stage;
   assert_int_equal(d->cookie, MR_DEF_COOKIE);
-  assert_int_equal(d->n_models, 1 + 5); /* a capsule per constraint, a sphere per particle */
+  /* A capsule per constraint, a sphere per particle, the frame's two
+   * wooden bars, and d's collision sphere (hidden). */
+  assert_int_equal(d->n_models, 1 + 5 + 2 + 1);
   assert_string_equal(d->models[0].name, "link:d-e");
   assert_int_equal(d->models[0].display, MR_DISPLAY_LINK);
   assert_int_equal(d->models[0].shape, MR_SHAPE_CAPSULE);
@@ -214,6 +228,9 @@ static void a_scene_without_stage_sections_still_shows_every_particle_and_link(v
   }
   assert_true(fabs(d->models[4].scale[0] - 0.2) < 1e-12); /* d: its radius 0.1 */
   assert_true(d->models[1].scale[0] > 0 && d->models[1].scale[0] < 0.1);
+  assert_true(d->frame_style == MR_FRAMES_SOLID && d->frame_thickness == 0.025);
+  assert_true(strcmp(d->models[6].name, "bar:p-q") == 0 && !d->models[6].collision);
+  assert_true(d->models[8].collision && !d->show_spheres);
   assert_int_equal(d->n_strings, 2);
   assert_int_equal(d->n_frames, 1);
   assert_true(d->floor_height == -0.5);
@@ -230,10 +247,16 @@ static void a_scene_without_stage_sections_still_shows_every_particle_and_link(v
   assert_true(d->lights.shadows && d->lights.shadow_size == 0 && d->lights.shadow_filter == 0);
   stage_accepts(&s);
   mr_scene_free(&s);
-  /* models: [] shows none; the rigging stays. */
+  /* models: [] shows none; the rigging stays: the bars, and the hidden
+   * collision sphere. */
   load("t.yaml", PHYS "models: []\n", &s);
-  assert_int_equal(s.stage.n_models, 0);
+  assert_int_equal(s.stage.n_models, 3);
   assert_int_equal(s.stage.n_strings, 2);
+  mr_scene_free(&s);
+  /* As wire, the frame is lines only: no bars. */
+  load("t.yaml", PHYS "models: []\nstage: {frames: {style: wire}}\n", &s);
+  assert_int_equal(s.stage.n_models, 1);
+  assert_true(s.stage.frame_style == MR_FRAMES_WIRE && s.stage.models[0].collision);
   mr_scene_free(&s);
 }
 
@@ -397,6 +420,10 @@ static void mistakes_are_refused_at_their_place(void **state) {
     { SMALL "stage: {constellations: [{name: k, stars: [[0, 45]]}]}\n",
       "t.yaml:7:44: expected a star as [azimuth, elevation, brightness]" },
     { SMALL "stage: {spheres: 1}\n", "t.yaml:7:18: expected true or false for spheres, got '1'" },
+    { SMALL "stage: {frames: {style: wood}}\n",
+      "t.yaml:7:25: expected style to be one of: solid, wire, got 'wood'" },
+    { SMALL "stage: {frames: {thickness: 0}}\n",
+      "t.yaml:7:29: expected a positive number for thickness, got 0" },
     { SMALL "stage: {strings: {show: true, width: 2}}\n",
       "t.yaml:7:31: unknown key 'width' in stage.strings; expected one of: show, color" },
     { SMALL "camera: {views: [{name: a}, {name: b}, {name: c}, {name: d}, {name: e}, {name: f}, "
@@ -441,7 +468,7 @@ static void format_md_stage_example_loads(void **state) {
   if (mr_scene_load_text("host/scenes/FORMAT.md", start, (size_t)(end - start), &s, &e) !=
       MR_SCENE_OK)
     fail_msg("%s", e.text);
-  assert_int_equal(s.stage.n_models, 5);
+  assert_int_equal(s.stage.n_models, 5 + 2); /* the control's two bars */
   assert_string_equal(s.stage.models[0].path, "host/scenes/models/head.obj");
   assert_int_equal(s.stage.models[4].display, MR_DISPLAY_FREEFORM);
   assert_int_equal(s.stage.lights.n_spots, 1);

@@ -273,13 +273,14 @@ static void a_point_not_finite_leaves_its_models_where_they_were(void **state) {
   mr_stage_destroy(s);
 }
 
-static void strings_and_control_frames_are_lines_in_their_colours(void **state) {
+static void strings_and_wire_control_frames_are_lines_in_their_colours(void **state) {
   (void)state;
   double rest[15] = { 0, 1, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0, 0.5, 2, 1 };
   int strings[4] = { 2, 0, 3, 1 };
   int frame_points[5] = { 2, 3, 4, /* a triangle */ 0, 1 /* a bar */ };
   int frame_count[2] = { 3, 2 };
   mr_stage_def d = mr_default_stage_def();
+  d.frame_style = MR_FRAMES_WIRE;
   d.strings = strings;
   d.n_strings = 2;
   d.frame_points = frame_points;
@@ -301,6 +302,13 @@ static void strings_and_control_frames_are_lines_in_their_colours(void **state) 
   near3(l->lines[5].a, &rest[0], 0); /* the bar is one line */
   near3(l->lines[5].b, &rest[3], 0);
   for (int i = 2; i < 6; i++) assert_true(l->lines[i].rgb[0] == 0.75f);
+  mr_stage_destroy(s);
+  /* Solid (the default), a frame is the scene's wooden bars: the strings
+   * alone are lines. */
+  d.frame_style = MR_FRAMES_SOLID;
+  assert_int_equal(mr_stage_create(&d, rest, 5, &s, NULL, 0), MR_STAGE_OK);
+  assert_int_equal(mr_stage_update(s, rest, 5, &l), MR_STAGE_OK);
+  assert_int_equal(l->n_lines, 2);
   mr_stage_destroy(s);
   d.show_strings = false;
   d.show_frames = false;
@@ -371,7 +379,7 @@ int main(void) {
     cmocka_unit_test(freeform_skin_under_a_rigid_motion_moves_rigidly),
     cmocka_unit_test(skin_weights_sum_to_one_and_a_vertex_on_a_bone_takes_it_alone),
     cmocka_unit_test(a_point_not_finite_leaves_its_models_where_they_were),
-    cmocka_unit_test(strings_and_control_frames_are_lines_in_their_colours),
+    cmocka_unit_test(strings_and_wire_control_frames_are_lines_in_their_colours),
     cmocka_unit_test(materials_change_while_the_show_runs),
     cmocka_unit_test(bones_on_a_line_take_its_shortest_turn_and_a_lone_bone_only_moves),
   };

@@ -119,6 +119,9 @@ typedef struct mr_model_def {
   int n_bones;
   int influences;   /* 1..MR_SKIN_MAX_INFLUENCES, default 4 */
   bool cast_shadow; /* default true */
+  /* A collision sphere (`stage: spheres`): drawn only while the stage
+   * shows them (show_spheres, mr_stage_show_spheres). Default false. */
+  bool collision;
   mr_stage_pos pos;
 } mr_model_def;
 mr_model_def mr_default_model_def(void);
@@ -160,6 +163,27 @@ typedef struct mr_camera_def {
   mr_stage_pos pos;
 } mr_camera_def;
 mr_camera_def mr_default_camera_def(void);
+
+/* How a control frame is drawn. */
+typedef enum mr_frame_style {
+  /* A wooden control, as a puppeteer holds one (the paper's Fig. 2, 3
+   * and 8): the scene (host/scene) lays a bar, a link-mode capsule
+   * frame_thickness across, along each edge of the tree that joins the
+   * frame's points by the least wood (mr_frame_bars); the stage draws no
+   * lines for it. */
+  MR_FRAMES_SOLID = 0,
+  /* Thin lines between its points, in order, closed round. */
+  MR_FRAMES_WIRE
+} mr_frame_style;
+const char *mr_frame_style_name(mr_frame_style s);
+int mr_frame_style_parse(const char *name, mr_frame_style *out);
+
+/* The bars of a wooden control through n points (3 n): the tree joining
+ * them whose bars are shortest in all (Prim's; a tie goes to the lower
+ * index), so a bar never doubles another. Writes n - 1 pairs of local
+ * indices into pairs (2 (n - 1)) and returns how many: 0 for n < 2, -1
+ * out of memory. */
+int mr_frame_bars(const double *xyz, int n, int *pairs);
 
 /* A star of the night sky: a direction (need not be unit; y up) and a
  * brightness 0..1. */
@@ -218,7 +242,7 @@ typedef struct mr_stage_def {
   const mr_star *star_list; /* belongs to the def's owner */
   size_t n_stars;
   /* Rigging: strings as thin lines from their control point to their
-   * particle, and each control frame as lines between its points. */
+   * particle, and each control frame (frame_style below). */
   bool show_strings; /* default true */
   float string_color[3];
   const int *strings; /* 2 n_strings world ids: from, to */
@@ -229,6 +253,13 @@ typedef struct mr_stage_def {
                               frame_point_count[k] of them in order */
   const int *frame_point_count;
   size_t n_frames;
+  /* Puppets that read as puppets: the frames' look (default solid, bars
+   * frame_thickness m across, default 0.025, wearing frame_color as
+   * rough wood), and the collision spheres (models marked collision),
+   * drawn only when asked (default false). */
+  mr_frame_style frame_style;
+  double frame_thickness;
+  bool show_spheres;
   /* Cameras: the orbit camera's start, and the scene's named ones. */
   double orbit_target[3];                        /* default (0, 0.6, 0) */
   double orbit_distance;                         /* default 2.5 */
@@ -375,6 +406,10 @@ const mr_stage_def *mr_stage_get_def(const mr_stage *s);
  * call. Points that are not finite leave their models where they were
  * last drawn, so a bad frame never reaches the GPU. */
 mr_stage_status mr_stage_update(mr_stage *s, const double *xyz, size_t n, const mr_draw_list **out);
+
+/* The collision spheres (models marked collision) drawn from the next
+ * draw list on, or not. */
+mr_stage_status mr_stage_show_spheres(mr_stage *s, bool show);
 
 /* Model `model` wears its material k from now on (§3.3). */
 mr_stage_status mr_stage_set_material(mr_stage *s, size_t model, int k);

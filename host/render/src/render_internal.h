@@ -258,7 +258,9 @@ void mr_sky_star_points(mr_render *r, GLuint prog, const mr_frame *f, float pad)
 /* Linear to sRGB, as the shaders do it. */
 float mr_srgb(float linear);
 
-/* lines.c */
+/* lines.c: the rigging's lines, MR_LINE_WIDTH_PX pixels wide with soft
+ * edges, depth-tested, blended over the frame. */
+#define MR_LINE_WIDTH_PX 1.0f
 int mr_lines_create(mr_render *r);
 void mr_lines_destroy(mr_render *r);
 void mr_lines_draw(mr_render *r, const mr_draw_line *lines, size_t n, const mr_frame *f);

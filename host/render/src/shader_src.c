@@ -222,19 +222,33 @@ int mr_src_mesh_fs_make(char *buf, size_t size, int n_spots, int shadow_taps,
 /* The shadow pass writes depth only. */
 const char mr_src_depth_fs[] = MR_GLSL_VERSION "void main() {}\n";
 
-const char mr_src_line_vs[] = MR_GLSL_VERSION "layout(location = 0) in vec3 a_pos;\n"
+/* The rigging's lines, each a quad already in clip space (lines.c); the
+ * line on screen (a point, its unit normal, in pixels) comes flat, and a
+ * pixel's coverage is the share of it a line u_width pixels wide covers,
+ * from its distance to the line (a box filter a pixel wide). */
+const char mr_src_line_vs[] = MR_GLSL_VERSION "layout(location = 0) in vec4 a_clip;\n"
                                               "layout(location = 1) in vec3 a_color;\n"
-                                              "uniform mat4 u_view_proj;\n"
+                                              "layout(location = 2) in vec4 a_line;\n"
                                               "out vec3 v_color;\n"
+                                              "flat out vec4 v_line;\n"
                                               "void main() {\n"
                                               "  v_color = a_color;\n"
-                                              "  gl_Position = u_view_proj * vec4(a_pos, 1.0);\n"
+                                              "  v_line = a_line;\n"
+                                              "  gl_Position = a_clip;\n"
                                               "}\n";
 
 const char mr_src_line_fs[] =
     MR_GLSL_VERSION MR_GLSL_SRGB "in vec3 v_color;\n"
+                                 "flat in vec4 v_line;\n"
+                                 "uniform float u_width;\n"
                                  "out vec4 o_color;\n"
-                                 "void main() { o_color = vec4(mr_to_srgb(v_color), 1.0); }\n";
+                                 "void main() {\n"
+                                 "  float d = abs(dot(gl_FragCoord.xy - v_line.xy, v_line.zw));\n"
+                                 "  float cover = clamp(0.5 * u_width + 0.5 - d, 0.0, 1.0);\n"
+                                 "  cover = min(cover, u_width);\n"
+                                 "  if (cover <= 0.0) discard;\n"
+                                 "  o_color = vec4(mr_to_srgb(v_color), cover);\n"
+                                 "}\n";
 
 /* Stars: points on a sphere about the eye, inside the far plane, so the
  * floor and the backdrop hide them; they fade in as the sun sets. The

@@ -1,6 +1,7 @@
-/* What the physics implies for the stage: the strings and the control
- * frames drawn as lines (the rigging the puppeteer sees), the collision
- * spheres on request (the sphere tree's leaves, §4.4), the floor where
+/* What the physics implies for the stage: the strings drawn as lines and
+ * the control frames as wooden bars or lines (the rigging the puppeteer
+ * sees), the collision spheres, shown on request (the sphere tree's
+ * leaves, §4.4), the floor where
  * the physics has it, and, for a scene without models:, models that show
  * every particle and constraint, so that every scene draws. */
 #include "scene_read.h"
@@ -102,8 +103,47 @@ static int default_models(mr_reader *r) {
   return 0;
 }
 
-/* stage.spheres: every collision particle's leaf sphere, as the sphere
- * tree sizes it: the larger of the particle's radius and its part's. */
+/* A solid control frame (stage.frames.style): a rough wooden capsule,
+ * frame_thickness across, along each bar of the tree that joins its
+ * points by the least wood (mr_frame_bars), laid out from the points'
+ * offsets (the frame is rigid, so its start shape is its shape). */
+static int frame_bars(mr_reader *r, size_t k) {
+  mr_scene *s = r->scene;
+  const mr_scene_frame *f = &s->frames[k];
+  int n = (int)f->n_points;
+  double *xyz = malloc((3 * f->n_points + 1) * sizeof *xyz);
+  int *pairs = malloc((2 * f->n_points + 1) * sizeof *pairs);
+  int bars = xyz && pairs ? 0 : -1;
+  for (int i = 0; i < n && bars == 0; i++)
+    memcpy(&xyz[3 * i], s->control_points[f->first_point + (size_t)i].offset, 3 * sizeof *xyz);
+  if (bars == 0) bars = mr_frame_bars(xyz, n, pairs);
+  if (bars > 0 && mr_scene_stage_reserve_models(r, NULL, (size_t)bars) != 0) bars = -2;
+  for (int b = 0; b < bars; b++) {
+    int ids[2] = { (int)(s->n_particles + f->first_point) + pairs[2 * b],
+                   (int)(s->n_particles + f->first_point) + pairs[2 * b + 1] };
+    mr_model_def *m =
+        own_model(r, "bar", mr_scene_point_name(s, ids[0]), mr_scene_point_name(s, ids[1]),
+                  MR_SHAPE_CAPSULE, s->stage.frame_color);
+    if (m == NULL) {
+      bars = -2;
+      break;
+    }
+    m->display = MR_DISPLAY_LINK;
+    m->particles[0] = ids[0];
+    m->particles[1] = ids[1];
+    m->scale[0] = m->scale[2] = s->stage.frame_thickness;
+    m->materials[0].roughness = 0.8f;
+  }
+  free(xyz);
+  free(pairs);
+  if (bars == -1) return mr_scene_read_fail_at(r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
+  return bars < 0 ? -1 : 0;
+}
+
+/* Every collision particle's leaf sphere, as the sphere tree sizes it:
+ * the larger of the particle's radius and its part's. Always there,
+ * marked collision: the stage draws them when asked (stage.spheres,
+ * `--spheres`, the window's c key). */
 static int collision_spheres(mr_reader *r) {
   static const float glass[3] = { 0.55f, 0.7f, 0.9f };
   mr_scene *s = r->scene;
@@ -129,6 +169,7 @@ static int collision_spheres(mr_reader *r) {
     }
     m->particles[0] = (int)i;
     m->scale[0] = m->scale[1] = m->scale[2] = 2 * radius[i];
+    m->collision = true;
   }
   free(radius);
   return rc;
@@ -139,9 +180,10 @@ int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root) {
   if (s->floor.present) s->stage.floor_height = s->floor.def.offset;
   if (strings_as_lines(r) != 0 || frames_as_lines(r) != 0) return -1;
   if (mr_scene_yaml_get(root, "models") == NULL && default_models(r) != 0) return -1;
-  const mr_ynode *stage = mr_scene_yaml_get(root, "stage");
-  const mr_ynode *spheres = stage ? mr_scene_yaml_get(stage, "spheres") : NULL;
-  if (spheres != NULL && strcmp(spheres->text, "true") == 0 && collision_spheres(r) != 0) return -1;
+  if (s->stage.show_frames && s->stage.frame_style == MR_FRAMES_SOLID)
+    for (size_t k = 0; k < s->n_frames; k++)
+      if (frame_bars(r, k) != 0) return -1;
+  if (collision_spheres(r) != 0) return -1;
   /* The show's reach, estimated once: the set is sized from it, and the
    * audience's camera (without camera.orbit) frames it. */
   size_t n = 0;

@@ -243,7 +243,7 @@ static int read_sky(mr_reader *r, const mr_ynode *n) {
   return 0;
 }
 
-/* stage.strings and stage.frames: {show, color}. */
+/* stage.strings: {show, color}. */
 static int read_rigging(mr_reader *r, const mr_ynode *n, const char *key, bool *show,
                         float rgb[3]) {
   static const char *const keys[] = { "show", "color", NULL };
@@ -257,6 +257,35 @@ static int read_rigging(mr_reader *r, const mr_ynode *n, const char *key, bool *
   return 0;
 }
 
+static const char *style_word(int i) {
+  return mr_frame_style_name((mr_frame_style)i);
+}
+
+static int style_parse(const char *word, int *out) {
+  mr_frame_style st;
+  if (mr_frame_style_parse(word, &st) != 0) return -1;
+  *out = (int)st;
+  return 0;
+}
+
+/* stage.frames: {show, color, style, thickness}; a solid frame's bars
+ * are laid by scene_rigging.c. */
+static int read_frames(mr_reader *r, const mr_ynode *n) {
+  static const char *const keys[] = { "show", "color", "style", "thickness", NULL };
+  static const mr_scene_field thick = { "thickness", MR_SCENE_FIELD_POSITIVE,
+                                        offsetof(mr_stage_def, frame_thickness), 0, 0 };
+  mr_stage_def *d = &r->scene->stage;
+  int style = (int)d->frame_style;
+  if (mr_scene_read_map(r, n, "stage.frames", keys) != 0 ||
+      read_bool_at(r, n, "show", &d->show_frames) != 0 ||
+      read_rgb_at(r, n, "color", d->frame_color) != 0 ||
+      mr_scene_read_choice(r, n, "style", style_parse, style_word, &style) != 0 ||
+      mr_scene_read_field(r, n, &thick, d) != 0)
+    return -1;
+  d->frame_style = (mr_frame_style)style;
+  return 0;
+}
+
 static int read_stage_section(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = { "size", "time_of_day", "floor", "backdrop", "sky", "strings",
                                       "frames", "spheres", "constellations",
@@ -265,7 +294,6 @@ static int read_stage_section(mr_reader *r, const mr_ynode *n) {
   static const mr_scene_field tod = { "time_of_day", MR_SCENE_FIELD_UNIT,
                                       offsetof(mr_stage_def, time_of_day), 0, 0 };
   mr_stage_def *d = &r->scene->stage;
-  bool spheres; /* read again by scene_rigging.c, which adds them */
   d->pos = (mr_stage_pos){ n->line, n->column };
   if (mr_scene_read_map(r, n, "stage", keys) != 0 ||
       mr_scene_read_optional(r, n, "size", read_size) != 0 ||
@@ -273,8 +301,8 @@ static int read_stage_section(mr_reader *r, const mr_ynode *n) {
       read_set(r, n) != 0 || mr_scene_read_optional(r, n, "sky", read_sky) != 0 ||
       mr_scene_read_optional(r, n, "constellations", read_constellations) != 0 ||
       read_rigging(r, n, "strings", &d->show_strings, d->string_color) != 0 ||
-      read_rigging(r, n, "frames", &d->show_frames, d->frame_color) != 0 ||
-      read_bool_at(r, n, "spheres", &spheres) != 0)
+      mr_scene_read_optional(r, n, "frames", read_frames) != 0 ||
+      read_bool_at(r, n, "spheres", &d->show_spheres) != 0)
     return -1;
   return 0;
 }

@@ -184,12 +184,49 @@ static mr_stage_status copy_bones(mr_stage *s, size_t i, const double *rest, cha
   return MR_STAGE_OK;
 }
 
+/* A freeform model's skin slot, its bones at rest. */
+static void make_skin_slot(mr_stage *s, size_t i) {
+  const mr_model_def *m = &s->models[i];
+  mr_draw_skin *k = &s->skins[s->n_skins];
+  s->state[i].slot = (int)s->n_skins++;
+  *k = (mr_draw_skin){ (int)i, s->bone_poses + s->state[i].first_bone, m->n_bones,
+                       m->n_materials > 0 ? 0 : -1 };
+  for (int b = 0; b < m->n_bones; b++)
+    s->bone_poses[s->state[i].first_bone + (size_t)b] = mr_pose_identity();
+  mr_stage_bones_prepare(s, i);
+}
+
+/* Items in the models' order, the collision spheres after the others:
+ * the list leaves them off its end while they are hidden. */
+static void make_item_slots(mr_stage *s, const double *rest) {
+  const mr_stage_def *d = &s->def;
+  size_t next[2] = { 0, s->n_items - s->n_sphere_items };
+  for (size_t i = 0; i < d->n_models; i++) {
+    const mr_model_def *m = &s->models[i];
+    if (m->display == MR_DISPLAY_FREEFORM) continue;
+    size_t slot = next[m->collision ? 1 : 0]++;
+    mr_draw_item *it = &s->items[slot];
+    s->state[i].slot = (int)slot;
+    it->model = (int)i;
+    it->pose = mr_pose_identity();
+    memcpy(it->pose.position, &rest[3 * m->particles[0]], sizeof it->pose.position);
+    it->scale[0] = it->scale[2] = 1;
+    it->scale[1] = m->display == MR_DISPLAY_LINK ? 0 : 1;
+    it->material = m->n_materials > 0 ? 0 : -1;
+  }
+}
+
 /* The draw list's arrays, each model given its slot and first look. */
 static mr_stage_status make_slots(mr_stage *s, const double *rest, char *msg, size_t size) {
   const mr_stage_def *d = &s->def;
   size_t skins = 0;
-  for (size_t i = 0; i < d->n_models; i++) skins += s->models[i].display == MR_DISPLAY_FREEFORM;
-  s->items = calloc(d->n_models - skins + 1, sizeof *s->items);
+  for (size_t i = 0; i < d->n_models; i++) {
+    const mr_model_def *m = &s->models[i];
+    skins += m->display == MR_DISPLAY_FREEFORM;
+    s->n_sphere_items += m->display != MR_DISPLAY_FREEFORM && m->collision;
+  }
+  s->n_items = d->n_models - skins;
+  s->items = calloc(s->n_items + 1, sizeof *s->items);
   s->skins = calloc(skins + 1, sizeof *s->skins);
   s->bone_poses = calloc(s->n_bones + 1, sizeof *s->bone_poses);
   s->neighbours = calloc(MR_STAGE_BONE_NEIGHBOURS * s->n_bones + 1, sizeof *s->neighbours);
@@ -200,29 +237,11 @@ static mr_stage_status make_slots(mr_stage *s, const double *rest, char *msg, si
       !s->shown)
     return fail(msg, size, MR_STAGE_ERR_NOMEM, "out of memory");
   if (s->n > 0) memcpy(s->shown, rest, 3 * s->n * sizeof *s->shown);
-  for (size_t i = 0; i < d->n_models; i++) {
-    const mr_model_def *m = &s->models[i];
-    int material = m->n_materials > 0 ? 0 : -1;
-    if (m->display == MR_DISPLAY_FREEFORM) {
-      mr_draw_skin *k = &s->skins[s->n_skins];
-      s->state[i].slot = (int)s->n_skins++;
-      *k = (mr_draw_skin){ (int)i, s->bone_poses + s->state[i].first_bone, m->n_bones, material };
-      for (int b = 0; b < m->n_bones; b++)
-        s->bone_poses[s->state[i].first_bone + (size_t)b] = mr_pose_identity();
-      mr_stage_bones_prepare(s, i);
-      continue;
-    }
-    mr_draw_item *it = &s->items[s->n_items];
-    s->state[i].slot = (int)s->n_items++;
-    it->model = (int)i;
-    it->pose = mr_pose_identity();
-    memcpy(it->pose.position, &rest[3 * m->particles[0]], sizeof it->pose.position);
-    it->scale[0] = it->scale[2] = 1;
-    it->scale[1] = m->display == MR_DISPLAY_LINK ? 0 : 1;
-    it->material = material;
-  }
+  for (size_t i = 0; i < d->n_models; i++)
+    if (s->models[i].display == MR_DISPLAY_FREEFORM) make_skin_slot(s, i);
+  make_item_slots(s, rest);
   s->list = (mr_draw_list){ s->items, s->n_items, s->skins, s->n_skins, s->lines, 0 };
-  return MR_STAGE_OK;
+  return mr_stage_show_spheres(s, d->show_spheres);
 }
 
 static mr_stage_status build(mr_stage *s, const mr_stage_def *def, const double *rest, char *msg,
@@ -288,6 +307,13 @@ void mr_stage_destroy(mr_stage *s) {
 
 const mr_stage_def *mr_stage_get_def(const mr_stage *s) {
   return s != NULL ? &s->def : NULL;
+}
+
+mr_stage_status mr_stage_show_spheres(mr_stage *s, bool show) {
+  if (s == NULL) return MR_STAGE_ERR_ARG;
+  s->def.show_spheres = show;
+  s->list.n_items = show ? s->n_items : s->n_items - s->n_sphere_items;
+  return MR_STAGE_OK;
 }
 
 mr_stage_status mr_stage_set_material(mr_stage *s, size_t model, int k) {

@@ -104,6 +104,9 @@ mr_stage_def mr_default_stage_def(void) {
   set3f(d.string_color, 0.9f, 0.9f, 0.85f);
   d.show_frames = true;
   set3f(d.frame_color, 0.6f, 0.4f, 0.2f);
+  d.frame_style = MR_FRAMES_SOLID;
+  d.frame_thickness = 0.025;
+  d.show_spheres = false;
   set3(d.orbit_target, 0, 0.6, 0);
   d.orbit_distance = 2.5;
   d.orbit_elevation_deg = 12;

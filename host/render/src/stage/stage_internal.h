@@ -31,10 +31,10 @@ struct mr_stage {
   mr_star *stars;
   int *strings;
   int *frame_points, *frame_point_count;
-  size_t n;      /* points */
-  double *shown; /* 3 n: every point's last finite position (lines) */
-  mr_draw_item *items;
-  size_t n_items;
+  size_t n;            /* points */
+  double *shown;       /* 3 n: every point's last finite position (lines) */
+  mr_draw_item *items; /* the collision spheres' last (mr_stage_show_spheres) */
+  size_t n_items, n_sphere_items;
   mr_draw_skin *skins;
   size_t n_skins;
   mr_pose *bone_poses; /* every freeform model's, model by model */

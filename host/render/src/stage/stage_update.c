@@ -84,16 +84,17 @@ static void line(mr_stage *s, int a, int b, const float rgb[3]) {
   memcpy(l->rgb, rgb, sizeof l->rgb);
 }
 
-/* The rigging: each string from its control point to its particle, and
- * each control frame's points joined in order, closed round when there
- * are three or more. Lines join the points where they were last finite. */
+/* The rigging: each string from its control point to its particle, and,
+ * drawn as wire, each control frame's points joined in order, closed
+ * round when there are three or more (a solid frame's bars are models of
+ * the scene's). Lines join the points where they were last finite. */
 static void update_lines(mr_stage *s) {
   const mr_stage_def *d = &s->def;
   s->list.n_lines = 0;
   if (d->show_strings)
     for (size_t k = 0; k < d->n_strings; k++)
       line(s, d->strings[2 * k], d->strings[2 * k + 1], d->string_color);
-  if (!d->show_frames) return;
+  if (!d->show_frames || d->frame_style != MR_FRAMES_WIRE) return;
   const int *pts = d->frame_points;
   for (size_t k = 0; k < d->n_frames; k++) {
     int c = d->frame_point_count[k];
