@@ -127,6 +127,7 @@ typedef struct framing {
   double inside, clear; /* the least over every group and frame */
   double t_worst;
   double opening; /* how far inside the proscenium's opening, the least */
+  double set;     /* how far inside the picture the opening's top and the footlights are */
 } framing;
 
 /* The proscenium's opening (mr_stage.h: set_width x set_height, its
@@ -150,6 +151,26 @@ static box opening_box(const mr_stage_def *st, const double eye[3], const double
   return b;
 }
 
+/* How far inside the picture the audience sees the theater: the
+ * opening's top corners and the middle of the stage's front edge, where
+ * the footlights stand (MR_SET_APRON in front of the arch). */
+static double set_in_view(const mr_stage_def *st, const double eye[3], const double target[3],
+                          double aspect) {
+  const double az = st->facing_deg * 3.14159265358979323846 / 180;
+  const double right[3] = { cos(az), 0, -sin(az) }, front[3] = { sin(az), 0, cos(az) };
+  double least = INFINITY;
+  for (int k = 0; k < 3; k++) {
+    const double x = st->set_middle + (k == 2 ? 0 : (k ? 0.5 : -0.5) * st->set_width);
+    const double z = st->set_front + (k == 2 ? MR_SET_APRON : 0);
+    double p[3], ndc[2];
+    for (int c = 0; c < 3; c++) p[c] = x * right[c] + z * front[c];
+    p[1] = st->floor_height + (k == 2 ? 0 : st->set_height);
+    assert_true(mr_view_project(eye, target, st->fov_deg, aspect, p, ndc) > 0.05);
+    least = fmin(least, fmin(1 - fabs(ndc[0]), 1 - fabs(ndc[1])));
+  }
+  return least;
+}
+
 static double within(const box *b, const box *outer) {
   return fmin(fmin(b->lo[0] - outer->lo[0], outer->hi[0] - b->hi[0]),
               fmin(b->lo[1] - outer->lo[1], outer->hi[1] - b->hi[1]));
@@ -164,7 +185,7 @@ static framing frame_show(const mr_scene *s, const frames *f) {
   mr_orbit o = mr_orbit_of_stage(st);
   mr_follow follow = mr_follow_start(MR_FOLLOW_TIME);
   double offset[3] = { 0, 0, 0 };
-  framing out = { INFINITY, INFINITY, 0, INFINITY };
+  framing out = { INFINITY, INFINITY, 0, INFINITY, INFINITY };
   for (size_t k = 0; k < f->count; k++) {
     const double *xyz = f->xyz + k * 3 * f->n;
     if (st->follow) {
@@ -178,6 +199,7 @@ static framing frame_show(const mr_scene *s, const frames *f) {
     double eye[3];
     mr_orbit_eye(&o, eye);
     const box opening = opening_box(st, eye, o.target, aspect);
+    if (!st->follow) out.set = fmin(out.set, set_in_view(st, eye, o.target, aspect));
     size_t groups = (s->n_puppets ? s->n_puppets : 1) + s->n_frames;
     for (size_t g = 0; g < groups; g++) {
       size_t first = 0, count = s->n_particles;
@@ -242,6 +264,12 @@ every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay_and_ins
       fail_msg("%s: a puppet or bar reaches %.3f past the proscenium's opening; the arch "
                "must frame the whole show",
                e->d_name, -fr.opening);
+    if (verbose)
+      printf("%-14s the arch's top and the footlights in view by %.3f\n", e->d_name, fr.set);
+    if (s.stage.proscenium && !(fr.set > 0))
+      fail_msg("%s: the arch's top or the footlights fall %.3f outside the picture; the "
+               "audience must see the theater",
+               e->d_name, -fr.set);
     free(f.t);
     free(f.xyz);
     mr_scene_free(&s);

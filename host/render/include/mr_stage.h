@@ -25,6 +25,9 @@ extern "C" {
 #endif
 
 enum { MR_STAGE_NAME_MAX = 48, MR_STAGE_PATH_MAX = 512 };
+/* How far the stage's front edge stands in front of the proscenium's
+ * plane, m (see mr_stage_def's set). */
+#define MR_SET_APRON 0.35f
 
 /* Where an item starts in its scene file (0, 0: not from a file). */
 typedef struct mr_stage_pos {
@@ -213,7 +216,8 @@ typedef struct mr_stage_def {
    * proscenium is an arch around the stage's opening, set_width x
    * set_height m, its middle set_middle m to the audience's right of the
    * origin, its plane set_front m in front of the origin; the stage's
-   * front edge is just in front of it, and the boards end there. 0 (the
+   * front edge is MR_SET_APRON m in front of it, and the boards end there
+   * (the footlights stand along it). 0 (the
    * default) for the size or the plane: from the show (a scene sizes
    * them so that the opening holds every puppet and bar over the whole
    * show; with nothing sized, 3 x 2.2 m at 1 m). */

@@ -190,8 +190,7 @@ void mr_mesh_free(mr_render *r, mr_gpu_mesh *g);
  * in the arch's plane at the opening's middle; the opening width x
  * height, the posts' width and the header's height; how far the backdrop
  * stands behind the arch; edge: the stage has a front edge (the boards
- * end MR_SET_APRON m in front of the arch). */
-#define MR_SET_APRON 0.35f
+ * end MR_SET_APRON m in front of the arch, mr_stage.h). */
 typedef struct mr_set_frame {
   float origin[3], right[3], front[3];
   float width, height, post, header, deep;

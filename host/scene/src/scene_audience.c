@@ -129,9 +129,13 @@ static double dot(const double a[3], const double b[3]) {
 }
 
 /* The picture's bounds the points must keep to, in the picture's own -1..1
- * (y up): x within +-kx, y from lo to hi, times depth tan(fov / 2). */
+ * (y up): x within +-kx, y from lo to hi, times depth tan(fov / 2). The
+ * first n_show points are the show's, kept above the overlay; the rest
+ * are the set's, which the overlay may cover, so they keep only above
+ * set_lo. */
 typedef struct bounds {
-  double kx, lo, hi;
+  double kx, lo, hi, set_lo;
+  size_t n_show;
 } bounds;
 
 /* Moving the target by delta along up shifts every point's y by -delta,
@@ -144,7 +148,7 @@ static void shift_range(const double *rel, size_t n, double d, const bounds *b, 
   for (size_t i = 0; i < n; i++) {
     const double y = rel[3 * i + 1], depth = d - rel[3 * i + 2];
     *need = fmax(*need, y - b->hi * depth);
-    *room = fmin(*room, y - b->lo * depth);
+    *room = fmin(*room, y - (i < b->n_show ? b->lo : b->set_lo) * depth);
   }
 }
 
@@ -182,6 +186,7 @@ void mr_scene_frame_audience(mr_scene *s, double *all) {
   reach(s, all, mid);
   /* The proscenium's opening is framed too (not with a camera that
    * follows, which moves past it), so the audience sees the theater. */
+  const size_t n_show = n;
   if (st->proscenium && !st->follow) n += mr_scene_set_framed(st, all + 3 * n);
   const double az = st->facing_deg * DEG, el = ELEVATION_DEG * DEG;
   const axes a = axes_of(az, el);
@@ -198,7 +203,8 @@ void mr_scene_frame_audience(mr_scene *s, double *all) {
   const double half = st->fov_deg * DEG / 2, t = mr_sin(half) / mr_cos(half),
                aspect = (double)st->width / st->height;
   const double osd_ndc = 2 * (st->height - osd[1]) / st->height;
-  const bounds b = { t * aspect * (1 - MARGIN), t * (-1 + MARGIN + osd_ndc), t * (1 - MARGIN) };
+  const bounds b = { t * aspect * (1 - MARGIN), t * (-1 + MARGIN + osd_ndc), t * (1 - MARGIN),
+                     t * (-1 + MARGIN / 2), n_show };
   double shift = 0;
   double d = fit(all, n, &b, &shift);
   for (int c = 0; c < 3; c++) st->orbit_target[c] = mid[c] + shift * a.up[c];

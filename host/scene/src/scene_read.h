@@ -216,9 +216,9 @@ void mr_scene_frame_audience(mr_scene *s, double *show);
  * left its size at 0 (scene_set.c). */
 void mr_scene_size_set(mr_scene *s, const double *show, size_t count);
 /* The points of the set the audience's camera frames (the proscenium's
- * opening and a band of the arch about it), at most MR_SET_FRAMED, into
- * xyz; returns how many. */
-enum { MR_SET_FRAMED = 2 };
+ * opening, a band of the arch about it and the footlights' middle), at
+ * most MR_SET_FRAMED, into xyz; returns how many. */
+enum { MR_SET_FRAMED = 3 };
 size_t mr_scene_set_framed(const mr_stage_def *st, double *xyz);
 
 #endif

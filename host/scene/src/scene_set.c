@@ -62,17 +62,22 @@ void mr_scene_size_set(mr_scene *s, const double *all, size_t n) {
 
 /* A band of the arch about the opening's top corners that the audience
  * should see: a twentieth of the opening's height above it, a
- * twenty-fifth of its width each side. (Its foot, the stage's front
- * edge, may go below the picture: the overlay's corner is kept clear for
- * the puppets, not for the boards.) */
+ * twenty-fifth of its width each side; and the middle of the stage's
+ * front edge, where the footlights stand, so the boards' edge is seen
+ * under a puppet that hangs high. (The edge's corners may go below the
+ * picture: the overlay's corner is kept clear for the puppets, not for
+ * the boards.) */
 size_t mr_scene_set_framed(const mr_stage_def *st, double *xyz) {
   double right[3], front[3];
   set_axes(st, right, front);
   const double w = st->set_width / 2 * 1.04, y = st->floor_height + st->set_height * 1.05;
-  for (int k = 0; k < MR_SET_FRAMED; k++) {
+  for (int k = 0; k < 2; k++) {
     const double x = st->set_middle + (k & 1 ? w : -w);
     for (int c = 0; c < 3; c++) xyz[3 * k + c] = x * right[c] + st->set_front * front[c];
     xyz[3 * k + 1] = y;
   }
+  for (int c = 0; c < 3; c++)
+    xyz[6 + c] = st->set_middle * right[c] + (st->set_front + MR_SET_APRON) * front[c];
+  xyz[7] = st->floor_height;
   return MR_SET_FRAMED;
 }
