@@ -183,7 +183,7 @@ static void note(void *user, const char *line) {
  * with `systemctl kill -s USR1`). The number of events. */
 static int pump(status *st) {
   int events = st->lv != NULL ? mr_live_pump(st->lv) : 0;
-  if (!st->quit_sent && (stop_asked || (st->lv != NULL && st->lv->quit))) {
+  if (!st->quit_sent && (stop_asked || (st->lv != NULL && mr_live_should_quit(st->lv)))) {
     st->quit_sent = true;
     mr_show_runner_send(st->r, MR_SHOW_CMD_QUIT);
   }
@@ -421,7 +421,13 @@ static int close_outputs(status *st) {
 static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live *lv, status *st) {
   bool window = window_wanted(a) && !virtual_time;
   if (!window && !a->headless && a->so.out == NULL && a->keys == NULL) return 0;
-  mr_live_def d = { window, a->fullscreen, a->def.n_gloves == 0, a->keys, 60.0, a->no_osd != 0 };
+  mr_live_def d = { window,
+                    a->fullscreen,
+                    a->def.n_gloves == 0,
+                    a->keys,
+                    60.0,
+                    a->no_osd != 0,
+                    a->def.duration > 0 ? a->def.duration : -1.0 };
   if (a->def.fps > 0)
     d.fps = a->def.fps;
   else if (scene->fps > 0)

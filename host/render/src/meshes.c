@@ -247,6 +247,7 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
   *status = MR_RENDER_ERR_GL;
   if (bone_texture_create(r, stage, msg, msg_size) != 0) return -1;
   scenery_create(r, stage);
+  mr_curtain_create(r, stage);
   r->models = calloc(stage->n_models ? stage->n_models : 1, sizeof *r->models);
   if (!r->models) {
     *status = MR_RENDER_ERR_NOMEM;
@@ -286,8 +287,17 @@ void mr_meshes_destroy(mr_render *r) {
   r->n_models = 0;
   mesh_free(r, &r->floor);
   mesh_free(r, &r->backdrop);
+  mesh_free(r, &r->curtain);
   if (r->bone_tex) r->gl.DeleteTextures(1, &r->bone_tex);
   r->bone_tex = 0;
+}
+
+void mr_mesh_upload(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m) {
+  upload_mesh(r, g, m, NULL, NULL);
+}
+
+void mr_mesh_free(mr_render *r, mr_gpu_mesh *g) {
+  mesh_free(r, g);
 }
 
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m) {

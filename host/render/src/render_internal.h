@@ -61,6 +61,11 @@ typedef struct mr_frame {
   vec3 eye, sun_dir, sun_color, ambient, sky;
   float day;    /* 1 in daylight, 0 at night */
   bool shadows; /* the shadow map holds this frame's sun */
+  /* The follow spot (the draw list's), lit where follow is set: never in
+   * the kept scenery nor on the curtain (curtain.c says why). */
+  bool follow;
+  vec3 follow_pos, follow_dir;
+  float curtain; /* the curtain's openness, 0 closed to 1 open */
 } mr_frame;
 
 struct mr_text; /* text.c */
@@ -84,7 +89,7 @@ struct mr_render {
   bool drawn;
   /* The still scenery, kept (still.c). */
   GLuint still_fbo, still_color, still_depth;
-  float still_key[28], still_last[28]; /* what is kept; the last frame's */
+  float still_key[32], still_last[32]; /* what is kept; the last frame's */
   bool still_kept;
   uint8_t *read_buf; /* the read back's staging buffer (fbo.c) */
   size_t read_size;
@@ -105,6 +110,11 @@ struct mr_render {
   size_t n_models;
   mr_gpu_mesh floor, backdrop;
   GLuint bone_tex;
+  /* The front curtain's half (curtain.c), and the follow spot's slot
+   * among the spots (-1: none). */
+  mr_gpu_mesh curtain;
+  mr_curtain_place curtain_place;
+  int follow_slot;
   /* Stars and lines (sky.c, lines.c). */
   GLuint star_vao, star_vbo, line_vao, line_vbo;
   GLsizei n_stars;
@@ -147,6 +157,10 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
                      size_t msg_size, mr_render_status *status);
 void mr_meshes_destroy(mr_render *r);
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m);
+/* A mesh made here (the curtain's), uploaded into g; and g freed. */
+struct mr_mesh;
+void mr_mesh_upload(mr_render *r, mr_gpu_mesh *g, const struct mr_mesh *m);
+void mr_mesh_free(mr_render *r, mr_gpu_mesh *g);
 /* How many pixels a metre covers where a model is drawn: k at 1 m from
  * the eye, falling as the distance grows; and, drawn into the shadow map,
  * no more than its texels a metre, k_map (0: not). */
@@ -173,6 +187,10 @@ void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 typedef struct mr_still_rects {
   int backdrop[MR_STILL_BANDS][4], floor[MR_STILL_BANDS][4];
   int n_backdrop, n_floor;
+  /* Where the follow spot's cone meets each surface (it moves, so the
+   * kept scenery is drawn without it). */
+  int spot_backdrop[MR_STILL_BANDS][4], spot_floor[MR_STILL_BANDS][4];
+  int n_spot_backdrop, n_spot_floor;
 } mr_still_rects;
 int mr_still_create(mr_render *r, char *msg, size_t msg_size);
 void mr_still_destroy(mr_render *r);
@@ -195,6 +213,16 @@ void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, co
 /* The casters into the shadow map, with the shadow programs, seen
  * through light_vp. */
 void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_frame *f);
+/* The front curtain at f->curtain's openness, lit (no shadow, no follow
+ * spot); nothing when the stage has none. */
+void mr_scene_draw_curtain(mr_render *r, const mr_frame *f);
+
+/* curtain.c: the curtain's half as a pleated strip, made at create; the
+ * model matrix of a half (side -1 left, +1 right) at an openness; the
+ * follow spot's slot and its light in the frame. */
+void mr_curtain_create(mr_render *r, const mr_stage_def *stage);
+void mr_curtain_matrix(const mr_render *r, float openness, int side, mat4 out);
+void mr_follow_spot_frame(const mr_render *r, const mr_draw_list *list, mr_frame *f);
 
 /* shadow.c */
 int mr_shadow_create(mr_render *r, char *msg, size_t msg_size);

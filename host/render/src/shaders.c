@@ -75,6 +75,8 @@ static bool has_skins(const mr_stage_def *s) {
 static int mesh_programs(mr_render *r, char *msg, size_t msg_size) {
   int n_spots = r->stage.lights.n_spots < 8 ? r->stage.lights.n_spots : 8;
   n_spots = n_spots > 0 ? n_spots : 0;
+  /* The follow spot takes the next slot, when one is free. */
+  r->follow_slot = r->stage.follow_spot.show && n_spots < 8 ? n_spots++ : -1;
   char vs[4096], vs_skin[4096], fs[8192], fs_floor[8192], fs_backdrop[8192];
   if (mr_src_mesh_vs_make(vs, sizeof vs, 0) != 0 ||
       mr_src_mesh_vs_make(vs_skin, sizeof vs_skin, 1) != 0 ||

@@ -208,8 +208,10 @@ static int read_rigging(mr_reader *r, const mr_ynode *n, const char *key, bool *
 }
 
 static int read_stage_section(mr_reader *r, const mr_ynode *n) {
-  static const char *const keys[] = { "size",    "time_of_day", "floor",   "backdrop",       "sky",
-                                      "strings", "frames",      "spheres", "constellations", NULL };
+  static const char *const keys[] = { "size",     "time_of_day", "floor",
+                                      "backdrop", "sky",         "strings",
+                                      "frames",   "spheres",     "constellations",
+                                      "curtain",  "follow_spot", NULL };
   static const mr_scene_field tod = { "time_of_day", MR_SCENE_FIELD_UNIT,
                                       offsetof(mr_stage_def, time_of_day), 0, 0 };
   mr_stage_def *d = &r->scene->stage;
@@ -222,7 +224,7 @@ static int read_stage_section(mr_reader *r, const mr_ynode *n) {
       mr_scene_read_optional(r, n, "constellations", read_constellations) != 0 ||
       read_rigging(r, n, "strings", &d->show_strings, d->string_color) != 0 ||
       read_rigging(r, n, "frames", &d->show_frames, d->frame_color) != 0 ||
-      read_bool_at(r, n, "spheres", &spheres) != 0)
+      read_bool_at(r, n, "spheres", &spheres) != 0 || mr_scene_read_curtain(r, n) != 0)
     return -1;
   return 0;
 }

@@ -221,7 +221,12 @@ static mr_stage_status make_slots(mr_stage *s, const double *rest, char *msg, si
     it->scale[1] = m->display == MR_DISPLAY_LINK ? 0 : 1;
     it->material = material;
   }
-  s->list = (mr_draw_list){ s->items, s->n_items, s->skins, s->n_skins, s->lines, 0 };
+  memset(&s->list, 0, sizeof s->list);
+  s->list.items = s->items, s->list.n_items = s->n_items;
+  s->list.skins = s->skins, s->list.n_skins = s->n_skins;
+  s->list.lines = s->lines;
+  s->list.curtain = 1; /* until the stage is told the time */
+  if (mr_stage_spot_prepare(s) != 0) return fail(msg, size, MR_STAGE_ERR_NOMEM, "out of memory");
   return MR_STAGE_OK;
 }
 
@@ -283,6 +288,8 @@ void mr_stage_destroy(mr_stage *s) {
   free(s->neighbours);
   free(s->fit);
   free(s->lines);
+  free(s->spot_points);
+  free(s->spot_xyz);
   free(s);
 }
 

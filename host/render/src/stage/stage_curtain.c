@@ -1,0 +1,129 @@
+/* The moving part of the set: the front curtain, open as a function of
+ * the show's time, and the follow spot, aimed at the puppets each frame.
+ * Both are worked out from what a frame already has (its time, its
+ * points), never from the frames before it, so any frame drawn alone
+ * looks as it does in a run. */
+#include "stage_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+/* 0 at x <= 0, 1 at x >= 1, and a smooth step between (no jolt as the
+ * curtain starts or stops). */
+static double ease(double x) {
+  if (!(x > 0)) return 0;
+  if (x >= 1) return 1;
+  return x * x * (3 - 2 * x);
+}
+
+double mr_curtain_openness(const mr_curtain_def *c, double t, double end) {
+  if (c == NULL || !c->show) return 1;
+  if (!isfinite(t)) return 0;
+  double open = c->open_s > 0 ? ease(t / c->open_s) : (t >= 0 ? 1 : 0);
+  if (!isfinite(end) || end < 0) return open;
+  double left = end - t;
+  double shut = c->close_s > 0 ? ease(left / c->close_s) : (left > 0 ? 1 : 0);
+  return fmin(open, shut);
+}
+
+mr_stage_status mr_stage_set_time(mr_stage *s, double t, double end) {
+  if (s == NULL || !isfinite(t)) return MR_STAGE_ERR_ARG;
+  s->list.curtain = mr_curtain_openness(&s->def.curtain, t, end);
+  return MR_STAGE_OK;
+}
+
+/* The audience's side: the unit normal towards it, and the axis to its
+ * right (as the audience's camera has them, scene_audience.c). */
+static void audience_axes(const mr_stage_def *d, double normal[3], double right[3]) {
+  const double f = d->facing_deg * DEG;
+  normal[0] = mr_sin(f), normal[1] = 0, normal[2] = mr_cos(f);
+  right[0] = mr_cos(f), right[1] = 0, right[2] = -mr_sin(f);
+}
+
+mr_curtain_place mr_curtain_place_of(const mr_stage_def *d) {
+  mr_curtain_place p;
+  audience_axes(d, p.normal, p.right);
+  const mr_curtain_def *c = &d->curtain;
+  const double front = d->floor ? d->floor_size / 2 - 0.15 : 3.85;
+  /* The audience's eye, and how far in front of the stage's middle it is. */
+  mr_orbit o = mr_orbit_of_stage(d);
+  double eye[3];
+  mr_orbit_eye(&o, eye);
+  const double eye_along = eye[0] * p.normal[0] + eye[2] * p.normal[2];
+  double dist = c->distance > 0 ? c->distance : fmin(front, eye_along - 0.4 * o.distance);
+  for (int k = 0; k < 3; k++) p.origin[k] = dist * p.normal[k];
+  p.origin[1] = d->floor_height;
+  /* The view where the curtain hangs: its half-height, and its width. */
+  const double half = o.fov_deg * DEG / 2, gap = fmax(eye_along - dist, 0.1);
+  const double up = gap * mr_sin(half) / mr_cos(half);
+  const double aspect = d->width > 0 && d->height > 0 ? (double)d->width / d->height : 16.0 / 9;
+  /* A little wider than the view, so that open, its gathered halves
+   * frame the picture's sides as a theater's do; never wider than the
+   * stage. */
+  const double stage_w = d->floor ? d->floor_size : 8;
+  p.width = c->width > 0 ? c->width : fmin(stage_w, 2.3 * up * aspect);
+  /* Past the view's top where the curtain hangs, with room to spare. */
+  const double top = eye[1] + 1.3 * up - d->floor_height;
+  p.height = c->height > 0 ? c->height : fmax(2.4, top + 0.2);
+  return p;
+}
+
+void mr_follow_spot_position(const mr_stage_def *d, double out[3]) {
+  double normal[3], right[3];
+  audience_axes(d, normal, right);
+  const double *q = d->follow_spot.position;
+  for (int k = 0; k < 3; k++) out[k] = q[0] * right[k] + q[2] * normal[k];
+  out[1] += q[1];
+}
+
+static bool listed(const int *ids, size_t n, int id) {
+  for (size_t i = 0; i < n; i++)
+    if (ids[i] == id) return true;
+  return false;
+}
+
+/* A model's points: its particles, or a freeform model's bones. */
+static int model_points(const mr_model_def *m, const int **ids) {
+  static const int needs[] = { 1, 2, 3, 0 };
+  if (m->display == MR_DISPLAY_FREEFORM) {
+    *ids = m->bones;
+    return m->n_bones;
+  }
+  *ids = m->particles;
+  return needs[m->display];
+}
+
+int mr_stage_spot_prepare(mr_stage *s) {
+  const mr_stage_def *d = &s->def;
+  size_t cap = 0, n_bars = 0;
+  for (size_t k = 0; k < d->n_frames; k++) n_bars += (size_t)d->frame_point_count[k];
+  for (size_t i = 0; i < d->n_models; i++) {
+    const int *ids;
+    cap += (size_t)model_points(&s->models[i], &ids);
+  }
+  s->spot_points = malloc((cap + 1) * sizeof *s->spot_points);
+  s->spot_xyz = malloc(3 * (cap + 1) * sizeof *s->spot_xyz);
+  if (s->spot_points == NULL || s->spot_xyz == NULL) return -1;
+  s->n_spot = 0;
+  for (size_t i = 0; i < d->n_models; i++) {
+    const int *ids;
+    int c = model_points(&s->models[i], &ids);
+    for (int j = 0; j < c; j++)
+      if (!listed(d->frame_points, n_bars, ids[j]) && !listed(s->spot_points, s->n_spot, ids[j]))
+        s->spot_points[s->n_spot++] = ids[j];
+  }
+  return 0;
+}
+
+void mr_stage_spot_update(mr_stage *s) {
+  mr_draw_follow_spot *f = &s->list.follow_spot;
+  f->on = s->def.follow_spot.show && s->n_spot > 0;
+  if (!f->on) return;
+  for (size_t i = 0; i < s->n_spot; i++)
+    memcpy(&s->spot_xyz[3 * i], &s->shown[3 * (size_t)s->spot_points[i]], 3 * sizeof(double));
+  mr_box_middle(s->spot_xyz, s->n_spot, f->target);
+  mr_follow_spot_position(&s->def, f->position);
+}
