@@ -374,9 +374,10 @@ typedef struct mr_draw_list {
   size_t n_skins;
   const mr_draw_line *lines; /* strings and control frames */
   size_t n_lines;
-  /* The curtain's openness this frame, 0 closed to 1 open
-   * (mr_stage_set_time); 1 until the stage is told the time. */
-  double curtain;
+  /* How far the curtain is closed this frame, 1 - its openness
+   * (mr_stage_set_time): 0 open (a stage not told the time, and a list
+   * made by hand and zeroed), 1 closed. */
+  double curtain_closed;
   mr_draw_follow_spot follow_spot;
 } mr_draw_list;
 

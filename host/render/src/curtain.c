@@ -92,7 +92,7 @@ void mr_follow_spot_frame(const mr_render *r, const mr_draw_list *list, mr_frame
   f->follow = false;
   glm_vec3_zero(f->follow_pos);
   glm_vec3_copy((vec3){ 0, -1, 0 }, f->follow_dir);
-  f->curtain = list ? (float)list->curtain : 1;
+  f->curtain = list ? (float)(1 - list->curtain_closed) : 1;
   if (r->follow_slot < 0 || !list || !list->follow_spot.on) return;
   const mr_draw_follow_spot *s = &list->follow_spot;
   vec3 dir;

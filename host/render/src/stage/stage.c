@@ -225,7 +225,6 @@ static mr_stage_status make_slots(mr_stage *s, const double *rest, char *msg, si
   s->list.items = s->items, s->list.n_items = s->n_items;
   s->list.skins = s->skins, s->list.n_skins = s->n_skins;
   s->list.lines = s->lines;
-  s->list.curtain = 1; /* until the stage is told the time */
   if (mr_stage_spot_prepare(s) != 0) return fail(msg, size, MR_STAGE_ERR_NOMEM, "out of memory");
   return MR_STAGE_OK;
 }

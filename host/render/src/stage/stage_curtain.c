@@ -31,7 +31,7 @@ double mr_curtain_openness(const mr_curtain_def *c, double t, double end) {
 
 mr_stage_status mr_stage_set_time(mr_stage *s, double t, double end) {
   if (s == NULL || !isfinite(t)) return MR_STAGE_ERR_ARG;
-  s->list.curtain = mr_curtain_openness(&s->def.curtain, t, end);
+  s->list.curtain_closed = 1 - mr_curtain_openness(&s->def.curtain, t, end);
   return MR_STAGE_OK;
 }
 
