@@ -53,7 +53,9 @@ mr_curtain_place mr_curtain_place_of(const mr_stage_def *d) {
   double eye[3];
   mr_orbit_eye(&o, eye);
   const double eye_along = eye[0] * p.normal[0] + eye[2] * p.normal[2];
-  double dist = c->distance > 0 ? c->distance : fmin(front, eye_along - 0.4 * o.distance);
+  /* (In front of the stage's middle even when the orbit is turned away.) */
+  double dist =
+      c->distance > 0 ? c->distance : fmax(0.3, fmin(front, eye_along - 0.4 * o.distance));
   for (int k = 0; k < 3; k++) p.origin[k] = dist * p.normal[k];
   p.origin[1] = d->floor_height;
   /* The view where the curtain hangs: its half-height, and its width. */
