@@ -237,7 +237,8 @@ static void osd_lines(mr_live *lv, const mr_show_frame *f) {
                      mr_glove_state_name(v->state), lateness);
   }
   const char *cam = sv->camera >= 0 ? sv->scene->stage.cameras[sv->camera].name : "orbit";
-  mr_stageview_osd(sv, "%s  day %.2f  h hides, q quits", cam, sv->time_of_day);
+  mr_stageview_osd(sv, "%s  day %.2f  h hides, %s", cam, sv->time_of_day,
+                   lv->closing ? "q: at once" : "q quits");
 }
 
 bool mr_live_should_quit(mr_live *lv) {

@@ -111,6 +111,7 @@ static void pool_follows(mr_render_backend b) {
   staged g;
   staged_init(&g, -1);
   g.s.stage.lights.sun_intensity = 0.3; /* an evening sun: the pool shows */
+  g.s.stage.follow_spot.angle_deg = 12; /* wider than the default 8 */
   mr_render *r = fx_render(b, &g.s);
   uint8_t *left = draw_at(r, &g, -1, 5, 10);
   uint8_t *right = draw_at(r, &g, 1, 5, 10);

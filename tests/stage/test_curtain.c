@@ -82,6 +82,8 @@ static mr_stage *two_points_and_a_bar(const double *rest) {
   m[2].particles[0] = 2;
   m[2].particles[1] = 3;
   mr_stage_def d = mr_default_stage_def();
+  assert_false(d.follow_spot.show); /* asked for only */
+  d.follow_spot.show = true;
   d.models = m;
   d.n_models = 3;
   d.frame_points = bar;

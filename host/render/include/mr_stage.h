@@ -198,13 +198,14 @@ typedef struct mr_curtain_def {
  * points alone, it is reproducible like the curtain. It takes one of
  * the MR_STAGE_MAX_SPOTS slots. */
 typedef struct mr_follow_spot_def {
-  bool show;          /* default true */
+  bool show;          /* default false: its moving pool is lit again every
+                         frame, which software GL pays for */
   double position[3]; /* where it hangs in the audience's frame (turned by
                          camera.facing): x to their right, y up, z towards
                          them; default (0, 3.2, 4) */
-  double angle_deg;   /* half-angle of its cone, default 12 */
+  double angle_deg;   /* half-angle of its cone, default 8 */
   float color[3];     /* default a warm white (1, 0.93, 0.8) */
-  double intensity;   /* default 1.2 */
+  double intensity;   /* default 1.5 */
 } mr_follow_spot_def;
 
 typedef struct mr_stage_def {
