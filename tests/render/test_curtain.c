@@ -144,21 +144,21 @@ static int max_apart(const uint8_t *a, const uint8_t *b) {
   return m;
 }
 
-/* In software with one sample the scenery is kept from the third frame
- * that stays (still.c). A moved puppet moves the follow spot: over the
- * kept picture its pool is lit again where it falls now, and nowhere is
- * the pool it left behind. */
+/* In software (by default one sample, edges smoothed) the scenery is
+ * kept from the third frame that stays (still.c). A moved puppet moves
+ * the follow spot: over the kept picture its pool is lit again where it
+ * falls now, and nowhere is the pool it left behind. */
 static void test_a_frame_over_the_kept_scenery_is_the_frame_drawn_whole(void **state) {
   (void)state;
   staged g;
   staged_init(&g, -0.8);
-  mr_render *kept = fx_render_samples(MR_RENDER_OSMESA, &g.s, 1);
+  mr_render *kept = fx_render(MR_RENDER_OSMESA, &g.s);
   uint8_t *first = draw_at(kept, &g, -0.8, 5, 10);
   for (int k = 0; k < 3; k++) free(draw_at(kept, &g, -0.8, 5, 10));
   uint8_t *later = draw_at(kept, &g, -0.8, 5, 10);
   assert_true(max_apart(first, later) <= 1);
   uint8_t *moved = draw_at(kept, &g, 0.9, 5, 10);
-  mr_render *whole = fx_render_samples(MR_RENDER_OSMESA, &g.s, 1);
+  mr_render *whole = fx_render(MR_RENDER_OSMESA, &g.s);
   uint8_t *fresh = draw_at(whole, &g, 0.9, 5, 10);
   fx_save("follow_spot_kept", moved);
   int apart = max_apart(moved, fresh);
