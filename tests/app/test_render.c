@@ -111,7 +111,8 @@ static void the_same_scene_and_options_give_the_same_png_bytes(void **state) {
 }
 
 /* --every 3 keeps frames 0, 3, 6, 9; --frame 0.45 draws the frame at
- * 0.5 s alone, the same picture as the sixth of the whole run. */
+ * 0.5 s alone, the same picture as the sixth of the whole run (the
+ * curtain as far open in both: it follows show time and the end). */
 static void every_and_frame_choose_which_frames_are_written(void **state) {
   (void)state;
   char *dir = tt_tmpdir(), *one = tt_tmpdir();

@@ -296,10 +296,6 @@ void mr_mesh_upload(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m) {
   upload_mesh(r, g, m, NULL, NULL);
 }
 
-void mr_mesh_free(mr_render *r, mr_gpu_mesh *g) {
-  mesh_free(r, g);
-}
-
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m) {
   if (!m->vao) return;
   r->gl.BindVertexArray(m->vao);

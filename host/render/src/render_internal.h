@@ -157,10 +157,10 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
                      size_t msg_size, mr_render_status *status);
 void mr_meshes_destroy(mr_render *r);
 void mr_mesh_draw(mr_render *r, const mr_gpu_mesh *m);
-/* A mesh made here (the curtain's), uploaded into g; and g freed. */
+/* A mesh made here (the curtain's), uploaded into g (freed with the
+ * meshes). */
 struct mr_mesh;
 void mr_mesh_upload(mr_render *r, mr_gpu_mesh *g, const struct mr_mesh *m);
-void mr_mesh_free(mr_render *r, mr_gpu_mesh *g);
 /* How many pixels a metre covers where a model is drawn: k at 1 m from
  * the eye, falling as the distance grows; and, drawn into the shadow map,
  * no more than its texels a metre, k_map (0: not). */
