@@ -43,6 +43,44 @@ static void audience_axes(const mr_stage_def *d, double normal[3], double right[
   right[0] = mr_cos(f), right[1] = 0, right[2] = -mr_sin(f);
 }
 
+static double dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void unit3(double v[3]) {
+  double n = sqrt(dot3(v, v));
+  for (int k = 0; k < 3; k++) v[k] = n > 0 ? v[k] / n : 0;
+}
+
+/* How far across (along p->right, either way) and how high the view of
+ * the orbit o reaches on the curtain's plane: where its four corner rays
+ * meet the plane. False when a ray misses it (it looks along the plane,
+ * or the curtain stands behind the eye). */
+static bool view_on_plane(const mr_orbit *o, double aspect, const mr_curtain_place *p,
+                          double *across, double *top) {
+  double eye[3], f[3], r[3], u[3];
+  mr_orbit_eye(o, eye);
+  for (int k = 0; k < 3; k++) f[k] = o->target[k] - eye[k];
+  unit3(f);
+  r[0] = -f[2], r[1] = 0, r[2] = f[0]; /* f x (0, 1, 0) */
+  unit3(r);
+  u[0] = r[1] * f[2] - r[2] * f[1], u[1] = r[2] * f[0] - r[0] * f[2];
+  u[2] = r[0] * f[1] - r[1] * f[0];
+  const double half = o->fov_deg * DEG / 2, ty = mr_sin(half) / mr_cos(half), tx = ty * aspect;
+  *across = 0, *top = -INFINITY;
+  for (int c = 0; c < 4; c++) {
+    double dir[3], hit[3], sx = c & 1 ? 1 : -1, sy = c & 2 ? 1 : -1;
+    for (int k = 0; k < 3; k++) dir[k] = f[k] + sx * tx * r[k] + sy * ty * u[k];
+    double rel[3] = { p->origin[0] - eye[0], 0, p->origin[2] - eye[2] };
+    double along = dot3(dir, p->normal), t = along != 0 ? dot3(rel, p->normal) / along : -1;
+    if (!(t > 0)) return false;
+    for (int k = 0; k < 3; k++) hit[k] = eye[k] + t * dir[k] - p->origin[k];
+    *across = fmax(*across, fabs(dot3(hit, p->right)));
+    *top = fmax(*top, hit[1]);
+  }
+  return true;
+}
+
 mr_curtain_place mr_curtain_place_of(const mr_stage_def *d) {
   mr_curtain_place p;
   audience_axes(d, p.normal, p.right);
@@ -52,24 +90,22 @@ mr_curtain_place mr_curtain_place_of(const mr_stage_def *d) {
   mr_orbit o = mr_orbit_of_stage(d);
   double eye[3];
   mr_orbit_eye(&o, eye);
-  const double eye_along = eye[0] * p.normal[0] + eye[2] * p.normal[2];
+  const double eye_along = dot3(eye, p.normal);
   /* (In front of the stage's middle even when the orbit is turned away.) */
   double dist =
       c->distance > 0 ? c->distance : fmax(0.3, fmin(front, eye_along - 0.4 * o.distance));
   for (int k = 0; k < 3; k++) p.origin[k] = dist * p.normal[k];
   p.origin[1] = d->floor_height;
-  /* The view where the curtain hangs: its half-height, and its width. */
-  const double half = o.fov_deg * DEG / 2, gap = fmax(eye_along - dist, 0.1);
-  const double up = gap * mr_sin(half) / mr_cos(half);
+  /* A little wider than the view where it hangs (seen from the side, its
+   * farther reach), so that open its gathered halves frame the picture's
+   * sides as a theater's do, and never wider than the stage; and past
+   * the view's top, with room to spare. */
   const double aspect = d->width > 0 && d->height > 0 ? (double)d->width / d->height : 16.0 / 9;
-  /* A little wider than the view, so that open, its gathered halves
-   * frame the picture's sides as a theater's do; never wider than the
-   * stage. */
   const double stage_w = d->floor ? d->floor_size : 8;
-  p.width = c->width > 0 ? c->width : fmin(stage_w, 2.3 * up * aspect);
-  /* Past the view's top where the curtain hangs, with room to spare. */
-  const double top = eye[1] + 1.3 * up - d->floor_height;
-  p.height = c->height > 0 ? c->height : fmax(2.4, top + 0.2);
+  double across = stage_w / 2, top = 2.2;
+  if (!view_on_plane(&o, aspect, &p, &across, &top)) across = stage_w / 2, top = 2.2;
+  p.width = c->width > 0 ? c->width : fmin(stage_w, 2.3 * across);
+  p.height = c->height > 0 ? c->height : fmax(2.4, top + 0.3);
   return p;
 }
 
