@@ -103,8 +103,8 @@ mr_stage_def mr_default_stage_def(void) {
   set3f(d.curtain.color, 0.42f, 0.02f, 0.04f);
   d.curtain.open_s = 1.5;
   d.curtain.close_s = 1.5;
-  /* Off unless asked: in software its pool is lit again every frame, a
-   * third more of a 1280x720 frame (host/render/README.md). */
+  /* Off unless asked: in software its pool is lit again every frame,
+   * 38 % more of a 1280x720 frame (host/render/README.md). */
   d.follow_spot.show = false;
   set3(d.follow_spot.position, 0, 3.2, 4);
   d.follow_spot.angle_deg = 8;
