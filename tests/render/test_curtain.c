@@ -163,6 +163,16 @@ static void test_a_frame_over_the_kept_scenery_is_the_frame_drawn_whole(void **s
   fx_save("follow_spot_kept", moved);
   int apart = max_apart(moved, fresh);
   if (apart > 1) fail_msg("the frame over the kept scenery is %d apart from the whole", apart);
+  /* The curtain half open, drawn over a kept picture without it. */
+  for (int k = 0; k < 3; k++) free(draw_at(kept, &g, 0.9, 0.75, 10));
+  uint8_t *half = draw_at(kept, &g, 0.9, 0.75, 10);
+  mr_render *whole2 = fx_render(MR_RENDER_OSMESA, &g.s);
+  uint8_t *half_whole = draw_at(whole2, &g, 0.9, 0.75, 10);
+  apart = max_apart(half, half_whole);
+  if (apart > 1) fail_msg("the moving curtain over the kept scenery is %d apart", apart);
+  free(half);
+  free(half_whole);
+  mr_render_destroy(whole2);
   free(first);
   free(later);
   free(moved);

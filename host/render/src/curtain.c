@@ -10,9 +10,9 @@
  * velvet.
  *
  * It is lit without shadows and without the follow spot: the still
- * scenery (still.c) keeps it while it stands (open or closed), and a
- * frame drawn whole must give the same pixels as one drawn over the kept
- * picture. Only while it moves is it drawn every frame.
+ * scenery (still.c) keeps it while it is open, it is drawn over the kept
+ * picture while it is closed or moving, and either way a frame drawn
+ * whole must give the same pixels as one drawn over the kept picture.
  *
  * The follow spot is one more spot of the lit shader (its slot is the
  * last), aimed each frame at the draw list's target. */

@@ -19,8 +19,9 @@
 
 #include "render_internal.h"
 
-/* The key has the camera's matrix, the sun, the ambient, the sky and how
- * open the curtain is (the kept picture holds it while it stands). */
+/* The key has the camera's matrix, the sun, the ambient, the sky and
+ * whether the curtain is open (the kept picture holds it then; closed or
+ * moving it is drawn over the kept picture every frame, scene.c). */
 #define KEY_LEN (16 + 4 * 3 + 1)
 
 int mr_still_create(mr_render *r, char *msg, size_t msg_size) {
@@ -65,7 +66,7 @@ static int still_state(mr_render *r, const mr_frame *f) {
   memcpy(k + 19, f->sun_color, 3 * sizeof(float));
   memcpy(k + 22, f->ambient, 3 * sizeof(float));
   memcpy(k + 25, f->sky, 3 * sizeof(float));
-  k[28] = f->curtain;
+  k[28] = f->curtain >= 1 ? 1.0f : 0.0f;
   if (r->still_kept && memcmp(k, r->still_key, sizeof k) == 0) return 1;
   bool stayed = memcmp(k, r->still_last, sizeof k) == 0;
   memcpy(r->still_last, k, sizeof k);
@@ -88,7 +89,7 @@ static void still_redraw(mr_render *r, const mr_frame *f) {
   mr_frame lit = *f;
   lit.shadows = false;
   lit.follow = false;
-  mr_scene_draw_curtain(r, &lit);
+  if (f->curtain >= 1) mr_scene_draw_curtain(r, &lit);
   mr_scene_draw_scenery(r, &lit, true, true);
   gl->UseProgram(0);
   r->still_kept = true;
