@@ -256,8 +256,9 @@ void mr_scene_draw_curtain(mr_render *r, const mr_frame *f) {
 
 void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
                        const mr_still_rects *still) {
-  /* Drawn whole, the curtain goes first: closed, it hides the rest. */
-  if (!still) mr_scene_draw_curtain(r, f);
+  /* The curtain goes first (closed, it hides the rest): drawn whole, or
+   * over a kept picture that holds it only when it is open. */
+  if (!still || f->curtain < 1) mr_scene_draw_curtain(r, f);
   r->gl.UseProgram(r->prog_mesh);
   set_lights(r, r->prog_mesh, f);
   mr_lod_scale ls = lod_scale(r, f);
