@@ -9,7 +9,10 @@
  * true under the stretch); a high roughness and a deep red read as
  * velvet.
  *
- * It is lit without shadows and without the follow spot: the still
+ * It is lit by the ambient and the sun alone, without the sun's shadow
+ * and without spots (the items' shader with none: a closed or moving
+ * curtain is shaded every frame over much of the picture, and the spots
+ * were a third of its cost). So the still
  * scenery (still.c) keeps it while it is open, it is drawn over the kept
  * picture while it is closed or moving, and either way a frame drawn
  * whole must give the same pixels as one drawn over the kept picture.

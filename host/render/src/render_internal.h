@@ -99,6 +99,7 @@ struct mr_render {
   GLuint prog_scenery;                    /* the floor's lit program (its checkerboard) */
   GLuint prog_backdrop;                   /* the backdrop's */
   GLuint prog_smooth_stars;               /* the smoothing over the stars (post.c) */
+  GLuint prog_curtain;                    /* the items' without spots (curtain.c); 0: none */
   /* The sun's shadow map (shadow.c). */
   GLuint shadow_fbo, shadow_tex;
   int shadow_size;

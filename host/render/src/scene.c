@@ -234,11 +234,11 @@ static void draw_still_shadows(mr_render *r, const mr_frame *f, const mr_still_r
 }
 
 void mr_scene_draw_curtain(mr_render *r, const mr_frame *f) {
-  if (!r->curtain.vao) return;
+  if (!r->curtain.vao || !r->prog_curtain) return;
   mr_frame lit = *f;
   lit.shadows = false;
   lit.follow = false;
-  GLuint p = r->prog_mesh;
+  GLuint p = r->prog_curtain;
   r->gl.UseProgram(p);
   set_lights(r, p, &lit);
   mr_material_def m = mr_default_material_def();
