@@ -78,6 +78,7 @@ typedef struct job {
   int last_tenth;
   bool tty, done, failed;
   double wall0, draw_wall, last_t;
+  double end; /* the show's end, for the curtain; -1: a take's, not known ahead */
   char msg[700];
   char frame_path[600];
   uint64_t hash;
@@ -209,6 +210,7 @@ static void one_picture(job *j, double t, const double *xyz, size_t n) {
 static void frame(job *j, double t, const double *xyz, size_t n) {
   if (j->failed) return;
   mr_stageview_track(&j->sv, t, xyz, n);
+  mr_stageview_set_time(&j->sv, t, j->end);
   if (j->a->has_frame) {
     one_picture(j, t, xyz, n);
     return;
@@ -358,6 +360,10 @@ static int render_scene(job *j, const mr_scene *scene) {
   }
   double duration = a->duration > 0 ? a->duration : scene->duration > 0 ? scene->duration : 10;
   if (a->n_takes == 0 || a->duration > 0) j->total = (uint64_t)floor(duration * j->fps + 1e-9) + 1;
+  /* The curtain closes over the show's last seconds wherever its end is
+   * known, for every frame alike: --frame T shows what a whole render's
+   * frame at T shows. */
+  j->end = a->n_takes == 0 || a->duration > 0 ? duration : -1;
   j->wall0 = wall_now();
   char err_text[1100] = "";
   int run_rc = run_frames(j, scene, err_text, sizeof err_text);

@@ -60,8 +60,9 @@ void mr_cmd_run_usage(void) {
          "Keys: space pause, . single step, s slow motion, r reset, n day/night,\n"
          "[ ] turn the day knob, m the next materials, c the collision spheres,\n"
          "h or F1 the OSD, p or F12 a screenshot (-o DIR, else here), f or F11\n"
-         "fullscreen, q or Esc quit, 1-8 the scene's cameras,\n"
-         "0 the orbit camera; drag to orbit, the wheel zooms.\n"
+         "fullscreen, q or Esc quit (the curtain closes first; q again: at once),\n"
+         "1-8 the scene's cameras, 0 the orbit camera; drag to orbit, the wheel\n"
+         "zooms.\n"
          "\n"
          "options:\n"
          "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], serial:auto, pty:PATH,\n"
@@ -183,7 +184,7 @@ static void note(void *user, const char *line) {
  * with `systemctl kill -s USR1`). The number of events. */
 static int pump(status *st) {
   int events = st->lv != NULL ? mr_live_pump(st->lv) : 0;
-  if (!st->quit_sent && (stop_asked || (st->lv != NULL && st->lv->quit))) {
+  if (!st->quit_sent && (stop_asked || (st->lv != NULL && mr_live_should_quit(st->lv)))) {
     st->quit_sent = true;
     mr_show_runner_send(st->r, MR_SHOW_CMD_QUIT);
   }
@@ -421,7 +422,13 @@ static int close_outputs(status *st) {
 static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live *lv, status *st) {
   bool window = window_wanted(a) && !virtual_time;
   if (!window && !a->headless && a->so.out == NULL && a->keys == NULL) return 0;
-  mr_live_def d = { window, a->fullscreen, a->def.n_gloves == 0, a->keys, 60.0, a->no_osd != 0 };
+  mr_live_def d = { window,
+                    a->fullscreen,
+                    a->def.n_gloves == 0,
+                    a->keys,
+                    60.0,
+                    a->no_osd != 0,
+                    a->def.duration > 0 ? a->def.duration : -1.0 };
   if (a->def.fps > 0)
     d.fps = a->def.fps;
   else if (scene->fps > 0)

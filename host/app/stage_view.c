@@ -48,6 +48,10 @@ void mr_stageview_track(mr_stageview *sv, double t, const double *xyz, size_t n)
   for (int c = 0; c < 3; c++) sv->orbit.target[c] = sv->follow.pos[c] + sv->follow_offset[c];
 }
 
+void mr_stageview_set_time(mr_stageview *sv, double t, double end) {
+  if (sv->stage != NULL) mr_stage_set_time(sv->stage, t, end);
+}
+
 /* The window of wdef at the size the renderer will take, on rdef's
  * OpenGL; its context into *ctx for the renderer. */
 static int open_window(mr_stageview *sv, const mr_render_def *rdef, const mr_window_def *wdef,

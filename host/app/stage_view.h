@@ -57,6 +57,9 @@ int mr_stageview_draw(mr_stageview *sv, const double *xyz, size_t n, char *msg, 
  * show, drawn or not, so that the camera moves the same whichever frames
  * are drawn. Nothing without `camera: follow`. */
 void mr_stageview_track(mr_stageview *sv, double t, const double *xyz, size_t n);
+/* The show's time t and its end (< 0: not known, a live show) for the
+ * frames drawn from now: the curtain's openness (mr_stage_set_time). */
+void mr_stageview_set_time(mr_stageview *sv, double t, double end);
 /* The latest draw list again with the current view (paused, orbiting). */
 int mr_stageview_redraw(mr_stageview *sv, char *msg, size_t msg_size);
 /* The last frame drawn, RGB top row first (sv->width x sv->height). */

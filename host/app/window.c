@@ -100,6 +100,8 @@ static void stage_key(mr_live *lv, int key) {
     if (mr_window_set_fullscreen(sv->window, !lv->fullscreen) == MR_WINDOW_OK)
       lv->fullscreen = !lv->fullscreen;
   } else if (key == 'q' || key == MR_WINDOW_KEY_ESCAPE) {
+    /* The first asks for the curtain to close; a second, for no wait. */
+    if (lv->quit) lv->quit_now = true;
     lv->quit = true;
   } else if (key >= '0' && key <= '9') {
     mr_stageview_pick_camera(sv, key - '1'); /* 0: -1, the orbit camera */
@@ -109,8 +111,8 @@ static void stage_key(mr_live *lv, int key) {
 void mr_live_event(mr_live *lv, const mr_window_event *ev) {
   if (lv->manual_on && mr_manual_event(&lv->manual, ev)) return;
   switch (ev->kind) {
-  case MR_WINDOW_EVENT_QUIT:
-    lv->quit = true;
+  case MR_WINDOW_EVENT_QUIT: /* the window closed: nothing left to watch */
+    lv->quit = lv->quit_now = true;
     break;
   case MR_WINDOW_EVENT_KEY:
     if (ev->down) stage_key(lv, ev->key);
@@ -237,12 +239,30 @@ static void osd_lines(mr_live *lv, const mr_show_frame *f) {
                      mr_glove_state_name(v->state), lateness);
   }
   const char *cam = sv->camera >= 0 ? sv->scene->stage.cameras[sv->camera].name : "orbit";
-  mr_stageview_osd(sv, "%s  day %.2f  h hides, q quits", cam, sv->time_of_day);
+  mr_stageview_osd(sv, "%s  day %.2f  h hides, %s", cam, sv->time_of_day,
+                   lv->closing ? "q: at once" : "q quits");
+}
+
+bool mr_live_should_quit(mr_live *lv) {
+  if (lv->failed || lv->quit_now) return true;
+  if (!lv->quit) return false;
+  const mr_curtain_def *c = &lv->sv.scene->stage.curtain;
+  if (!c->show || !(c->close_s > 0)) return true;
+  if (!lv->closing) {
+    lv->closing = true;
+    lv->closing_wall = wall(lv);
+    double end = lv->show_t + c->close_s;
+    if (lv->curtain_end < 0 || end < lv->curtain_end) lv->curtain_end = end;
+    if (lv->paused) toggle_pause(lv);
+  }
+  /* Slow motion plays it at a quarter of the speed. */
+  return lv->show_t >= lv->curtain_end || wall(lv) - lv->closing_wall > 4 * c->close_s + 1;
 }
 
 void mr_live_present(mr_live *lv, const mr_show_frame *f) {
   if (lv->failed) return;
   lv->show_t = f->t;
+  mr_stageview_set_time(&lv->sv, f->t, lv->curtain_end);
   mr_stageview_track(&lv->sv, f->t, f->xyz, (size_t)f->n_particles);
   osd_lines(lv, f);
   if (mr_stageview_draw(&lv->sv, f->xyz, (size_t)f->n_particles, lv->msg, sizeof lv->msg) != 0) {
@@ -304,6 +324,7 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
   *usage = 0;
   lv->wall = mr_clock_wall();
   lv->window = def->window;
+  lv->curtain_end = def->end > 0 ? def->end : -1;
   lv->fullscreen = def->fullscreen;
   if (def->keys != NULL && mr_live_parse_keys(lv, def->keys) != 0) {
     snprintf(msg, msg_size,

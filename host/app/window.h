@@ -53,6 +53,11 @@ typedef struct mr_live {
   uint64_t osd_drawn, osd_steps;
   double fps, dt_mean;
   uint64_t drawn;
+  /* The curtain (stage.curtain): the show's end as it knows it (-1: not
+   * known), and the closing a first q started (a second q, quit_now,
+   * stops at once). */
+  double curtain_end, closing_wall;
+  bool closing, quit_now;
   bool failed;
   char msg[700];
   char glove_source[300]; /* pty:PATH of the manual glove */
@@ -67,6 +72,7 @@ typedef struct mr_live_def {
   const char *keys; /* --keys, or NULL */
   double fps;       /* the show's, for the MP4 */
   bool no_osd;      /* the on-screen display starts hidden */
+  double end;       /* the show's end (--time), -1: until stopped */
 } mr_live_def;
 
 struct mr_stage_opts;
@@ -89,6 +95,13 @@ void mr_live_event(mr_live *lv, const mr_window_event *ev);
 /* Events, scripted keys and the manual glove, handled now; the number of
  * events (a view that moved is drawn again). */
 int mr_live_pump(mr_live *lv);
+
+/* Whether the show should stop now: it failed, the window was closed, q
+ * was pressed twice, or the curtain has closed after a q. The first q
+ * (or Esc) starts closing the curtain over its close time of show time
+ * (unpausing a paused show), bounded on the wall clock by four times
+ * that and a second; without a curtain it stops at once. */
+bool mr_live_should_quit(mr_live *lv);
 
 /* A frame on the stage: the OSD, the frame drawn, shown or written, a
  * screenshot if asked. */

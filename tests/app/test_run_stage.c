@@ -438,6 +438,67 @@ static void the_c_key_shows_the_collision_spheres(void **state) {
   assert_true(changed >= 100 && changed < 320 * 180 / 4);
 }
 
+/* The curtain's red in the middle third of a screenshot's columns. */
+static int velvet_in_the_middle(const char *path) {
+  int w = 0, h = 0, n = 0;
+  uint8_t *p = at_png_rgb(path, &w, &h);
+  assert_non_null(p);
+  for (int y = 0; y < h; y++)
+    for (int x = w / 3; x < 2 * w / 3; x++) {
+      const uint8_t *q = p + 3 * ((size_t)y * (size_t)w + (size_t)x);
+      n += q[0] > 40 && q[0] > 2 * q[1] && 2 * q[0] > 3 * q[2];
+    }
+  free(p);
+  return n;
+}
+
+/* The window's show under Xvfb, keys as given, for at most 20 s: the
+ * show time it ended at, and the screenshots into dir. */
+static double window_show_until(const char *xvfb, const char *keys, const char *dir) {
+  char *argv[] = { (char *)xvfb, "-a",       "-s",      "-screen 0 640x480x24",
+                   marionette,   "run",      STICK,     "--keys",
+                   (char *)keys, "--size",   "320x180", "-o",
+                   (char *)dir,  "--no-osd", "--time",  "20",
+                   NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  char sim[64];
+  assert_int_equal(tt_field(o.out, "simulated", sim, sizeof sim), 0);
+  tt_output_free(&o);
+  return strtod(sim, NULL);
+}
+
+/* Under Xvfb: q at 2.5 s does not end the show at once; the curtain
+ * closes over its 1.5 s (a screenshot near its end shows it over the
+ * stage, one before q the stage open), then the show ends. A second q
+ * ends it at once. */
+static void q_plays_the_closing_curtain_and_a_second_q_stops_at_once(void **state) {
+  (void)state;
+  char xvfb[512];
+  if (at_which("xvfb-run", xvfb, sizeof xvfb) != 0) {
+    print_message("xvfb-run is not installed: the window is not tried\n");
+    skip();
+  }
+#ifdef MR_APP_TEST_SANITIZE
+  setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+#endif
+  char *dir = tt_tmpdir();
+  double end = window_show_until(xvfb, "2.2:p,2.5:q,3.85:p", dir);
+  print_message("q at 2.5 s: the show ended at %.2f s\n", end);
+  assert_true(end >= 3.85 && end < 8);
+  int open = velvet_in_the_middle(tt_path(dir, "shot_000.png"));
+  int closing = velvet_in_the_middle(tt_path(dir, "shot_001.png"));
+  print_message("the curtain's pixels in the middle: %d open, %d closing\n", open, closing);
+  assert_int_equal(open, 0);
+  assert_true(closing > 320 * 180 / 3 * 3 / 4);
+  double hurried = window_show_until(xvfb, "2.5:q,2.7:q", dir);
+  print_message("q twice: the show ended at %.2f s\n", hurried);
+  assert_true(hurried >= 2.5 && hurried < 3.5);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(int argc, char **argv) {
   if (argc < 3) {
     fprintf(stderr, "usage: %s GLOVE_GEN MARIONETTE\n", argv[0]);
@@ -455,6 +516,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
     cmocka_unit_test(the_m_key_changes_what_the_puppet_wears),
     cmocka_unit_test(the_c_key_shows_the_collision_spheres),
+    cmocka_unit_test(q_plays_the_closing_curtain_and_a_second_q_stops_at_once),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -16,6 +16,11 @@ void fx_scene_init(fx_scene *s) {
   s->stage = mr_default_stage_def();
   s->stage.width = FX_W;
   s->stage.height = FX_H;
+  /* A bare stage: the curtain's red at the picture's sides and the follow
+   * spot's pool would stand in what the tests look for (test_curtain.c
+   * has them). */
+  s->stage.curtain.show = false;
+  s->stage.follow_spot.show = false;
   s->stage.models = s->models;
   /* The theater's set stands between this camera and the sphere's
    * surroundings; it has tests of its own (test_set.c), and these look

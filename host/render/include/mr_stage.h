@@ -28,6 +28,10 @@ enum { MR_STAGE_NAME_MAX = 48, MR_STAGE_PATH_MAX = 512 };
 /* How far the stage's front edge stands in front of the proscenium's
  * plane, m (see mr_stage_def's set). */
 #define MR_SET_APRON 0.35f
+/* The proscenium's opening and plane when nothing sized them (m). */
+#define MR_SET_WIDTH  3.0
+#define MR_SET_HEIGHT 2.2
+#define MR_SET_FRONT  1.0
 
 /* Where an item starts in its scene file (0, 0: not from a file). */
 typedef struct mr_stage_pos {
@@ -195,6 +199,46 @@ typedef struct mr_star {
   float brightness;
 } mr_star;
 
+/* The front curtain (`stage: curtain:`): two halves of red velvet, hung
+ * just upstage of the stage's front edge across the opening, that part
+ * and gather to the sides as the show starts and close over its last
+ * seconds. How open it is is a pure function of the show's time
+ * (mr_curtain_openness), so a frame drawn alone (`marionette render
+ * --frame T`) shows what the same moment of a run shows. */
+typedef struct mr_curtain_def {
+  bool show;       /* default true */
+  float color[3];  /* linear RGB, default a deep red (0.42, 0.02, 0.04) */
+  double open_s;   /* seconds it takes to open from t = 0, default 1.5 */
+  double close_s;  /* seconds it takes to close before the show's end, default 1.5 */
+  double distance; /* m in front of the stage's middle, towards the audience
+                       (camera.facing); 0 (default): just upstage of the
+                       floor's front edge, and no nearer the audience's
+                       camera than 40 % of its distance to what it looks at */
+  double width;    /* m across; 0 (default): a little wider than the
+                       audience's view where it hangs (open, its gathered
+                       halves frame the picture's sides), at most the
+                       floor's size (8 m without one) */
+  double height;   /* m from the floor up; 0 (default): past the top of the
+                       audience's view where it hangs, at least 2.4 m */
+} mr_curtain_def;
+
+/* The follow spot (`stage: follow_spot:`): a spot hung in front of and
+ * above the stage that aims, every frame, at the middle of the box
+ * around the puppets' points (the points their models are drawn on,
+ * without the control bars'). Aimed anew each frame from the frame's
+ * points alone, it is reproducible like the curtain. It takes one of
+ * the MR_STAGE_MAX_SPOTS slots. */
+typedef struct mr_follow_spot_def {
+  bool show;          /* default false: its moving pool is lit again every
+                         frame, which software GL pays for */
+  double position[3]; /* where it hangs in the audience's frame (turned by
+                         camera.facing): x to their right, y up, z towards
+                         them; default (0, 3.2, 4) */
+  double angle_deg;   /* half-angle of its cone, default 8 */
+  float color[3];     /* default a warm white (1, 0.93, 0.8) */
+  double intensity;   /* default 1.5 */
+} mr_follow_spot_def;
+
 typedef struct mr_stage_def {
   uint32_t cookie;      /* MR_DEF_COOKIE, set by mr_default_stage_def() */
   mr_model_def *models; /* belongs to the def's owner */
@@ -277,6 +321,9 @@ typedef struct mr_stage_def {
   double facing_deg;
   mr_camera_def cameras[MR_STAGE_MAX_CAMERAS];
   int n_cameras;
+  /* The front curtain and the follow spot (the moving part of the set). */
+  mr_curtain_def curtain;
+  mr_follow_spot_def follow_spot;
   /* The picture (the scene's `stage.size`): default 1280 x 720. */
   int width, height;
   mr_stage_pos pos;
@@ -377,6 +424,13 @@ typedef struct mr_draw_line {
   float rgb[3];
 } mr_draw_line;
 
+/* The follow spot this frame: on (its def's show, and points to aim
+ * at), where it stands and the point it aims at, world coordinates. */
+typedef struct mr_draw_follow_spot {
+  bool on;
+  double position[3], target[3];
+} mr_draw_follow_spot;
+
 typedef struct mr_draw_list {
   const mr_draw_item *items;
   size_t n_items;
@@ -384,7 +438,36 @@ typedef struct mr_draw_list {
   size_t n_skins;
   const mr_draw_line *lines; /* strings and control frames */
   size_t n_lines;
+  /* How far the curtain is closed this frame, 1 - its openness
+   * (mr_stage_set_time): 0 open (a stage not told the time, and a list
+   * made by hand and zeroed), 1 closed. */
+  double curtain_closed;
+  mr_draw_follow_spot follow_spot;
 } mr_draw_list;
+
+/* ------------------------------------------------------ curtain and spot */
+
+/* How open the curtain is at show time t of a show that ends at `end`
+ * (end < 0 or not finite: not known, a live show still running): 0
+ * before the show (t <= 0), opening over the first open_s seconds to 1,
+ * and closing over the last close_s seconds before end to 0 at end and
+ * after, each with a smooth start and stop (3x^2 - 2x^3). When opening
+ * and closing overlap (a show shorter than open_s + close_s) the lesser
+ * wins. A curtain not shown is always open (1). */
+double mr_curtain_openness(const mr_curtain_def *c, double t, double end);
+
+/* Where the curtain hangs: its bottom middle (on the floor), the unit
+ * axis across it to the audience's right, the unit normal towards the
+ * audience, its width and height (def's, or the defaults worked out
+ * from the floor and the audience's orbit camera). */
+typedef struct mr_curtain_place {
+  double origin[3], right[3], normal[3];
+  double width, height;
+} mr_curtain_place;
+mr_curtain_place mr_curtain_place_of(const mr_stage_def *def);
+
+/* Where the follow spot hangs, in world coordinates. */
+void mr_follow_spot_position(const mr_stage_def *def, double out[3]);
 
 /* ---------------------------------------------------------------- stage */
 
@@ -414,6 +497,11 @@ mr_stage_status mr_stage_update(mr_stage *s, const double *xyz, size_t n, const 
 /* The collision spheres (models marked collision) drawn from the next
  * draw list on, or not. */
 mr_stage_status mr_stage_show_spheres(mr_stage *s, bool show);
+/* The show's time t (s) and its end (s; < 0: not known yet) for the next
+ * draw lists (and the current one): the curtain's openness,
+ * mr_curtain_openness. A live show that is asked to stop gives as end
+ * the moment its curtain will have closed. */
+mr_stage_status mr_stage_set_time(mr_stage *s, double t, double end);
 
 /* Model `model` wears its material k from now on (§3.3). */
 mr_stage_status mr_stage_set_material(mr_stage *s, size_t model, int k);

@@ -53,6 +53,7 @@ mr_render_status mr_render_draw(mr_render *r, const mr_draw_list *list,
   mr_frame f;
   frame_camera(r, view, &f);
   mr_sky_light(&r->stage, view->time_of_day, &f);
+  mr_follow_spot_frame(r, list, &f);
   mr_shadow_draw(r, list, &f);
 
   mr_still_rects still;

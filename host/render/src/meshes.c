@@ -279,6 +279,7 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
     *status = MR_RENDER_ERR_NOMEM;
     return -1;
   }
+  mr_curtain_create(r, stage);
   r->models = calloc(stage->n_models ? stage->n_models : 1, sizeof *r->models);
   if (!r->models) {
     *status = MR_RENDER_ERR_NOMEM;
@@ -318,6 +319,7 @@ void mr_meshes_destroy(mr_render *r) {
   r->n_models = 0;
   mr_mesh_free(r, &r->floor);
   mr_mesh_free(r, &r->backdrop);
+  mr_mesh_free(r, &r->curtain);
   mr_set_destroy(r);
   if (r->bone_tex) r->gl.DeleteTextures(1, &r->bone_tex);
   r->bone_tex = 0;

@@ -61,6 +61,11 @@ typedef struct mr_frame {
   vec3 eye, sun_dir, sun_color, ambient, sky;
   float day;    /* 1 in daylight, 0 at night */
   bool shadows; /* the shadow map holds this frame's sun */
+  /* The follow spot (the draw list's), lit where follow is set: never in
+   * the kept scenery nor on the curtain (curtain.c says why). */
+  bool follow;
+  vec3 follow_pos, follow_dir;
+  float curtain; /* the curtain's openness, 0 closed to 1 open */
 } mr_frame;
 
 struct mr_text; /* text.c */
@@ -95,7 +100,7 @@ struct mr_render {
   bool drawn;
   /* The still scenery, kept (still.c). */
   GLuint still_fbo, still_color, still_depth;
-  float still_key[28], still_last[28]; /* what is kept; the last frame's */
+  float still_key[32], still_last[32]; /* what is kept; the last frame's */
   bool still_kept;
   uint8_t *read_buf; /* the read back's staging buffer (fbo.c) */
   size_t read_size;
@@ -105,6 +110,7 @@ struct mr_render {
   GLuint prog_scenery;                    /* the floor's lit program (its checkerboard) */
   GLuint prog_backdrop;                   /* the backdrop's */
   GLuint prog_smooth_stars;               /* the smoothing over the stars (post.c) */
+  GLuint prog_curtain;                    /* the items' without spots (curtain.c); 0: none */
   /* The sun's shadow map (shadow.c). */
   GLuint shadow_fbo, shadow_tex;
   int shadow_size;
@@ -120,6 +126,11 @@ struct mr_render {
    * its own material; the footlights' row (a line light) and colour. */
   mr_gpu_mesh set[MR_SET_PARTS];
   float foot_a[3], foot_ab[3], foot_color[3];
+  /* The front curtain's half (curtain.c), and the follow spot's slot
+   * among the spots (-1: none). */
+  mr_gpu_mesh curtain;
+  mr_curtain_place curtain_place;
+  int follow_slot;
   /* Stars and lines (sky.c, lines.c). */
   GLuint star_vao, star_vbo, line_vao, line_vbo;
   GLsizei n_stars;
@@ -180,7 +191,8 @@ void mr_pose_matrix(const mr_pose *p, mat4 out);
 /* Uploads a skin's bone matrices into the bone texture. */
 void mr_bones_upload(mr_render *r, const mr_draw_skin *skin);
 
-/* A mesh uploaded (no bones), and freed. */
+/* A mesh made here (the set's, the curtain's) uploaded (no bones), and
+ * freed (the meshes free them all). */
 struct mr_mesh;
 void mr_mesh_upload(mr_render *r, mr_gpu_mesh *g, const struct mr_mesh *m);
 void mr_mesh_free(mr_render *r, mr_gpu_mesh *g);
@@ -216,6 +228,10 @@ size_t mr_set_floor_outline(const mr_stage_def *s, float h, float xz[5][2]);
 typedef struct mr_still_rects {
   int backdrop[MR_STILL_BANDS][4], floor[MR_STILL_BANDS][4];
   int n_backdrop, n_floor;
+  /* Where the follow spot's cone meets each surface (it moves, so the
+   * kept scenery is drawn without it). */
+  int spot_backdrop[MR_STILL_BANDS][4], spot_floor[MR_STILL_BANDS][4];
+  int n_spot_backdrop, n_spot_floor;
 } mr_still_rects;
 int mr_still_create(mr_render *r, char *msg, size_t msg_size);
 void mr_still_destroy(mr_render *r);
@@ -240,6 +256,16 @@ void mr_scene_draw_scenery_in(mr_render *r, const mr_frame *f, bool backdrop, co
 /* The casters into the shadow map, with the shadow programs, seen
  * through light_vp. */
 void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_frame *f);
+/* The front curtain at f->curtain's openness, lit (no shadow, no follow
+ * spot); nothing when the stage has none. */
+void mr_scene_draw_curtain(mr_render *r, const mr_frame *f);
+
+/* curtain.c: the curtain's half as a pleated strip, made at create; the
+ * model matrix of a half (side -1 left, +1 right) at an openness; the
+ * follow spot's slot and its light in the frame. */
+void mr_curtain_create(mr_render *r, const mr_stage_def *stage);
+void mr_curtain_matrix(const mr_render *r, float openness, int side, mat4 out);
+void mr_follow_spot_frame(const mr_render *r, const mr_draw_list *list, mr_frame *f);
 
 /* shadow.c */
 int mr_shadow_create(mr_render *r, char *msg, size_t msg_size);

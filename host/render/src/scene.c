@@ -35,6 +35,33 @@ static const mr_material_def *worn(const mr_gpu_model *gm, const mr_gpu_mesh *me
   return &mesh->material;
 }
 
+/* Spot i of the lit program p: at pos, along the unit dir, col (times its
+ * intensity), a cone of half-angle angle_deg. */
+static void set_spot(mr_render *r, GLuint p, int i, const float *pos, const float *dir,
+                     const float *col, double angle_deg) {
+  char name[32];
+  /* The cone's edge softens over its outer fifth. */
+  double a = angle_deg * GLM_PI / 180.0;
+  snprintf(name, sizeof name, "u_spot_pos[%d]", i);
+  mr_uniform_v3(r, p, name, pos);
+  snprintf(name, sizeof name, "u_spot_dir[%d]", i);
+  mr_uniform_v3(r, p, name, dir);
+  snprintf(name, sizeof name, "u_spot_color[%d]", i);
+  mr_uniform_v3(r, p, name, col);
+  snprintf(name, sizeof name, "u_spot_cos[%d]", i);
+  r->gl.Uniform2f(r->gl.GetUniformLocation(p, name), (float)cos(a), (float)cos(a * 0.8));
+}
+
+/* The follow spot in its slot: dark where the frame does not light it. */
+static void set_follow_spot(mr_render *r, GLuint p, const mr_frame *f) {
+  if (r->follow_slot < 0) return;
+  const mr_follow_spot_def *d = &r->stage.follow_spot;
+  vec3 col = { 0, 0, 0 }, down = { 0, -1, 0 };
+  if (f->follow) glm_vec3_scale((float *)d->color, (float)d->intensity, col);
+  set_spot(r, p, r->follow_slot, f->follow_pos, f->follow ? f->follow_dir : down, col,
+           d->angle_deg);
+}
+
 /* The camera and the lights, on the lit program p (in use). */
 static void set_lights(mr_render *r, GLuint p, const mr_frame *f) {
   mr_uniform_m4(r, p, "u_view_proj", (vec4 *)f->view_proj);
@@ -46,27 +73,18 @@ static void set_lights(mr_render *r, GLuint p, const mr_frame *f) {
   int n = L->n_spots < 8 ? L->n_spots : 8;
   for (int i = 0; i < n; i++) {
     const mr_spot_def *s = &L->spots[i];
-    char name[32];
     vec3 pos = { (float)s->position[0], (float)s->position[1], (float)s->position[2] };
     vec3 dir = { (float)(s->target[0] - s->position[0]), (float)(s->target[1] - s->position[1]),
                  (float)(s->target[2] - s->position[2]) };
     glm_vec3_normalize(dir);
     vec3 col;
     glm_vec3_scale((float *)s->color, (float)s->intensity, col);
-    /* The cone's edge softens over its outer fifth. */
-    double a = s->angle_deg * GLM_PI / 180.0;
-    snprintf(name, sizeof name, "u_spot_pos[%d]", i);
-    mr_uniform_v3(r, p, name, pos);
-    snprintf(name, sizeof name, "u_spot_dir[%d]", i);
-    mr_uniform_v3(r, p, name, dir);
-    snprintf(name, sizeof name, "u_spot_color[%d]", i);
-    mr_uniform_v3(r, p, name, col);
-    snprintf(name, sizeof name, "u_spot_cos[%d]", i);
-    r->gl.Uniform2f(r->gl.GetUniformLocation(p, name), (float)cos(a), (float)cos(a * 0.8));
+    set_spot(r, p, i, pos, dir, col, s->angle_deg);
   }
   mr_uniform_v3(r, p, "u_foot_a", r->foot_a);
   mr_uniform_v3(r, p, "u_foot_ab", r->foot_ab);
   mr_uniform_v3(r, p, "u_foot_color", r->foot_color);
+  set_follow_spot(r, p, f);
   mr_uniform_i(r, p, "u_shadows", f->shadows ? 1 : 0);
   mr_uniform_m4(r, p, "u_light_vp", (vec4 *)f->light_vp);
   mr_uniform_f(r, p, "u_shadow_texel", r->shadow_size > 0 ? 1.0f / (float)r->shadow_size : 0);
@@ -122,7 +140,11 @@ void mr_scene_draw_set(mr_render *r, const mr_frame *f) {
   mat4 id = GLM_MAT4_IDENTITY_INIT;
   GLuint p = r->prog_mesh;
   r->gl.UseProgram(p);
-  set_lights(r, p, f);
+  /* Never in the follow spot's light: the set is kept still, and only
+   * the floor and the backdrop are lit again where the spot's pool falls. */
+  mr_frame unspotted = *f;
+  unspotted.follow = false;
+  set_lights(r, p, &unspotted);
   set_model(r, p, id);
   /* Boxes and spheres, closed and wound counter-clockwise outside. */
   r->gl.Enable(GL_CULL_FACE);
@@ -228,14 +250,42 @@ static void draw_skins(mr_render *r, const mr_draw_list *list, GLuint prog, bool
 /* The items and skins first, then the backdrop and the floor, which they
  * hide in part: a fragment behind what is drawn already fails the depth
  * test before it is shaded. */
-/* The kept scenery's shadowed parts, each surface inside its rectangles. */
+/* The kept scenery's shadowed parts, and those the follow spot lights,
+ * each surface inside its rectangles. */
 static void draw_still_shadows(mr_render *r, const mr_frame *f, const mr_still_rects *still) {
   mr_scene_draw_scenery_in(r, f, true, (const int(*)[4])still->backdrop, still->n_backdrop);
   mr_scene_draw_scenery_in(r, f, false, (const int(*)[4])still->floor, still->n_floor);
+  mr_scene_draw_scenery_in(r, f, true, (const int(*)[4])still->spot_backdrop,
+                           still->n_spot_backdrop);
+  mr_scene_draw_scenery_in(r, f, false, (const int(*)[4])still->spot_floor, still->n_spot_floor);
+}
+
+void mr_scene_draw_curtain(mr_render *r, const mr_frame *f) {
+  if (!r->curtain.vao || !r->prog_curtain) return;
+  mr_frame lit = *f;
+  lit.shadows = false;
+  lit.follow = false;
+  GLuint p = r->prog_curtain;
+  r->gl.UseProgram(p);
+  set_lights(r, p, &lit);
+  mr_material_def m = mr_default_material_def();
+  memcpy(m.base_color, r->stage.curtain.color, 3 * sizeof(float));
+  m.roughness = 0.85f;
+  set_material(r, p, &m, &r->curtain);
+  r->gl.Disable(GL_CULL_FACE);
+  for (int side = -1; side <= 1; side += 2) {
+    mat4 model;
+    mr_curtain_matrix(r, f->curtain, side, model);
+    set_model(r, p, model);
+    mr_mesh_draw(r, &r->curtain);
+  }
 }
 
 void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f,
                        const mr_still_rects *still) {
+  /* The curtain goes first (closed, it hides the rest): drawn whole, or
+   * over a kept picture that holds it only when it is open. */
+  if (!still || f->curtain < 1) mr_scene_draw_curtain(r, f);
   r->gl.UseProgram(r->prog_mesh);
   set_lights(r, r->prog_mesh, f);
   mr_lod_scale ls = lod_scale(r, f);
@@ -248,8 +298,9 @@ void mr_scene_draw_lit(mr_render *r, const mr_draw_list *list, const mr_frame *f
   if (!still) {
     mr_scene_draw_set(r, f);
     mr_scene_draw_scenery(r, f, true, true);
-  } else if (f->shadows)
+  } else {
     draw_still_shadows(r, f, still);
+  }
   r->gl.UseProgram(0);
 }
 

@@ -33,9 +33,10 @@ void mr_set_frame_of(const mr_stage_def *s, mr_set_frame *f) {
   const float az = (float)s->facing_deg * DEG;
   f->right[0] = cosf(az), f->right[1] = 0, f->right[2] = -sinf(az);
   f->front[0] = sinf(az), f->front[1] = 0, f->front[2] = cosf(az);
-  f->width = s->set_width > 0 ? (float)s->set_width : 3.0f;
-  f->height = s->set_height > 0 ? (float)s->set_height : 2.2f;
-  const float plane = s->set_front > 0 ? (float)s->set_front : 1.0f, mid = (float)s->set_middle;
+  f->width = (float)(s->set_width > 0 ? s->set_width : MR_SET_WIDTH);
+  f->height = (float)(s->set_height > 0 ? s->set_height : MR_SET_HEIGHT);
+  const float plane = (float)(s->set_front > 0 ? s->set_front : MR_SET_FRONT),
+              mid = (float)s->set_middle;
   for (int k = 0; k < 3; k++) f->origin[k] = mid * f->right[k] + plane * f->front[k];
   f->origin[1] = (float)s->floor_height;
   f->post = 0.1f * f->width + 0.12f;

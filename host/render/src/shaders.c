@@ -76,6 +76,8 @@ static int mesh_programs(mr_render *r, char *msg, size_t msg_size) {
   int n_spots = r->stage.lights.n_spots < 8 ? r->stage.lights.n_spots : 8;
   n_spots = n_spots > 0 ? n_spots : 0;
   const int foot = r->stage.footlights, taps = r->shadow_taps;
+  /* The follow spot takes the next slot, when one is free. */
+  r->follow_slot = r->stage.follow_spot.show && n_spots < 8 ? n_spots++ : -1;
   char vs[4096], vs_skin[4096], fs[12288], fs_floor[12288], fs_backdrop[12288];
   if (mr_src_mesh_vs_make(vs, sizeof vs, 0) != 0 ||
       mr_src_mesh_vs_make(vs_skin, sizeof vs_skin, 1) != 0 ||
@@ -94,6 +96,15 @@ static int mesh_programs(mr_render *r, char *msg, size_t msg_size) {
   if (!r->prog_backdrop) return -1;
   r->prog_depth = program(r, vs, mr_src_depth_fs, "shadow", msg, msg_size);
   if (!r->prog_depth) return -1;
+  /* The curtain: the items' shader without spots (curtain.c says why). */
+  if (r->stage.curtain.show) {
+    if (mr_src_mesh_fs_make(fs, sizeof fs, 0, 1, MR_SRC_ITEMS, foot) != 0) {
+      snprintf(msg, msg_size, "a mesh shader's source does not fit its buffer");
+      return -1;
+    }
+    r->prog_curtain = program(r, vs, fs, "curtain", msg, msg_size);
+    if (!r->prog_curtain) return -1;
+  }
   if (!has_skins(&r->stage)) return 0;
   r->prog_mesh_skin = program(r, vs_skin, fs, "skinned mesh", msg, msg_size);
   if (!r->prog_mesh_skin) return -1;
@@ -118,9 +129,10 @@ int mr_shaders_create(mr_render *r, char *msg, size_t msg_size) {
 }
 
 void mr_shaders_destroy(mr_render *r) {
-  GLuint *progs[] = { &r->prog_mesh,      &r->prog_scenery,    &r->prog_backdrop,    &r->prog_depth,
-                      &r->prog_mesh_skin, &r->prog_depth_skin, &r->prog_line,        &r->prog_star,
-                      &r->prog_text,      &r->prog_smooth,     &r->prog_smooth_stars };
+  GLuint *progs[] = { &r->prog_mesh,   &r->prog_scenery,      &r->prog_backdrop,
+                      &r->prog_depth,  &r->prog_mesh_skin,    &r->prog_depth_skin,
+                      &r->prog_line,   &r->prog_star,         &r->prog_text,
+                      &r->prog_smooth, &r->prog_smooth_stars, &r->prog_curtain };
   for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++) {
     if (*progs[i]) r->gl.DeleteProgram(*progs[i]);
     *progs[i] = 0;

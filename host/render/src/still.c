@@ -20,8 +20,10 @@
 
 #include "render_internal.h"
 
-/* The key has the camera's matrix, the sun, the ambient and the sky. */
-#define KEY_LEN (16 + 4 * 3)
+/* The key has the camera's matrix, the sun, the ambient, the sky and
+ * whether the curtain is open (the kept picture holds it then; closed or
+ * moving it is drawn over the kept picture every frame, scene.c). */
+#define KEY_LEN (16 + 4 * 3 + 1)
 
 int mr_still_create(mr_render *r, char *msg, size_t msg_size) {
   const mr_stage_def *s = &r->stage;
@@ -67,6 +69,7 @@ static int still_state(mr_render *r, const mr_frame *f) {
   memcpy(k + 19, f->sun_color, 3 * sizeof(float));
   memcpy(k + 22, f->ambient, 3 * sizeof(float));
   memcpy(k + 25, f->sky, 3 * sizeof(float));
+  k[28] = f->curtain >= 1 ? 1.0f : 0.0f;
   if (r->still_kept && memcmp(k, r->still_key, sizeof k) == 0) return 1;
   bool stayed = memcmp(k, r->still_last, sizeof k) == 0;
   memcpy(r->still_last, k, sizeof k);
@@ -88,8 +91,10 @@ static void still_redraw(mr_render *r, const mr_frame *f) {
   gl->Disable(GL_CULL_FACE);
   mr_frame lit = *f;
   lit.shadows = false;
+  lit.follow = false;
   /* The set first: the arch hides part of the boards and the backdrop. */
   mr_scene_draw_set(r, &lit);
+  if (f->curtain >= 1) mr_scene_draw_curtain(r, &lit);
   mr_scene_draw_scenery(r, &lit, true, true);
   gl->UseProgram(0);
   r->still_kept = true;
@@ -275,52 +280,93 @@ static bool to_screen(const mr_render *r, const mr_frame *f, const plane_pts *b,
   return true;
 }
 
-/* Where on screen the casters' shadows can fall on the surface (the
- * backdrop, or the floor): the convex hull of their boxes' corners moved
- * along the sun onto it, clipped to the surface, in bands of rows (a
- * long shadow thrown aslant by a low sun fills a fraction of its screen
- * box). Returns how many rectangles. */
-static int shadow_rects(const mr_render *r, const mr_draw_list *list, const mr_frame *f, bool floor,
-                        int rects[][4]) {
+/* Where on screen the points b gathered on the surface (the backdrop, or
+ * the floor) lie: their convex hull (the whole surface when b->all),
+ * clipped to the surface, in bands of rows (a long shadow thrown aslant
+ * by a low sun fills a fraction of its screen box). Returns how many
+ * rectangles; frees b's points. */
+static int plane_rects(const mr_render *r, const mr_frame *f, plane_pts *b, bool floor,
+                       int rects[][4]) {
   const mr_stage_def *s = &r->stage;
   const float h = (float)(s->floor_size * 0.5);
-  plane_pts b = { .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
-  b.at = floor ? (float)s->floor_height : (float)-s->backdrop_distance;
-  memcpy(b.sun, f->sun_dir, sizeof b.sun);
-  caster_points(r, list, shadow_point, &b);
   /* The surface's own extent (meshes.c). */
   float lo[2] = { -h, floor ? -h : (float)s->floor_height };
   float hi[2] = { h, floor ? h : (float)s->floor_height + 2 * MR_BACKDROP_HALF_HEIGHT };
   int m = 0;
-  size_t room = (b.all ? 4 : b.n) + 8;
+  size_t room = (b->all ? 4 : b->n) + 8;
   float(*p)[2] = malloc(2 * room * sizeof *p), (*q)[2] = p ? p + room : NULL;
-  if (p && (b.all || b.n > 0)) {
+  if (p && (b->all || b->n > 0)) {
     size_t n = 4;
-    if (b.all) {
+    if (b->all) {
       const float c[4][2] = {
         { lo[0], lo[1] }, { hi[0], lo[1] }, { hi[0], hi[1] }, { lo[0], hi[1] }
       };
       memcpy(p, c, sizeof c);
     } else {
-      n = hull(&b, p);
+      n = hull(b, p);
     }
     for (int c = 0; c < 2 && n > 0; c++) {
       n = clip(p, n, c, hi[c], 1, q);
       n = clip(q, n, c, lo[c], -1, p);
     }
-    if (n >= 3 && to_screen(r, f, &b, p, n, q)) {
+    if (n >= 3 && to_screen(r, f, b, p, n, q)) {
       m = bands(r, q, n, rects);
     } else if (n >= 3) {
       rects[0][0] = rects[0][1] = 0, rects[0][2] = r->width, rects[0][3] = r->height;
       m = 1;
     }
-  } else if (!p && (b.all || b.n > 0)) {
+  } else if (!p && (b->all || b->n > 0)) {
     rects[0][0] = rects[0][1] = 0, rects[0][2] = r->width, rects[0][3] = r->height;
     m = 1;
   }
   free(p);
-  free(b.p);
+  free(b->p);
   return m;
+}
+
+/* Where on screen the casters' shadows can fall on the surface: their
+ * boxes' corners moved along the sun onto it. */
+static int shadow_rects(const mr_render *r, const mr_draw_list *list, const mr_frame *f, bool floor,
+                        int rects[][4]) {
+  const mr_stage_def *s = &r->stage;
+  plane_pts b = { .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
+  b.at = floor ? (float)s->floor_height : (float)-s->backdrop_distance;
+  memcpy(b.sun, f->sun_dir, sizeof b.sun);
+  caster_points(r, list, shadow_point, &b);
+  return plane_rects(r, f, &b, floor, rects);
+}
+
+/* Where on screen the follow spot's cone meets the surface: SPOT_RAYS
+ * rays along its edge (a little wider than the cone, so the polygon
+ * through their ends holds the ellipse they sample), each to where it
+ * meets the surface's plane. A ray that never meets it (the cone opens
+ * past the plane's horizon) lights it anywhere. */
+enum { SPOT_RAYS = 24 };
+static int spot_rects(const mr_render *r, const mr_frame *f, bool floor, int rects[][4]) {
+  const mr_stage_def *s = &r->stage;
+  plane_pts b = { .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
+  b.at = floor ? (float)s->floor_height : (float)-s->backdrop_distance;
+  b.sun[b.axis] = 1; /* shadow_point's move: none, t is 0 on the plane */
+  const float *o = f->follow_pos, *d = f->follow_dir;
+  float a = (float)(s->follow_spot.angle_deg * 1.04 * GLM_PI / 180.0);
+  /* Two axes across the cone. */
+  vec3 e1, e2, any = { fabsf(d[0]) < 0.9f ? 1.0f : 0.0f, fabsf(d[0]) < 0.9f ? 0.0f : 1.0f, 0 };
+  glm_vec3_crossn((float *)d, any, e1);
+  glm_vec3_crossn((float *)d, e1, e2);
+  for (int k = 0; k < SPOT_RAYS && !b.all; k++) {
+    float phi = 2 * GLM_PIf * (float)k / SPOT_RAYS, ray[3], p[3];
+    for (int c = 0; c < 3; c++)
+      ray[c] = cosf(a) * d[c] + sinf(a) * (cosf(phi) * e1[c] + sinf(phi) * e2[c]);
+    float along = ray[b.axis], t = along != 0 ? (b.at - o[b.axis]) / along : -1;
+    if (!(t > 0)) {
+      b.all = true;
+      break;
+    }
+    for (int c = 0; c < 3; c++) p[c] = o[c] + t * ray[c];
+    p[b.axis] = b.at;
+    shadow_point(p, &b);
+  }
+  return plane_rects(r, f, &b, floor, rects);
 }
 
 bool mr_still_draw(mr_render *r, const mr_draw_list *list, const mr_frame *f, mr_still_rects *out) {
@@ -338,6 +384,10 @@ bool mr_still_draw(mr_render *r, const mr_draw_list *list, const mr_frame *f, mr
   if (f->shadows && list) {
     if (r->stage.backdrop) out->n_backdrop = shadow_rects(r, list, f, false, out->backdrop);
     if (r->stage.floor) out->n_floor = shadow_rects(r, list, f, true, out->floor);
+  }
+  if (f->follow) {
+    if (r->stage.backdrop) out->n_spot_backdrop = spot_rects(r, f, false, out->spot_backdrop);
+    if (r->stage.floor) out->n_spot_floor = spot_rects(r, f, true, out->spot_floor);
   }
   return true;
 }

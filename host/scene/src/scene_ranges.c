@@ -96,6 +96,9 @@ static const mr_scene_range ranges[] = {
   { "day", 0, 1, "" },
   { "night", 0, 1, "" },
   { "azimuth", -360, 360, "°" },
+  { "open", 0, 1e6, "s" },
+  { "close", 0, 1e6, "s" },
+  { "width", 1e-3, 1e6, "m" },
   /* The orbit camera: at ±90 it would look along its up (+y) and draw
    * only sky. A star may sit overhead. */
   { "elevation", -89, 89, "°" },

@@ -188,6 +188,9 @@ size_t mr_scene_force_keys(const char **out, size_t max);
 /* The stage (models:, lights:, stage:, camera:) into scene->stage, after
  * physics, so every name is known (scene_stage.c). */
 int mr_scene_read_stage(mr_reader *r, const mr_ynode *root);
+/* stage.curtain and stage.follow_spot (scene_curtain.c), from the stage
+ * section's node. */
+int mr_scene_read_curtain(mr_reader *r, const mr_ynode *stage);
 void mr_scene_stage_free(mr_scene *scene);
 /* models: into scene->stage.models (scene_models.c). */
 int mr_scene_read_models(mr_reader *r, const mr_ynode *models);

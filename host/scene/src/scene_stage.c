@@ -290,7 +290,8 @@ static int read_stage_section(mr_reader *r, const mr_ynode *n) {
   static const char *const keys[] = { "size", "time_of_day", "floor", "backdrop", "sky", "strings",
                                       "frames", "spheres", "constellations",
                                       /* the theater's set */
-                                      "proscenium", "wings", "footlights", "bridge", NULL };
+                                      "proscenium", "wings", "footlights", "bridge", "curtain",
+                                      "follow_spot", NULL };
   static const mr_scene_field tod = { "time_of_day", MR_SCENE_FIELD_UNIT,
                                       offsetof(mr_stage_def, time_of_day), 0, 0 };
   mr_stage_def *d = &r->scene->stage;
@@ -302,7 +303,7 @@ static int read_stage_section(mr_reader *r, const mr_ynode *n) {
       mr_scene_read_optional(r, n, "constellations", read_constellations) != 0 ||
       read_rigging(r, n, "strings", &d->show_strings, d->string_color) != 0 ||
       mr_scene_read_optional(r, n, "frames", read_frames) != 0 ||
-      read_bool_at(r, n, "spheres", &d->show_spheres) != 0)
+      read_bool_at(r, n, "spheres", &d->show_spheres) != 0 || mr_scene_read_curtain(r, n) != 0)
     return -1;
   return 0;
 }

@@ -240,7 +240,11 @@ static mr_stage_status make_slots(mr_stage *s, const double *rest, char *msg, si
   for (size_t i = 0; i < d->n_models; i++)
     if (s->models[i].display == MR_DISPLAY_FREEFORM) make_skin_slot(s, i);
   make_item_slots(s, rest);
-  s->list = (mr_draw_list){ s->items, s->n_items, s->skins, s->n_skins, s->lines, 0 };
+  memset(&s->list, 0, sizeof s->list);
+  s->list.items = s->items, s->list.n_items = s->n_items;
+  s->list.skins = s->skins, s->list.n_skins = s->n_skins;
+  s->list.lines = s->lines;
+  if (mr_stage_spot_prepare(s) != 0) return fail(msg, size, MR_STAGE_ERR_NOMEM, "out of memory");
   return mr_stage_show_spheres(s, d->show_spheres);
 }
 
@@ -302,6 +306,8 @@ void mr_stage_destroy(mr_stage *s) {
   free(s->neighbours);
   free(s->fit);
   free(s->lines);
+  free(s->spot_points);
+  free(s->spot_xyz);
   free(s);
 }
 

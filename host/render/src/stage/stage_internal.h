@@ -44,7 +44,18 @@ struct mr_stage {
   mr_draw_line *lines;
   size_t n_lines;
   mr_draw_list list;
+  /* The follow spot's points (stage_curtain.c): the puppets' model
+   * points, not the bars'; and a scratch of 3 n_spot doubles. */
+  int *spot_points;
+  double *spot_xyz;
+  size_t n_spot;
 };
+
+/* The follow spot's points, chosen once (stage_curtain.c): 0, or -1 out
+ * of memory. */
+int mr_stage_spot_prepare(mr_stage *s);
+/* The follow spot aimed at its points where they were last finite. */
+void mr_stage_spot_update(mr_stage *s);
 
 /* Chooses each bone of freeform model m its neighbours and its fit. */
 void mr_stage_bones_prepare(mr_stage *s, size_t m);

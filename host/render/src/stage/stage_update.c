@@ -111,6 +111,7 @@ mr_stage_status mr_stage_update(mr_stage *s, const double *xyz, size_t n,
     if (mr_stage_finite3(&xyz[3 * i])) memcpy(&s->shown[3 * i], &xyz[3 * i], 3 * sizeof(double));
   update_models(s, xyz);
   update_lines(s);
+  mr_stage_spot_update(s);
   *out = &s->list;
   return MR_STAGE_OK;
 }
