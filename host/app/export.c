@@ -147,30 +147,38 @@ static int bind_skin(ex_model *m) {
   return 0;
 }
 
-/* The models the first draw list shows fix the file's nodes. */
+/* Model i of the stage, shown by the first draw list as item or skin. */
+static void show_model(mr_export *e, const mr_stage_def *sd, size_t i, int material,
+                       const mr_draw_skin *skin) {
+  ex_model *m = &e->shown[e->n_shown++];
+  m->model = (int)i;
+  m->def = &sd->models[i];
+  m->mesh = e->loaded[i];
+  m->material = material;
+  m->skin = skin != NULL;
+  m->slot = skin != NULL ? -1 : (int)e->n_posed++;
+  if (skin != NULL) {
+    m->bone0 = (int)e->n_bones;
+    e->n_bones += (size_t)skin->n_bones;
+  }
+}
+
+/* The models the first draw list shows fix the file's nodes, in the
+ * scene's order. */
 static int start(mr_export *e, const mr_draw_list *dl, char *msg, size_t msg_size) {
   const mr_stage_def *sd = mr_stage_get_def(e->stage);
   e->shown = calloc(dl->n_items + dl->n_skins + 1, sizeof *e->shown);
   if (e->shown == NULL) return fail(msg, msg_size, "out of memory");
-  for (size_t i = 0; i < dl->n_items; i++) {
-    ex_model *m = &e->shown[e->n_shown++];
-    m->model = dl->items[i].model;
-    m->def = &sd->models[m->model];
-    m->mesh = e->loaded[m->model];
-    m->material = dl->items[i].material;
-    m->slot = (int)e->n_posed++;
+  for (size_t i = 0; i < sd->n_models; i++) {
+    for (size_t k = 0; k < dl->n_items; k++)
+      if ((size_t)dl->items[k].model == i) show_model(e, sd, i, dl->items[k].material, NULL);
+    for (size_t k = 0; k < dl->n_skins; k++)
+      if ((size_t)dl->skins[k].model == i)
+        show_model(e, sd, i, dl->skins[k].material, &dl->skins[k]);
   }
-  for (size_t i = 0; i < dl->n_skins; i++) {
-    ex_model *m = &e->shown[e->n_shown++];
-    m->model = dl->skins[i].model;
-    m->def = &sd->models[m->model];
-    m->mesh = e->loaded[m->model];
-    m->material = dl->skins[i].material;
-    m->skin = true;
-    m->slot = -1;
-    m->bone0 = (int)e->n_bones;
-    e->n_bones += (size_t)dl->skins[i].n_bones;
-    if (bind_skin(m) != 0)
+  for (size_t i = 0; i < e->n_shown; i++) {
+    ex_model *m = &e->shown[i];
+    if (m->skin && bind_skin(m) != 0)
       return fail(msg, msg_size, "%s: model '%s': cannot bind the mesh to its %d bones",
                   e->scene->path, m->def->name, m->def->n_bones);
   }
