@@ -5,7 +5,9 @@
  * Assimp and their dependencies costs about 57 M instructions, more than
  * a 10 s walk simulates in. For a drawing command this program replaces
  * itself with the stage program: same process, same arguments, same
- * descriptors and signals, so a caller sees one program. */
+ * descriptors and signals, so a caller sees one program. `marionette
+ * export`, which loads models through Assimp but draws nothing, lives in
+ * the export program beside it, reached the same way. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -60,8 +62,9 @@ int mr_stage_exec(const char *program, char **argv) {
     return MR_EXIT_FAIL;
   }
   fprintf(stderr,
-          "marionette %s: the program %s is neither in %s nor in %s/%s; build or "
+          "marionette %s: the %s program %s is neither in %s nor in %s/%s; build or "
           "install it (make, make install)\n",
-          argv[1], program, dir, dir, MR_STAGE_FROM_BINDIR);
+          argv[1], strcmp(program, MR_STAGE_PROGRAM) == 0 ? "stage" : "export", program, dir, dir,
+          MR_STAGE_FROM_BINDIR);
   return MR_EXIT_FAIL;
 }
