@@ -21,6 +21,8 @@ PACKAGES=(
   # same state hashes as GCC's, and libFuzzer with its runtime.
   build-essential cmake pkg-config python3 clang libclang-rt-14-dev
   libcmocka-dev libserialport-dev libfyaml-dev libeigen3-dev
+  # cJSON: the JSON of marionette export's glTF files.
+  libcjson-dev
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   qemu-system-arm clang-format groff-base
   # The stage: an SDL2 window, OSMesa and EGL surfaceless with Mesa's

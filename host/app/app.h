@@ -1,7 +1,8 @@
 /* Subcommands of the `marionette` program. Each takes the arguments after
  * its name and returns the process exit status. sim, list-ports and
  * calibrate are in `marionette`; run and render, which draw, in the stage
- * program `marionette-stage`. */
+ * program `marionette-stage`; export, which loads models but draws
+ * nothing, in `marionette-export`. */
 #ifndef MR_APP_H
 #define MR_APP_H
 
@@ -23,10 +24,13 @@ int mr_cmd_calibrate(int argc, char **argv);
 void mr_cmd_calibrate_usage(void);
 int mr_cmd_render(int argc, char **argv);
 void mr_cmd_render_usage(void);
+int mr_cmd_export(int argc, char **argv);
+void mr_cmd_export_usage(void);
 
-/* In `marionette`: replaces the process with the stage program, given
- * marionette's whole argv (argv[1] is "run" or "render"). Returns only on
- * failure, after one line on stderr: MR_EXIT_FAIL. */
-int mr_stage_exec(char **argv);
+/* In `marionette`: replaces the process with the program of that file
+ * name (the stage program for "run" and "render", the export program for
+ * "export"), given marionette's whole argv. Returns only on failure,
+ * after one line on stderr: MR_EXIT_FAIL. */
+int mr_stage_exec(const char *program, char **argv);
 
 #endif

@@ -5,7 +5,9 @@
  * Assimp and their dependencies costs about 57 M instructions, more than
  * a 10 s walk simulates in. For a drawing command this program replaces
  * itself with the stage program: same process, same arguments, same
- * descriptors and signals, so a caller sees one program. */
+ * descriptors and signals, so a caller sees one program. `marionette
+ * export`, which loads models through Assimp but draws nothing, lives in
+ * the export program beside it, reached the same way. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -20,6 +22,9 @@
  * and where it is installed relative to this program's folder. */
 #ifndef MR_STAGE_PROGRAM
 #error "MR_STAGE_PROGRAM (the stage program's file name) is not defined"
+#endif
+#ifndef MR_EXPORT_PROGRAM
+#error "MR_EXPORT_PROGRAM (the export program's file name) is not defined"
 #endif
 #ifndef MR_STAGE_FROM_BINDIR
 #error "MR_STAGE_FROM_BINDIR (the stage program's folder relative to bin) is not defined"
@@ -37,7 +42,7 @@ static int own_folder(char *dir, size_t size) {
   return 0;
 }
 
-int mr_stage_exec(char **argv) {
+int mr_stage_exec(const char *program, char **argv) {
   char dir[PATH_MAX];
   if (own_folder(dir, sizeof dir) != 0) {
     fprintf(stderr, "marionette %s: cannot find this program's own folder: %s\n", argv[1],
@@ -49,7 +54,7 @@ int mr_stage_exec(char **argv) {
   const char *places[] = { "", "/" MR_STAGE_FROM_BINDIR };
   char path[PATH_MAX];
   for (size_t i = 0; i < sizeof places / sizeof places[0]; i++) {
-    int n = snprintf(path, sizeof path, "%s%s/%s", dir, places[i], MR_STAGE_PROGRAM);
+    int n = snprintf(path, sizeof path, "%s%s/%s", dir, places[i], program);
     if (n < 0 || (size_t)n >= sizeof path || access(path, X_OK) != 0) continue;
     fflush(NULL);
     execv(path, argv);
@@ -57,8 +62,9 @@ int mr_stage_exec(char **argv) {
     return MR_EXIT_FAIL;
   }
   fprintf(stderr,
-          "marionette %s: the stage program %s is neither in %s nor in %s/%s; build or "
+          "marionette %s: the %s program %s is neither in %s nor in %s/%s; build or "
           "install it (make, make install)\n",
-          argv[1], MR_STAGE_PROGRAM, dir, dir, MR_STAGE_FROM_BINDIR);
+          argv[1], strcmp(program, MR_STAGE_PROGRAM) == 0 ? "stage" : "export", program, dir, dir,
+          MR_STAGE_FROM_BINDIR);
   return MR_EXIT_FAIL;
 }

@@ -185,6 +185,10 @@ typedef struct mr_rec_header {
   uint16_t header_len;
   uint32_t spec_hash;     /* the recorder's; informational */
   uint64_t start_unix_ns; /* 0 if unknown */
+  /* The scene the take was performed on: the state hash of its world as
+   * built, before the first step (mr_world_state_hash); 0 if unknown (a
+   * take from before it was recorded, or not from a show). */
+  uint64_t scene_hash;
 } mr_rec_header;
 
 typedef struct mr_rec_writer {
@@ -198,6 +202,10 @@ typedef struct mr_rec_writer {
 /* Creates (truncates) path and writes the header. 0 or -1. */
 int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
                        uint64_t start_unix_ns, mr_io_error *err);
+/* The same, stamping the take with the scene it is performed on
+ * (mr_rec_header's scene_hash; 0: unknown). */
+int mr_rec_writer_open_scene(mr_rec_writer *w, const char *path, uint32_t spec_hash,
+                             uint64_t start_unix_ns, uint64_t scene_hash, mr_io_error *err);
 /* Appends one chunk: 1..MR_REC_MAX_CHUNK bytes at t_ns since the start,
  * never earlier than the chunk before and at most MR_REC_MAX_GAP_NS after
  * it. 0 or -1. */

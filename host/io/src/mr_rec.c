@@ -37,6 +37,11 @@ int mr_rec_is_recording(const void *buf, size_t len) {
 
 int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
                        uint64_t start_unix_ns, mr_io_error *err) {
+  return mr_rec_writer_open_scene(w, path, spec_hash, start_unix_ns, 0, err);
+}
+
+int mr_rec_writer_open_scene(mr_rec_writer *w, const char *path, uint32_t spec_hash,
+                             uint64_t start_unix_ns, uint64_t scene_hash, mr_io_error *err) {
   uint8_t h[MR_REC_HEADER_LEN];
   memset(w, 0, sizeof *w);
   w->fd = -1;
@@ -45,7 +50,7 @@ int mr_rec_writer_open(mr_rec_writer *w, const char *path, uint32_t spec_hash,
   put_le(h + 10, MR_REC_HEADER_LEN, 2);
   put_le(h + 12, spec_hash, 4);
   put_le(h + 16, start_unix_ns, 8);
-  put_le(h + 24, 0, 8);
+  put_le(h + 24, scene_hash, 8);
   w->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (w->fd < 0) return mr_io_err_sys(err, "%s: cannot create", path);
   strncpy(w->path, path, sizeof w->path - 1);
@@ -147,6 +152,7 @@ int mr_rec_reader_open_fd(mr_rec_reader *r, int fd, const char *name, const void
   r->header.header_len = (uint16_t)get_le(h + 10, 2);
   r->header.spec_hash = (uint32_t)get_le(h + 12, 4);
   r->header.start_unix_ns = get_le(h + 16, 8);
+  r->header.scene_hash = get_le(h + 24, 8);
   if (r->header.version != MR_REC_VERSION)
     return mr_io_err_set(err, MR_IO_ERR_FORMAT,
                          "%s: byte 8: unknown version %u (this reader knows %u)", r->name,

@@ -410,7 +410,10 @@ static int open_glove(show *s, size_t i, const char *source, const char *take_pa
     return fail(s, MR_SHOW_ERR_GLOVE, msg), -1;
   if (take_path == NULL) return 0;
   mr_io_error err;
-  if (mr_rec_writer_open(&g->take, take_path, GP_SPEC_HASH, mr_io_unix_ns(), &err) != 0)
+  /* The take names the scene it was performed on, so that a program
+   * playing it on another scene can say so (marionette export). */
+  if (mr_rec_writer_open_scene(&g->take, take_path, GP_SPEC_HASH, mr_io_unix_ns(),
+                               mr_world_state_hash(s->sw.world), &err) != 0)
     return fail(s, MR_SHOW_ERR_TAKE, err.msg), -1;
   g->recording = g->take_open = true;
   mr_glove_set_tap(g->glove, record, g);
