@@ -285,12 +285,15 @@ def main():
               "PREFIX/share/marionette/scenes")
         check(os.path.isdir(share + "/models") and sorted(os.listdir(share + "/models")) == models,
               "the example scenes' models are installed in PREFIX/share/marionette/scenes/models")
-        check(len(listing) == 10 + len(scenes) + len(models),
-              "install puts exactly 3 programs, the stage program, 3 man pages, the systemd "
-              "unit, the rule (twice here), the scenes and their models: "
+        check(len(listing) == 11 + len(scenes) + len(models),
+              "install puts exactly 3 programs, the stage and export programs, 3 man pages, "
+              "the systemd unit, the rule (twice here), the scenes and their models: "
               + " ".join(sorted(listing)))
         stage = dest + PREFIX + "/libexec/marionette/marionette-stage"
         check(os.access(stage, os.X_OK), "the stage program (run, render) is installed in "
+              "PREFIX/libexec/marionette, off PATH")
+        export = dest + PREFIX + "/libexec/marionette/marionette-export"
+        check(os.access(export, os.X_OK), "the export program (export) is installed in "
               "PREFIX/libexec/marionette, off PATH")
         unit = dest + PREFIX + "/lib/systemd/system/marionette-theater@.service"
         text = open(unit).read() if os.path.isfile(unit) else ""
