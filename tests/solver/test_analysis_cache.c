@@ -118,6 +118,57 @@ static void the_least_recently_used_analysis_goes(void **state) {
   free(v);
 }
 
+/* Patterns above the rows a reserve makes room for (a few hundred contact
+ * rows) are kept too: two of them in turn are analysed once each, and a
+ * third, new one is analysed when it comes; every answer is the fresh
+ * solver's, bit for bit. */
+enum { BIG = MR_LDLT_KEPT_MAX_N + 20 };
+
+static void big_patterns_are_kept_while_they_repeat(void **state) {
+  (void)state;
+  static const double up[3] = { 0, 0, 1 };
+  test_system sys[3];
+  mr_csr A[3];
+  double *b[3], *ref[3], *x = calloc(BIG + 3, sizeof *x);
+  test_rng rng = { 9 };
+  memset(sys, 0, sizeof sys);
+  memset(A, 0, sizeof A);
+  assert_non_null(x);
+  for (int p = 0; p < 3; p++) {
+    test_system_random(&sys[p], BIG, 13);
+    for (int c = 0; c <= p; c++) test_system_pin(&sys[p], sys[p].np - 1 - c, up);
+    assert_int_equal(mr_csr_assemble(&A[p], &sys[p].J, sys[p].inv_mass), MR_SOLVE_OK);
+    b[p] = calloc(BIG + 3, sizeof *b[p]);
+    ref[p] = calloc(BIG + 3, sizeof *ref[p]);
+    assert_true(b[p] && ref[p]);
+    test_system_consistent_rhs(&sys[p], &rng, b[p]);
+    solve_fresh(&A[p], b[p], ref[p]);
+  }
+  mr_solver *s = mr_solver_create();
+  assert_non_null(s);
+  mr_solve_def def = mr_default_solve_def();
+  def.method = MR_SOLVE_LDLT;
+  const int order[] = { 0, 1, 0, 1, 1, 0, 2, 0, 2 }, analysed[] = { 1, 2, 2, 2, 2, 2, 3, 3, 3 };
+  for (int i = 0; i < 9; i++) {
+    int p = order[i];
+    mr_solve_result r;
+    memset(x, 0, (BIG + 3) * sizeof *x);
+    mr_solve_status st = mr_solver_solve(s, &def, &A[p], b[p], x, &r);
+    assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT);
+    assert_false(r.dense);
+    assert_memory_equal(x, ref[p], (size_t)A[p].n * sizeof *x);
+    assert_int_equal(s->ldlt.analyses, analysed[i]);
+  }
+  mr_solver_destroy(s);
+  for (int p = 0; p < 3; p++) {
+    free(b[p]);
+    free(ref[p]);
+    mr_csr_free(&A[p]);
+    test_system_free(&sys[p]);
+  }
+  free(x);
+}
+
 /* A and a fresh assembly of the same J agree in every bit. */
 static void assert_same_as_fresh(const mr_csr *A, const test_system *s) {
   mr_csr fresh = { 0 };
@@ -176,6 +227,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(alternating_patterns_are_analysed_once_each),
     cmocka_unit_test(the_least_recently_used_analysis_goes),
+    cmocka_unit_test(big_patterns_are_kept_while_they_repeat),
     cmocka_unit_test(alternating_jacobians_are_planned_once_each),
     cmocka_unit_test(the_least_recently_used_plan_goes),
   };

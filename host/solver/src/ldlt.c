@@ -68,7 +68,7 @@ static int reserve_order(mr_ldlt *f, size_t n) {
   if (mr_buf_reserve(&f->perm, n, si) || mr_buf_reserve(&f->iperm, n, si) ||
       mr_buf_reserve(&f->dperm, n, si) || mr_buf_reserve(&f->cand, n, si) ||
       mr_buf_reserve(&f->parent, n, si) || mr_buf_reserve(&f->lnz, n, si) ||
-      mr_buf_reserve(&f->flag, n, si) || mr_buf_reserve(&f->stack, 2 * n, si) ||
+      mr_buf_reserve(&f->flag, n, si) || mr_buf_reserve(&f->stack, 3 * n, si) ||
       (n <= MR_MIN_DEGREE_MAX_N && mr_buf_reserve(&f->bits, n * ((n + 63) / 64), sizeof(uint64_t))))
     return MR_SOLVE_ERR_NOMEM;
   return 0;
@@ -88,15 +88,18 @@ static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l) {
  * pattern of a size was seen (or reserved for), a new pattern of that size
  * allocates nothing either: the physics allocates nothing after its first
  * step (tests/physics/test_allocation.c). */
-static int reserve_kept(mr_ldlt *f, size_t n, size_t nnz) {
+static int reserve_slot(mr_ldlt_kept *k, size_t n, size_t nnz) {
   const size_t si = sizeof(int);
-  for (int s = 0; s < MR_LDLT_KEPT; s++) {
-    mr_ldlt_kept *k = &f->kept[s];
-    if (mr_pattern_reserve(&k->pattern, n, nnz) || mr_buf_reserve(&k->perm, n, si) ||
-        mr_buf_reserve(&k->iperm, n, si) || mr_buf_reserve(&k->parent, n, si) ||
-        mr_buf_reserve(&k->dperm, n, si) || mr_buf_reserve(&k->lp, n + 1, si))
-      return MR_SOLVE_ERR_NOMEM;
-  }
+  if (mr_pattern_reserve(&k->pattern, n, nnz) || mr_buf_reserve(&k->perm, n, si) ||
+      mr_buf_reserve(&k->iperm, n, si) || mr_buf_reserve(&k->parent, n, si) ||
+      mr_buf_reserve(&k->dperm, n, si) || mr_buf_reserve(&k->lp, n + 1, si))
+    return MR_SOLVE_ERR_NOMEM;
+  return 0;
+}
+
+static int reserve_kept(mr_ldlt *f, size_t n, size_t nnz) {
+  for (int s = 0; s < MR_LDLT_KEPT; s++)
+    if (reserve_slot(&f->kept[s], n, nnz)) return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
 
@@ -216,17 +219,21 @@ static int restore(mr_ldlt *f, int s, const mr_csr *A) {
 }
 
 /* Keeps the analysis in use in the least recently used slot (an empty one
- * first); returns the slot, or -1 when A is too large to keep. */
+ * first); returns the slot. A pattern of more than MR_LDLT_KEPT_MAX_N rows
+ * grows only its own slot: a few hundred contact rows all touching the
+ * same parts make A nearly full, megabytes a slot, and their patterns
+ * come back (the same contacts resting, then released in the same rounds)
+ * often enough that ordering each afresh was a third of the run. */
 static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
-  const size_t n = (size_t)A->n, si = sizeof(int);
+  const size_t n = (size_t)A->n, si = sizeof(int), nnz = (size_t)A->row_ptr[A->n];
   *slot = -1;
-  if (A->n > MR_LDLT_KEPT_MAX_N) return 0;
   int s = 0;
   for (int t = 1; t < MR_LDLT_KEPT; t++)
     if (f->kept[t].used < f->kept[s].used) s = t;
   mr_ldlt_kept *k = &f->kept[s];
   k->pattern.valid = 0;
-  if (reserve_kept(f, n, (size_t)A->row_ptr[A->n])) return MR_SOLVE_ERR_NOMEM;
+  if (A->n > MR_LDLT_KEPT_MAX_N ? reserve_slot(k, n, nnz) : reserve_kept(f, n, nnz))
+    return MR_SOLVE_ERR_NOMEM;
   memcpy(k->perm.p, f->perm.p, n * si);
   memcpy(k->iperm.p, f->iperm.p, n * si);
   memcpy(k->dperm.p, f->dperm.p, n * si);

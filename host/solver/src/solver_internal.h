@@ -56,10 +56,11 @@ typedef struct mr_ldlt_kept {
   size_t nnz_l;
   unsigned long used; /* f->clock when last used: the least recent goes */
 } mr_ldlt_kept;
-/* How many analyses are kept, and the largest pattern kept (rows): a
- * reserve gives every kept slot room for a full pattern of up to that
- * many rows, 64 KiB each; larger systems keep only the analysis in use.
- * The benchmark's puppets solve 7 to 31 rows. */
+/* How many analyses are kept, and the largest pattern a reserve makes
+ * room for (rows): a reserve gives every kept slot room for a full
+ * pattern of up to that many rows, 64 KiB each. A larger pattern is kept
+ * too, in a slot grown for it alone (ldlt.c, keep). The benchmark's
+ * puppets solve 7 to 31 rows. */
 #define MR_LDLT_KEPT       8
 #define MR_LDLT_KEPT_MAX_N 128
 
@@ -174,7 +175,7 @@ int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A);
 int mr_ldlt_reserve(mr_ldlt *f, int rows);
 
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
- * 2n ints. */
+ * 3n ints. */
 void mr_order_rcm(const mr_csr *A, int *perm, int *iw);
 
 /* Minimum degree on the elimination graph held as bitsets: bits needs
