@@ -195,7 +195,11 @@ static int analyse(mr_ldlt *f, const mr_csr *A) {
  * among a few, and with one analysis kept each switch ordered A again:
  * on the taut-string stick marionette (10 s of sway) 4 085 of 8 079 solves
  * re-analysed, 26 % of all instructions. With 8 kept, 590 do, and the
- * whole run takes 24 % fewer instructions. A kept analysis is the one
+ * whole run takes 24 % fewer instructions. The puppet of puppet.yaml,
+ * whose floor contacts come and go, still analysed 510 times in 19 124
+ * solves (10 s, 5.5 % of its instructions) with 8 kept; with 16, 240;
+ * with 32, 137 (4.1 % fewer instructions in all); with 64, 103. 32 it
+ * is: 2 MiB once reserved for 128 rows. A kept analysis is the one
  * analyse() would compute again, so the answers are the same bits. */
 static int find_kept(const mr_ldlt *f, const mr_csr *A) {
   for (int s = 0; s < MR_LDLT_KEPT; s++)
@@ -219,21 +223,21 @@ static int restore(mr_ldlt *f, int s, const mr_csr *A) {
 }
 
 /* Keeps the analysis in use in the least recently used slot (an empty one
- * first); returns the slot. A pattern of more than MR_LDLT_KEPT_MAX_N rows
- * grows only its own slot: a few hundred contact rows all touching the
- * same parts make A nearly full, megabytes a slot, and their patterns
- * come back (the same contacts resting, then released in the same rounds)
- * often enough that ordering each afresh was a third of the run. */
+ * first); returns the slot, or -1 when A is too large to keep. A large
+ * pattern stays only while in use: keeping them too (tried on 600 contact
+ * rows of puppets built inside each other, 425 solves above 128 rows)
+ * pushed out small patterns that came back, 700 orderings in place of
+ * 625; large patterns seldom come back whole. */
 static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
-  const size_t n = (size_t)A->n, si = sizeof(int), nnz = (size_t)A->row_ptr[A->n];
+  const size_t n = (size_t)A->n, si = sizeof(int);
   *slot = -1;
+  if (A->n > MR_LDLT_KEPT_MAX_N) return 0;
   int s = 0;
   for (int t = 1; t < MR_LDLT_KEPT; t++)
     if (f->kept[t].used < f->kept[s].used) s = t;
   mr_ldlt_kept *k = &f->kept[s];
   k->pattern.valid = 0;
-  if (A->n > MR_LDLT_KEPT_MAX_N ? reserve_slot(k, n, nnz) : reserve_kept(f, n, nnz))
-    return MR_SOLVE_ERR_NOMEM;
+  if (reserve_kept(f, n, (size_t)A->row_ptr[A->n])) return MR_SOLVE_ERR_NOMEM;
   memcpy(k->perm.p, f->perm.p, n * si);
   memcpy(k->iperm.p, f->iperm.p, n * si);
   memcpy(k->dperm.p, f->dperm.p, n * si);

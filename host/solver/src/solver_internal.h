@@ -56,12 +56,17 @@ typedef struct mr_ldlt_kept {
   size_t nnz_l;
   unsigned long used; /* f->clock when last used: the least recent goes */
 } mr_ldlt_kept;
-/* How many analyses are kept, and the largest pattern a reserve makes
- * room for (rows): a reserve gives every kept slot room for a full
- * pattern of up to that many rows, 64 KiB each. A larger pattern is kept
- * too, in a slot grown for it alone (ldlt.c, keep). The benchmark's
- * puppets solve 7 to 31 rows. */
-#define MR_LDLT_KEPT       8
+/* How many analyses are kept, and the largest pattern kept (rows): a
+ * reserve gives every kept slot room for a full pattern of up to that
+ * many rows, 64 KiB each; larger systems keep only the analysis in use
+ * (ldlt.c, keep, says why). The benchmark's puppets solve 7 to 31 rows. */
+#define MR_LDLT_KEPT 32
+
+/* How many assembly plans A keeps (assemble.c). On 10 s of puppet.yaml,
+ * whose floor contacts come and go, 16 in place of 8 take 419 M
+ * instructions to 414 M; 32 only to 412 M, for twice the memory (about
+ * 260 KiB a plan once reserved for 128 rows). */
+#define MR_CSR_KEPT        16
 #define MR_LDLT_KEPT_MAX_N 128
 
 /* The dense LDLᵀ's factor (dense.c): L row-major, n × n, row k used from
