@@ -17,7 +17,10 @@
 #include "solver_internal.h"
 #include "solver_systems.h"
 
-enum { PATTERNS = MR_LDLT_KEPT + 1, K = 60 };
+/* One pattern more than either cache keeps; the plan tests use the first
+ * MR_CSR_KEPT + 1 of them. */
+enum { PLANS = MR_CSR_KEPT + 1, PATTERNS = MR_LDLT_KEPT + 1, K = 60 };
+_Static_assert(PLANS <= PATTERNS, "the variants cover the plan tests");
 
 /* Pattern v: the same 60 random rows, then v contacts (pins along z on
  * the last movable particles): each v gives A another pattern. */
@@ -118,6 +121,65 @@ static void the_least_recently_used_analysis_goes(void **state) {
   free(v);
 }
 
+/* A pattern above the rows kept (a few hundred contact rows) keeps its
+ * analysis while it repeats, and is analysed again when it changes; it
+ * does not push out a small pattern's kept analysis. Every answer is the
+ * fresh solver's, bit for bit. */
+enum { BIG = MR_LDLT_KEPT_MAX_N + 20 };
+
+static void a_big_pattern_is_analysed_again_only_when_it_changes(void **state) {
+  (void)state;
+  static const double up[3] = { 0, 0, 1 };
+  test_system sys[3];
+  mr_csr A[3];
+  double *b[3], *ref[3], *x = calloc(BIG + 3, sizeof *x);
+  test_rng rng = { 9 };
+  memset(sys, 0, sizeof sys);
+  memset(A, 0, sizeof A);
+  assert_non_null(x);
+  for (int p = 0; p < 3; p++) {
+    test_system_random(&sys[p], BIG, 13);
+    for (int c = 0; c <= p; c++) test_system_pin(&sys[p], sys[p].np - 1 - c, up);
+    assert_int_equal(mr_csr_assemble(&A[p], &sys[p].J, sys[p].inv_mass), MR_SOLVE_OK);
+    b[p] = calloc(BIG + 3, sizeof *b[p]);
+    ref[p] = calloc(BIG + 3, sizeof *ref[p]);
+    assert_true(b[p] && ref[p]);
+    test_system_consistent_rhs(&sys[p], &rng, b[p]);
+    solve_fresh(&A[p], b[p], ref[p]);
+  }
+  mr_solver *s = mr_solver_create();
+  assert_non_null(s);
+  mr_solve_def def = mr_default_solve_def();
+  def.method = MR_SOLVE_LDLT;
+  variants *v = malloc(sizeof *v);
+  assert_non_null(v);
+  variants_make(v);
+  solve_and_compare(s, v, 1); /* a small pattern, kept */
+  const int order[] = { 0, 0, 0, 1, 1, 0, 2, 2, 0 }, analysed[] = { 2, 2, 2, 3, 3, 4, 5, 5, 6 };
+  for (int i = 0; i < 9; i++) {
+    int p = order[i];
+    mr_solve_result r;
+    memset(x, 0, (BIG + 3) * sizeof *x);
+    mr_solve_status st = mr_solver_solve(s, &def, &A[p], b[p], x, &r);
+    assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT);
+    assert_false(r.dense);
+    assert_memory_equal(x, ref[p], (size_t)A[p].n * sizeof *x);
+    assert_int_equal(s->ldlt.analyses, analysed[i]);
+  }
+  solve_and_compare(s, v, 1); /* still kept */
+  assert_int_equal(s->ldlt.analyses, 6);
+  variants_free(v);
+  free(v);
+  mr_solver_destroy(s);
+  for (int p = 0; p < 3; p++) {
+    free(b[p]);
+    free(ref[p]);
+    mr_csr_free(&A[p]);
+    test_system_free(&sys[p]);
+  }
+  free(x);
+}
+
 /* A and a fresh assembly of the same J agree in every bit. */
 static void assert_same_as_fresh(const mr_csr *A, const test_system *s) {
   mr_csr fresh = { 0 };
@@ -158,15 +220,15 @@ static void the_least_recently_used_plan_goes(void **state) {
   variants_make(v);
   mr_csr A = { 0 };
   for (int round = 0; round < 2; round++) {
-    for (int p = 0; p < PATTERNS; p++) {
+    for (int p = 0; p < PLANS; p++) {
       assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
       assert_same_as_fresh(&A, &v->sys[p]);
     }
   }
-  assert_int_equal(mr_csr_pattern_builds(&A), 2 * PATTERNS);
-  for (int p = PATTERNS - 1; p >= 1; p--)
+  assert_int_equal(mr_csr_pattern_builds(&A), 2 * PLANS);
+  for (int p = PLANS - 1; p >= 1; p--)
     assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
-  assert_int_equal(mr_csr_pattern_builds(&A), 2 * PATTERNS);
+  assert_int_equal(mr_csr_pattern_builds(&A), 2 * PLANS);
   mr_csr_free(&A);
   variants_free(v);
   free(v);
@@ -176,6 +238,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(alternating_patterns_are_analysed_once_each),
     cmocka_unit_test(the_least_recently_used_analysis_goes),
+    cmocka_unit_test(a_big_pattern_is_analysed_again_only_when_it_changes),
     cmocka_unit_test(alternating_jacobians_are_planned_once_each),
     cmocka_unit_test(the_least_recently_used_plan_goes),
   };

@@ -33,7 +33,7 @@ static void orderings_are_permutations(void **state) {
     test_system_random(&s, sizes[t], 300 + t);
     assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     int n = A.n;
-    int *perm = malloc((size_t)n * sizeof *perm), *iw = malloc(2 * (size_t)n * sizeof *iw);
+    int *perm = malloc((size_t)n * sizeof *perm), *iw = malloc(3 * (size_t)n * sizeof *iw);
     uint64_t *bits = malloc((size_t)n * (((size_t)n + 63) / 64) * sizeof *bits);
     mr_order_rcm(&A, perm, iw);
     assert_true(is_permutation(n, perm));
@@ -124,7 +124,7 @@ static void chosen_ordering_fills_least(void **state) {
     mr_csr A = { 0 };
     assert_int_equal(mr_csr_assemble(&A, &s.J, s.inv_mass), 0);
     double *b = calloc((size_t)n, sizeof *b), *x = calloc((size_t)n, sizeof *x);
-    int *perm = malloc((size_t)n * sizeof *perm), *iw = malloc(2 * (size_t)n * sizeof *iw);
+    int *perm = malloc((size_t)n * sizeof *perm), *iw = malloc(3 * (size_t)n * sizeof *iw);
     for (int i = 0; i < n; i++) b[i] = 1.0;
     mr_solver *solver = mr_solver_create();
     assert_int_equal(mr_solver_solve(solver, NULL, &A, b, x, NULL), MR_SOLVE_OK);

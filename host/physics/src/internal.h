@@ -63,6 +63,13 @@ typedef struct mr_part {
   int first_leaf, leaf_count, puppet;
   double restitution, friction;
 } mr_part;
+/* A leaf pair overlapping as built: of one puppet (never tested), or of
+ * two (left out until seen apart; out says whether it still is). */
+typedef struct mr_built_overlap {
+  int a, b;
+  unsigned char same_puppet, out;
+} mr_built_overlap;
+
 typedef struct mr_tree_node {
   double c[3], r;
   int left, right, leaf;
@@ -180,6 +187,10 @@ struct mr_world {
   int cap_string_work;
   double *puppet_mass;
   unsigned char *part_adjacent; /* nparts × nparts */
+  /* Leaf pairs that overlap in the pose the trees were built in, sorted
+   * by (a, b), a < b (sphere_tree.c says why they are left out). */
+  mr_built_overlap *built_overlaps;
+  int n_built_overlaps;
   int ntrees;
   mr_tree *trees;
   int nnodes;
@@ -336,6 +347,11 @@ void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3]
 
 /* sphere_tree.c */
 int mr_trees_build(mr_world *w);
+/* The pairs of two puppets that overlapped as built and are apart in x
+ * are tested from now on (called on each accepted state). */
+void mr_trees_note_apart(mr_world *w, const double *x);
+/* After a reset to the start: every pair left out as built is again. */
+void mr_trees_restore_overlaps(mr_world *w);
 void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3]);
 int mr_detect_self(mr_world *w, const double *x, const mr_sweep *sw, double gap,
                    mr_contact_list *out);

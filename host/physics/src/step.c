@@ -62,6 +62,7 @@ static void reset_to_start(mr_world *w, const mr_step_ctx *c) {
   w->dt_next = fmin(fmax(w->def.dt_initial, w->def.dt_min), w->def.dt_max);
   w->recovering = 0;
   w->contacts.n = 0;
+  mr_trees_restore_overlaps(w);
   w->stats.divergences++;
   if (c->speed != c->speed || c->error != c->error)
     mr_fail(w, MR_DIVERGED,
@@ -259,6 +260,7 @@ static mr_status impacts(mr_world *w, mr_step_ctx *c) {
   /* A taut string's frame end moves with the velocity of the frame's new
    * segment from now on: its snap is judged against that one. */
   if (w->n_taut > 0) mr_frames_place(w, c->t, w->x, w->v);
+  mr_trees_note_apart(w, w->x);
   if (mr_contacts_detect(w, w->x, w->def.contact_slop, &w->contacts) != 0 ||
       mr_world_contact_capacity(w, w->contacts.n) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (contacts)");

@@ -347,6 +347,7 @@ void mr_world_destroy(mr_world *w) {
                      w->frame_state,
                      w->puppet_mass,
                      w->part_adjacent,
+                     w->built_overlaps,
                      w->tree_stack,
                      w->trees,
                      w->nodes,

@@ -53,15 +53,15 @@ typedef struct csr_kept {
   unsigned long used; /* the plan set's clock when last used */
 } csr_kept;
 
-/* How many plans are kept, and the largest J kept beside the first plan
- * (rows): larger ones always use plan 0, so a reserve gives the others
- * room for a dense A of up to that size only (64 KiB each). The
- * benchmark's puppets assemble 7 to 31 rows. */
-#define CSR_KEPT          8
+/* The largest J kept beside the first plan (rows): larger ones always use
+ * plan 0, so a reserve gives the others room for a dense A of up to that
+ * size only (about 260 KiB each with its lists of products). How many
+ * plans are kept: MR_CSR_KEPT (solver_internal.h). The benchmark's
+ * puppets assemble 7 to 31 rows. */
 #define CSR_KEPT_MAX_ROWS 128
 
 struct mr_csr_plan {
-  csr_kept kept[CSR_KEPT];
+  csr_kept kept[MR_CSR_KEPT];
   int cur;                   /* the plan used last */
   mr_buf val;                /* A's values: A->val points here */
   mr_buf mark, cursor, ucol; /* scratch of the pattern build and the symmetrising copy */
@@ -94,7 +94,7 @@ static int same_source(csr_kept *pl, const mr_jac *J, const double *inv_mass, in
 
 /* The plans that a J of k rows may use: all of them, or plan 0 alone. */
 static int plans_for(size_t k) {
-  return k > CSR_KEPT_MAX_ROWS ? 1 : CSR_KEPT;
+  return k > CSR_KEPT_MAX_ROWS ? 1 : MR_CSR_KEPT;
 }
 
 /* Plans [0, count)'s arrays and the scratch for k rows, np particles and
@@ -273,7 +273,7 @@ static int replan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mas
   const size_t k = (size_t)J->rows;
   int s = 0;
   if (plans_for(k) > 1)
-    for (int t = 1; t < CSR_KEPT; t++)
+    for (int t = 1; t < MR_CSR_KEPT; t++)
       if (pl->kept[t].used < pl->kept[s].used) s = t;
   csr_kept *kp = &pl->kept[s];
   kp->valid = 0;
@@ -295,8 +295,8 @@ static int replan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mas
 static int find_plan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne) {
   if (!same_source(&pl->kept[pl->cur], J, inv_mass, ne)) {
     int s = 0;
-    while (s < CSR_KEPT && !same_source(&pl->kept[s], J, inv_mass, ne)) s++;
-    if (s < CSR_KEPT)
+    while (s < MR_CSR_KEPT && !same_source(&pl->kept[s], J, inv_mass, ne)) s++;
+    if (s < MR_CSR_KEPT)
       pl->cur = s;
     else if (replan(pl, J, inv_mass, ne) != 0)
       return MR_SOLVE_ERR_NOMEM;
@@ -363,8 +363,8 @@ mr_solve_status mr_csr_reserve(mr_csr *A, int rows, int particles, int entries) 
   const size_t np = (size_t)particles, ne = (size_t)entries;
   if (plan_of(A) != 0 || plan_reserve(A->plan, 1, k, np, ne) != 0 ||
       plan_reserve_entries(A->plan, 1, k * k, ne) != 0 ||
-      plan_reserve(A->plan, CSR_KEPT, kept, np, ne) != 0 ||
-      plan_reserve_entries(A->plan, CSR_KEPT, kept * kept, ne) != 0)
+      plan_reserve(A->plan, MR_CSR_KEPT, kept, np, ne) != 0 ||
+      plan_reserve_entries(A->plan, MR_CSR_KEPT, kept * kept, ne) != 0)
     return MR_SOLVE_ERR_NOMEM;
   return MR_SOLVE_OK;
 }
@@ -415,7 +415,7 @@ void mr_csr_free(mr_csr *A) {
   if (!A) return;
   struct mr_csr_plan *pl = A->plan;
   if (pl) {
-    for (int s = 0; s < CSR_KEPT; s++) {
+    for (int s = 0; s < MR_CSR_KEPT; s++) {
       csr_kept *kp = &pl->kept[s];
       mr_buf *const kbufs[] = { &kp->rp,     &kp->col,    &kp->jrp,   &kp->jpart, &kp->pinned,
                                 &kp->masses, &kp->pstart, &kp->prow,  &kp->pent,  &kp->tstart,

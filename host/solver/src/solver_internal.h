@@ -58,9 +58,15 @@ typedef struct mr_ldlt_kept {
 } mr_ldlt_kept;
 /* How many analyses are kept, and the largest pattern kept (rows): a
  * reserve gives every kept slot room for a full pattern of up to that
- * many rows, 64 KiB each; larger systems keep only the analysis in use.
- * The benchmark's puppets solve 7 to 31 rows. */
-#define MR_LDLT_KEPT       8
+ * many rows, 64 KiB each; larger systems keep only the analysis in use
+ * (ldlt.c, keep, says why). The benchmark's puppets solve 7 to 31 rows. */
+#define MR_LDLT_KEPT 32
+
+/* How many assembly plans A keeps (assemble.c). On 10 s of puppet.yaml,
+ * whose floor contacts come and go, 16 in place of 8 take 419 M
+ * instructions to 414 M; 32 only to 412 M, for twice the memory (about
+ * 260 KiB a plan once reserved for 128 rows). */
+#define MR_CSR_KEPT        16
 #define MR_LDLT_KEPT_MAX_N 128
 
 /* The dense LDLᵀ's factor (dense.c): L row-major, n × n, row k used from
@@ -174,7 +180,7 @@ int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A);
 int mr_ldlt_reserve(mr_ldlt *f, int rows);
 
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
- * 2n ints. */
+ * 3n ints. */
 void mr_order_rcm(const mr_csr *A, int *perm, int *iw);
 
 /* Minimum degree on the elimination graph held as bitsets: bits needs
