@@ -45,6 +45,7 @@ static void help_lists_subcommands_and_flags(void **state) {
   run(&p, "--help", NULL);
   assert_int_equal(p.status, 0);
   assert_non_null(strstr(p.out, "  sim SCENE "));
+  assert_non_null(strstr(p.out, "  export "));
   tt_output_free(&p);
   run(&p, "sim", "--help", NULL);
   assert_int_equal(p.status, 0);
@@ -57,7 +58,7 @@ static void help_lists_subcommands_and_flags(void **state) {
   assert_int_equal(p.status, 2);
   assert_string_equal(p.err,
                       "marionette: unknown command 'dance'; expected one of: sim, run, render, "
-                      "list-ports, calibrate (see --help)\n");
+                      "export, list-ports, calibrate (see --help)\n");
   tt_output_free(&p);
 }
 
