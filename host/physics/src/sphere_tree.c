@@ -334,7 +334,7 @@ static int find_built_overlaps(mr_world *w) {
   }
   mr_contact_list_free(&found);
   if (st != 0) return -1;
-  qsort(w->built_overlaps, (size_t)n, sizeof *w->built_overlaps, overlap_cmp);
+  if (n > 1) qsort(w->built_overlaps, (size_t)n, sizeof *w->built_overlaps, overlap_cmp);
   w->n_built_overlaps = n;
   return 0;
 }
