@@ -147,11 +147,23 @@ static int max_apart(const uint8_t *a, const uint8_t *b) {
 /* In software (by default one sample, edges smoothed) the scenery is
  * kept from the third frame that stays (still.c). A moved puppet moves
  * the follow spot: over the kept picture its pool is lit again where it
- * falls now, and nowhere is the pool it left behind. */
+ * falls now, and nowhere is the pool it left behind; the set it sweeps
+ * over stays as it was kept. */
 static void test_a_frame_over_the_kept_scenery_is_the_frame_drawn_whole(void **state) {
   (void)state;
   staged g;
   staged_init(&g, -0.8);
+  /* The set too, under a spot wide enough to reach the arch: the set is
+   * kept still, so the spot must never light it, kept or whole. */
+  mr_stage_destroy(g.stage);
+  g.s.stage.proscenium = g.s.stage.wings = g.s.stage.footlights = true;
+  g.s.stage.follow_spot.angle_deg = 25;
+  g.s.stage.orbit_distance = 5; /* back in the seats, where the arch is seen */
+  g.s.view = mr_default_render_view(&g.s.stage);
+  const double rest[3] = { -0.8, 0.6, 0 };
+  char msg[256];
+  if (mr_stage_create(&g.s.stage, rest, 1, &g.stage, msg, sizeof msg) != MR_STAGE_OK)
+    fail_msg("%s", msg);
   mr_render *kept = fx_render(MR_RENDER_OSMESA, &g.s);
   uint8_t *first = draw_at(kept, &g, -0.8, 5, 10);
   for (int k = 0; k < 3; k++) free(draw_at(kept, &g, -0.8, 5, 10));

@@ -176,6 +176,29 @@ static void the_default_curtain_hangs_between_the_audience_and_the_show(void **s
   assert_true(ndc[1] > 1);
 }
 
+/* With an arch, the curtain hangs just behind its plane, on the opening's
+ * middle, taller than the opening, and wide enough that open, each half
+ * gathered to 18 % of its width (curtain.c) stands behind a post, clear
+ * of the opening. Without one it hangs as above. */
+static void
+behind_an_arch_the_curtain_hangs_just_upstage_and_opens_clear_of_the_opening(void **state) {
+  (void)state;
+  mr_stage_def d = mr_default_stage_def();
+  d.proscenium = true;
+  d.set_width = 2.2, d.set_height = 1.7, d.set_front = 0.8, d.set_middle = 0.3;
+  mr_curtain_place p = mr_curtain_place_of(&d);
+  const double along = p.origin[0] * p.normal[0] + p.origin[2] * p.normal[2];
+  const double across = p.origin[0] * p.right[0] + p.origin[2] * p.right[2];
+  assert_true(along < d.set_front && along > d.set_front - 0.15);
+  NEAR(across, d.set_middle, 1e-9);
+  assert_true(p.height > d.set_height);
+  assert_true(p.width / 2 * (1 - 0.18) >= d.set_width / 2);
+  assert_true(p.width / 2 * (1 - 0.18) < d.set_width / 2 + 0.15);
+  d.proscenium = false;
+  p = mr_curtain_place_of(&d);
+  NEAR(p.origin[0] * p.right[0] + p.origin[2] * p.right[2], 0, 1e-9);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(the_curtain_starts_closed_and_is_open_after_its_open_time),
@@ -185,6 +208,7 @@ int main(void) {
     cmocka_unit_test(the_follow_spot_aims_at_the_puppets_middle_and_not_at_the_bar),
     cmocka_unit_test(the_follow_spot_and_the_curtain_turn_with_the_audience),
     cmocka_unit_test(the_default_curtain_hangs_between_the_audience_and_the_show),
+    cmocka_unit_test(behind_an_arch_the_curtain_hangs_just_upstage_and_opens_clear_of_the_opening),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
