@@ -59,14 +59,7 @@ void mr_curtain_create(mr_render *r, const mr_stage_def *stage) {
       uint32_t v = (uint32_t)(2 * c), *t = &idx[6 * c];
       t[0] = v, t[1] = v + 2, t[2] = v + 3, t[3] = v, t[4] = v + 3, t[5] = v + 1;
     }
-    mr_mesh m;
-    memset(&m, 0, sizeof m);
-    m.positions = pos;
-    m.normals = nor;
-    m.n_vertices = nv;
-    m.indices = idx;
-    m.n_indices = 6 * (cols - 1);
-    m.material = mr_default_material_def();
+    mr_mesh m = mr_mesh_of(pos, nor, nv, idx, 6 * (cols - 1), mr_default_material_def());
     mr_mesh_upload(r, &r->curtain, &m);
   }
   free(pos);

@@ -199,14 +199,7 @@ static void upload_quad(mr_render *r, mr_gpu_mesh *g, const float c[3], const fl
     idx[4] = 3;
     idx[5] = 2;
   }
-  mr_mesh m;
-  memset(&m, 0, sizeof m);
-  m.positions = pos;
-  m.normals = nor;
-  m.n_vertices = 4;
-  m.indices = idx;
-  m.n_indices = 6;
-  m.material = mr_default_material_def();
+  mr_mesh m = mr_mesh_of(pos, nor, 4, idx, 6, mr_default_material_def());
   upload_mesh(r, g, &m, NULL, NULL);
 }
 
@@ -222,14 +215,7 @@ static void upload_floor(mr_render *r, mr_gpu_mesh *g, float xz[5][2], size_t n,
    * each triangle round to face up. */
   for (size_t t = 0; t + 2 < n; t++)
     idx[3 * t] = 0, idx[3 * t + 1] = (uint32_t)(t + 2), idx[3 * t + 2] = (uint32_t)(t + 1);
-  mr_mesh m;
-  memset(&m, 0, sizeof m);
-  m.positions = pos;
-  m.normals = nor;
-  m.n_vertices = n;
-  m.indices = idx;
-  m.n_indices = 3 * (n - 2);
-  m.material = mr_default_material_def();
+  mr_mesh m = mr_mesh_of(pos, nor, n, idx, 3 * (n - 2), mr_default_material_def());
   upload_mesh(r, g, &m, NULL, NULL);
 }
 

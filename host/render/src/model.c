@@ -351,6 +351,19 @@ int mr_model_load(const mr_model_def *def, mr_model *out, char *msg, size_t msg_
   return 0;
 }
 
+mr_mesh mr_mesh_of(float *positions, float *normals, size_t n_vertices, uint32_t *indices,
+                   size_t n_indices, mr_material_def material) {
+  mr_mesh m;
+  memset(&m, 0, sizeof m);
+  m.positions = positions;
+  m.normals = normals;
+  m.n_vertices = n_vertices;
+  m.indices = indices;
+  m.n_indices = n_indices;
+  m.material = material;
+  return m;
+}
+
 void mr_model_free(mr_model *m) {
   if (!m) return;
   for (size_t k = 0; k < m->n_meshes; k++) mr_mesh_release(&m->meshes[k]);

@@ -42,4 +42,9 @@ typedef struct mr_model {
 int mr_model_load(const mr_model_def *def, mr_model *out, char *msg, size_t msg_size);
 void mr_model_free(mr_model *m);
 
+/* A mesh over arrays made elsewhere (the scenery's, the set's, the
+ * curtain's): no uvs, no texture; it points at them, owns nothing. */
+mr_mesh mr_mesh_of(float *positions, float *normals, size_t n_vertices, uint32_t *indices,
+                   size_t n_indices, mr_material_def material);
+
 #endif

@@ -252,14 +252,7 @@ static mr_material_def material(const float *rgb, float roughness, float metalli
 
 static void upload(mr_render *r, int part, batch *b, mr_material_def m) {
   if (b->nv == 0 || b->failed) return;
-  mr_mesh mesh;
-  memset(&mesh, 0, sizeof mesh);
-  mesh.positions = b->pos;
-  mesh.normals = b->nor;
-  mesh.n_vertices = b->nv;
-  mesh.indices = b->idx;
-  mesh.n_indices = b->ni;
-  mesh.material = m;
+  mr_mesh mesh = mr_mesh_of(b->pos, b->nor, b->nv, b->idx, b->ni, m);
   mr_mesh_upload(r, &r->set[part], &mesh);
   r->set[part].closed = true;
   r->set[part].material = m;
