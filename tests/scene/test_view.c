@@ -229,13 +229,8 @@ static void load(const char *path, mr_scene *s) {
   if (st != MR_SCENE_OK) fail_msg("%s", err.text);
 }
 
-/* Every example scene, as shown: in the picture, clear of the overlay,
- * and inside the proscenium's opening (the arch stands in front of the
- * show and would hide what reaches past it). */
-static void
-every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay_and_inside_the_arch(
-    void **state) {
-  (void)state;
+/* fn on every example scene, loaded (and freed after); how many. */
+static int each_example(void (*fn)(const char *name, mr_scene *s)) {
   DIR *dir = opendir(MR_SCENES_DIR);
   assert_non_null(dir);
   int scenes = 0;
@@ -247,36 +242,49 @@ every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay_and_ins
     snprintf(path, sizeof path, "%s/%s", MR_SCENES_DIR, e->d_name);
     mr_scene s;
     load(path, &s);
-    frames f;
-    run(&s, s.duration, &f);
-    framing fr = frame_show(&s, &f);
-    if (verbose)
-      printf("%-14s distance %.2f m  elevation %.0f  inside by %.3f  clear of the overlay by "
-             "%.3f  (worst at t %.1f s, %zu frames)\n",
-             e->d_name, s.stage.orbit_distance, s.stage.orbit_elevation_deg, fr.inside, fr.clear,
-             fr.t_worst, f.count);
-    if (!(fr.inside > 0 && fr.clear > 0))
-      fail_msg("%s: inside the picture by %.3f and clear of the overlay by %.3f at t %.1f s; "
-               "both must be above 0",
-               e->d_name, fr.inside, fr.clear, fr.t_worst);
-    if (verbose) printf("%-14s inside the proscenium's opening by %.3f\n", e->d_name, fr.opening);
-    if (!(fr.opening > 0))
-      fail_msg("%s: a puppet or bar reaches %.3f past the proscenium's opening; the arch "
-               "must frame the whole show",
-               e->d_name, -fr.opening);
-    if (verbose)
-      printf("%-14s the arch's top and the footlights in view by %.3f\n", e->d_name, fr.set);
-    if (s.stage.proscenium && !(fr.set > 0))
-      fail_msg("%s: the arch's top or the footlights fall %.3f outside the picture; the "
-               "audience must see the theater",
-               e->d_name, -fr.set);
-    free(f.t);
-    free(f.xyz);
+    fn(e->d_name, &s);
     mr_scene_free(&s);
     scenes++;
   }
   closedir(dir);
-  assert_true(scenes >= 8);
+  return scenes;
+}
+
+/* Every example scene, as shown: in the picture, clear of the overlay,
+ * and inside the proscenium's opening (the arch stands in front of the
+ * show and would hide what reaches past it). */
+static void frame_example(const char *name, mr_scene *s) {
+  frames f;
+  run(s, s->duration, &f);
+  framing fr = frame_show(s, &f);
+  if (verbose)
+    printf("%-14s distance %.2f m  elevation %.0f  inside by %.3f  clear of the overlay by "
+           "%.3f  (worst at t %.1f s, %zu frames)\n",
+           name, s->stage.orbit_distance, s->stage.orbit_elevation_deg, fr.inside, fr.clear,
+           fr.t_worst, f.count);
+  if (!(fr.inside > 0 && fr.clear > 0))
+    fail_msg("%s: inside the picture by %.3f and clear of the overlay by %.3f at t %.1f s; "
+             "both must be above 0",
+             name, fr.inside, fr.clear, fr.t_worst);
+  if (verbose) printf("%-14s inside the proscenium's opening by %.3f\n", name, fr.opening);
+  if (!(fr.opening > 0))
+    fail_msg("%s: a puppet or bar reaches %.3f past the proscenium's opening; the arch "
+             "must frame the whole show",
+             name, -fr.opening);
+  if (verbose) printf("%-14s the arch's top and the footlights in view by %.3f\n", name, fr.set);
+  if (s->stage.proscenium && !(fr.set > 0))
+    fail_msg("%s: the arch's top or the footlights fall %.3f outside the picture; the "
+             "audience must see the theater",
+             name, -fr.set);
+  free(f.t);
+  free(f.xyz);
+}
+
+static void
+every_puppet_and_bar_of_every_example_stays_in_view_clear_of_the_overlay_and_inside_the_arch(
+    void **state) {
+  (void)state;
+  assert_true(each_example(frame_example) >= 8);
 }
 
 /* A puppet carried 6 m across the stage and back: the camera that
@@ -485,34 +493,22 @@ static double worst_facing(const mr_scene *s, size_t p, double *when) {
  * stays within 60° of the way to the default camera at 65 moments evenly
  * over the show, t = 0 and its end included. A turn to the side is fine; showing
  * the audience its back is not. */
+static void face_example(const char *name, mr_scene *s) {
+  for (size_t p = 0; p < (s->n_puppets ? s->n_puppets : 1); p++) {
+    double when, worst = worst_facing(s, p, &when);
+    const char *who = s->n_puppets ? s->puppets[p].name : "";
+    if (verbose)
+      printf("%-14s %-8s faces the audience within %5.1f° (widest at t %.2f s)\n", name, who, worst,
+             when);
+    if (!(worst < FACING_MAX_DEG))
+      fail_msg("%s %s turns %.1f° from the audience at t %.2f s; at most %.0f° allowed", name, who,
+               worst, when, FACING_MAX_DEG);
+  }
+}
+
 static void every_puppet_of_every_example_faces_the_audience_through_the_show(void **state) {
   (void)state;
-  DIR *dir = opendir(MR_SCENES_DIR);
-  assert_non_null(dir);
-  int scenes = 0;
-  struct dirent *e;
-  while ((e = readdir(dir)) != NULL) {
-    size_t len = strlen(e->d_name);
-    if (len < 6 || strcmp(e->d_name + len - 5, ".yaml") != 0) continue;
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", MR_SCENES_DIR, e->d_name);
-    mr_scene s;
-    load(path, &s);
-    for (size_t p = 0; p < (s.n_puppets ? s.n_puppets : 1); p++) {
-      double when, worst = worst_facing(&s, p, &when);
-      const char *who = s.n_puppets ? s.puppets[p].name : "";
-      if (verbose)
-        printf("%-14s %-8s faces the audience within %5.1f° (widest at t %.2f s)\n", e->d_name, who,
-               worst, when);
-      if (!(worst < FACING_MAX_DEG))
-        fail_msg("%s %s turns %.1f° from the audience at t %.2f s; at most %.0f° allowed",
-                 e->d_name, who, worst, when, FACING_MAX_DEG);
-    }
-    mr_scene_free(&s);
-    scenes++;
-  }
-  closedir(dir);
-  assert_true(scenes >= 8);
+  assert_true(each_example(face_example) >= 8);
 }
 
 /* The built-in show (`make demo`) drives humanoid.yaml by glove through
