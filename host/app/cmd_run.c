@@ -21,6 +21,7 @@
 #include "mr_show.h"
 #include "mr_show_runner.h"
 #include "stage_opts.h"
+#include "take_ref.h"
 #include "window.h"
 
 static volatile sig_atomic_t stop_asked, mappings_asked;
@@ -76,7 +77,9 @@ void mr_cmd_run_usage(void) {
          "  --replay TAKE       play a take instead of a glove, on a virtual clock as\n"
          "                      fast as it goes: every frame gets the bytes it got\n"
          "                      live, so the states match the show's bit for bit;\n"
-         "                      repeat for the takes of several gloves\n"
+         "                      repeat for the takes of several gloves; BOOK:NAME\n"
+         "                      plays every glove of take NAME in the take list\n"
+         "                      BOOK (marionette take)\n"
          "  --real-time         with --replay: at real speed on the wall clock\n"
          "  --hashes FILE       write each frame's time and state hash to FILE\n"
          "  --poses FILE        write each frame's time and, for each control frame,\n"
@@ -277,10 +280,15 @@ static int take_value(args *a, const char *opt, const char *v) {
       return bad_usage("expected at most 8 takes, got another: '%s'", v), -1;
     a->def.record[a->n_record++] = v;
   } else if (strcmp(opt, "--replay") == 0) {
-    char *src = a->take_source[a->def.n_gloves < MR_SHOW_MAX_GLOVES ? a->def.n_gloves : 0];
-    snprintf(src, MR_GLOVE_SOURCE_MAX, "take:%s", v);
-    a->n_replay++;
-    return add_glove(a, src);
+    const char *paths[MR_SHOW_MAX_GLOVES]; /* a .mrec, or a book's take: its files */
+    int n = mr_app_take_paths("marionette run", v, paths, MR_SHOW_MAX_GLOVES);
+    for (int k = 0; k < n; k++) {
+      char *src = a->take_source[a->def.n_gloves < MR_SHOW_MAX_GLOVES ? a->def.n_gloves : 0];
+      snprintf(src, MR_GLOVE_SOURCE_MAX, "take:%s", paths[k]);
+      a->n_replay++;
+      if (add_glove(a, src) != 0) return -1;
+    }
+    return n < 0 ? -1 : 0;
   } else if (strcmp(opt, "--hashes") == 0) {
     a->hashes = v;
   } else if (strcmp(opt, "--poses") == 0) {
