@@ -206,10 +206,11 @@ a_punched_channel_lands_at_the_over_takes_calibrated_value_and_nothing_else_move
   punch(&b, "ab", 2.0, 4.0);
   char path[MR_TAKE_PATH_MAX];
   take_path(&b, "ab", path);
-  mr_take_rec got, a;
+  mr_take_rec got, a, over;
   mr_take_error err;
   if (mr_take_rec_load(path, &got, &err) != 0 ||
-      mr_take_rec_load(tt_path(dir, "a.mrec"), &a, &err) != 0)
+      mr_take_rec_load(tt_path(dir, "a.mrec"), &a, &err) != 0 ||
+      mr_take_rec_load(tt_path(dir, "b.mrec"), &over, &err) != 0)
     fail_msg("%s", err.msg);
   assert_int_equal(got.n_frames, a.n_frames);
   int inside = 0;
@@ -223,6 +224,9 @@ a_punched_channel_lands_at_the_over_takes_calibrated_value_and_nothing_else_move
         continue;
       }
       long j = gen_at(&B, f->t_ns);
+      long jb = mr_take_rec_sample_at(&over, f->t_ns);
+      assert_true(jb >= 0);
+      assert_int_equal(over.frames[jb].msg.u.sample.seq, j);
       double want = gen_value(&B, k, B.ch[j][k]);
       assert_true(fabs(mr_take_rec_value(&got, i, k) - want) <= 1.0 / 3600.0);
       inside++;
@@ -233,6 +237,7 @@ a_punched_channel_lands_at_the_over_takes_calibrated_value_and_nothing_else_move
   assert_int_equal(got.len, a.len);
   mr_take_rec_free(&got);
   mr_take_rec_free(&a);
+  mr_take_rec_free(&over);
   mr_take_book_close(&b);
   tt_rmdir(tt_path(dir, "book"));
   tt_rmdir(dir);
