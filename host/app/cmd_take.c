@@ -59,7 +59,23 @@ void mr_cmd_take_usage(void) {
          "take wherever a .mrec is taken (run --replay, render --take, export).\n\n"
          "subcommands:\n");
   for (int i = 0; i < N_SUBS; i++) printf("  %s\n      %s\n", SUBS[i].synopsis, SUBS[i].what);
-  printf("\nmarionette take SUBCOMMAND --help shows one. See marionette-take(1).\n");
+  printf("\noptions (each subcommand takes those its line shows):\n"
+         "  --all               list: deleted takes too\n"
+         "  --name NAME         the new take's name (split: the first part's)\n"
+         "  --name2 NAME        split: the second part's name\n"
+         "  --move              add: move the files in instead of copying them\n"
+         "  --arm G:F[,G:F...]  punch: the armed channels\n"
+         "  --in S, --out S     punch: the punch-in and punch-out times\n"
+         "  --at S              split: where to cut\n"
+         "  --from S, --to S    trim: what to keep, [from, to)\n"
+         "  --min-cutoff HZ     smooth: the One Euro filter's minimum cutoff (default 1)\n"
+         "  --beta B            smooth: its speed coefficient (default 0)\n"
+         "  --d-cutoff HZ       smooth: its derivative's cutoff (default 1)\n"
+         "  --channels G:F,...  smooth: the channels to smooth (default all)\n"
+         "  --channel G:F=S     offset: a channel and its offset in s; repeat for more\n"
+         "  --factor F          scale: the time factor, > 0\n"
+         "  -h, --help          this help; after a subcommand, its own\n"
+         "\nSee marionette(1), \"take\".\n");
 }
 
 static int usage_error(const char *fmt, const char *a, const char *b) {
