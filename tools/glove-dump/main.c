@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "gd_print.h"
+#include "gd_relay.h"
 #include "gp.h"
 #include "mr_glove.h"
 #include "mr_io.h"
@@ -49,6 +50,11 @@ static void usage(FILE *f) {
              "      --no-events        no lines for bad frames (\"! crc error at byte N\")\n"
              "      --counters FILE    also write the counters to FILE (key=value)\n"
              "      --record FILE.mrec record the raw input, as read, with its timing\n"
+             "      --publish URL      relay the glove to a broker: mqtt[s]://[USER@]HOST[:PORT]/\n"
+             "                         TOPIC[?cafile=PATH&password-file=PATH]; its frames go on\n"
+             "                         TOPIC, its answers on TOPIC/reply, and commands on\n"
+             "                         TOPIC/cmd come down to it (password: password-file= or\n"
+             "                         MR_MQTT_PASSWORD; see host/net/README.md)\n"
              "Input:\n"
              "      --baud N           baud for a serial device given without @BAUD (115200)\n"
              "      --realtime         replay a .mrec at its recorded pace (default: at once)\n"
@@ -116,6 +122,7 @@ typedef struct dump {
   double reconnect, idle;
   mr_rec_writer rec;
   int recording;
+  gd_relay *relay; /* --publish */
   uint64_t t0_ns;
   int out_errno;   /* set when stdout refused the lines: they would be lost */
   char where[300]; /* the source as last open, for messages after it closed */
@@ -164,6 +171,7 @@ static void on_bytes(void *user, double now, const uint8_t *bytes, size_t len) {
   dump *D = user;
   (void)now;
   mr_io_error err;
+  if (D->relay != NULL) gd_relay_bytes(D->relay, bytes, len);
   if (!D->recording) return;
   if (mr_rec_writer_add(&D->rec, mr_io_monotonic_ns() - D->t0_ns, bytes, len, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
@@ -226,6 +234,7 @@ static int run(dump *D, const char *path_file) {
       return 1;
     if (at[0] != '\0') snprintf(D->where, sizeof D->where, "%s", at);
     tell(D, &seen);
+    if (D->relay != NULL && gd_relay_poll(D->relay, D->g) != 0) return 1;
     if (seen.opens == 0 && seen.open_failures > 0) return -1; /* never opened */
     if (D->max_frames && seen.decoder.frames >= D->max_frames) break;
     if (mr_glove_ended(D->g)) break;
@@ -305,7 +314,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
 
 /* The command line, read. */
 typedef struct args {
-  const char *spec, *counters_path, *record_path, *path_file;
+  const char *spec, *counters_path, *record_path, *path_file, *publish;
   char spec_buf[512];
 } args;
 
@@ -321,6 +330,7 @@ enum {
   O_KEEP_GOING,
   O_LIST,
   O_PATH_FILE,
+  O_PUBLISH,
   O_VERSION
 };
 
@@ -337,6 +347,7 @@ static const struct option long_opts[] = { { "csv", no_argument, 0, O_CSV },
                                            { "keep-going", no_argument, 0, O_KEEP_GOING },
                                            { "list", no_argument, 0, O_LIST },
                                            { "path-file", required_argument, 0, O_PATH_FILE },
+                                           { "publish", required_argument, 0, O_PUBLISH },
                                            { "help", no_argument, 0, 'h' },
                                            { "version", no_argument, 0, O_VERSION },
                                            { 0, 0, 0, 0 } };
@@ -412,6 +423,9 @@ static int parse_option(int c, char **argv, dump *D, args *a, long *baud) {
     return -1;
   case O_PATH_FILE:
     a->path_file = optarg;
+    return -1;
+  case O_PUBLISH:
+    a->publish = optarg;
     return -1;
   case O_LIST:
     return list_ports();
@@ -510,8 +524,16 @@ int main(int argc, char **argv) {
     D.recording = 1;
     mr_glove_set_tap(D.g, on_bytes, &D);
   }
+  if (A.publish != NULL) {
+    if ((rc = gd_relay_open(&D.relay, A.publish)) != 0) {
+      mr_glove_destroy(D.g);
+      return rc;
+    }
+    mr_glove_set_tap(D.g, on_bytes, &D);
+  }
   if (D.csv && !D.quiet) gd_print_csv_header(stdout);
   rc = finish(&D, run(&D, path_file), spec, counters_path);
+  gd_relay_close(D.relay, stderr);
   mr_glove_destroy(D.g);
   if (g_stop) return EXIT_SIGINT;
   if (D.mismatch) return EXIT_MISMATCH;

@@ -45,6 +45,7 @@ static int to_io_spec(const char *source, char *out, size_t size) {
     return source[5] != '\0' && snprintf(out, size, "file:%s", source + 5) < (int)size ? 0 : -1;
   if (strcmp(source, "serial:auto") == 0) return -1; /* probing comes with the port list */
   if (strcmp(source, "pty") == 0) return snprintf(out, size, "pty") < (int)size ? 0 : -1;
+  if (mr_net_is_url(source)) return snprintf(out, size, "%s", source) < (int)size ? 0 : -1;
   /* A bare path (no prefix) is a file or a device, as mr_io takes it. */
   bool known = strcmp(source, "-") == 0 || source[0] == '/' ||
                (source[0] != '\0' && strchr(source, ':') == NULL);
@@ -88,7 +89,7 @@ static bool file_is_take(const char *source) {
 
 #define SOURCES_EXPECTED                                                              \
   "expected serial:DEV[@BAUD], serial:auto, pty:PATH, pty, file:PATH, take:PATH, -, " \
-  "tcp:HOST:PORT or tcp-listen:[HOST:]PORT"
+  "tcp:HOST:PORT, tcp-listen:[HOST:]PORT or mqtt[s]://[USER@]HOST[:PORT]/TOPIC"
 
 mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *out) {
   char spec[MR_GLOVE_SOURCE_MAX + 16];
@@ -102,9 +103,10 @@ mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *o
   }
   if (strcmp(source, "serial:auto") == 0) return out->status = MR_IO_OK;
   if (to_io_spec(source, spec, sizeof spec) != 0) {
-    snprintf(out->msg, sizeof out->msg, "glove source '%.255s': " SOURCES_EXPECTED, source);
+    snprintf(out->msg, sizeof out->msg, "glove source '%.200s': " SOURCES_EXPECTED, source);
     return out->status;
   }
+  if (mr_net_is_url(source)) return out->status = mr_glove_net_check(source, out);
   if (mr_io_spec_check(spec, MR_IO_READ, out->note, sizeof out->note, &err) != 0) {
     /* In the user's words: pty:PATH, not the serial: it is opened as. */
     size_t n = strlen(spec);
@@ -162,6 +164,7 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->def = *def;
   g->def.source[MR_GLOVE_SOURCE_MAX - 1] = '\0';
   g->is_auto = strcmp(g->def.source, "serial:auto") == 0;
+  g->is_net = mr_net_is_url(g->def.source);
   if (!g->is_auto && to_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
     snprintf(msg, msg_size, "glove source '%s': " SOURCES_EXPECTED, g->def.source);
     free(g);
@@ -171,11 +174,11 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->offset = NAN;
   g->next_open = -INFINITY;
   g->is_take = file_is_take(g->def.source);
-  g->writable =
-      !g->is_take &&
-      (g->is_auto || strncmp(g->def.source, "serial:", 7) == 0 ||
-       strncmp(g->def.source, "pty:", 4) == 0 || strncmp(g->def.source, "tcp:", 4) == 0 ||
-       strncmp(g->def.source, "tcp-listen:", 11) == 0 || strcmp(g->def.source, "pty") == 0);
+  g->writable = !g->is_take &&
+                (g->is_auto || strncmp(g->def.source, "serial:", 7) == 0 ||
+                 strncmp(g->def.source, "pty:", 4) == 0 || strncmp(g->def.source, "tcp:", 4) == 0 ||
+                 strncmp(g->def.source, "tcp-listen:", 11) == 0 ||
+                 strcmp(g->def.source, "pty") == 0 || mr_net_is_url(g->def.source));
   g->next_tag = 1;
   *out = g;
   return MR_GLOVE_OK;
@@ -187,7 +190,11 @@ static void close_source(mr_glove *g) {
     g->take_open = false;
   }
   if (!g->open) return;
-  mr_io_close(&g->io);
+  if (g->net != NULL)
+    mr_net_close(g->net);
+  else
+    mr_io_close(&g->io);
+  g->net = NULL;
   g->open = false;
 }
 
@@ -205,7 +212,8 @@ void mr_glove_destroy(mr_glove *g) {
 }
 
 static bool is_stream(const mr_glove *g) {
-  return g->io.kind == MR_IO_FILE || g->io.kind == MR_IO_FIFO || g->io.kind == MR_IO_STDIO;
+  return g->net == NULL && !g->is_net &&
+         (g->io.kind == MR_IO_FILE || g->io.kind == MR_IO_FIFO || g->io.kind == MR_IO_STDIO);
 }
 
 /* The source hung up (or ended, when at_end). A frame cut short by it ends
@@ -218,13 +226,15 @@ static bool is_stream(const mr_glove *g) {
  * samples at all after a reconnect). A listening socket waits for the next peer on the
  * same port; anything else is closed and retried, or the glove ends, as
  * def.reconnect says. */
-static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
+void mr_glove_mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
   bool ends = at_end || g->def.reconnect < 0;
   if (!ends && g->open && (g->dec.len > 0 || g->dec.overflow)) {
     mr_glove_feed(g, (const uint8_t *)"", 1, now);
     g->dec.c.bytes--;
   }
-  bool rearmed = !ends && g->open && mr_io_rearm(&g->io) == 0;
+  /* A broker's link reconnects by itself, unless it was refused. */
+  bool rearmed =
+      !ends && g->open && (g->is_net ? g->net != NULL && !g->net_failed : mr_io_rearm(&g->io) == 0);
   if (!rearmed) close_source(g);
   if (g->state != MR_GLOVE_LOST) {
     g->counters.losses++;
@@ -282,7 +292,10 @@ static void try_open(mr_glove *g, double now) {
     return;
   }
   mr_io_error err;
-  if (mr_io_open(&g->io, g->spec, g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err) != 0) {
+  int opened = g->is_net ? mr_glove_net_open(g, &err)
+                         : mr_io_open(&g->io, g->spec,
+                                      g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err);
+  if (opened != 0) {
     g->counters.open_failures++;
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
     g->take_error = err.status;
@@ -413,6 +426,43 @@ static int sniff(mr_glove *g, const uint8_t *buf, size_t got, double now) {
   return 0;
 }
 
+/* Reads what a byte source has into the decoder, adding to *taken the
+ * SAMPLEs it took. True when the source was lost or turned out a take
+ * (the poll ends there). */
+static bool read_io(mr_glove *g, double now, int timeout_ms, int *taken) {
+  uint8_t buf[4096];
+  for (int round = 0; round < 64; round++) {
+    size_t got = 0;
+    mr_io_error err;
+    mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
+    if (got > 0) {
+      g->last_bytes = now;
+      g->give_up_at = 0;
+      if (g->sniffing) {
+        int k = sniff(g, buf, got, now);
+        if (k < 0) continue;
+        if (k > 0) {
+          *taken += mr_glove_take_play(g, now);
+          return true;
+        }
+      }
+      if (g->tap != NULL) g->tap(g->tap_user, now, buf, got);
+      *taken += mr_glove_feed(g, buf, got, now);
+    }
+    if (st == MR_IO_TIMEOUT) break;
+    if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) {
+      mr_glove_mark_lost(g, now,
+                         st == MR_IO_EOF      ? "the stream ended"
+                         : st == MR_IO_HANGUP ? "the port went away"
+                                              : err.msg,
+                         st == MR_IO_EOF && is_stream(g));
+      return true;
+    }
+    if (got < sizeof buf) break;
+  }
+  return false;
+}
+
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   if (g == NULL || !isfinite(now)) return 0;
   if (g->ended && !g->is_take) return 0;
@@ -432,49 +482,27 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
      * keeps its reader's message. */
     if (now - g->last_bytes > g->def.lost_after && g->state != MR_GLOVE_MISMATCH &&
         g->state != MR_GLOVE_LOST)
-      mark_lost(g, now,
-                !g->take_done                 ? "no bytes for longer than lost_after"
-                : mr_io_failed(g->take_error) ? g->last_error
-                                              : "the take ended",
-                g->take_done);
+      mr_glove_mark_lost(g, now,
+                         !g->take_done                 ? "no bytes for longer than lost_after"
+                         : mr_io_failed(g->take_error) ? g->last_error
+                                                       : "the take ended",
+                         g->take_done);
     return taken;
   }
   try_open(g, now);
   mr_glove_cmd_poll(g, now);
   if (!g->open) return 0;
-  uint8_t buf[4096];
   int taken = 0;
-  for (int round = 0; round < 64; round++) {
-    size_t got = 0;
-    mr_io_error err;
-    mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
-    if (got > 0) {
-      g->last_bytes = now;
-      g->give_up_at = 0;
-      if (g->sniffing) {
-        int k = sniff(g, buf, got, now);
-        if (k < 0) continue;
-        if (k > 0) return taken + mr_glove_take_play(g, now);
-      }
-      if (g->tap != NULL) g->tap(g->tap_user, now, buf, got);
-      taken += mr_glove_feed(g, buf, got, now);
-    }
-    if (st == MR_IO_TIMEOUT) break;
-    if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) {
-      mark_lost(g, now,
-                st == MR_IO_EOF      ? "the stream ended"
-                : st == MR_IO_HANGUP ? "the port went away"
-                                     : err.msg,
-                st == MR_IO_EOF && is_stream(g));
-      return taken;
-    }
-    if (got < sizeof buf) break;
-  }
+  bool gone = g->is_net ? mr_glove_net_read(g, now, timeout_ms, &taken)
+                        : read_io(g, now, timeout_ms, &taken);
+  if (gone) return taken;
   if (g->follow_baud != 0) follow_baud(g, now);
   /* With the stream off a glove sends INFO once a second, no more. */
   double quiet = g->stream_off ? fmax(g->def.lost_after, 1.5) : g->def.lost_after;
-  if (now - g->last_bytes > quiet && g->state != MR_GLOVE_MISMATCH)
-    mark_lost(g, now, "no bytes for longer than lost_after", false);
+  /* A broker's loss keeps its own words ("the broker went away"). */
+  bool told = g->is_net && g->state == MR_GLOVE_LOST;
+  if (now - g->last_bytes > quiet && g->state != MR_GLOVE_MISMATCH && !told)
+    mr_glove_mark_lost(g, now, "no bytes for longer than lost_after", false);
   return taken;
 }
 
@@ -529,6 +557,7 @@ const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t s
     else
       snprintf(out, size, "glove on %s: live, %llu samples, no INFO yet", src,
                (unsigned long long)g->latest.samples);
+    mr_glove_net_note(g, out + strlen(out), size - strlen(out));
     break;
   default:
     snprintf(out, size, "glove on %s: connecting%s%s", src, g->last_error[0] ? " (" : "",
@@ -594,7 +623,8 @@ bool mr_glove_ended(const mr_glove *g) {
 }
 
 const char *mr_glove_io_path(const mr_glove *g) {
-  return g != NULL && g->open ? mr_io_path(&g->io) : "";
+  if (g == NULL || !g->open) return "";
+  return g->net != NULL ? mr_net_where(g->net) : mr_io_path(&g->io);
 }
 
 size_t mr_glove_unfinished(const mr_glove *g) {
