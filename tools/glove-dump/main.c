@@ -123,6 +123,7 @@ typedef struct dump {
   mr_rec_writer rec;
   int recording;
   gd_relay *relay; /* --publish */
+  int two;         /* two publishers on the topic, told */
   uint64_t t0_ns;
   int out_errno;   /* set when stdout refused the lines: they would be lost */
   char where[300]; /* the source as last open, for messages after it closed */
@@ -218,6 +219,27 @@ static void tell(dump *D, mr_glove_counters *seen) {
   *seen = c;
 }
 
+/* A glove over a broker: its link's counters as key=value lines. */
+static void print_net(FILE *f, const mr_glove *g) {
+  mr_net_counters n;
+  if (!mr_glove_net_counters(g, &n)) return;
+  fprintf(f,
+          "net_messages=%llu\nnet_oversized=%llu\nnet_queue_full=%llu\nnet_empty=%llu\n"
+          "net_unstamped=%llu\nnet_foreign=%llu\nnet_losses=%llu\n",
+          (unsigned long long)n.messages, (unsigned long long)n.oversized,
+          (unsigned long long)n.queue_full, (unsigned long long)n.empty,
+          (unsigned long long)n.unstamped, (unsigned long long)n.foreign,
+          (unsigned long long)n.losses);
+}
+
+/* Two publishers on a glove's topic, told once. */
+static void tell_publishers(dump *D) {
+  char a[160], b[160];
+  if (D->two || !mr_glove_net_publishers(D->g, a, b, sizeof a)) return;
+  D->two = 1;
+  fprintf(stderr, "glove-dump: %s: two publishers on one glove topic: %s and %s\n", D->where, a, b);
+}
+
 /* Reads until the stream ends, a limit is reached or a signal comes. */
 static int run(dump *D, const char *path_file) {
   mr_glove_counters seen;
@@ -234,6 +256,7 @@ static int run(dump *D, const char *path_file) {
       return 1;
     if (at[0] != '\0') snprintf(D->where, sizeof D->where, "%s", at);
     tell(D, &seen);
+    tell_publishers(D);
     if (D->relay != NULL && gd_relay_poll(D->relay, D->g) != 0) return 1;
     if (seen.opens == 0 && seen.open_failures > 0) return -1; /* never opened */
     if (D->max_frames && seen.decoder.frames >= D->max_frames) break;
@@ -293,6 +316,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
   if (!reader_left) {
     fprintf(stderr, "glove-dump: counters\n");
     gd_print_counters(stderr, &c.decoder);
+    print_net(stderr, D->g);
   }
   if (counters_path) {
     FILE *f = fopen(counters_path, "w");
@@ -301,6 +325,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
       rc = 1;
     } else {
       gd_print_counters(f, &c.decoder);
+      print_net(f, D->g);
       if (fclose(f) != 0) rc = 1;
     }
   }

@@ -39,7 +39,10 @@ static void on_connect(struct mosquitto *m, void *user, int rc, int flags,
       snprintf(what, sizeof what, "the broker refused user %.100s", n->url.user);
     else
       snprintf(what, sizeof what, "the broker refused an anonymous client");
-    refuse(n, what, mosquitto_reason_string(rc));
+    char why[200];
+    snprintf(why, sizeof why, "%s%s", mosquitto_reason_string(rc),
+             n->url.user[0] ? " (check the password: password-file= or MR_MQTT_PASSWORD)" : "");
+    refuse(n, what, why);
     wake(n);
     mosquitto_disconnect(m); /* no retries: the answer would be the same */
     return;
@@ -196,7 +199,14 @@ static void on_log(struct mosquitto *m, void *user, int level, const char *line)
     snprintf(n->last_log, sizeof n->last_log, "TLS: %s", say + 1);
   else
     snprintf(n->last_log, sizeof n->last_log, "%s", line);
-  pthread_mutex_unlock(&n->mu);
+  /* A handshake that fails before the broker answered fails the same way
+   * on every try: told at once, not after the wait. */
+  if (say != NULL && !n->answered)
+    refuse(n, "the TLS handshake failed",
+           strstr(say, "verify failed") != NULL
+               ? "certificate verify failed (is cafile= the CA that signed the broker's?)"
+               : say + 1);
+  wake(n);
 }
 
 void mr_net_set_callbacks(mr_net *n) {
