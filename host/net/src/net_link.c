@@ -115,10 +115,14 @@ static int connect_now(mr_net *n, mr_io_error *err) {
     return mr_net_err(err, MR_IO_ERR_SYSTEM, "%s: cannot connect to %s:%d: %s", n->where,
                       n->url.host, n->url.port, strerror(errno));
   if (rc != MOSQ_ERR_SUCCESS) {
+    /* A handshake that failed at once was told by the log (on_log). */
     pthread_mutex_lock(&n->mu);
-    mr_net_err(err, rc == MOSQ_ERR_EAI ? MR_IO_ERR_SPEC : MR_IO_ERR_SYSTEM,
-               "%s: cannot connect to %s:%d: %s", n->where, n->url.host, n->url.port,
-               n->last_log[0] ? n->last_log : mosquitto_strerror(rc));
+    if (n->refused)
+      mr_net_err(err, MR_IO_ERR_SYSTEM, "%s", n->fatal);
+    else
+      mr_net_err(err, rc == MOSQ_ERR_EAI ? MR_IO_ERR_SPEC : MR_IO_ERR_SYSTEM,
+                 "%s: cannot connect to %s:%d: %s", n->where, n->url.host, n->url.port,
+                 n->last_log[0] ? n->last_log : mosquitto_strerror(rc));
     pthread_mutex_unlock(&n->mu);
     return -1;
   }
