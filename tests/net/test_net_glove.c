@@ -41,8 +41,8 @@ static const char *url_of(const tb_broker *b, const char *user, const char *topi
   static char url[4][1000];
   static int k;
   k = (k + 1) % 4;
-  snprintf(url[k], sizeof url[k], "mqtt://%s%s127.0.0.1:%d/%s%.700s", user ? user : "", user ? "@" : "",
-           b->port, topic, query ? query : "");
+  snprintf(url[k], sizeof url[k], "mqtt://%s%s127.0.0.1:%d/%s%.700s", user ? user : "",
+           user ? "@" : "", b->port, topic, query ? query : "");
   return url[k];
 }
 

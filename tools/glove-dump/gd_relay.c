@@ -48,6 +48,8 @@ int gd_relay_open(gd_relay **out, const char *url) {
     free(r);
     return err.status == MR_IO_ERR_SPEC ? 2 : 1;
   }
+  /* The stamp a reader names when two publishers share a topic. */
+  fprintf(stderr, "glove-dump: %s: relaying as %s\n", mr_net_where(r->net), mr_net_id(r->net));
   *out = r;
   return 0;
 }
