@@ -421,6 +421,39 @@ static void a_broker_restart_holds_the_pose_and_the_glove_is_back_within_2_s(voi
   free(dir);
 }
 
+/* `marionette calibrate` over the broker: its commands go down TOPIC/cmd
+ * through the relay to the glove, the answers come back on TOPIC/reply,
+ * and the range it saved on the glove is printed. */
+static void calibration_commands_reach_a_relayed_glove_and_its_answers_come_back(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300];
+  tb_broker b;
+  assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
+  const char *url = url_of(&b, NULL, "glove/6", NULL);
+  pid_t gen = start_gen(dir, "6", "F1", source, sizeof source);
+  pid_t relay = start_relay(dir, source, url, "relay");
+  char *argv[] = { (char *)marionette, "calibrate", "--glove", (char *)url,
+                   "--step-time",      "0.3",       NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  const char *saved = strstr(o.out, "saved on the glove (raw ADC counts):\n");
+  if (saved == NULL) fail_msg("%s", o.out);
+  unsigned lo = 0, hi = 0;
+  assert_int_equal(sscanf(strstr(saved, "thumb"), "thumb %u .. %u", &lo, &hi), 2);
+  assert_true(lo < hi && hi <= 4095);
+  tt_output_free(&o);
+  kill(gen, SIGTERM);
+  tt_wait(gen, 30);
+  tt_wait(relay, 30);
+  char *said = read_in(dir, "relay.err");
+  assert_true(tt_kv(said, "relay_commands") >= 2); /* CAL_START, CAL_SAVE at least */
+  free(said);
+  tb_broker_stop(&b, 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(int argc, char **argv) {
   if (argc < 7) {
     fprintf(stderr,
@@ -442,6 +475,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(tls_connects_with_its_ca_and_is_refused_without_it_or_with_another),
     cmocka_unit_test(a_wrong_password_and_a_viewer_publishing_are_refused),
     cmocka_unit_test(a_broker_restart_holds_the_pose_and_the_glove_is_back_within_2_s),
+    cmocka_unit_test(calibration_commands_reach_a_relayed_glove_and_its_answers_come_back),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
