@@ -37,7 +37,7 @@ mr_glove_def mr_default_glove_def(void) {
 /* A glove source as an mr_io spec: pty:PATH is a tty opened through
  * termios, which mr_io does for a serial spec naming a pty; take:PATH is
  * a file that must be a take. */
-static int to_io_spec(const char *source, char *out, size_t size) {
+int mr_glove_io_spec(const char *source, char *out, size_t size) {
   static const char *const prefixes[] = { "serial:", "file:", "tcp:", "tcp-listen:", NULL };
   if (strncmp(source, "pty:", 4) == 0)
     return source[4] != '\0' && snprintf(out, size, "serial:%s", source + 4) < (int)size ? 0 : -1;
@@ -102,7 +102,7 @@ mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *o
     return out->status;
   }
   if (strcmp(source, "serial:auto") == 0) return out->status = MR_IO_OK;
-  if (to_io_spec(source, spec, sizeof spec) != 0) {
+  if (mr_glove_io_spec(source, spec, sizeof spec) != 0) {
     snprintf(out->msg, sizeof out->msg, "glove source '%.200s': " SOURCES_EXPECTED, source);
     return out->status;
   }
@@ -165,7 +165,7 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->def.source[MR_GLOVE_SOURCE_MAX - 1] = '\0';
   g->is_auto = strcmp(g->def.source, "serial:auto") == 0;
   g->is_net = mr_net_is_url(g->def.source);
-  if (!g->is_auto && to_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
+  if (!g->is_auto && mr_glove_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
     snprintf(msg, msg_size, "glove source '%s': " SOURCES_EXPECTED, g->def.source);
     free(g);
     return MR_GLOVE_ERR_ARG;
@@ -249,36 +249,6 @@ void mr_glove_mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
   if (ends) g->ended = true;
 }
 
-/* serial:auto: the first serial port whose glove announces itself (with
- * the uid seen before, once there was one), into g->spec. 0 or −1. */
-static int find_glove(mr_glove *g) {
-  mr_serial_info ports[32];
-  size_t n = 0;
-  mr_io_error err;
-  if (mr_serial_list(ports, 32, &n, &err) != 0) {
-    snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
-    return -1;
-  }
-  size_t usb = 0;
-  for (size_t i = 0; i < n && i < 32; i++) {
-    if (!ports[i].is_usb) continue; /* a glove comes over USB */
-    usb++;
-    char src[MR_GLOVE_SOURCE_MAX];
-    snprintf(src, sizeof src, "serial:%.200s", ports[i].name);
-    gp_info info;
-    bool foreign = false;
-    if (mr_glove_probe(src, 1.5, &info, &foreign, NULL, 0) != 1) continue;
-    if (g->have_uid && memcmp(info.uid, g->uid, sizeof g->uid) != 0) continue;
-    memcpy(g->uid, info.uid, sizeof g->uid);
-    g->have_uid = true;
-    snprintf(g->spec, sizeof g->spec, "%s", src);
-    return 0;
-  }
-  snprintf(g->last_error, sizeof g->last_error, "no glove%s on any of %zu USB serial ports",
-           g->have_uid ? " of the same uid" : "", usb);
-  return -1;
-}
-
 static void try_open(mr_glove *g, double now) {
   if (g->ended || g->open || now < g->next_open) return;
   if (g->give_up_at > 0 && now >= g->give_up_at) {
@@ -286,7 +256,7 @@ static void try_open(mr_glove *g, double now) {
     g->ended = true;
     return;
   }
-  if (g->is_auto && find_glove(g) != 0) {
+  if (g->is_auto && mr_glove_find(g) != 0) {
     g->counters.open_failures++;
     g->next_open = now + g->def.retry_every;
     return;
@@ -566,50 +536,6 @@ const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t s
     break;
   }
   return out;
-}
-
-int mr_glove_probe(const char *source, double wait_s, gp_info *info, bool *foreign, char *msg,
-                   size_t msg_size) {
-  char spec[MR_GLOVE_SOURCE_MAX + 16], dummy[8];
-  if (msg == NULL || msg_size == 0) {
-    msg = dummy;
-    msg_size = sizeof dummy;
-  }
-  if (foreign != NULL) *foreign = false;
-  if (source == NULL || to_io_spec(source, spec, sizeof spec) != 0) {
-    snprintf(msg, msg_size, "glove source '%s': not a port to probe", source ? source : "");
-    return -1;
-  }
-  mr_io io;
-  mr_io_error err;
-  if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
-    snprintf(msg, msg_size, "%s", err.msg);
-    return -1;
-  }
-  gp_decoder dec;
-  gp_decoder_init(&dec, GP_SPEC_HASH);
-  int found = 0;
-  uint64_t end = mr_io_monotonic_ns() + (uint64_t)(wait_s * 1e9);
-  /* INFO comes first and then once a second: 1.5 s sees one. */
-  while (!found && mr_io_monotonic_ns() < end) {
-    uint8_t buf[512];
-    size_t got = 0;
-    mr_io_status st = mr_io_read(&io, buf, sizeof buf, 50, &got, &err);
-    for (size_t off = 0; off < got && !found;) {
-      gp_msg m;
-      gp_event ev;
-      off += gp_decoder_feed(&dec, buf + off, got - off, &m, &ev);
-      if ((ev == GP_EV_FRAME || ev == GP_EV_SPEC_MISMATCH) && m.type == GP_INFO) {
-        if (info != NULL) *info = m.u.info;
-        if (foreign != NULL) *foreign = ev == GP_EV_SPEC_MISMATCH;
-        found = 1;
-      }
-    }
-    if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) break;
-  }
-  mr_io_close(&io);
-  if (!found) snprintf(msg, msg_size, "%s: no glove announced itself in %.1f s", source, wait_s);
-  return found;
 }
 
 void mr_glove_set_observer(mr_glove *g, mr_glove_observer_fn fn, void *user) {

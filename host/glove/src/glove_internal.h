@@ -76,6 +76,14 @@ struct mr_glove {
   mr_net *net;
 };
 
+/* glove.c: a glove source as an mr_io spec into out: 0, or -1 for a
+ * source that names none (serial:auto, a prefix unknown). */
+int mr_glove_io_spec(const char *source, char *out, size_t size);
+
+/* glove_probe.c: serial:auto's search, into g->spec: 0, or -1 with
+ * g->last_error saying what was searched. */
+int mr_glove_find(mr_glove *g);
+
 /* glove.c: the source is lost (or ended, when at_end), why says why. */
 void mr_glove_mark_lost(mr_glove *g, double now, const char *why, bool at_end);
 
