@@ -31,6 +31,11 @@ int mr_glove_net_open(mr_glove *g, mr_io_error *err) {
   snprintf(d.url, sizeof d.url, "%s", g->def.source);
   snprintf(d.name, sizeof d.name, "glove");
   d.role = MR_NET_RECEIVER;
+  /* The show polls on: a broker slow to answer costs it one second once,
+   * and the link goes on connecting meanwhile (the glove is silent, then
+   * lost, as any). */
+  d.connect_wait_ms = 1000;
+  d.background = true;
   g->net_failed = false;
   return mr_net_open(&d, &g->net, err);
 }

@@ -87,7 +87,11 @@ typedef struct mr_net_def {
   char name[MR_NET_NAME_MAX];
   int queue_messages;  /* received messages held for the caller; default 1024 */
   int connect_wait_ms; /* how long an open waits for the broker's answer; default 3000 */
-  int keepalive_s;     /* default 5: a dead broker is found within 1.5 times this */
+  /* An open that has no answer within connect_wait_ms succeeds all the
+   * same, and the link goes on trying in the background (a show's glove:
+   * the show never waits longer). Default false: the open fails. */
+  bool background;
+  int keepalive_s; /* default 5: a dead broker is found within 1.5 times this */
 } mr_net_def;
 mr_net_def mr_default_net_def(void);
 
@@ -108,7 +112,9 @@ typedef struct mr_net_counters {
 typedef struct mr_net mr_net;
 
 /* Connects to the broker, waits up to def->connect_wait_ms for it to accept,
- * subscribes to the role's topics and starts the network thread. 0, or -1
+ * subscribes to the role's topics and starts the network thread (with
+ * def->background, a broker that has not answered yet is no failure: its
+ * refusal, if it comes, is told by mr_net_read). 0, or -1
  * with err saying why in a user's words: MR_IO_ERR_SPEC for a URL that does
  * not parse or a password file that cannot be read; MR_IO_ERR_SYSTEM for a
  * broker that is not there, refused the user or password, failed the TLS

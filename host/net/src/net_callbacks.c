@@ -2,6 +2,7 @@
  * the messages it delivers. Each callback takes the lock, changes the
  * shared part of the link (net_internal.h) and wakes a waiting reader;
  * nothing else of the link is touched here. */
+#include <errno.h>
 #include <mosquitto.h>
 #include <mqtt_protocol.h>
 #include <stdio.h>
@@ -86,8 +87,9 @@ static void on_disconnect(struct mosquitto *m, void *user, int rc,
                           const mosquitto_property *props) {
   mr_net *n = user;
   (void)m;
-  (void)rc;
   (void)props;
+  /* The network thread's own errno, read at once: why a socket failed. */
+  const char *sys = rc == MOSQ_ERR_ERRNO ? strerror(errno) : NULL;
   pthread_mutex_lock(&n->mu);
   if (n->connected) {
     n->connected = false;
@@ -97,7 +99,9 @@ static void on_disconnect(struct mosquitto *m, void *user, int rc,
     /* Closed before the broker answered: a TLS handshake that failed, or
      * something at the port that is no MQTT broker. */
     refuse(n, "the connection closed before the broker answered",
-           n->last_log[0] ? n->last_log : "is it an MQTT broker, and mqtt:// or mqtts:// as it?");
+           n->last_log[0] ? n->last_log
+           : sys != NULL  ? sys
+                          : "is it an MQTT broker, and mqtt:// or mqtts:// as it?");
   }
   wake(n);
 }

@@ -32,6 +32,7 @@ mr_net_def mr_default_net_def(void) {
   d.queue_messages = MR_NET_DEFAULT_QUEUE;
   d.connect_wait_ms = 3000;
   d.keepalive_s = 5;
+  d.background = false;
   return d;
 }
 
@@ -100,7 +101,7 @@ static int await_answer(mr_net *n, mr_io_error *err) {
   int rc = 0;
   if (n->refused)
     rc = mr_net_err(err, MR_IO_ERR_SYSTEM, "%s", n->fatal);
-  else if (!n->answered)
+  else if (!n->answered && !n->def.background)
     rc = mr_net_err(err, MR_IO_ERR_SYSTEM, "%s: no answer from the broker within %d ms%s%s",
                     n->where, n->def.connect_wait_ms, n->last_log[0] ? ": " : "", n->last_log);
   pthread_mutex_unlock(&n->mu);
@@ -109,8 +110,10 @@ static int await_answer(mr_net *n, mr_io_error *err) {
 
 static int connect_now(mr_net *n, mr_io_error *err) {
   errno = 0;
+  /* Asynchronous: a port that refuses says so at once, and a host that
+   * does not answer costs connect_wait_ms, not the kernel's minutes. */
   int rc =
-      mosquitto_connect_bind_v5(n->mosq, n->url.host, n->url.port, n->def.keepalive_s, NULL, NULL);
+      mosquitto_connect_bind_async(n->mosq, n->url.host, n->url.port, n->def.keepalive_s, NULL);
   if (rc == MOSQ_ERR_ERRNO)
     return mr_net_err(err, MR_IO_ERR_SYSTEM, "%s: cannot connect to %s:%d: %s", n->where,
                       n->url.host, n->url.port, strerror(errno));
