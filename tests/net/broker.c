@@ -12,6 +12,17 @@
 #include "broker.h"
 #include "proc.h"
 
+/* The brokers running, so that a test that fails midway leaves none. */
+static pid_t running[16];
+
+static void track(pid_t pid, pid_t was) {
+  for (int i = 0; i < 16; i++)
+    if (running[i] == was) {
+      running[i] = pid;
+      return;
+    }
+}
+
 static int free_port(void) {
   int s = socket(AF_INET, SOCK_STREAM, 0);
   struct sockaddr_in a = { .sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK) };
@@ -54,6 +65,7 @@ int tb_broker_start(tb_broker *b, const char *mosquitto, const char *dir, const 
   fclose(f);
   const char *argv[] = { mosquitto, "-c", b->conf, NULL };
   b->pid = tt_spawn(argv, NULL, b->log);
+  if (b->pid > 0) track(b->pid, 0);
   for (int i = 0; b->pid > 0 && i < 500; i++) {
     if (takes_connections(b->port)) return 0;
     struct timespec ts = { 0, 10000000 };
@@ -68,7 +80,18 @@ void tb_broker_stop(tb_broker *b, int kill_it) {
   if (b->pid <= 0) return;
   kill(b->pid, kill_it ? SIGKILL : SIGTERM);
   tt_wait(b->pid, 10);
+  track(0, b->pid);
   b->pid = 0;
+}
+
+int tb_broker_stop_all(void **state) {
+  (void)state;
+  for (int i = 0; i < 16; i++)
+    if (running[i] > 0) {
+      tb_broker b = { .pid = running[i] };
+      tb_broker_stop(&b, 1);
+    }
+  return 0;
 }
 
 int tb_publish(int port, const char *topic, const void *data, int len) {

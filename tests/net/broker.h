@@ -21,6 +21,10 @@ int tb_broker_start(tb_broker *b, const char *mosquitto, const char *dir, const 
 /* Stops it: SIGTERM, or SIGKILL when kill_it (a crash), and waits. */
 void tb_broker_stop(tb_broker *b, int kill_it);
 
+/* Stops every broker still running (a test that failed midway left it):
+ * a teardown. Returns 0, for cmocka. */
+int tb_broker_stop_all(void **state);
+
 /* Publishes len bytes on topic as a client of no stamp: 0 or -1. */
 int tb_publish(int port, const char *topic, const void *data, int len);
 

@@ -469,13 +469,19 @@ int main(int argc, char **argv) {
   openssl = argv[6];
   signal(SIGPIPE, SIG_IGN);
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(a_relayed_glove_drives_the_show_and_its_losses_are_the_induced_ones),
-    cmocka_unit_test(garbage_and_oversized_messages_are_counted_and_the_glove_reads_on),
-    cmocka_unit_test(a_second_publisher_on_a_glove_topic_is_reported),
-    cmocka_unit_test(tls_connects_with_its_ca_and_is_refused_without_it_or_with_another),
-    cmocka_unit_test(a_wrong_password_and_a_viewer_publishing_are_refused),
-    cmocka_unit_test(a_broker_restart_holds_the_pose_and_the_glove_is_back_within_2_s),
-    cmocka_unit_test(calibration_commands_reach_a_relayed_glove_and_its_answers_come_back),
+    cmocka_unit_test_teardown(a_relayed_glove_drives_the_show_and_its_losses_are_the_induced_ones,
+                              tb_broker_stop_all),
+    cmocka_unit_test_teardown(garbage_and_oversized_messages_are_counted_and_the_glove_reads_on,
+                              tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_second_publisher_on_a_glove_topic_is_reported, tb_broker_stop_all),
+    cmocka_unit_test_teardown(tls_connects_with_its_ca_and_is_refused_without_it_or_with_another,
+                              tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_wrong_password_and_a_viewer_publishing_are_refused,
+                              tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_broker_restart_holds_the_pose_and_the_glove_is_back_within_2_s,
+                              tb_broker_stop_all),
+    cmocka_unit_test_teardown(calibration_commands_reach_a_relayed_glove_and_its_answers_come_back,
+                              tb_broker_stop_all),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
