@@ -31,6 +31,11 @@ PACKAGES=(
   # for video.
   libsdl2-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libassimp-dev libcglm-dev libstb-dev fonts-dejavu-core xvfb xauth ffmpeg
+  # Gloves over the network (host/net): libmosquitto, the MQTT v5 client
+  # with TLS; mosquitto, the broker the tests start (its service is not
+  # needed: tests run their own on free loopback ports); openssl, which
+  # makes the tests' throwaway certificates.
+  libmosquitto-dev mosquitto openssl
   # marionette-bench: its plots (SVG and PNG), and the instruction counts
   # of `make bench-count`.
   gnuplot-nox valgrind

@@ -308,8 +308,31 @@ static void bad_sources_are_refused_by_name(void **state) {
   assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);
   assert_null(g);
   assert_string_equal(msg, "glove source 'pty:': expected serial:DEV[@BAUD], serial:auto, "
-                           "pty:PATH, pty, file:PATH, take:PATH, -, tcp:HOST:PORT or "
-                           "tcp-listen:[HOST:]PORT");
+                           "pty:PATH, pty, file:PATH, take:PATH, -, tcp:HOST:PORT, "
+                           "tcp-listen:[HOST:]PORT or mqtt[s]://[USER@]HOST[:PORT]/TOPIC");
+  /* A broker's URL that cannot be is bad usage, said in its own words. */
+  static const char *const urls[][2] = {
+    { "mqtt://127.0.0.1", "mqtt://127.0.0.1: no topic (expected mqtt://HOST/TOPIC)" },
+    { "mqtts://a:pw@h/t", "mqtts://a:pw@h/t: no password in the URL (ps shows it): use "
+                          "MR_MQTT_PASSWORD or ?password-file=PATH" },
+    { "mqtt://h:99999/t", "mqtt://h:99999/t: port '99999' is not 1..65535" },
+    { "mqtt://h/g/#", "mqtt://h/g/#: the topic must be 1..190 characters without + or # and "
+                      "not end in /" },
+    { "mqtt://h/t?cafile=/x", "mqtt://h/t?cafile=/x: cafile= is for mqtts:// only" },
+    { "mqtts://h/t?pass=x", "mqtts://h/t?pass=x: unknown option 'pass=x' (expected cafile=PATH "
+                            "or password-file=PATH)" },
+  };
+  for (size_t i = 0; i < sizeof urls / sizeof urls[0]; i++) {
+    mr_glove_source_report rep;
+    assert_int_equal(mr_glove_source_check(urls[i][0], &rep), MR_IO_ERR_SPEC);
+    assert_string_equal(rep.msg, urls[i][1]);
+  }
+  mr_glove_source_report rep;
+  assert_int_equal(mr_glove_source_check("mqtts://bob@[::1]:8884/glove/bob?cafile=/ca.pem", &rep),
+                   MR_IO_OK);
+  assert_string_equal(rep.note, "");
+  assert_int_equal(mr_glove_source_check("mqtt://bob@stage.example/glove/bob", &rep), MR_IO_OK);
+  assert_non_null(strstr(rep.note, "sends the password in the clear"));
   d = mr_default_glove_def();
   d.retry_every = 5;
   assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "gd_print.h"
+#include "gd_relay.h"
 #include "gp.h"
 #include "mr_glove.h"
 #include "mr_io.h"
@@ -42,6 +43,10 @@ static void usage(FILE *f) {
              "  tcp:HOST:PORT          connect\n"
              "  tcp-listen:[HOST:]PORT wait for one peer at a time, on 127.0.0.1 unless\n"
              "                         HOST is named (then a warning: no authentication)\n"
+             "  mqtt[s]://[USER@]HOST[:PORT]/TOPIC[?cafile=PATH&password-file=PATH]\n"
+             "                         a glove's topic on an MQTT broker (TLS with mqtts);\n"
+             "                         the password from password-file= or MR_MQTT_PASSWORD\n"
+             "                         (host/net/README.md)\n"
              "\n"
              "Output:\n"
              "      --csv              SAMPLE frames as CSV (seq,t_us,ch0..ch4,flags,late)\n"
@@ -49,6 +54,9 @@ static void usage(FILE *f) {
              "      --no-events        no lines for bad frames (\"! crc error at byte N\")\n"
              "      --counters FILE    also write the counters to FILE (key=value)\n"
              "      --record FILE.mrec record the raw input, as read, with its timing\n"
+             "      --publish URL      relay the glove to a broker (URL as for an mqtt://\n"
+             "                         SOURCE): its frames go on TOPIC, its answers on\n"
+             "                         TOPIC/reply; commands on TOPIC/cmd come down to it\n"
              "Input:\n"
              "      --baud N           baud for a serial device given without @BAUD (115200)\n"
              "      --realtime         replay a .mrec at its recorded pace (default: at once)\n"
@@ -116,6 +124,8 @@ typedef struct dump {
   double reconnect, idle;
   mr_rec_writer rec;
   int recording;
+  gd_relay *relay; /* --publish */
+  int two;         /* two publishers on the topic, told */
   uint64_t t0_ns;
   int out_errno;   /* set when stdout refused the lines: they would be lost */
   char where[300]; /* the source as last open, for messages after it closed */
@@ -164,6 +174,7 @@ static void on_bytes(void *user, double now, const uint8_t *bytes, size_t len) {
   dump *D = user;
   (void)now;
   mr_io_error err;
+  if (D->relay != NULL) gd_relay_bytes(D->relay, bytes, len);
   if (!D->recording) return;
   if (mr_rec_writer_add(&D->rec, mr_io_monotonic_ns() - D->t0_ns, bytes, len, &err) != 0) {
     fprintf(stderr, "glove-dump: %s\n", err.msg);
@@ -210,6 +221,27 @@ static void tell(dump *D, mr_glove_counters *seen) {
   *seen = c;
 }
 
+/* A glove over a broker: its link's counters as key=value lines. */
+static void print_net(FILE *f, const mr_glove *g) {
+  mr_net_counters n;
+  if (!mr_glove_net_counters(g, &n)) return;
+  fprintf(f,
+          "net_messages=%llu\nnet_oversized=%llu\nnet_queue_full=%llu\nnet_empty=%llu\n"
+          "net_unstamped=%llu\nnet_foreign=%llu\nnet_losses=%llu\n",
+          (unsigned long long)n.messages, (unsigned long long)n.oversized,
+          (unsigned long long)n.queue_full, (unsigned long long)n.empty,
+          (unsigned long long)n.unstamped, (unsigned long long)n.foreign,
+          (unsigned long long)n.losses);
+}
+
+/* Two publishers on a glove's topic, told once. */
+static void tell_publishers(dump *D) {
+  char a[160], b[160];
+  if (D->two || !mr_glove_net_publishers(D->g, a, b, sizeof a)) return;
+  D->two = 1;
+  fprintf(stderr, "glove-dump: %s: two publishers on one glove topic: %s and %s\n", D->where, a, b);
+}
+
 /* Reads until the stream ends, a limit is reached or a signal comes. */
 static int run(dump *D, const char *path_file) {
   mr_glove_counters seen;
@@ -226,6 +258,8 @@ static int run(dump *D, const char *path_file) {
       return 1;
     if (at[0] != '\0') snprintf(D->where, sizeof D->where, "%s", at);
     tell(D, &seen);
+    tell_publishers(D);
+    if (D->relay != NULL && gd_relay_poll(D->relay, D->g) != 0) return 1;
     if (seen.opens == 0 && seen.open_failures > 0) return -1; /* never opened */
     if (D->max_frames && seen.decoder.frames >= D->max_frames) break;
     if (mr_glove_ended(D->g)) break;
@@ -284,6 +318,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
   if (!reader_left) {
     fprintf(stderr, "glove-dump: counters\n");
     gd_print_counters(stderr, &c.decoder);
+    print_net(stderr, D->g);
   }
   if (counters_path) {
     FILE *f = fopen(counters_path, "w");
@@ -292,6 +327,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
       rc = 1;
     } else {
       gd_print_counters(f, &c.decoder);
+      print_net(f, D->g);
       if (fclose(f) != 0) rc = 1;
     }
   }
@@ -305,7 +341,7 @@ static int finish(dump *D, int rc, const char *spec, const char *counters_path) 
 
 /* The command line, read. */
 typedef struct args {
-  const char *spec, *counters_path, *record_path, *path_file;
+  const char *spec, *counters_path, *record_path, *path_file, *publish;
   char spec_buf[512];
 } args;
 
@@ -321,6 +357,7 @@ enum {
   O_KEEP_GOING,
   O_LIST,
   O_PATH_FILE,
+  O_PUBLISH,
   O_VERSION
 };
 
@@ -337,6 +374,7 @@ static const struct option long_opts[] = { { "csv", no_argument, 0, O_CSV },
                                            { "keep-going", no_argument, 0, O_KEEP_GOING },
                                            { "list", no_argument, 0, O_LIST },
                                            { "path-file", required_argument, 0, O_PATH_FILE },
+                                           { "publish", required_argument, 0, O_PUBLISH },
                                            { "help", no_argument, 0, 'h' },
                                            { "version", no_argument, 0, O_VERSION },
                                            { 0, 0, 0, 0 } };
@@ -412,6 +450,9 @@ static int parse_option(int c, char **argv, dump *D, args *a, long *baud) {
     return -1;
   case O_PATH_FILE:
     a->path_file = optarg;
+    return -1;
+  case O_PUBLISH:
+    a->publish = optarg;
     return -1;
   case O_LIST:
     return list_ports();
@@ -510,8 +551,16 @@ int main(int argc, char **argv) {
     D.recording = 1;
     mr_glove_set_tap(D.g, on_bytes, &D);
   }
+  if (A.publish != NULL) {
+    if ((rc = gd_relay_open(&D.relay, A.publish)) != 0) {
+      mr_glove_destroy(D.g);
+      return rc;
+    }
+    mr_glove_set_tap(D.g, on_bytes, &D);
+  }
   if (D.csv && !D.quiet) gd_print_csv_header(stdout);
   rc = finish(&D, run(&D, path_file), spec, counters_path);
+  gd_relay_close(D.relay, stderr);
   mr_glove_destroy(D.g);
   if (g_stop) return EXIT_SIGINT;
   if (D.mismatch) return EXIT_MISMATCH;

@@ -1,6 +1,7 @@
 /* mr_glove: a glove as a live object.
  *
- * A glove is a byte source (a serial port, a pty, a file, stdin or TCP)
+ * A glove is a byte source (a serial port, a pty, a file, stdin, TCP, or
+ * a topic of an MQTT broker through mr_net)
  * with the protocol's decoder on it (protocol/SPEC.md). It keeps the INFO
  * the glove announced (uid, hand, firmware, spec hash, calibration range,
  * rates), the latest five values calibrated to 0..1 with their device and
@@ -26,6 +27,7 @@
 #include "mr_def.h"
 #include "gp.h"
 #include "mr_io.h"
+#include "mr_net.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -51,7 +53,10 @@ typedef struct mr_glove_def {
                                        as a file or on a stream, plays its
                                        bytes at their recorded times;
                                        take:PATH and a file named *.mrec
-                                       must be takes */
+                                       must be takes;
+                                       mqtt[s]://[USER@]HOST[:PORT]/TOPIC
+                                       a glove's topic on a broker
+                                       (mr_net.h, host/net/README.md) */
   double lost_after;  /* s without a sample before a live glove is lost; default 0.5 */
   double retry_every; /* s between attempts to reopen; default 0.5, at most 1 */
   /* After a hang-up: < 0 the glove ends there; 0 (default) its port is
@@ -171,6 +176,11 @@ typedef struct mr_glove_cmd_result {
  * is not a command). The oldest answered commands make room for new ones;
  * at most MR_GLOVE_MAX_PENDING wait at once. */
 int mr_glove_command(mr_glove *g, const mr_glove_cmd *cmd, double now, char *msg, size_t msg_size);
+/* Writes len bytes, whole frames a host built (a relay's commands from
+ * afar), to the glove as they are, untracked: the answers come in the
+ * stream as any. 0, or −1 with msg (a source that carries no commands,
+ * or is not open: the bytes are dropped). */
+int mr_glove_send_raw(mr_glove *g, const uint8_t *bytes, size_t len, char *msg, size_t msg_size);
 /* Where the command sent under tag stands. */
 mr_glove_cmd_result mr_glove_command_result(const mr_glove *g, int tag);
 /* "GET_INFO", ...; "BAD_ARGUMENT", ... */
@@ -199,6 +209,14 @@ size_t mr_glove_unfinished(const mr_glove *g);
  * source that does not parse), a take's early end (MR_IO_ERR_FORMAT,
  * MR_IO_ERR_TRUNCATED); MR_IO_OK when nothing failed. */
 const char *mr_glove_last_error(const mr_glove *g, mr_io_status *status);
+/* A glove over a broker: its link's counters (garbage and oversized
+ * messages, a second publisher) into *out, and true; false for any other
+ * source, or before the link opened (*out zeroed). */
+bool mr_glove_net_counters(const mr_glove *g, mr_net_counters *out);
+/* The same glove: the stamps of two publishers on its topic, and true,
+ * once a second one was seen while the first sent (mr_net_publishers). */
+bool mr_glove_net_publishers(const mr_glove *g, char *first, char *second, size_t size);
+
 /* True when the source turned out to be a take (by name or by its magic). */
 bool mr_glove_is_take(const mr_glove *g);
 /* The hash a foreign glove announced, 0 before one did. */

@@ -37,7 +37,7 @@ mr_glove_def mr_default_glove_def(void) {
 /* A glove source as an mr_io spec: pty:PATH is a tty opened through
  * termios, which mr_io does for a serial spec naming a pty; take:PATH is
  * a file that must be a take. */
-static int to_io_spec(const char *source, char *out, size_t size) {
+int mr_glove_io_spec(const char *source, char *out, size_t size) {
   static const char *const prefixes[] = { "serial:", "file:", "tcp:", "tcp-listen:", NULL };
   if (strncmp(source, "pty:", 4) == 0)
     return source[4] != '\0' && snprintf(out, size, "serial:%s", source + 4) < (int)size ? 0 : -1;
@@ -45,6 +45,7 @@ static int to_io_spec(const char *source, char *out, size_t size) {
     return source[5] != '\0' && snprintf(out, size, "file:%s", source + 5) < (int)size ? 0 : -1;
   if (strcmp(source, "serial:auto") == 0) return -1; /* probing comes with the port list */
   if (strcmp(source, "pty") == 0) return snprintf(out, size, "pty") < (int)size ? 0 : -1;
+  if (mr_net_is_url(source)) return snprintf(out, size, "%s", source) < (int)size ? 0 : -1;
   /* A bare path (no prefix) is a file or a device, as mr_io takes it. */
   bool known = strcmp(source, "-") == 0 || source[0] == '/' ||
                (source[0] != '\0' && strchr(source, ':') == NULL);
@@ -88,7 +89,7 @@ static bool file_is_take(const char *source) {
 
 #define SOURCES_EXPECTED                                                              \
   "expected serial:DEV[@BAUD], serial:auto, pty:PATH, pty, file:PATH, take:PATH, -, " \
-  "tcp:HOST:PORT or tcp-listen:[HOST:]PORT"
+  "tcp:HOST:PORT, tcp-listen:[HOST:]PORT or mqtt[s]://[USER@]HOST[:PORT]/TOPIC"
 
 mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *out) {
   char spec[MR_GLOVE_SOURCE_MAX + 16];
@@ -101,10 +102,11 @@ mr_io_status mr_glove_source_check(const char *source, mr_glove_source_report *o
     return out->status;
   }
   if (strcmp(source, "serial:auto") == 0) return out->status = MR_IO_OK;
-  if (to_io_spec(source, spec, sizeof spec) != 0) {
-    snprintf(out->msg, sizeof out->msg, "glove source '%.255s': " SOURCES_EXPECTED, source);
+  if (mr_glove_io_spec(source, spec, sizeof spec) != 0) {
+    snprintf(out->msg, sizeof out->msg, "glove source '%.200s': " SOURCES_EXPECTED, source);
     return out->status;
   }
+  if (mr_net_is_url(source)) return out->status = mr_glove_net_check(source, out);
   if (mr_io_spec_check(spec, MR_IO_READ, out->note, sizeof out->note, &err) != 0) {
     /* In the user's words: pty:PATH, not the serial: it is opened as. */
     size_t n = strlen(spec);
@@ -162,7 +164,8 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->def = *def;
   g->def.source[MR_GLOVE_SOURCE_MAX - 1] = '\0';
   g->is_auto = strcmp(g->def.source, "serial:auto") == 0;
-  if (!g->is_auto && to_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
+  g->is_net = mr_net_is_url(g->def.source);
+  if (!g->is_auto && mr_glove_io_spec(g->def.source, g->spec, sizeof g->spec) != 0) {
     snprintf(msg, msg_size, "glove source '%s': " SOURCES_EXPECTED, g->def.source);
     free(g);
     return MR_GLOVE_ERR_ARG;
@@ -171,11 +174,11 @@ mr_glove_status mr_glove_create(const mr_glove_def *def, mr_glove **out, char *m
   g->offset = NAN;
   g->next_open = -INFINITY;
   g->is_take = file_is_take(g->def.source);
-  g->writable =
-      !g->is_take &&
-      (g->is_auto || strncmp(g->def.source, "serial:", 7) == 0 ||
-       strncmp(g->def.source, "pty:", 4) == 0 || strncmp(g->def.source, "tcp:", 4) == 0 ||
-       strncmp(g->def.source, "tcp-listen:", 11) == 0 || strcmp(g->def.source, "pty") == 0);
+  g->writable = !g->is_take &&
+                (g->is_auto || strncmp(g->def.source, "serial:", 7) == 0 ||
+                 strncmp(g->def.source, "pty:", 4) == 0 || strncmp(g->def.source, "tcp:", 4) == 0 ||
+                 strncmp(g->def.source, "tcp-listen:", 11) == 0 ||
+                 strcmp(g->def.source, "pty") == 0 || mr_net_is_url(g->def.source));
   g->next_tag = 1;
   *out = g;
   return MR_GLOVE_OK;
@@ -187,7 +190,11 @@ static void close_source(mr_glove *g) {
     g->take_open = false;
   }
   if (!g->open) return;
-  mr_io_close(&g->io);
+  if (g->net != NULL)
+    mr_net_close(g->net);
+  else
+    mr_io_close(&g->io);
+  g->net = NULL;
   g->open = false;
 }
 
@@ -205,7 +212,8 @@ void mr_glove_destroy(mr_glove *g) {
 }
 
 static bool is_stream(const mr_glove *g) {
-  return g->io.kind == MR_IO_FILE || g->io.kind == MR_IO_FIFO || g->io.kind == MR_IO_STDIO;
+  return g->net == NULL && !g->is_net &&
+         (g->io.kind == MR_IO_FILE || g->io.kind == MR_IO_FIFO || g->io.kind == MR_IO_STDIO);
 }
 
 /* The source hung up (or ended, when at_end). A frame cut short by it ends
@@ -218,13 +226,15 @@ static bool is_stream(const mr_glove *g) {
  * samples at all after a reconnect). A listening socket waits for the next peer on the
  * same port; anything else is closed and retried, or the glove ends, as
  * def.reconnect says. */
-static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
+void mr_glove_mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
   bool ends = at_end || g->def.reconnect < 0;
   if (!ends && g->open && (g->dec.len > 0 || g->dec.overflow)) {
     mr_glove_feed(g, (const uint8_t *)"", 1, now);
     g->dec.c.bytes--;
   }
-  bool rearmed = !ends && g->open && mr_io_rearm(&g->io) == 0;
+  /* A broker's link reconnects by itself, unless it was refused. */
+  bool rearmed =
+      !ends && g->open && (g->is_net ? g->net != NULL && !g->net_failed : mr_io_rearm(&g->io) == 0);
   if (!rearmed) close_source(g);
   if (g->state != MR_GLOVE_LOST) {
     g->counters.losses++;
@@ -239,36 +249,6 @@ static void mark_lost(mr_glove *g, double now, const char *why, bool at_end) {
   if (ends) g->ended = true;
 }
 
-/* serial:auto: the first serial port whose glove announces itself (with
- * the uid seen before, once there was one), into g->spec. 0 or −1. */
-static int find_glove(mr_glove *g) {
-  mr_serial_info ports[32];
-  size_t n = 0;
-  mr_io_error err;
-  if (mr_serial_list(ports, 32, &n, &err) != 0) {
-    snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
-    return -1;
-  }
-  size_t usb = 0;
-  for (size_t i = 0; i < n && i < 32; i++) {
-    if (!ports[i].is_usb) continue; /* a glove comes over USB */
-    usb++;
-    char src[MR_GLOVE_SOURCE_MAX];
-    snprintf(src, sizeof src, "serial:%.200s", ports[i].name);
-    gp_info info;
-    bool foreign = false;
-    if (mr_glove_probe(src, 1.5, &info, &foreign, NULL, 0) != 1) continue;
-    if (g->have_uid && memcmp(info.uid, g->uid, sizeof g->uid) != 0) continue;
-    memcpy(g->uid, info.uid, sizeof g->uid);
-    g->have_uid = true;
-    snprintf(g->spec, sizeof g->spec, "%s", src);
-    return 0;
-  }
-  snprintf(g->last_error, sizeof g->last_error, "no glove%s on any of %zu USB serial ports",
-           g->have_uid ? " of the same uid" : "", usb);
-  return -1;
-}
-
 static void try_open(mr_glove *g, double now) {
   if (g->ended || g->open || now < g->next_open) return;
   if (g->give_up_at > 0 && now >= g->give_up_at) {
@@ -276,13 +256,16 @@ static void try_open(mr_glove *g, double now) {
     g->ended = true;
     return;
   }
-  if (g->is_auto && find_glove(g) != 0) {
+  if (g->is_auto && mr_glove_find(g) != 0) {
     g->counters.open_failures++;
     g->next_open = now + g->def.retry_every;
     return;
   }
   mr_io_error err;
-  if (mr_io_open(&g->io, g->spec, g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err) != 0) {
+  int opened = g->is_net ? mr_glove_net_open(g, &err)
+                         : mr_io_open(&g->io, g->spec,
+                                      g->writable ? MR_IO_READ | MR_IO_WRITE : MR_IO_READ, &err);
+  if (opened != 0) {
     g->counters.open_failures++;
     snprintf(g->last_error, sizeof g->last_error, "%s", err.msg);
     g->take_error = err.status;
@@ -413,6 +396,43 @@ static int sniff(mr_glove *g, const uint8_t *buf, size_t got, double now) {
   return 0;
 }
 
+/* Reads what a byte source has into the decoder, adding to *taken the
+ * SAMPLEs it took. True when the source was lost or turned out a take
+ * (the poll ends there). */
+static bool read_io(mr_glove *g, double now, int timeout_ms, int *taken) {
+  uint8_t buf[4096];
+  for (int round = 0; round < 64; round++) {
+    size_t got = 0;
+    mr_io_error err;
+    mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
+    if (got > 0) {
+      g->last_bytes = now;
+      g->give_up_at = 0;
+      if (g->sniffing) {
+        int k = sniff(g, buf, got, now);
+        if (k < 0) continue;
+        if (k > 0) {
+          *taken += mr_glove_take_play(g, now);
+          return true;
+        }
+      }
+      if (g->tap != NULL) g->tap(g->tap_user, now, buf, got);
+      *taken += mr_glove_feed(g, buf, got, now);
+    }
+    if (st == MR_IO_TIMEOUT) break;
+    if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) {
+      mr_glove_mark_lost(g, now,
+                         st == MR_IO_EOF      ? "the stream ended"
+                         : st == MR_IO_HANGUP ? "the port went away"
+                                              : err.msg,
+                         st == MR_IO_EOF && is_stream(g));
+      return true;
+    }
+    if (got < sizeof buf) break;
+  }
+  return false;
+}
+
 int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
   if (g == NULL || !isfinite(now)) return 0;
   if (g->ended && !g->is_take) return 0;
@@ -432,49 +452,27 @@ int mr_glove_poll(mr_glove *g, double now, int timeout_ms) {
      * keeps its reader's message. */
     if (now - g->last_bytes > g->def.lost_after && g->state != MR_GLOVE_MISMATCH &&
         g->state != MR_GLOVE_LOST)
-      mark_lost(g, now,
-                !g->take_done                 ? "no bytes for longer than lost_after"
-                : mr_io_failed(g->take_error) ? g->last_error
-                                              : "the take ended",
-                g->take_done);
+      mr_glove_mark_lost(g, now,
+                         !g->take_done                 ? "no bytes for longer than lost_after"
+                         : mr_io_failed(g->take_error) ? g->last_error
+                                                       : "the take ended",
+                         g->take_done);
     return taken;
   }
   try_open(g, now);
   mr_glove_cmd_poll(g, now);
   if (!g->open) return 0;
-  uint8_t buf[4096];
   int taken = 0;
-  for (int round = 0; round < 64; round++) {
-    size_t got = 0;
-    mr_io_error err;
-    mr_io_status st = mr_io_read(&g->io, buf, sizeof buf, round == 0 ? timeout_ms : 0, &got, &err);
-    if (got > 0) {
-      g->last_bytes = now;
-      g->give_up_at = 0;
-      if (g->sniffing) {
-        int k = sniff(g, buf, got, now);
-        if (k < 0) continue;
-        if (k > 0) return taken + mr_glove_take_play(g, now);
-      }
-      if (g->tap != NULL) g->tap(g->tap_user, now, buf, got);
-      taken += mr_glove_feed(g, buf, got, now);
-    }
-    if (st == MR_IO_TIMEOUT) break;
-    if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) {
-      mark_lost(g, now,
-                st == MR_IO_EOF      ? "the stream ended"
-                : st == MR_IO_HANGUP ? "the port went away"
-                                     : err.msg,
-                st == MR_IO_EOF && is_stream(g));
-      return taken;
-    }
-    if (got < sizeof buf) break;
-  }
+  bool gone = g->is_net ? mr_glove_net_read(g, now, timeout_ms, &taken)
+                        : read_io(g, now, timeout_ms, &taken);
+  if (gone) return taken;
   if (g->follow_baud != 0) follow_baud(g, now);
   /* With the stream off a glove sends INFO once a second, no more. */
   double quiet = g->stream_off ? fmax(g->def.lost_after, 1.5) : g->def.lost_after;
-  if (now - g->last_bytes > quiet && g->state != MR_GLOVE_MISMATCH)
-    mark_lost(g, now, "no bytes for longer than lost_after", false);
+  /* A broker's loss keeps its own words ("the broker went away"). */
+  bool told = g->is_net && g->state == MR_GLOVE_LOST;
+  if (now - g->last_bytes > quiet && g->state != MR_GLOVE_MISMATCH && !told)
+    mr_glove_mark_lost(g, now, "no bytes for longer than lost_after", false);
   return taken;
 }
 
@@ -529,6 +527,7 @@ const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t s
     else
       snprintf(out, size, "glove on %s: live, %llu samples, no INFO yet", src,
                (unsigned long long)g->latest.samples);
+    mr_glove_net_note(g, out + strlen(out), size - strlen(out));
     break;
   default:
     snprintf(out, size, "glove on %s: connecting%s%s", src, g->last_error[0] ? " (" : "",
@@ -537,50 +536,6 @@ const char *mr_glove_describe(const mr_glove *g, double now, char *out, size_t s
     break;
   }
   return out;
-}
-
-int mr_glove_probe(const char *source, double wait_s, gp_info *info, bool *foreign, char *msg,
-                   size_t msg_size) {
-  char spec[MR_GLOVE_SOURCE_MAX + 16], dummy[8];
-  if (msg == NULL || msg_size == 0) {
-    msg = dummy;
-    msg_size = sizeof dummy;
-  }
-  if (foreign != NULL) *foreign = false;
-  if (source == NULL || to_io_spec(source, spec, sizeof spec) != 0) {
-    snprintf(msg, msg_size, "glove source '%s': not a port to probe", source ? source : "");
-    return -1;
-  }
-  mr_io io;
-  mr_io_error err;
-  if (mr_io_open(&io, spec, MR_IO_READ, &err) != 0) {
-    snprintf(msg, msg_size, "%s", err.msg);
-    return -1;
-  }
-  gp_decoder dec;
-  gp_decoder_init(&dec, GP_SPEC_HASH);
-  int found = 0;
-  uint64_t end = mr_io_monotonic_ns() + (uint64_t)(wait_s * 1e9);
-  /* INFO comes first and then once a second: 1.5 s sees one. */
-  while (!found && mr_io_monotonic_ns() < end) {
-    uint8_t buf[512];
-    size_t got = 0;
-    mr_io_status st = mr_io_read(&io, buf, sizeof buf, 50, &got, &err);
-    for (size_t off = 0; off < got && !found;) {
-      gp_msg m;
-      gp_event ev;
-      off += gp_decoder_feed(&dec, buf + off, got - off, &m, &ev);
-      if ((ev == GP_EV_FRAME || ev == GP_EV_SPEC_MISMATCH) && m.type == GP_INFO) {
-        if (info != NULL) *info = m.u.info;
-        if (foreign != NULL) *foreign = ev == GP_EV_SPEC_MISMATCH;
-        found = 1;
-      }
-    }
-    if (st == MR_IO_EOF || st == MR_IO_HANGUP || mr_io_failed(st)) break;
-  }
-  mr_io_close(&io);
-  if (!found) snprintf(msg, msg_size, "%s: no glove announced itself in %.1f s", source, wait_s);
-  return found;
 }
 
 void mr_glove_set_observer(mr_glove *g, mr_glove_observer_fn fn, void *user) {
@@ -594,7 +549,8 @@ bool mr_glove_ended(const mr_glove *g) {
 }
 
 const char *mr_glove_io_path(const mr_glove *g) {
-  return g != NULL && g->open ? mr_io_path(&g->io) : "";
+  if (g == NULL || !g->open) return "";
+  return g->net != NULL ? mr_net_where(g->net) : mr_io_path(&g->io);
 }
 
 size_t mr_glove_unfinished(const mr_glove *g) {

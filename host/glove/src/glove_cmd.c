@@ -158,7 +158,11 @@ void mr_glove_cmd_poll(mr_glove *g, double now) {
     p->next_send = now + g->def.cmd_timeout;
     if (!g->open) continue;
     mr_io_error err;
-    (void)mr_io_write(&g->io, p->wire, p->len, 100, NULL, &err); /* a loss shows on the read */
+    /* A loss shows on the read. */
+    if (g->net != NULL)
+      (void)mr_net_publish(g->net, MR_NET_CMD, p->wire, p->len, &err);
+    else
+      (void)mr_io_write(&g->io, p->wire, p->len, 100, NULL, &err);
   }
 }
 
@@ -188,4 +192,31 @@ void mr_glove_cmd_reply(mr_glove *g, const gp_msg *m) {
     p->result.state = MR_GLOVE_CMD_NACKED;
     p->result.nack_reason = m->u.nack.reason;
   }
+}
+
+int mr_glove_send_raw(mr_glove *g, const uint8_t *bytes, size_t len, char *msg, size_t msg_size) {
+  char dummy[8];
+  if (msg == NULL || msg_size == 0) {
+    msg = dummy;
+    msg_size = sizeof dummy;
+  }
+  if (g == NULL || bytes == NULL || len == 0) {
+    snprintf(msg, msg_size, "expected a glove and bytes to send");
+    return -1;
+  }
+  if (!g->writable || !g->open) {
+    snprintf(msg, msg_size, "glove %s: %s", g->def.source,
+             g->writable ? "not open: the bytes are dropped" : "carries no commands");
+    return -1;
+  }
+  mr_io_error err;
+  if (g->net != NULL) {
+    if (mr_net_publish(g->net, MR_NET_CMD, bytes, len, &err) == 0) return 0;
+  } else {
+    mr_io_status st = mr_io_write(&g->io, bytes, len, 100, NULL, &err);
+    if (st == MR_IO_OK) return 0;
+    if (!mr_io_failed(st)) snprintf(err.msg, sizeof err.msg, "%s", mr_io_status_name(st));
+  }
+  snprintf(msg, msg_size, "glove %s: %s", g->def.source, err.msg);
+  return -1;
 }

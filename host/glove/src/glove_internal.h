@@ -4,6 +4,7 @@
 
 #include "mr_glove.h"
 #include "mr_io.h"
+#include "mr_net.h"
 
 /* A command in flight or answered: its bytes, so a retry resends them. */
 typedef struct mr_glove_pending {
@@ -70,7 +71,30 @@ struct mr_glove {
   uint64_t cmd_serial; /* orders the table's entries, oldest first */
   bool have_status;
   gp_status status;
+  /* A glove over a broker (glove_net.c): its link instead of io. */
+  bool is_net, net_failed;
+  mr_net *net;
 };
+
+/* glove.c: a glove source as an mr_io spec into out: 0, or -1 for a
+ * source that names none (serial:auto, a prefix unknown). */
+int mr_glove_io_spec(const char *source, char *out, size_t size);
+
+/* glove_probe.c: serial:auto's search, into g->spec: 0, or -1 with
+ * g->last_error saying what was searched. */
+int mr_glove_find(mr_glove *g);
+
+/* glove.c: the source is lost (or ended, when at_end), why says why. */
+void mr_glove_mark_lost(mr_glove *g, double now, const char *why, bool at_end);
+
+/* glove_net.c: a broker's URL checked as mr_glove_source_check does
+ * (into out; its status); the link opened (0, or -1 with err); what came
+ * decoded, the SAMPLEs added to *taken, true when the link was lost. */
+mr_io_status mr_glove_net_check(const char *source, mr_glove_source_report *out);
+int mr_glove_net_open(mr_glove *g, mr_io_error *err);
+bool mr_glove_net_read(mr_glove *g, double now, int timeout_ms, int *taken);
+/* "; two publishers on TOPIC: A and B" when it is so, else nothing. */
+void mr_glove_net_note(const mr_glove *g, char *out, size_t size);
 
 /* glove.c: decodes bytes into the glove's state; how many SAMPLEs. */
 int mr_glove_feed(mr_glove *g, const uint8_t *buf, size_t n, double now);
