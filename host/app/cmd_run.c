@@ -20,6 +20,7 @@
 #include "mr_scene.h"
 #include "mr_show.h"
 #include "mr_show_runner.h"
+#include "run_takes.h"
 #include "stage_opts.h"
 #include "window.h"
 
@@ -257,6 +258,7 @@ typedef struct args {
   mr_stage_opts so;
   mr_show_def def;
   char take_source[MR_SHOW_MAX_GLOVES][MR_GLOVE_SOURCE_MAX];
+  mr_run_takes takes; /* --takes, --over, --arm, --punch, --name, --speed */
 } args;
 
 /* A glove's source into the show's list; -1 (after the message) past 8. */
@@ -342,6 +344,11 @@ static int parse(int argc, char **argv, args *a) {
     } else if (strcmp(o, "--keys") == 0) {
       if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
       a->keys = argv[++i];
+    } else if (mr_run_takes_option_is(o)) {
+      char msg[200];
+      if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
+      if (mr_run_takes_option(&a->takes, o, argv[++i], msg, sizeof msg) != 0)
+        return bad_usage("%s", msg);
     } else if (takes_value) {
       if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
       if (take_value(a, o, argv[++i]) != 0) return MR_EXIT_USAGE;
@@ -428,7 +435,8 @@ static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live
                     a->keys,
                     60.0,
                     a->no_osd != 0,
-                    a->def.duration > 0 ? a->def.duration : -1.0 };
+                    a->def.duration > 0 ? a->def.duration : -1.0,
+                    a->takes.speed };
   if (a->def.fps > 0)
     d.fps = a->def.fps;
   else if (scene->fps > 0)
@@ -511,6 +519,47 @@ static bool threaded(const args *a, const status *st) {
   return st->lv != NULL && st->lv->window;
 }
 
+/* One show, from time 0, to its end. */
+static mr_show_status one_show(args *a, const mr_scene *scene, status *st, const mr_clock *clock,
+                               const mr_show_hooks *hooks, const mr_show_runner_def *rd,
+                               mr_show_result *r, mr_show_error *err) {
+  st->quit_sent = false;
+  st->next_line = 0;
+  if (st->lv != NULL) mr_live_set_takes(st->lv, a->takes.beneath_name);
+  mr_show_status rc = mr_show_runner_start(scene, &a->def, clock, hooks, rd, &st->r, err);
+  if (rc != MR_SHOW_OK) return rc;
+  if (st->lv != NULL) st->lv->runner = st->r;
+  if (rd->threaded) {
+    draw_loop(st);
+  } else {
+    while (mr_show_runner_tick(st->r) == MR_SHOW_OK) {
+    }
+    draw_last(st);
+  }
+  return mr_show_runner_finish(st->r, r, err);
+}
+
+/* After a show with a take book: its takes stored (*stored: the exit
+ * status that makes), and whether another show starts over the take
+ * beneath, as the window asked (a punch-out, or a step through the
+ * book), unless it is quitting. */
+static bool another_show(args *a, status *st, const mr_show_result *r, int *stored) {
+  char line[900];
+  int step = st->lv != NULL ? st->lv->take_step : 0;
+  if (st->lv != NULL) st->lv->take_step = 0;
+  if (a->takes.book_dir == NULL) return false;
+  int rc = mr_run_takes_store(&a->takes, r, &a->def, line, sizeof line);
+  fprintf(stderr, "marionette run: %s\n", line);
+  if (rc != MR_EXIT_OK) *stored = rc;
+  if (st->lv == NULL || stop_asked || mr_live_should_quit(st->lv)) return false;
+  if (step != 0) {
+    mr_run_takes_step(&a->takes, step, &a->def, line, sizeof line);
+    fprintf(stderr, "marionette run: %s\n", line);
+    return true;
+  }
+  return r->punch_out >= 0;
+}
+
 static int run_show(args *a, mr_scene *scene, status *st) {
   bool virtual_time = a->n_replay > 0 && !a->real_time;
   mr_virtual_clock vc = { 0.0 };
@@ -522,6 +571,7 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   if (rc_stage != 0) return rc_stage;
   mr_show_runner_def rd = mr_default_show_runner_def();
   rd.threaded = threaded(a, st);
+  rd.speed = a->takes.speed;
   /* On its own thread the physics is behind only when the machine starved
    * it, not because a render took long, and a frame of it costs a fraction
    * of a millisecond: it chases up to half a second rather than give the
@@ -535,20 +585,17 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   mr_show_result r;
   memset(&r, 0, sizeof r);
   mr_show_error err;
-  mr_show_status rc = mr_show_runner_start(scene, &a->def, &clock, &hooks, &rd, &st->r, &err);
-  if (rc == MR_SHOW_OK) {
-    lv.runner = st->r;
-    if (rd.threaded) {
-      draw_loop(st);
-    } else {
-      while (mr_show_runner_tick(st->r) == MR_SHOW_OK) {
-      }
-      draw_last(st);
-    }
-    rc = mr_show_runner_finish(st->r, &r, &err);
+  mr_show_status rc;
+  int stored = MR_EXIT_OK;
+  for (;;) {
+    rc = one_show(a, scene, st, &clock, &hooks, &rd, &r, &err);
+    if (rc != MR_SHOW_OK || !another_show(a, st, &r, &stored)) break;
+    mr_show_result_free(&r);
+    if (virtual_time) vc.t = 0.0;
   }
   if (rc == MR_SHOW_OK) summary(st, scene, &r);
   int exit_status = show_status(a, st, rc, &r, &err);
+  if (exit_status == MR_EXIT_OK) exit_status = stored;
   mr_show_result_free(&r);
   return exit_status;
 }
@@ -557,6 +604,7 @@ int mr_cmd_run(int argc, char **argv) {
   args a;
   memset(&a, 0, sizeof a);
   a.def = mr_default_show_def();
+  a.takes.speed = 1.0;
   mr_stage_opts_init(&a.so);
   int rc_usage = parse(argc, argv, &a);
   if (rc_usage != 0) return rc_usage;
@@ -575,6 +623,15 @@ int mr_cmd_run(int argc, char **argv) {
   }
   int rc_gloves = check_together(&a);
   if (rc_gloves == 0) rc_gloves = check_gloves(&a);
+  char msg[700];
+  if (rc_gloves == 0 &&
+      (rc_gloves = mr_run_takes_prepare(&a.takes, &a.def, a.def.n_gloves, msg, sizeof msg)) != 0) {
+    if (rc_gloves == MR_EXIT_USAGE)
+      bad_usage("%s", msg);
+    else
+      fprintf(stderr, "marionette run: %s\n", msg);
+    mr_run_takes_close(&a.takes);
+  }
   if (rc_gloves != 0) return mr_scene_free(&scene), rc_gloves;
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
@@ -587,6 +644,7 @@ int mr_cmd_run(int argc, char **argv) {
     return MR_EXIT_FAIL;
   }
   int rc = run_show(&a, &scene, &st);
+  mr_run_takes_close(&a.takes);
   mr_scene_free(&scene);
   return rc;
 }
