@@ -33,6 +33,8 @@ static void on_signal(int sig) {
     stop_asked = 1;
 }
 
+static void options_usage(void);
+
 void mr_cmd_run_usage(void) {
   printf("usage: marionette run [OPTIONS] [SCENE] [--glove SOURCE | --replay TAKE]...\n"
          "\n"
@@ -58,14 +60,23 @@ void mr_cmd_run_usage(void) {
          "Without --glove, in a window (or with --keys), the keyboard, the mouse and\n"
          "a gamepad play a glove on a pty of its own, through the same mapping (see\n"
          "the man page for the keys).\n"
-         "Keys: space pause, . single step, s slow motion, r reset, n day/night,\n"
+         "Keys: space pause, . single step, s speed 100/50/25 %%, r reset, n day/night,\n"
          "[ ] turn the day knob, m the next materials, c the collision spheres,\n"
          "h or F1 the OSD, p or F12 a screenshot (-o DIR, else here), f or F11\n"
          "fullscreen, q or Esc quit (the curtain closes first; q again: at once),\n"
          "1-8 the scene's cameras, 0 the orbit camera; drag to orbit, the wheel\n"
-         "zooms.\n"
-         "\n"
-         "options:\n"
+         "zooms. With --takes: F2-F6 arm or disarm the selected glove's thumb,\n"
+         "index, middle, ring and little finger, F7 the next glove, F8 punch in or\n"
+         "out (REC; at the punch-out the raw and the merged take go into the book\n"
+         "and the show starts again over the merged one), F9/F10 the previous or\n"
+         "next take beneath (the show starts again from time 0 over it).\n"
+         "\n");
+  options_usage();
+}
+
+/* The options of run's help. */
+static void options_usage(void) {
+  printf("options:\n"
          "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], serial:auto, pty:PATH,\n"
          "                      file:PATH, -, tcp:HOST:PORT or tcp-listen:PORT;\n"
          "                      repeat for several gloves (up to 8)\n"
@@ -79,6 +90,21 @@ void mr_cmd_run_usage(void) {
          "                      live, so the states match the show's bit for bit;\n"
          "                      repeat for the takes of several gloves\n"
          "  --real-time         with --replay: at real speed on the wall clock\n"
+         "  --speed 1|0.5|0.25  perform at full, half or quarter speed: show time and\n"
+         "                      takes beneath slow, live gloves are read at their own\n"
+         "                      pace; a take replays at full speed\n"
+         "  --takes BOOK        keep the takes in the book BOOK (made if missing):\n"
+         "                      the raw take goes in at the end (as --name, else\n"
+         "                      take-N)\n"
+         "  --over NAME         play the book's take NAME beneath the gloves: each\n"
+         "                      channel from the take except the armed ones; at the\n"
+         "                      punch-out NEW-raw (the raw input) and NEW (the armed\n"
+         "                      channels punched in) go into the book\n"
+         "  --arm G:F,...       channels armed: glove 0.., finger 0-4 or thumb, index,\n"
+         "                      middle, ring, little\n"
+         "  --punch IN:OUT      punch in and out at these show times, s (IN < OUT);\n"
+         "                      the show ends at the punch-out\n"
+         "  --name NEW          the new take's name in the book\n"
          "  --hashes FILE       write each frame's time and state hash to FILE\n"
          "  --poses FILE        write each frame's time and, for each control frame,\n"
          "                      its position (m) and orientation (w x y z)\n"
@@ -101,7 +127,7 @@ void mr_cmd_run_usage(void) {
          "  --backend B         auto (default), window, egl or osmesa\n"
          "  --keys LIST         press keys at show times, T:KEY[/HOLD],... (KEY a\n"
          "                      character or space, esc, left, right, up, down,\n"
-         "                      pgup, pgdn, f1, f11, f12; HOLD seconds, default\n"
+         "                      pgup, pgdn, f1 to f12; HOLD seconds, default\n"
          "                      0.05): for demos and tests; without --glove the\n"
          "                      keyboard's glove plays, headless too\n"
          "%s"

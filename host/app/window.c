@@ -394,7 +394,7 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
   if (def->keys != NULL && mr_live_parse_keys(lv, def->keys) != 0) {
     snprintf(msg, msg_size,
              "expected --keys T:KEY[/HOLD],... (KEY a character, space, esc, left, right, up, "
-             "down, pgup, pgdn, f1, f11 or f12), got '%s'",
+             "down, pgup, pgdn or f1 to f12), got '%s'",
              def->keys);
     return *usage = 1, -1;
   }

@@ -95,7 +95,7 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
 int mr_live_close(mr_live *lv, bool quiet);
 
 /* Parses --keys: "T:KEY[/HOLD],..." with KEY a character or one of
- * space, esc, left, right, up, down, pgup, pgdn, f1, f11, f12. 0 or -1. */
+ * space, esc, left, right, up, down, pgup, pgdn, f1 to f12. 0 or -1. */
 int mr_live_parse_keys(mr_live *lv, const char *list);
 
 /* One event from the window or a script: the glove's keys go to the
