@@ -96,6 +96,7 @@ typedef struct seen {
   mr_pose target[MAX_FRAMES];
   unsigned armed[MAX_FRAMES];
   bool layered[MAX_FRAMES];
+  mr_glove_state state[MAX_FRAMES];
   mr_show_glove_view last; /* glove 1 as the last frame showed it */
 } seen;
 
@@ -107,6 +108,7 @@ static void frame_done(void *user, const mr_show_frame *f) {
   s->target[s->n] = f->target[0];
   s->armed[s->n] = f->gloves[0].armed;
   s->layered[s->n] = f->gloves[0].layered;
+  s->state[s->n] = f->gloves[0].state;
   s->last = f->gloves[0];
   s->n++;
 }
@@ -385,10 +387,79 @@ static void a_take_performed_at_a_quarter_speed_replays_as_its_input_scaled(void
   free(dir);
 }
 
+/* The performer at 25 % through a pipe, as above, for `secs` of show;
+ * what the frames saw into s. */
+static void perform_slowly(const mr_scene *sc, const stream *w, double secs, seen *s) {
+  int fds[2];
+  assert_int_equal(pipe(fds), 0);
+  char source[64];
+  snprintf(source, sizeof source, "file:/proc/self/fd/%d", fds[0]);
+  mr_show_def d = show_def(secs);
+  d.gloves[0] = source;
+  d.n_gloves = 1;
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock base = mr_clock_virtual(&vc);
+  feeder fd = { w, 0, fds[1], &vc };
+  mr_show_runner_def rd = mr_default_show_runner_def();
+  rd.threaded = false;
+  rd.speed = 0.25;
+  rd.pump = feed;
+  rd.user = &fd;
+  mr_show_hooks h = { NULL, NULL, frame_done, NULL, s };
+  mr_show_runner *r = NULL;
+  mr_show_error err;
+  if (mr_show_runner_start(sc, &d, &base, &h, &rd, &r, &err) != MR_SHOW_OK)
+    fail_msg("%s", err.text);
+  while (mr_show_runner_tick(r) == MR_SHOW_OK) {
+  }
+  mr_show_result res;
+  if (mr_show_runner_finish(r, &res, &err) != MR_SHOW_OK) fail_msg("%s", err.text);
+  mr_show_result_free(&res);
+  close(fds[0]);
+  close(fds[1]);
+}
+
+/* At 25 %, a glove silent from 1 s to 2.5 s of its own time is lost half
+ * a second (its lost_after) of its own time into the silence, not two
+ * seconds in (half a second of show time), and live again when it sends
+ * again. */
+static void at_a_quarter_speed_a_silent_glove_is_lost_on_its_own_time(void **state) {
+  (void)state;
+  static stream w;
+  memset(&w, 0, sizeof w);
+  put_info(&w, 1700000u);
+  for (int i = 0; i < 400; i++) {
+    uint64_t t_ns = (uint64_t)i * 10000000u + 3700000u;
+    if (t_ns > 1000000000u && t_ns < 2500000000u) continue;
+    double v[5];
+    for (int c = 0; c < 5; c++) v[c] = wave(c, (double)t_ns * 1e-9);
+    put_sample(&w, t_ns, v);
+  }
+  mr_scene sc;
+  load(&sc);
+  static seen s;
+  memset(&s, 0, sizeof s);
+  perform_slowly(&sc, &w, 0.95, &s);
+  int lost = -1, back = -1;
+  for (int i = 0; i < s.n; i++) {
+    if (lost < 0 && s.state[i] == MR_GLOVE_LOST) lost = i;
+    if (lost >= 0 && back < 0 && s.state[i] == MR_GLOVE_LIVE) back = i;
+  }
+  assert_true(lost > 0);
+  print_message("lost at %.4f s of show (%.3f s of its own), live again at %.4f s\n", s.t[lost],
+                4 * s.t[lost], back > 0 ? s.t[back] : -1.0);
+  /* Its last sample came at 0.9937 s of its own time, lost 0.5 s after:
+   * the first frame past it on the glove's clock (1/15 s a frame). */
+  assert_true(4 * s.t[lost] > 0.9937 + 0.5 && 4 * s.t[lost] < 0.9937 + 0.5 + 1.0 / 15 + 1e-9);
+  assert_true(back > lost && 4 * s.t[back] >= 2.5 && 4 * s.t[back] < 2.5 + 1.0 / 15 + 1e-9);
+  mr_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(armed_channels_follow_the_live_glove_and_the_rest_the_take_beneath),
     cmocka_unit_test(a_take_performed_at_a_quarter_speed_replays_as_its_input_scaled),
+    cmocka_unit_test(at_a_quarter_speed_a_silent_glove_is_lost_on_its_own_time),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
