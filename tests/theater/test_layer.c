@@ -324,7 +324,8 @@ static void performer(stream *w) {
  * W with every time taken by a quarter (S) replayed the same way. The
  * glove's clock ran at the performer's pace: its clock offset stayed that
  * of the pipe (not drifting by three quarters of every second), its
- * latency under a base frame, and it was never lost. */
+ * latency under a base frame, it was never lost, and the show's latency
+ * figures are on that pace too. */
 static void a_take_performed_at_a_quarter_speed_replays_as_its_input_scaled(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -372,6 +373,11 @@ static void a_take_performed_at_a_quarter_speed_replays_as_its_input_scaled(void
   assert_true(live.last.clock_offset >= -0.004 && live.last.clock_offset < 0.07);
   double late = live.last.reading.host_t - live.last.reading.device_t - live.last.clock_offset;
   assert_true(late >= 0 && late < 0.07);
+  /* The show's input-to-frame latency on the same pace: a frame is shown a
+   * frame period of show time after its input was read, 1/15 s of the
+   * performer's at 25 % (in show seconds it read a quarter of that). */
+  print_message("latency p50 %.4f s, p99 %.4f s\n", res.frames.latency_p50, res.frames.latency_p99);
+  assert_true(fabs(res.frames.latency_p50 - 1.0 / 15) < 0.005);
   mr_show_result_free(&res);
   close(fds[0]);
   close(fds[1]);

@@ -108,6 +108,11 @@ typedef struct mr_scheduler_def {
   int max_catch_up; /* frames simulated in one tick at the most when behind;
                        past that the lag is dropped, so the loop never
                        spirals. Default 5 */
+  /* The clock the latency figures are read on (the input noted and the
+   * frame presented): a show in slow motion measures them at its gloves'
+   * pace, not in slowed show seconds. .now NULL (default): the
+   * scheduler's own. */
+  mr_clock latency_clock;
 } mr_scheduler_def;
 mr_scheduler_def mr_default_scheduler_def(void);
 

@@ -231,7 +231,8 @@ static void read_gloves(show *s, double now) {
   for (size_t k = 0; k < s->n_frames; k++) fresh |= read_frame(s, k);
   /* Read at the start of this frame's work: the latency counters run from
    * here to the frame's presentation, on the show's clock. */
-  if (fresh) mr_scheduler_note_input(s->sch, s->clock.now(s->clock.self));
+  const mr_clock *lc = s->glove_clock.now != NULL ? &s->glove_clock : &s->clock;
+  if (fresh) mr_scheduler_note_input(s->sch, lc->now(lc->self));
 }
 
 /* A glove's bytes into its take, stamped with the show time of the frame
@@ -499,6 +500,7 @@ static int open_parts(show *s, const mr_show_def *def) {
   mr_scheduler_def sd = mr_default_scheduler_def();
   sd.policy = def->policy;
   if (def->max_catch_up > 0) sd.max_catch_up = def->max_catch_up;
+  sd.latency_clock = s->glove_clock;
   sd.fps = def->fps > 0 ? def->fps : s->scene->fps > 0 ? s->scene->fps : 60.0;
   mr_scheduler_hooks h = { advance, present, s };
   if (mr_scheduler_create(&sd, &s->clock, &h, &s->sch, msg, sizeof msg) != MR_THEATER_OK) {
