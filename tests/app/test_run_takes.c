@@ -92,8 +92,8 @@ static void book_holds_the_merge(const char *book, const char *base, const char 
   assert_non_null(e);
   assert_int_equal(e->how, MR_TAKE_PUNCHED);
   assert_true(fabs(e->t0 - t_in) < 1e-9 && fabs(e->t1 - t_out) < 1e-9);
-  /* The raw take has the performer's samples from the start. */
-  assert_true(rr.n_frames > 100 && rr.chunks[0].t_ns < 100000000u);
+  /* The raw take is kept whole: it starts before the punch-in. */
+  assert_true(rr.n_frames > 0 && rr.chunks[0].t_ns < mr_take_ns(t_in));
   if (mr_take_punch_rec(&rb, &rr, mask, t_in, t_out, &err) != 0) fail_msg("%s", err.msg);
   assert_int_equal(rb.len, rm.len);
   assert_int_equal(rb.n_chunks, rm.n_chunks);
@@ -244,7 +244,9 @@ static void in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book(v
   assert_int_equal(sscanf(said + strlen("take 'W' is its armed channels over 'A' from "),
                           "%lf to %lf", &t_in, &t_out),
                    2);
-  assert_true(t_in >= 0.5 && t_in < 0.7 && t_out >= 1.2 && t_out < 1.4);
+  /* The keys play on the show time of the frames drawn, so a loaded
+   * machine presses them later, never earlier. */
+  assert_true(t_in >= 0.5 && t_out >= 1.2 && t_out > t_in);
   tt_output_free(&o);
   /* The frames' times, to the ms the note gives them: the book's own. */
   mr_take_book b;
