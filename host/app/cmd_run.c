@@ -577,7 +577,7 @@ static bool another_show(args *a, status *st, const mr_show_result *r, int *stor
   int rc = mr_run_takes_store(&a->takes, r, &a->def, line, sizeof line);
   fprintf(stderr, "marionette run: %s\n", line);
   if (rc != MR_EXIT_OK) *stored = rc;
-  if (st->lv == NULL || stop_asked || mr_live_should_quit(st->lv)) return false;
+  if (st->lv == NULL || stop_asked || st->lv->quit || st->lv->failed) return false;
   if (step != 0) {
     mr_run_takes_step(&a->takes, step, &a->def, line, sizeof line);
     fprintf(stderr, "marionette run: %s\n", line);

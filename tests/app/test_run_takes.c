@@ -197,7 +197,8 @@ static void bad_take_options_exit_2_with_one_line(void **state) {
 /* Under Xvfb, over take A with the keyboard's glove: F2 and F3 arm its
  * thumb and index, F8 punches in at 0.5 s and out at 1.2 s; the book then
  * holds the raw take and the merge of those two channels over A between
- * the punch frames, and the show starts again over the merged take. */
+ * the punch frames, and the show starts again over the merged take, where
+ * F10 steps to the book's next take. */
 static void in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book(void **state) {
   (void)state;
   char xvfb[512];
@@ -225,7 +226,7 @@ static void in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book(v
                    "--name",
                    "W",
                    "--keys",
-                   "0.2:f2,0.3:f3,0.4:i/1.5,0.5:f8,1.2:f8",
+                   "0.2:f2,0.3:f3,0.4:i/1.5,0.5:f8,1.2:f8,1.4:f10",
                    "--size",
                    "160x96",
                    "--time",
@@ -247,6 +248,9 @@ static void in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book(v
   /* The keys play on the show time of the frames drawn, so a loaded
    * machine presses them later, never earlier. */
   assert_true(t_in >= 0.5 && t_out >= 1.2 && t_out > t_in);
+  /* F10 in the show over W: the next take of the book, after the last the
+   * first. */
+  assert_non_null(strstr(o.err, "take beneath: 'A' (the show starts again from 0)"));
   tt_output_free(&o);
   /* The frames' times, to the ms the note gives them: the book's own. */
   mr_take_book b;
