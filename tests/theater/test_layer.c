@@ -249,9 +249,12 @@ static void armed_channels_follow_the_live_glove_and_the_rest_the_take_beneath(v
   char *dir = tt_tmpdir();
   static stream under, over, mix;
   two_takes(&under, &over);
-  const char *under_path = strdup(tt_path(dir, "under.mrec"));
-  const char *over_path = strdup(tt_path(dir, "over.mrec"));
-  const char *mix_path = strdup(tt_path(dir, "mix.mrec"));
+  char under_path[600];
+  snprintf(under_path, sizeof under_path, "%s", tt_path(dir, "under.mrec"));
+  char over_path[600];
+  snprintf(over_path, sizeof over_path, "%s", tt_path(dir, "over.mrec"));
+  char mix_path[600];
+  snprintf(mix_path, sizeof mix_path, "%s", tt_path(dir, "mix.mrec"));
   write_take(&under, under_path, 1, 1);
   write_take(&over, over_path, 1, 1);
   mr_scene sc;
@@ -331,8 +334,10 @@ static void a_take_performed_at_a_quarter_speed_replays_as_its_input_scaled(void
   char *dir = tt_tmpdir();
   static stream w;
   performer(&w);
-  const char *r_path = strdup(tt_path(dir, "R.mrec"));
-  const char *s_path = strdup(tt_path(dir, "S.mrec"));
+  char r_path[600];
+  snprintf(r_path, sizeof r_path, "%s", tt_path(dir, "R.mrec"));
+  char s_path[600];
+  snprintf(s_path, sizeof s_path, "%s", tt_path(dir, "S.mrec"));
   write_take(&w, s_path, 1, 4);
   int fds[2];
   assert_int_equal(pipe(fds), 0);
