@@ -25,6 +25,8 @@ void mr_cmd_calibrate_usage(void);
 int mr_cmd_render(int argc, char **argv);
 void mr_cmd_render_usage(void);
 int mr_cmd_export(int argc, char **argv);
+int mr_cmd_take(int argc, char **argv);
+void mr_cmd_take_usage(void);
 void mr_cmd_export_usage(void);
 
 /* In `marionette`: replaces the process with the program of that file

@@ -21,11 +21,13 @@
 #include "mr_scene.h"
 #include "mr_show.h"
 #include "mr_sim.h"
+#include "take_ref.h"
 
 void mr_cmd_export_usage(void) {
   printf("usage: marionette export [TAKE...] --scene SCENE -o OUT.glb [OPTIONS]\n"
          "\n"
-         "Plays the takes (.mrec, recorded by marionette run --record) on SCENE as\n"
+         "Plays the takes (.mrec, recorded by marionette run --record, or BOOK:NAME,\n"
+         "every glove of a take in a take list: marionette take) on SCENE as\n"
          "marionette render --take does, or without a take the scene's own track,\n"
          "and writes the show as a glTF 2.0 binary: a node per model shown, with\n"
          "its mesh and material, animated at the frame rate (particle and rigid\n"
@@ -123,10 +125,15 @@ static int parse(int argc, char **argv, export_args *a) {
       if (rc >= 0) return rc;
     } else if (o[0] == '-' && o[1] != '\0') {
       return usage_error("unknown option", o);
-    } else if (a->n_takes == MAX_TAKES) {
-      return usage_error("expected at most 8 takes, got another:", o);
     } else {
-      a->takes[a->n_takes++] = o;
+      const char *paths[MAX_TAKES]; /* a .mrec, or a book's take: its files */
+      int n = mr_app_take_paths("marionette export", o, paths, MAX_TAKES);
+      if (n < 0) return MR_EXIT_USAGE;
+      for (int k = 0; k < n; k++) {
+        if (a->n_takes == MAX_TAKES)
+          return usage_error("expected at most 8 takes, got another:", o);
+        a->takes[a->n_takes++] = paths[k];
+      }
     }
   }
   if (a->help) return -1;

@@ -20,6 +20,7 @@
 #include "mr_show.h"
 #include "mr_sim.h"
 #include "stage_opts.h"
+#include "take_ref.h"
 #include "stage_view.h"
 
 void mr_cmd_render_usage(void) {
@@ -41,7 +42,8 @@ void mr_cmd_render_usage(void) {
          "  --fps HZ            frames per second (default: the scene's, else 30;\n"
          "                      with --take, else 60, as the show it recorded)\n"
          "  --take TAKE         play a take (.mrec) instead of the scene's track;\n"
-         "                      repeat for the takes of several gloves\n"
+         "                      repeat for the takes of several gloves; BOOK:NAME\n"
+         "                      is every glove of take NAME in the take list BOOK\n"
          "  --backend B         auto (default), egl or osmesa\n"
          "  -q, --quiet         no progress, only the summary and errors\n"
          "  -h, --help          show this help\n"
@@ -120,8 +122,13 @@ static int own_option(render_args *a, const char *o, const char *v) {
     if (parse_number(v, 1, 1000, &a->fps) != 0)
       return usage_error("expected --fps a frame rate from 1 to 1000 Hz, got", v);
   } else {
-    if (a->n_takes == MAX_TAKES) return usage_error("expected at most 8 takes, got another:", v);
-    a->takes[a->n_takes++] = v;
+    const char *paths[MAX_TAKES]; /* a .mrec, or a book's take: its files */
+    int n = mr_app_take_paths("marionette render", v, paths, MAX_TAKES);
+    if (n < 0) return MR_EXIT_USAGE;
+    for (int k = 0; k < n; k++) {
+      if (a->n_takes == MAX_TAKES) return usage_error("expected at most 8 takes, got another:", v);
+      a->takes[a->n_takes++] = paths[k];
+    }
   }
   return -1;
 }

@@ -22,6 +22,7 @@
 #include "mr_show_runner.h"
 #include "run_takes.h"
 #include "stage_opts.h"
+#include "take_ref.h"
 #include "window.h"
 
 static volatile sig_atomic_t stop_asked, mappings_asked;
@@ -85,10 +86,10 @@ static void options_usage(void) {
          "                      the first glove, and so on (without --glove, the\n"
          "                      keyboard's glove); a take stays readable up\n"
          "                      to its last whole chunk if the show is killed\n"
-         "  --replay TAKE       play a take instead of a glove, on a virtual clock as\n"
-         "                      fast as it goes: every frame gets the bytes it got\n"
-         "                      live, so the states match the show's bit for bit;\n"
-         "                      repeat for the takes of several gloves\n"
+         "  --replay TAKE       play a take (.mrec, or BOOK:NAME: marionette take)\n"
+         "                      instead of a glove, on a virtual clock as fast as it\n"
+         "                      goes: every frame gets the bytes it got live, so the\n"
+         "                      states match the show's bit for bit; one per glove\n"
          "  --real-time         with --replay: at real speed on the wall clock\n"
          "  --speed 1|0.5|0.25  perform at full, half or quarter speed: show time and\n"
          "                      takes beneath slow, live gloves are read at their own\n"
@@ -305,10 +306,15 @@ static int take_value(args *a, const char *opt, const char *v) {
       return bad_usage("expected at most 8 takes, got another: '%s'", v), -1;
     a->def.record[a->n_record++] = v;
   } else if (strcmp(opt, "--replay") == 0) {
-    char *src = a->take_source[a->def.n_gloves < MR_SHOW_MAX_GLOVES ? a->def.n_gloves : 0];
-    snprintf(src, MR_GLOVE_SOURCE_MAX, "take:%s", v);
-    a->n_replay++;
-    return add_glove(a, src);
+    const char *paths[MR_SHOW_MAX_GLOVES]; /* a .mrec, or a book's take: its files */
+    int n = mr_app_take_paths("marionette run", v, paths, MR_SHOW_MAX_GLOVES);
+    for (int k = 0; k < n; k++) {
+      char *src = a->take_source[a->def.n_gloves < MR_SHOW_MAX_GLOVES ? a->def.n_gloves : 0];
+      snprintf(src, MR_GLOVE_SOURCE_MAX, "take:%s", paths[k]);
+      a->n_replay++;
+      if (add_glove(a, src) != 0) return -1;
+    }
+    return n < 0 ? -1 : 0;
   } else if (strcmp(opt, "--hashes") == 0) {
     a->hashes = v;
   } else if (strcmp(opt, "--poses") == 0) {

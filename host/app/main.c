@@ -28,6 +28,10 @@ static void usage(FILE *f) {
              "              the show as a glTF 2.0 binary with its animation\n"
              "              (and a PC2 point cache, a CSV); see\n"
              "              `marionette export --help`\n"
+             "  take SUBCOMMAND BOOK\n"
+             "              the take list: add, punch, split, trim, delete,\n"
+             "              restore, rename, smooth, offset, scale, show; see\n"
+             "              `marionette take --help`\n"
              "  list-ports  the serial ports, and the gloves on them\n"
              "  calibrate --glove SOURCE\n"
              "              walk through a glove's calibration and save it on\n"
@@ -41,10 +45,9 @@ static void usage(FILE *f) {
 int main(int argc, char **argv) {
   if (argc < 2) {
     /* Bad usage is one line, like every other usage error; --help has the rest. */
-    fprintf(
-        stderr,
-        "marionette: expected a command: sim, run, render, export, list-ports or calibrate (see "
-        "marionette --help)\n");
+    fprintf(stderr, "marionette: expected a command: sim, run, render, export, take, list-ports or "
+                    "calibrate (see "
+                    "marionette --help)\n");
     return MR_EXIT_USAGE;
   }
   const char *cmd = argv[1];
@@ -62,12 +65,13 @@ int main(int argc, char **argv) {
     return mr_stage_exec(MR_STAGE_PROGRAM, argv);
   /* export loads models (Assimp) but no GL: a program of its own. */
   if (strcmp(cmd, "export") == 0) return mr_stage_exec(MR_EXPORT_PROGRAM, argv);
+  if (strcmp(cmd, "take") == 0) return mr_cmd_take(argc - 1, argv + 1);
   if (strcmp(cmd, "list-ports") == 0) return mr_cmd_ports(argc - 1, argv + 1);
   if (strcmp(cmd, "calibrate") == 0) return mr_cmd_calibrate(argc - 1, argv + 1);
-  fprintf(
-      stderr,
-      "marionette: unknown command '%s'; expected one of: sim, run, render, export, list-ports, "
-      "calibrate (see --help)\n",
-      cmd);
+  fprintf(stderr,
+          "marionette: unknown command '%s'; expected one of: sim, run, render, export, take, "
+          "list-ports, "
+          "calibrate (see --help)\n",
+          cmd);
   return MR_EXIT_USAGE;
 }

@@ -24,7 +24,8 @@ import time
 SRC, BUILD = sys.argv[1], sys.argv[2]
 PREFIX = "/usr"
 PROGRAMS = {"marionette": [["--help"], ["sim", "--help"], ["run", "--help"],
-                           ["render", "--help"], ["list-ports", "--help"]],
+                           ["render", "--help"], ["list-ports", "--help"],
+                           ["take", "--help"]],
             "glove-gen": [["--help"]],
             "glove-dump": [["--help"]]}
 failures = []
