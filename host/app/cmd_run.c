@@ -20,6 +20,7 @@
 #include "mr_scene.h"
 #include "mr_show.h"
 #include "mr_show_runner.h"
+#include "run_takes.h"
 #include "stage_opts.h"
 #include "take_ref.h"
 #include "window.h"
@@ -32,6 +33,8 @@ static void on_signal(int sig) {
   else
     stop_asked = 1;
 }
+
+static void options_usage(void);
 
 void mr_cmd_run_usage(void) {
   printf("usage: marionette run [OPTIONS] [SCENE] [--glove SOURCE | --replay TAKE]...\n"
@@ -58,14 +61,23 @@ void mr_cmd_run_usage(void) {
          "Without --glove, in a window (or with --keys), the keyboard, the mouse and\n"
          "a gamepad play a glove on a pty of its own, through the same mapping (see\n"
          "the man page for the keys).\n"
-         "Keys: space pause, . single step, s slow motion, r reset, n day/night,\n"
+         "Keys: space pause, . single step, s speed 100/50/25 %%, r reset, n day/night,\n"
          "[ ] turn the day knob, m the next materials, c the collision spheres,\n"
          "h or F1 the OSD, p or F12 a screenshot (-o DIR, else here), f or F11\n"
          "fullscreen, q or Esc quit (the curtain closes first; q again: at once),\n"
          "1-8 the scene's cameras, 0 the orbit camera; drag to orbit, the wheel\n"
-         "zooms.\n"
-         "\n"
-         "options:\n"
+         "zooms. With --takes: F2-F6 arm or disarm the selected glove's thumb,\n"
+         "index, middle, ring and little finger, F7 the next glove, F8 punch in or\n"
+         "out (REC; at the punch-out the raw and the merged take go into the book\n"
+         "and the show starts again over the merged one), F9/F10 the previous or\n"
+         "next take beneath (the show starts again from time 0 over it).\n"
+         "\n");
+  options_usage();
+}
+
+/* The options of run's help. */
+static void options_usage(void) {
+  printf("options:\n"
          "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], serial:auto, pty:PATH,\n"
          "                      file:PATH, -, tcp:HOST:PORT, tcp-listen:PORT or\n"
          "                      mqtt[s]://HOST/TOPIC; repeat for several gloves (up to 8)\n"
@@ -79,6 +91,21 @@ void mr_cmd_run_usage(void) {
          "                      goes: every frame gets the bytes it got live, so the\n"
          "                      states match the show's bit for bit; one per glove\n"
          "  --real-time         with --replay: at real speed on the wall clock\n"
+         "  --speed 1|0.5|0.25  perform at full, half or quarter speed: show time and\n"
+         "                      takes beneath slow, live gloves are read at their own\n"
+         "                      pace; a take replays at full speed\n"
+         "  --takes BOOK        keep the takes in the book BOOK (made if missing):\n"
+         "                      the raw take goes in at the end (as --name, else\n"
+         "                      take-N)\n"
+         "  --over NAME         play the book's take NAME beneath the gloves: each\n"
+         "                      channel from the take except the armed ones; at the\n"
+         "                      punch-out NEW-raw (the raw input) and NEW (the armed\n"
+         "                      channels punched in) go into the book\n"
+         "  --arm G:F,...       channels armed: glove 0.., finger 0-4 or thumb, index,\n"
+         "                      middle, ring, little\n"
+         "  --punch IN:OUT      punch in and out at these show times, s (IN < OUT);\n"
+         "                      the show ends at the punch-out\n"
+         "  --name NEW          the new take's name in the book\n"
          "  --hashes FILE       write each frame's time and state hash to FILE\n"
          "  --poses FILE        write each frame's time and, for each control frame,\n"
          "                      its position (m) and orientation (w x y z)\n"
@@ -101,7 +128,7 @@ void mr_cmd_run_usage(void) {
          "  --backend B         auto (default), window, egl or osmesa\n"
          "  --keys LIST         press keys at show times, T:KEY[/HOLD],... (KEY a\n"
          "                      character or space, esc, left, right, up, down,\n"
-         "                      pgup, pgdn, f1, f11, f12; HOLD seconds, default\n"
+         "                      pgup, pgdn, f1 to f12; HOLD seconds, default\n"
          "                      0.05): for demos and tests; without --glove the\n"
          "                      keyboard's glove plays, headless too\n"
          "%s"
@@ -258,6 +285,7 @@ typedef struct args {
   mr_stage_opts so;
   mr_show_def def;
   char take_source[MR_SHOW_MAX_GLOVES][MR_GLOVE_SOURCE_MAX];
+  mr_run_takes takes; /* --takes, --over, --arm, --punch, --name, --speed */
 } args;
 
 /* A glove's source into the show's list; -1 (after the message) past 8. */
@@ -348,6 +376,11 @@ static int parse(int argc, char **argv, args *a) {
     } else if (strcmp(o, "--keys") == 0) {
       if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
       a->keys = argv[++i];
+    } else if (mr_run_takes_option_is(o)) {
+      char msg[200];
+      if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
+      if (mr_run_takes_option(&a->takes, o, argv[++i], msg, sizeof msg) != 0)
+        return bad_usage("%s", msg);
     } else if (takes_value) {
       if (i + 1 >= argc) return bad_usage("option '%s' needs a value", o);
       if (take_value(a, o, argv[++i]) != 0) return MR_EXIT_USAGE;
@@ -434,7 +467,8 @@ static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live
                     a->keys,
                     60.0,
                     a->no_osd != 0,
-                    a->def.duration > 0 ? a->def.duration : -1.0 };
+                    a->def.duration > 0 ? a->def.duration : -1.0,
+                    a->takes.speed };
   if (a->def.fps > 0)
     d.fps = a->def.fps;
   else if (scene->fps > 0)
@@ -517,6 +551,47 @@ static bool threaded(const args *a, const status *st) {
   return st->lv != NULL && st->lv->window;
 }
 
+/* One show, from time 0, to its end. */
+static mr_show_status one_show(args *a, const mr_scene *scene, status *st, const mr_clock *clock,
+                               const mr_show_hooks *hooks, const mr_show_runner_def *rd,
+                               mr_show_result *r, mr_show_error *err) {
+  st->quit_sent = false;
+  st->next_line = 0;
+  if (st->lv != NULL) mr_live_set_takes(st->lv, a->takes.beneath_name);
+  mr_show_status rc = mr_show_runner_start(scene, &a->def, clock, hooks, rd, &st->r, err);
+  if (rc != MR_SHOW_OK) return rc;
+  if (st->lv != NULL) st->lv->runner = st->r;
+  if (rd->threaded) {
+    draw_loop(st);
+  } else {
+    while (mr_show_runner_tick(st->r) == MR_SHOW_OK) {
+    }
+    draw_last(st);
+  }
+  return mr_show_runner_finish(st->r, r, err);
+}
+
+/* After a show with a take book: its takes stored (*stored: the exit
+ * status that makes), and whether another show starts over the take
+ * beneath, as the window asked (a punch-out, or a step through the
+ * book), unless it is quitting. */
+static bool another_show(args *a, status *st, const mr_show_result *r, int *stored) {
+  char line[900];
+  int step = st->lv != NULL ? st->lv->take_step : 0;
+  if (st->lv != NULL) st->lv->take_step = 0;
+  if (a->takes.book_dir == NULL) return false;
+  int rc = mr_run_takes_store(&a->takes, r, &a->def, line, sizeof line);
+  fprintf(stderr, "marionette run: %s\n", line);
+  if (rc != MR_EXIT_OK) *stored = rc;
+  if (st->lv == NULL || stop_asked || st->lv->quit || st->lv->failed) return false;
+  if (step != 0) {
+    mr_run_takes_step(&a->takes, step, &a->def, line, sizeof line);
+    fprintf(stderr, "marionette run: %s\n", line);
+    return true;
+  }
+  return r->punch_out >= 0;
+}
+
 static int run_show(args *a, mr_scene *scene, status *st) {
   bool virtual_time = a->n_replay > 0 && !a->real_time;
   mr_virtual_clock vc = { 0.0 };
@@ -528,6 +603,7 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   if (rc_stage != 0) return rc_stage;
   mr_show_runner_def rd = mr_default_show_runner_def();
   rd.threaded = threaded(a, st);
+  rd.speed = a->takes.speed;
   /* On its own thread the physics is behind only when the machine starved
    * it, not because a render took long, and a frame of it costs a fraction
    * of a millisecond: it chases up to half a second rather than give the
@@ -541,20 +617,17 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   mr_show_result r;
   memset(&r, 0, sizeof r);
   mr_show_error err;
-  mr_show_status rc = mr_show_runner_start(scene, &a->def, &clock, &hooks, &rd, &st->r, &err);
-  if (rc == MR_SHOW_OK) {
-    lv.runner = st->r;
-    if (rd.threaded) {
-      draw_loop(st);
-    } else {
-      while (mr_show_runner_tick(st->r) == MR_SHOW_OK) {
-      }
-      draw_last(st);
-    }
-    rc = mr_show_runner_finish(st->r, &r, &err);
+  mr_show_status rc;
+  int stored = MR_EXIT_OK;
+  for (;;) {
+    rc = one_show(a, scene, st, &clock, &hooks, &rd, &r, &err);
+    if (rc != MR_SHOW_OK || !another_show(a, st, &r, &stored)) break;
+    mr_show_result_free(&r);
+    if (virtual_time) vc.t = 0.0;
   }
   if (rc == MR_SHOW_OK) summary(st, scene, &r);
   int exit_status = show_status(a, st, rc, &r, &err);
+  if (exit_status == MR_EXIT_OK) exit_status = stored;
   mr_show_result_free(&r);
   return exit_status;
 }
@@ -563,6 +636,7 @@ int mr_cmd_run(int argc, char **argv) {
   args a;
   memset(&a, 0, sizeof a);
   a.def = mr_default_show_def();
+  a.takes.speed = 1.0;
   mr_stage_opts_init(&a.so);
   int rc_usage = parse(argc, argv, &a);
   if (rc_usage != 0) return rc_usage;
@@ -581,6 +655,15 @@ int mr_cmd_run(int argc, char **argv) {
   }
   int rc_gloves = check_together(&a);
   if (rc_gloves == 0) rc_gloves = check_gloves(&a);
+  char msg[700];
+  if (rc_gloves == 0 &&
+      (rc_gloves = mr_run_takes_prepare(&a.takes, &a.def, a.def.n_gloves, msg, sizeof msg)) != 0) {
+    if (rc_gloves == MR_EXIT_USAGE)
+      bad_usage("%s", msg);
+    else
+      fprintf(stderr, "marionette run: %s\n", msg);
+    mr_run_takes_close(&a.takes);
+  }
   if (rc_gloves != 0) return mr_scene_free(&scene), rc_gloves;
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
@@ -593,6 +676,7 @@ int mr_cmd_run(int argc, char **argv) {
     return MR_EXIT_FAIL;
   }
   int rc = run_show(&a, &scene, &st);
+  mr_run_takes_close(&a.takes);
   mr_scene_free(&scene);
   return rc;
 }

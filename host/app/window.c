@@ -29,8 +29,12 @@ static int key_named(const char *name) {
                 { "left", MR_WINDOW_KEY_LEFT },    { "right", MR_WINDOW_KEY_RIGHT },
                 { "up", MR_WINDOW_KEY_UP },        { "down", MR_WINDOW_KEY_DOWN },
                 { "pgup", MR_WINDOW_KEY_PAGE_UP }, { "pgdn", MR_WINDOW_KEY_PAGE_DOWN },
-                { "f1", MR_WINDOW_KEY_F1 },        { "f11", MR_WINDOW_KEY_F11 },
-                { "f12", MR_WINDOW_KEY_F12 } };
+                { "f1", MR_WINDOW_KEY_F1 },        { "f2", MR_WINDOW_KEY_F1 + 1 },
+                { "f3", MR_WINDOW_KEY_F1 + 2 },    { "f4", MR_WINDOW_KEY_F1 + 3 },
+                { "f5", MR_WINDOW_KEY_F1 + 4 },    { "f6", MR_WINDOW_KEY_F1 + 5 },
+                { "f7", MR_WINDOW_KEY_F1 + 6 },    { "f8", MR_WINDOW_KEY_F1 + 7 },
+                { "f9", MR_WINDOW_KEY_F1 + 8 },    { "f10", MR_WINDOW_KEY_F1 + 9 },
+                { "f11", MR_WINDOW_KEY_F11 },      { "f12", MR_WINDOW_KEY_F12 } };
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
     if (strcmp(name, names[i].name) == 0) return names[i].key;
   if (strlen(name) == 1 && name[0] > ' ' && name[0] < 127) return name[0];
@@ -70,18 +74,42 @@ static void toggle_pause(mr_live *lv) {
   send(lv, MR_SHOW_CMD_PAUSE);
 }
 
+/* The take keys: F2-F6 arm or disarm the selected glove's thumb, index,
+ * middle, ring and little finger; F7 selects the next glove; F8 punches
+ * in or out; F9 and F10 step to the previous or next take beneath, which
+ * ends this show (the program starts the next over that take). Whether
+ * one was taken. */
+static bool take_key(mr_live *lv, int key) {
+  int f = key - MR_WINDOW_KEY_F1 + 1;
+  if (f < 2 || f > 10) return false;
+  if (f <= 6) {
+    size_t g = lv->glove_sel;
+    lv->armed[g] ^= 1u << (f - 2);
+    if (lv->runner != NULL) mr_show_runner_send_arm(lv->runner, g, lv->armed[g]);
+  } else if (f == 7) {
+    lv->glove_sel = (lv->glove_sel + 1) % (lv->n_gloves > 0 ? lv->n_gloves : 1);
+  } else if (f == 8) {
+    send(lv, MR_SHOW_CMD_PUNCH);
+  } else {
+    lv->take_step = f == 9 ? -1 : 1;
+    send(lv, MR_SHOW_CMD_QUIT);
+  }
+  return true;
+}
+
 /* The stage's keys (the man page's table). */
 static void stage_key(mr_live *lv, int key) {
   mr_stageview *sv = &lv->sv;
-  if (key == ' ') {
+  if (take_key(lv, key)) {
+  } else if (key == ' ') {
     toggle_pause(lv);
   } else if (key == '.') {
     if (!lv->paused) lv->pause_wall = wall(lv);
     lv->paused = true;
     send(lv, MR_SHOW_CMD_STEP);
   } else if (key == 's') {
-    lv->slow = !lv->slow;
-    send(lv, MR_SHOW_CMD_SLOW);
+    lv->speed = mr_show_speed_next(lv->speed);
+    send(lv, MR_SHOW_CMD_SPEED);
   } else if (key == 'r') {
     send(lv, MR_SHOW_CMD_RESET);
   } else if (key == 'n') {
@@ -217,16 +245,40 @@ static void osd_rates(mr_live *lv, const mr_scheduler_stats *s) {
   lv->osd_steps = s->steps;
 }
 
+/* The fingers armed (from the live glove) and those the take plays, as
+ * letters: thumb, index, middle, ring, little; '-' elsewhere. */
+static void channel_letters(unsigned armed, char live[6], char take[6]) {
+  static const char letters[] = "TIMRL";
+  for (int c = 0; c < 5; c++) {
+    bool on = (armed & (1u << c)) != 0;
+    live[c] = on ? letters[c] : '-';
+    take[c] = on ? '-' : letters[c];
+  }
+  live[5] = take[5] = '\0';
+}
+
+void mr_live_set_takes(mr_live *lv, const char *beneath) {
+  snprintf(lv->beneath, sizeof lv->beneath, "%s", beneath != NULL ? beneath : "");
+  lv->armed_seen = false;
+}
+
 static void osd_lines(mr_live *lv, const mr_show_frame *f) {
   mr_stageview *sv = &lv->sv;
   const mr_scheduler_stats s = f->stats;
   osd_rates(lv, &s);
   uint64_t skipped = s.frames_simulated > lv->drawn ? s.frames_simulated - lv->drawn : 0;
   mr_stageview_osd_clear(sv);
-  mr_stageview_osd(sv, "t %.2f s  %.0f fps  dt %.1f ms%s%s", f->t, lv->fps, lv->dt_mean * 1e3,
-                   lv->paused ? "  PAUSED" : "", lv->slow ? "  SLOW x0.25" : "");
-  mr_stageview_osd(sv, "lag %.0f/%.0f ms  skip %llu  resets %llu", s.latency_p50 * 1e3,
-                   s.latency_p99 * 1e3, (unsigned long long)skipped, (unsigned long long)s.resets);
+  char speed[32] = "";
+  if (lv->speed < 1.0) snprintf(speed, sizeof speed, "  SPEED %.0f %%", lv->speed * 100.0);
+  mr_stageview_osd(sv, "t %.2f s  %.0f fps  dt %.1f ms%s%s%s", f->t, lv->fps, lv->dt_mean * 1e3,
+                   lv->paused ? "  PAUSED" : "", speed, f->recording ? "  REC" : "");
+  if (lv->beneath[0] != '\0')
+    mr_stageview_osd(sv, "over %.20s  lag %.0f ms  skip %llu", lv->beneath, s.latency_p50 * 1e3,
+                     (unsigned long long)skipped);
+  else
+    mr_stageview_osd(sv, "lag %.0f/%.0f ms  skip %llu  resets %llu", s.latency_p50 * 1e3,
+                     s.latency_p99 * 1e3, (unsigned long long)skipped,
+                     (unsigned long long)s.resets);
   /* The overlay is MR_OSD_ROWS lines: the first gloves get one each. */
   for (size_t g = 0; g < f->n_gloves && g < MR_OSD_ROWS - 3; g++) {
     const mr_show_glove_view *v = &f->gloves[g];
@@ -235,6 +287,13 @@ static void osd_lines(mr_live *lv, const mr_show_frame *f) {
     char lateness[48] = "";
     if (r.samples > 0 && isfinite(late))
       snprintf(lateness, sizeof lateness, " %.0f ms late", late * 1e3);
+    if (v->layered) {
+      char live[6], take[6];
+      channel_letters(v->armed, live, take);
+      mr_stageview_osd(sv, "glove %zu%s live %s take %s%s", g + 1, g == lv->glove_sel ? "*" : "",
+                       live, take, lateness);
+      continue;
+    }
     mr_stageview_osd(sv, "glove %zu%s %s%s", g + 1, lv->manual_on && g == 0 ? " keys" : "",
                      mr_glove_state_name(v->state), lateness);
   }
@@ -262,6 +321,11 @@ bool mr_live_should_quit(mr_live *lv) {
 void mr_live_present(mr_live *lv, const mr_show_frame *f) {
   if (lv->failed) return;
   lv->show_t = f->t;
+  lv->n_gloves = f->n_gloves;
+  if (!lv->armed_seen) {
+    for (size_t g = 0; g < f->n_gloves; g++) lv->armed[g] = f->gloves[g].armed;
+    lv->armed_seen = true;
+  }
   mr_stageview_set_time(&lv->sv, f->t, lv->curtain_end);
   mr_stageview_track(&lv->sv, f->t, f->xyz, (size_t)f->n_particles);
   osd_lines(lv, f);
@@ -326,10 +390,11 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
   lv->window = def->window;
   lv->curtain_end = def->end > 0 ? def->end : -1;
   lv->fullscreen = def->fullscreen;
+  lv->speed = def->speed > 0 ? def->speed : 1.0;
   if (def->keys != NULL && mr_live_parse_keys(lv, def->keys) != 0) {
     snprintf(msg, msg_size,
              "expected --keys T:KEY[/HOLD],... (KEY a character, space, esc, left, right, up, "
-             "down, pgup, pgdn, f1, f11 or f12), got '%s'",
+             "down, pgup, pgdn or f1 to f12), got '%s'",
              def->keys);
     return *usage = 1, -1;
   }

@@ -36,7 +36,8 @@ typedef struct mr_live {
   mr_show_runner *runner; /* where the show's keys go */
   /* The show's clock as the keys left it (the runner's own follows the
    * same commands), for the OSD and the scripted keys. */
-  bool paused, slow;
+  bool paused;
+  double speed; /* 1, 0.5 or 0.25 (s steps through them) */
   /* What the keys asked for. */
   bool quit, shot_asked, fullscreen, dragging;
   /* The glove made from the keyboard, mouse and gamepad. */
@@ -61,7 +62,15 @@ typedef struct mr_live {
   bool failed;
   char msg[700];
   char glove_source[300]; /* pty:PATH of the manual glove */
-  const char *out;        /* -o DIR */
+  /* Takes (--takes BOOK): the glove whose channels F2-F6 arm, the
+   * channels armed as the keys and the frames left them, the take beneath
+   * ("" none), and a step through the book asked (-1, +1; 0 none). */
+  size_t glove_sel, n_gloves;
+  unsigned armed[MR_SHOW_MAX_GLOVES];
+  bool armed_seen; /* taken from the show's first frame (--arm) */
+  char beneath[64];
+  int take_step;
+  const char *out; /* -o DIR */
 } mr_live;
 
 /* How a live show is staged. */
@@ -73,6 +82,7 @@ typedef struct mr_live_def {
   double fps;       /* the show's, for the MP4 */
   bool no_osd;      /* the on-screen display starts hidden */
   double end;       /* the show's end (--time), -1: until stopped */
+  double speed;     /* the show's speed to start at (--speed); 0: 1 */
 } mr_live_def;
 
 struct mr_stage_opts;
@@ -85,7 +95,7 @@ int mr_live_open(mr_live *lv, const mr_scene *scene, const mr_live_def *def,
 int mr_live_close(mr_live *lv, bool quiet);
 
 /* Parses --keys: "T:KEY[/HOLD],..." with KEY a character or one of
- * space, esc, left, right, up, down, pgup, pgdn, f1, f11, f12. 0 or -1. */
+ * space, esc, left, right, up, down, pgup, pgdn, f1 to f12. 0 or -1. */
 int mr_live_parse_keys(mr_live *lv, const char *list);
 
 /* One event from the window or a script: the glove's keys go to the
@@ -114,6 +124,9 @@ void mr_live_redraw(mr_live *lv);
 /* Headless with an MP4: the video holds its last frame up to show time t,
  * the show's end. */
 void mr_live_hold(mr_live *lv, double t);
+
+/* The take beneath the show about to start ("" none), for the OSD. */
+void mr_live_set_takes(mr_live *lv, const char *beneath);
 
 /* A screenshot's path: dir/shot_NNN.png. */
 int mr_live_screenshot(mr_live *lv);

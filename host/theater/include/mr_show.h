@@ -80,6 +80,26 @@ typedef struct mr_show_def {
    * into record[i] (.mrec; NULL: none). Replaying it (glove i's source a
    * file: take) feeds the same bytes to the same frames. */
   const char *record[MR_SHOW_MAX_GLOVES];
+  /* Layered playback (issue 23). Glove i plays the take beneath[i] (.mrec;
+   * NULL: none) under the live glove: each channel (finger) comes from
+   * the take, replayed on show time as a --replay glove is, except the
+   * channels armed (bit c of armed[i]: channel c), which come from the
+   * live glove; mr_show_arm changes them during the show. The live
+   * glove's bytes are recorded whole into record[i] as ever: the take
+   * library merges the armed channels between the punch times. */
+  const char *beneath[MR_SHOW_MAX_GLOVES];
+  unsigned armed[MR_SHOW_MAX_GLOVES];
+  /* Punch-in and punch-out at the first frames at or past these show
+   * times (< 0, the default: only when mr_show_punch asks). The show ends
+   * with the punch-out frame: its take is done. */
+  double punch_in, punch_out;
+  /* The clock the live gloves are read on (their loss timeouts, clock
+   * offsets and latencies run on it), at the pace of their own clocks
+   * when slow motion slows show time (mr_clock_paced); .now NULL, the
+   * default: the show's clock. Takes are read on show time, and a live
+   * glove's bytes are recorded with the show time of their frame, so a
+   * take performed slowly replays at full speed. */
+  mr_clock glove_clock;
 } mr_show_def;
 mr_show_def mr_default_show_def(void);
 
@@ -90,6 +110,8 @@ typedef struct mr_show_glove_view {
   mr_glove_counters counters;
   double clock_offset; /* mr_glove_clock_offset */
   char describe[400];  /* mr_glove_describe at the frame's time */
+  bool layered;        /* a take plays beneath it (mr_show_def.beneath) */
+  unsigned armed;      /* layered: the channels from the live glove (bit c) */
 } mr_show_glove_view;
 
 /* A frame: a snapshot, values only. Nothing in it points into the show or
@@ -111,6 +133,10 @@ typedef struct mr_show_frame {
   double *xyz;
   int n_particles;
   char mapping[32]; /* the mapping in use */
+  /* Punched in (recording the armed channels) since punch_in; punch_out
+   * once punched out; -1 before. */
+  bool recording;
+  double punch_in, punch_out;
 } mr_show_frame;
 
 typedef struct mr_show mr_show;
@@ -162,6 +188,11 @@ typedef struct mr_show_result {
   bool interpolated;
   double lead_mean, lead_max;
   char mapping[32]; /* the mapping in use at the end */
+  /* The punch-in and punch-out frames' show times (-1: none), and each
+   * glove's channels armed from the punch-in on (what the take library
+   * merges, mr_take_punch). */
+  double punch_in, punch_out;
+  unsigned punched[MR_SHOW_MAX_GLOVES];
 } mr_show_result;
 void mr_show_result_free(mr_show_result *r);
 
@@ -185,6 +216,14 @@ mr_show_status mr_show_tick(mr_show *show);
  * the filters kept. Each is told through the note hook. */
 void mr_show_reset(mr_show *show);
 void mr_show_next_mapping(mr_show *show);
+/* Asked between ticks, done as the next frame starts: glove's channels
+ * armed (bit c: channel c from the live glove, the rest from the take
+ * beneath), told through the note hook; refused (and told) while
+ * recording, whose channels stay those armed at the punch-in. And a punch:
+ * in when not recording (that frame's time is the punch-in), else out (the
+ * show ends with that frame). */
+void mr_show_arm(mr_show *show, size_t glove, unsigned armed);
+void mr_show_punch(mr_show *show);
 
 /* The frame as it stands (the latest simulated), into a frame made for
  * this show. */

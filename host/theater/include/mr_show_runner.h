@@ -27,6 +27,9 @@ typedef enum mr_show_cmd {
   MR_SHOW_CMD_RESET,        /* mr_show_reset */
   MR_SHOW_CMD_NEXT_MAPPING, /* mr_show_next_mapping */
   MR_SHOW_CMD_QUIT,         /* the show ends after the frame in hand */
+  MR_SHOW_CMD_SPEED,        /* the next speed: 1 -> 0.5 -> 0.25 -> 1 */
+  MR_SHOW_CMD_ARM,          /* mr_show_arm (mr_show_runner_send_arm) */
+  MR_SHOW_CMD_PUNCH,        /* mr_show_punch */
   MR_SHOW_CMD_COUNT
 } mr_show_cmd;
 
@@ -34,7 +37,11 @@ typedef struct mr_show_runner_def {
   uint32_t cookie;  /* MR_DEF_COOKIE, set by mr_default_show_runner_def() */
   bool threaded;    /* default true: the physics on a thread of its own */
   double slow_rate; /* show seconds per second in slow motion, default 0.25 */
-  size_t queue;     /* commands held at most, default 64 */
+  /* Show seconds per second to start at: 1 (the default), 0.5 or 0.25 for
+   * a puppeteer performing slowly. Live gloves are read on the clock's
+   * pace (mr_clock_paced), so their own clocks are not slowed. */
+  double speed;
+  size_t queue; /* commands held at most, default 64 */
   /* One thread only: called at every tick and while the show waits (at
    * least every poll s), so that the caller's inputs come in. May be
    * NULL. */
@@ -58,6 +65,11 @@ mr_show_status mr_show_runner_start(const mr_scene *scene, const mr_show_def *de
 
 /* A command, queued for the physics (any one thread: the caller's). */
 void mr_show_runner_send(mr_show_runner *r, mr_show_cmd cmd);
+/* MR_SHOW_CMD_ARM: glove's channels armed (bit c: channel c). */
+void mr_show_runner_send_arm(mr_show_runner *r, size_t glove, unsigned armed);
+/* The speeds MR_SHOW_CMD_SPEED steps through, and the one after speed. */
+bool mr_show_speed_valid(double speed);
+double mr_show_speed_next(double speed);
 
 /* The newest frame published, in the caller's own slot: *frame stays its
  * to read until the next call. True when it is newer than the one taken

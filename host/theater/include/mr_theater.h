@@ -63,6 +63,9 @@ typedef struct mr_scaled_clock {
   bool paused;
   unsigned steps; /* single steps asked and not yet taken */
   double show_base, base_base;
+  /* Base seconds that slow motion has held back from show time, up to
+   * base_base (mr_scaled_clock_pace_now). */
+  double held_base;
   /* Called while a wait cannot end yet, with the base time it would end
    * at (INFINITY while paused without a step). It returns no later than
    * that, may pause, step or change the rate in between, and returns
@@ -77,6 +80,13 @@ typedef struct mr_scaled_clock {
 void mr_scaled_clock_init(mr_scaled_clock *sc, const mr_clock *base);
 mr_clock mr_clock_scaled(mr_scaled_clock *sc); /* sc must not move afterwards */
 double mr_scaled_clock_now(const mr_scaled_clock *sc);
+/* The show's pace: show time plus the base seconds slow motion held back
+ * from it, so it runs at the base clock's pace while the show runs at any
+ * rate, stands still while paused, and single steps move it with show
+ * time. At rate 1 it is show time, bit for bit. Live gloves are read on
+ * it (mr_show_def.glove_clock): their own clocks run at that pace. */
+double mr_scaled_clock_pace_now(const mr_scaled_clock *sc);
+mr_clock mr_clock_paced(mr_scaled_clock *sc); /* now only: its wait is the scaled clock's */
 void mr_scaled_clock_pause(mr_scaled_clock *sc, bool paused);
 void mr_scaled_clock_set_rate(mr_scaled_clock *sc, double rate); /* ignored unless > 0 */
 /* Pauses (if running) and lets the next paused wait end at its time. */
@@ -98,6 +108,11 @@ typedef struct mr_scheduler_def {
   int max_catch_up; /* frames simulated in one tick at the most when behind;
                        past that the lag is dropped, so the loop never
                        spirals. Default 5 */
+  /* The clock the latency figures are read on (the input noted and the
+   * frame presented): a show in slow motion measures them at its gloves'
+   * pace, not in slowed show seconds. .now NULL (default): the
+   * scheduler's own. */
+  mr_clock latency_clock;
 } mr_scheduler_def;
 mr_scheduler_def mr_default_scheduler_def(void);
 

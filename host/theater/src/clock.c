@@ -66,7 +66,18 @@ double mr_scaled_clock_now(const mr_scaled_clock *sc) {
   return sc->show_base + sc->rate * (base_now(sc) - sc->base_base);
 }
 
+/* Held back: (1 - rate) base seconds per base second, exactly 0 at rate 1. */
+static double held_now(const mr_scaled_clock *sc) {
+  if (sc->paused) return sc->held_base;
+  return sc->held_base + (1.0 - sc->rate) * (base_now(sc) - sc->base_base);
+}
+
+double mr_scaled_clock_pace_now(const mr_scaled_clock *sc) {
+  return mr_scaled_clock_now(sc) + held_now(sc);
+}
+
 static void rebase(mr_scaled_clock *sc) {
+  sc->held_base = held_now(sc);
   sc->show_base = mr_scaled_clock_now(sc);
   sc->base_base = base_now(sc);
 }
@@ -104,6 +115,7 @@ static void scaled_wait_until(void *self, double t) {
   for (;;) {
     if (sc->paused && sc->steps > 0 && sc->show_base < t) {
       sc->steps--;
+      sc->held_base = held_now(sc);
       sc->show_base = t;
       sc->base_base = base_now(sc);
       return;
@@ -123,5 +135,14 @@ static void scaled_wait_until(void *self, double t) {
 
 mr_clock mr_clock_scaled(mr_scaled_clock *sc) {
   mr_clock c = { scaled_now, scaled_wait_until, sc };
+  return c;
+}
+
+static double paced_now(void *self) {
+  return mr_scaled_clock_pace_now(self);
+}
+
+mr_clock mr_clock_paced(mr_scaled_clock *sc) {
+  mr_clock c = { paced_now, scaled_wait_until, sc };
   return c;
 }

@@ -54,7 +54,12 @@ int mr_policy_parse(const char *name, mr_policy *out) {
 }
 
 mr_scheduler_def mr_default_scheduler_def(void) {
-  mr_scheduler_def d = { MR_DEF_COOKIE, 60.0, MR_POLICY_SKIP, 5 };
+  mr_scheduler_def d;
+  memset(&d, 0, sizeof d);
+  d.cookie = MR_DEF_COOKIE;
+  d.fps = 60.0;
+  d.policy = MR_POLICY_SKIP;
+  d.max_catch_up = 5;
   return d;
 }
 
@@ -150,7 +155,10 @@ static void present_pending(mr_scheduler *s, double now) {
   s->st.frames_presented++;
   s->st.last_present_wall = now;
   s->st.last_present_sim = s->pending_t;
-  if (isfinite(s->pending_input)) record_latency(s, now - s->pending_input);
+  if (isfinite(s->pending_input)) {
+    const mr_clock *lc = &s->def.latency_clock;
+    record_latency(s, (lc->now != NULL ? lc->now(lc->self) : now) - s->pending_input);
+  }
 }
 
 /* The frames to simulate this tick: every one whose slot has begun, from

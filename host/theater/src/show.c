@@ -22,6 +22,12 @@ typedef struct show_glove {
   bool told_silent;
   gp_counters told; /* the decoder's counters when corrupt frames were last told */
   double told_at;   /* show time of that */
+  /* Layered playback: the take beneath and the channels armed over it;
+   * the glove's clock at its last poll (show time unless it is read on
+   * the glove clock); the show time its bytes are recorded at. */
+  bool paced;
+  double now;
+  const double *show_t;
 } show_glove;
 
 /* One control frame: its glove, its mapping and where it heads. */
@@ -56,6 +62,12 @@ struct mr_show {
   bool ended;
   mr_scheduler_stats end_stats; /* the figures as the show ended */
   mr_show_error err;
+  /* Layers (issue 23): the frame's show time, the glove clock, arming
+   * and punches asked between ticks, and the punch times (-1: none). */
+  double t_now;
+  mr_clock glove_clock;
+  mr_layer layers[MR_SHOW_MAX_GLOVES];
+  mr_punch punch;
 };
 typedef struct mr_show show;
 
@@ -65,6 +77,7 @@ mr_show_def mr_default_show_def(void) {
   d.cookie = MR_DEF_COOKIE;
   d.policy = MR_POLICY_SKIP;
   d.present = MR_PRESENT_SCENE;
+  d.punch_in = d.punch_out = -1.0;
   return d;
 }
 
@@ -185,36 +198,50 @@ static void tell_glove(show *s, size_t g, double now) {
 static bool read_frame(show *s, size_t k) {
   show_frame *f = &s->frames[k];
   if (f->glove < 0 && (f->glove = find_glove(s, k)) < 0) return false;
-  const mr_glove *g = s->gloves[f->glove].glove;
+  const show_glove *sg = &s->gloves[f->glove];
   mr_glove_reading r;
-  mr_glove_latest(g, &r);
-  if (r.samples == f->samples_seen || mr_glove_get_state(g) != MR_GLOVE_LIVE) return false;
+  bool on = mr_layer_read(&s->layers[f->glove], sg->glove, &r);
+  if (r.samples == f->samples_seen || !on) return false;
   f->samples_seen = r.samples;
+  /* The mapping's filters run on show time: a glove read on its own
+   * clock's pace (slow motion) is read at this frame's time. */
+  double at = sg->paced ? s->t_now : r.host_t;
   mr_pose pose;
   mr_channel_state states[MR_CONTROL_CHANNELS];
-  if (mr_control_update(f->control, r.values, r.host_t, &pose, states) == MR_CONTROL_OK) {
+  if (mr_control_update(f->control, r.values, at, &pose, states) == MR_CONTROL_OK) {
     f->target = pose;
     tell_states(s, f, states);
   }
   return true;
 }
 
+/* Live gloves on the glove clock, takes (and a take beneath) on show
+ * time. */
 static void read_gloves(show *s, double now) {
+  s->t_now = now;
   for (size_t g = 0; g < s->n_gloves; g++) {
-    mr_glove_poll(s->gloves[g].glove, now, 0);
-    tell_glove(s, g, now);
+    show_glove *sg = &s->gloves[g];
+    sg->paced = s->glove_clock.now != NULL && !mr_glove_is_take(sg->glove);
+    sg->now = sg->paced ? s->glove_clock.now(s->glove_clock.self) : now;
+    mr_glove_poll(sg->glove, sg->now, 0);
+    mr_layer_poll(&s->layers[g], now);
+    tell_glove(s, g, sg->now);
   }
   bool fresh = false;
   for (size_t k = 0; k < s->n_frames; k++) fresh |= read_frame(s, k);
   /* Read at the start of this frame's work: the latency counters run from
    * here to the frame's presentation, on the show's clock. */
-  if (fresh) mr_scheduler_note_input(s->sch, s->clock.now(s->clock.self));
+  const mr_clock *lc = s->glove_clock.now != NULL ? &s->glove_clock : &s->clock;
+  if (fresh) mr_scheduler_note_input(s->sch, lc->now(lc->self));
 }
 
-/* A glove's bytes into its take, stamped with show time. */
-static void record(void *user, double now, const uint8_t *bytes, size_t len) {
+/* A glove's bytes into its take, stamped with the show time of the frame
+ * that read them (the glove's own `now` may run at another pace). */
+static void record(void *user, double glove_now, const uint8_t *bytes, size_t len) {
   show_glove *g = user;
+  (void)glove_now;
   if (!g->recording) return;
+  double now = *g->show_t;
   mr_io_error err;
   uint64_t t_ns = now > 0 ? (uint64_t)llround(now * 1e9) : 0;
   if (mr_rec_writer_add(&g->take, t_ns, bytes, len, &err) != 0) {
@@ -227,6 +254,7 @@ static void record(void *user, double now, const uint8_t *bytes, size_t len) {
 static bool takes_over(const show *s) {
   for (size_t g = 0; g < s->n_gloves; g++) {
     const mr_glove *gl = s->gloves[g].glove;
+    if (mr_layer_over(&s->layers[g])) continue;
     if (!mr_glove_take_done(gl) || mr_glove_get_state(gl) != MR_GLOVE_LOST) return false;
   }
   return true;
@@ -256,8 +284,14 @@ void mr_show_snapshot(const show *s, mr_show_frame *f) {
     mr_glove_latest(gl, &v->reading);
     mr_glove_get_counters(gl, &v->counters);
     v->clock_offset = mr_glove_clock_offset(gl);
-    mr_glove_describe(gl, f->t, v->describe, sizeof v->describe);
+    mr_glove_describe(gl, s->gloves[g].paced ? s->gloves[g].now : f->t, v->describe,
+                      sizeof v->describe);
+    v->layered = s->layers[g].take != NULL;
+    v->armed = s->layers[g].armed;
   }
+  f->recording = s->punch.recording;
+  f->punch_in = s->punch.punch_in;
+  f->punch_out = s->punch.punch_out;
   memcpy(f->xyz, s->ip.frame, 3 * (size_t)s->ip.n * sizeof *f->xyz);
   snprintf(f->mapping, sizeof f->mapping, "%s", mapping_name(s));
 }
@@ -341,10 +375,25 @@ void mr_show_next_mapping(show *s) {
   if (s != NULL) s->mappings_asked++;
 }
 
+/* --- layers: arming and punches (issue 23) ------------------------------ */
+
+void mr_show_arm(show *s, size_t glove, unsigned armed) {
+  if (s != NULL && glove < s->n_gloves) mr_punch_ask_arm(&s->punch, glove, armed);
+}
+
+void mr_show_punch(show *s) {
+  if (s != NULL) s->punch.punches_asked++;
+}
+
+static void note_hook(void *user, const char *line) {
+  note(user, line);
+}
+
 static int advance(void *user, double t, mr_frame_work *work) {
   show *s = user;
   for (; s->resets_asked > 0; s->resets_asked--) reset_puppets(s);
   for (; s->mappings_asked > 0; s->mappings_asked--) switch_mapping(s);
+  mr_punch_asks(&s->punch, s->layers, s->n_gloves, t, note_hook, s);
   read_gloves(s, t);
   if (step_world(s, t, work) != 0) return 1;
   if (s->hooks.frame_done != NULL) {
@@ -355,6 +404,7 @@ static int advance(void *user, double t, mr_frame_work *work) {
   /* Stopping ends the show after this frame: the scheduler counts it as
    * simulated, and it was. */
   if (s->hooks.stop != NULL && s->hooks.stop(s->hooks.user)) return 1;
+  if (s->punch.punched_out) return 1;
   if (s->duration > 0) return t >= s->duration;
   return takes_over(s);
 }
@@ -401,12 +451,16 @@ static int make_controls(show *s, const char *mapping) {
   return 0;
 }
 
-static int open_glove(show *s, size_t i, const char *source, const char *take_path) {
+static int open_glove(show *s, const mr_show_def *def, size_t i) {
+  const char *source = def->gloves[i], *take_path = def->record[i];
   char msg[400];
   show_glove *g = &s->gloves[i];
   mr_glove_def gd = mr_default_glove_def();
   snprintf(gd.source, sizeof gd.source, "%s", source);
   if (mr_glove_create(&gd, &g->glove, msg, sizeof msg) != MR_GLOVE_OK)
+    return fail(s, MR_SHOW_ERR_GLOVE, msg), -1;
+  g->show_t = &s->t_now;
+  if (mr_layer_open(&s->layers[i], def->beneath[i], def->armed[i], msg, sizeof msg) != 0)
     return fail(s, MR_SHOW_ERR_GLOVE, msg), -1;
   if (take_path == NULL) return 0;
   mr_io_error err;
@@ -438,7 +492,7 @@ static int open_parts(show *s, const mr_show_def *def) {
   for (size_t i = 0; i < def->n_gloves; i++) {
     s->n_gloves = i + 1;
     s->sources[i] = def->gloves[i];
-    if (open_glove(s, i, def->gloves[i], def->record[i]) != 0) return -1;
+    if (open_glove(s, def, i) != 0) return -1;
   }
   if (make_controls(s, def->mapping) != 0) return -1;
   if (mr_show_frame_make(s, &s->scratch) != 0)
@@ -446,6 +500,7 @@ static int open_parts(show *s, const mr_show_def *def) {
   mr_scheduler_def sd = mr_default_scheduler_def();
   sd.policy = def->policy;
   if (def->max_catch_up > 0) sd.max_catch_up = def->max_catch_up;
+  sd.latency_clock = s->glove_clock;
   sd.fps = def->fps > 0 ? def->fps : s->scene->fps > 0 ? s->scene->fps : 60.0;
   mr_scheduler_hooks h = { advance, present, s };
   if (mr_scheduler_create(&sd, &s->clock, &h, &s->sch, msg, sizeof msg) != MR_THEATER_OK) {
@@ -472,6 +527,7 @@ static void close_parts(show *s) {
       snprintf(s->err.text, sizeof s->err.text, "%s", why);
     }
     mr_glove_destroy(g->glove);
+    mr_layer_close(&s->layers[i]);
   }
   for (size_t k = 0; k < s->n_frames; k++) mr_control_destroy(s->frames[k].control);
   free(s->frames);
@@ -509,6 +565,9 @@ static void gather(const show *s, mr_show_result *result) {
     for (size_t k = 0; k < s->n_frames; k++) result->glove_of[k] = s->frames[k].glove;
   }
   snprintf(result->mapping, sizeof result->mapping, "%s", s->frames ? mapping_name(s) : "default");
+  result->punch_in = s->punch.punch_in;
+  result->punch_out = s->punch.punch_out;
+  memcpy(result->punched, s->punch.punched, sizeof result->punched);
 }
 
 void mr_show_result_free(mr_show_result *r) {
@@ -544,6 +603,8 @@ mr_show_status mr_show_create(const mr_scene *scene, const mr_show_def *def, con
   if (s->err.status == MR_SHOW_OK) {
     s->clock = *clock;
     s->duration = def->duration;
+    s->glove_clock = def->glove_clock;
+    mr_punch_init(&s->punch, def->punch_in, def->punch_out);
     open_parts(s, def);
   }
   if (s->err.status != MR_SHOW_OK) {

@@ -44,11 +44,25 @@ mr_show_runner_def mr_default_show_runner_def(void) {
   d.slow_rate = 0.25;
   d.queue = 64;
   d.poll = 0.004;
+  d.speed = 1.0;
   return d;
 }
 
-static void apply(mr_show_runner *r, int cmd) {
+bool mr_show_speed_valid(double speed) {
+  return speed == 1.0 || speed == 0.5 || speed == 0.25;
+}
+
+double mr_show_speed_next(double speed) {
+  return speed > 0.75 ? 0.5 : speed > 0.375 ? 0.25 : 1.0;
+}
+
+/* A queued command: its kind in the low byte, an argument above (ARM:
+ * the glove, then the channels' bits). */
+enum { CMD_BITS = 8 };
+
+static void apply(mr_show_runner *r, int queued) {
   mr_scaled_clock *c = &r->clock;
+  int cmd = queued & ((1 << CMD_BITS) - 1), arg = queued >> CMD_BITS;
   switch (cmd) {
   case MR_SHOW_CMD_PAUSE:
     mr_scaled_clock_pause(c, !c->paused);
@@ -67,6 +81,15 @@ static void apply(mr_show_runner *r, int cmd) {
     break;
   case MR_SHOW_CMD_QUIT:
     r->quit = true;
+    break;
+  case MR_SHOW_CMD_SPEED:
+    mr_scaled_clock_set_rate(c, mr_show_speed_next(c->rate));
+    break;
+  case MR_SHOW_CMD_ARM:
+    mr_show_arm(r->show, (size_t)(arg >> CMD_BITS), (unsigned)arg & 0xffu);
+    break;
+  case MR_SHOW_CMD_PUNCH:
+    mr_show_punch(r->show);
     break;
   default:
     return;
@@ -175,7 +198,7 @@ mr_show_status mr_show_runner_start(const mr_scene *scene, const mr_show_def *de
                                     mr_show_error *err) {
   if (err != NULL) memset(err, 0, sizeof *err);
   if (out == NULL || base == NULL || rd == NULL || rd->cookie != MR_DEF_COOKIE ||
-      !(rd->slow_rate > 0) || rd->queue == 0 || !(rd->poll > 0))
+      !(rd->slow_rate > 0) || rd->queue == 0 || !(rd->poll > 0) || !mr_show_speed_valid(rd->speed))
     return refuse(err, MR_SHOW_ERR_ARG,
                   "expected a runner definition made by mr_default_show_runner_def, a clock and "
                   "a place for the runner");
@@ -190,9 +213,14 @@ mr_show_status mr_show_runner_start(const mr_scene *scene, const mr_show_def *de
   r->base_is_wall = mr_clock_is_wall(base);
   if (hooks != NULL) r->hooks = *hooks;
   mr_scaled_clock_init(&r->clock, base);
+  mr_scaled_clock_set_rate(&r->clock, rd->speed);
   r->clock.idle = idle;
   r->clock.user = r;
   mr_clock show_clock = mr_clock_scaled(&r->clock);
+  /* Live gloves on the show's pace: at rate 1 that is show time. */
+  mr_show_def paced = *def;
+  if (paced.glove_clock.now == NULL) paced.glove_clock = mr_clock_paced(&r->clock);
+  def = &paced;
   /* A frame is made for a hook only when someone reads it. */
   mr_show_hooks h = { r->hooks.present != NULL ? present : NULL, stop, frame_done, note, r };
   mr_show_status st = mr_show_create(scene, def, &show_clock, &h, &r->show, err);
@@ -223,6 +251,13 @@ void mr_show_runner_send(mr_show_runner *r, mr_show_cmd cmd) {
   if (r == NULL || cmd < 0 || cmd >= MR_SHOW_CMD_COUNT) return;
   r->sent[cmd]++;
   mr_cmdq_push(r->queue, (int)cmd);
+}
+
+void mr_show_runner_send_arm(mr_show_runner *r, size_t glove, unsigned armed) {
+  if (r == NULL || glove >= MR_SHOW_MAX_GLOVES) return;
+  r->sent[MR_SHOW_CMD_ARM]++;
+  int arg = (int)(glove << CMD_BITS | (armed & 0xffu));
+  mr_cmdq_push(r->queue, MR_SHOW_CMD_ARM | arg << CMD_BITS);
 }
 
 bool mr_show_runner_latest(mr_show_runner *r, const mr_show_frame **frame) {

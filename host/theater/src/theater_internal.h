@@ -44,4 +44,41 @@ const double *mr_interp_at(mr_interp *ip, const mr_world *w, double t);
  * (show_frame.c); 0 or -1 (nothing kept) when memory runs out. */
 int mr_show_frame_alloc(mr_show_frame *f, size_t n_frames, int n_particles);
 
+/* A take beneath a live glove (show_layer.c): the take replays on show
+ * time as a glove of its own; the channels armed come from the live
+ * glove, the rest from the take. */
+typedef struct mr_layer {
+  mr_glove *take; /* NULL: nothing beneath */
+  unsigned armed; /* bit c: channel c from the live glove */
+} mr_layer;
+/* The take at path beneath; 0, or -1 and one line in msg. */
+int mr_layer_open(mr_layer *l, const char *path, unsigned armed, char *msg, size_t size);
+void mr_layer_close(mr_layer *l);
+/* The take read up to show time t. */
+void mr_layer_poll(mr_layer *l, double t);
+/* The live glove's reading with the take's values on the channels not
+ * armed: its sample count counts both gloves' samples (new when either
+ * sent one), its host time the newer one's. Whether there is anything to
+ * follow: the take live, or an armed live glove live. */
+bool mr_layer_read(const mr_layer *l, const mr_glove *live, mr_glove_reading *out);
+/* The take beneath has played to its end. */
+bool mr_layer_over(const mr_layer *l);
+
+/* Arming and punches, asked between ticks and done as a frame starts. */
+typedef struct mr_punch {
+  unsigned arm_asked[MR_SHOW_MAX_GLOVES];
+  bool arm_pending[MR_SHOW_MAX_GLOVES];
+  unsigned punches_asked;
+  bool recording, punched_out;
+  double def_in, def_out;     /* mr_show_def's punch times, < 0: none */
+  double punch_in, punch_out; /* the frames' times, -1: not yet */
+  unsigned punched[MR_SHOW_MAX_GLOVES];
+} mr_punch;
+void mr_punch_init(mr_punch *p, double punch_in, double punch_out);
+void mr_punch_ask_arm(mr_punch *p, size_t glove, unsigned armed);
+/* At frame t: the arming asked (refused while recording), the punches
+ * asked, and the definition's punch times come; each told through note. */
+void mr_punch_asks(mr_punch *p, mr_layer *layers, size_t n, double t,
+                   void (*note)(void *user, const char *line), void *user);
+
 #endif
