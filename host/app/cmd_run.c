@@ -236,6 +236,14 @@ static void glove_summary(const mr_show_result *r, size_t g) {
   printf("%s losses: %" PRIu64 "\n", key, o->counters.losses);
   printf("%s crc errors: %" PRIu32 "\n", key, o->counters.decoder.crc_errors);
   if (o->state != MR_GLOVE_LIVE) printf("%s state: %s\n", key, o->describe);
+  if (!o->over_net) return;
+  /* The link's own losses, which the decoder never sees: messages the
+   * broker's side dropped before they became bytes. */
+  printf("%s broker messages: %" PRIu64 "\n", key, o->net.messages);
+  printf("%s broker drops: %" PRIu64 " oversized, %" PRIu64 " empty, %" PRIu64 " behind\n", key,
+         o->net.oversized, o->net.empty, o->net.queue_full);
+  printf("%s broker messages from a second publisher: %" PRIu64 "\n", key, o->net.foreign);
+  printf("%s broker reconnects: %" PRIu64 "\n", key, o->net.losses);
 }
 
 static void summary(const status *st, const mr_scene *scene, const mr_show_result *r) {

@@ -107,6 +107,14 @@ static void a_relayed_glove_drives_the_show_and_its_losses_are_the_induced_ones(
   if (strstr(summary, "glove crc errors: 4\n") == NULL)
     fail_msg("expected 4 crc errors in:\n%s\n%s", summary, said);
   assert_non_null(strstr(summary, "glove losses: 0\n"));
+  /* The link's own counts: the 4 bad frames came as 4 messages of their
+   * own, and nothing was dropped before the decoder saw it. */
+  assert_non_null(strstr(summary, "glove broker drops: 0 oversized, 0 empty, 0 behind\n"));
+  assert_non_null(strstr(summary, "glove broker messages from a second publisher: 0\n"));
+  assert_non_null(strstr(summary, "glove broker reconnects: 0\n"));
+  char m[64];
+  assert_int_equal(tt_field(summary, "glove broker messages", m, sizeof m), 0);
+  assert_true(atoll(m) >= 4 + 100);
   char v[64];
   assert_int_equal(tt_field(summary, "glove samples", v, sizeof v), 0);
   assert_true(atoll(v) >= 400); /* 250 Hz for most of 3 s */
@@ -181,7 +189,7 @@ static void garbage_and_oversized_messages_are_counted_and_the_glove_reads_on(vo
  * that carry their process ids. */
 static void a_second_publisher_on_a_glove_topic_is_reported(void **state) {
   (void)state;
-  char *dir = tt_tmpdir(), s1[300], s2[300];
+  char *dir = tt_tmpdir(), s1[300], s2[300], want[64];
   tb_broker b;
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
   const char *url = url_of(&b, NULL, "glove/3", NULL);
@@ -189,12 +197,27 @@ static void a_second_publisher_on_a_glove_topic_is_reported(void **state) {
   pid_t g1 = start_gen(dir, "2", "C1", s1, sizeof s1);
   pid_t g2 = start_gen(dir, "2", "C2", s2, sizeof s2);
   pid_t r1 = start_relay(dir, s1, url, "relay1"), r2 = start_relay(dir, s2, url, "relay2");
+  /* The show tells it too, though its glove stays live throughout. */
+  const char *argv[] = { marionette, "run", PUPPET, "--glove", url, "--time", "2", "-q", NULL };
+  char out[600], err[600];
+  snprintf(out, sizeof out, "%s", tt_path(dir, "run.out"));
+  snprintf(err, sizeof err, "%s", tt_path(dir, "run.err"));
+  pid_t show = tt_spawn(argv, out, err);
+  assert_int_equal(tt_wait(show, 30), 0);
+  char *run_said = tt_read_file(err, NULL), *run_out = tt_read_file(out, NULL);
+  if (strstr(run_said, "two publishers on its topic, glove-dump-") == NULL)
+    fail_msg("the show did not tell of two publishers:\n%s", run_said);
+  assert_int_equal(
+      tt_field(run_out, "glove broker messages from a second publisher", want, sizeof want), 0);
+  assert_true(atoll(want) > 0);
+  free(run_said);
+  free(run_out);
   tt_wait(g1, 30);
   tt_wait(g2, 30);
   tt_wait(r1, 30);
   tt_wait(r2, 30);
   assert_int_equal(tt_wait(reader, 30), 0);
-  char *said = read_in(dir, "reader.err"), want[64];
+  char *said = read_in(dir, "reader.err");
   const char *line = strstr(said, "two publishers on one glove topic: glove-dump-");
   if (line == NULL) fail_msg("no report of two publishers in:\n%s", said);
   snprintf(want, sizeof want, "-%ld", (long)r1);

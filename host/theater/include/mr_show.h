@@ -172,6 +172,9 @@ typedef struct mr_show_glove_result {
   mr_glove_state state; /* at the end */
   uint64_t samples;     /* samples taken */
   char describe[400];   /* mr_glove_describe at the end */
+  /* A glove over a broker: its link's counters (mr_glove_net_counters). */
+  bool over_net;
+  mr_net_counters net;
 } mr_show_glove_result;
 
 typedef struct mr_show_result {

@@ -9,67 +9,8 @@
 
 #include "mr_control.h"
 #include "mr_io.h"
+#include "show_internal.h"
 #include "theater_internal.h"
-
-/* One glove, its take, and what the user was last told of it. */
-typedef struct show_glove {
-  mr_glove *glove;
-  mr_rec_writer take;
-  bool recording, take_open;
-  char take_error[320];
-  mr_glove_state told_state, seen_state;
-  double seen_since; /* show time seen_state began */
-  bool told_silent;
-  gp_counters told; /* the decoder's counters when corrupt frames were last told */
-  double told_at;   /* show time of that */
-  /* Layered playback: the take beneath and the channels armed over it;
-   * the glove's clock at its last poll (show time unless it is read on
-   * the glove clock); the show time its bytes are recorded at. */
-  bool paced;
-  double now;
-  const double *show_t;
-} show_glove;
-
-/* One control frame: its glove, its mapping and where it heads. */
-typedef struct show_frame {
-  int glove; /* index into gloves, -1 until bound */
-  mr_control *control;
-  mr_pose target;
-  mr_glove_follow follow; /* how fast the target moves */
-  uint64_t samples_seen;
-  mr_channel_state states[MR_CONTROL_CHANNELS]; /* as last told to the user */
-} show_frame;
-
-struct mr_show {
-  const mr_scene *scene;
-  mr_scene_world sw;
-  show_glove gloves[MR_SHOW_MAX_GLOVES];
-  const char *sources[MR_SHOW_MAX_GLOVES];
-  size_t n_gloves;
-  show_frame *frames;
-  size_t n_frames;
-  mr_scheduler *sch;
-  mr_clock clock;
-  mr_show_hooks hooks;
-  double duration;
-  bool interpolate;
-  double sum_lead, lead_max;
-  uint64_t frames_stepped;
-  mr_interp ip;                          /* the frame's positions, interpolated or the world's */
-  double *start_xyz;                     /* every particle where it started, for a reset */
-  unsigned resets_asked, mappings_asked; /* done as the next frame starts */
-  mr_show_frame scratch;                 /* the snapshot the hooks are handed */
-  bool ended;
-  mr_scheduler_stats end_stats; /* the figures as the show ended */
-  mr_show_error err;
-  /* Layers (issue 23): the frame's show time, the glove clock, arming
-   * and punches asked between ticks, and the punch times (-1: none). */
-  double t_now;
-  mr_clock glove_clock;
-  mr_layer layers[MR_SHOW_MAX_GLOVES];
-  mr_punch punch;
-};
-typedef struct mr_show show;
 
 mr_show_def mr_default_show_def(void) {
   mr_show_def d;
@@ -121,79 +62,6 @@ static int find_glove(const show *s, size_t k) {
   return any;
 }
 
-static void note(const show *s, const char *line) {
-  if (s->hooks.note != NULL) s->hooks.note(s->hooks.user, line);
-}
-
-/* A channel that went bad or came back, told once, not every frame. */
-static void tell_states(show *s, show_frame *f, const mr_channel_state now[MR_CONTROL_CHANNELS]) {
-  static const char *const finger[MR_CONTROL_CHANNELS] = { "thumb", "index", "middle", "ring",
-                                                           "little" };
-  for (int c = 0; c < MR_CONTROL_CHANNELS; c++) {
-    if (now[c] == f->states[c]) continue;
-    f->states[c] = now[c];
-    char line[400];
-    const char *what = now[c] == MR_CHANNEL_NOT_FINITE ? "is not a finite number: held at neutral"
-                       : now[c] == MR_CHANNEL_STUCK
-                           ? "is stuck at 0 or at full scale: held at neutral (a broken or "
-                             "unplugged sensor?)"
-                           : "reads again";
-    snprintf(line, sizeof line, "glove %d on %.200s: channel %d (%s finger) %s", f->glove + 1,
-             s->sources[f->glove], c, finger[c], what);
-    note(s, line);
-  }
-}
-
-/* A state must hold this long to be told: one foreign frame in a noisy
- * stream flips a glove to a mismatch until the next good frame, which is
- * noise, not news. */
-#define TELL_AFTER_S 0.25
-
-/* Corrupt frames since the last telling, at most once a second. */
-static void tell_errors(show *s, size_t g, double now) {
-  show_glove *sg = &s->gloves[g];
-  mr_glove_counters c;
-  mr_glove_get_counters(sg->glove, &c);
-  const gp_counters *n = &c.decoder, *o = &sg->told;
-  uint32_t crc = n->crc_errors - o->crc_errors, framing = n->framing_errors - o->framing_errors,
-           big = n->oversize - o->oversize, unknown = n->unknown_type - o->unknown_type,
-           foreign = n->spec_mismatch - o->spec_mismatch;
-  uint64_t bad = (uint64_t)crc + framing + big + unknown + foreign;
-  if (bad == 0 || now - sg->told_at < 1.0) return;
-  char line[600];
-  snprintf(line, sizeof line,
-           "glove on %.200s: %llu corrupt frames in %.1f s (%u bad crc, %u cut short, %u "
-           "oversize, %u of unknown type, %u foreign); the show reads on: a loose cable, "
-           "noise or the wrong baud?",
-           s->sources[g], (unsigned long long)bad, now - sg->told_at, crc, framing, big, unknown,
-           foreign);
-  note(s, line);
-  sg->told = *n;
-  sg->told_at = now;
-}
-
-/* What changed about glove g, told once: its state (live, lost, a spec
- * mismatch) once it has held a moment, and silence since it was opened. */
-static void tell_glove(show *s, size_t g, double now) {
-  show_glove *sg = &s->gloves[g];
-  char line[600], said[420];
-  mr_glove_state st = mr_glove_get_state(sg->glove);
-  if (st != sg->seen_state) {
-    sg->seen_state = st;
-    sg->seen_since = now;
-  }
-  mr_glove_describe(sg->glove, now, said, sizeof said);
-  if (st != sg->told_state && now - sg->seen_since >= TELL_AFTER_S) {
-    sg->told_state = st;
-    note(s, said);
-  } else if (st == MR_GLOVE_CONNECTING && now >= 2.0 && !sg->told_silent) {
-    sg->told_silent = true;
-    snprintf(line, sizeof line, "%s; nothing a glove sends has come in %.0f s", said, now);
-    note(s, line);
-  }
-  tell_errors(s, g, now);
-}
-
 /* Frame k's glove's newest values, if any came, through its mapping. */
 static bool read_frame(show *s, size_t k) {
   show_frame *f = &s->frames[k];
@@ -210,7 +78,7 @@ static bool read_frame(show *s, size_t k) {
   mr_channel_state states[MR_CONTROL_CHANNELS];
   if (mr_control_update(f->control, r.values, at, &pose, states) == MR_CONTROL_OK) {
     f->target = pose;
-    tell_states(s, f, states);
+    mr_show_tell_states(s, f, states);
   }
   return true;
 }
@@ -225,7 +93,7 @@ static void read_gloves(show *s, double now) {
     sg->now = sg->paced ? s->glove_clock.now(s->glove_clock.self) : now;
     mr_glove_poll(sg->glove, sg->now, 0);
     mr_layer_poll(&s->layers[g], now);
-    tell_glove(s, g, sg->now);
+    mr_show_tell_glove(s, g, sg->now);
   }
   bool fresh = false;
   for (size_t k = 0; k < s->n_frames; k++) fresh |= read_frame(s, k);
@@ -347,7 +215,7 @@ static void switch_mapping(show *s) {
   snprintf(line, sizeof line, "mapping '%s' (%d of %zu)",
            s->scene->n_mappings > 0 ? s->scene->mappings[i].def.name : "default", i + 1,
            s->scene->n_mappings > 0 ? s->scene->n_mappings : 1);
-  note(s, line);
+  mr_show_note(s, line);
 }
 
 /* The reset hook: the scene's particles back at their start, at rest,
@@ -364,7 +232,7 @@ static void reset_puppets(show *s) {
     s->frames[k].target = s->scene->frames[k].pose;
     mr_world_set_frame_target(w, s->sw.frames[k], &s->scene->frames[k].pose, mr_world_time(w));
   }
-  note(s, "reset: the puppets are back where they started");
+  mr_show_note(s, "reset: the puppets are back where they started");
 }
 
 void mr_show_reset(show *s) {
@@ -386,7 +254,7 @@ void mr_show_punch(show *s) {
 }
 
 static void note_hook(void *user, const char *line) {
-  note(user, line);
+  mr_show_note(user, line);
 }
 
 static int advance(void *user, double t, mr_frame_work *work) {
@@ -556,6 +424,7 @@ static void gather(const show *s, mr_show_result *result) {
     mr_glove_reading r;
     mr_glove_latest(g, &r);
     o->samples = r.samples;
+    o->over_net = mr_glove_net_counters(g, &o->net);
     /* The gloves run on show time. */
     mr_glove_describe(g, result->frames.sim_time, o->describe, sizeof o->describe);
   }
