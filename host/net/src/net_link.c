@@ -139,7 +139,8 @@ static void name_link(mr_net *n) {
   char host[64] = "";
   gethostname(host, sizeof host - 1);
   host[sizeof host - 1] = '\0';
-  snprintf(n->id, sizeof n->id, "%s-%s-%ld", n->def.name, host, (long)getpid());
+  /* A host name past 40 bytes is cut: the stamp must hold the pid whole. */
+  snprintf(n->id, sizeof n->id, "%s-%.40s-%ld", n->def.name, host, (long)getpid());
   const char *q = strchr(n->def.url, '?');
   int len = q ? (int)(q - n->def.url) : (int)strlen(n->def.url);
   snprintf(n->where, sizeof n->where, "%.*s", len, n->def.url);
