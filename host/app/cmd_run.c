@@ -21,6 +21,7 @@
 #include "mr_show.h"
 #include "mr_show_runner.h"
 #include "stage_opts.h"
+#include "state_pub.h"
 #include "take_ref.h"
 #include "window.h"
 
@@ -82,6 +83,10 @@ void mr_cmd_run_usage(void) {
          "  --hashes FILE       write each frame's time and state hash to FILE\n"
          "  --poses FILE        write each frame's time and, for each control frame,\n"
          "                      its position (m) and orientation (w x y z)\n"
+         "  --publish URL       publish each simulated frame to a broker,\n"
+         "                      mqtt[s]://[USER@]HOST[:PORT]/TOPIC, with the scene\n"
+         "                      retained on TOPIC/scene: marionette watch shows it\n"
+         "  --particles FILE    write each frame's time and every particle's x y z (m)\n"
          "  --mapping NAME      start with the scene's mapping NAME (default: its\n"
          "                      first); SIGUSR1 moves to the next one during the show\n"
          "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
@@ -124,11 +129,13 @@ typedef struct status {
   mr_show_runner *r;     /* the show */
   sig_atomic_t mappings; /* SIGUSR1s sent on as commands */
   bool quit_sent;
+  mr_app_state_pub *pub; /* --publish and --particles, or NULL */
 } status;
 
 /* On the thread that ticks the show: st->hashes and st->poses are its. */
 static void frame_done(void *user, const mr_show_frame *f) {
   status *st = user;
+  mr_app_state_pub_frame(st->pub, f);
   if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", f->t, f->hash) < 0)
     st->hash_failed = 1;
   if (st->poses == NULL) return;
@@ -253,6 +260,7 @@ static int bad_usage(const char *fmt, const char *arg) {
 /* The command line, read. */
 typedef struct args {
   const char *scene, *hashes, *poses, *keys, *thread;
+  const char *publish, *particles; /* state_pub.h */
   size_t n_live, n_replay, n_record;
   int real_time, quiet, help, headless, fullscreen, no_osd;
   mr_stage_opts so;
@@ -291,6 +299,11 @@ static int take_value(args *a, const char *opt, const char *v) {
     a->hashes = v;
   } else if (strcmp(opt, "--poses") == 0) {
     a->poses = v;
+  } else if (strcmp(opt, "--publish") == 0 || strcmp(opt, "--particles") == 0) {
+    bool publish = strcmp(opt, "--publish") == 0;
+    if (publish && strncmp(v, "mqtt://", 7) != 0 && strncmp(v, "mqtts://", 8) != 0)
+      return bad_usage("expected --publish mqtt[s]://HOST/TOPIC, got '%s'", v), -1;
+    *(publish ? &a->publish : &a->particles) = v;
   } else if (strcmp(opt, "--thread") == 0) {
     if (strcmp(v, "on") != 0 && strcmp(v, "off") != 0)
       return bad_usage("expected --thread on or off, got '%s'", v), -1;
@@ -323,9 +336,10 @@ static bool window_wanted(const args *a) {
 }
 
 static int parse(int argc, char **argv, args *a) {
-  static const char *const valued[] = { "--glove",   "--policy",  "-t",       "--time",
-                                        "--record",  "--replay",  "--hashes", "--poses",
-                                        "--present", "--mapping", "--thread", NULL };
+  static const char *const valued[] = { "--glove",     "--policy",  "-t",       "--time",
+                                        "--record",    "--replay",  "--hashes", "--poses",
+                                        "--present",   "--mapping", "--thread", "--publish",
+                                        "--particles", NULL };
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     int staged = mr_stage_opts_take(&a->so, "run", argc, argv, &i, true);
@@ -592,7 +606,18 @@ int mr_cmd_run(int argc, char **argv) {
     mr_scene_free(&scene);
     return MR_EXIT_FAIL;
   }
+  /* --publish and --particles: the show's state out (state_pub.c). */
+  char msg[700];
+  double fps = a.def.fps > 0 ? a.def.fps : scene.fps > 0 ? scene.fps : 60.0;
+  if ((a.publish != NULL || a.particles != NULL) &&
+      mr_app_state_pub_open(a.publish, a.particles, &scene, fps, &st.pub, msg, sizeof msg) != 0) {
+    fprintf(stderr, "marionette run: %s\n", msg);
+    close_outputs(&st);
+    mr_scene_free(&scene);
+    return MR_EXIT_FAIL;
+  }
   int rc = run_show(&a, &scene, &st);
+  if (mr_app_state_pub_close(st.pub, stdout) != 0 && rc == MR_EXIT_OK) rc = MR_EXIT_FAIL;
   mr_scene_free(&scene);
   return rc;
 }
