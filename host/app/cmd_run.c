@@ -34,6 +34,13 @@ static void on_signal(int sig) {
     stop_asked = 1;
 }
 
+/* The options of the show's state out (state_pub.c). */
+static const char publish_help[] =
+    "  --publish URL       publish each simulated frame to a broker,\n"
+    "                      mqtt[s]://[USER@]HOST[:PORT]/TOPIC, with the scene\n"
+    "                      retained on TOPIC/scene: marionette watch shows it\n"
+    "  --particles FILE    write each frame's time and every particle's x y z (m)\n";
+
 void mr_cmd_run_usage(void) {
   printf("usage: marionette run [OPTIONS] [SCENE] [--glove SOURCE | --replay TAKE]...\n"
          "\n"
@@ -82,11 +89,7 @@ void mr_cmd_run_usage(void) {
          "  --real-time         with --replay: at real speed on the wall clock\n"
          "  --hashes FILE       write each frame's time and state hash to FILE\n"
          "  --poses FILE        write each frame's time and, for each control frame,\n"
-         "                      its position (m) and orientation (w x y z)\n"
-         "  --publish URL       publish each simulated frame to a broker,\n"
-         "                      mqtt[s]://[USER@]HOST[:PORT]/TOPIC, with the scene\n"
-         "                      retained on TOPIC/scene: marionette watch shows it\n"
-         "  --particles FILE    write each frame's time and every particle's x y z (m)\n"
+         "                      its position (m) and orientation (w x y z)\n%s"
          "  --mapping NAME      start with the scene's mapping NAME (default: its\n"
          "                      first); SIGUSR1 moves to the next one during the show\n"
          "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
@@ -116,7 +119,7 @@ void mr_cmd_run_usage(void) {
          "exit status: 0 the show ended, 1 the scene, a model, the stage or a glove\n"
          "source failed, 2 bad usage, 3 a glove was built from another protocol\n"
          "definition.\n",
-         mr_stage_opts_help);
+         publish_help, mr_stage_opts_help);
 }
 
 typedef struct status {
