@@ -4,6 +4,7 @@
 #include <mosquitto.h>
 #include <mqtt_protocol.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -141,7 +142,15 @@ static void name_link(mr_net *n) {
   char host[64] = "";
   gethostname(host, sizeof host - 1);
   host[sizeof host - 1] = '\0';
-  snprintf(n->id, sizeof n->id, "%s-%s-%ld", n->def.name, host, (long)getpid());
+  /* One process may hold many links (a benchmark's watchers): each past
+   * the first gets a number of its own, as a broker takes one connection
+   * per client id. */
+  static atomic_int links;
+  int k = atomic_fetch_add(&links, 1);
+  if (k == 0)
+    snprintf(n->id, sizeof n->id, "%s-%s-%ld", n->def.name, host, (long)getpid());
+  else
+    snprintf(n->id, sizeof n->id, "%s-%s-%ld-%d", n->def.name, host, (long)getpid(), k + 1);
   const char *q = strchr(n->def.url, '?');
   int len = q ? (int)(q - n->def.url) : (int)strlen(n->def.url);
   snprintf(n->where, sizeof n->where, "%.*s", len, n->def.url);
