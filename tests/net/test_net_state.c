@@ -368,6 +368,52 @@ static void a_scene_of_another_spec_hash_is_refused_clearly(void **state) {
   free(dir);
 }
 
+/* The sample edge bridge (host/net/examples/edge-bridge.conf), as it is:
+ * a watcher on an edge broker bridged to the origin gets the retained
+ * scene and every frame the show publishes to the origin. */
+static void a_watcher_on_an_edge_bridged_to_the_origin_sees_every_frame(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  tb_broker origin, edge;
+  assert_int_equal(tb_broker_start(&origin, mosquitto, dir, "origin", 0, NULL), 0);
+  char *sample = tt_read_file(MR_SOURCE_DIR "/host/net/examples/edge-bridge.conf", NULL);
+  assert_non_null(sample);
+  char *at = strstr(sample, "\naddress ORIGIN:1883"), conf[4096];
+  assert_non_null(at);
+  at += strlen("\naddress ");
+  snprintf(conf, sizeof conf, "allow_anonymous true\n%.*s127.0.0.1:%d%s", (int)(at - sample),
+           sample, origin.port, at + strlen("ORIGIN:1883"));
+  free(sample);
+  assert_int_equal(tb_broker_start(&edge, mosquitto, dir, "edge", 0, conf), 0);
+  const char *take = tt_path(dir, "glove.bin");
+  char take_src[600];
+  snprintf(take_src, sizeof take_src, "file:%s", take);
+  const char *gen_argv[] = { glove_gen, "-o", take, "--fast", "-d", "6", NULL };
+  assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
+  const char *watch_argv[] = { marionette,   "watch",  url_of(&edge, "show/e"),
+                               "--headless", "--time", "5",
+                               "-q",         NULL };
+  pid_t watch = tt_spawn(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"));
+  sleep_s(1.0); /* the bridge up, the watcher subscribed */
+  const char *run_argv[] = {
+    marionette, "run", HUMANOID, "--glove", take_src, "--publish", url_of(&origin, "show/e"),
+    "--time",   "3",   "-q",     NULL
+  };
+  assert_int_equal(tt_run(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"), 30), 0);
+  assert_int_equal(tt_wait(watch, 30), 0);
+  char *out = tt_read_file(tt_path(dir, "watch.out"), NULL);
+  char *run_out = tt_read_file(tt_path(dir, "run.out"), NULL);
+  assert_non_null(strstr(out, "scene: humanoid ("));
+  expect_kv(out, "frames received", num(run_out, "published frames"));
+  expect_kv(out, "frames lost", 0);
+  free(out);
+  free(run_out);
+  tb_broker_stop(&edge, 0);
+  tb_broker_stop(&origin, 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(int argc, char **argv) {
   if (argc < 5) {
     fprintf(stderr, "usage: %s GLOVE-GEN GLOVE-DUMP MARIONETTE MOSQUITTO\n", argv[0]);
@@ -388,6 +434,8 @@ int main(int argc, char **argv) {
         garbage_and_oversized_state_messages_are_counted_and_the_watcher_watches_on,
         tb_broker_stop_all),
     cmocka_unit_test_teardown(a_scene_of_another_spec_hash_is_refused_clearly, tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_watcher_on_an_edge_bridged_to_the_origin_sees_every_frame,
+                              tb_broker_stop_all),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
