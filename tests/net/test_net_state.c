@@ -414,6 +414,51 @@ static void a_watcher_on_an_edge_bridged_to_the_origin_sees_every_frame(void **s
   free(dir);
 }
 
+/* Frames far larger than the socket takes, handed in as fast as a loop
+ * goes: the publisher drops what it cannot hand on (counted), never
+ * fails, and every frame is either sent or counted as dropped; with the
+ * broker gone, the same. */
+static void a_publisher_the_network_cannot_keep_up_with_drops_and_counts(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  tb_broker b;
+  assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
+  mr_state_bundle files;
+  memset(&files, 0, sizeof files);
+  assert_int_equal(mr_state_bundle_add(&files, "s.yaml", "name: s\n", 8), 0);
+  enum { POINTS = 30000, FRAMES = 400 };
+  double *xyz = calloc(3 * POINTS, sizeof *xyz), pose[7] = { 0, 0, 0, 1, 0, 0, 0 };
+  for (size_t i = 0; i < 3 * POINTS; i++) xyz[i] = 0.001 * (double)i;
+  mr_state_out_def d = mr_default_state_out_def();
+  d.url = url_of(&b, "show/big");
+  d.scene = &files;
+  d.n_frames = 1;
+  d.n_points = POINTS;
+  d.max_unsent = 2;
+  mr_state_out *o = NULL;
+  mr_io_error err;
+  assert_int_equal(mr_state_out_open(&d, &o, &err), 0);
+  for (int i = 0; i < FRAMES; i++)
+    assert_true(mr_state_out_frame(o, i / 60.0, pose, xyz, &err) >= 0);
+  mr_state_out_counters c;
+  mr_state_out_get_counters(o, &c);
+  assert_int_equal(c.frames, FRAMES);
+  assert_true(c.dropped_behind > 0); /* 180 kB a frame: the socket fell behind */
+  assert_true(c.sent > 0);
+  assert_int_equal(c.sent + c.dropped_behind + c.dropped_away, FRAMES);
+  tb_broker_stop(&b, 0);
+  sleep_s(0.5); /* the link has seen the broker go */
+  for (int i = 0; i < 10; i++) assert_int_equal(mr_state_out_frame(o, 9.0, pose, xyz, &err), 1);
+  mr_state_out_get_counters(o, &c);
+  assert_true(c.dropped_away >= 10);
+  assert_int_equal(c.sent + c.dropped_behind + c.dropped_away, FRAMES + 10);
+  mr_state_out_close(o);
+  mr_state_bundle_free(&files);
+  free(xyz);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(int argc, char **argv) {
   if (argc < 5) {
     fprintf(stderr, "usage: %s GLOVE-GEN GLOVE-DUMP MARIONETTE MOSQUITTO\n", argv[0]);
@@ -435,6 +480,8 @@ int main(int argc, char **argv) {
         tb_broker_stop_all),
     cmocka_unit_test_teardown(a_scene_of_another_spec_hash_is_refused_clearly, tb_broker_stop_all),
     cmocka_unit_test_teardown(a_watcher_on_an_edge_bridged_to_the_origin_sees_every_frame,
+                              tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_publisher_the_network_cannot_keep_up_with_drops_and_counts,
                               tb_broker_stop_all),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -110,7 +110,10 @@ int mr_state_out_open(const mr_state_out_def *def, mr_state_out **out, mr_io_err
   snprintf(nd.name, sizeof nd.name, "show");
   nd.role = MR_NET_SHOW;
   nd.connect_wait_ms = def->connect_wait_ms;
-  nd.max_message = o->scene_len > MR_NET_MAX_MESSAGE ? o->scene_len : MR_NET_MAX_MESSAGE;
+  /* The larger of the scene and a frame (2 700 particles and more make a
+   * frame larger than a glove's messages). */
+  nd.max_message = o->scene_len > o->buf_cap ? o->scene_len : o->buf_cap;
+  if (nd.max_message < MR_NET_MAX_MESSAGE) nd.max_message = MR_NET_MAX_MESSAGE;
   nd.max_unsent = def->max_unsent;
   if (mr_net_open(&nd, &o->net, err) != 0 || publish_scene(o, err) != 0) {
     mr_state_out_close(o);
