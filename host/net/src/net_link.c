@@ -148,9 +148,9 @@ static void name_link(mr_net *n) {
   static atomic_int links;
   int k = atomic_fetch_add(&links, 1);
   if (k == 0)
-    snprintf(n->id, sizeof n->id, "%s-%s-%ld", n->def.name, host, (long)getpid());
+    snprintf(n->id, sizeof n->id, "%.40s-%.60s-%ld", n->def.name, host, (long)getpid());
   else
-    snprintf(n->id, sizeof n->id, "%s-%s-%ld-%d", n->def.name, host, (long)getpid(), k + 1);
+    snprintf(n->id, sizeof n->id, "%.40s-%.60s-%ld-%d", n->def.name, host, (long)getpid(), k + 1);
   const char *q = strchr(n->def.url, '?');
   int len = q ? (int)(q - n->def.url) : (int)strlen(n->def.url);
   snprintf(n->where, sizeof n->where, "%.*s", len, n->def.url);
