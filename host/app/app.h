@@ -23,6 +23,10 @@ void mr_cmd_ports_usage(void);
 int mr_cmd_calibrate(int argc, char **argv);
 void mr_cmd_calibrate_usage(void);
 int mr_cmd_render(int argc, char **argv);
+/* `marionette watch URL`: a remote audience of a published show
+ * (cmd_watch.c), in the stage program. */
+int mr_cmd_watch(int argc, char **argv);
+void mr_cmd_watch_usage(void);
 void mr_cmd_render_usage(void);
 int mr_cmd_export(int argc, char **argv);
 int mr_cmd_take(int argc, char **argv);

@@ -22,6 +22,7 @@
 #include "mr_show_runner.h"
 #include "run_takes.h"
 #include "stage_opts.h"
+#include "state_pub.h"
 #include "take_ref.h"
 #include "window.h"
 
@@ -34,113 +35,6 @@ static void on_signal(int sig) {
     stop_asked = 1;
 }
 
-static void options_usage(void);
-
-void mr_cmd_run_usage(void) {
-  printf("usage: marionette run [OPTIONS] [SCENE] [--glove SOURCE | --replay TAKE]...\n"
-         "\n"
-         "The theater: the glove at SOURCE drives the puppet of the scene file SCENE\n"
-         "in real time, on the stage. Its five values move the control frame through\n"
-         "the scene's mapping (host/scenes/FORMAT.md, \"mapping\"); the strings do the\n"
-         "rest. Give --glove (or --replay) once per glove: a scene whose puppets have\n"
-         "control frames of their own binds each to a glove by order, uid or hand\n"
-         "(FORMAT.md, \"puppets\"); by default the k-th frame takes the k-th glove. The\n"
-         "frame rate is the scene's sim.fps, else 60. Under load renders are skipped\n"
-         "and simulated time keeps to wall time (--policy skip), or simulated time\n"
-         "slows and nothing is skipped (--policy slow). One status line a second\n"
-         "shows frames, skipped frames, steps, resets and the glove; a summary ends\n"
-         "the show. Ctrl-C ends it cleanly. Without SCENE the show is\n"
-         "/etc/marionette/show.yaml when it exists, else the installed default show\n"
-         "(PREFIX/share/marionette/scenes/humanoid.yaml).\n"
-         "\n"
-         "The stage: with a display (DISPLAY or WAYLAND_DISPLAY set, or --fullscreen)\n"
-         "the show is drawn in a window, its on-screen display showing fps, skipped\n"
-         "renders, dt, resets and each glove's state and latency. Without a display,\n"
-         "or with --headless, it is drawn offscreen and written as with marionette\n"
-         "render (-o DIR); without a display and without -o nothing is drawn.\n"
-         "Without --glove, in a window (or with --keys), the keyboard, the mouse and\n"
-         "a gamepad play a glove on a pty of its own, through the same mapping (see\n"
-         "the man page for the keys).\n"
-         "Keys: space pause, . single step, s speed 100/50/25 %%, r reset, n day/night,\n"
-         "[ ] turn the day knob, m the next materials, c the collision spheres,\n"
-         "h or F1 the OSD, p or F12 a screenshot (-o DIR, else here), f or F11\n"
-         "fullscreen, q or Esc quit (the curtain closes first; q again: at once),\n"
-         "1-8 the scene's cameras, 0 the orbit camera; drag to orbit, the wheel\n"
-         "zooms. With --takes: F2-F6 arm or disarm the selected glove's thumb,\n"
-         "index, middle, ring and little finger, F7 the next glove, F8 punch in or\n"
-         "out (REC; at the punch-out the raw and the merged take go into the book\n"
-         "and the show starts again over the merged one), F9/F10 the previous or\n"
-         "next take beneath (the show starts again from time 0 over it).\n"
-         "\n");
-  options_usage();
-}
-
-/* The options of run's help. */
-static void options_usage(void) {
-  printf("options:\n"
-         "  --glove SOURCE      serial:/dev/ttyACM0[@BAUD], serial:auto, pty:PATH,\n"
-         "                      file:PATH, -, tcp:HOST:PORT, tcp-listen:PORT or\n"
-         "                      mqtt[s]://HOST/TOPIC; repeat for several gloves (up to 8)\n"
-         "  --record TAKE       record every byte a glove sends, with the frame that\n"
-         "                      read it, into TAKE (.mrec): the first --record for\n"
-         "                      the first glove, and so on (without --glove, the\n"
-         "                      keyboard's glove); a take stays readable up\n"
-         "                      to its last whole chunk if the show is killed\n"
-         "  --replay TAKE       play a take (.mrec, or BOOK:NAME: marionette take)\n"
-         "                      instead of a glove, on a virtual clock as fast as it\n"
-         "                      goes: every frame gets the bytes it got live, so the\n"
-         "                      states match the show's bit for bit; one per glove\n"
-         "  --real-time         with --replay: at real speed on the wall clock\n"
-         "  --speed 1|0.5|0.25  perform at full, half or quarter speed: show time and\n"
-         "                      takes beneath slow, live gloves are read at their own\n"
-         "                      pace; a take replays at full speed\n"
-         "  --takes BOOK        keep the takes in the book BOOK (made if missing):\n"
-         "                      the raw take goes in at the end (as --name, else\n"
-         "                      take-N)\n"
-         "  --over NAME         play the book's take NAME beneath the gloves: each\n"
-         "                      channel from the take except the armed ones; at the\n"
-         "                      punch-out NEW-raw (the raw input) and NEW (the armed\n"
-         "                      channels punched in) go into the book\n"
-         "  --arm G:F,...       channels armed: glove 0.., finger 0-4 or thumb, index,\n"
-         "                      middle, ring, little\n"
-         "  --punch IN:OUT      punch in and out at these show times, s (IN < OUT);\n"
-         "                      the show ends at the punch-out\n"
-         "  --name NEW          the new take's name in the book\n"
-         "  --hashes FILE       write each frame's time and state hash to FILE\n"
-         "  --poses FILE        write each frame's time and, for each control frame,\n"
-         "                      its position (m) and orientation (w x y z)\n"
-         "  --mapping NAME      start with the scene's mapping NAME (default: its\n"
-         "                      first); SIGUSR1 moves to the next one during the show\n"
-         "  --policy skip|slow  what to do under load (default skip, the paper's)\n"
-         "  --thread on|off     the physics on a thread of its own (default on in a\n"
-         "                      window: the window draws the newest frame as fast\n"
-         "                      as it can), or on the drawing thread (off)\n"
-         "  --present MODE      land (each frame's last step lands on its time, the\n"
-         "                      paper's) or interpolate (steps at the ATS's own dt,\n"
-         "                      each frame interpolated between the steps around\n"
-         "                      it: fewer steps, up to one step more input lag);\n"
-         "                      default the scene's sim.present, else land\n"
-         "  -t, --time SECONDS  end after this much show (default: until Ctrl-C)\n"
-         "  --headless          draw offscreen even with a display\n"
-         "  --fullscreen        the window fills the screen, with or without DISPLAY\n"
-         "                      (the theater box: SDL finds the console's screen)\n"
-         "  --no-osd            start with the on-screen display hidden (h shows it)\n"
-         "  --backend B         auto (default), window, egl or osmesa\n"
-         "  --keys LIST         press keys at show times, T:KEY[/HOLD],... (KEY a\n"
-         "                      character or space, esc, left, right, up, down,\n"
-         "                      pgup, pgdn, f1 to f12; HOLD seconds, default\n"
-         "                      0.05): for demos and tests; without --glove the\n"
-         "                      keyboard's glove plays, headless too\n"
-         "%s"
-         "  -q, --quiet         no status lines, only the summary and errors\n"
-         "  -h, --help          show this help\n"
-         "\n"
-         "exit status: 0 the show ended, 1 the scene, a model, the stage or a glove\n"
-         "source failed, 2 bad usage, 3 a glove was built from another protocol\n"
-         "definition.\n",
-         mr_stage_opts_help);
-}
-
 typedef struct status {
   int quiet;
   double next_line;
@@ -151,11 +45,13 @@ typedef struct status {
   mr_show_runner *r;     /* the show */
   sig_atomic_t mappings; /* SIGUSR1s sent on as commands */
   bool quit_sent;
+  mr_app_state_pub *pub; /* --publish and --particles, or NULL */
 } status;
 
 /* On the thread that ticks the show: st->hashes and st->poses are its. */
 static void frame_done(void *user, const mr_show_frame *f) {
   status *st = user;
+  mr_app_state_pub_frame(st->pub, f);
   if (st->hashes != NULL && fprintf(st->hashes, "%.6f %016" PRIx64 "\n", f->t, f->hash) < 0)
     st->hash_failed = 1;
   if (st->poses == NULL) return;
@@ -288,6 +184,7 @@ static int bad_usage(const char *fmt, const char *arg) {
 /* The command line, read. */
 typedef struct args {
   const char *scene, *hashes, *poses, *keys, *thread;
+  const char *publish, *particles; /* state_pub.h */
   size_t n_live, n_replay, n_record;
   int real_time, quiet, help, headless, fullscreen, no_osd;
   mr_stage_opts so;
@@ -327,6 +224,11 @@ static int take_value(args *a, const char *opt, const char *v) {
     a->hashes = v;
   } else if (strcmp(opt, "--poses") == 0) {
     a->poses = v;
+  } else if (strcmp(opt, "--publish") == 0 || strcmp(opt, "--particles") == 0) {
+    bool publish = strcmp(opt, "--publish") == 0;
+    if (publish && strncmp(v, "mqtt://", 7) != 0 && strncmp(v, "mqtts://", 8) != 0)
+      return bad_usage("expected --publish mqtt[s]://HOST/TOPIC, got '%s'", v), -1;
+    *(publish ? &a->publish : &a->particles) = v;
   } else if (strcmp(opt, "--thread") == 0) {
     if (strcmp(v, "on") != 0 && strcmp(v, "off") != 0)
       return bad_usage("expected --thread on or off, got '%s'", v), -1;
@@ -359,9 +261,10 @@ static bool window_wanted(const args *a) {
 }
 
 static int parse(int argc, char **argv, args *a) {
-  static const char *const valued[] = { "--glove",   "--policy",  "-t",       "--time",
-                                        "--record",  "--replay",  "--hashes", "--poses",
-                                        "--present", "--mapping", "--thread", NULL };
+  static const char *const valued[] = { "--glove",     "--policy",  "-t",       "--time",
+                                        "--record",    "--replay",  "--hashes", "--poses",
+                                        "--present",   "--mapping", "--thread", "--publish",
+                                        "--particles", NULL };
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     int staged = mr_stage_opts_take(&a->so, "run", argc, argv, &i, true);
@@ -680,11 +583,23 @@ int mr_cmd_run(int argc, char **argv) {
   sigaction(SIGTERM, &sa, NULL);
   sigaction(SIGUSR1, &sa, NULL);
   if (open_outputs(&a, &st) != 0) {
+    mr_run_takes_close(&a.takes);
+    mr_scene_free(&scene);
+    return MR_EXIT_FAIL;
+  }
+  /* --publish and --particles: the show's state out (state_pub.c). */
+  double fps = a.def.fps > 0 ? a.def.fps : scene.fps > 0 ? scene.fps : 60.0;
+  if ((a.publish != NULL || a.particles != NULL) &&
+      mr_app_state_pub_open(a.publish, a.particles, &scene, fps, &st.pub, msg, sizeof msg) != 0) {
+    fprintf(stderr, "marionette run: %s\n", msg);
+    close_outputs(&st);
+    mr_run_takes_close(&a.takes);
     mr_scene_free(&scene);
     return MR_EXIT_FAIL;
   }
   int rc = run_show(&a, &scene, &st);
   mr_run_takes_close(&a.takes);
+  if (mr_app_state_pub_close(st.pub, stdout) != 0 && rc == MR_EXIT_OK) rc = MR_EXIT_FAIL;
   mr_scene_free(&scene);
   return rc;
 }

@@ -24,6 +24,9 @@ static void usage(FILE *f) {
              "              draw the scene's track, or a take, headless into PNG\n"
              "              frames, an MP4 and a contact sheet; see\n"
              "              `marionette render --help`\n"
+             "  watch URL   a remote audience: draws the show that `marionette run\n"
+             "              --publish URL` sends through an MQTT broker; see\n"
+             "              `marionette watch --help`\n"
              "  export [TAKE...] --scene SCENE -o OUT.glb\n"
              "              the show as a glTF 2.0 binary with its animation\n"
              "              (and a PC2 point cache, a CSV); see\n"
@@ -45,9 +48,10 @@ static void usage(FILE *f) {
 int main(int argc, char **argv) {
   if (argc < 2) {
     /* Bad usage is one line, like every other usage error; --help has the rest. */
-    fprintf(stderr, "marionette: expected a command: sim, run, render, export, take, list-ports or "
-                    "calibrate (see "
-                    "marionette --help)\n");
+    fprintf(stderr,
+            "marionette: expected a command: sim, run, render, watch, export, take, list-ports or "
+            "calibrate (see "
+            "marionette --help)\n");
     return MR_EXIT_USAGE;
   }
   const char *cmd = argv[1];
@@ -61,17 +65,18 @@ int main(int argc, char **argv) {
   }
   if (strcmp(cmd, "sim") == 0) return mr_cmd_sim(argc - 1, argv + 1);
   /* The drawing commands run in the stage program (stage_exec.c). */
-  if (strcmp(cmd, "run") == 0 || strcmp(cmd, "render") == 0)
+  if (strcmp(cmd, "run") == 0 || strcmp(cmd, "render") == 0 || strcmp(cmd, "watch") == 0)
     return mr_stage_exec(MR_STAGE_PROGRAM, argv);
   /* export loads models (Assimp) but no GL: a program of its own. */
   if (strcmp(cmd, "export") == 0) return mr_stage_exec(MR_EXPORT_PROGRAM, argv);
   if (strcmp(cmd, "take") == 0) return mr_cmd_take(argc - 1, argv + 1);
   if (strcmp(cmd, "list-ports") == 0) return mr_cmd_ports(argc - 1, argv + 1);
   if (strcmp(cmd, "calibrate") == 0) return mr_cmd_calibrate(argc - 1, argv + 1);
-  fprintf(stderr,
-          "marionette: unknown command '%s'; expected one of: sim, run, render, export, take, "
-          "list-ports, "
-          "calibrate (see --help)\n",
-          cmd);
+  fprintf(
+      stderr,
+      "marionette: unknown command '%s'; expected one of: sim, run, render, watch, export, take, "
+      "list-ports, "
+      "calibrate (see --help)\n",
+      cmd);
   return MR_EXIT_USAGE;
 }

@@ -95,14 +95,18 @@ int tb_broker_stop_all(void **state) {
 }
 
 int tb_publish(int port, const char *topic, const void *data, int len) {
+  return tb_publish_retained(port, topic, data, len, 0);
+}
+
+int tb_publish_retained(int port, const char *topic, const void *data, int len, int retain) {
   mosquitto_lib_init();
   struct mosquitto *m = mosquitto_new(NULL, true, NULL);
   int rc = m != NULL && mosquitto_connect(m, "127.0.0.1", port, 5) == MOSQ_ERR_SUCCESS &&
-                   mosquitto_publish(m, NULL, topic, len, data, 1, false) == MOSQ_ERR_SUCCESS
+                   mosquitto_publish(m, NULL, topic, len, data, 1, retain != 0) == MOSQ_ERR_SUCCESS
                ? 0
                : -1;
   /* Bounded: the message out and its PUBACK in, then away. */
-  for (int i = 0; rc == 0 && i < 20 && mosquitto_want_write(m); i++) mosquitto_loop(m, 50, 1);
+  for (int i = 0; rc == 0 && i < 200 && mosquitto_want_write(m); i++) mosquitto_loop(m, 50, 1);
   for (int i = 0; rc == 0 && i < 4; i++) mosquitto_loop(m, 25, 1);
   if (m != NULL) {
     mosquitto_disconnect(m);

@@ -27,5 +27,7 @@ int tb_broker_stop_all(void **state);
 
 /* Publishes len bytes on topic as a client of no stamp: 0 or -1. */
 int tb_publish(int port, const char *topic, const void *data, int len);
+/* The same, retained by the broker when retain is nonzero. */
+int tb_publish_retained(int port, const char *topic, const void *data, int len, int retain);
 
 #endif

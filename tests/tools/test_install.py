@@ -25,7 +25,7 @@ SRC, BUILD = sys.argv[1], sys.argv[2]
 PREFIX = "/usr"
 PROGRAMS = {"marionette": [["--help"], ["sim", "--help"], ["run", "--help"],
                            ["render", "--help"], ["list-ports", "--help"],
-                           ["take", "--help"]],
+                           ["take", "--help"], ["watch", "--help"]],
             "glove-gen": [["--help"]],
             "glove-dump": [["--help"]]}
 failures = []

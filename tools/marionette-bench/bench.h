@@ -92,6 +92,8 @@ int bench_latency_live(bench *b);
 int bench_peer(bench *b);
 /* Item 5: milliseconds a frame for each example scene (render_cost.c). */
 int bench_render(bench *b);
+/* Section net (net_scale.c): a show's state through a broker to watchers. */
+int bench_net(bench *b);
 /* The fixed runs `make bench-count` counts under callgrind: "puppet"
  * (host/scenes/puppet.yaml for 10 s) or "decode" (10 000 SAMPLE frames). */
 int bench_count_run(bench *b, const char *which);

@@ -32,6 +32,9 @@ static void usage(FILE *f) {
              "  window    the humanoid in a window at 1280x720 driven by glove-gen, idle and\n"
              "            beside a busy process a core: real-time factor, time given up,\n"
              "            drawn fps, glove-to-frame latency (xvfb-run without a display)\n"
+             "  net       a show's state through a mosquitto of its own on loopback: bytes a\n"
+             "            frame and a second for the humanoid at 60 fps, glove -> watcher\n"
+             "            latency p50 and p99, the broker's CPU with 1 and 200 watchers\n"
              "\n"
              "  --quick       a run of about a minute (fewer settings, shorter tracks)\n"
              "  --out DIR     where sweep.csv, capacity.csv, the plots and summary.txt go\n"
@@ -68,10 +71,11 @@ static int make_dir(const char *path) {
 static const struct {
   const char *name;
   int (*run)(bench *b);
-} sections[] = { { "sweep", bench_sweep },       { "sec7", bench_paper_run },
-                 { "capacity", bench_capacity }, { "load", bench_load_time },
-                 { "latency", bench_latency },   { "peer", bench_peer },
-                 { "render", bench_render },     { "window", bench_window } };
+} sections[] = {
+  { "sweep", bench_sweep },    { "sec7", bench_paper_run },  { "capacity", bench_capacity },
+  { "load", bench_load_time }, { "latency", bench_latency }, { "peer", bench_peer },
+  { "render", bench_render },  { "window", bench_window },   { "net", bench_net }
+};
 #define N_SECTIONS (sizeof sections / sizeof sections[0])
 
 /* Every comma-separated name in --only must be a section: a misspelt name

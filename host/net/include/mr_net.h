@@ -69,13 +69,16 @@ int mr_net_url_parse(const char *url, mr_net_url *out, mr_io_error *err);
 typedef enum mr_net_topic {
   MR_NET_DATA = 0, /* TOPIC: the glove's frames */
   MR_NET_CMD,      /* TOPIC/cmd: commands down to the glove */
-  MR_NET_REPLY     /* TOPIC/reply: the glove's answers */
+  MR_NET_REPLY,    /* TOPIC/reply: the glove's answers */
+  MR_NET_SCENE     /* TOPIC/scene: a show's scene, retained (mr_state.h) */
 } mr_net_topic;
 
 /* What the link does on the topic. */
 typedef enum mr_net_role {
   MR_NET_RECEIVER = 0, /* reads DATA and REPLY, sends CMD: a host's glove */
-  MR_NET_RELAY         /* reads CMD, sends DATA and REPLY: a glove's relay */
+  MR_NET_RELAY,        /* reads CMD, sends DATA and REPLY: a glove's relay */
+  MR_NET_SHOW,         /* reads nothing, sends DATA and SCENE: a show's state */
+  MR_NET_WATCHER       /* reads DATA and SCENE: a show's audience */
 } mr_net_role;
 
 typedef struct mr_net_def {
@@ -92,6 +95,15 @@ typedef struct mr_net_def {
    * the show never waits longer). Default false: the open fails. */
   bool background;
   int keepalive_s; /* default 5: a dead broker is found within 1.5 times this */
+  /* The longest message taken or sent; default MR_NET_MAX_MESSAGE (a
+   * show's scene with its models is larger). mr_net_read's cap must be
+   * at least this. */
+  size_t max_message;
+  /* DATA messages handed to the network thread and not yet written to
+   * the socket, at the most: past it mr_net_publish drops the message
+   * (counted in send_dropped) rather than queue it, so that a publisher
+   * never waits for the network. Default 0: no bound. */
+  int max_unsent;
 } mr_net_def;
 mr_net_def mr_default_net_def(void);
 
@@ -105,6 +117,7 @@ typedef struct mr_net_counters {
   uint64_t foreign;      /* from a second publisher while the first one sends */
   uint64_t sent;         /* messages published */
   uint64_t send_refused; /* publishes the broker refused */
+  uint64_t send_dropped; /* DATA not sent: max_unsent were waiting for the socket */
   uint64_t connects;     /* connections the broker accepted */
   uint64_t losses;       /* connections lost (each reconnected by itself) */
 } mr_net_counters;
@@ -122,7 +135,7 @@ typedef struct mr_net mr_net;
 int mr_net_open(const mr_net_def *def, mr_net **out, mr_io_error *err);
 
 /* One received message, waiting up to timeout_ms (negative: forever):
- * MR_IO_OK with *got bytes (cap must be at least MR_NET_MAX_MESSAGE) and
+ * MR_IO_OK with *got bytes (cap must be at least the def's max_message) and
  * *topic (may be NULL); MR_IO_TIMEOUT; MR_IO_HANGUP once for each loss of
  * the broker (the link reconnects by itself: keep reading); a failure
  * (MR_IO_ERR_SYSTEM) when the broker refused the link for good, with err
@@ -132,9 +145,20 @@ mr_io_status mr_net_read(mr_net *n, uint8_t *buf, size_t cap, int timeout_ms, si
 
 /* Publishes len bytes on topic, at QoS 0 for DATA, else 1. 0, or -1 with
  * err: status MR_IO_HANGUP while the broker is away (the message is
- * dropped, not kept), a failure otherwise. A refusal by
+ * dropped, not kept), MR_IO_TIMEOUT when max_unsent messages wait for the
+ * socket (dropped and counted), a failure otherwise. A refusal by
  * the broker (its ACL) comes back later, as a failure of mr_net_read. */
 int mr_net_publish(mr_net *n, mr_net_topic topic, const void *data, size_t len, mr_io_error *err);
+
+/* The same, retained by the broker for clients that subscribe later (QoS
+ * 1): a show's scene. An empty message (len 0) clears what was retained. */
+int mr_net_publish_retained(mr_net *n, mr_net_topic topic, const void *data, size_t len,
+                            mr_io_error *err);
+
+/* Waits up to timeout_ms until every message published so far is
+ * written to the broker (QoS 0) or answered (QoS 1): true, else false
+ * (the time ran out, or the broker went away). */
+bool mr_net_flush(mr_net *n, int timeout_ms);
 
 /* True while the broker has the link. */
 bool mr_net_connected(mr_net *n);

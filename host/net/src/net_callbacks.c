@@ -51,16 +51,25 @@ static void on_connect(struct mosquitto *m, void *user, int rc, int flags,
   n->connected = true;
   n->probe_due = true;
   n->c.connects++;
-  pthread_mutex_unlock(&n->mu);
+  n->written = n->c.sent; /* what a lost connection had queued is gone */
   /* The session is clean: every connection subscribes again. */
   char *subs[2];
   int count = 0;
   if (n->def.role == MR_NET_RELAY) {
     subs[count++] = n->topic[MR_NET_CMD];
-  } else {
+  } else if (n->def.role == MR_NET_WATCHER) {
+    subs[count++] = n->topic[MR_NET_DATA];
+    subs[count++] = n->topic[MR_NET_SCENE];
+  } else if (n->def.role == MR_NET_RECEIVER) {
     subs[count++] = n->topic[MR_NET_DATA];
     subs[count++] = n->topic[MR_NET_REPLY];
   }
+  if (count == 0) {
+    n->answered = true; /* a show's publisher reads nothing: the CONNACK is the answer */
+    wake(n);
+    return;
+  }
+  pthread_mutex_unlock(&n->mu);
   mosquitto_subscribe_multiple(m, NULL, count, subs, 1, 0, NULL);
 }
 
@@ -112,8 +121,12 @@ static void on_publish(struct mosquitto *m, void *user, int mid, int rc,
   (void)m;
   (void)mid;
   (void)props;
-  if (rc < 0x80) return;
   pthread_mutex_lock(&n->mu);
+  n->written++;
+  if (rc < 0x80) {
+    wake(n); /* mr_net_flush may be waiting */
+    return;
+  }
   n->c.send_refused++;
   char what[300];
   snprintf(what, sizeof what, "the broker refused to let %.60s publish to %.80s",
@@ -165,7 +178,7 @@ static void on_message(struct mosquitto *m, void *user, const struct mosquitto_m
   mr_net *n = user;
   (void)m;
   int topic = -1;
-  for (int t = 0; t < 3; t++)
+  for (int t = 0; t < 4; t++)
     if (strcmp(msg->topic, n->topic[t]) == 0) topic = t;
   char *name = NULL, *value = NULL;
   const char *stamp = stamp_of(props, &name, &value);
@@ -174,7 +187,7 @@ static void on_message(struct mosquitto *m, void *user, const struct mosquitto_m
   uint8_t *copy = NULL;
   if (msg->payloadlen <= 0)
     n->c.empty++;
-  else if (msg->payloadlen > MR_NET_MAX_MESSAGE)
+  else if ((size_t)msg->payloadlen > n->def.max_message)
     n->c.oversized++;
   else if (n->count >= n->def.queue_messages)
     n->c.queue_full++;

@@ -35,7 +35,7 @@ struct mr_net {
   struct mosquitto *mosq;
   char id[MR_NET_NAME_MAX + 64];
   char where[MR_NET_URL_MAX];
-  char topic[3][MR_NET_TOPIC_MAX + 8];
+  char topic[4][MR_NET_TOPIC_MAX + 8];
   bool loop_started;
 
   /* Everything below is shared with the network thread: under mu. */
@@ -51,6 +51,7 @@ struct mr_net {
   char fatal[400];
   char last_log[200]; /* libmosquitto's last error line (a TLS failure) */
   mr_net_counters c;
+  uint64_t written; /* publishes the network thread wrote (or had answered) */
   net_publisher pub[2];
   bool two;
 };

@@ -4,6 +4,7 @@
 #include <mosquitto.h>
 #include <mqtt_protocol.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,6 +34,8 @@ mr_net_def mr_default_net_def(void) {
   d.connect_wait_ms = 3000;
   d.keepalive_s = 5;
   d.background = false;
+  d.max_message = MR_NET_MAX_MESSAGE;
+  d.max_unsent = 0;
   return d;
 }
 
@@ -139,23 +142,33 @@ static void name_link(mr_net *n) {
   char host[64] = "";
   gethostname(host, sizeof host - 1);
   host[sizeof host - 1] = '\0';
-  /* A host name past 40 bytes is cut: the stamp must hold the pid whole. */
-  snprintf(n->id, sizeof n->id, "%s-%.40s-%ld", n->def.name, host, (long)getpid());
+  /* One process may hold many links (a benchmark's watchers): each past
+   * the first gets a number of its own, as a broker takes one connection
+   * per client id. */
+  static atomic_int links;
+  int k = atomic_fetch_add(&links, 1);
+  if (k == 0)
+    snprintf(n->id, sizeof n->id, "%.40s-%.60s-%ld", n->def.name, host, (long)getpid());
+  else
+    snprintf(n->id, sizeof n->id, "%.40s-%.60s-%ld-%d", n->def.name, host, (long)getpid(), k + 1);
   const char *q = strchr(n->def.url, '?');
   int len = q ? (int)(q - n->def.url) : (int)strlen(n->def.url);
   snprintf(n->where, sizeof n->where, "%.*s", len, n->def.url);
   snprintf(n->topic[MR_NET_DATA], MR_NET_TOPIC_MAX + 8, "%s", n->url.topic);
   snprintf(n->topic[MR_NET_CMD], MR_NET_TOPIC_MAX + 8, "%s/cmd", n->url.topic);
   snprintf(n->topic[MR_NET_REPLY], MR_NET_TOPIC_MAX + 8, "%s/reply", n->url.topic);
+  snprintf(n->topic[MR_NET_SCENE], MR_NET_TOPIC_MAX + 8, "%s/scene", n->url.topic);
 }
 
 int mr_net_open(const mr_net_def *def, mr_net **out, mr_io_error *err) {
   *out = NULL;
   if (def == NULL || def->cookie != MR_DEF_COOKIE || def->queue_messages < 1 ||
-      def->connect_wait_ms < 1 || def->keepalive_s < 5)
+      def->connect_wait_ms < 1 || def->keepalive_s < 5 || def->max_message < 1 ||
+      def->max_message > (size_t)1 << 28 || def->max_unsent < 0)
     return mr_net_err(err, MR_IO_ERR_ARG,
                       "expected a link definition made by mr_default_net_def, with "
-                      "queue_messages >= 1, connect_wait_ms >= 1 and keepalive_s >= 5");
+                      "queue_messages >= 1, connect_wait_ms >= 1, keepalive_s >= 5, "
+                      "max_message 1..256 MiB and max_unsent >= 0");
   mr_net *n = calloc(1, sizeof *n);
   if (n == NULL) return mr_net_err(err, MR_IO_ERR_SYSTEM, "out of memory");
   n->def = *def;
@@ -200,8 +213,9 @@ static void take(mr_net *n, uint8_t *buf, size_t cap, size_t *got, mr_net_topic 
 mr_io_status mr_net_read(mr_net *n, uint8_t *buf, size_t cap, int timeout_ms, size_t *got,
                          mr_net_topic *topic, mr_io_error *err) {
   *got = 0;
-  if (n == NULL || buf == NULL || cap < MR_NET_MAX_MESSAGE) {
-    mr_net_err(err, MR_IO_ERR_ARG, "expected a link and a buffer of %d bytes", MR_NET_MAX_MESSAGE);
+  if (n == NULL || buf == NULL || cap < n->def.max_message) {
+    mr_net_err(err, MR_IO_ERR_ARG, "expected a link and a buffer of %zu bytes",
+               n != NULL ? n->def.max_message : (size_t)MR_NET_MAX_MESSAGE);
     return MR_IO_ERR_ARG;
   }
   struct timespec until;
@@ -233,22 +247,28 @@ mr_io_status mr_net_read(mr_net *n, uint8_t *buf, size_t cap, int timeout_ms, si
   return st;
 }
 
-int mr_net_publish(mr_net *n, mr_net_topic topic, const void *data, size_t len, mr_io_error *err) {
-  if (n == NULL || (int)topic < 0 || topic > MR_NET_REPLY || len == 0 || len > MR_NET_MAX_MESSAGE)
-    return mr_net_err(err, MR_IO_ERR_ARG, "expected a link, a topic and 1..%d bytes",
-                      MR_NET_MAX_MESSAGE);
+static int publish(mr_net *n, mr_net_topic topic, const void *data, size_t len, bool retain,
+                   mr_io_error *err) {
+  if (n == NULL || (int)topic < 0 || topic > MR_NET_SCENE || (len == 0 && !retain) ||
+      len > n->def.max_message)
+    return mr_net_err(err, MR_IO_ERR_ARG, "expected a link, a topic and 1..%zu bytes",
+                      n != NULL ? n->def.max_message : (size_t)MR_NET_MAX_MESSAGE);
   pthread_mutex_lock(&n->mu);
   bool up = n->connected && !n->refused;
   /* Samples go at QoS 0; the first data message of a connection goes at
    * QoS 1, so that a broker whose ACL refuses it says so (a QoS 0 message
    * refused is dropped without a word). */
-  int qos = topic != MR_NET_DATA || n->probe_due ? 1 : 0;
-  if (up && topic == MR_NET_DATA) n->probe_due = false;
+  int qos = topic != MR_NET_DATA || n->probe_due || retain ? 1 : 0;
+  bool full = up && qos == 0 && n->def.max_unsent > 0 &&
+              n->c.sent - n->written >= (uint64_t)n->def.max_unsent;
+  if (full) n->c.send_dropped++;
+  if (up && !full && topic == MR_NET_DATA) n->probe_due = false;
   pthread_mutex_unlock(&n->mu);
   if (!up) return mr_net_err(err, MR_IO_HANGUP, "%s: not connected", n->where);
+  if (full) return mr_net_err(err, MR_IO_TIMEOUT, "%s: the network is behind", n->where);
   mosquitto_property *props = NULL;
   mosquitto_property_add_string_pair(&props, MQTT_PROP_USER_PROPERTY, "mr-publisher", n->id);
-  int rc = mosquitto_publish_v5(n->mosq, NULL, n->topic[topic], (int)len, data, qos, false, props);
+  int rc = mosquitto_publish_v5(n->mosq, NULL, n->topic[topic], (int)len, data, qos, retain, props);
   mosquitto_property_free_all(&props);
   if (rc != MOSQ_ERR_SUCCESS)
     return mr_net_err(err, MR_IO_ERR_SYSTEM, "%s: %s", n->where, mosquitto_strerror(rc));
@@ -256,6 +276,31 @@ int mr_net_publish(mr_net *n, mr_net_topic topic, const void *data, size_t len, 
   n->c.sent++;
   pthread_mutex_unlock(&n->mu);
   return 0;
+}
+
+int mr_net_publish(mr_net *n, mr_net_topic topic, const void *data, size_t len, mr_io_error *err) {
+  return publish(n, topic, data, len, false, err);
+}
+
+int mr_net_publish_retained(mr_net *n, mr_net_topic topic, const void *data, size_t len,
+                            mr_io_error *err) {
+  return publish(n, topic, data, len, true, err);
+}
+
+bool mr_net_flush(mr_net *n, int timeout_ms) {
+  if (n == NULL) return true;
+  struct timespec until;
+  clock_gettime(CLOCK_REALTIME, &until);
+  long long ns = (long long)until.tv_nsec + (long long)(timeout_ms > 0 ? timeout_ms : 0) * 1000000;
+  until.tv_sec += (time_t)(ns / 1000000000);
+  until.tv_nsec = (long)(ns % 1000000000);
+  pthread_mutex_lock(&n->mu);
+  while (n->connected && n->written < n->c.sent &&
+         pthread_cond_timedwait(&n->cv, &n->mu, &until) == 0) {
+  }
+  bool done = n->written >= n->c.sent;
+  pthread_mutex_unlock(&n->mu);
+  return done;
 }
 
 bool mr_net_connected(mr_net *n) {

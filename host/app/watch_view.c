@@ -1,0 +1,135 @@
+/* The watcher's playout buffer and stage (watch_view.h). */
+#include "watch_view.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int mr_watch_buffer_push(mr_watch_buffer *b, double t, const double *xyz, size_t n) {
+  if (b->count > 0 && (n != b->n || !(t > mr_watch_buffer_newest(b)))) {
+    if (n == b->n) return -1;
+    mr_watch_buffer_free(b); /* another scene's size: start again */
+  }
+  b->n = n;
+  int slot = (b->head + b->count) % MR_WATCH_KEEP;
+  if (b->count == MR_WATCH_KEEP) {
+    slot = b->head;
+    b->head = (b->head + 1) % MR_WATCH_KEEP;
+  } else {
+    b->count++;
+  }
+  if (b->xyz[slot] == NULL) b->xyz[slot] = malloc(3 * (n > 0 ? n : 1) * sizeof(double));
+  if (b->xyz[slot] == NULL) {
+    b->count--;
+    return -1;
+  }
+  memcpy(b->xyz[slot], xyz, 3 * n * sizeof(double));
+  b->t[slot] = t;
+  return 0;
+}
+
+double mr_watch_buffer_newest(const mr_watch_buffer *b) {
+  return b->count > 0 ? b->t[(b->head + b->count - 1) % MR_WATCH_KEEP] : -1.0;
+}
+
+int mr_watch_buffer_at(const mr_watch_buffer *b, double t, double *out) {
+  if (b->count == 0) return -1;
+  int newest = (b->head + b->count - 1) % MR_WATCH_KEEP;
+  if (t >= b->t[newest]) {
+    memcpy(out, b->xyz[newest], 3 * b->n * sizeof(double));
+    return 1;
+  }
+  if (t <= b->t[b->head]) {
+    memcpy(out, b->xyz[b->head], 3 * b->n * sizeof(double));
+    return 0;
+  }
+  for (int k = 1; k < b->count; k++) {
+    int i = (b->head + k) % MR_WATCH_KEEP, h = (b->head + k - 1) % MR_WATCH_KEEP;
+    if (t > b->t[i]) continue;
+    double w = (t - b->t[h]) / (b->t[i] - b->t[h]);
+    for (size_t j = 0; j < 3 * b->n; j++) out[j] = b->xyz[h][j] + w * (b->xyz[i][j] - b->xyz[h][j]);
+    break;
+  }
+  return 0;
+}
+
+void mr_watch_buffer_free(mr_watch_buffer *b) {
+  for (int i = 0; i < MR_WATCH_KEEP; i++) free(b->xyz[i]);
+  memset(b, 0, sizeof *b);
+}
+
+int mr_watch_stage_open(mr_watch_stage *ws, const mr_scene *scene, mr_stage_opts *so, bool window,
+                        double fps, char *msg, size_t msg_size, int *usage) {
+  memset(ws, 0, sizeof *ws);
+  *usage = 0;
+  mr_render_def rd = mr_default_render_def();
+  rd.headless = !window;
+  rd.backend = window ? MR_RENDER_WINDOW : so->backend;
+  rd.width = so->width;
+  rd.height = so->height;
+  rd.gl = so->gl;
+  if (so->samples > 0) rd.samples = so->samples;
+  mr_window_def wd = mr_default_window_def();
+  wd.title = "marionette watch";
+  if (mr_stageview_open(&ws->sv, scene, &rd, window ? &wd : NULL, msg, msg_size) != 0) return -1;
+  ws->window = window;
+  ws->sv.show_osd = false;
+  if (mr_stage_opts_apply(so, "watch", &ws->sv) != 0) {
+    mr_stageview_close(&ws->sv);
+    msg[0] = '\0';
+    return *usage = 1, -1;
+  }
+  if (so->out == NULL) return 0;
+  char note[200] = "";
+  mr_frames_out_def od =
+      mr_stage_opts_outputs(so, fps, ws->sv.width, ws->sv.height, note, sizeof note);
+  od.keep_time = true;
+  if (mr_frames_out_open(&od, &ws->fo, msg, msg_size) != 0) {
+    mr_stageview_close(&ws->sv);
+    return -1;
+  }
+  return 0;
+}
+
+int mr_watch_stage_draw(mr_watch_stage *ws, double t, const double *xyz, size_t n, char *msg,
+                        size_t msg_size) {
+  mr_stageview_track(&ws->sv, t, xyz, n);
+  mr_stageview_set_time(&ws->sv, t, -1.0);
+  if (mr_stageview_draw(&ws->sv, xyz, n, msg, msg_size) != 0) return -1;
+  ws->drawn++;
+  if (ws->window) {
+    mr_render_present(ws->sv.render);
+    return 0;
+  }
+  if (ws->fo == NULL) return 0;
+  const uint8_t *rgb = mr_stageview_read(&ws->sv);
+  if (rgb == NULL) {
+    snprintf(msg, msg_size, "could not read a frame back");
+    return -1;
+  }
+  return mr_frames_out_add(ws->fo, rgb, t, msg, msg_size);
+}
+
+void mr_watch_stage_pump(mr_watch_stage *ws) {
+  if (!ws->window) return;
+  mr_window_event ev;
+  while (mr_window_poll(ws->sv.window, &ev) != 0) {
+    if (ev.kind == MR_WINDOW_EVENT_QUIT || (ev.kind == MR_WINDOW_EVENT_KEY && ev.down &&
+                                            (ev.key == MR_WINDOW_KEY_ESCAPE || ev.key == 'q')))
+      ws->quit = true;
+    else if (ev.kind == MR_WINDOW_EVENT_MOUSE_MOVE && (ev.buttons & 1))
+      mr_stageview_orbit(&ws->sv, -0.3 * ev.dx, 0.3 * ev.dy);
+    else if (ev.kind == MR_WINDOW_EVENT_MOUSE_WHEEL)
+      mr_stageview_zoom(&ws->sv, ev.dy);
+    else if (ev.kind == MR_WINDOW_EVENT_KEY && ev.down && ev.key >= '0' && ev.key <= '8')
+      mr_stageview_pick_camera(&ws->sv, ev.key - '1');
+  }
+}
+
+int mr_watch_stage_close(mr_watch_stage *ws, mr_frames_out_summary *s, char *msg, size_t msg_size) {
+  memset(s, 0, sizeof *s);
+  int rc = mr_frames_out_close(ws->fo, s, msg, msg_size);
+  ws->fo = NULL;
+  mr_stageview_close(&ws->sv);
+  return rc;
+}
