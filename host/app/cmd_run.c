@@ -533,6 +533,7 @@ static int run_show(args *a, mr_scene *scene, status *st) {
   for (;;) {
     rc = one_show(a, scene, st, &clock, &hooks, &rd, &r, &err);
     if (rc != MR_SHOW_OK || !another_show(a, st, &r, &stored)) break;
+    mr_live_next_pass(st->lv, r.frames.sim_time); /* another_show: st->lv is there */
     mr_show_result_free(&r);
     if (virtual_time) vc.t = 0.0;
   }

@@ -47,7 +47,9 @@ void mr_cmd_run_usage(void) {
          "index, middle, ring and little finger, F7 the next glove, F8 punch in or\n"
          "out (REC; at the punch-out the raw and the merged take go into the book\n"
          "and the show starts again over the merged one), F9/F10 the previous or\n"
-         "next take beneath (the show starts again from time 0 over it).\n"
+         "next take beneath (the show starts again from time 0 over it). With -o\n"
+         "the frames of each new show follow the last's: the PNG numbers go on, and\n"
+         "the MP4 and the sheet run on one clock, the passes one after another.\n"
          "\n");
   options_usage();
 }

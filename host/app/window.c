@@ -344,7 +344,8 @@ void mr_live_present(mr_live *lv, const mr_show_frame *f) {
   }
   if (lv->fo == NULL) return;
   const uint8_t *rgb = mr_stageview_read(&lv->sv);
-  if (rgb == NULL || mr_frames_out_add(lv->fo, rgb, f->t, lv->msg, sizeof lv->msg) != 0) {
+  double t = lv->pass_t0 + f->t;
+  if (rgb == NULL || mr_frames_out_add(lv->fo, rgb, t, lv->msg, sizeof lv->msg) != 0) {
     if (rgb == NULL) snprintf(lv->msg, sizeof lv->msg, "could not read a frame back");
     lv->failed = lv->quit = true;
   }
@@ -362,8 +363,14 @@ void mr_live_redraw(mr_live *lv) {
 }
 
 void mr_live_hold(mr_live *lv, double t) {
+  t += lv->pass_t0;
   if (lv->fo != NULL && !lv->failed && mr_frames_out_hold(lv->fo, t, lv->msg, sizeof lv->msg) != 0)
     lv->failed = true;
+}
+
+void mr_live_next_pass(mr_live *lv, double end) {
+  mr_live_hold(lv, end);
+  lv->pass_t0 += end > 0 ? end : 0;
 }
 
 static int open_outputs(mr_live *lv, const mr_live_def *def, mr_stage_opts *so, char *msg,

@@ -71,6 +71,10 @@ typedef struct mr_live {
   char beneath[64];
   int take_step;
   const char *out; /* -o DIR */
+  /* With takes, a show starts again over the next take: the frames
+   * written (-o) keep going on one time line, this pass's time 0 being
+   * the end of the passes before it. */
+  double pass_t0;
 } mr_live;
 
 /* How a live show is staged. */
@@ -124,6 +128,11 @@ void mr_live_redraw(mr_live *lv);
 /* Headless with an MP4: the video holds its last frame up to show time t,
  * the show's end. */
 void mr_live_hold(mr_live *lv, double t);
+
+/* The show ended at show time end and another starts from 0 (over the
+ * next take): the frames written go on after end, so the PNG numbers, the
+ * MP4 and the contact sheet follow the first pass with the next. */
+void mr_live_next_pass(mr_live *lv, double end);
 
 /* The take beneath the show about to start ("" none), for the OSD. */
 void mr_live_set_takes(mr_live *lv, const char *beneath);

@@ -266,6 +266,46 @@ static void in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book(v
   free(dir);
 }
 
+/* -o DIR over a take: the show punched out at 1 s starts again over the
+ * merged take and runs to 1.5 s, and its frames follow the first pass's
+ * in the folder: the PNG numbers go on (none is written twice) and the
+ * MP4 lasts both passes, 2.5 s at 60 frames a second, not the last one's
+ * 1.5 s. */
+static void frames_written_over_a_second_pass_follow_the_first(void **state) {
+  (void)state;
+  char ffmpeg[512];
+  if (at_which("ffmpeg", ffmpeg, sizeof ffmpeg) != 0) {
+    print_message("ffmpeg is not installed: the video's length is not tried\n");
+    skip();
+  }
+  char *dir = tt_tmpdir(), book[600], perf[600], out[600];
+  snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
+  snprintf(out, sizeof out, "%s", tt_path(dir, "out"));
+  record_a(dir, book);
+  snprintf(perf, sizeof perf, "%s", tt_path(dir, "perf-b.mrec"));
+  performer(perf, 2.0, 1.5);
+  char *argv[] = {
+    marionette, "run", STICK,   "--replay", perf,      "--takes",   book,
+    "--over",   "A",   "--arm", "0:thumb",  "--punch", "0.5:1",     "-t",
+    "1.5",      "-o",  out,     "--size",   "64x48",   "--backend", MR_APP_TEST_BACKEND,
+    NULL
+  };
+  tt_output o;
+  run(argv, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  print_message("%s%s", o.out, o.err);
+  assert_non_null(strstr(o.err, "from 0.500 to 1.000 s"));
+  const char *said = strstr(o.out, "png frames: ");
+  assert_non_null(said);
+  unsigned long pngs = strtoul(said + strlen("png frames: "), NULL, 10);
+  assert_int_equal(at_count_files(out, "frame_"), pngs);
+  assert_true(pngs > 91); /* more than the second pass alone draws */
+  assert_non_null(strstr(o.out, "mp4: 151 frames"));
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 static double wall_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -302,6 +342,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(run_punch_stores_the_raw_take_and_the_merge_of_its_armed_channels),
     cmocka_unit_test(bad_take_options_exit_2_with_one_line),
     cmocka_unit_test(in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book),
+    cmocka_unit_test(frames_written_over_a_second_pass_follow_the_first),
     cmocka_unit_test(the_speed_option_runs_show_time_at_half_the_wall_clock),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
