@@ -306,6 +306,87 @@ static void frames_written_over_a_second_pass_follow_the_first(void **state) {
   free(dir);
 }
 
+/* The book's take name, glove g's file of n loaded. */
+static void load_glove(const mr_take_book *b, const char *name, size_t g, size_t n,
+                       mr_take_rec *r) {
+  char paths[2][MR_TAKE_PATH_MAX];
+  size_t got = 0;
+  mr_take_error err;
+  if (mr_take_book_paths(b, name, paths, 2, &got, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(got, n);
+  if (mr_take_rec_load(paths[g], r, &err) != 0) fail_msg("%s", err.msg);
+}
+
+/* Under Xvfb, two gloves (two performers replayed on the wall clock)
+ * over a take of two: F7 selects the second glove, F2 then arms its
+ * thumb, F8 punches in and out. The merged take is the first glove's file
+ * of the take beneath as it was, and the second's with the thumb punched
+ * in: the library's merge of mask 0x1, byte for byte. */
+static void in_the_window_f7_then_f2_arms_the_second_gloves_thumb(void **state) {
+  (void)state;
+  char xvfb[512];
+  if (at_which("xvfb-run", xvfb, sizeof xvfb) != 0) {
+    print_message("xvfb-run is not installed: the window is not tried\n");
+    skip();
+  }
+#ifdef MR_APP_TEST_SANITIZE
+  setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+#endif
+  char *dir = tt_tmpdir(), book[600], p[4][600];
+  snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
+  for (int i = 0; i < 4; i++) {
+    char name[32];
+    snprintf(name, sizeof name, "perf-%d.mrec", i);
+    snprintf(p[i], sizeof p[i], "%s", tt_path(dir, name));
+    performer(p[i], 2.0, 0.7 * i);
+  }
+  char *arg_a[] = { marionette, "run", STICK,    "--replay", p[0], "--replay", p[1],
+                    "--takes",  book,  "--name", "A",        "-t", "1.5",      NULL };
+  tt_output o;
+  run(arg_a, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  tt_output_free(&o);
+  char *argv[] = { xvfb,       "-a",       "-s",     "-screen 0 640x480x24",
+                   marionette, "run",      STICK,    "--replay",
+                   p[2],       "--replay", p[3],     "--real-time",
+                   "--takes",  book,       "--over", "A",
+                   "--name",   "W",        "--keys", "0.2:f7,0.3:f2,0.5:f8,0.9:f8",
+                   "--size",   "160x96",   "--time", "1.1",
+                   NULL };
+  run(argv, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  print_message("%s", o.err);
+  assert_non_null(strstr(o.err, "glove 2: armed: thumb"));
+  assert_null(strstr(o.err, "glove 1: armed:"));
+  assert_non_null(strstr(o.err, "take 'W' is its armed channels over 'A' from "));
+  tt_output_free(&o);
+  mr_take_book b;
+  mr_take_error err;
+  assert_int_equal(mr_take_book_open(book, false, &b, &err), 0);
+  const mr_take_entry *e = mr_take_book_find(&b, "W");
+  assert_non_null(e);
+  mr_take_rec base[2], raw, merged[2];
+  for (size_t g = 0; g < 2; g++) {
+    load_glove(&b, "A", g, 2, &base[g]);
+    load_glove(&b, "W", g, 2, &merged[g]);
+  }
+  load_glove(&b, "W-raw", 1, 2, &raw);
+  assert_int_equal(base[0].len, merged[0].len);
+  assert_memory_equal(base[0].data, merged[0].data, base[0].len);
+  assert_true(memcmp(base[1].data, merged[1].data, merged[1].len) != 0);
+  if (mr_take_punch_rec(&base[1], &raw, 0x1, e->t0, e->t1, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(base[1].len, merged[1].len);
+  assert_memory_equal(base[1].data, merged[1].data, merged[1].len);
+  for (size_t g = 0; g < 2; g++) {
+    mr_take_rec_free(&base[g]);
+    mr_take_rec_free(&merged[g]);
+  }
+  mr_take_rec_free(&raw);
+  mr_take_book_close(&b);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 static double wall_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -342,6 +423,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(run_punch_stores_the_raw_take_and_the_merge_of_its_armed_channels),
     cmocka_unit_test(bad_take_options_exit_2_with_one_line),
     cmocka_unit_test(in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book),
+    cmocka_unit_test(in_the_window_f7_then_f2_arms_the_second_gloves_thumb),
     cmocka_unit_test(frames_written_over_a_second_pass_follow_the_first),
     cmocka_unit_test(the_speed_option_runs_show_time_at_half_the_wall_clock),
   };
