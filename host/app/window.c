@@ -7,6 +7,7 @@
 #include "window.h"
 
 #include "stage_opts.h"
+#include "takes_osd.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -245,18 +246,6 @@ static void osd_rates(mr_live *lv, const mr_scheduler_stats *s) {
   lv->osd_steps = s->steps;
 }
 
-/* The fingers armed (from the live glove) and those the take plays, as
- * letters: thumb, index, middle, ring, little; '-' elsewhere. */
-static void channel_letters(unsigned armed, char live[6], char take[6]) {
-  static const char letters[] = "TIMRL";
-  for (int c = 0; c < 5; c++) {
-    bool on = (armed & (1u << c)) != 0;
-    live[c] = on ? letters[c] : '-';
-    take[c] = on ? '-' : letters[c];
-  }
-  live[5] = take[5] = '\0';
-}
-
 void mr_live_set_takes(mr_live *lv, const char *beneath) {
   snprintf(lv->beneath, sizeof lv->beneath, "%s", beneath != NULL ? beneath : "");
   lv->armed_seen = false;
@@ -268,12 +257,14 @@ static void osd_lines(mr_live *lv, const mr_show_frame *f) {
   osd_rates(lv, &s);
   uint64_t skipped = s.frames_simulated > lv->drawn ? s.frames_simulated - lv->drawn : 0;
   mr_stageview_osd_clear(sv);
-  char speed[32] = "";
-  if (lv->speed < 1.0) snprintf(speed, sizeof speed, "  SPEED %.0f %%", lv->speed * 100.0);
-  mr_stageview_osd(sv, "t %.2f s  %.0f fps  dt %.1f ms%s%s%s", f->t, lv->fps, lv->dt_mean * 1e3,
-                   lv->paused ? "  PAUSED" : "", speed, f->recording ? "  REC" : "");
-  if (lv->beneath[0] != '\0')
-    mr_stageview_osd(sv, "over %.20s  lag %.0f ms  skip %llu", lv->beneath, s.latency_p50 * 1e3,
+  const mr_takes_osd to = { lv->speed, f->recording, lv->beneath, lv->glove_sel };
+  char text[MR_OSD_LINE_MAX];
+  mr_takes_osd_marks(&to, text, sizeof text);
+  mr_stageview_osd(sv, "t %.2f s  %.0f fps  dt %.1f ms%s%s", f->t, lv->fps, lv->dt_mean * 1e3,
+                   lv->paused ? "  PAUSED" : "", text);
+  mr_takes_osd_beneath(&to, text, sizeof text);
+  if (text[0] != '\0')
+    mr_stageview_osd(sv, "%s  lag %.0f ms  skip %llu", text, s.latency_p50 * 1e3,
                      (unsigned long long)skipped);
   else
     mr_stageview_osd(sv, "lag %.0f/%.0f ms  skip %llu  resets %llu", s.latency_p50 * 1e3,
@@ -288,10 +279,8 @@ static void osd_lines(mr_live *lv, const mr_show_frame *f) {
     if (r.samples > 0 && isfinite(late))
       snprintf(lateness, sizeof lateness, " %.0f ms late", late * 1e3);
     if (v->layered) {
-      char live[6], take[6];
-      channel_letters(v->armed, live, take);
-      mr_stageview_osd(sv, "glove %zu%s live %s take %s%s", g + 1, g == lv->glove_sel ? "*" : "",
-                       live, take, lateness);
+      mr_takes_osd_glove(&to, g, v->armed, text, sizeof text);
+      mr_stageview_osd(sv, "%s%s", text, lateness);
       continue;
     }
     mr_stageview_osd(sv, "glove %zu%s %s%s", g + 1, lv->manual_on && g == 0 ? " keys" : "",
