@@ -20,32 +20,28 @@ static const sub SUBS[] = {
   { "list", "list BOOK [--all]", "the takes: name, duration, gloves, how each was made", "--all ",
     0, 0 },
   { "add", "add BOOK FILE.mrec... [--name NAME] [--move]",
-    "add a recorded take, one .mrec per glove in glove order (the book is made if new);\n"
-    "copied in, or with --move moved in",
-    "--name --move ", 1, MR_TAKE_MAX_GLOVES },
+    "a recorded take, one .mrec per glove in glove order (makes the book)", "--name --move ", 1,
+    MR_TAKE_MAX_GLOVES },
   { "punch", "punch BOOK BASE OVER --arm G:F[,G:F...] --in S --out S [--name NAME]",
-    "a new take: BASE with the armed channels from OVER between --in and --out\n"
-    "(F: 0..4 or thumb, index, middle, ring, little)",
+    "a new take: BASE, the armed channels from OVER between --in and --out",
     "--arm --in --out --name ", 2, 2 },
   { "split", "split BOOK NAME --at S [--name FIRST] [--name2 SECOND]",
-    "two new takes, before and from S; the second starts at 0 with the INFO in effect",
-    "--at --name --name2 ", 1, 1 },
+    "two new takes, before S and from S on; the second's times start at 0", "--at --name --name2 ",
+    1, 1 },
   { "trim", "trim BOOK NAME --from S --to S [--name NAME]",
-    "a new take of [from, to), starting at 0 with the INFO in effect", "--from --to --name ", 1,
-    1 },
+    "a new take of [from, to), its times starting at 0", "--from --to --name ", 1, 1 },
   { "delete", "delete BOOK NAME", "hide a take from the list; its files stay (see restore)", "", 1,
     1 },
   { "restore", "restore BOOK NAME", "bring a deleted take back", "", 1, 1 },
   { "rename", "rename BOOK NAME NEW", "rename a take in the list; its files stay", "", 2, 2 },
-  { "smooth",
-    "smooth BOOK NAME [--min-cutoff HZ] [--beta B] [--d-cutoff HZ] [--channels G:F,...] "
-    "[--name NAME]",
-    "a new take, a One Euro filter on the chosen channels (default all; 1 Hz, 0, 1 Hz)",
+  { "smooth", "smooth BOOK NAME [--channels G:F,...] [FILTER OPTIONS] [--name NAME]",
+    "a new take, the channels (default all) through a One Euro filter",
     "--min-cutoff --beta --d-cutoff --channels --name ", 1, 1 },
   { "offset", "offset BOOK NAME --channel G:F=S [--channel ...] [--name NAME]",
-    "a new take, each given channel at t holding its value at t - S", "--channel --name ", 1, 1 },
+    "a new take, each channel given played S s later (S < 0: earlier)", "--channel --name ", 1, 1 },
   { "scale", "scale BOOK NAME --factor F [--name NAME]",
-    "a new take, every input time multiplied by F (> 0)", "--factor --name ", 1, 1 },
+    "a new take, its times multiplied by F > 0: 2 plays it at half speed", "--factor --name ", 1,
+    1 },
   { "show", "show BOOK NAME", "a take and its lineage, back to its recorded takes", "", 1, 1 },
 };
 enum { N_SUBS = sizeof SUBS / sizeof SUBS[0], MAX_POS = MR_TAKE_MAX_GLOVES + 2 };
@@ -56,24 +52,29 @@ void mr_cmd_take_usage(void) {
          "Takes are never rewritten: every operation makes a new take that names its\n"
          "source, and delete only hides one. Times are seconds of show time. New takes\n"
          "are named --name, else the first free take-N. Elsewhere, BOOK:NAME names a\n"
-         "take wherever a .mrec is taken (run --replay, render --take, export).\n\n"
+         "take wherever a .mrec is taken (run --replay, render --take, export).\n"
+         "A channel G:F is glove G, counted from 0 in the take's glove order (the\n"
+         "display's glove 1 is 0), and finger F: 0..4 or thumb, index, middle, ring,\n"
+         "little. Takes are recorded and punched in with marionette run --takes.\n\n"
          "subcommands:\n");
   for (int i = 0; i < N_SUBS; i++) printf("  %s\n      %s\n", SUBS[i].synopsis, SUBS[i].what);
   printf("\noptions (each subcommand takes those its line shows):\n"
          "  --all               list: deleted takes too\n"
          "  --name NAME         the new take's name (split: the first part's)\n"
          "  --name2 NAME        split: the second part's name\n"
-         "  --move              add: move the files in instead of copying them\n"
+         "  --move              add: move the files in (removing them) instead of copying\n"
          "  --arm G:F[,G:F...]  punch: the armed channels\n"
          "  --in S, --out S     punch: the punch-in and punch-out times\n"
          "  --at S              split: where to cut\n"
          "  --from S, --to S    trim: what to keep, [from, to)\n"
-         "  --min-cutoff HZ     smooth: the One Euro filter's minimum cutoff (default 1)\n"
-         "  --beta B            smooth: its speed coefficient (default 0)\n"
-         "  --d-cutoff HZ       smooth: its derivative's cutoff (default 1)\n"
+         "  --min-cutoff HZ     smooth's FILTER OPTIONS: the One Euro filter's minimum\n"
+         "                      cutoff (default 1; lower: smoother, with more lag),\n"
+         "  --beta B            its speed coefficient (default 0; more: less lag in\n"
+         "                      fast moves),\n"
+         "  --d-cutoff HZ       its derivative's cutoff (default 1)\n"
          "  --channels G:F,...  smooth: the channels to smooth (default all)\n"
-         "  --channel G:F=S     offset: a channel and its offset in s; repeat for more\n"
-         "  --factor F          scale: the time factor, > 0\n"
+         "  --channel G:F=S     offset: a channel and its delay in s; repeat for more\n"
+         "  --factor F          scale: the time factor, > 0 (over 1: longer and slower)\n"
          "  -h, --help          this help; after a subcommand, its own\n"
          "\nSee marionette(1), \"take\".\n");
 }
