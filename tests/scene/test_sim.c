@@ -58,7 +58,7 @@ static void help_lists_subcommands_and_flags(void **state) {
   assert_int_equal(p.status, 2);
   assert_string_equal(p.err,
                       "marionette: unknown command 'dance'; expected one of: sim, run, render, "
-                      "export, take, list-ports, calibrate (see --help)\n");
+                      "watch, export, take, list-ports, calibrate (see --help)\n");
   tt_output_free(&p);
 }
 
