@@ -12,6 +12,7 @@
 #include <math.h>
 #include <mosquitto.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,12 +45,14 @@ static long long num(const char *text, const char *key) {
 }
 
 /* A client of the test's own on TOPIC and TOPIC/scene: when the first
- * frame and the first non-empty scene came. Written on libmosquitto's
- * thread, read once its loop stopped. */
+ * frame and the first non-empty scene came, written on libmosquitto's
+ * thread and read once its loop stopped; the frames so far, read while
+ * it runs. */
 typedef struct probe {
   struct mosquitto *m;
   const char *topic;
   double first_frame, first_scene; /* 0: none */
+  atomic_int frames;
 } probe;
 
 static void probe_message(struct mosquitto *m, void *user, const struct mosquitto_message *msg) {
@@ -58,6 +61,7 @@ static void probe_message(struct mosquitto *m, void *user, const struct mosquitt
   bool scene = strstr(msg->topic, "/scene") != NULL;
   double *when = scene ? &p->first_scene : &p->first_frame;
   if (msg->payloadlen > 0 && *when == 0) *when = now_s();
+  if (!scene) atomic_fetch_add(&p->frames, 1);
 }
 
 static void probe_connected(struct mosquitto *m, void *user, int rc) {
@@ -86,8 +90,8 @@ static void probe_stop(probe *p) {
   mosquitto_destroy(p->m);
 }
 
-/* The show publishes 10 s; 2.5 s in the broker is killed, and 1.5 s later
- * started again on its port. */
+/* The show publishes 10 s; a second after its first frame the broker is
+ * killed, and 1.5 s later started again on its port. */
 static void a_broker_restart_mid_show_is_weathered_by_the_show_and_its_watcher(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -108,7 +112,13 @@ static void a_broker_restart_mid_show_is_weathered_by_the_show_and_its_watcher(v
   const char *run_argv[] = { marionette, "run",        HUMANOID, "--glove", take_src, "--publish",
                              url,        "--headless", "--time", "10",      "-q",     NULL };
   pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
-  sleep_s(2.5);
+  /* The show publishing (however long it took to start), then 1 s of it. */
+  probe first = { .topic = "show/r" };
+  probe_start(&first, b.port);
+  for (double t0 = now_s(); atomic_load(&first.frames) == 0 && now_s() - t0 < 20;) sleep_s(0.05);
+  assert_true(atomic_load(&first.frames) > 0);
+  probe_stop(&first);
+  sleep_s(1.0);
   int port = b.port;
   tb_broker_stop(&b, 1);
   sleep_s(1.5);
