@@ -109,7 +109,7 @@ static void on_disconnect(struct mosquitto *m, void *user, int rc,
     /* Closed before the broker answered: a TLS handshake that failed (the
      * log said), a socket's error, or without either only what is known:
      * no broker answered there. */
-    char why[200];
+    char why[300]; /* the longest 210 */
     snprintf(why, sizeof why,
              "no MQTT answer from %.60s:%d (no broker running there, the network not reaching "
              "it, or a server of another kind%s)",
