@@ -44,6 +44,20 @@ static long long num(const char *text, const char *key) {
   return atoll(v);
 }
 
+/* The seq of the first and the last frame in a watcher's --dump. */
+static void seqs_of(const char *path, long long *first, long long *last) {
+  char *text = tt_read_file(path, NULL);
+  assert_non_null(text);
+  *first = atoll(text);
+  for (char *line = text; *line != '\0';) {
+    *last = atoll(line);
+    char *end = strchr(line, '\n');
+    if (end == NULL) break;
+    line = end + 1;
+  }
+  free(text);
+}
+
 /* A client of the test's own on TOPIC and TOPIC/scene: when the first
  * frame and the first non-empty scene came, written on libmosquitto's
  * thread and read once its loop stopped; the frames so far, read while
@@ -97,18 +111,20 @@ static void a_broker_restart_mid_show_is_weathered_by_the_show_and_its_watcher(v
   char *dir = tt_tmpdir();
   tb_broker b;
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
-  char url[200], take_src[600], pngs[600];
+  char url[200], take_src[600], pngs[600], dump[600];
   snprintf(url, sizeof url, "mqtt://127.0.0.1:%d/show/r", b.port);
   snprintf(take_src, sizeof take_src, "file:%s", tt_path(dir, "glove.bin"));
   snprintf(pngs, sizeof pngs, "%s", tt_path(dir, "pictures"));
+  snprintf(dump, sizeof dump, "%s", tt_path(dir, "watch.dump"));
   const char *gen_argv[] = { glove_gen, "-o", take_src + 5, "--fast", "-d", "12", NULL };
   assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
-  /* Drawn (160x90, into PNGs every 1000th) so that held pictures count. */
-  const char *watch_argv[] = { marionette, "watch", url,        "--headless", "--time",
-                               "11",       "-o",    pngs,       "--size",     "160x90",
-                               "--every",  "1000",  "--no-mp4", "-q",         NULL };
+  /* Drawn (160x90, into PNGs every 1000th) so that held pictures count;
+   * until the show is over (SIGINT), each frame's seq in the dump. */
+  const char *watch_argv[] = { marionette, "watch",  url,        "--headless", "-o",
+                               pngs,       "--size", "160x90",   "--every",    "1000",
+                               "--dump",   dump,     "--no-mp4", "-q",         NULL };
   pid_t watch = tt_spawn(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"));
-  sleep_s(0.5);
+  sleep_s(1.0);
   const char *run_argv[] = { marionette, "run",        HUMANOID, "--glove", take_src, "--publish",
                              url,        "--headless", "--time", "10",      "-q",     NULL };
   pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
@@ -133,6 +149,8 @@ static void a_broker_restart_mid_show_is_weathered_by_the_show_and_its_watcher(v
                               "1",        "--wait", "3", "-q",         NULL };
   assert_int_equal(tt_run(late_argv, tt_path(dir, "late.out"), tt_path(dir, "late.err"), 30), 0);
   assert_int_equal(tt_wait(show, 60), 0);
+  sleep_s(0.5); /* the show's last frames through */
+  kill(watch, SIGINT);
   assert_int_equal(tt_wait(watch, 60), 0);
   tb_broker_stop(&b, 0);
 
@@ -153,12 +171,15 @@ static void a_broker_restart_mid_show_is_weathered_by_the_show_and_its_watcher(v
   assert_true(away > 30); /* 1.5 s at 60 fps, less the reconnection's */
   assert_true(num(run_out, "published scene") > 0);
   assert_non_null(strstr(run_out, "sent 2 times"));
-  /* The watcher: every frame received or counted lost, the last one too
-   * (after the gap: it watched on), the gap held. */
+  /* The watcher: every frame from its first received or counted lost, the
+   * show's last one received (after the gap: it watched on), the gap held. */
   long long received = num(watch_out, "frames received"), lost = num(watch_out, "frames lost");
-  if (received + lost != sent + behind + away || lost < away)
-    fail_msg("received %lld + lost %lld, the show's frames %lld (%lld away):\n%s", received, lost,
-             sent + behind + away, away, watch_out);
+  long long first_seq = -1, last_seq = -1;
+  seqs_of(dump, &first_seq, &last_seq);
+  if (received + lost != last_seq - first_seq + 1 || last_seq != sent + behind + away - 1 ||
+      lost < away)
+    fail_msg("received %lld + lost %lld, seq %lld..%lld; the show's frames %lld (%lld away):\n%s",
+             received, lost, first_seq, last_seq, sent + behind + away, away, watch_out);
   assert_int_equal(num(watch_out, "broker losses"), 1);
   assert_int_equal(tt_field(watch_out, "pictures", v, sizeof v), 0);
   long long pictures = 0, held = 0;
