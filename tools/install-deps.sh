@@ -34,8 +34,9 @@ PACKAGES=(
   # Gloves over the network (host/net): libmosquitto, the MQTT v5 client
   # with TLS; mosquitto, the broker the tests start (its service is not
   # needed: tests run their own on free loopback ports); openssl, which
-  # makes the tests' throwaway certificates.
-  libmosquitto-dev mosquitto openssl
+  # makes the tests' throwaway certificates; Xlib, with which the watcher's
+  # window test presses its keys.
+  libmosquitto-dev mosquitto openssl libx11-dev
   # marionette-bench: its plots (SVG and PNG), and the instruction counts
   # of `make bench-count`.
   gnuplot-nox valgrind

@@ -77,7 +77,8 @@ typedef struct watcher {
   size_t n_written;
   mr_watch_buffer buf;
   mr_watch_stage ws;
-  double *points;
+  double *points; /* room for points_n */
+  size_t points_n;
   FILE *dump;
   double *lags;
   size_t n_lags, cap_lags;
@@ -296,7 +297,11 @@ static void on_frame(watcher *w, const mr_state_event *ev, double now) {
 /* One picture at the show time the clock says. */
 static int draw(watcher *w, double now) {
   if (!w->staged || w->buf.count == 0) return 0;
-  if (w->points == NULL) w->points = malloc(3 * (w->buf.n + 1) * sizeof(double));
+  if (w->points == NULL || w->points_n != w->buf.n) { /* the buffer may start again */
+    free(w->points);
+    w->points = malloc(3 * (w->buf.n + 1) * sizeof(double));
+    w->points_n = w->buf.n;
+  }
   if (w->points == NULL) return snprintf(w->msg, sizeof w->msg, "out of memory"), -1;
   double t = now - w->anchor;
   int got = mr_watch_buffer_at(&w->buf, t, w->points);

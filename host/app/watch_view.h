@@ -1,6 +1,5 @@
-/* `marionette watch`: the frames received, kept a moment so that the
- * pictures can be drawn between them (the playout buffer), and the stage
- * they are drawn on (a window, or headless into frames as render's). */
+/* `marionette watch`: the stage the frames are drawn on (a window, or
+ * headless into frames as render's); the playout buffer is watch_buffer.h. */
 #ifndef MR_WATCH_VIEW_H
 #define MR_WATCH_VIEW_H
 
@@ -12,27 +11,7 @@
 #include "mr_scene.h"
 #include "stage_opts.h"
 #include "stage_view.h"
-
-enum { MR_WATCH_KEEP = 16 };
-
-/* The newest frames received, oldest first by show time. */
-typedef struct mr_watch_buffer {
-  double t[MR_WATCH_KEEP];
-  double *xyz[MR_WATCH_KEEP]; /* 3 n each, owned */
-  size_t n;                   /* points per frame */
-  int count, head;            /* ring: head is the oldest */
-} mr_watch_buffer;
-
-/* A frame at show time t (a frame older than the newest is dropped:
- * returns -1, as when memory runs out); 0 when kept. */
-int mr_watch_buffer_push(mr_watch_buffer *b, double t, const double *xyz, size_t n);
-/* The points at show time t into out (3 n): between the two frames
- * around t, linearly; the newest held past it (a loss, or a stall), the
- * oldest before it. 0 drawn between frames, 1 held, -1 no frame yet. */
-int mr_watch_buffer_at(const mr_watch_buffer *b, double t, double *out);
-/* The newest frame's time; -1 with none. */
-double mr_watch_buffer_newest(const mr_watch_buffer *b);
-void mr_watch_buffer_free(mr_watch_buffer *b);
+#include "watch_buffer.h"
 
 /* Where the frames are drawn. */
 typedef struct mr_watch_stage {

@@ -8,11 +8,14 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <arpa/inet.h>
 #include <math.h>
+#include <netinet/in.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -444,6 +447,86 @@ static void a_broker_restart_holds_the_pose_and_the_glove_is_back_within_2_s(voi
   free(dir);
 }
 
+/* A show started while no broker listens: its glove waits, saying why
+ * (the refused connection), and is connected within 2 s of the broker's
+ * start and live once a relay publishes; so is the glove of a `marionette
+ * run` started the same way, which drives its show. */
+static void a_glove_started_before_its_broker_connects_once_the_broker_is_up(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), source[300];
+  tb_broker b;
+  assert_int_equal(tb_broker_start(&b, mosquitto, dir, "probe", 0, NULL), 0);
+  int port = b.port; /* a free port, nothing listening on it once stopped */
+  tb_broker_stop(&b, 0);
+  const char *url = url_of(&b, NULL, "glove/early", NULL);
+  const char *run_argv[] = { marionette,   "run",    PUPPET, "--glove", url,
+                             "--headless", "--time", "7",    "-q",      NULL };
+  pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
+  mr_glove_def d = mr_default_glove_def();
+  snprintf(d.source, sizeof d.source, "%s", url);
+  mr_glove *g = NULL;
+  assert_int_equal(mr_glove_create(&d, &g, NULL, 0), MR_GLOVE_OK);
+  assert_true(poll_until(g, MR_GLOVE_LIVE, 1.5) < 0);
+  char said[600];
+  mr_glove_describe(g, now_s(), said, sizeof said);
+  if (strstr(said, "Connection refused") == NULL) fail_msg("%s", said);
+  assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", port, NULL), 0);
+  double up = now_s();
+  mr_net_counters nc = { 0 };
+  while (now_s() - up < 4 && nc.connects == 0) {
+    mr_glove_poll(g, now_s(), 20);
+    mr_glove_net_counters(g, &nc);
+  }
+  double connected = now_s() - up;
+  if (nc.connects != 1 || connected > 2.0)
+    fail_msg("%d connections %.2f s after the broker came", (int)nc.connects, connected);
+  pid_t gen = start_gen(dir, "12", "E2", source, sizeof source);
+  pid_t relay = start_relay(dir, source, url, "relay");
+  assert_true(poll_until(g, MR_GLOVE_LIVE, 5) >= 0);
+  mr_glove_destroy(g);
+  assert_int_equal(tt_wait(show, 60), 0);
+  char *out = read_in(dir, "run.out"), samples[64] = "";
+  tt_field(out, "glove samples", samples, sizeof samples);
+  if (strstr(out, "glove: live\n") == NULL || atoll(samples) < 200) fail_msg("%s", out);
+  free(out);
+  kill(gen, SIGTERM);
+  tt_wait(gen, 30);
+  tt_wait(relay, 30);
+  tb_broker_stop(&b, 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* A port where a server of another kind takes the connection and closes
+ * it before any MQTT answer (no error number to tell): the glove says
+ * that no MQTT answer came from there, and what that may mean. */
+static void a_server_that_closes_without_an_mqtt_answer_is_named_as_no_broker(void **state) {
+  (void)state;
+  int ls = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK, 0);
+  struct sockaddr_in a = { .sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK) };
+  socklen_t len = sizeof a;
+  assert_int_equal(bind(ls, (struct sockaddr *)&a, sizeof a), 0);
+  assert_int_equal(listen(ls, 4), 0);
+  assert_int_equal(getsockname(ls, (struct sockaddr *)&a, &len), 0);
+  tb_broker none = { .port = ntohs(a.sin_port) };
+  mr_glove_def d = mr_default_glove_def();
+  snprintf(d.source, sizeof d.source, "%s", url_of(&none, NULL, "glove/x", NULL));
+  mr_glove *g = NULL;
+  assert_int_equal(mr_glove_create(&d, &g, NULL, 0), MR_GLOVE_OK);
+  char said[600], want[100];
+  snprintf(want, sizeof want, "no MQTT answer from 127.0.0.1:%d (no broker running there",
+           none.port);
+  for (double t0 = now_s(); now_s() - t0 < 3;) {
+    mr_glove_poll(g, now_s(), 20);
+    int c = accept(ls, NULL, NULL);
+    if (c >= 0) close(c);
+  }
+  mr_glove_describe(g, now_s(), said, sizeof said);
+  if (strstr(said, want) == NULL) fail_msg("%s", said);
+  mr_glove_destroy(g);
+  close(ls);
+}
+
 /* `marionette calibrate` over the broker: its commands go down TOPIC/cmd
  * through the relay to the glove, the answers come back on TOPIC/reply,
  * and the range it saved on the glove is printed. */
@@ -505,6 +588,9 @@ int main(int argc, char **argv) {
                               tb_broker_stop_all),
     cmocka_unit_test_teardown(calibration_commands_reach_a_relayed_glove_and_its_answers_come_back,
                               tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_glove_started_before_its_broker_connects_once_the_broker_is_up,
+                              tb_broker_stop_all),
+    cmocka_unit_test(a_server_that_closes_without_an_mqtt_answer_is_named_as_no_broker),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

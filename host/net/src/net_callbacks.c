@@ -24,7 +24,7 @@ static void refuse(mr_net *n, const char *what, const char *why) {
   if (n->refused) return;
   n->refused = true;
   n->answered = true;
-  snprintf(n->fatal, sizeof n->fatal, "%.120s: %.150s%s%.100s", n->where, what, why[0] ? ": " : "",
+  snprintf(n->fatal, sizeof n->fatal, "%.120s: %.150s%s%.200s", n->where, what, why[0] ? ": " : "",
            why);
 }
 
@@ -98,19 +98,26 @@ static void on_disconnect(struct mosquitto *m, void *user, int rc,
   (void)m;
   (void)props;
   /* The network thread's own errno, read at once: why a socket failed. */
-  const char *sys = rc == MOSQ_ERR_ERRNO ? strerror(errno) : NULL;
+  int sys_errno = errno;
+  const char *sys = rc == MOSQ_ERR_ERRNO && sys_errno != 0 ? strerror(sys_errno) : NULL;
   pthread_mutex_lock(&n->mu);
   if (n->connected) {
     n->connected = false;
     n->c.losses++;
     n->lost_pending++;
   } else if (!n->answered) {
-    /* Closed before the broker answered: a TLS handshake that failed, or
-     * something at the port that is no MQTT broker. */
+    /* Closed before the broker answered: a TLS handshake that failed (the
+     * log said), a socket's error, or without either only what is known:
+     * no broker answered there. */
+    char why[300]; /* the longest 210 */
+    snprintf(why, sizeof why,
+             "no MQTT answer from %.60s:%d (no broker running there, the network not reaching "
+             "it, or a server of another kind%s)",
+             n->url.host, n->url.port, n->url.tls ? "" : ", perhaps one that wants mqtts://");
     refuse(n, "the connection closed before the broker answered",
            n->last_log[0] ? n->last_log
            : sys != NULL  ? sys
-                          : "is it an MQTT broker, and mqtt:// or mqtts:// as it?");
+                          : why);
   }
   wake(n);
 }

@@ -48,7 +48,7 @@ struct mr_net {
   bool refused;     /* for good: fatal says why */
   bool probe_due;   /* the next data message goes at QoS 1, to learn the ACL's answer */
   int lost_pending; /* losses not yet told by mr_net_read */
-  char fatal[400];
+  char fatal[480];
   char last_log[200]; /* libmosquitto's last error line (a TLS failure) */
   mr_net_counters c;
   uint64_t written; /* publishes the network thread wrote (or had answered) */

@@ -118,8 +118,10 @@ static bool take_frame(mr_state_in *in, size_t len, mr_state_event *ev) {
   if (mr_state_frame_decode(in->buf, len, m) != MR_STATE_OK) return in->c.corrupt++, false;
   if (in->have_scene && m->scene_id != in->scene_id) return in->c.stale++, false;
   if (in->have_seq && m->seq < in->next_seq && !in->scene_since) return in->c.stale++, false;
-  if (in->have_seq && m->seq > in->next_seq && !in->scene_since)
-    in->c.lost += m->seq - in->next_seq;
+  /* After a SCENE a show restarted counts from 0 again (not stale, above);
+   * a gap forward is the same show's loss all the same, as across a broker
+   * restart, after which the show publishes its SCENE again. */
+  if (in->have_seq && m->seq > in->next_seq) in->c.lost += m->seq - in->next_seq;
   in->have_seq = true;
   in->scene_since = false;
   in->next_seq = m->seq + 1;
