@@ -98,6 +98,7 @@ typedef struct seen {
   bool layered[MAX_FRAMES];
   mr_glove_state state[MAX_FRAMES];
   mr_show_glove_view last; /* glove 1 as the last frame showed it */
+  char describe[400];      /* glove 1 in the show's result */
 } seen;
 
 static void frame_done(void *user, const mr_show_frame *f) {
@@ -425,6 +426,7 @@ static void perform_slowly(const mr_scene *sc, const stream *w, double secs, see
   }
   mr_show_result res;
   if (mr_show_runner_finish(r, &res, &err) != MR_SHOW_OK) fail_msg("%s", err.text);
+  snprintf(s->describe, sizeof s->describe, "%s", res.glove[0].describe);
   mr_show_result_free(&res);
   close(fds[0]);
   close(fds[1]);
@@ -466,11 +468,38 @@ static void at_a_quarter_speed_a_silent_glove_is_lost_on_its_own_time(void **sta
   mr_scene_free(&sc);
 }
 
+/* At 25 %, a glove silent from 1 s of its own time to the show's end
+ * (0.95 s of show, 3.8 s of its own) is told in the result as lost on its
+ * own clock: since 1.49 s, 2.3 s before the end, not at a time before
+ * the glove's last news. */
+static void at_a_quarter_speed_the_result_tells_a_lost_glove_on_its_own_time(void **state) {
+  (void)state;
+  static stream w;
+  memset(&w, 0, sizeof w);
+  put_info(&w, 1700000u);
+  for (int i = 0; i < 100; i++) {
+    double v[5];
+    uint64_t t_ns = (uint64_t)i * 10000000u + 3700000u;
+    for (int c = 0; c < 5; c++) v[c] = wave(c, (double)t_ns * 1e-9);
+    put_sample(&w, t_ns, v);
+  }
+  mr_scene sc;
+  load(&sc);
+  static seen s;
+  memset(&s, 0, sizeof s);
+  perform_slowly(&sc, &w, 0.95, &s);
+  print_message("%s\n", s.describe);
+  if (strstr(s.describe, "lost 2.3 s ago") == NULL)
+    fail_msg("expected lost 2.3 s ago: %s", s.describe);
+  mr_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(armed_channels_follow_the_live_glove_and_the_rest_the_take_beneath),
     cmocka_unit_test(a_take_performed_at_a_quarter_speed_replays_as_its_input_scaled),
     cmocka_unit_test(at_a_quarter_speed_a_silent_glove_is_lost_on_its_own_time),
+    cmocka_unit_test(at_a_quarter_speed_the_result_tells_a_lost_glove_on_its_own_time),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

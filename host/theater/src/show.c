@@ -425,8 +425,11 @@ static void gather(const show *s, mr_show_result *result) {
     mr_glove_latest(g, &r);
     o->samples = r.samples;
     o->over_net = mr_glove_net_counters(g, &o->net);
-    /* The gloves run on show time. */
-    mr_glove_describe(g, result->frames.sim_time, o->describe, sizeof o->describe);
+    /* At the glove's own time: show time, or the glove clock's for a live
+     * glove read at its own pace (slow motion), which the show time would
+     * put before the glove's last news. */
+    double at = s->gloves[i].paced ? s->gloves[i].now : result->frames.sim_time;
+    mr_glove_describe(g, at, o->describe, sizeof o->describe);
   }
   result->glove_of = calloc(s->n_frames > 0 ? s->n_frames : 1, sizeof *result->glove_of);
   if (result->glove_of != NULL) {
