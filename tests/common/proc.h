@@ -7,6 +7,13 @@
 #include <stddef.h>
 #include <sys/types.h>
 
+/* --- time ----------------------------------------------------------------- */
+
+/* The monotonic clock in seconds, for bounding a test's waits. */
+double tt_now_s(void);
+/* Sleeps s seconds (s >= 0). */
+void tt_sleep_s(double s);
+
 /* --- child processes ------------------------------------------------------ */
 
 /* Starts argv[0] with stdin from /dev/null and stdout and stderr sent to

@@ -28,17 +28,6 @@ static const char *glove_gen, *glove_dump, *marionette, *mosquitto, *mosquitto_p
 
 #define PUPPET MR_SOURCE_DIR "/host/scenes/puppet.yaml"
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static void sleep_s(double s) {
-  struct timespec ts = { (time_t)s, (long)((s - floor(s)) * 1e9) };
-  nanosleep(&ts, NULL);
-}
-
 static const char *url_of(const tb_broker *b, const char *user, const char *topic,
                           const char *query) {
   static char url[4][1000];
@@ -101,7 +90,7 @@ static void a_relayed_glove_drives_the_show_and_its_losses_are_the_induced_ones(
   snprintf(out, sizeof out, "%s", tt_path(dir, "run.out"));
   snprintf(err, sizeof err, "%s", tt_path(dir, "run.err"));
   pid_t show = tt_spawn(argv, out, err);
-  sleep_s(1.5);
+  tt_sleep_s(1.5);
   uint8_t wire[GP_MAX_WIRE + 1];
   size_t n = bad_frame(wire, sizeof wire);
   for (int i = 0; i < 4; i++) assert_int_equal(tb_publish(b.port, "glove/1", wire, (int)n), 0);
@@ -162,7 +151,7 @@ static void garbage_and_oversized_messages_are_counted_and_the_glove_reads_on(vo
   pid_t reader = start_reader(dir, url, "1", "reader");
   pid_t gen = start_gen(dir, "2.5", "B2", source, sizeof source);
   pid_t relay = start_relay(dir, source, url, "relay");
-  sleep_s(1.0);
+  tt_sleep_s(1.0);
   static uint8_t junk[20000];
   for (size_t i = 0; i < sizeof junk; i++) junk[i] = (uint8_t)(1 + (i * 37 + 11) % 255);
   for (int i = 0; i < 3; i++) assert_int_equal(tb_publish(b.port, "glove/2", junk + i, 40), 0);
@@ -390,10 +379,10 @@ static void a_wrong_password_and_a_viewer_publishing_are_refused(void **state) {
 /* Polls g for up to secs until it is in state want: the time it took, or
  * a negative number when it never was. */
 static double poll_until(mr_glove *g, mr_glove_state want, double secs) {
-  double t0 = now_s();
-  while (now_s() - t0 < secs) {
-    mr_glove_poll(g, now_s(), 20);
-    if (mr_glove_get_state(g) == want) return now_s() - t0;
+  double t0 = tt_now_s();
+  while (tt_now_s() - t0 < secs) {
+    mr_glove_poll(g, tt_now_s(), 20);
+    if (mr_glove_get_state(g) == want) return tt_now_s() - t0;
   }
   return -1;
 }
@@ -468,16 +457,16 @@ static void a_glove_started_before_its_broker_connects_once_the_broker_is_up(voi
   assert_int_equal(mr_glove_create(&d, &g, NULL, 0), MR_GLOVE_OK);
   assert_true(poll_until(g, MR_GLOVE_LIVE, 1.5) < 0);
   char said[600];
-  mr_glove_describe(g, now_s(), said, sizeof said);
+  mr_glove_describe(g, tt_now_s(), said, sizeof said);
   if (strstr(said, "Connection refused") == NULL) fail_msg("%s", said);
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", port, NULL), 0);
-  double up = now_s();
+  double up = tt_now_s();
   mr_net_counters nc = { 0 };
-  while (now_s() - up < 4 && nc.connects == 0) {
-    mr_glove_poll(g, now_s(), 20);
+  while (tt_now_s() - up < 4 && nc.connects == 0) {
+    mr_glove_poll(g, tt_now_s(), 20);
     mr_glove_net_counters(g, &nc);
   }
-  double connected = now_s() - up;
+  double connected = tt_now_s() - up;
   if (nc.connects != 1 || connected > 2.0)
     fail_msg("%d connections %.2f s after the broker came", (int)nc.connects, connected);
   pid_t gen = start_gen(dir, "12", "E2", source, sizeof source);
@@ -516,12 +505,12 @@ static void a_server_that_closes_without_an_mqtt_answer_is_named_as_no_broker(vo
   char said[600], want[100];
   snprintf(want, sizeof want, "no MQTT answer from 127.0.0.1:%d (no broker running there",
            none.port);
-  for (double t0 = now_s(); now_s() - t0 < 3;) {
-    mr_glove_poll(g, now_s(), 20);
+  for (double t0 = tt_now_s(); tt_now_s() - t0 < 3;) {
+    mr_glove_poll(g, tt_now_s(), 20);
     int c = accept(ls, NULL, NULL);
     if (c >= 0) close(c);
   }
-  mr_glove_describe(g, now_s(), said, sizeof said);
+  mr_glove_describe(g, tt_now_s(), said, sizeof said);
   if (strstr(said, want) == NULL) fail_msg("%s", said);
   mr_glove_destroy(g);
   close(ls);

@@ -26,17 +26,6 @@ static const char *glove_gen, *marionette, *mosquitto;
 
 #define HUMANOID MR_SOURCE_DIR "/host/scenes/humanoid.yaml"
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static void sleep_s(double s) {
-  struct timespec ts = { (time_t)s, (long)((s - floor(s)) * 1e9) };
-  nanosleep(&ts, NULL);
-}
-
 /* The number of a "key: N ..." line of a summary; fails without it. */
 static long long num(const char *text, const char *key) {
   char v[200];
@@ -74,7 +63,7 @@ static void probe_message(struct mosquitto *m, void *user, const struct mosquitt
   probe *p = user;
   bool scene = strstr(msg->topic, "/scene") != NULL;
   double *when = scene ? &p->first_scene : &p->first_frame;
-  if (msg->payloadlen > 0 && *when == 0) *when = now_s();
+  if (msg->payloadlen > 0 && *when == 0) *when = tt_now_s();
   if (!scene) atomic_fetch_add(&p->frames, 1);
 }
 
@@ -124,32 +113,33 @@ static void a_broker_restart_mid_show_is_weathered_by_the_show_and_its_watcher(v
                                pngs,       "--size", "160x90",   "--every",    "1000",
                                "--dump",   dump,     "--no-mp4", "-q",         NULL };
   pid_t watch = tt_spawn(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"));
-  sleep_s(1.0);
+  tt_sleep_s(1.0);
   const char *run_argv[] = { marionette, "run",        HUMANOID, "--glove", take_src, "--publish",
                              url,        "--headless", "--time", "10",      "-q",     NULL };
   pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
   /* The show publishing (however long it took to start), then 1 s of it. */
   probe first = { .topic = "show/r" };
   probe_start(&first, b.port);
-  for (double t0 = now_s(); atomic_load(&first.frames) == 0 && now_s() - t0 < 20;) sleep_s(0.05);
+  for (double t0 = tt_now_s(); atomic_load(&first.frames) == 0 && tt_now_s() - t0 < 20;)
+    tt_sleep_s(0.05);
   assert_true(atomic_load(&first.frames) > 0);
   probe_stop(&first);
-  sleep_s(1.0);
+  tt_sleep_s(1.0);
   int port = b.port;
   tb_broker_stop(&b, 1);
-  sleep_s(1.5);
+  tt_sleep_s(1.5);
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker2", port, NULL), 0);
-  double back = now_s();
+  double back = tt_now_s();
   probe p = { .topic = "show/r" };
   probe_start(&p, port);
-  sleep_s(2.0);
+  tt_sleep_s(2.0);
   probe_stop(&p);
   /* A watcher that comes after the restart gets the scene again. */
   const char *late_argv[] = { marionette, "watch",  url, "--headless", "--time",
                               "1",        "--wait", "3", "-q",         NULL };
   assert_int_equal(tt_run(late_argv, tt_path(dir, "late.out"), tt_path(dir, "late.err"), 30), 0);
   assert_int_equal(tt_wait(show, 60), 0);
-  sleep_s(0.5); /* the show's last frames through */
+  tt_sleep_s(0.5); /* the show's last frames through */
   kill(watch, SIGINT);
   assert_int_equal(tt_wait(watch, 60), 0);
   tb_broker_stop(&b, 0);

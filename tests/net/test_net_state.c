@@ -26,11 +26,6 @@ static const char *glove_gen, *glove_dump, *marionette, *mosquitto;
 
 #define HUMANOID MR_SOURCE_DIR "/host/scenes/humanoid.yaml"
 
-static void sleep_s(double s) {
-  struct timespec ts = { (time_t)s, (long)((s - floor(s)) * 1e9) };
-  nanosleep(&ts, NULL);
-}
-
 static const char *url_of(const tb_broker *b, const char *topic) {
   static char url[4][300];
   static int k;
@@ -93,7 +88,7 @@ static void relay_start(relay *r, int port) {
   mosquitto_message_callback_set(r->m, relay_message);
   assert_int_equal(mosquitto_connect(r->m, "127.0.0.1", port, 5), MOSQ_ERR_SUCCESS);
   assert_int_equal(mosquitto_loop_start(r->m), MOSQ_ERR_SUCCESS);
-  sleep_s(0.3); /* subscribed before the show starts */
+  tt_sleep_s(0.3); /* subscribed before the show starts */
 }
 
 static void relay_stop(relay *r) {
@@ -210,7 +205,7 @@ a_watcher_sees_the_shows_particles_within_a_step_and_exactly_the_induced_losses(
                                "--every",    "20",     "--no-mp4",
                                "-q",         NULL };
   pid_t watch = tt_spawn(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"));
-  sleep_s(0.5);
+  tt_sleep_s(0.5);
   const char *run_argv[] = { marionette,
                              "run",
                              HUMANOID,
@@ -229,7 +224,7 @@ a_watcher_sees_the_shows_particles_within_a_step_and_exactly_the_induced_losses(
   /* The watcher ends a moment after the show's last frame, not at a time
    * of its own: under the sanitizers the show's start alone can take
    * seconds, and a watcher that left first would miss its last frames. */
-  sleep_s(1.0);
+  tt_sleep_s(1.0);
   kill(watch, SIGINT);
   assert_int_equal(tt_wait(watch, 60), 0);
   relay_stop(&r);
@@ -271,7 +266,7 @@ static void a_watcher_that_joins_late_gets_the_retained_scene(void **state) {
     "--time",   "4",   "-q",     NULL
   };
   pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
-  sleep_s(1.5);
+  tt_sleep_s(1.5);
   const char *watch_argv[] = { marionette,   "watch",  url_of(&b, "show/late"),
                                "--headless", "--time", "1.5",
                                "--wait",     "3",      "-q",
@@ -306,13 +301,13 @@ garbage_and_oversized_state_messages_are_counted_and_the_watcher_watches_on(void
                                "--headless", "--time", "5",
                                "-q",         NULL };
   pid_t watch = tt_spawn(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"));
-  sleep_s(0.3);
+  tt_sleep_s(0.3);
   const char *run_argv[] = {
     marionette,           "run",    HUMANOID, "--glove", take_src, "--publish",
     url_of(&b, "show/g"), "--time", "3",      "-q",      NULL
   };
   pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
-  sleep_s(1.5);
+  tt_sleep_s(1.5);
   uint8_t junk[64];
   for (size_t i = 0; i < sizeof junk; i++) junk[i] = (uint8_t)(i * 37 + 11);
   for (int i = 0; i < 3; i++) assert_int_equal(tb_publish(b.port, "show/g", junk, 20 + i), 0);
@@ -399,7 +394,7 @@ static void a_watcher_on_an_edge_bridged_to_the_origin_sees_every_frame(void **s
                                "--headless", "--time", "5",
                                "-q",         NULL };
   pid_t watch = tt_spawn(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"));
-  sleep_s(1.0); /* the bridge up, the watcher subscribed */
+  tt_sleep_s(1.0); /* the bridge up, the watcher subscribed */
   const char *run_argv[] = {
     marionette, "run", HUMANOID, "--glove", take_src, "--publish", url_of(&origin, "show/e"),
     "--time",   "3",   "-q",     NULL
@@ -457,7 +452,7 @@ static void a_publisher_the_network_cannot_keep_up_with_drops_and_counts(void **
   assert_true(c.sent > 0);
   assert_int_equal(c.sent + c.dropped_behind + c.dropped_away, FRAMES);
   tb_broker_stop(&b, 0);
-  sleep_s(0.5); /* the link has seen the broker go */
+  tt_sleep_s(0.5); /* the link has seen the broker go */
   for (int i = 0; i < 10; i++) assert_int_equal(mr_state_out_frame(o, 9.0, pose, xyz, &err), 1);
   mr_state_out_get_counters(o, &c);
   assert_true(c.dropped_away >= 10);

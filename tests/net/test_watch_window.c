@@ -27,17 +27,6 @@ static const char *glove_gen, *marionette, *mosquitto;
 
 #define STICK MR_SOURCE_DIR "/host/scenes/puppet.yaml"
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static void sleep_s(double s) {
-  struct timespec ts = { (time_t)s, (long)((s - floor(s)) * 1e9) };
-  nanosleep(&ts, NULL);
-}
-
 /* The watcher's "pictures: N (H held ...)" N; fails without the line. */
 static long long pictures_of(const char *out) {
   char v[200];
@@ -116,9 +105,9 @@ static void a_watcher_in_a_window_draws_the_show_and_ends_at_its_time(void **sta
   snprintf(url, sizeof url, "mqtt://127.0.0.1:%d/show/w", b.port);
   pid_t show = start_show(dir, url, "6");
   const char *watch_argv[] = { marionette, "watch", url, "--time", "3", "--size", "320x180", NULL };
-  double t0 = now_s();
+  double t0 = tt_now_s();
   assert_int_equal(tt_run(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"), 30), 0);
-  double took = now_s() - t0;
+  double took = tt_now_s() - t0;
   char *out = tt_read_file(tt_path(dir, "watch.out"), NULL);
   /* At least a picture a frame received early on: a window that drew once
    * and stalled fails; a machine loaded with sanitizer runs passes. */
@@ -146,18 +135,18 @@ static void the_q_key_in_the_watchers_window_ends_it(void **state) {
   Display *d = XOpenDisplay(NULL);
   assert_non_null(d);
   Window w = 0;
-  for (double t0 = now_s(); w == 0 && now_s() - t0 < 15; sleep_s(0.1))
+  for (double t0 = tt_now_s(); w == 0 && tt_now_s() - t0 < 15; tt_sleep_s(0.1))
     w = find_window(d, DefaultRootWindow(d), "marionette watch");
   assert_true(w != 0);
   /* Frames drawn, as its status line (once a second) says: on a loaded
    * machine under the sanitizers that can take a while. */
-  for (double t0 = now_s(); drawn_so_far(tt_path(dir, "watch.out")) < 1 && now_s() - t0 < 20;
-       sleep_s(0.2)) {
+  for (double t0 = tt_now_s(); drawn_so_far(tt_path(dir, "watch.out")) < 1 && tt_now_s() - t0 < 20;
+       tt_sleep_s(0.2)) {
   }
   press_q(d, w);
-  double t0 = now_s();
+  double t0 = tt_now_s();
   int rc = tt_wait(watch, 5);
-  double took = now_s() - t0;
+  double took = tt_now_s() - t0;
   XCloseDisplay(d);
   if (rc != 0) fail_msg("the watcher did not end on q within 5 s (status %d)", rc);
   assert_true(took < 5);

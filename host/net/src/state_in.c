@@ -8,6 +8,7 @@
 
 #include "mr_net.h"
 #include "mr_state.h"
+#include "net_internal.h"
 
 struct mr_state_in {
   mr_state_in_def def;
@@ -34,24 +35,15 @@ mr_state_in_def mr_default_state_in_def(void) {
   return d;
 }
 
-static int fail(mr_io_error *err, mr_io_status st, const char *msg) {
-  if (err != NULL) {
-    err->status = st;
-    err->sys_errno = 0;
-    snprintf(err->msg, sizeof err->msg, "%s", msg);
-  }
-  return -1;
-}
-
 int mr_state_in_open(const mr_state_in_def *def, mr_state_in **out, mr_io_error *err) {
   *out = NULL;
   if (def == NULL || def->cookie != MR_DEF_COOKIE || def->url == NULL ||
       def->max_scene < MR_NET_MAX_MESSAGE)
-    return fail(err, MR_IO_ERR_ARG,
-                "expected a definition made by mr_default_state_in_def, with a URL and "
-                "max_scene of 16384 bytes or more");
+    return mr_net_err(err, MR_IO_ERR_ARG,
+                      "expected a definition made by mr_default_state_in_def, with a URL and "
+                      "max_scene of 16384 bytes or more");
   mr_state_in *in = calloc(1, sizeof *in);
-  if (in == NULL) return fail(err, MR_IO_ERR_SYSTEM, "out of memory");
+  if (in == NULL) return mr_net_err(err, MR_IO_ERR_SYSTEM, "out of memory");
   in->def = *def;
   in->cap = def->max_scene;
   in->buf = malloc(in->cap);
@@ -64,7 +56,7 @@ int mr_state_in_open(const mr_state_in_def *def, mr_state_in **out, mr_io_error 
   nd.connect_wait_ms = def->connect_wait_ms;
   if (in->buf == NULL) {
     mr_state_in_close(in);
-    return fail(err, MR_IO_ERR_SYSTEM, "out of memory");
+    return mr_net_err(err, MR_IO_ERR_SYSTEM, "out of memory");
   }
   if (mr_net_open(&nd, &in->net, err) != 0) {
     mr_state_in_close(in);

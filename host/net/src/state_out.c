@@ -10,6 +10,7 @@
 
 #include "mr_net.h"
 #include "mr_state.h"
+#include "net_internal.h"
 
 struct mr_state_out {
   mr_state_out_def def;
@@ -36,16 +37,6 @@ mr_state_out_def mr_default_state_out_def(void) {
   return d;
 }
 
-static int fail(mr_io_error *err, mr_io_status st, const char *msg) {
-  if (err != NULL) {
-    err->status = st;
-    err->sys_errno = 0;
-    strncpy(err->msg, msg, sizeof err->msg - 1);
-    err->msg[sizeof err->msg - 1] = '\0';
-  }
-  return -1;
-}
-
 static int encode_scene(mr_state_out *o, mr_io_error *err) {
   const mr_state_bundle *b = o->def.scene;
   mr_state_scene s;
@@ -59,7 +50,7 @@ static int encode_scene(mr_state_out *o, mr_io_error *err) {
   s.files = b->data;
   o->scene_len = mr_state_scene_size(&s);
   o->scene_msg = malloc(o->scene_len);
-  if (o->scene_msg == NULL) return fail(err, MR_IO_ERR_SYSTEM, "out of memory");
+  if (o->scene_msg == NULL) return mr_net_err(err, MR_IO_ERR_SYSTEM, "out of memory");
   mr_state_scene_encode(&s, o->scene_msg, o->scene_len);
   o->scene_id = (uint32_t)s.scene_hash;
   o->c.scene_bytes = o->scene_len;
@@ -85,11 +76,11 @@ int mr_state_out_open(const mr_state_out_def *def, mr_state_out **out, mr_io_err
       def->scene->n_files == 0 || def->n_frames < 0 || def->n_frames > MR_STATE_MAX_FRAMES ||
       def->n_points < 0 || def->n_points > MR_STATE_MAX_POINTS || !(def->fps > 0) ||
       def->max_unsent < 1)
-    return fail(err, MR_IO_ERR_ARG,
-                "expected a definition made by mr_default_state_out_def, with a URL, a scene "
-                "of one file or more, up to 255 control frames and 65535 particles");
+    return mr_net_err(err, MR_IO_ERR_ARG,
+                      "expected a definition made by mr_default_state_out_def, with a URL, a scene "
+                      "of one file or more, up to 255 control frames and 65535 particles");
   mr_state_out *o = calloc(1, sizeof *o);
-  if (o == NULL) return fail(err, MR_IO_ERR_SYSTEM, "out of memory");
+  if (o == NULL) return mr_net_err(err, MR_IO_ERR_SYSTEM, "out of memory");
   o->def = *def;
   mr_state_frame probe = { .n_frames = (uint8_t)def->n_frames,
                            .n_points = (uint16_t)def->n_points };
@@ -99,7 +90,7 @@ int mr_state_out_open(const mr_state_out_def *def, mr_state_out **out, mr_io_err
   o->buf = malloc(o->buf_cap);
   if (o->pose == NULL || o->q == NULL || o->buf == NULL) {
     mr_state_out_close(o);
-    return fail(err, MR_IO_ERR_SYSTEM, "out of memory");
+    return mr_net_err(err, MR_IO_ERR_SYSTEM, "out of memory");
   }
   if (encode_scene(o, err) != 0) {
     mr_state_out_close(o);
