@@ -568,6 +568,10 @@ typedef struct mr_stats {
                                      at any accepted step's end or on the straight
                                      path between its ends, m, when deeper than
                                      the contact slop (0 if never) */
+  uint64_t located;               /* contacts located in time within a step
+                                     (§4.5): apart at its start, gone through
+                                     by its end */
+  uint64_t location_integrations; /* the trial integrations those took */
 } mr_stats;
 /* The counters so far. MR_ERR_ARG for a NULL argument. */
 mr_status mr_world_stats(const mr_world *w, mr_stats *out);

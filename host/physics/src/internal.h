@@ -237,7 +237,8 @@ struct mr_world {
   int cap_scratch; /* particles the scratch holds */
   struct {
     double *x0, *v0;          /* the state at the start of the step */
-    double *xs, *vs;          /* integrator stage state */
+    double *xs, *vs;          /* integrator stage state; between a
+                                 location's trials, its model's state */
     double *k;                /* stage derivatives, 8 × 3n (RK4) */
     double *force;            /* F of the evaluation under way */
     double *constraint_force; /* Jᵀ λ of the evaluation under way */
@@ -408,6 +409,12 @@ void mr_taut_set_time(mr_world *w, double t);
 /* The largest relative over-length (L − rest)/rest of the taut strings in
  * x, 0 when none is over: held to the ATS thresholds with the deviation. */
 double mr_taut_overlength(const mr_world *w, const double *x);
+
+/* locate.c: a contact apart at the step's start and gone through by its
+ * end (w->probe, the step to h ending in w->x1, w->v1) located in time
+ * (§4.5, §5.4): the state at t + h* left in w->x1, w->v1, h* returned (h
+ * when none was apart). *err set when an integration failed. */
+double mr_locate_contact(mr_world *w, double t, double h, int *err);
 
 /* string_correction.c */
 /* 0, or -1 when its work arrays cannot grow (out of memory). */

@@ -145,86 +145,6 @@ static void count_rejection(mr_world *w, mr_step_ctx *c) {
   c->rejected_any = 1;
 }
 
-/* ------------------------------------------------------- locating (6b) */
-
-/* The smallest swept gap of the offending contacts over the step from the
- * start state to (x1, v1) at h. */
-static double offenders_gap(mr_world *w, double h, const unsigned char *valid) {
-  const mr_sweep sw = { w->scratch.x0, w->scratch.v0, w->x1, w->v1, h };
-  double g = INFINITY;
-  for (int i = 0; i < w->probe.n; i++)
-    if (valid[i]) {
-      double c = mr_contact_swept_gap(w, &w->probe.c[i], &sw, 1);
-      if (c < g || c != c) g = c;
-    }
-  return g;
-}
-
-/* Contacts touching at the start are in the force system (eq. 13b), which
- * pushes them back out; only contacts that were apart can be located in
- * time. Rolling back for a touching one would cut the step to nothing.
- * Touching and clearly separating is apart too (eval.c leaves such a
- * contact out of the force system): a part that lifts off and lands again
- * within the step has met a new contact, found at its own time. Marks those
- * in probe_valid (its own flags: every trial integration rewrites
- * contact_active) and returns the smallest start gap of them, or INFINITY
- * if there is none. */
-static double mark_offenders(mr_world *w) {
-  const double slop = w->def.contact_slop, separating = 0.1 * w->def.rest_speed;
-  const double *x0 = w->scratch.x0, *v0 = w->scratch.v0;
-  double g0 = INFINITY;
-  for (int i = 0; i < w->probe.n; i++) {
-    const mr_contact *ct = &w->probe.c[i];
-    double c0 = mr_contact_gap(w, ct, x0);
-    w->probe_valid[i] =
-        c0 > slop || (c0 > -0.5 * slop && mr_contact_rate(w, ct, x0, v0) > separating);
-    if (w->probe_valid[i] && c0 < g0) g0 = c0;
-  }
-  return g0;
-}
-
-/* A contact went through during [t, t + h]. Find the contact time h* by
- * regula falsi (Illinois) on the smallest swept gap of the offending
- * contacts over [t, t + h*], aiming at −slop/2, each trial a full
- * integration from the start state, and leave the state at t + h* in x1, v1
- * (§4.5, §5.4). The swept gap (collide.c) is at most the gap at every
- * moment of the shortened step, so none of it goes deeper than the slop;
- * for a contact that deepens to the end it is the end's gap. Returns h*. */
-static double locate_contact(mr_world *w, double t, double h, int *err) {
-  const double slop = w->def.contact_slop, aim = -0.5 * slop;
-  const double *x0 = w->scratch.x0, *v0 = w->scratch.v0;
-  const unsigned char *valid = w->probe_valid;
-  double g0 = mark_offenders(w);
-  if (g0 == INFINITY) return h;
-  double lo = 0.0, flo = g0 - aim, hi = h, fhi = offenders_gap(w, h, valid) - aim;
-  int side = 0;
-  for (int it = 0; it < 24; it++) {
-    double hm = hi - fhi * (hi - lo) / (fhi - flo);
-    if (!(hm > lo && hm < hi)) hm = 0.5 * (lo + hi);
-    if (mr_integrate(w, t, hm, x0, v0, w->x1, w->v1, NULL) != 0) {
-      *err = 1;
-      return h;
-    }
-    double fm = offenders_gap(w, hm, valid) - aim;
-    if (fabs(fm) <= 0.5 * slop) return hm;
-    if (fm < 0) {
-      hi = hm;
-      fhi = fm;
-      if (side == -1) flo *= 0.5;
-      side = -1;
-    } else {
-      lo = hm;
-      flo = fm;
-      if (side == 1) fhi *= 0.5;
-      side = 1;
-    }
-  }
-  /* Not within the slop after all trials: stop just before the contact. */
-  double hs = lo > 0 ? lo : hi;
-  if (mr_integrate(w, t, hs, x0, v0, w->x1, w->v1, NULL) != 0) *err = 1;
-  return hs;
-}
-
 /* ---------------------------------------------------------- the stages */
 
 /* Δt for this step: the planned one, or exactly what is left to t_target
@@ -403,7 +323,7 @@ static mr_status penetration(mr_world *w, mr_step_ctx *c) {
    * again until the end state has none left to locate. */
   for (int round = 0; st == MR_OK && round < 16 && w->probe.n > 0; round++) {
     int err = 0;
-    double hc = locate_contact(w, c->t, c->h, &err);
+    double hc = mr_locate_contact(w, c->t, c->h, &err);
     if (err) return inner_failure(w, "contact time");
     if (!(hc < c->h)) break;
     c->located = 1;
