@@ -71,18 +71,26 @@ typedef struct mr_ldlt_kept {
 
 /* The dense LDLᵀ's factor (dense.c): L row-major, n × n, row k used from
  * its first nonzero column first[k]; 1/d (0 for a dropped row); which rows
- * were dropped (1) or regularised (2). The order, first[] and where each
- * entry of A goes in L depend only on A's pattern: they are kept while
- * the LDLᵀ's analysis in use stays the same (clock). */
+ * were dropped (1) or regularised (2). The order, first[], L's pattern and
+ * the plan of the factor's products depend only on A's pattern: they are
+ * kept while the LDLᵀ's analysis in use stays the same (clock). */
 typedef struct mr_dense {
   int n, valid;
   int room;            /* rows the arrays hold (mr_dense_reserve) */
   unsigned long clock; /* the mr_ldlt clock the pattern work was done at */
   const int *perm;     /* the order factored, new → old (the analysis' dperm) */
   mr_buf l, first, t, dinv, diag, dropped;
-  /* place: per entry of A on or below the diagonal, its index in A and
-   * in l (n_place pairs); zero: the places in l of the rows' spans that
-   * A leaves empty (n_zero); y: b and x permuted. */
+  /* plan: the factor's program (dense.c, plan_pattern), n_plan ints, or
+   * n_plan < 0 when it needs more than its room and the factor walks the
+   * envelope instead; mark: L's pattern as n × n bytes and aq: 3n ints,
+   * scratch of the plan. l's rows are n + 1 long and t n + 1: the plan
+   * pads its pairs with index n, where both are 0. */
+  mr_buf plan, mark, aq;
+  int n_plan;
+  /* The envelope walk's load: place: per entry of A on or below the
+   * diagonal, its index in A and in l (n_place pairs); zero: the places in
+   * l of the rows' spans that A leaves empty (n_zero). y: b and x
+   * permuted. */
   mr_buf place, zero, y;
   int n_place, n_zero;
 } mr_dense;
