@@ -5,7 +5,8 @@
  * systems of several patterns, with a row written twice (dropped or, with
  * a non-default reg_tol, regularised), with the pattern changing between
  * solves, and on a full pattern too large for the plan's room (the
- * envelope walk). */
+ * envelope walk); and a factor is made again only for new numbers or new
+ * tolerances. */
 #include <float.h>
 #include <math.h>
 #include <setjmp.h>
@@ -246,11 +247,50 @@ static void a_full_pattern_walks_the_envelope_with_the_same_bits(void **state) {
   test_system_free(&sys);
 }
 
+/* One A solved for several right-hand sides is factored once; new
+ * numbers in the same pattern, or new tolerances, are factored again, and
+ * every answer is a fresh solver's, bit for bit. */
+static void a_factor_is_kept_for_the_same_numbers_only(void **state) {
+  (void)state;
+  one_system o;
+  one_make(&o, 25, 61, 7, 0.0);
+  const int n = o.A.n;
+  mr_solver *s = mr_solver_create();
+  mr_solve_def d = mr_default_solve_def();
+  double *x = calloc((size_t)n, sizeof *x), *ref = calloc((size_t)n, sizeof *ref);
+  const unsigned long before = s->ldlt.dense.factors;
+  int diag3 = o.A.row_ptr[3];
+  while (o.A.col[diag3] != 3) diag3++;
+  for (int step = 0; step < 5; step++) {
+    if (step == 1) o.b[2] += 1.0;         /* another b: the same factor */
+    if (step == 2) o.A.val[diag3] *= 1.5; /* a number of A */
+    if (step == 3) d.pivot_tol = 1e-40;   /* a tolerance: the copy is kept */
+    if (step == 4) d.reg_tol = 1e-3;
+    mr_solve_result r, rf;
+    memset(x, 0, (size_t)n * sizeof *x);
+    assert_true(mr_solver_solve(s, &d, &o.A, o.b, x, &r) >= 0);
+    memset(ref, 0, (size_t)n * sizeof *ref);
+    mr_solver *fresh = mr_solver_create();
+    assert_true(mr_solver_solve(fresh, &d, &o.A, o.b, ref, &rf) >= 0);
+    mr_solver_destroy(fresh);
+    assert_memory_equal(x, ref, (size_t)n * sizeof *x);
+    assert_int_equal(r.dependent, rf.dependent);
+    assert_int_equal(r.regularised, rf.regularised);
+    static const unsigned long made[] = { 1, 1, 2, 3, 4 };
+    assert_int_equal(s->ldlt.dense.factors - before, made[step]);
+  }
+  free(x);
+  free(ref);
+  one_free(&o);
+  mr_solver_destroy(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(factor_over_the_pattern_gives_the_envelope_walks_bits),
     cmocka_unit_test(dropped_and_regularised_rows_keep_the_envelope_walks_bits),
     cmocka_unit_test(a_full_pattern_walks_the_envelope_with_the_same_bits),
+    cmocka_unit_test(a_factor_is_kept_for_the_same_numbers_only),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -93,6 +93,15 @@ typedef struct mr_dense {
    * permuted. */
   mr_buf place, zero, y;
   int n_place, n_zero;
+  /* The numbers of A the factor in l is of (aval, kept_nnz), the
+   * tolerances it used and what it found, and whether A is finite (−1:
+   * not looked at yet); kept_valid: all of it holds (dense.c,
+   * factor_unless_kept). */
+  mr_buf aval;
+  size_t kept_nnz;
+  double kept_pivot, kept_reg;
+  int kept_valid, kept_dependent, kept_regularised, kept_finite;
+  unsigned long factors; /* factorisations made: for tests */
 } mr_dense;
 
 /* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
