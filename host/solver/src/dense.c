@@ -145,19 +145,22 @@ static int plan_pattern(mr_dense *dn, const mr_csr *A, const int *iperm) {
       np += w;
     }
   }
-  /* The places the factor leaves alone hold 0 from here on, as the
-   * envelope walk would leave them (+0): the triangular solves walk the
-   * envelope. */
+  dn->n_plan = np;
+  return 0;
+}
+
+/* Each row's envelope in L set to 0 for the plan's factor: the places
+ * it leaves alone then hold +0, as the envelope walk would leave them
+ * (the triangular solves walk the envelope), and column n is the padding
+ * products' 0. The factor writes every place of L's pattern. */
+static void clear_envelope(mr_dense *dn) {
+  const int n = dn->n, *first = DBUF(dn, first, const int);
   double *l = DBUF(dn, l, double);
   for (int k = 0; k < n; k++) {
     double *lk = l + (size_t)k * LD(n);
-    const unsigned char *ink = mark + (size_t)k * (size_t)n;
-    for (int j = first[k]; j < k; j++)
-      if (!ink[j]) lk[j] = 0.0;
+    memset(lk + first[k], 0, (size_t)(k - first[k]) * sizeof *lk);
     lk[n] = 0.0;
   }
-  dn->n_plan = np;
-  return 0;
 }
 
 /* The envelope walk's share: where each entry of A's lower triangle and
@@ -381,6 +384,52 @@ static void factor_unless_kept(mr_dense *dn, const mr_solve_def *o, const mr_csr
   dn->kept_valid = 1;
 }
 
+/* The plan of the analysis in use, from its kept slot: 1, or 0 when the
+ * slot has none. A pattern that comes back (the physics alternates among
+ * a few: fig10 changed the analysis in use 1 145 times for 26 patterns)
+ * then costs a copy, not a plan (about 17 k instructions on the stick
+ * figure). */
+static int take_plan(const mr_ldlt *f, mr_dense *dn) {
+  if (f->in_use < 0) return 0;
+  const mr_ldlt_kept *k = &f->kept[f->in_use];
+  if (k->plan_ints == 0) return 0;
+  memcpy(dn->first.p, k->dfirst.p, (size_t)dn->n * sizeof(int));
+  memcpy(dn->plan.p, k->dplan.p, (size_t)k->plan_ints * sizeof(int));
+  dn->n_plan = k->plan_ints;
+  return 1;
+}
+
+/* The plan made for the analysis in use, kept in its slot when the slot's
+ * room (reserved with the slot: MR_DENSE_KEPT_PLAN_ROOM) holds it. The
+ * slot drops it when another analysis takes the slot (ldlt.c, keep). */
+static void keep_plan(mr_ldlt *f, const mr_dense *dn) {
+  if (f->in_use < 0) return;
+  mr_ldlt_kept *k = &f->kept[f->in_use];
+  if ((size_t)dn->n > k->dfirst.cap || (size_t)dn->n_plan > k->dplan.cap) return;
+  memcpy(k->dfirst.p, dn->first.p, (size_t)dn->n * sizeof(int));
+  memcpy(k->dplan.p, dn->plan.p, (size_t)dn->n_plan * sizeof(int));
+  k->plan_ints = dn->n_plan;
+}
+
+/* The pattern's share of the work for the analysis in use: its kept plan,
+ * or a plan made (then kept), or, when the plan outgrows its room, the
+ * envelope walk's load lists. */
+static void pattern_work(mr_ldlt *f, mr_dense *dn, const mr_csr *A) {
+  if (take_plan(f, dn)) {
+    clear_envelope(dn);
+    return;
+  }
+  dn->plans++;
+  find_firsts(dn, A, f->flag.p);
+  if (plan_pattern(dn, A, f->flag.p) != 0) {
+    dn->n_plan = -1;
+    place_pattern(dn, A, f->flag.p);
+    return;
+  }
+  clear_envelope(dn);
+  keep_plan(f, dn);
+}
+
 int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
                    double b_norm, double *x, mr_solve_result *r) {
   mr_dense *dn = &f->dense;
@@ -392,11 +441,7 @@ int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
   dn->perm = f->dperm.p; /* a reserve may have moved it */
   if (!dn->valid || dn->clock != f->clock || dn->n != n) {
     dn->n = n;
-    find_firsts(dn, A, f->flag.p);
-    if (plan_pattern(dn, A, f->flag.p) != 0) {
-      dn->n_plan = -1;
-      place_pattern(dn, A, f->flag.p);
-    }
+    pattern_work(f, dn, A);
     dn->clock = f->clock;
     dn->valid = 1;
     dn->kept_valid = 0;
