@@ -5,8 +5,9 @@
  * systems of several patterns, with a row written twice (dropped or, with
  * a non-default reg_tol, regularised), with the pattern changing between
  * solves, and on a full pattern too large for the plan's room (the
- * envelope walk); and a factor is made again only for new numbers or new
- * tolerances. */
+ * envelope walk); a factor is made again only for new numbers or new
+ * tolerances; and a plan is made again only for a pattern whose analysis
+ * was not kept. */
 #include <float.h>
 #include <math.h>
 #include <setjmp.h>
@@ -285,12 +286,48 @@ static void a_factor_is_kept_for_the_same_numbers_only(void **state) {
   mr_solver_destroy(s);
 }
 
+/* Solves sys[z] through check_bits() (the envelope walk's bits) and
+ * returns the plans the dense path made for it, 0 or 1. */
+static unsigned long plans_for(mr_solver *s, const one_system *sys) {
+  const unsigned long before = s->ldlt.dense.plans;
+  assert_true(check_bits(s, &sys->A, sys->b, 1e-12, 0.0) >= 0);
+  return s->ldlt.dense.plans - before;
+}
+
+/* The plan is kept with its pattern's analysis: a pattern that comes
+ * back takes its plan (no plan made) and its answer is still the
+ * envelope walk's, bit for bit, through patterns of the same size (a plan
+ * taken for the wrong one would read other entries of A) and one with a
+ * dropped row. When more patterns come and go than analyses are kept,
+ * each one's slot goes to another before it comes back: the slot's plan
+ * goes with it, a plan is made for every solve, and the bits still hold. */
+static void a_pattern_that_comes_back_takes_its_plan_and_only_its_own(void **state) {
+  (void)state;
+  enum { FEW = 4, MANY = MR_LDLT_KEPT + 1 };
+  one_system sys[MANY];
+  for (int z = 0; z < MANY; z++) one_make(&sys[z], 25, 700 + (uint64_t)z, z == 2 ? 11 : -1, 0.0);
+  mr_solver *s = mr_solver_create();
+  for (int z = 0; z < FEW; z++) assert_int_equal(plans_for(s, &sys[z]), 1);
+  assert_int_equal(s->ldlt.analyses, FEW); /* FEW patterns, all different */
+  for (int pass = 0; pass < 3; pass++)
+    for (int i = 0; i < FEW; i++) assert_int_equal(plans_for(s, &sys[(i + pass) % FEW]), 0);
+  mr_solver_destroy(s);
+
+  s = mr_solver_create();
+  for (int pass = 0; pass < 2; pass++)
+    for (int z = 0; z < MANY; z++) assert_int_equal(plans_for(s, &sys[z]), 1);
+  assert_int_equal(s->ldlt.analyses, 2 * MANY);
+  mr_solver_destroy(s);
+  for (int z = 0; z < MANY; z++) one_free(&sys[z]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(factor_over_the_pattern_gives_the_envelope_walks_bits),
     cmocka_unit_test(dropped_and_regularised_rows_keep_the_envelope_walks_bits),
     cmocka_unit_test(a_full_pattern_walks_the_envelope_with_the_same_bits),
     cmocka_unit_test(a_factor_is_kept_for_the_same_numbers_only),
+    cmocka_unit_test(a_pattern_that_comes_back_takes_its_plan_and_only_its_own),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
