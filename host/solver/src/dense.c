@@ -29,57 +29,164 @@
 
 #define DBUF(d, name, type) ((type *)(d)->name.p)
 
+/* L's row stride: column n is always 0, so that the plan's padding
+ * products (index n, with t_n = y_n = 0) add nothing. */
+#define LD(n) ((size_t)(n) + 1u)
+
 void mr_dense_free(mr_dense *d) {
-  mr_buf *const bufs[] = { &d->l,       &d->first, &d->t,    &d->dinv, &d->diag,
-                           &d->dropped, &d->place, &d->zero, &d->y };
+  mr_buf *const bufs[] = { &d->l,  &d->first,   &d->t,     &d->dinv, &d->diag, &d->plan, &d->mark,
+                           &d->aq, &d->dropped, &d->place, &d->zero, &d->y,    &d->aval };
   mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
   d->valid = 0;
+  d->kept_valid = 0;
   d->room = 0;
+}
+
+/* The plan's room, in ints, for n rows. Its size follows the products,
+ * about n³/6 on a full pattern; a pattern that needs more than this fills
+ * so much of its envelope that the envelope walk does as well. */
+static size_t plan_room(size_t n) {
+  return 4 * n * n + 64;
 }
 
 /* Room for any system of up to rows rows (A's pattern full). */
 int mr_dense_reserve(mr_dense *d, int rows) {
   if (rows <= d->room) return 0;
   const size_t n = (size_t)rows, sd = sizeof(double), si = sizeof(int);
-  if (mr_buf_reserve(&d->l, n * n, sd) || mr_buf_reserve(&d->first, n, si) ||
-      mr_buf_reserve(&d->t, n, sd) || mr_buf_reserve(&d->dinv, n, sd) ||
+  if (mr_buf_reserve(&d->l, n * (n + 1), sd) || mr_buf_reserve(&d->first, n, si) ||
+      mr_buf_reserve(&d->t, n + 1, sd) || mr_buf_reserve(&d->dinv, n, sd) ||
       mr_buf_reserve(&d->diag, n, sd) || mr_buf_reserve(&d->dropped, n, 1) ||
-      mr_buf_reserve(&d->place, n * (n + 1), si) || mr_buf_reserve(&d->zero, n * (n + 1) / 2, si) ||
-      mr_buf_reserve(&d->y, n, sd))
+      mr_buf_reserve(&d->plan, plan_room(n), si) || mr_buf_reserve(&d->mark, n * n, 1) ||
+      mr_buf_reserve(&d->aq, 3 * n, si) || mr_buf_reserve(&d->place, n * (n + 1), si) ||
+      mr_buf_reserve(&d->zero, n * (n + 1) / 2, si) || mr_buf_reserve(&d->y, n, sd) ||
+      mr_buf_reserve(&d->aval, n * n, sd))
     return MR_SOLVE_ERR_NOMEM;
   d->room = rows;
   return 0;
 }
 
-/* The pattern's share: f_k of each row of PAPᵀ; where each entry of A's
- * lower triangle and diagonal lands in L (pairs: its index in A, its
- * place in L); and the places of each row's span that A leaves empty,
- * which the factor fills in. iperm: n ints of scratch. */
-static void place_pattern(mr_dense *dn, const mr_csr *A, int *iperm) {
+/* f_k of each row of PAPᵀ, and iperm (old → new). */
+static void find_firsts(mr_dense *dn, const mr_csr *A, int *iperm) {
   const int n = A->n, *perm = dn->perm;
-  int *first = DBUF(dn, first, int), *place = DBUF(dn, place, int);
-  int *zero = DBUF(dn, zero, int), np = 0, nz = 0;
-  double *l = DBUF(dn, l, double);
+  int *first = DBUF(dn, first, int);
   for (int k = 0; k < n; k++) iperm[perm[k]] = k;
-  for (int k = 0; k < n; k++) first[k] = k;
-  for (int old = 0; old < n; old++) {
-    const int k = iperm[old];
-    for (int q = A->row_ptr[old]; q < A->row_ptr[old + 1]; q++) {
+  for (int k = 0; k < n; k++) {
+    int f = k;
+    for (int q = A->row_ptr[perm[k]]; q < A->row_ptr[perm[k] + 1]; q++)
+      if (iperm[A->col[q]] < f) f = iperm[A->col[q]];
+    first[k] = f;
+  }
+}
+
+/* The two chains of a sum, ev[0..ne) and od[0..no), interleaved into
+ * out, the shorter one padded with n (a product of two zeros: subtracting
+ * +0 leaves any sum as it was). Returns the pairs written. */
+static int interleave(const int *ev, int ne, const int *od, int no, int n, int *out) {
+  const int pairs = ne > no ? ne : no;
+  for (int i = 0; i < pairs; i++) {
+    out[2 * i] = i < ne ? ev[i] : n;
+    out[2 * i + 1] = i < no ? od[i] : n;
+  }
+  return pairs;
+}
+
+/* One entry (k, j) of the plan at out: the m < j where rows k and j of L
+ * both have an entry, split as minus_dot() splits its sum from
+ * lo = max(f_k, f_j) (even offsets, the last unpaired one among them, in
+ * the first chain, odd ones in the second) and interleaved. Returns the
+ * ints written, 0 when L_kj is no entry (no such m and none in A: t_j is
+ * exactly 0). tmp: 2n ints. */
+static int plan_entry(const unsigned char *ink, const unsigned char *inj, int n, int j, int lo,
+                      int q, int *out, int *tmp) {
+  int ne = 0, no = 0, *od = tmp + n;
+  for (int m = lo; m < j; m++) {
+    if (!(ink[m] & inj[m])) continue;
+    if ((m - lo) & 1)
+      od[no++] = m;
+    else
+      tmp[ne++] = m;
+  }
+  if (ne + no == 0 && q < 0) return 0;
+  out[0] = j;
+  out[1] = q;
+  out[2] = interleave(tmp, ne, od, no, n, out + 3);
+  return 3 + 2 * out[2];
+}
+
+/* The factor's plan, made with the pattern: L's symbolic pattern in the
+ * dense order (L_kj is an entry when A_kj is or when rows k and j share an
+ * entry left of j), and for each entry the products its sum makes, in
+ * minus_dot()'s order. Each row: its entries' count and A_kk's index in A
+ * (−1: none stored); each entry: j, A_kj's index (−1: fill), the count of
+ * pairs, the pairs. Returns 0, or −1 when the plan needs more than its
+ * room. iperm: from find_firsts(). */
+static int plan_pattern(mr_dense *dn, const mr_csr *A, const int *iperm) {
+  const int n = A->n, *perm = dn->perm, *first = DBUF(dn, first, const int);
+  const int room = (int)plan_room((size_t)n);
+  int *plan = DBUF(dn, plan, int), *aq = DBUF(dn, aq, int), *tmp = aq + n;
+  unsigned char *mark = DBUF(dn, mark, unsigned char);
+  int np = 0;
+  for (int k = 0; k < n; k++) {
+    const int fk = first[k];
+    unsigned char *ink = mark + (size_t)k * (size_t)n;
+    for (int j = fk; j <= k; j++) aq[j] = -1;
+    for (int q = A->row_ptr[perm[k]]; q < A->row_ptr[perm[k] + 1]; q++)
+      if (iperm[A->col[q]] <= k) aq[iperm[A->col[q]]] = q;
+    if (np + 2 > room) return -1;
+    const int head = np;
+    plan[np++] = 0;
+    plan[np++] = aq[k];
+    for (int j = fk; j < k; j++) {
+      const int lo = fk > first[j] ? fk : first[j];
+      if (np + 4 + (j - lo) > room) return -1;
+      const int w = plan_entry(ink, mark + (size_t)j * (size_t)n, n, j, lo, aq[j], plan + np, tmp);
+      ink[j] = w > 0;
+      plan[head] += w > 0;
+      np += w;
+    }
+  }
+  dn->n_plan = np;
+  return 0;
+}
+
+/* Each row's envelope in L set to 0 for the plan's factor: the places
+ * it leaves alone then hold +0, as the envelope walk would leave them
+ * (the triangular solves walk the envelope), and column n is the padding
+ * products' 0. The factor writes every place of L's pattern. */
+static void clear_envelope(mr_dense *dn) {
+  const int n = dn->n, *first = DBUF(dn, first, const int);
+  double *l = DBUF(dn, l, double);
+  for (int k = 0; k < n; k++) {
+    double *lk = l + (size_t)k * LD(n);
+    memset(lk + first[k], 0, (size_t)(k - first[k]) * sizeof *lk);
+    lk[n] = 0.0;
+  }
+}
+
+/* The envelope walk's share: where each entry of A's lower triangle and
+ * diagonal lands in L (pairs: its index in A, its place in L); and the
+ * places of each row's span that A leaves empty, which the factor fills
+ * in. iperm: from find_firsts(). */
+static void place_pattern(mr_dense *dn, const mr_csr *A, const int *iperm) {
+  const int n = A->n, *perm = dn->perm, *first = DBUF(dn, first, const int);
+  int *place = DBUF(dn, place, int), *zero = DBUF(dn, zero, int), np = 0, nz = 0;
+  double *l = DBUF(dn, l, double);
+  for (int k = 0; k < n; k++) {
+    for (int q = A->row_ptr[perm[k]]; q < A->row_ptr[perm[k] + 1]; q++) {
       const int j = iperm[A->col[q]];
-      if (j < first[k]) first[k] = j;
       if (j > k) continue;
       place[np++] = q;
-      place[np++] = k * n + j;
+      place[np++] = k * (n + 1) + j;
     }
   }
   /* A's places marked in L (NaN; every load writes L afresh), then the
    * unmarked places of the spans listed. */
   for (int k = 0; k < n; k++)
-    for (int j = first[k]; j <= k; j++) l[k * n + j] = 0.0;
+    for (int j = first[k]; j <= k; j++) l[k * (n + 1) + j] = 0.0;
   for (int p = 0; p < np; p += 2) l[place[p + 1]] = NAN;
   for (int k = 0; k < n; k++)
     for (int j = first[k]; j <= k; j++)
-      if (!isnan(l[k * n + j])) zero[nz++] = k * n + j;
+      if (!isnan(l[k * (n + 1) + j])) zero[nz++] = k * (n + 1) + j;
   dn->n_place = np / 2;
   dn->n_zero = nz;
 }
@@ -107,8 +214,8 @@ static inline double minus_dot(double s, const double *a, const double *b, int l
 }
 
 /* The pivot test of ldlt.c's factor(), on d_k. */
-static void judge(mr_dense *dn, int k, double akk, double d, double pivot_tol, double reg_tol,
-                  int *dependent, int *regularised) {
+static inline void judge(mr_dense *dn, int k, double akk, double d, double pivot_tol,
+                         double reg_tol, int *dependent, int *regularised) {
   double *diag = DBUF(dn, diag, double), *dinv = DBUF(dn, dinv, double);
   unsigned char *dropped = DBUF(dn, dropped, unsigned char);
   if (!(akk > DBL_MIN) || !(d > pivot_tol * akk)) {
@@ -134,11 +241,11 @@ static int factor(mr_dense *dn, double pivot_tol, double reg_tol, int *regularis
   const double *dinv = DBUF(dn, dinv, double);
   int dependent = 0;
   for (int k = 0; k < n; k++) {
-    double *lk = l + (size_t)k * (size_t)n;
+    double *lk = l + (size_t)k * LD(n);
     const int fk = first[k];
     double d = lk[k];
     for (int j = fk; j < k; j++) {
-      const double *lj = l + (size_t)j * (size_t)n;
+      const double *lj = l + (size_t)j * LD(n);
       const double s = minus_dot(lk[j], t, lj, fk > first[j] ? fk : first[j], j);
       const double ljk = s * dinv[j];
       t[j] = s;
@@ -150,17 +257,56 @@ static int factor(mr_dense *dn, double pivot_tol, double reg_tol, int *regularis
   return dependent;
 }
 
+/* factor() over the plan: only L's entries, and in each sum only the
+ * products of two entries, in minus_dot()'s order. A product it leaves
+ * out has a structural zero (+0: L_kj = t_j d_j⁻¹ with t_j an untouched
+ * +0), so it is ±0, and the sums, which start at A's numbers or +0 and
+ * never reach −0, gain nothing from it: the same bits. A is read in
+ * place, not loaded. */
+static int factor_plan(mr_dense *dn, const double *val, double pivot_tol, double reg_tol,
+                       int *regularised) {
+  const int n = dn->n, *p = DBUF(dn, plan, const int);
+  double *l = DBUF(dn, l, double), *t = DBUF(dn, t, double);
+  const double *dinv = DBUF(dn, dinv, double);
+  int dependent = 0;
+  t[n] = 0.0;
+  for (int k = 0; k < n; k++) {
+    double *lk = l + (size_t)k * LD(n);
+    const int entries = p[0];
+    const double akk = p[1] >= 0 ? val[p[1]] : 0.0;
+    double d = akk;
+    lk[k] = akk; /* as load() leaves it: bound_suffices() reads it */
+    p += 2;
+    for (int e = 0; e < entries; e++) {
+      const int j = p[0], *m = p + 3, *end = m + 2 * p[2];
+      const double *lj = l + (size_t)j * LD(n);
+      double s = p[1] >= 0 ? val[p[1]] : 0.0, odd = 0.0;
+      for (; m < end; m += 2) {
+        s -= t[m[0]] * lj[m[0]];
+        odd -= t[m[1]] * lj[m[1]];
+      }
+      s += odd;
+      const double ljk = s * dinv[j];
+      t[j] = s;
+      lk[j] = ljk;
+      d -= ljk * s;
+      p = end;
+    }
+    judge(dn, k, akk, d, pivot_tol, reg_tol, &dependent, regularised);
+  }
+  return dependent;
+}
+
 /* x = P (L D Lᵀ)⁺ Pᵀ b with dropped rows' unknowns set to zero. */
 static void solve_factored(const void *factored, const double *b, double *x) {
   const mr_dense *dn = factored;
   const int n = dn->n, *perm = dn->perm, *first = DBUF(dn, first, const int);
   const double *l = DBUF(dn, l, const double), *dinv = DBUF(dn, dinv, const double);
   double *y = DBUF(dn, y, double);
-  for (int k = 0; k < n; k++)
-    y[k] = minus_dot(b[perm[k]], l + (size_t)k * (size_t)n, y, first[k], k);
+  for (int k = 0; k < n; k++) y[k] = minus_dot(b[perm[k]], l + (size_t)k * LD(n), y, first[k], k);
   for (int k = 0; k < n; k++) y[k] *= dinv[k];
   for (int k = n - 1; k >= 0; k--) {
-    const double *lk = l + (size_t)k * (size_t)n;
+    const double *lk = l + (size_t)k * LD(n);
     const double yk = y[k];
     for (int m = first[k]; m < k; m++) y[m] -= lk[m] * yk;
     x[perm[k]] = yk;
@@ -189,19 +335,99 @@ static double gamma_of(int m) {
  * measured. The measurement also showed A finite (solver.c); here the
  * factor read A's lower triangle, where a NaN or Inf would have dropped
  * its row, and A is looked at whole (a quarter of a measurement). */
-static int bound_suffices(const mr_dense *dn, const mr_csr *A, const mr_solve_def *o, double b_norm,
+static int bound_suffices(mr_dense *dn, const mr_csr *A, const mr_solve_def *o, double b_norm,
                           const double *x, double *bound) {
   const int n = dn->n;
   const double *l = DBUF(dn, l, const double);
-  if (!mr_all_finite((size_t)A->row_ptr[n], A->val)) return 0;
+  if (dn->kept_finite < 0) dn->kept_finite = mr_all_finite((size_t)A->row_ptr[n], A->val);
+  if (!dn->kept_finite) return 0;
   double tr = 0.0, xx = 0.0;
   for (int k = 0; k < n; k++) {
-    tr += l[(size_t)k * (size_t)n + (size_t)k]; /* A_kk: the factor leaves it */
+    tr += l[(size_t)k * LD(n) + (size_t)k]; /* A_kk: the factor leaves it */
     xx += x[k] * x[k];
   }
   const double g = gamma_of(n + 1);
   *bound = (gamma_of(3 * n + 1) + g) * (1.0 + gamma_of(n)) * tr * sqrt(xx) + g * b_norm;
   return *bound <= o->tol * b_norm;
+}
+
+/* Factors A, unless the factor in L is of the same numbers already. The
+ * physics solves one A for several right-hand sides (friction's rounds
+ * add a force and solve again: on puppet.yaml 19 124 solves for 3 818
+ * assemblies); the same pattern, numbers (compared bit for bit) and
+ * tolerances give the same factor, so it is kept. */
+static void factor_unless_kept(mr_dense *dn, const mr_solve_def *o, const mr_csr *A,
+                               mr_solve_result *r) {
+  const size_t nnz = (size_t)A->row_ptr[A->n];
+  double *kept = DBUF(dn, aval, double);
+  if (dn->kept_valid && dn->kept_nnz == nnz && dn->kept_pivot == o->pivot_tol &&
+      dn->kept_reg == o->reg_tol && memcmp(kept, A->val, nnz * sizeof *kept) == 0) {
+    r->dependent = dn->kept_dependent;
+    r->regularised = dn->kept_regularised;
+    return;
+  }
+  r->regularised = 0;
+  if (dn->n_plan >= 0) {
+    r->dependent = factor_plan(dn, A->val, o->pivot_tol, o->reg_tol, &r->regularised);
+  } else {
+    load(dn, A);
+    r->dependent = factor(dn, o->pivot_tol, o->reg_tol, &r->regularised);
+  }
+  memcpy(kept, A->val, nnz * sizeof *kept);
+  dn->factors++;
+  dn->kept_nnz = nnz;
+  dn->kept_pivot = o->pivot_tol;
+  dn->kept_reg = o->reg_tol;
+  dn->kept_dependent = r->dependent;
+  dn->kept_regularised = r->regularised;
+  dn->kept_finite = -1;
+  dn->kept_valid = 1;
+}
+
+/* The plan of the analysis in use, from its kept slot: 1, or 0 when the
+ * slot has none. A pattern that comes back (the physics alternates among
+ * a few: fig10 changed the analysis in use 1 145 times for 26 patterns)
+ * then costs a copy, not a plan (about 17 k instructions on the stick
+ * figure). */
+static int take_plan(const mr_ldlt *f, mr_dense *dn) {
+  if (f->in_use < 0) return 0;
+  const mr_ldlt_kept *k = &f->kept[f->in_use];
+  if (k->plan_ints == 0) return 0;
+  memcpy(dn->first.p, k->dfirst.p, (size_t)dn->n * sizeof(int));
+  memcpy(dn->plan.p, k->dplan.p, (size_t)k->plan_ints * sizeof(int));
+  dn->n_plan = k->plan_ints;
+  return 1;
+}
+
+/* The plan made for the analysis in use, kept in its slot when the slot's
+ * room (reserved with the slot: MR_DENSE_KEPT_PLAN_ROOM) holds it. The
+ * slot drops it when another analysis takes the slot (ldlt.c, keep). */
+static void keep_plan(mr_ldlt *f, const mr_dense *dn) {
+  if (f->in_use < 0) return;
+  mr_ldlt_kept *k = &f->kept[f->in_use];
+  if ((size_t)dn->n > k->dfirst.cap || (size_t)dn->n_plan > k->dplan.cap) return;
+  memcpy(k->dfirst.p, dn->first.p, (size_t)dn->n * sizeof(int));
+  memcpy(k->dplan.p, dn->plan.p, (size_t)dn->n_plan * sizeof(int));
+  k->plan_ints = dn->n_plan;
+}
+
+/* The pattern's share of the work for the analysis in use: its kept plan,
+ * or a plan made (then kept), or, when the plan outgrows its room, the
+ * envelope walk's load lists. */
+static void pattern_work(mr_ldlt *f, mr_dense *dn, const mr_csr *A) {
+  if (take_plan(f, dn)) {
+    clear_envelope(dn);
+    return;
+  }
+  dn->plans++;
+  find_firsts(dn, A, f->flag.p);
+  if (plan_pattern(dn, A, f->flag.p) != 0) {
+    dn->n_plan = -1;
+    place_pattern(dn, A, f->flag.p);
+    return;
+  }
+  clear_envelope(dn);
+  keep_plan(f, dn);
 }
 
 int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const double *b,
@@ -215,13 +441,12 @@ int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
   dn->perm = f->dperm.p; /* a reserve may have moved it */
   if (!dn->valid || dn->clock != f->clock || dn->n != n) {
     dn->n = n;
-    place_pattern(dn, A, f->flag.p);
+    pattern_work(f, dn, A);
     dn->clock = f->clock;
     dn->valid = 1;
+    dn->kept_valid = 0;
   }
-  load(dn, A);
-  r->regularised = 0;
-  r->dependent = factor(dn, o->pivot_tol, o->reg_tol, &r->regularised);
+  factor_unless_kept(dn, o, A, r);
   r->dense = 1;
   solve_factored(dn, b, x);
   r->iterations = 1;

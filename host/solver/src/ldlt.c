@@ -34,7 +34,8 @@ void mr_ldlt_free(mr_ldlt *f) {
   mr_pattern_free(&f->pattern);
   for (int s = 0; s < MR_LDLT_KEPT; s++) {
     mr_ldlt_kept *k = &f->kept[s];
-    mr_buf *const kbufs[] = { &k->perm, &k->iperm, &k->parent, &k->lp, &k->dperm };
+    mr_buf *const kbufs[] = { &k->perm,  &k->iperm,  &k->parent, &k->lp,
+                              &k->dperm, &k->dfirst, &k->dplan };
     mr_bufs_free(kbufs, sizeof kbufs / sizeof kbufs[0]);
     mr_pattern_free(&k->pattern);
   }
@@ -90,9 +91,13 @@ static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l) {
  * step (tests/physics/test_allocation.c). */
 static int reserve_slot(mr_ldlt_kept *k, size_t n, size_t nnz) {
   const size_t si = sizeof(int);
+  /* The dense plan's room only for what the dense path can take. */
+  const size_t dn = n < MR_SOLVE_DENSE_ROWS_MAX ? n : MR_SOLVE_DENSE_ROWS_MAX;
   if (mr_pattern_reserve(&k->pattern, n, nnz) || mr_buf_reserve(&k->perm, n, si) ||
       mr_buf_reserve(&k->iperm, n, si) || mr_buf_reserve(&k->parent, n, si) ||
-      mr_buf_reserve(&k->dperm, n, si) || mr_buf_reserve(&k->lp, n + 1, si))
+      mr_buf_reserve(&k->dperm, n, si) || mr_buf_reserve(&k->lp, n + 1, si) ||
+      mr_buf_reserve(&k->dfirst, dn, si) ||
+      mr_buf_reserve(&k->dplan, MR_DENSE_KEPT_PLAN_ROOM(dn), si))
     return MR_SOLVE_ERR_NOMEM;
   return 0;
 }
@@ -237,6 +242,7 @@ static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
     if (f->kept[t].used < f->kept[s].used) s = t;
   mr_ldlt_kept *k = &f->kept[s];
   k->pattern.valid = 0;
+  k->plan_ints = 0; /* the dense plan goes with the analysis it was made for */
   if (reserve_kept(f, n, (size_t)A->row_ptr[A->n])) return MR_SOLVE_ERR_NOMEM;
   memcpy(k->perm.p, f->perm.p, n * si);
   memcpy(k->iperm.p, f->iperm.p, n * si);
@@ -260,8 +266,9 @@ int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A) {
   if (st != 0) return st;
   /* The analysis in use is always the most recent: no stamp while it
    * stays in use. The clock moves at every change of it (dense.c keys its
-   * own per-pattern work on it). */
+   * own per-pattern work on it, and keeps that work in slot in_use). */
   ++f->clock;
+  f->in_use = s;
   if (s >= 0) f->kept[s].used = f->clock;
   return 0;
 }

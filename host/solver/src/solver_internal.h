@@ -55,6 +55,11 @@ typedef struct mr_ldlt_kept {
   mr_buf perm, iperm, parent, lp, dperm;
   size_t nnz_l;
   unsigned long used; /* f->clock when last used: the least recent goes */
+  /* The dense factor's first[] and plan for this analysis (dense.c,
+   * keep_plan), plan_ints ints of it; 0: none made since the analysis
+   * came into the slot, or one larger than the slot's room. */
+  mr_buf dfirst, dplan;
+  int plan_ints;
 } mr_ldlt_kept;
 /* How many analyses are kept, and the largest pattern kept (rows): a
  * reserve gives every kept slot room for a full pattern of up to that
@@ -68,23 +73,49 @@ typedef struct mr_ldlt_kept {
  * 260 KiB a plan once reserved for 128 rows). */
 #define MR_CSR_KEPT        16
 #define MR_LDLT_KEPT_MAX_N 128
+/* The room a kept slot has for the dense factor's plan, in ints, for
+ * n rows (only up to the dense path's MR_SOLVE_DENSE_ROWS_MAX): the
+ * stick figure's and the puppet's plans take at most 28 ints a row; a
+ * plan that needs more is made again each time its analysis comes back
+ * into use. 32 KiB a slot, 1 MiB in all, once reserved for 128 rows (the
+ * arrays grow by doubling). */
+#define MR_DENSE_KEPT_PLAN_ROOM(n) (48 * (size_t)(n) + 64)
 
 /* The dense LDLᵀ's factor (dense.c): L row-major, n × n, row k used from
  * its first nonzero column first[k]; 1/d (0 for a dropped row); which rows
- * were dropped (1) or regularised (2). The order, first[] and where each
- * entry of A goes in L depend only on A's pattern: they are kept while
- * the LDLᵀ's analysis in use stays the same (clock). */
+ * were dropped (1) or regularised (2). The order, first[], L's pattern and
+ * the plan of the factor's products depend only on A's pattern: they are
+ * kept while the LDLᵀ's analysis in use stays the same (clock), and first[]
+ * and the plan also with the analysis' kept slot, for when it comes back. */
 typedef struct mr_dense {
   int n, valid;
   int room;            /* rows the arrays hold (mr_dense_reserve) */
   unsigned long clock; /* the mr_ldlt clock the pattern work was done at */
   const int *perm;     /* the order factored, new → old (the analysis' dperm) */
   mr_buf l, first, t, dinv, diag, dropped;
-  /* place: per entry of A on or below the diagonal, its index in A and
-   * in l (n_place pairs); zero: the places in l of the rows' spans that
-   * A leaves empty (n_zero); y: b and x permuted. */
+  /* plan: the factor's program (dense.c, plan_pattern), n_plan ints, or
+   * n_plan < 0 when it needs more than its room and the factor walks the
+   * envelope instead; mark: L's pattern as n × n bytes and aq: 3n ints,
+   * scratch of the plan. l's rows are n + 1 long and t n + 1: the plan
+   * pads its pairs with index n, where both are 0. */
+  mr_buf plan, mark, aq;
+  int n_plan;
+  /* The envelope walk's load: place: per entry of A on or below the
+   * diagonal, its index in A and in l (n_place pairs); zero: the places in
+   * l of the rows' spans that A leaves empty (n_zero). y: b and x
+   * permuted. */
   mr_buf place, zero, y;
   int n_place, n_zero;
+  /* The numbers of A the factor in l is of (aval, kept_nnz), the
+   * tolerances it used and what it found, and whether A is finite (−1:
+   * not looked at yet); kept_valid: all of it holds (dense.c,
+   * factor_unless_kept). */
+  mr_buf aval;
+  size_t kept_nnz;
+  double kept_pivot, kept_reg;
+  int kept_valid, kept_dependent, kept_regularised, kept_finite;
+  unsigned long factors; /* factorisations made: for tests */
+  unsigned long plans;   /* plans made (not taken from a kept slot): for tests */
 } mr_dense;
 
 /* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
@@ -95,6 +126,7 @@ typedef struct mr_ldlt {
   mr_pattern pattern;
   mr_ldlt_kept kept[MR_LDLT_KEPT];
   unsigned long clock;    /* changes of the analysis in use */
+  int in_use;             /* kept[]'s slot of the analysis in use; −1: none */
   unsigned long analyses; /* analyses run (ordering + symbolic): for tests */
   mr_buf perm, iperm;     /* new → old, old → new */
   mr_buf dperm;           /* the dense factor's order, new → old */
