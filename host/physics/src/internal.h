@@ -168,6 +168,8 @@ struct mr_world {
   mr_list frames;                      /* mr_frame */
   double *frame_state;                 /* per frame: MR_FRAME_STATE */
   double frame_state_t;                /* the time all of it is at, or NaN */
+  double *kin_placed;                  /* per kin entry, its placement there (frame.c) */
+  int cap_kin_placed;                  /* entries kin_placed holds */
   mr_list kin;                         /* int: particles carried by frames */
   mr_list forces[MR_FORCE_KIND_COUNT]; /* per force kind, its elements */
   mr_list distances;                   /* mr_distance */
