@@ -92,15 +92,17 @@ static void accelerations(const mr_world *w, const double *f, double *a) {
 
 /* Rows of the constraints and of the active contacts (w->contact_active)
  * into w->J, with C, Ċ and the bias J̇q̇ + ∂²C/∂t² per row, and for each
- * row the contact it stands for (-1 for a constraint). Returns the number
- * of rows, or -1 when out of memory. The force solve (eq. 8) and the
- * impulse solve (eq. 9, which does not read the bias) share it. */
-int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
+ * row the contact it stands for (-1 for a constraint). Given a_free, the
+ * distance rows' right-hand sides of eq. 8 too (the first
+ * w->distances.n). Returns the number of rows, or -1 when out of memory. */
+static int rows_build(mr_world *w, double t, const double *x, const double *v,
+                      const double *a_free) {
   int nc = mr_constraint_row_count(w);
   if (mr_rows_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0) return -1;
   int r = 0;
   if (nc > 0) {
-    r = mr_constraints_rows(w, t, x, v, w->row_c, w->row_cdot, w->row_bias);
+    r = a_free ? mr_constraints_rows_eq8(w, t, x, v, a_free)
+               : mr_constraints_rows(w, t, x, v, w->row_c, w->row_cdot, w->row_bias);
     if (r < 0) return -1;
   }
   for (int i = 0; i < r; i++) w->row_contact[i] = -1;
@@ -117,13 +119,29 @@ int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
   return r;
 }
 
-/* §5.2, eq. 8: b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t². */
-static void rhs_eq8(mr_world *w, int rows, const double *a_free) {
-  const double ks = w->def.ks, kd = w->def.kd, *bias = w->row_bias, *jv = w->row_jv;
+/* The force solve (eq. 8) and the impulse solve (eq. 9, which does not
+ * read the bias) share the rows. */
+int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
+  return rows_build(w, t, x, v, NULL);
+}
+
+/* §5.2, eq. 8: b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t², for the
+ * rows from `from` on (those before have theirs). J M⁻¹ F_a row by row as
+ * mr_jac_mul sums it: the same bits. */
+static void rhs_eq8(mr_world *w, int from, int rows, const double *a_free) {
+  const double ks = w->def.ks, kd = w->def.kd, *bias = w->row_bias;
   const double *c = w->row_c, *cdot = w->row_cdot;
+  const int *rp = w->J.row_ptr, *part = w->J.particle;
+  const double(*d)[3] = (const double(*)[3])w->J.d;
   double *rhs = w->rhs;
-  mr_jac_mul(&w->J, a_free, w->row_jv);
-  for (int i = 0; i < rows; i++) rhs[i] = -bias[i] - jv[i] - ks * c[i] - kd * cdot[i];
+  for (int i = from; i < rows; i++) {
+    double jv = 0.0;
+    for (int e = rp[i]; e < rp[i + 1]; e++) {
+      const double *q = a_free + 3 * part[e];
+      jv += d[e][0] * q[0] + d[e][1] * q[1] + d[e][2] * q[2];
+    }
+    rhs[i] = -bias[i] - jv - ks * c[i] - kd * cdot[i];
+  }
 }
 
 /* Coulomb friction at resting contacts (§4.4), with N the contact's
@@ -218,9 +236,9 @@ static void select_resting_contacts(mr_world *w, const double *x, const double *
 static int solve_eq8(mr_world *w, double t, const double *x, const double *v, const double *a) {
   int rows = 0;
   for (int round = 0; round <= w->contacts.n; round++) {
-    rows = mr_rows_build(w, t, x, v);
+    rows = rows_build(w, t, x, v, a);
     if (rows <= 0) return rows;
-    rhs_eq8(w, rows, a);
+    rhs_eq8(w, w->distances.n, rows, a);
     if (mr_solve_rows(w, 1) != 0) return -1;
     int released = 0;
     for (int r = 0; w->contacts.n > 0 && r < rows; r++) {
@@ -259,7 +277,7 @@ static int friction_rounds(mr_world *w, double h, int rows, const double *x, con
     double change = friction(w, h, rows, x, v, acc, w->fric, w->scratch.force);
     if (round > 0 && !(change > 1e-9 * scale)) break;
     accelerations(w, w->scratch.force, a);
-    rhs_eq8(w, rows, a);
+    rhs_eq8(w, 0, rows, a);
     if (mr_solve_rows(w, 0) != 0) return -1;
   }
   return 0;
