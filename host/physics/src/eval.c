@@ -37,7 +37,8 @@ int mr_rows_reserve(mr_world *w, int rows) {
  * which it regularises (mr_solve_def.reg_tol, set in world.c). */
 static void soften_contacts(mr_world *w) {
   mr_csr *A = &w->A;
-  for (int r = 0; w->contacts.n > 0 && r < A->n; r++) {
+  if (w->contacts.n == 0) return;
+  for (int r = mr_constraint_row_count(w); r < A->n; r++) { /* contacts come after */
     if (w->row_contact[r] < 0) continue;
     for (int e = A->row_ptr[r]; e < A->row_ptr[r + 1]; e++)
       if (A->col[e] == r) A->val[e] *= 1.0 + 1e-6;
@@ -203,14 +204,16 @@ static double friction(mr_world *w, double h, int rows, const double *x, const d
   return change;
 }
 
+/* Every builder of rows puts the constraints' first, then the others:
+ * the first row that may be a contact's (rows when there are none). */
+static int first_contact_row(const mr_world *w, int rows) {
+  return w->contacts.n > 0 ? mr_constraint_row_count(w) : rows;
+}
+
 /* Stage 2: F = F_a from the world's force passes, a = M⁻¹ F. */
 static void applied_forces(mr_world *w, double t, const double *x, const double *v, double *a) {
   double *f = w->scratch.force;
-  memset(f, 0, (size_t)(3 * w->n) * sizeof *f);
-  for (int p = 0; p < w->n_force_passes; p++) {
-    w->pass_calls[w->force_pass_ids[p]]++;
-    w->force_passes[p](w, t, x, v, f);
-  }
+  mr_forces_apply(w, t, x, v, f);
   accelerations(w, f, a);
 }
 
@@ -241,7 +244,7 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
     rhs_eq8(w, w->distances.n, rows, a);
     if (mr_solve_rows(w, 1) != 0) return -1;
     int released = 0;
-    for (int r = 0; w->contacts.n > 0 && r < rows; r++) {
+    for (int r = first_contact_row(w, rows); r < rows; r++) {
       int c = w->row_contact[r];
       if (c >= 0 && w->lambda[r] < 0) {
         w->contact_active[c] = 0;
@@ -254,7 +257,7 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
 }
 
 static int has_friction(const mr_world *w, int rows) {
-  for (int r = 0; w->contacts.n > 0 && r < rows; r++)
+  for (int r = first_contact_row(w, rows); r < rows; r++)
     if (w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 && w->lambda[r] > 0)
       return 1;
   return 0;

@@ -304,6 +304,8 @@ void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], do
 
 /* forces.c */
 int mr_forces_build_passes(mr_world *w);
+/* F_a at (t, x, v): every force pass of the world into f (3n), from 0. */
+void mr_forces_apply(mr_world *w, double t, const double *x, const double *v, double *f);
 
 /* constraints.c: rows of C, J, J̇q̇ for eq. 8 */
 int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v, double *c,
