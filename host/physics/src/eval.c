@@ -137,7 +137,15 @@ static void rhs_eq8(mr_world *w, int from, int rows, const double *a_free) {
   double *rhs = w->rhs;
   for (int i = from; i < rows; i++) {
     double jv = 0.0;
-    for (int e = rp[i]; e < rp[i + 1]; e++) {
+    int e = rp[i];
+    const int end = rp[i + 1];
+    if (end - e == 2) { /* a distance: the same sums, without the loop */
+      const double *qa = a_free + 3 * part[e], *qb = a_free + 3 * part[e + 1];
+      jv += d[e][0] * qa[0] + d[e][1] * qa[1] + d[e][2] * qa[2];
+      jv += d[e + 1][0] * qb[0] + d[e + 1][1] * qb[1] + d[e + 1][2] * qb[2];
+      e = end;
+    }
+    for (; e < end; e++) {
       const double *q = a_free + 3 * part[e];
       jv += d[e][0] * q[0] + d[e][1] * q[1] + d[e][2] * q[2];
     }
@@ -269,14 +277,20 @@ static int has_friction(const mr_world *w, int rows) {
  * rounds (a rigid body on a slope sticks only when its contacts agree). */
 static int friction_rounds(mr_world *w, double h, int rows, const double *x, const double *v,
                            double *a) {
-  int n3 = 3 * w->n;
+  const int n = w->n;
+  const double *inv_mass = w->inv_mass;
   double *acc = w->scratch.acc_try;
   memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
   double scale = 0;
   for (int r = 0; r < rows; r++) scale = fmax(scale, fabs(w->lambda[r]));
   for (int round = 0; round < 32; round++) {
     mr_jac_tmul(&w->J, w->lambda, acc);
-    for (int i = 0; i < n3; i++) acc[i] = a[i] + acc[i] * w->inv_mass[i / 3];
+    for (int i = 0; i < n; i++) { /* per particle: no division, one load of its mass */
+      const double im = inv_mass[i];
+      acc[3 * i] = a[3 * i] + acc[3 * i] * im;
+      acc[3 * i + 1] = a[3 * i + 1] + acc[3 * i + 1] * im;
+      acc[3 * i + 2] = a[3 * i + 2] + acc[3 * i + 2] * im;
+    }
     double change = friction(w, h, rows, x, v, acc, w->fric, w->scratch.force);
     if (round > 0 && !(change > 1e-9 * scale)) break;
     accelerations(w, w->scratch.force, a);
