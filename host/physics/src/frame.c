@@ -224,12 +224,15 @@ void mr_frames_place(mr_world *w, double t, double *x, double *v) {
  * placing every frame's points again for each one added made building a
  * crowd of n puppets O(n²) (0.41 s for 1 000 stick puppets, 0.005 s now).
  * Counted as the frames pass it stands for. Only its frame's state is
- * fresh, so no time is recorded for the whole. */
+ * fresh, so no time is recorded for the whole. The room to keep its
+ * placement is made here, so that a step allocates none (place_all grows
+ * it again if this could not). */
 void mr_frame_place_one(mr_world *w, int i) {
   w->pass_calls[MR_PASS_FRAMES]++;
   double xv[6];
   frame_state_at(w, w->frame[i], w->t);
   w->frame_state_t = NAN;
+  (void)mr_grow((void **)&w->kin_placed, &w->cap_kin_placed, w->kin.n, KIN_PLACED * sizeof(double));
   carried(w, i, xv, NULL);
   memcpy(&w->x[3 * i], xv, 3 * sizeof *xv);
   memcpy(&w->v[3 * i], xv + 3, 3 * sizeof *xv);
