@@ -11,24 +11,33 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The pieces of eq. 8's right-hand side a distance row can fold in while
+ * it has its numbers (a_free NULL: none). */
+typedef struct eq8_terms {
+  const double *a_free; /* M⁻¹ F_a, 3n */
+  double ks, kd;
+  double *rhs;
+} eq8_terms;
+
 /* Distance between a and b, d = x_a − x_b, L = |d|, u = d/L:
  *   C   = L − length
  *   J   = [ uᵀ (at a), −uᵀ (at b) ]
  *   Ċ   = u·(v_a − v_b)
  *   J̇q̇  = (|v_a − v_b|² − (u·(v_a − v_b))²) / L      (∂C/∂t = 0)
- * Every row names two particles (a ≠ b, checked when it was added), so
- * they are written straight into J's arrays. */
-static int distance_rows(mr_world *w, const double *x, const double *v, double *c, double *cdot,
-                         double *bias) {
+ * J's entries from e on, two a row, already name a and b (rows_pattern).
+ * With eq8, its row of §5.2, eq. 8's b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ,
+ * J M⁻¹ F_a summed as mr_jac_mul sums it, so the bits are the same. */
+static void distance_rows(mr_world *w, int e, const double *x, const double *v, double *c,
+                          double *cdot, double *bias, const eq8_terms *eq8) {
   const int n = w->distances.n;
   const mr_distance *dist = w->distances.data;
-  int e = mr_jac_add_rows(&w->J, n, 2);
-  if (e < 0) return -1;
-  int *part = w->J.particle;
   double(*jd)[3] = w->J.d;
+  const double *af = eq8 ? eq8->a_free : NULL, ks = eq8 ? eq8->ks : 0, kd = eq8 ? eq8->kd : 0;
+  double *rhs = eq8 ? eq8->rhs : NULL;
   for (int r = 0; r < n; r++, e += 2) {
     const mr_distance *d = &dist[r];
-    const double *xa = x + 3 * d->a, *xb = x + 3 * d->b, *va = v + 3 * d->a, *vb = v + 3 * d->b;
+    const int ia = 3 * d->a, ib = 3 * d->b;
+    const double *xa = x + ia, *xb = x + ib, *va = v + ia, *vb = v + ib;
     /* Written out: -O2 leaves 3-loops rolled. */
     const double dx[3] = { xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2] };
     const double dv[3] = { va[0] - vb[0], va[1] - vb[1], va[2] - vb[2] };
@@ -36,8 +45,6 @@ static int distance_rows(mr_world *w, const double *x, const double *v, double *
     /* A collapsed link has no direction; keep the row (zero) so the row
      * count is fixed and the solver reports it as dependent. */
     double inv = len > 1e-12 ? 1.0 / len : 0.0;
-    part[e] = d->a;
-    part[e + 1] = d->b;
     const double u[3] = { dx[0] * inv, dx[1] * inv, dx[2] * inv };
     jd[e][0] = u[0];
     jd[e][1] = u[1];
@@ -46,24 +53,18 @@ static int distance_rows(mr_world *w, const double *x, const double *v, double *
     jd[e + 1][1] = -u[1];
     jd[e + 1][2] = -u[2];
     double rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
-    c[r] = len - d->length;
+    double cr = len - d->length;
+    double br = (dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) * inv;
+    c[r] = cr;
     cdot[r] = rate;
-    bias[r] = (dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) * inv;
+    bias[r] = br;
+    if (!af) continue;
+    const double *aa = af + ia, *ab = af + ib;
+    double jv = 0.0;
+    jv += u[0] * aa[0] + u[1] * aa[1] + u[2] * aa[2];
+    jv += -u[0] * ab[0] + -u[1] * ab[1] + -u[2] * ab[2];
+    rhs[r] = -br - jv - ks * cr - kd * rate;
   }
-  return n;
-}
-
-/* The rows of a particle held to a point p(t), one per axis: J = I, so
- * each row names the particle once with a unit vector. Returns the first
- * of the three entries, or −1. */
-static int axis_rows(mr_world *w, int particle) {
-  int e = mr_jac_add_rows(&w->J, 3, 1);
-  if (e < 0) return -1;
-  for (int k = 0; k < 3; k++) {
-    w->J.particle[e + k] = particle;
-    for (int m = 0; m < 3; m++) w->J.d[e + k][m] = k == m ? 1.0 : 0.0;
-  }
-  return e;
 }
 
 /* Pin to a point p: C = x − p (3 rows), J = I, Ċ = v, J̇q̇ = 0. */
@@ -72,7 +73,6 @@ static int pin_rows(mr_world *w, const double *x, const double *v, double *c, do
   int r = 0;
   for (int i = 0; i < w->pins.n; i++) {
     const mr_pin *p = &MR_AT(w->pins, mr_pin, i);
-    if (axis_rows(w, p->particle) < 0) return -1;
     for (int k = 0; k < 3; k++, r++) {
       c[r] = x[3 * p->particle + k] - p->point[k];
       cdot[r] = v[3 * p->particle + k];
@@ -91,7 +91,6 @@ static int curve_rows(mr_world *w, double t, const double *x, const double *v, d
     const mr_curve *cv = &MR_AT(w->curves, mr_curve, i);
     double p[3], pv[3], pa[3];
     mr_curve_eval(cv, t, p, pv, pa);
-    if (axis_rows(w, cv->particle) < 0) return -1;
     for (int k = 0; k < 3; k++, r++) {
       c[r] = x[3 * cv->particle + k] - p[k];
       cdot[r] = v[3 * cv->particle + k] - pv[k];
@@ -99,6 +98,47 @@ static int curve_rows(mr_world *w, double t, const double *x, const double *v, d
     }
   }
   return r;
+}
+
+/* The rows of a particle held to a point, one per axis: J = I, so each
+ * row names the particle once with a unit vector. */
+static void axis_rows(mr_world *w, int e, int particle) {
+  for (int k = 0; k < 3; k++) {
+    w->J.particle[e + k] = particle;
+    for (int m = 0; m < 3; m++) w->J.d[e + k][m] = k == m ? 1.0 : 0.0;
+  }
+}
+
+/* J's rows of the constraints: which particles each names, and the pins'
+ * and curves' unit vectors, are the same on every build, and nothing but
+ * this file writes J's first rows (other rows are added after them). They
+ * are written when the constraints change, w->rows_pattern says for how
+ * many elements (elements are only ever added), and each build after that
+ * sets the row count alone. Returns the first entry of the distance rows
+ * (0), or −1 when out of memory. */
+static int rows_pattern(mr_world *w) {
+  const int nd = w->distances.n, np = w->pins.n, nc = w->curves.n, elements = nd + np + nc;
+  if (w->J.rows != 0) return -1; /* only ever called on a J just reset */
+  if (w->rows_pattern == elements) {
+    w->J.rows = mr_constraint_row_count(w);
+    return 0;
+  }
+  int e = mr_jac_add_rows(&w->J, nd, 2);
+  if (e != 0) return -1;
+  for (int r = 0; r < nd; r++) {
+    const mr_distance *d = &MR_AT(w->distances, mr_distance, r);
+    w->J.particle[2 * r] = d->a;
+    w->J.particle[2 * r + 1] = d->b;
+  }
+  for (int i = 0; i < np + nc; i++) {
+    int at = mr_jac_add_rows(&w->J, 3, 1);
+    if (at < 0) return -1;
+    axis_rows(w, at,
+              i < np ? MR_AT(w->pins, mr_pin, i).particle
+                     : MR_AT(w->curves, mr_curve, i - np).particle);
+  }
+  w->rows_pattern = elements;
+  return 0;
 }
 
 int mr_constraint_row_count(const mr_world *w) {
@@ -109,16 +149,27 @@ int mr_world_constraint_rows(const mr_world *w) {
   return w ? mr_constraint_row_count(w) : 0;
 }
 
+static int rows_with(mr_world *w, double t, const double *x, const double *v, double *c,
+                     double *cdot, double *bias, const eq8_terms *eq8) {
+  w->pass_calls[MR_PASS_CONSTRAINTS]++;
+  int e = rows_pattern(w);
+  if (e < 0) return -1;
+  distance_rows(w, e, x, v, c, cdot, bias, eq8);
+  int r0 = w->distances.n;
+  int r1 = pin_rows(w, x, v, c + r0, cdot + r0, bias + r0);
+  int r2 = curve_rows(w, t, x, v, c + r0 + r1, cdot + r0 + r1, bias + r0 + r1);
+  return r0 + r1 + r2;
+}
+
 int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v, double *c,
                         double *cdot, double *bias) {
-  w->pass_calls[MR_PASS_CONSTRAINTS]++;
-  int r0 = distance_rows(w, x, v, c, cdot, bias);
-  if (r0 < 0) return -1;
-  int r1 = pin_rows(w, x, v, c + r0, cdot + r0, bias + r0);
-  if (r1 < 0) return -1;
-  int r2 = curve_rows(w, t, x, v, c + r0 + r1, cdot + r0 + r1, bias + r0 + r1);
-  if (r2 < 0) return -1;
-  return r0 + r1 + r2;
+  return rows_with(w, t, x, v, c, cdot, bias, NULL);
+}
+
+int mr_constraints_rows_eq8(mr_world *w, double t, const double *x, const double *v,
+                            const double *a_free) {
+  const eq8_terms eq8 = { a_free, w->def.ks, w->def.kd, w->rhs };
+  return rows_with(w, t, x, v, w->row_c, w->row_cdot, w->row_bias, &eq8);
 }
 
 static double worse(double e, double d) {

@@ -37,7 +37,8 @@ int mr_rows_reserve(mr_world *w, int rows) {
  * which it regularises (mr_solve_def.reg_tol, set in world.c). */
 static void soften_contacts(mr_world *w) {
   mr_csr *A = &w->A;
-  for (int r = 0; w->contacts.n > 0 && r < A->n; r++) {
+  if (w->contacts.n == 0) return;
+  for (int r = mr_constraint_row_count(w); r < A->n; r++) { /* contacts come after */
     if (w->row_contact[r] < 0) continue;
     for (int e = A->row_ptr[r]; e < A->row_ptr[r + 1]; e++)
       if (A->col[e] == r) A->val[e] *= 1.0 + 1e-6;
@@ -92,15 +93,17 @@ static void accelerations(const mr_world *w, const double *f, double *a) {
 
 /* Rows of the constraints and of the active contacts (w->contact_active)
  * into w->J, with C, Ċ and the bias J̇q̇ + ∂²C/∂t² per row, and for each
- * row the contact it stands for (-1 for a constraint). Returns the number
- * of rows, or -1 when out of memory. The force solve (eq. 8) and the
- * impulse solve (eq. 9, which does not read the bias) share it. */
-int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
+ * row the contact it stands for (-1 for a constraint). Given a_free, the
+ * distance rows' right-hand sides of eq. 8 too (the first
+ * w->distances.n). Returns the number of rows, or -1 when out of memory. */
+static int rows_build(mr_world *w, double t, const double *x, const double *v,
+                      const double *a_free) {
   int nc = mr_constraint_row_count(w);
   if (mr_rows_reserve(w, nc + w->contacts.n) != 0 || mr_jac_reset(&w->J, w->n) != 0) return -1;
   int r = 0;
   if (nc > 0) {
-    r = mr_constraints_rows(w, t, x, v, w->row_c, w->row_cdot, w->row_bias);
+    r = a_free ? mr_constraints_rows_eq8(w, t, x, v, a_free)
+               : mr_constraints_rows(w, t, x, v, w->row_c, w->row_cdot, w->row_bias);
     if (r < 0) return -1;
   }
   for (int i = 0; i < r; i++) w->row_contact[i] = -1;
@@ -117,13 +120,37 @@ int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
   return r;
 }
 
-/* §5.2, eq. 8: b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t². */
-static void rhs_eq8(mr_world *w, int rows, const double *a_free) {
-  const double ks = w->def.ks, kd = w->def.kd, *bias = w->row_bias, *jv = w->row_jv;
+/* The force solve (eq. 8) and the impulse solve (eq. 9, which does not
+ * read the bias) share the rows. */
+int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
+  return rows_build(w, t, x, v, NULL);
+}
+
+/* §5.2, eq. 8: b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t², for the
+ * rows from `from` on (those before have theirs). J M⁻¹ F_a row by row as
+ * mr_jac_mul sums it: the same bits. */
+static void rhs_eq8(mr_world *w, int from, int rows, const double *a_free) {
+  const double ks = w->def.ks, kd = w->def.kd, *bias = w->row_bias;
   const double *c = w->row_c, *cdot = w->row_cdot;
+  const int *rp = w->J.row_ptr, *part = w->J.particle;
+  const double(*d)[3] = (const double(*)[3])w->J.d;
   double *rhs = w->rhs;
-  mr_jac_mul(&w->J, a_free, w->row_jv);
-  for (int i = 0; i < rows; i++) rhs[i] = -bias[i] - jv[i] - ks * c[i] - kd * cdot[i];
+  for (int i = from; i < rows; i++) {
+    double jv = 0.0;
+    int e = rp[i];
+    const int end = rp[i + 1];
+    if (end - e == 2) { /* a distance: the same sums, without the loop */
+      const double *qa = a_free + 3 * part[e], *qb = a_free + 3 * part[e + 1];
+      jv += d[e][0] * qa[0] + d[e][1] * qa[1] + d[e][2] * qa[2];
+      jv += d[e + 1][0] * qb[0] + d[e + 1][1] * qb[1] + d[e + 1][2] * qb[2];
+      e = end;
+    }
+    for (; e < end; e++) {
+      const double *q = a_free + 3 * part[e];
+      jv += d[e][0] * q[0] + d[e][1] * q[1] + d[e][2] * q[2];
+    }
+    rhs[i] = -bias[i] - jv - ks * c[i] - kd * cdot[i];
+  }
 }
 
 /* Coulomb friction at resting contacts (§4.4), with N the contact's
@@ -185,14 +212,16 @@ static double friction(mr_world *w, double h, int rows, const double *x, const d
   return change;
 }
 
+/* Every builder of rows puts the constraints' first, then the others:
+ * the first row that may be a contact's (rows when there are none). */
+static int first_contact_row(const mr_world *w, int rows) {
+  return w->contacts.n > 0 ? mr_constraint_row_count(w) : rows;
+}
+
 /* Stage 2: F = F_a from the world's force passes, a = M⁻¹ F. */
 static void applied_forces(mr_world *w, double t, const double *x, const double *v, double *a) {
   double *f = w->scratch.force;
-  memset(f, 0, (size_t)(3 * w->n) * sizeof *f);
-  for (int p = 0; p < w->n_force_passes; p++) {
-    w->pass_calls[w->force_pass_ids[p]]++;
-    w->force_passes[p](w, t, x, v, f);
-  }
+  mr_forces_apply(w, t, x, v, f);
   accelerations(w, f, a);
 }
 
@@ -218,12 +247,12 @@ static void select_resting_contacts(mr_world *w, const double *x, const double *
 static int solve_eq8(mr_world *w, double t, const double *x, const double *v, const double *a) {
   int rows = 0;
   for (int round = 0; round <= w->contacts.n; round++) {
-    rows = mr_rows_build(w, t, x, v);
+    rows = rows_build(w, t, x, v, a);
     if (rows <= 0) return rows;
-    rhs_eq8(w, rows, a);
+    rhs_eq8(w, w->distances.n, rows, a);
     if (mr_solve_rows(w, 1) != 0) return -1;
     int released = 0;
-    for (int r = 0; w->contacts.n > 0 && r < rows; r++) {
+    for (int r = first_contact_row(w, rows); r < rows; r++) {
       int c = w->row_contact[r];
       if (c >= 0 && w->lambda[r] < 0) {
         w->contact_active[c] = 0;
@@ -236,7 +265,7 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
 }
 
 static int has_friction(const mr_world *w, int rows) {
-  for (int r = 0; w->contacts.n > 0 && r < rows; r++)
+  for (int r = first_contact_row(w, rows); r < rows; r++)
     if (w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 && w->lambda[r] > 0)
       return 1;
   return 0;
@@ -248,18 +277,24 @@ static int has_friction(const mr_world *w, int rows) {
  * rounds (a rigid body on a slope sticks only when its contacts agree). */
 static int friction_rounds(mr_world *w, double h, int rows, const double *x, const double *v,
                            double *a) {
-  int n3 = 3 * w->n;
+  const int n = w->n;
+  const double *inv_mass = w->inv_mass;
   double *acc = w->scratch.acc_try;
   memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
   double scale = 0;
   for (int r = 0; r < rows; r++) scale = fmax(scale, fabs(w->lambda[r]));
   for (int round = 0; round < 32; round++) {
     mr_jac_tmul(&w->J, w->lambda, acc);
-    for (int i = 0; i < n3; i++) acc[i] = a[i] + acc[i] * w->inv_mass[i / 3];
+    for (int i = 0; i < n; i++) { /* per particle: no division, one load of its mass */
+      const double im = inv_mass[i];
+      acc[3 * i] = a[3 * i] + acc[3 * i] * im;
+      acc[3 * i + 1] = a[3 * i + 1] + acc[3 * i + 1] * im;
+      acc[3 * i + 2] = a[3 * i + 2] + acc[3 * i + 2] * im;
+    }
     double change = friction(w, h, rows, x, v, acc, w->fric, w->scratch.force);
     if (round > 0 && !(change > 1e-9 * scale)) break;
     accelerations(w, w->scratch.force, a);
-    rhs_eq8(w, rows, a);
+    rhs_eq8(w, 0, rows, a);
     if (mr_solve_rows(w, 0) != 0) return -1;
   }
   return 0;

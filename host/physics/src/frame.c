@@ -34,6 +34,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -135,38 +136,106 @@ static void frame_state_at(mr_world *w, int f, double t) {
   mr_frame_motion(&MR_AT(w->frames, mr_frame, f), t, &w->frame_state[MR_FRAME_STATE * f]);
 }
 
-/* Particle i carried by its frame, from the frame's state: x = p + R l,
- * v = v_f + ω × R l. */
-static void carried(const mr_world *w, int i, double *x, double *v) {
-  const double *st = &w->frame_state[MR_FRAME_STATE * w->frame[i]];
-  const double *p = st, *qq = st + 3, *fv = st + 7, *fo = st + 10;
-  double r[3];
-  mr_pose_rotate(qq, &w->local[3 * i], r);
-  for (int k = 0; k < 3; k++) x[3 * i + k] = p[k] + r[k];
-  v[3 * i + 0] = fv[0] + fo[1] * r[2] - fo[2] * r[1];
-  v[3 * i + 1] = fv[1] + fo[2] * r[0] - fo[0] * r[2];
-  v[3 * i + 2] = fv[2] + fo[0] * r[1] - fo[1] * r[0];
+/* a and b (4 doubles each) hold the same bits. */
+static int same_bits4(const double a[4], const double b[4]) {
+  uint64_t x[4], y[4];
+  memcpy(x, a, sizeof x);
+  memcpy(y, b, sizeof y);
+  return ((x[0] ^ y[0]) | (x[1] ^ y[1]) | (x[2] ^ y[2]) | (x[3] ^ y[3])) == 0;
 }
 
+/* Particle i carried by its frame, from the frame's state: x = p + R l,
+ * v = v_f + ω × R l, into xv (x, then v). r = R l is taken from kept[0..2]
+ * when kept[3..6] holds the bits of the frame's orientation it was turned
+ * by (a frame that does not turn turns each offset once), else computed
+ * and kept there; kept may be NULL (nothing is kept). */
+static void carried(const mr_world *w, int i, double xv[6], double kept[7]) {
+  const double *st = &w->frame_state[MR_FRAME_STATE * w->frame[i]];
+  const double *p = st, *qq = st + 3, *fv = st + 7, *fo = st + 10;
+  double own[3], *r = kept ? kept : own;
+  if (!kept || !same_bits4(kept + 3, qq)) {
+    mr_pose_rotate(qq, &w->local[3 * i], r);
+    if (kept) memcpy(kept + 3, qq, 4 * sizeof *qq);
+  }
+  xv[0] = p[0] + r[0];
+  xv[1] = p[1] + r[1];
+  xv[2] = p[2] + r[2];
+  xv[3] = fv[0] + fo[1] * r[2] - fo[2] * r[1];
+  xv[4] = fv[1] + fo[2] * r[0] - fo[0] * r[2];
+  xv[5] = fv[2] + fo[0] * r[1] - fo[1] * r[0];
+}
+
+/* Per carried particle in w->kin_placed: its x and v at frame_state_t,
+ * then its offset turned by its frame and the orientation that turned it
+ * (carried()). A new entry is zeroed: no orientation is all zero bits, so
+ * its offset is turned at its first placement. */
+#define KIN_PLACED 13
+
+/* Every frame's state at t, then each carried particle's x and v into
+ * w->kin_placed. 0, or −1 when kin_placed cannot grow (then nothing is
+ * kept: frame_state_t is NaN). */
+static int place_all(mr_world *w, double t) {
+  const int nk = w->kin.n, *kin = w->kin.data;
+  for (int f = 0; f < w->frames.n; f++) frame_state_at(w, f, t);
+  w->frame_state_t = NAN;
+  if (mr_grow((void **)&w->kin_placed, &w->cap_kin_placed, nk, KIN_PLACED * sizeof(double)) != 0)
+    return -1;
+  for (int j = 0; j < nk; j++) {
+    double *e = &w->kin_placed[KIN_PLACED * j];
+    carried(w, kin[j], e, e + 6);
+  }
+  w->frame_state_t = t;
+  return 0;
+}
+
+/* The frames' paths depend on t alone, and an evaluation places them at
+ * a time it placed them at just before (a step's end is the next step's
+ * start, RK4's two middle stages share theirs, the memo places before it
+ * looks): the placement at frame_state_t is kept, and placing there again
+ * copies it. Whatever changes a path, or adds a frame or a carried
+ * particle, sets frame_state_t to NaN. */
 void mr_frames_place(mr_world *w, double t, double *x, double *v) {
   if (!w->has_frames) return;
   w->pass_calls[MR_PASS_FRAMES]++;
-  /* Each frame's pose once, then its particles. */
-  for (int f = 0; f < w->frames.n; f++) frame_state_at(w, f, t);
-  w->frame_state_t = t;
-  for (int j = 0; j < w->kin.n; j++) carried(w, MR_AT(w->kin, int, j), x, v);
+  const int nk = w->kin.n, *kin = w->kin.data;
+  if (!(t == w->frame_state_t) && place_all(w, t) != 0) {
+    for (int j = 0; j < nk; j++) { /* out of memory: placed, not kept */
+      double xv[6];
+      carried(w, kin[j], xv, NULL);
+      memcpy(&x[3 * kin[j]], xv, 3 * sizeof *xv);
+      memcpy(&v[3 * kin[j]], xv + 3, 3 * sizeof *xv);
+    }
+    return;
+  }
+  const double *placed = w->kin_placed;
+  for (int j = 0; j < nk; j++) {
+    double *xi = &x[3 * kin[j]], *vi = &v[3 * kin[j]];
+    const double *p = &placed[KIN_PLACED * j];
+    xi[0] = p[0];
+    xi[1] = p[1];
+    xi[2] = p[2];
+    vi[0] = p[3];
+    vi[1] = p[4];
+    vi[2] = p[5];
+  }
 }
 
 /* A control point just added is placed alone, with its own frame's state:
  * placing every frame's points again for each one added made building a
  * crowd of n puppets O(n²) (0.41 s for 1 000 stick puppets, 0.005 s now).
  * Counted as the frames pass it stands for. Only its frame's state is
- * fresh, so no time is recorded for the whole. */
+ * fresh, so no time is recorded for the whole. The room to keep its
+ * placement is made here, so that a step allocates none (place_all grows
+ * it again if this could not). */
 void mr_frame_place_one(mr_world *w, int i) {
   w->pass_calls[MR_PASS_FRAMES]++;
+  double xv[6];
   frame_state_at(w, w->frame[i], w->t);
   w->frame_state_t = NAN;
-  carried(w, i, w->x, w->v);
+  (void)mr_grow((void **)&w->kin_placed, &w->cap_kin_placed, w->kin.n, KIN_PLACED * sizeof(double));
+  carried(w, i, xv, NULL);
+  memcpy(&w->x[3 * i], xv, 3 * sizeof *xv);
+  memcpy(&w->v[3 * i], xv + 3, 3 * sizeof *xv);
 }
 
 /* The acceleration of frame particle i, at the time of w->frame_state

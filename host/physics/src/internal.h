@@ -168,6 +168,8 @@ struct mr_world {
   mr_list frames;                      /* mr_frame */
   double *frame_state;                 /* per frame: MR_FRAME_STATE */
   double frame_state_t;                /* the time all of it is at, or NaN */
+  double *kin_placed;                  /* per kin entry, its placement there (frame.c) */
+  int cap_kin_placed;                  /* entries kin_placed holds */
   mr_list kin;                         /* int: particles carried by frames */
   mr_list forces[MR_FORCE_KIND_COUNT]; /* per force kind, its elements */
   mr_list distances;                   /* mr_distance */
@@ -228,6 +230,7 @@ struct mr_world {
   int cap_rows;
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
   int *row_contact; /* −1 constraint row, else contact index */
+  int rows_pattern; /* constraint elements J's first rows are laid out for */
 
   /* The end state of a step, traded with x and v when it is accepted. */
   double *x1, *v1;
@@ -302,10 +305,17 @@ void mr_curve_eval(const mr_curve *c, double t, double pos[3], double vel[3], do
 
 /* forces.c */
 int mr_forces_build_passes(mr_world *w);
+/* F_a at (t, x, v): every force pass of the world into f (3n), from 0. */
+void mr_forces_apply(mr_world *w, double t, const double *x, const double *v, double *f);
 
 /* constraints.c: rows of C, J, J̇q̇ for eq. 8 */
 int mr_constraints_rows(mr_world *w, double t, const double *x, const double *v, double *c,
                         double *cdot, double *bias);
+/* The same into w->row_c, row_cdot and row_bias, with eq. 8's right-hand
+ * side (w->rhs) for the distance rows, which come first, for a_free =
+ * M⁻¹ F_a (3n). */
+int mr_constraints_rows_eq8(mr_world *w, double t, const double *x, const double *v,
+                            const double *a_free);
 int mr_constraint_row_count(const mr_world *w);
 double mr_constraints_deviation(const mr_world *w, double t, const double *x);
 int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_id);

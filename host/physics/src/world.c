@@ -345,6 +345,7 @@ void mr_world_destroy(mr_world *w) {
                      w->puppet,
                      w->frame,
                      w->frame_state,
+                     w->kin_placed,
                      w->puppet_mass,
                      w->part_adjacent,
                      w->built_overlaps,
