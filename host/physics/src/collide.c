@@ -396,3 +396,8 @@ void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3]
     for (int j = 0; j < 3; j++) out[3 * p[i] + j] += k * f[j];
   }
 }
+
+int mr_contact_carriers(const mr_world *w, const mr_contact *c, int p[4]) {
+  double wt[4];
+  return c->kind == MR_CONTACT_STRING ? 0 : carriers(w, c, p, wt);
+}

@@ -22,6 +22,8 @@ int mr_rows_reserve(mr_world *w, int rows) {
   }
   int cap = w->cap_rows;
   if (mr_grow((void **)&w->row_contact, &cap, rows, sizeof(int)) != 0) return -1;
+  cap = w->cap_rows;
+  if (mr_grow((void **)&w->row_reached, &cap, rows, sizeof(int)) != 0) return -1;
   w->cap_rows = cap;
   return 0;
 }
@@ -126,31 +128,79 @@ int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
   return rows_build(w, t, x, v, NULL);
 }
 
-/* §5.2, eq. 8: b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t², for the
- * rows from `from` on (those before have theirs). J M⁻¹ F_a row by row as
- * mr_jac_mul sums it: the same bits. */
-static void rhs_eq8(mr_world *w, int from, int rows, const double *a_free) {
-  const double ks = w->def.ks, kd = w->def.kd, *bias = w->row_bias;
-  const double *c = w->row_c, *cdot = w->row_cdot;
-  const int *rp = w->J.row_ptr, *part = w->J.particle;
+/* §5.2, eq. 8: row i's b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t²,
+ * J M⁻¹ F_a as mr_jac_mul sums it: the same bits. */
+static inline double rhs_row(const mr_world *w, int i, const double *a_free) {
+  const int *part = w->J.particle;
   const double(*d)[3] = (const double(*)[3])w->J.d;
-  double *rhs = w->rhs;
-  for (int i = from; i < rows; i++) {
-    double jv = 0.0;
-    int e = rp[i];
-    const int end = rp[i + 1];
-    if (end - e == 2) { /* a distance: the same sums, without the loop */
-      const double *qa = a_free + 3 * part[e], *qb = a_free + 3 * part[e + 1];
-      jv += d[e][0] * qa[0] + d[e][1] * qa[1] + d[e][2] * qa[2];
-      jv += d[e + 1][0] * qb[0] + d[e + 1][1] * qb[1] + d[e + 1][2] * qb[2];
-      e = end;
-    }
-    for (; e < end; e++) {
-      const double *q = a_free + 3 * part[e];
-      jv += d[e][0] * q[0] + d[e][1] * q[1] + d[e][2] * q[2];
-    }
-    rhs[i] = -bias[i] - jv - ks * c[i] - kd * cdot[i];
+  double jv = 0.0;
+  int e = w->J.row_ptr[i];
+  const int end = w->J.row_ptr[i + 1];
+  if (end - e == 2) { /* a distance: the same sums, without the loop */
+    const double *qa = a_free + 3 * part[e], *qb = a_free + 3 * part[e + 1];
+    jv += d[e][0] * qa[0] + d[e][1] * qa[1] + d[e][2] * qa[2];
+    jv += d[e + 1][0] * qb[0] + d[e + 1][1] * qb[1] + d[e + 1][2] * qb[2];
+    e = end;
   }
+  for (; e < end; e++) {
+    const double *q = a_free + 3 * part[e];
+    jv += d[e][0] * q[0] + d[e][1] * q[1] + d[e][2] * q[2];
+  }
+  return -w->row_bias[i] - jv - w->def.ks * w->row_c[i] - w->def.kd * w->row_cdot[i];
+}
+
+/* eq. 8's b for the rows from `from` on (those before have theirs). */
+static void rhs_eq8(mr_world *w, int from, int rows, const double *a_free) {
+  double *rhs = w->rhs;
+  for (int i = from; i < rows; i++) rhs[i] = rhs_row(w, i, a_free);
+}
+
+/* Every builder of rows puts the constraints' first, then the others:
+ * the first row that may be a contact's (rows when there are none). */
+static int first_contact_row(const mr_world *w, int rows) {
+  return w->contacts.n > 0 ? mr_constraint_row_count(w) : rows;
+}
+
+/* Friction reaches only the particles carrying the resting contacts of
+ * the solve: marks them (w->reached), and lists in w->row_reached the rows
+ * naming one of them. Returns the number of rows listed. */
+static int friction_reach(mr_world *w, int rows) {
+  const int *rp = w->J.row_ptr, *part = w->J.particle, *row_contact = w->row_contact;
+  unsigned char *reached = w->reached;
+  memset(reached, 0, (size_t)w->n);
+  for (int r = first_contact_row(w, rows); r < rows; r++) {
+    if (row_contact[r] < 0) continue;
+    const mr_contact *ct = &w->contacts.c[row_contact[r]];
+    if (ct->friction <= 0) continue;
+    int p[4];
+    for (int k = mr_contact_carriers(w, ct, p) - 1; k >= 0; k--) reached[p[k]] = 1;
+  }
+  int m = 0;
+  for (int i = 0; i < rows; i++) {
+    int any = 0;
+    for (int e = rp[i]; e < rp[i + 1]; e++) any |= reached[part[e]];
+    if (any) w->row_reached[m++] = i;
+  }
+  return m;
+}
+
+/* After a friction round, a = M⁻¹ f again and eq. 8's b with it. A round
+ * changes f only where friction reaches, so elsewhere a, and b of a row
+ * naming none of those particles, would come out as the same numbers, bit
+ * for bit: they are kept. */
+static void refresh_rhs(mr_world *w, int listed, const double *f, double *a) {
+  const int n = w->n, *list = w->row_reached;
+  const double *inv_mass = w->inv_mass;
+  const unsigned char *reached = w->reached;
+  double *rhs = w->rhs;
+  for (int i = 0; i < n; i++) {
+    if (!reached[i]) continue;
+    const double im = inv_mass[i];
+    a[3 * i] = f[3 * i] * im;
+    a[3 * i + 1] = f[3 * i + 1] * im;
+    a[3 * i + 2] = f[3 * i + 2] * im;
+  }
+  for (int k = 0; k < listed; k++) rhs[list[k]] = rhs_row(w, list[k], a);
 }
 
 /* Coulomb friction at resting contacts (§4.4), with N the contact's
@@ -168,12 +218,12 @@ static void rhs_eq8(mr_world *w, int from, int rows, const double *a_free) {
  * against the sliding velocity. Returns 0, or −1 when nothing can move
  * along the contact (it is then left alone). */
 static int contact_friction(const mr_world *w, const mr_contact *ct, double nforce, double tau,
-                            const double *x, const double *v, const double *acc, const double fc[3],
-                            double next[3]) {
+                            const double *x, const double slip[4], const double *acc,
+                            const double fc[3], double next[3]) {
   next[0] = next[1] = next[2] = 0.0;
   if (!(nforce > 0)) return 0;
-  double vt[3], at[3];
-  double inv = mr_contact_slip(w, ct, x, v, vt);
+  const double *vt = slip, inv = slip[3];
+  double at[3];
   mr_contact_slip(w, ct, x, acc, at);
   if (!(inv > 0)) return -1;
   for (int k = 0; k < 3; k++) next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
@@ -188,9 +238,11 @@ static int contact_friction(const mr_world *w, const mr_contact *ct, double nfor
 
 /* One round of friction over the resting contacts of the solve. fr holds
  * each contact's friction (3 per contact); each change is added to f, and
- * to acc so that the next contact on the same particle sees it. Returns the
- * largest change, N. */
-static double friction(mr_world *w, double h, int rows, const double *x, const double *v,
+ * to acc so that the next contact on the same particle sees it. The slip
+ * velocity and effective mass of a contact (w->slip) read only x and v,
+ * the same in every round: the first round works them out, the others
+ * take them. Returns the largest change, N. */
+static double friction(mr_world *w, double h, int rows, int first, const double *x, const double *v,
                        double *acc, double *fr, double *f) {
   const double tau = 0.5 * h;
   double change = 0.0;
@@ -199,8 +251,9 @@ static double friction(mr_world *w, double h, int rows, const double *x, const d
     if (c < 0) continue;
     const mr_contact *ct = &w->contacts.c[c];
     if (ct->friction <= 0) continue;
-    double *fc = &fr[3 * c], next[3], d[3];
-    if (contact_friction(w, ct, w->lambda[r], tau, x, v, acc, fc, next) != 0) continue;
+    double *fc = &fr[3 * c], *slip = &w->slip[4 * c], next[3], d[3];
+    if (first) slip[3] = mr_contact_slip(w, ct, x, v, slip);
+    if (contact_friction(w, ct, w->lambda[r], tau, x, slip, acc, fc, next) != 0) continue;
     for (int k = 0; k < 3; k++) {
       d[k] = next[k] - fc[k];
       change = fmax(change, fabs(d[k]));
@@ -210,12 +263,6 @@ static double friction(mr_world *w, double h, int rows, const double *x, const d
     mr_contact_spread(w, ct, d, 1.0, 1, acc);
   }
   return change;
-}
-
-/* Every builder of rows puts the constraints' first, then the others:
- * the first row that may be a contact's (rows when there are none). */
-static int first_contact_row(const mr_world *w, int rows) {
-  return w->contacts.n > 0 ? mr_constraint_row_count(w) : rows;
 }
 
 /* Stage 2: F = F_a from the world's force passes, a = M⁻¹ F. */
@@ -283,6 +330,7 @@ static int friction_rounds(mr_world *w, double h, int rows, const double *x, con
   memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
   double scale = 0;
   for (int r = 0; r < rows; r++) scale = fmax(scale, fabs(w->lambda[r]));
+  const int listed = friction_reach(w, rows);
   for (int round = 0; round < 32; round++) {
     mr_jac_tmul(&w->J, w->lambda, acc);
     for (int i = 0; i < n; i++) { /* per particle: no division, one load of its mass */
@@ -291,10 +339,9 @@ static int friction_rounds(mr_world *w, double h, int rows, const double *x, con
       acc[3 * i + 1] = a[3 * i + 1] + acc[3 * i + 1] * im;
       acc[3 * i + 2] = a[3 * i + 2] + acc[3 * i + 2] * im;
     }
-    double change = friction(w, h, rows, x, v, acc, w->fric, w->scratch.force);
+    double change = friction(w, h, rows, round == 0, x, v, acc, w->fric, w->scratch.force);
     if (round > 0 && !(change > 1e-9 * scale)) break;
-    accelerations(w, w->scratch.force, a);
-    rhs_eq8(w, 0, rows, a);
+    refresh_rhs(w, listed, w->scratch.force, a);
     if (mr_solve_rows(w, 0) != 0) return -1;
   }
   return 0;

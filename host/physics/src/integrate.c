@@ -79,7 +79,8 @@ static void point_keep(mr_world *w, mr_eval_point *m, double t, double h, const 
   memcpy(m->x, x, bytes);
   memcpy(m->v, v, bytes);
   memcpy(m->a, a, bytes);
-  if (w->frames.n > 0) memcpy(m->frames, w->frames.data, (size_t)w->frames.n * sizeof(mr_frame));
+  if (w->frames.n > 0 && w->n_taut > 0) /* point_matches reads them for taut strings alone */
+    memcpy(m->frames, w->frames.data, (size_t)w->frames.n * sizeof(mr_frame));
   if (w->contacts.n > 0)
     memcpy(m->contacts, w->contacts.c, (size_t)w->contacts.n * sizeof(mr_contact));
   m->n_frames = w->frames.n;

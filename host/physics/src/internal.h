@@ -216,10 +216,12 @@ struct mr_world {
    * probe list for the end-of-step penetration test */
   mr_contact_list contacts, probe;
   mr_contact_list measured;      /* mr_world_penetration's own, kept between calls */
-  int cap_contact;               /* what the four per-contact arrays hold */
+  int cap_contact;               /* what the five per-contact arrays hold */
   unsigned char *contact_active; /* in the system being solved (eq. 9 or 8) */
   double *contact_pre;           /* χ̇⁻ before an impulse */
   double *fric;                  /* 3 per contact: resting-contact friction */
+  double *slip;                  /* 4 per contact, within an evaluation's friction
+                                    rounds: v_t and the effective inverse mass */
   unsigned char *probe_valid;    /* per probe contact: being located in time */
 
   /* solve workspace: rows of eq. 8 / eq. 9 */
@@ -230,6 +232,8 @@ struct mr_world {
   int cap_rows;
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
   int *row_contact; /* −1 constraint row, else contact index */
+  int *row_reached; /* within friction rounds: the rows naming a particle
+                       friction reaches */
   int rows_pattern; /* constraint elements J's first rows are laid out for */
 
   /* The end state of a step, traded with x and v when it is accepted. */
@@ -237,7 +241,9 @@ struct mr_world {
 
   /* Per-step scratch, 3n each unless said (mr_world_ensure_ready sizes
    * them). Each buffer has one meaning throughout a step. */
-  int cap_scratch; /* particles the scratch holds */
+  int cap_scratch;        /* particles the scratch holds */
+  unsigned char *reached; /* per particle, within friction rounds: friction
+                             reaches it (a carrier of a resting contact) */
   struct {
     double *x0, *v0;          /* the state at the start of the step */
     double *xs, *vs;          /* integrator stage state; between a
@@ -350,11 +356,14 @@ void mr_contact_list_free(mr_contact_list *l);
  * acceleration, 3n) into out; returns 1/m_eff = Σ w² / m over the particles
  * carrying the contact (w: their leaf weights), 0 if nothing can move.
  * mr_contact_spread: adds s·f to side b's particles (s·w·f) and −s·w·f to
- * side a's, into out (3n); with by_mass, each term divided by its mass. */
+ * side a's, into out (3n); with by_mass, each term divided by its mass.
+ * mr_contact_carriers: the particles those two reach, into p; returns their
+ * number (at most 4; 0 for a string, which has no friction). */
 double mr_contact_slip(const mr_world *w, const mr_contact *c, const double *x, const double *q,
                        double out[3]);
 void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3], double s,
                        int by_mass, double *out);
+int mr_contact_carriers(const mr_world *w, const mr_contact *c, int p[4]);
 
 /* sphere_tree.c */
 int mr_trees_build(mr_world *w);

@@ -21,6 +21,8 @@ static int size_scratch(mr_world *w) {
     if (mr_grow((void **)arr[i], &cap, need, 3 * sizeof(double)) != 0) return -1;
   }
   cap = w->cap_scratch;
+  if (mr_grow((void **)&w->reached, &cap, need, 1) != 0) return -1;
+  cap = w->cap_scratch;
   if (mr_grow((void **)&w->scratch.k, &cap, need, 24 * sizeof(double)) != 0) return -1;
   w->cap_scratch = cap;
   return 0;
@@ -50,6 +52,8 @@ int mr_world_contact_capacity(mr_world *w, int need) {
   if (mr_grow((void **)&w->contact_pre, &cap, need, sizeof(double)) != 0) return -1;
   cap = w->cap_contact;
   if (mr_grow((void **)&w->fric, &cap, need, 3 * sizeof(double)) != 0) return -1;
+  cap = w->cap_contact;
+  if (mr_grow((void **)&w->slip, &cap, need, 4 * sizeof(double)) != 0) return -1;
   w->cap_contact = cap;
   return 0;
 }
