@@ -129,23 +129,9 @@ int mr_rows_build(mr_world *w, double t, const double *x, const double *v) {
 }
 
 /* §5.2, eq. 8: row i's b = −J̇q̇ − J M⁻¹ F_a − K_s C − K_d Ċ − ∂²C/∂t²,
- * J M⁻¹ F_a as mr_jac_mul sums it: the same bits. */
+ * J M⁻¹ F_a summed as mr_jac_mul sums it: the same bits. */
 static inline double rhs_row(const mr_world *w, int i, const double *a_free) {
-  const int *part = w->J.particle;
-  const double(*d)[3] = (const double(*)[3])w->J.d;
-  double jv = 0.0;
-  int e = w->J.row_ptr[i];
-  const int end = w->J.row_ptr[i + 1];
-  if (end - e == 2) { /* a distance: the same sums, without the loop */
-    const double *qa = a_free + 3 * part[e], *qb = a_free + 3 * part[e + 1];
-    jv += d[e][0] * qa[0] + d[e][1] * qa[1] + d[e][2] * qa[2];
-    jv += d[e + 1][0] * qb[0] + d[e + 1][1] * qb[1] + d[e + 1][2] * qb[2];
-    e = end;
-  }
-  for (; e < end; e++) {
-    const double *q = a_free + 3 * part[e];
-    jv += d[e][0] * q[0] + d[e][1] * q[1] + d[e][2] * q[2];
-  }
+  const double jv = mr_jac_row_mul(&w->J, i, a_free);
   return -w->row_bias[i] - jv - w->def.ks * w->row_c[i] - w->def.kd * w->row_cdot[i];
 }
 

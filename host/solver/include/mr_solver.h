@@ -61,7 +61,28 @@ mr_solve_status mr_jac_add(mr_jac *J, int particle, const double d[3]);
  * (a distance row names two particles, a pin one) and build J on every
  * evaluation: no call, test or search per entry. */
 int mr_jac_add_rows(mr_jac *J, int count, int width);
-void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k);     /* J v */
+void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k); /* J v */
+/* Row i of J v alone, summed as mr_jac_mul sums it, to the bit: for a
+ * caller that needs some rows again after a change that reaches only
+ * them. Inline, as it runs for every row of every evaluation. */
+static inline double mr_jac_row_mul(const mr_jac *J, int i, const double *v3n) {
+  const int *part = J->particle;
+  const double(*d)[3] = (const double(*)[3])J->d;
+  double s = 0.0;
+  int e = J->row_ptr[i];
+  const int end = J->row_ptr[i + 1];
+  if (end - e == 2) { /* a distance: the same sums, without the loop */
+    const double *va = v3n + 3 * part[e], *vb = v3n + 3 * part[e + 1];
+    s += d[e][0] * va[0] + d[e][1] * va[1] + d[e][2] * va[2];
+    s += d[e + 1][0] * vb[0] + d[e + 1][1] * vb[1] + d[e + 1][2] * vb[2];
+    e = end;
+  }
+  for (; e < end; e++) {
+    const double *v = v3n + 3 * part[e];
+    s += d[e][0] * v[0] + d[e][1] * v[1] + d[e][2] * v[2];
+  }
+  return s;
+}
 void mr_jac_tmul(const mr_jac *J, const double *lam_k, double *out_3n); /* Jᵀ λ, overwrites out */
 void mr_jac_free(mr_jac *J);
 

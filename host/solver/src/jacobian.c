@@ -91,27 +91,12 @@ void mr_jac_free(mr_jac *J) {
   memset(J, 0, sizeof *J);
 }
 
-/* Both products read J through locals: the compiler cannot tell that
- * the stores into out leave J's arrays alone, and would load them again
- * for every entry. */
+/* The products read J through locals: the compiler cannot tell that the
+ * stores into out leave J's arrays alone, and would load them again for
+ * every entry (mr_jac_row_mul loads them once a row). */
 void mr_jac_mul(const mr_jac *J, const double *v3n, double *out_k) {
-  const int rows = J->rows, *rp = J->row_ptr, *part = J->particle;
-  const double(*d)[3] = (const double(*)[3])J->d;
-  for (int i = 0, e = 0; i < rows; i++) { /* row_ptr[0] is 0 */
-    double s = 0.0;
-    const int end = rp[i + 1];
-    if (end - e == 2) { /* a distance: the same sums, without the loop */
-      const double *va = v3n + 3 * part[e], *vb = v3n + 3 * part[e + 1];
-      s += d[e][0] * va[0] + d[e][1] * va[1] + d[e][2] * va[2];
-      s += d[e + 1][0] * vb[0] + d[e + 1][1] * vb[1] + d[e + 1][2] * vb[2];
-      e = end;
-    }
-    for (; e < end; e++) {
-      const double *v = v3n + 3 * part[e];
-      s += d[e][0] * v[0] + d[e][1] * v[1] + d[e][2] * v[2];
-    }
-    out_k[i] = s;
-  }
+  const int rows = J->rows;
+  for (int i = 0; i < rows; i++) out_k[i] = mr_jac_row_mul(J, i, v3n);
 }
 
 void mr_jac_tmul(const mr_jac *J, const double *lam_k, double *out_3n) {
