@@ -1,7 +1,9 @@
 /* marionette: the theater's program. `sim` runs a scene headless; `run`
  * is the theater, a glove driving the puppet in real time; `render` draws
- * a scene's track or a take into pictures. The two that draw live in the
- * stage program, which this one becomes for them (stage_exec.c). */
+ * a scene's track or a take into pictures. The commands that draw live in
+ * the stage program, export in the export program and the glove's own
+ * commands in the glove program, which this one becomes for them
+ * (stage_exec.c): this one starts with none of their libraries. */
 #include <stdio.h>
 #include <string.h>
 
@@ -70,8 +72,9 @@ int main(int argc, char **argv) {
   /* export loads models (Assimp) but no GL: a program of its own. */
   if (strcmp(cmd, "export") == 0) return mr_stage_exec(MR_EXPORT_PROGRAM, argv);
   if (strcmp(cmd, "take") == 0) return mr_cmd_take(argc - 1, argv + 1);
-  if (strcmp(cmd, "list-ports") == 0) return mr_cmd_ports(argc - 1, argv + 1);
-  if (strcmp(cmd, "calibrate") == 0) return mr_cmd_calibrate(argc - 1, argv + 1);
+  /* A glove may be a broker's: the glove program links the MQTT client. */
+  if (strcmp(cmd, "list-ports") == 0 || strcmp(cmd, "calibrate") == 0)
+    return mr_stage_exec(MR_GLOVE_PROGRAM, argv);
   fprintf(
       stderr,
       "marionette: unknown command '%s'; expected one of: sim, run, render, watch, export, take, "

@@ -7,7 +7,9 @@
  * itself with the stage program: same process, same arguments, same
  * descriptors and signals, so a caller sees one program. `marionette
  * export`, which loads models through Assimp but draws nothing, lives in
- * the export program beside it, reached the same way. */
+ * the export program beside it, reached the same way, and `list-ports`
+ * and `calibrate`, which open gloves (a broker's too: the MQTT client and
+ * TLS), in the glove program. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -26,6 +28,9 @@
 #ifndef MR_EXPORT_PROGRAM
 #error "MR_EXPORT_PROGRAM (the export program's file name) is not defined"
 #endif
+#ifndef MR_GLOVE_PROGRAM
+#error "MR_GLOVE_PROGRAM (the glove program's file name) is not defined"
+#endif
 #ifndef MR_STAGE_FROM_BINDIR
 #error "MR_STAGE_FROM_BINDIR (the stage program's folder relative to bin) is not defined"
 #endif
@@ -40,6 +45,12 @@ static int own_folder(char *dir, size_t size) {
   if (slash == NULL) return -1;
   *slash = '\0';
   return 0;
+}
+
+/* What the program is called in a message. */
+static const char *kind(const char *program) {
+  if (strcmp(program, MR_STAGE_PROGRAM) == 0) return "stage";
+  return strcmp(program, MR_GLOVE_PROGRAM) == 0 ? "glove" : "export";
 }
 
 int mr_stage_exec(const char *program, char **argv) {
@@ -64,7 +75,6 @@ int mr_stage_exec(const char *program, char **argv) {
   fprintf(stderr,
           "marionette %s: the %s program %s is neither in %s nor in %s/%s; build or "
           "install it (make, make install)\n",
-          argv[1], strcmp(program, MR_STAGE_PROGRAM) == 0 ? "stage" : "export", program, dir, dir,
-          MR_STAGE_FROM_BINDIR);
+          argv[1], kind(program), program, dir, dir, MR_STAGE_FROM_BINDIR);
   return MR_EXIT_FAIL;
 }

@@ -1,8 +1,9 @@
-/* `marionette` and the stage program: `sim` maps no graphics library (the
- * dynamic loader, asked through LD_DEBUG=libs, names every library a
- * process loads, at start-up or later); `render` and `run` still reach the
- * stage program, from the build tree, after an install under any PREFIX
- * and DESTDIR, and say so in one line when it is missing. */
+/* `marionette` and the programs it becomes: `sim` maps no graphics
+ * library, nor the MQTT client a broker's glove needs (the dynamic loader,
+ * asked through LD_DEBUG=libs, names every library a process loads, at
+ * start-up or later); `render`, `run`, `list-ports` and `calibrate` still
+ * reach their programs, from the build tree, after an install under any
+ * PREFIX and DESTDIR, and say so in one line when one is missing. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -32,20 +33,26 @@ static const char *const graphics[] = { "libGL",      "libOSMesa", "libEGL",    
                                         "libwayland", "libdrm",    "libassimp", "libavcodec" };
 #define N_GRAPHICS (sizeof graphics / sizeof graphics[0])
 
-/* Marks in seen[] each graphics name that a library named in ld_debug
+/* The libraries a glove source may need and sim does not: the MQTT
+ * client and the TLS it brings. */
+static const char *const network[] = { "libmosquitto", "libssl", "libcrypto" };
+#define N_NETWORK (sizeof network / sizeof network[0])
+
+/* Marks in seen[] each of the n names that a library named in ld_debug
  * (LD_DEBUG=libs output: "find library=NAME", "trying file=PATH",
  * "calling init: PATH") starts with; every word is read, so a library
  * opened later with dlopen counts as much as one linked. Returns how many
  * libraries the loader initialised in all. */
-static int graphics_loaded(const char *ld_debug, bool seen[N_GRAPHICS]) {
+static int names_loaded(const char *ld_debug, const char *const names[], size_t n_names,
+                        bool *seen) {
   for (const char *p = ld_debug; *p != '\0';) {
     size_t n = strcspn(p, " \t\n=;:");
     const char *base = p;
     for (const char *q = p; q < p + n; q++)
       if (*q == '/') base = q + 1;
-    for (size_t i = 0; i < N_GRAPHICS; i++) {
-      size_t len = strlen(graphics[i]);
-      if (base + len <= p + n && strncmp(base, graphics[i], len) == 0) seen[i] = true;
+    for (size_t i = 0; i < n_names; i++) {
+      size_t len = strlen(names[i]);
+      if (base + len <= p + n && strncmp(base, names[i], len) == 0) seen[i] = true;
     }
     p += n;
     if (*p != '\0') p++;
@@ -53,6 +60,10 @@ static int graphics_loaded(const char *ld_debug, bool seen[N_GRAPHICS]) {
   int inits = 0;
   for (const char *p = ld_debug; (p = strstr(p, "calling init: ")) != NULL; p++) inits++;
   return inits;
+}
+
+static int graphics_loaded(const char *ld_debug, bool seen[N_GRAPHICS]) {
+  return names_loaded(ld_debug, graphics, N_GRAPHICS, seen);
 }
 
 /* Runs argv with LD_DEBUG=libs; the loader's lines are on its stderr. */
@@ -74,6 +85,36 @@ static void sim_maps_no_graphics_library(void **state) {
   assert_true(graphics_loaded(o.err, seen) >= 2);
   for (size_t i = 0; i < N_GRAPHICS; i++)
     if (seen[i]) fail_msg("marionette sim loaded %s*:\n%s", graphics[i], o.err);
+  tt_output_free(&o);
+}
+
+/* Nor the MQTT client and TLS that a broker's glove needs: the glove's
+ * own commands, list-ports and calibrate, live in the glove program. */
+static void sim_maps_no_network_library(void **state) {
+  (void)state;
+  char *argv[] = { marionette, "sim", "--time", "0.05", "-q", STICK, NULL };
+  tt_output o;
+  capture_ld_debug(argv, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  bool seen[N_NETWORK] = { false };
+  assert_true(names_loaded(o.err, network, N_NETWORK, seen) >= 2);
+  for (size_t i = 0; i < N_NETWORK; i++)
+    if (seen[i]) fail_msg("marionette sim loaded %s*:\n%s", network[i], o.err);
+  tt_output_free(&o);
+}
+
+/* ...which that check would see: list-ports, through marionette, reaches
+ * the glove program, which loads the MQTT client. */
+static void list_ports_reaches_the_glove_program_and_its_mqtt_client(void **state) {
+  (void)state;
+  char *argv[] = { marionette, "list-ports", "--help", NULL };
+  tt_output o;
+  capture_ld_debug(argv, &o);
+  assert_int_equal(o.status, 0);
+  assert_non_null(strstr(o.out, "usage: marionette list-ports"));
+  bool seen[N_NETWORK] = { false };
+  names_loaded(o.err, network, N_NETWORK, seen);
+  if (!seen[0]) fail_msg("list-ports did not load libmosquitto*:\n%s", o.err);
   tt_output_free(&o);
 }
 
@@ -122,8 +163,8 @@ static void an_installed_marionette_runs_render_and_run_from_libexec(void **stat
   assert_int_not_equal(access(stage, F_OK), 0);
   snprintf(stage, sizeof stage, "%s/opt/mr/libexec/marionette/marionette-stage", dir);
   assert_int_equal(access(stage, X_OK), 0);
-  const char *cmds[] = { "render", "run" };
-  for (size_t i = 0; i < 2; i++) {
+  const char *cmds[] = { "render", "run", "list-ports", "calibrate" };
+  for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
     char *argv[] = { bin, (char *)cmds[i], "--help", NULL };
     tt_output o;
     assert_int_equal(tt_capture(argv, &o), 0);
@@ -174,6 +215,8 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(sim_maps_no_graphics_library),
     cmocka_unit_test(render_maps_the_graphics_libraries),
+    cmocka_unit_test(sim_maps_no_network_library),
+    cmocka_unit_test(list_ports_reaches_the_glove_program_and_its_mqtt_client),
     cmocka_unit_test(an_installed_marionette_runs_render_and_run_from_libexec),
     cmocka_unit_test(without_the_stage_program_render_says_so_and_sim_still_runs),
   };

@@ -286,8 +286,8 @@ def main():
               "PREFIX/share/marionette/scenes")
         check(os.path.isdir(share + "/models") and sorted(os.listdir(share + "/models")) == models,
               "the example scenes' models are installed in PREFIX/share/marionette/scenes/models")
-        check(len(listing) == 11 + len(scenes) + len(models),
-              "install puts exactly 3 programs, the stage and export programs, 3 man pages, "
+        check(len(listing) == 12 + len(scenes) + len(models),
+              "install puts exactly 3 programs, the stage, export and glove programs, 3 man pages, "
               "the systemd unit, the rule (twice here), the scenes and their models: "
               + " ".join(sorted(listing)))
         stage = dest + PREFIX + "/libexec/marionette/marionette-stage"
@@ -296,6 +296,9 @@ def main():
         export = dest + PREFIX + "/libexec/marionette/marionette-export"
         check(os.access(export, os.X_OK), "the export program (export) is installed in "
               "PREFIX/libexec/marionette, off PATH")
+        glove = dest + PREFIX + "/libexec/marionette/marionette-glove"
+        check(os.access(glove, os.X_OK), "the glove program (list-ports, calibrate) is installed "
+              "in PREFIX/libexec/marionette, off PATH")
         unit = dest + PREFIX + "/lib/systemd/system/marionette-theater@.service"
         text = open(unit).read() if os.path.isfile(unit) else ""
         check("\nExecStart=%s/bin/marionette run " % PREFIX in text and "@" not in
