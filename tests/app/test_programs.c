@@ -62,10 +62,6 @@ static int names_loaded(const char *ld_debug, const char *const names[], size_t 
   return inits;
 }
 
-static int graphics_loaded(const char *ld_debug, bool seen[N_GRAPHICS]) {
-  return names_loaded(ld_debug, graphics, N_GRAPHICS, seen);
-}
-
 /* Runs argv with LD_DEBUG=libs; the loader's lines are on its stderr. */
 static void capture_ld_debug(char *const argv[], tt_output *o) {
   setenv("LD_DEBUG", "libs", 1);
@@ -74,33 +70,31 @@ static void capture_ld_debug(char *const argv[], tt_output *o) {
   assert_int_equal(rc, 0);
 }
 
-static void sim_maps_no_graphics_library(void **state) {
-  (void)state;
+/* A short sim under LD_DEBUG=libs; fails naming the first of names it
+ * loaded. */
+static void sim_loads_none_of(const char *const names[], size_t n) {
   char *argv[] = { marionette, "sim", "--time", "0.05", "-q", STICK, NULL };
   tt_output o;
   capture_ld_debug(argv, &o);
   if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
-  bool seen[N_GRAPHICS] = { false };
+  bool seen[N_GRAPHICS > N_NETWORK ? N_GRAPHICS : N_NETWORK] = { false };
   /* The loader did report: at least the C library and libm. */
-  assert_true(graphics_loaded(o.err, seen) >= 2);
-  for (size_t i = 0; i < N_GRAPHICS; i++)
-    if (seen[i]) fail_msg("marionette sim loaded %s*:\n%s", graphics[i], o.err);
+  assert_true(names_loaded(o.err, names, n, seen) >= 2);
+  for (size_t i = 0; i < n; i++)
+    if (seen[i]) fail_msg("marionette sim loaded %s*:\n%s", names[i], o.err);
   tt_output_free(&o);
+}
+
+static void sim_maps_no_graphics_library(void **state) {
+  (void)state;
+  sim_loads_none_of(graphics, N_GRAPHICS);
 }
 
 /* Nor the MQTT client and TLS that a broker's glove needs: the glove's
  * own commands, list-ports and calibrate, live in the glove program. */
 static void sim_maps_no_network_library(void **state) {
   (void)state;
-  char *argv[] = { marionette, "sim", "--time", "0.05", "-q", STICK, NULL };
-  tt_output o;
-  capture_ld_debug(argv, &o);
-  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
-  bool seen[N_NETWORK] = { false };
-  assert_true(names_loaded(o.err, network, N_NETWORK, seen) >= 2);
-  for (size_t i = 0; i < N_NETWORK; i++)
-    if (seen[i]) fail_msg("marionette sim loaded %s*:\n%s", network[i], o.err);
-  tt_output_free(&o);
+  sim_loads_none_of(network, N_NETWORK);
 }
 
 /* ...which that check would see: list-ports, through marionette, reaches
@@ -129,7 +123,7 @@ static void render_maps_the_graphics_libraries(void **state) {
   assert_int_equal(o.status, 0);
   assert_non_null(strstr(o.out, "usage: marionette render"));
   bool seen[N_GRAPHICS] = { false };
-  graphics_loaded(o.err, seen);
+  names_loaded(o.err, graphics, N_GRAPHICS, seen);
   const char *linked[] = { "libSDL2", "libOSMesa", "libEGL", "libassimp" };
   for (size_t k = 0; k < sizeof linked / sizeof linked[0]; k++)
     for (size_t i = 0; i < N_GRAPHICS; i++)
@@ -179,7 +173,8 @@ static void an_installed_marionette_runs_render_and_run_from_libexec(void **stat
 }
 
 /* marionette alone, copied where no stage program is: sim works, render
- * is one line that says where the stage program was looked for. */
+ * is one line that says where the stage program was looked for, and
+ * list-ports where the glove program was. */
 static void without_the_stage_program_render_says_so_and_sim_still_runs(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -195,6 +190,13 @@ static void without_the_stage_program_render_says_so_and_sim_still_runs(void **s
   assert_non_null(strstr(o.err, "marionette render: the stage program marionette-stage is "
                                 "neither in "));
   assert_int_equal(strchr(o.err, '\n') - o.err + 1, (long)strlen(o.err));
+  tt_output_free(&o);
+  /* The glove program's absence is named as the glove program's. */
+  char *ports[] = { alone, "list-ports", "--help", NULL };
+  assert_int_equal(tt_capture(ports, &o), 0);
+  assert_int_equal(o.status, 1);
+  assert_non_null(strstr(o.err, "marionette list-ports: the glove program marionette-glove is "
+                                "neither in "));
   tt_output_free(&o);
   char *sim[] = { alone, "sim", "--time", "0.05", "-q", STICK, NULL };
   assert_int_equal(tt_capture(sim, &o), 0);
