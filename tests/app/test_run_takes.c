@@ -199,6 +199,20 @@ static void bad_take_options_exit_2_with_one_line(void **state) {
  * thread fell so far behind the physics' that a show of 1.5 s ended
  * before its keys came (the merge is the same at any speed). */
 
+/* xvfb-run's path into xvfb, or the test skipped when it is missing.
+ * Under the sanitizers, no leak check: the window's GL driver is unloaded
+ * before it, leaving stacks no suppression can name (as in
+ * test_run_stage.c). */
+static void xvfb_or_skip(char *xvfb, size_t size) {
+  if (at_which("xvfb-run", xvfb, size) != 0) {
+    print_message("xvfb-run is not installed: the window is not tried\n");
+    skip();
+  }
+#ifdef MR_APP_TEST_SANITIZE
+  setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+#endif
+}
+
 /* Under Xvfb, over take A with the keyboard's glove: F2 and F3 arm its
  * thumb and index, F8 punches in at 0.5 s and out at 1.2 s; the book then
  * holds the raw take and the merge of those two channels over A between
@@ -207,13 +221,7 @@ static void bad_take_options_exit_2_with_one_line(void **state) {
 static void in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book(void **state) {
   (void)state;
   char xvfb[512];
-  if (at_which("xvfb-run", xvfb, sizeof xvfb) != 0) {
-    print_message("xvfb-run is not installed: the window is not tried\n");
-    skip();
-  }
-#ifdef MR_APP_TEST_SANITIZE
-  setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
-#endif
+  xvfb_or_skip(xvfb, sizeof xvfb);
   char *dir = tt_tmpdir(), book[600];
   snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
   record_a(dir, book);
@@ -332,13 +340,7 @@ static void load_glove(const mr_take_book *b, const char *name, size_t g, size_t
 static void in_the_window_f7_then_f2_arms_the_second_gloves_thumb(void **state) {
   (void)state;
   char xvfb[512];
-  if (at_which("xvfb-run", xvfb, sizeof xvfb) != 0) {
-    print_message("xvfb-run is not installed: the window is not tried\n");
-    skip();
-  }
-#ifdef MR_APP_TEST_SANITIZE
-  setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
-#endif
+  xvfb_or_skip(xvfb, sizeof xvfb);
   char *dir = tt_tmpdir(), book[600], p[4][600];
   snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
   for (int i = 0; i < 4; i++) {
