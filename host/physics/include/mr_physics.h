@@ -572,6 +572,10 @@ typedef struct mr_stats {
                                      (§4.5): apart at its start, gone through
                                      by its end */
   uint64_t location_integrations; /* the trial integrations those took */
+  int blocks;                     /* the independent systems the latest solve
+                                     was split into (puppets that do not touch
+                                     each other: host/physics/README.md); 1 when
+                                     it was solved whole */
 } mr_stats;
 /* The counters so far. MR_ERR_ARG for a NULL argument. */
 mr_status mr_world_stats(const mr_world *w, mr_stats *out);

@@ -20,10 +20,18 @@ int mr_rows_reserve(mr_world *w, int rows) {
     int cap = w->cap_rows;
     if (mr_grow((void **)arr[i], &cap, rows, sizeof(double)) != 0) return -1;
   }
+  double **blocks[] = { &w->island_b, &w->island_x };
+  for (size_t i = 0; i < sizeof blocks / sizeof blocks[0]; i++) {
+    int cap = w->cap_rows;
+    if (mr_grow((void **)blocks[i], &cap, rows, sizeof(double)) != 0) return -1;
+  }
+  int **ints[] = { &w->row_contact, &w->row_reached, &w->island_key, &w->island_rows,
+                   &w->island_contact };
   int cap = w->cap_rows;
-  if (mr_grow((void **)&w->row_contact, &cap, rows, sizeof(int)) != 0) return -1;
-  cap = w->cap_rows;
-  if (mr_grow((void **)&w->row_reached, &cap, rows, sizeof(int)) != 0) return -1;
+  for (size_t i = 0; i < sizeof ints / sizeof ints[0]; i++) {
+    cap = w->cap_rows;
+    if (mr_grow((void **)ints[i], &cap, rows, sizeof(int)) != 0) return -1;
+  }
   w->cap_rows = cap;
   return 0;
 }
@@ -37,27 +45,37 @@ int mr_rows_reserve(mr_world *w, int rows) {
  * them independent, so redundant contacts share the load. Constraint rows
  * are exact, except those the solver finds nearly dependent on the others,
  * which it regularises (mr_solve_def.reg_tol, set in world.c). */
-static void soften_contacts(mr_world *w) {
-  mr_csr *A = &w->A;
-  if (w->contacts.n == 0) return;
-  for (int r = mr_constraint_row_count(w); r < A->n; r++) { /* contacts come after */
-    if (w->row_contact[r] < 0) continue;
+void mr_soften_contacts(mr_csr *A, int first, const int *row_contact) {
+  for (int r = first; r < A->n; r++) {
+    if (row_contact[r] < 0) continue;
     for (int e = A->row_ptr[r]; e < A->row_ptr[r + 1]; e++)
       if (A->col[e] == r) A->val[e] *= 1.0 + 1e-6;
   }
 }
 
+/* The whole system at once: assembled unless the caller kept A (friction's
+ * rounds solve one A again with a new b). */
+static mr_solve_status solve_whole(mr_world *w, int assemble, mr_solve_result *r) {
+  if (assemble) {
+    mr_solve_status a = mr_csr_assemble(&w->A, &w->J, w->inv_mass);
+    if (a != MR_SOLVE_OK) return a;
+    if (w->contacts.n > 0) /* contacts come after the constraints */
+      mr_soften_contacts(&w->A, mr_constraint_row_count(w), w->row_contact);
+  }
+  return mr_solver_solve(w->solver, &w->opts, &w->A, w->rhs, w->lambda, r);
+}
+
 int mr_solve_rows(mr_world *w, int assemble) {
   int k = w->J.rows;
-  if (assemble) {
-    if (mr_csr_assemble(&w->A, &w->J, w->inv_mass) != 0) return -1;
-    soften_contacts(w);
-  }
   memset(w->lambda, 0, (size_t)k * sizeof *w->lambda);
   mr_solve_result r;
+  memset(&r, 0, sizeof r);
   w->pass_calls[MR_PASS_SOLVE]++;
   w->stats.solves++;
-  int st = mr_solver_solve(w->solver, &w->opts, &w->A, w->rhs, w->lambda, &r);
+  /* Blocks are assembled on their own each time: A holds the last one. */
+  const int groups = w->n_islands > 1 ? mr_islands_group(w) : 1;
+  int st = groups > 1 ? mr_islands_solve(w, groups, &r) : solve_whole(w, assemble, &r);
+  w->stats.blocks = groups;
   w->stats.solver_iterations += (uint64_t)(r.iterations > 0 ? r.iterations : 0);
   if (st == MR_SOLVE_ERR_NONFINITE) {
     /* NaN or Inf in the system (a callback curve, an exploded state): let it
@@ -66,11 +84,14 @@ int mr_solve_rows(mr_world *w, int assemble) {
     w->stats.solver_failures++;
     return 0;
   }
-  if (st == MR_SOLVE_ERR_NOMEM || st == MR_SOLVE_ERR_UNAVAILABLE) {
+  if (st < 0) {
     w->stats.solver_failures++;
     w->fail =
         mr_fail(w, MR_ERR_SOLVER, "solver %s: %s (%d rows)", mr_solve_method_name(w->opts.method),
-                st == MR_SOLVE_ERR_NOMEM ? "out of memory" : "not built into this library", k);
+                st == MR_SOLVE_ERR_NOMEM         ? "out of memory"
+                : st == MR_SOLVE_ERR_UNAVAILABLE ? "not built into this library"
+                                                 : mr_solve_status_name(st),
+                k);
     return -1;
   }
   if (st == MR_SOLVE_NOT_CONVERGED) w->stats.solver_failures++;

@@ -236,6 +236,19 @@ struct mr_world {
                        friction reaches */
   int rows_pattern; /* constraint elements J's first rows are laid out for */
 
+  /* islands.c: the blocks of J M⁻¹ Jᵀ, solved one by one */
+  int n_islands, cap_islands;
+  int *island_of;              /* per particle: its constraint block, −1 kinematic */
+  int *island_parent;          /* per block: union–find of the blocks a solve joins */
+  int *island_local;           /* per particle: its number in the block being solved, −1 */
+  double *island_mass;         /* per particle of that block: 1/m */
+  int *island_start;           /* per group and one more: its first row in island_rows */
+  int *island_key;             /* per row: its block */
+  int *island_rows;            /* rows grouped by block */
+  int *island_contact;         /* per row of the block being solved: its contact, −1 */
+  double *island_b, *island_x; /* per row of that block: b and λ */
+  mr_jac island_J;
+
   /* The end state of a step, traded with x and v when it is accepted. */
   double *x1, *v1;
 
@@ -382,8 +395,17 @@ int mr_detect_puppets(mr_world *w, const double *x, const mr_sweep *sw, double g
  * length h (static friction aims to stop sliding within h/2). */
 int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a);
 int mr_rows_reserve(mr_world *w, int rows);
-/* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda. */
+/* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda,
+ * block by block where the rows fall into blocks (islands.c). */
 int mr_solve_rows(mr_world *w, int assemble);
+/* The compliance of contact rows: A's rows from `first` on whose
+ * row_contact is a contact. */
+void mr_soften_contacts(mr_csr *A, int first, const int *row_contact);
+
+/* islands.c: the blocks of J M⁻¹ Jᵀ */
+int mr_islands_build(mr_world *w); /* the constraints' blocks, when the world is made ready */
+int mr_islands_group(mr_world *w); /* groups J's rows: how many groups (1: solve whole) */
+mr_solve_status mr_islands_solve(mr_world *w, int groups, mr_solve_result *sum);
 
 /* impulse.c: eq. 9 at contacts */
 int mr_impulses_apply(mr_world *w, double t, int *collided);

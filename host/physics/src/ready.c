@@ -90,6 +90,7 @@ static int reserve_contacts(mr_world *w) {
   if (mr_rows_reserve(w, rows) != 0) return -1;
   if (rows == 0 || rows > MR_SOLVE_RESERVE_MAX_ROWS) return 0;
   if (mr_jac_reserve(&w->J, rows, (int)entries) != MR_SOLVE_OK ||
+      mr_jac_reserve(&w->island_J, rows, (int)entries) != MR_SOLVE_OK ||
       mr_csr_reserve(&w->A, rows, w->n, (int)entries) != MR_SOLVE_OK ||
       mr_solver_reserve(w->solver, rows) != MR_SOLVE_OK)
     return -1;
@@ -101,7 +102,7 @@ static int reserve_contacts(mr_world *w) {
 int mr_world_ensure_ready(mr_world *w) {
   if (!w->dirty && w->cap_scratch >= w->n) return 0;
   w->memo.valid = 0; /* elements added: the equations changed */
-  if (size_scratch(w) != 0 || puppet_masses(w) != 0) return -1;
+  if (size_scratch(w) != 0 || puppet_masses(w) != 0 || mr_islands_build(w) != 0) return -1;
   if (w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION))
     if (mr_trees_build(w) != 0) return -1;
   if (reserve_contacts(w) != 0) return -1;

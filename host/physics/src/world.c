@@ -396,6 +396,11 @@ void mr_world_destroy(mr_world *w) {
   free(w->string_released);
   free(w->string_of_row);
   mr_jac_free(&w->J);
+  mr_jac_free(&w->island_J);
+  void *blocks[] = { w->island_of,    w->island_parent, w->island_local, w->island_mass,
+                     w->island_start, w->island_key,    w->island_rows,  w->island_contact,
+                     w->island_b,     w->island_x };
+  for (size_t i = 0; i < sizeof blocks / sizeof blocks[0]; i++) free(blocks[i]);
   mr_csr_free(&w->A);
   mr_solver_destroy(w->solver);
   free(w);

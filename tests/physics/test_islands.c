@@ -1,0 +1,198 @@
+/* Independent blocks of J M⁻¹ Jᵀ (islands.c): puppets that share no
+ * movable particle are solved one by one. Each block is numbered from 0,
+ * so a puppet's block in a crowd is the very system it would be alone:
+ * two puppets stepped in one world must move, bit for bit, as each does
+ * in a world of its own, and the solve must say it split in two. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "mr_physics.h"
+
+/* Fixed steps and no error control that depends on the whole world (the
+ * shared step's length would otherwise be set by the busier puppet). */
+static mr_world *make_world(void) {
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_CONSTRAINTS | MR_EFFECT_GRAVITY;
+  def.dt_initial = def.dt_min = def.dt_max = def.dt_floor = 0.004;
+  def.error_length = def.error_speed = 0.0;
+  def.deviation_high = 0.4;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  return w;
+}
+
+static int ball(mr_world *w, double x, double y, double z, double mass, double vx) {
+  mr_particle_def p = mr_default_particle_def();
+  p.mass = mass;
+  p.position[0] = x;
+  p.position[1] = y;
+  p.position[2] = z;
+  p.velocity[0] = vx;
+  int id;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  return id;
+}
+
+static void link(mr_world *w, int a, int b) {
+  mr_distance_def d = mr_default_distance_def();
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+}
+
+/* A figure hung from a pin: a triangle (a rigid group's distances) on a
+ * neck, and an arm of two links swinging from one corner. `shape` changes
+ * its masses, size and kick, so two figures are two different systems. */
+static void figure(mr_world *w, double x0, double shape) {
+  const double s = 0.1 * shape;
+  int top = ball(w, x0, 1.0, 0.0, 0.1, 0.0);
+  int a = ball(w, x0 - s, 0.8, 0.0, 0.2 * shape, 0.3 * shape);
+  int b = ball(w, x0 + s, 0.8, 0.0, 0.2, 0.0);
+  int c = ball(w, x0, 0.8 - s, 0.05, 0.3, -0.2);
+  int elbow = ball(w, x0 + s + 0.15, 0.8, 0.0, 0.05 * shape, 0.0);
+  int hand = ball(w, x0 + s + 0.3, 0.8 + 0.05 * shape, 0.0, 0.04, 0.5);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = top;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  link(w, top, a);
+  link(w, a, b);
+  link(w, b, c);
+  link(w, c, a);
+  link(w, b, elbow);
+  link(w, elbow, hand);
+}
+
+enum { PER_FIGURE = 6 };
+
+static void states(const mr_world *w, int first, int count, double *x, double *v) {
+  for (int i = 0; i < count; i++)
+    assert_int_equal(mr_world_particle_state(w, first + i, &x[3 * i], &v[3 * i]), MR_OK);
+}
+
+static void two_figures_apart_move_as_in_worlds_of_their_own(void **state) {
+  (void)state;
+  mr_world *both = make_world(), *left = make_world(), *right = make_world();
+  figure(both, 0.0, 1.0);
+  figure(both, 3.0, 1.7);
+  figure(left, 0.0, 1.0);
+  figure(right, 3.0, 1.7);
+  mr_world *const worlds[] = { both, left, right };
+  for (int i = 0; i < 3; i++) {
+    mr_status st = mr_world_step_to(worlds[i], 1.0, NULL);
+    assert_true(st == MR_OK);
+  }
+  mr_stats s;
+  assert_int_equal(mr_world_stats(both, &s), MR_OK);
+  assert_int_equal(s.blocks, 2);
+  assert_int_equal(s.steps, 250);
+  assert_int_equal(mr_world_stats(left, &s), MR_OK);
+  assert_int_equal(s.blocks, 1);
+
+  double xb[3 * 2 * PER_FIGURE], vb[3 * 2 * PER_FIGURE], x[3 * PER_FIGURE], v[3 * PER_FIGURE];
+  states(both, 0, 2 * PER_FIGURE, xb, vb);
+  states(left, 0, PER_FIGURE, x, v);
+  assert_memory_equal(xb, x, sizeof x);
+  assert_memory_equal(vb, v, sizeof v);
+  states(right, 0, PER_FIGURE, x, v);
+  assert_memory_equal(xb + 3 * PER_FIGURE, x, sizeof x);
+  assert_memory_equal(vb + 3 * PER_FIGURE, v, sizeof v);
+  /* They moved, and their links held: the block solve is eq. 8's. */
+  double hand[3], elbow[3];
+  states(both, 10, 1, elbow, v);
+  states(both, 11, 1, hand, v);
+  double len = sqrt((hand[0] - elbow[0]) * (hand[0] - elbow[0]) +
+                    (hand[1] - elbow[1]) * (hand[1] - elbow[1]) +
+                    (hand[2] - elbow[2]) * (hand[2] - elbow[2]));
+  assert_true(fabs(len - 0.15 * sqrt(1.0 + (0.05 * 1.7 / 0.15) * (0.05 * 1.7 / 0.15))) < 1e-3);
+  const double start[3] = { 3.0 + 0.17 + 0.3, 0.8 + 0.05 * 1.7, 0.0 };
+  assert_true(fabs(hand[0] - start[0]) + fabs(hand[1] - start[1]) > 0.05);
+  for (int i = 0; i < 3; i++) mr_world_destroy(worlds[i]);
+}
+
+/* A link between the two figures makes them one system: one block. */
+static void a_link_between_figures_makes_one_block(void **state) {
+  (void)state;
+  mr_world *w = make_world();
+  figure(w, 0.0, 1.0);
+  figure(w, 0.6, 1.2);
+  link(w, 5, PER_FIGURE + 1); /* the first's hand to the second's corner */
+  mr_status st = mr_world_step_to(w, 0.2, NULL);
+  assert_true(st == MR_OK);
+  mr_stats s;
+  assert_int_equal(mr_world_stats(w, &s), MR_OK);
+  assert_int_equal(s.blocks, 1);
+  mr_world_destroy(w);
+}
+
+/* Two dumbbells of different puppets fly into each other: apart they are
+ * two blocks, and the contact rows between their spheres join them into
+ * one. Their spheres are dead (no restitution), so they go on together,
+ * touching, as one block: at the common speed momentum gives, with both
+ * links held through the impact (a contact row left in one block alone
+ * would push the other's particles past its link). */
+static void a_contact_joins_two_blocks(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int ids[4];
+  const double mass[4] = { 0.3, 0.3, 0.5, 0.5 };
+  for (int k = 0; k < 4; k++) {
+    mr_particle_def p = mr_default_particle_def();
+    p.mass = mass[k];
+    p.position[0] = k < 2 ? -0.3 : 0.3;
+    p.position[1] = k % 2 ? 0.2 : 0.0;
+    p.velocity[0] = k < 2 ? 1.0 : -1.0;
+    p.puppet = k / 2;
+    assert_int_equal(mr_world_add_particle(w, &p, &ids[k]), MR_OK);
+  }
+  for (int d = 0; d < 2; d++) {
+    link(w, ids[2 * d], ids[2 * d + 1]);
+    mr_part_def part = mr_default_part_def();
+    part.particles = &ids[2 * d];
+    part.count = 2;
+    part.radius = 0.05;
+    part.restitution = 0.0;
+    part.friction = 0.0;
+    assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  }
+  int fewest = 99, most = 0;
+  while (mr_world_time(w) < 1.0) {
+    mr_status st = mr_world_step(w, NULL);
+    assert_true(st == MR_OK || st == MR_DEPENDENT);
+    mr_stats s;
+    assert_int_equal(mr_world_stats(w, &s), MR_OK);
+    if (s.blocks < fewest) fewest = s.blocks;
+    if (s.blocks > most) most = s.blocks;
+    assert_true(s.steps < 2000);
+  }
+  assert_int_equal(fewest, 1);
+  assert_int_equal(most, 2);
+  const double common = (0.6 - 1.0) / 1.6;
+  for (int k = 0; k < 4; k++) {
+    double x[3], v[3];
+    assert_int_equal(mr_world_particle_state(w, ids[k], x, v), MR_OK);
+    assert_true(fabs(v[0] - common) < 1e-3);
+  }
+  assert_true(mr_world_deviation(w) < 1e-4);
+  mr_stats s;
+  assert_int_equal(mr_world_stats(w, &s), MR_OK);
+  assert_true(s.max_penetration <= def.contact_slop + 1e-3);
+  mr_world_destroy(w);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(two_figures_apart_move_as_in_worlds_of_their_own),
+    cmocka_unit_test(a_link_between_figures_makes_one_block),
+    cmocka_unit_test(a_contact_joins_two_blocks),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
