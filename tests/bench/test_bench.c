@@ -45,10 +45,14 @@ static void count_runs_are_fixed_work(void **state) {
   tt_output o = run("--count", "decode", NULL, NULL);
   assert_int_equal(o.status, 0);
   tt_output_free(&o);
+  o = run("--count", "crowd", NULL, NULL); /* the capacity section's crowd loads and runs */
+  assert_int_equal(o.status, 0);
+  assert_int_equal(strlen(o.err), 0);
+  tt_output_free(&o);
   o = run("--count", "nothing", NULL, NULL);
   assert_int_equal(o.status, 2); /* bad usage */
   assert_non_null(strstr(o.err, "'nothing'"));
-  assert_non_null(strstr(o.err, "puppet, fig10, decode, sweep or render"));
+  assert_non_null(strstr(o.err, "puppet, fig10, crowd, decode, sweep or render"));
   assert_int_equal(strlen(o.err), strcspn(o.err, "\n") + 1); /* one line */
   tt_output_free(&o);
 }

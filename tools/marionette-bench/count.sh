@@ -18,10 +18,11 @@ scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 echo "machine: $(uname -srm), $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1), $(nproc) cores"
 echo "commit: $(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null || echo unknown)"
-for run in puppet fig10 decode; do
+for run in puppet fig10 crowd decode; do
   case $run in
     puppet) what="host/scenes/puppet.yaml, 10 s" ;;
     fig10) what="stick figure, Fig. 10 track, 10 s" ;;
+    crowd) what="100 stick puppets (capacity), 1 s" ;;
     decode) what="10 000 SAMPLE frames decoded" ;;
   esac
   valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$scratch/$run.out" \

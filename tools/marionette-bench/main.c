@@ -12,7 +12,7 @@
 
 static void usage(FILE *f) {
   fprintf(f, "usage: marionette-bench [--quick] [--out DIR] [--only LIST] [--root DIR]\n"
-             "       marionette-bench --count puppet|fig10|decode|sweep|render\n"
+             "       marionette-bench --count puppet|fig10|crowd|decode|sweep|render\n"
              "\n"
              "Measures what accuracy costs in time and prints the figures, each run stamped\n"
              "with the machine (kernel, CPU model, cores). Sections, in order:\n"
@@ -43,7 +43,8 @@ static void usage(FILE *f) {
              "  --root DIR    the source tree holding host/scenes (default the one built)\n"
              "  --count RUN   one fixed run for `make bench-count` to count under callgrind\n"
              "                (--instr-atstart=no): puppet (puppet.yaml for 10 s), fig10 (the\n"
-             "                stick figure on the Fig. 10 track for 10 s), decode\n"
+             "                stick figure on the Fig. 10 track for 10 s), crowd (the\n"
+             "                capacity section's 100 stick puppets for 1 s), decode\n"
              "                (10 000 SAMPLE frames), sweep (the quick sweep's settings on\n"
              "                every puppet, 3 s each, one dump per run, a CSV line per run),\n"
              "                or render (one humanoid frame at 640x360, then at 1280x720, on\n"
@@ -135,9 +136,11 @@ int main(int argc, char **argv) {
   }
   /* Bad values are bad usage, like bad options: exit 2 before any work. */
   if (count != NULL && strcmp(count, "puppet") != 0 && strcmp(count, "decode") != 0 &&
-      strcmp(count, "fig10") != 0 && strcmp(count, "sweep") != 0 && strcmp(count, "render") != 0) {
+      strcmp(count, "crowd") != 0 && strcmp(count, "fig10") != 0 && strcmp(count, "sweep") != 0 &&
+      strcmp(count, "render") != 0) {
     fprintf(stderr,
-            "marionette-bench: --count expects puppet, fig10, decode, sweep or render, got '%s'\n",
+            "marionette-bench: --count expects puppet, fig10, crowd, decode, sweep or render, got "
+            "'%s'\n",
             count);
     return 2;
   }
