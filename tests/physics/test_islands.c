@@ -188,11 +188,47 @@ static void a_contact_joins_two_blocks(void **state) {
   mr_world_destroy(w);
 }
 
+/* Pendulums: a pinned pivot and a bob on a link, one block each. */
+static void pendulums(mr_world *w, int count, double z) {
+  for (int i = 0; i < count; i++) {
+    int pivot = ball(w, 0.3 * i, 1.0, z, 0.1, 0.0), bob = ball(w, 0.3 * i + 0.2, 1.0, z, 0.1, 0.0);
+    mr_pin_def pin = mr_default_pin_def();
+    pin.particle = pivot;
+    assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+    link(w, pivot, bob);
+  }
+}
+
+/* A world grown after it stepped: its blocks are found again, over room
+ * for every particle (31 particles first, past the size where the block
+ * arrays' room first doubles, then 41). */
+static void a_world_grown_after_stepping_finds_its_blocks_again(void **state) {
+  (void)state;
+  mr_world *w = make_world();
+  pendulums(w, 15, 0.0);
+  ball(w, 0.0, 2.0, 1.0, 0.1, 0.0); /* alone: no row names it */
+  assert_int_equal(mr_world_step_to(w, 0.1, NULL), MR_OK);
+  mr_stats s;
+  assert_int_equal(mr_world_stats(w, &s), MR_OK);
+  assert_int_equal(s.blocks, 15);
+  pendulums(w, 5, 0.5);
+  assert_int_equal(mr_world_particle_count(w), 41);
+  assert_int_equal(mr_world_step_to(w, 0.3, NULL), MR_OK);
+  assert_int_equal(mr_world_stats(w, &s), MR_OK);
+  assert_int_equal(s.blocks, 20);
+  double x[3], v[3];
+  assert_int_equal(mr_world_particle_state(w, 40, x, v), MR_OK); /* the last bob swung */
+  assert_true(x[1] < 0.99);
+  assert_true(mr_world_deviation(w) < 1e-3);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(two_figures_apart_move_as_in_worlds_of_their_own),
     cmocka_unit_test(a_link_between_figures_makes_one_block),
     cmocka_unit_test(a_contact_joins_two_blocks),
+    cmocka_unit_test(a_world_grown_after_stepping_finds_its_blocks_again),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -30,7 +30,9 @@
  * movable) share one; every other movable particle is one of its own;
  * kinematic particles belong to none (−1). Numbered in particle order. */
 int mr_islands_build(mr_world *w) {
-  const int n = w->n, need = n > 0 ? n : 1;
+  /* One size for all five (island_start takes a block more than there are
+   * and one past it), so that one capacity holds for each. */
+  const int n = w->n, need = n + 2;
   int cap = w->cap_islands;
   if (mr_grow((void **)&w->island_of, &cap, need, sizeof(int)) != 0) return -1;
   cap = w->cap_islands;
@@ -40,7 +42,7 @@ int mr_islands_build(mr_world *w) {
   cap = w->cap_islands;
   if (mr_grow((void **)&w->island_mass, &cap, need, sizeof(double)) != 0) return -1;
   cap = w->cap_islands;
-  if (mr_grow((void **)&w->island_start, &cap, need + 2, sizeof(int)) != 0) return -1;
+  if (mr_grow((void **)&w->island_start, &cap, need, sizeof(int)) != 0) return -1;
   w->cap_islands = cap;
   int *up = w->island_parent;
   for (int i = 0; i < n; i++) up[i] = i;
