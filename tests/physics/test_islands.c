@@ -70,6 +70,17 @@ static void figure(mr_world *w, double x0, double shape) {
 
 enum { PER_FIGURE = 6 };
 
+/* Pendulums: a pinned pivot and a bob on a link, one block each. */
+static void pendulums(mr_world *w, int count, double z) {
+  for (int i = 0; i < count; i++) {
+    int pivot = ball(w, 0.3 * i, 1.0, z, 0.1, 0.0), bob = ball(w, 0.3 * i + 0.2, 1.0, z, 0.1, 0.0);
+    mr_pin_def pin = mr_default_pin_def();
+    pin.particle = pivot;
+    assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+    link(w, pivot, bob);
+  }
+}
+
 static void states(const mr_world *w, int first, int count, double *x, double *v) {
   for (int i = 0; i < count; i++)
     assert_int_equal(mr_world_particle_state(w, first + i, &x[3 * i], &v[3 * i]), MR_OK);
@@ -127,6 +138,77 @@ static void a_link_between_figures_makes_one_block(void **state) {
   mr_stats s;
   assert_int_equal(mr_world_stats(w, &s), MR_OK);
   assert_int_equal(s.blocks, 1);
+  mr_world_destroy(w);
+}
+
+/* A dependent row in the first of two blocks (a link written twice) is
+ * found there and counted for the whole solve, whatever the blocks after
+ * it hold; its multiplier is 0, so the world moves as one without it. */
+static void a_dependent_row_in_one_block_is_reported_for_the_solve(void **state) {
+  (void)state;
+  mr_world *w = make_world();
+  figure(w, 0.0, 1.0);
+  link(w, 0, 1); /* the first figure's neck, again */
+  figure(w, 3.0, 1.7);
+  assert_int_equal(mr_world_step_to(w, 0.2, NULL), MR_DEPENDENT);
+  mr_stats s;
+  assert_int_equal(mr_world_stats(w, &s), MR_OK);
+  assert_int_equal(s.blocks, 2);
+  assert_int_equal(s.dependent_rows, 1);
+  assert_true(s.max_multiplier < 100.0);
+  /* The dropped row is as if it had not been written. */
+  mr_world *plain = make_world();
+  figure(plain, 0.0, 1.0);
+  figure(plain, 3.0, 1.7);
+  assert_int_equal(mr_world_step_to(plain, 0.2, NULL), MR_OK);
+  double x[3 * 2 * PER_FIGURE], v[3 * 2 * PER_FIGURE], xp[3 * 2 * PER_FIGURE];
+  states(w, 0, 2 * PER_FIGURE, x, v);
+  states(plain, 0, 2 * PER_FIGURE, xp, v);
+  double worst = 0.0;
+  for (int i = 0; i < 3 * 2 * PER_FIGURE; i++) worst = fmax(worst, fabs(x[i] - xp[i]));
+  assert_true(worst < 1e-12);
+  mr_world_destroy(plain);
+  mr_world_destroy(w);
+}
+
+/* A pendulum whose pivot follows a hand whose acceleration goes NaN for
+ * 30 ms (a broken input device), beside one hung from a pin: two blocks.
+ * Its position stays finite, so only the solve of its block sees it. */
+static void nan_hand(void *user, double t, double pos[3], double vel[3], double acc[3]) {
+  (void)user;
+  pos[2] = vel[0] = vel[1] = vel[2] = acc[1] = acc[2] = 0.0;
+  pos[0] = pos[1] = 1.0; /* where the hand starts */
+  acc[0] = (t >= 0.5 && t < 0.53) ? NAN : 0.0;
+}
+
+/* NaN in one block's system is the whole world's divergence (§7): the
+ * world resets to its start and carries on, finite, though the other
+ * block's solve went well. */
+static void nan_in_one_block_resets_the_world(void **state) {
+  (void)state;
+  mr_world *w = make_world();
+  pendulums(w, 1, 0.0);
+  int hand = ball(w, 1.0, 1.0, 0.0, 0.1, 0.0), bob = ball(w, 1.2, 1.0, 0.0, 0.1, 0.0);
+  mr_curve_def c = mr_default_curve_def();
+  c.particle = hand;
+  c.fn = nan_hand;
+  assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
+  link(w, hand, bob);
+  int resets = 0, blocks = 0;
+  while (mr_world_time(w) < 1.0) {
+    mr_status st = mr_world_step(w, NULL);
+    assert_true(st == MR_OK || st == MR_DIVERGED);
+    resets += st == MR_DIVERGED;
+    mr_stats s;
+    assert_int_equal(mr_world_stats(w, &s), MR_OK);
+    if (s.blocks > blocks) blocks = s.blocks;
+    double x[3];
+    assert_int_equal(mr_world_particle_state(w, bob, x, NULL), MR_OK);
+    assert_true(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]));
+  }
+  assert_int_equal(blocks, 2);
+  /* Within the 30 ms of NaN only: each 4 ms step there, and none after. */
+  assert_true(resets >= 1 && resets <= 10);
   mr_world_destroy(w);
 }
 
@@ -188,17 +270,6 @@ static void a_contact_joins_two_blocks(void **state) {
   mr_world_destroy(w);
 }
 
-/* Pendulums: a pinned pivot and a bob on a link, one block each. */
-static void pendulums(mr_world *w, int count, double z) {
-  for (int i = 0; i < count; i++) {
-    int pivot = ball(w, 0.3 * i, 1.0, z, 0.1, 0.0), bob = ball(w, 0.3 * i + 0.2, 1.0, z, 0.1, 0.0);
-    mr_pin_def pin = mr_default_pin_def();
-    pin.particle = pivot;
-    assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
-    link(w, pivot, bob);
-  }
-}
-
 /* A world grown after it stepped: its blocks are found again, over room
  * for every particle (31 particles first, past the size where the block
  * arrays' room first doubles, then 41). */
@@ -227,6 +298,8 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(two_figures_apart_move_as_in_worlds_of_their_own),
     cmocka_unit_test(a_link_between_figures_makes_one_block),
+    cmocka_unit_test(a_dependent_row_in_one_block_is_reported_for_the_solve),
+    cmocka_unit_test(nan_in_one_block_resets_the_world),
     cmocka_unit_test(a_contact_joins_two_blocks),
     cmocka_unit_test(a_world_grown_after_stepping_finds_its_blocks_again),
   };

@@ -171,18 +171,8 @@ static int island_system(mr_world *w, int g) {
   return m;
 }
 
-/* The worse of two statuses: a failure, then not converged, then
- * dependent rows, then OK. */
-static mr_solve_status worse(mr_solve_status a, mr_solve_status b) {
-  if (a < 0 || b < 0) return a < b ? a : b;
-  if (a == MR_SOLVE_NOT_CONVERGED || b == MR_SOLVE_NOT_CONVERGED) return MR_SOLVE_NOT_CONVERGED;
-  return a > b ? a : b;
-}
-
 mr_solve_status mr_islands_solve(mr_world *w, int groups, mr_solve_result *sum) {
   memset(sum, 0, sizeof *sum);
-  sum->dense = 1;
-  mr_solve_status st = MR_SOLVE_OK;
   for (int g = 0; g < groups; g++) {
     const int m = island_system(w, g);
     if (m < 0) return MR_SOLVE_ERR_NOMEM;
@@ -192,17 +182,16 @@ mr_solve_status mr_islands_solve(mr_world *w, int groups, mr_solve_result *sum) 
     memset(w->island_x, 0, (size_t)m * sizeof *w->island_x);
     mr_solve_result r;
     mr_solve_status s = mr_solver_solve(w->solver, &w->opts, &w->A, w->island_b, w->island_x, &r);
-    st = worse(st, s);
-    if (s < 0) break;
+    if (s < 0) { /* a failure, or NaN in this block: the caller's to handle for all */
+      sum->status = s;
+      return s;
+    }
     const int *rows = w->island_rows + w->island_start[g];
     for (int i = 0; i < m; i++) w->lambda[rows[i]] = w->island_x[i];
-    sum->iterations += r.iterations > 0 ? r.iterations : 0;
+    sum->iterations += r.iterations > 0 ? r.iterations : 0; /* what mr_solve_rows reads */
     sum->dependent += r.dependent;
-    sum->regularised += r.regularised;
-    sum->fallback |= r.fallback;
-    sum->dense &= r.dense;
-    if (r.residual > sum->residual) sum->residual = r.residual;
   }
-  sum->status = st;
-  return st;
+  /* LDLᵀ always finishes: what is left to say is whether rows dropped. */
+  sum->status = sum->dependent > 0 ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+  return sum->status;
 }
