@@ -1,4 +1,5 @@
-/* `marionette` on the command line: --version on both programs, a missing
+/* `marionette` on the command line: --version on every program, the glove
+ * program started by hand, a missing
  * scene is the first thing it hears of, the keyboard's glove records a take
  * that replays as it played, and a show without a stage says that it drew
  * nothing. */
@@ -19,7 +20,7 @@
 #define MR_APP_TEST_BACKEND "auto"
 #endif
 
-static char *marionette, *stage;
+static char *marionette, *stage, *export_program, *glove;
 
 #define STICK MR_SOURCE_DIR "/host/scenes/stick.yaml"
 
@@ -29,11 +30,12 @@ static void run(char *const argv[], tt_output *o) {
 
 /* Each program prints its name and the project's version (project() in
  * the top CMakeLists.txt), and exits 0. */
-static void both_programs_print_the_projects_version(void **state) {
+static void every_program_prints_the_projects_version(void **state) {
   (void)state;
-  char *programs[] = { marionette, stage };
-  const char *names[] = { "marionette", "marionette-stage" };
-  for (int i = 0; i < 2; i++) {
+  char *programs[] = { marionette, stage, export_program, glove };
+  const char *names[] = { "marionette", "marionette-stage", "marionette-export",
+                          "marionette-glove" };
+  for (int i = 0; i < 4; i++) {
     char *argv[] = { programs[i], "--version", NULL };
     tt_output o;
     run(argv, &o);
@@ -44,6 +46,20 @@ static void both_programs_print_the_projects_version(void **state) {
     assert_string_equal(o.err, "");
     tt_output_free(&o);
   }
+}
+
+/* The glove program is reached through marionette: started by hand with
+ * anything but its two commands, it says so in one line (bad usage). */
+static void the_glove_program_alone_points_at_marionette(void **state) {
+  (void)state;
+  char *argv[] = { glove, "sim", NULL };
+  tt_output o;
+  run(argv, &o);
+  assert_int_equal(o.status, 2);
+  assert_non_null(strstr(o.err, "marionette list-ports"));
+  assert_int_equal(strchr(o.err, '\n') - o.err + 1, (long)strlen(o.err)); /* one line */
+  assert_string_equal(o.out, "");
+  tt_output_free(&o);
 }
 
 /* Without a glove and without a display, a scene that is not there is
@@ -146,17 +162,20 @@ static void a_show_without_a_stage_says_it_drew_nothing(void **state) {
 }
 
 int main(int argc, char **argv) {
-  if (argc < 3) {
-    fprintf(stderr, "usage: %s MARIONETTE MARIONETTE_STAGE\n", argv[0]);
+  if (argc < 5) {
+    fprintf(stderr, "usage: %s MARIONETTE STAGE EXPORT GLOVE\n", argv[0]);
     return 2;
   }
   marionette = argv[1];
   stage = argv[2];
+  export_program = argv[3];
+  glove = argv[4];
   /* No display: the glove's absence is an error, and nothing opens a window. */
   unsetenv("DISPLAY");
   unsetenv("WAYLAND_DISPLAY");
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(both_programs_print_the_projects_version),
+    cmocka_unit_test(every_program_prints_the_projects_version),
+    cmocka_unit_test(the_glove_program_alone_points_at_marionette),
     cmocka_unit_test(a_missing_scene_is_the_first_error),
     cmocka_unit_test(the_keyboards_glove_records_a_take_that_replays),
     cmocka_unit_test(a_show_without_a_stage_says_it_drew_nothing),
