@@ -19,7 +19,9 @@
  * projection of taut strings after the step), so J alternates among a few
  * patterns, and with one plan each switch built the pattern again: on the
  * taut-string stick marionette (10 s of sway) assembly took 20.5 % of all
- * instructions, about 11 % in rebuilding the plan.
+ * instructions, about 11 % in rebuilding the plan. Plans are looked up by
+ * a hash of J's pattern, and the one used before the current first: the
+ * physics mostly swaps between two.
  *
  * A plan also lists the products each entry of A sums, as pairs of J's
  * entries and the entry of A they go to, in the order the sums are made,
@@ -38,6 +40,7 @@ typedef struct csr_kept {
   /* The pattern the plan was built for: J's rows, their particles, and
    * which particles were pinned. */
   int valid, rows, np, ne, nnz;
+  uint64_t hash; /* source_hash of the J it was built for */
   mr_buf jrp, jpart, pinned;
   mr_buf masses; /* inv_mass as last seen: the same bits, the same pinned set */
   /* Particle → entries of J that name it (movable particles only): the
@@ -63,9 +66,14 @@ typedef struct csr_kept {
 struct mr_csr_plan {
   csr_kept kept[MR_CSR_KEPT];
   int cur;                   /* the plan used last */
+  int before;                /* the plan used before it */
   mr_buf val;                /* A's values: A->val points here */
   mr_buf mark, cursor, ucol; /* scratch of the pattern build and the symmetrising copy */
   mr_buf work;               /* one row of A, dense; zero between rows */
+  /* The room every plan has (plan_reserve, plan_reserve_entries): a J
+   * within it costs no pass over the plans. */
+  size_t room_k, room_np, room_ne, room_nnz, room_terms;
+  int roomy, roomy_entries; /* the rooms above were reserved */
   unsigned long builds, clock;
 };
 
@@ -73,6 +81,15 @@ struct mr_csr_plan {
 
 static int pinned(const double *inv_mass, int p) {
   return !inv_mass || inv_mass[p] == 0.0;
+}
+
+/* The key a plan is looked up by: J's pattern (the pinned set, which
+ * seldom changes, is left to same_source). */
+static uint64_t source_hash(const mr_jac *J, int ne) {
+  const int dims[3] = { J->rows, J->n_particles, ne };
+  uint64_t h = mr_hash_ints(14695981039346656037u, dims, 3);
+  if (J->rows > 0) h = mr_hash_ints(h, J->row_ptr, (size_t)J->rows + 1);
+  return mr_hash_ints(h, J->particle, (size_t)ne);
 }
 
 static int same_source(csr_kept *pl, const mr_jac *J, const double *inv_mass, int ne) {
@@ -103,6 +120,7 @@ static int plans_for(size_t k) {
  * seen: the physics allocates nothing after its first step. */
 static int plan_reserve(struct mr_csr_plan *pl, int count, size_t k, size_t np, size_t ne) {
   const size_t si = sizeof(int);
+  if (pl->roomy && k <= pl->room_k && np <= pl->room_np && ne <= pl->room_ne) return 0;
   for (int s = 0; s < count; s++) {
     csr_kept *kp = &pl->kept[s];
     if (mr_buf_reserve(&kp->rp, k + 1, si) || mr_buf_reserve(&kp->jrp, k + 1, si) ||
@@ -115,6 +133,12 @@ static int plan_reserve(struct mr_csr_plan *pl, int count, size_t k, size_t np, 
   if (mr_buf_reserve(&pl->mark, k, si) || mr_buf_reserve(&pl->cursor, k + 1, si) ||
       mr_buf_reserve(&pl->work, k, sizeof(double)))
     return MR_SOLVE_ERR_NOMEM;
+  if (count == MR_CSR_KEPT && k <= CSR_KEPT_MAX_ROWS) {
+    pl->room_k = k > pl->room_k ? k : pl->room_k;
+    pl->room_np = np > pl->room_np ? np : pl->room_np;
+    pl->room_ne = ne > pl->room_ne ? ne : pl->room_ne;
+    pl->roomy = 1;
+  }
   return 0;
 }
 
@@ -122,6 +146,7 @@ static int plan_reserve(struct mr_csr_plan *pl, int count, size_t k, size_t np, 
  * unsorted columns (shared: every assembly writes them whole). */
 static int plan_reserve_entries(struct mr_csr_plan *pl, int count, size_t nnz, size_t ne) {
   const size_t si = sizeof(int);
+  if (pl->roomy_entries && nnz <= pl->room_nnz && nnz + ne <= pl->room_terms) return 0;
   for (int s = 0; s < count; s++) {
     csr_kept *kp = &pl->kept[s];
     /* Terms: up to one per entry of J (the diagonal's) and one per
@@ -133,6 +158,11 @@ static int plan_reserve_entries(struct mr_csr_plan *pl, int count, size_t nnz, s
   }
   if (mr_buf_reserve(&pl->ucol, nnz, sizeof(int)) || mr_buf_reserve(&pl->val, nnz, sizeof(double)))
     return MR_SOLVE_ERR_NOMEM;
+  if (count == MR_CSR_KEPT) {
+    pl->room_nnz = nnz > pl->room_nnz ? nnz : pl->room_nnz;
+    pl->room_terms = nnz + ne > pl->room_terms ? nnz + ne : pl->room_terms;
+    pl->roomy_entries = 1;
+  }
   return 0;
 }
 
@@ -146,6 +176,7 @@ static void keep_source(csr_kept *pl, const mr_jac *J, const double *inv_mass, i
   pl->rows = k;
   pl->np = np;
   pl->ne = ne;
+  pl->hash = source_hash(J, ne);
 }
 
 /* Particle → (row, entry) lists by a counting sort over J's entries; a
@@ -294,12 +325,22 @@ static int replan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mas
  * new one. */
 static int find_plan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mass, int ne) {
   if (!same_source(&pl->kept[pl->cur], J, inv_mass, ne)) {
-    int s = 0;
-    while (s < MR_CSR_KEPT && !same_source(&pl->kept[s], J, inv_mass, ne)) s++;
+    const int was = pl->cur;
+    /* Two patterns taking turns (ldlt.c, mr_ldlt_prepare): the one used
+     * before is looked at before J is hashed. */
+    int s = pl->before;
+    if (!same_source(&pl->kept[s], J, inv_mass, ne)) {
+      const uint64_t h = source_hash(J, ne);
+      for (s = 0; s < MR_CSR_KEPT; s++)
+        if (pl->kept[s].valid && pl->kept[s].hash == h &&
+            same_source(&pl->kept[s], J, inv_mass, ne))
+          break;
+    }
     if (s < MR_CSR_KEPT)
       pl->cur = s;
     else if (replan(pl, J, inv_mass, ne) != 0)
       return MR_SOLVE_ERR_NOMEM;
+    pl->before = was;
   }
   pl->kept[pl->cur].used = ++pl->clock;
   return 0;

@@ -36,6 +36,19 @@ int mr_pattern_same(const mr_pattern *pat, const mr_csr *A) {
          memcmp(pat->col.p, A->col, (size_t)pat->nnz * sizeof(int)) == 0;
 }
 
+uint64_t mr_hash_ints(uint64_t h, const int *v, size_t n) {
+  size_t i = 0;
+  for (; i + 1 < n; i += 2)
+    h = (h ^ ((uint64_t)(unsigned)v[i] | (uint64_t)(unsigned)v[i + 1] << 32)) * 1099511628211u;
+  if (i < n) h = (h ^ (uint64_t)(unsigned)v[i]) * 1099511628211u;
+  return h;
+}
+
+uint64_t mr_pattern_hash(const mr_csr *A) {
+  uint64_t h = mr_hash_ints(14695981039346656037u, A->row_ptr, (size_t)A->n + 1);
+  return mr_hash_ints(h, A->col, (size_t)A->row_ptr[A->n]);
+}
+
 int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz) {
   if (mr_buf_reserve(&pat->rp, n + 1, sizeof(int)) != 0 ||
       mr_buf_reserve(&pat->col, nnz, sizeof(int)) != 0)
@@ -43,7 +56,7 @@ int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz) {
   return 0;
 }
 
-int mr_pattern_keep(mr_pattern *pat, const mr_csr *A) {
+int mr_pattern_keep(mr_pattern *pat, const mr_csr *A, uint64_t hash) {
   const int nnz = A->row_ptr[A->n];
   pat->valid = 0;
   if (mr_pattern_reserve(pat, (size_t)A->n, (size_t)nnz) != 0) return MR_SOLVE_ERR_NOMEM;
@@ -51,6 +64,7 @@ int mr_pattern_keep(mr_pattern *pat, const mr_csr *A) {
   memcpy(pat->col.p, A->col, (size_t)nnz * sizeof(int));
   pat->n = A->n;
   pat->nnz = nnz;
+  pat->hash = hash;
   pat->valid = 1;
   return 0;
 }

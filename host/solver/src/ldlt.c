@@ -102,9 +102,17 @@ static int reserve_slot(mr_ldlt_kept *k, size_t n, size_t nnz) {
   return 0;
 }
 
+/* Every slot once, up to the room reserved already (kept_n, kept_nnz):
+ * a pattern within it costs no pass over the slots. */
 static int reserve_kept(mr_ldlt *f, size_t n, size_t nnz) {
+  if (f->kept_roomy && n <= f->kept_n && nnz <= f->kept_nnz) return 0;
+  if (n < f->kept_n) n = f->kept_n;
+  if (nnz < f->kept_nnz) nnz = f->kept_nnz;
   for (int s = 0; s < MR_LDLT_KEPT; s++)
     if (reserve_slot(&f->kept[s], n, nnz)) return MR_SOLVE_ERR_NOMEM;
+  f->kept_n = n;
+  f->kept_nnz = nnz;
+  f->kept_roomy = 1;
   return 0;
 }
 
@@ -179,7 +187,7 @@ int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l) {
   return 0;
 }
 
-static int analyse(mr_ldlt *f, const mr_csr *A) {
+static int analyse(mr_ldlt *f, const mr_csr *A, uint64_t hash) {
   const int n = A->n;
   f->pattern.valid = 0;
   if (mr_ldlt_order(f, A, &f->nnz_l) != 0 || reserve_factor(f, (size_t)n, f->nnz_l) != 0)
@@ -191,7 +199,7 @@ static int analyse(mr_ldlt *f, const mr_csr *A) {
   lp[0] = 0;
   for (int k = 0; k < n; k++) lp[k + 1] = lp[k] + lnz[k];
   f->analyses++;
-  return mr_pattern_keep(&f->pattern, A);
+  return mr_pattern_keep(&f->pattern, A, hash);
 }
 
 /* Several analyses are kept, keyed on the pattern. A step mixes row sets
@@ -200,20 +208,23 @@ static int analyse(mr_ldlt *f, const mr_csr *A) {
  * among a few, and with one analysis kept each switch ordered A again:
  * on the taut-string stick marionette (10 s of sway) 4 085 of 8 079 solves
  * re-analysed, 26 % of all instructions. With 8 kept, 590 do, and the
- * whole run takes 24 % fewer instructions. The puppet of puppet.yaml,
- * whose floor contacts come and go, still analysed 510 times in 19 124
- * solves (10 s, 5.5 % of its instructions) with 8 kept; with 16, 240;
- * with 32, 137 (4.1 % fewer instructions in all); with 64, 103. 32 it
- * is: 2 MiB once reserved for 128 rows. A kept analysis is the one
- * analyse() would compute again, so the answers are the same bits. */
-static int find_kept(const mr_ldlt *f, const mr_csr *A) {
+ * whole run takes 24 % fewer instructions. Seven taut strings, each in or
+ * out of a solve, make many more patterns than a few: the stick figure
+ * swaying for 10 s (the MuJoCo comparison's gentle track) met 82, and
+ * with 32 kept analysed 240 times, 12.7 % of its instructions; puppet.yaml
+ * met 85 (131 analyses), humanoid.yaml 74 (186), dragon.yaml 105 (168).
+ * With 128 kept each pattern is analysed once. So many slots are looked
+ * through by the pattern's hash, then compared whole. A kept analysis is
+ * the one analyse() would compute again, so the answers are the same
+ * bits. */
+static int find_kept(const mr_ldlt *f, const mr_csr *A, uint64_t hash) {
   for (int s = 0; s < MR_LDLT_KEPT; s++)
-    if (mr_pattern_same(&f->kept[s].pattern, A)) return s;
+    if (f->kept[s].pattern.hash == hash && mr_pattern_same(&f->kept[s].pattern, A)) return s;
   return -1;
 }
 
 /* Makes kept[s] the analysis in use. */
-static int restore(mr_ldlt *f, int s, const mr_csr *A) {
+static int restore(mr_ldlt *f, int s, const mr_csr *A, uint64_t hash) {
   const mr_ldlt_kept *k = &f->kept[s];
   const size_t n = (size_t)A->n, si = sizeof(int);
   f->pattern.valid = 0;
@@ -224,7 +235,7 @@ static int restore(mr_ldlt *f, int s, const mr_csr *A) {
   memcpy(f->parent.p, k->parent.p, n * si);
   memcpy(f->lp.p, k->lp.p, (n + 1) * si);
   f->nnz_l = k->nnz_l;
-  return mr_pattern_keep(&f->pattern, A);
+  return mr_pattern_keep(&f->pattern, A, hash);
 }
 
 /* Keeps the analysis in use in the least recently used slot (an empty one
@@ -233,7 +244,7 @@ static int restore(mr_ldlt *f, int s, const mr_csr *A) {
  * rows of puppets built inside each other, 425 solves above 128 rows)
  * pushed out small patterns that came back, 700 orderings in place of
  * 625; large patterns seldom come back whole. */
-static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
+static int keep(mr_ldlt *f, const mr_csr *A, uint64_t hash, int *slot) {
   const size_t n = (size_t)A->n, si = sizeof(int);
   *slot = -1;
   if (A->n > MR_LDLT_KEPT_MAX_N) return 0;
@@ -251,23 +262,34 @@ static int keep(mr_ldlt *f, const mr_csr *A, int *slot) {
   memcpy(k->lp.p, f->lp.p, (n + 1) * si);
   k->nnz_l = f->nnz_l;
   *slot = s;
-  return mr_pattern_keep(&k->pattern, A);
+  return mr_pattern_keep(&k->pattern, A, hash);
 }
 
 /* The analysis for A's pattern in use: the one in use already, a kept one,
  * or a new one (then kept). */
 int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A) {
   if (mr_pattern_same(&f->pattern, A)) return 0;
-  int s = find_kept(f, A), st;
+  /* The physics mostly swaps between two patterns (a resting contact
+   * released and taken back): the one in use before this is looked at
+   * before A is hashed. */
+  int s = f->before, st;
+  uint64_t hash;
+  if (s >= 0 && mr_pattern_same(&f->kept[s].pattern, A)) {
+    hash = f->kept[s].pattern.hash;
+  } else {
+    hash = mr_pattern_hash(A);
+    s = find_kept(f, A, hash);
+  }
   if (s >= 0)
-    st = restore(f, s, A);
-  else if ((st = analyse(f, A)) == 0)
-    st = keep(f, A, &s);
+    st = restore(f, s, A, hash);
+  else if ((st = analyse(f, A, hash)) == 0)
+    st = keep(f, A, hash, &s);
   if (st != 0) return st;
   /* The analysis in use is always the most recent: no stamp while it
    * stays in use. The clock moves at every change of it (dense.c keys its
    * own per-pattern work on it, and keeps that work in slot in_use). */
   ++f->clock;
+  f->before = f->in_use;
   f->in_use = s;
   if (s >= 0) f->kept[s].used = f->clock;
   return 0;

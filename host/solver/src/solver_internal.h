@@ -37,10 +37,15 @@ void mr_bufs_free(mr_buf *const *bufs, size_t count);
  * holds for a new matrix. */
 typedef struct mr_pattern {
   int valid, n, nnz;
+  uint64_t hash; /* mr_pattern_hash of the pattern kept */
   mr_buf rp, col;
 } mr_pattern;
 int mr_pattern_same(const mr_pattern *pat, const mr_csr *A);
-int mr_pattern_keep(mr_pattern *pat, const mr_csr *A); /* 0 or MR_SOLVE_ERR_NOMEM */
+uint64_t mr_pattern_hash(const mr_csr *A);
+/* FNV-1a over n ints, from h: the key a kept pattern is looked up by. */
+uint64_t mr_hash_ints(uint64_t h, const int *v, size_t n);
+/* Keeps A's pattern, whose mr_pattern_hash is hash: 0 or MR_SOLVE_ERR_NOMEM. */
+int mr_pattern_keep(mr_pattern *pat, const mr_csr *A, uint64_t hash);
 int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz);
 void mr_pattern_free(mr_pattern *pat);
 
@@ -63,15 +68,20 @@ typedef struct mr_ldlt_kept {
 } mr_ldlt_kept;
 /* How many analyses are kept, and the largest pattern kept (rows): a
  * reserve gives every kept slot room for a full pattern of up to that
- * many rows, 64 KiB each; larger systems keep only the analysis in use
- * (ldlt.c, keep, says why). The benchmark's puppets solve 7 to 31 rows. */
-#define MR_LDLT_KEPT 32
+ * many rows, 64 KiB each (8 MiB for 128 rows, mostly never touched: a
+ * stick puppet's world is 3 MiB larger than with 32 kept); larger systems
+ * keep only the analysis in use (ldlt.c, keep, says why). The
+ * benchmark's puppets solve 7 to 31 rows, and which of their taut strings
+ * and contacts take part makes 74 to 105 patterns in 10 s (ldlt.c,
+ * find_kept): 128 keep them all. */
+#define MR_LDLT_KEPT 128
 
-/* How many assembly plans A keeps (assemble.c). On 10 s of puppet.yaml,
- * whose floor contacts come and go, 16 in place of 8 take 419 M
- * instructions to 414 M; 32 only to 412 M, for twice the memory (about
- * 260 KiB a plan once reserved for 128 rows). */
-#define MR_CSR_KEPT        16
+/* How many assembly plans A keeps (assemble.c). A plan stands for J's
+ * pattern, which the row sets above change as they change A's: 64 take
+ * the 10 s sway of a taut-string stick figure (82 patterns) from 376
+ * plans made to 88, and its run 13.6 % fewer instructions with the
+ * analyses kept above; about 260 KiB a plan once reserved for 128 rows. */
+#define MR_CSR_KEPT        64
 #define MR_LDLT_KEPT_MAX_N 128
 /* The room a kept slot has for the dense factor's plan, in ints, for
  * n rows (only up to the dense path's MR_SOLVE_DENSE_ROWS_MAX): the
@@ -125,11 +135,14 @@ typedef struct mr_dense {
 typedef struct mr_ldlt {
   mr_pattern pattern;
   mr_ldlt_kept kept[MR_LDLT_KEPT];
-  unsigned long clock;    /* changes of the analysis in use */
-  int in_use;             /* kept[]'s slot of the analysis in use; −1: none */
-  unsigned long analyses; /* analyses run (ordering + symbolic): for tests */
-  mr_buf perm, iperm;     /* new → old, old → new */
-  mr_buf dperm;           /* the dense factor's order, new → old */
+  size_t kept_n, kept_nnz; /* the room every kept slot has (reserve_kept), */
+  int kept_roomy;          /* once reserved */
+  unsigned long clock;     /* changes of the analysis in use */
+  int in_use;              /* kept[]'s slot of the analysis in use; −1: none */
+  int before;              /* the slot in use before it (mr_ldlt_prepare) */
+  unsigned long analyses;  /* analyses run (ordering + symbolic): for tests */
+  mr_buf perm, iperm;      /* new → old, old → new */
+  mr_buf dperm;            /* the dense factor's order, new → old */
   mr_buf parent, lnz, flag, stack, lp, dropped;
   mr_buf li, lx, diag, y, z;
   mr_buf skip, res, dx; /* refinement: dropped rows by old index, r, δλ */
