@@ -83,13 +83,12 @@ static int pinned(const double *inv_mass, int p) {
   return !inv_mass || inv_mass[p] == 0.0;
 }
 
-/* The key a plan is looked up by: J's pattern (the pinned set, which
- * seldom changes, is left to same_source). */
+/* The key a plan is looked up by: J's sizes and the particles its entries
+ * name (the row starts and the pinned set, which seldom tell two of a
+ * run's patterns apart, are left to same_source). */
 static uint64_t source_hash(const mr_jac *J, int ne) {
   const int dims[3] = { J->rows, J->n_particles, ne };
-  uint64_t h = mr_hash_ints(14695981039346656037u, dims, 3);
-  if (J->rows > 0) h = mr_hash_ints(h, J->row_ptr, (size_t)J->rows + 1);
-  return mr_hash_ints(h, J->particle, (size_t)ne);
+  return mr_hash_ints(mr_hash_ints(14695981039346656037u, dims, 3), J->particle, (size_t)ne);
 }
 
 static int same_source(csr_kept *pl, const mr_jac *J, const double *inv_mass, int ne) {
