@@ -75,6 +75,10 @@ static int reserve_order(mr_ldlt *f, size_t n) {
   return 0;
 }
 
+int mr_ldlt_reserve_order(mr_ldlt *f, int rows) {
+  return reserve_order(f, (size_t)rows);
+}
+
 static int reserve_factor(mr_ldlt *f, size_t n, size_t nnz_l) {
   if (mr_buf_reserve(&f->lp, n + 1, sizeof(int)) || mr_buf_reserve(&f->dropped, n, 1) ||
       mr_buf_reserve(&f->diag, n, sizeof(double)) || mr_buf_reserve(&f->y, n, sizeof(double)) ||

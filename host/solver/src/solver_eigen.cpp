@@ -146,7 +146,7 @@ void analyse(EigenWorkspace &w, const mr_csr *A) {
 // own arrays, made by analysing and factoring the identity once.
 void reserve(EigenWorkspace &w, int rows) {
   const size_t n = (size_t)rows;
-  if (mr_ldlt_reserve(&w.order, rows) != 0 || mr_pattern_reserve(&w.pattern, n, n * n) != 0)
+  if (mr_ldlt_reserve_order(&w.order, rows) != 0 || mr_pattern_reserve(&w.pattern, n, n * n) != 0)
     throw std::bad_alloc();
   grow(w, rows);
   const int size = w.size;

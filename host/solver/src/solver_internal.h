@@ -223,6 +223,10 @@ int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A);
 /* Room for any pattern of up to rows rows: L dense, A's pattern full.
  * 0 or MR_SOLVE_ERR_NOMEM. */
 int mr_ldlt_reserve(mr_ldlt *f, int rows);
+/* Room for mr_ldlt_order alone, on up to rows rows (no factor, no kept
+ * analyses: Eigen's workspace orders with it and keeps nothing).
+ * 0 or MR_SOLVE_ERR_NOMEM. */
+int mr_ldlt_reserve_order(mr_ldlt *f, int rows);
 
 /* The reverse Cuthill–McKee ordering of A's graph: perm[new] = old. iw needs
  * 3n ints. */
