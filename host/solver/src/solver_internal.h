@@ -87,7 +87,7 @@ typedef struct mr_ldlt_kept {
  * n rows (only up to the dense path's MR_SOLVE_DENSE_ROWS_MAX): the
  * stick figure's and the puppet's plans take at most 28 ints a row; a
  * plan that needs more is made again each time its analysis comes back
- * into use. 32 KiB a slot, 1 MiB in all, once reserved for 128 rows (the
+ * into use. 32 KiB a slot, 4 MiB in all, once reserved for 128 rows (the
  * arrays grow by doubling). */
 #define MR_DENSE_KEPT_PLAN_ROOM(n) (48 * (size_t)(n) + 64)
 
