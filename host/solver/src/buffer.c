@@ -60,7 +60,7 @@ int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz) {
   return 0;
 }
 
-int mr_pattern_keep(mr_pattern *pat, const mr_csr *A, uint64_t hash) {
+int mr_pattern_keep(mr_pattern *pat, const mr_csr *A) {
   const int nnz = A->row_ptr[A->n];
   pat->valid = 0;
   if (mr_pattern_reserve(pat, (size_t)A->n, (size_t)nnz) != 0) return MR_SOLVE_ERR_NOMEM;
@@ -68,7 +68,6 @@ int mr_pattern_keep(mr_pattern *pat, const mr_csr *A, uint64_t hash) {
   memcpy(pat->col.p, A->col, (size_t)nnz * sizeof(int));
   pat->n = A->n;
   pat->nnz = nnz;
-  pat->hash = hash;
   pat->valid = 1;
   return 0;
 }

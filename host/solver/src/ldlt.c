@@ -191,7 +191,7 @@ int mr_ldlt_order(mr_ldlt *f, const mr_csr *A, size_t *nnz_l) {
   return 0;
 }
 
-static int analyse(mr_ldlt *f, const mr_csr *A, uint64_t hash) {
+static int analyse(mr_ldlt *f, const mr_csr *A) {
   const int n = A->n;
   f->pattern.valid = 0;
   if (mr_ldlt_order(f, A, &f->nnz_l) != 0 || reserve_factor(f, (size_t)n, f->nnz_l) != 0)
@@ -203,7 +203,7 @@ static int analyse(mr_ldlt *f, const mr_csr *A, uint64_t hash) {
   lp[0] = 0;
   for (int k = 0; k < n; k++) lp[k + 1] = lp[k] + lnz[k];
   f->analyses++;
-  return mr_pattern_keep(&f->pattern, A, hash);
+  return mr_pattern_keep(&f->pattern, A);
 }
 
 /* Several analyses are kept, keyed on the pattern. A step mixes row sets
@@ -223,12 +223,12 @@ static int analyse(mr_ldlt *f, const mr_csr *A, uint64_t hash) {
  * bits. */
 static int find_kept(const mr_ldlt *f, const mr_csr *A, uint64_t hash) {
   for (int s = 0; s < MR_LDLT_KEPT; s++)
-    if (f->kept[s].pattern.hash == hash && mr_pattern_same(&f->kept[s].pattern, A)) return s;
+    if (f->kept[s].hash == hash && mr_pattern_same(&f->kept[s].pattern, A)) return s;
   return -1;
 }
 
 /* Makes kept[s] the analysis in use. */
-static int restore(mr_ldlt *f, int s, const mr_csr *A, uint64_t hash) {
+static int restore(mr_ldlt *f, int s, const mr_csr *A) {
   const mr_ldlt_kept *k = &f->kept[s];
   const size_t n = (size_t)A->n, si = sizeof(int);
   f->pattern.valid = 0;
@@ -239,7 +239,7 @@ static int restore(mr_ldlt *f, int s, const mr_csr *A, uint64_t hash) {
   memcpy(f->parent.p, k->parent.p, n * si);
   memcpy(f->lp.p, k->lp.p, (n + 1) * si);
   f->nnz_l = k->nnz_l;
-  return mr_pattern_keep(&f->pattern, A, hash);
+  return mr_pattern_keep(&f->pattern, A);
 }
 
 /* Keeps the analysis in use in the least recently used slot (an empty one
@@ -266,7 +266,8 @@ static int keep(mr_ldlt *f, const mr_csr *A, uint64_t hash, int *slot) {
   memcpy(k->lp.p, f->lp.p, (n + 1) * si);
   k->nnz_l = f->nnz_l;
   *slot = s;
-  return mr_pattern_keep(&k->pattern, A, hash);
+  k->hash = hash;
+  return mr_pattern_keep(&k->pattern, A);
 }
 
 /* The analysis for A's pattern in use: the one in use already, a kept one,
@@ -277,16 +278,14 @@ int mr_ldlt_prepare(mr_ldlt *f, const mr_csr *A) {
    * released and taken back): the one in use before this is looked at
    * before A is hashed. */
   int s = f->before, st;
-  uint64_t hash;
-  if (s >= 0 && mr_pattern_same(&f->kept[s].pattern, A)) {
-    hash = f->kept[s].pattern.hash;
-  } else {
+  uint64_t hash = 0; /* only a new analysis, kept below, needs it */
+  if (s < 0 || !mr_pattern_same(&f->kept[s].pattern, A)) {
     hash = mr_pattern_hash(A);
     s = find_kept(f, A, hash);
   }
   if (s >= 0)
-    st = restore(f, s, A, hash);
-  else if ((st = analyse(f, A, hash)) == 0)
+    st = restore(f, s, A);
+  else if ((st = analyse(f, A)) == 0)
     st = keep(f, A, hash, &s);
   if (st != 0) return st;
   /* The analysis in use is always the most recent: no stamp while it

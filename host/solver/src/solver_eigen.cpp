@@ -222,7 +222,7 @@ int solve(EigenWorkspace &w, const mr_solve_def *o, const mr_csr *A, const doubl
   if (!mr_pattern_same(&w.pattern, A)) {
     w.pattern.valid = 0; // until the analysis below is complete
     analyse(w, A);
-    if (mr_pattern_keep(&w.pattern, A, mr_pattern_hash(A)) != 0) return MR_SOLVE_ERR_NOMEM;
+    if (mr_pattern_keep(&w.pattern, A) != 0) return MR_SOLVE_ERR_NOMEM;
   }
   mr_csr_diagonal(A, w.adiag.data());
   for (int i = 0; i < n; i++) {

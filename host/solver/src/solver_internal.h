@@ -37,15 +37,13 @@ void mr_bufs_free(mr_buf *const *bufs, size_t count);
  * holds for a new matrix. */
 typedef struct mr_pattern {
   int valid, n, nnz;
-  uint64_t hash; /* mr_pattern_hash of the pattern kept */
   mr_buf rp, col;
 } mr_pattern;
 int mr_pattern_same(const mr_pattern *pat, const mr_csr *A);
 uint64_t mr_pattern_hash(const mr_csr *A);
 /* FNV-1a over n ints, from h: the key a kept pattern is looked up by. */
 uint64_t mr_hash_ints(uint64_t h, const int *v, size_t n);
-/* Keeps A's pattern, whose mr_pattern_hash is hash: 0 or MR_SOLVE_ERR_NOMEM. */
-int mr_pattern_keep(mr_pattern *pat, const mr_csr *A, uint64_t hash);
+int mr_pattern_keep(mr_pattern *pat, const mr_csr *A); /* 0 or MR_SOLVE_ERR_NOMEM */
 int mr_pattern_reserve(mr_pattern *pat, size_t n, size_t nnz);
 void mr_pattern_free(mr_pattern *pat);
 
@@ -57,6 +55,7 @@ unsigned long mr_csr_pattern_builds(const mr_csr *A);
  * the elimination tree (parent) and L's row starts (lp, nnz_l). */
 typedef struct mr_ldlt_kept {
   mr_pattern pattern;
+  uint64_t hash; /* mr_pattern_hash of pattern: the key it is found by */
   mr_buf perm, iperm, parent, lp, dperm;
   size_t nnz_l;
   unsigned long used; /* f->clock when last used: the least recent goes */
