@@ -106,7 +106,7 @@ static mr_shape_fault shape_of(const double *x, const int *ids, int count, int *
 }
 
 mr_shape_fault mr_rigid_group_shape(const double *xyz, int count, int *i, int *j) {
-  int a, b;
+  int a = -1, b = -1;
   mr_shape_fault f = xyz != NULL && count > 0 ? shape_of(xyz, NULL, count, &a, &b) : MR_SHAPE_OK;
   if (i) *i = a;
   if (j) *j = b;
