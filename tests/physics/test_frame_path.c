@@ -193,11 +193,154 @@ static void peak_bounds_the_path(void **state) {
   mr_world_destroy(r.w);
 }
 
+/* A track quadratic in time, p = (3t², −2t², 0), turning by 4t² rad about
+ * a fixed axis, with targets at uneven times. The parabola through the last
+ * two targets and the new one is then the track itself, so each segment's
+ * end rate is exact, and from the third segment on (the first leaves from
+ * rest, the second inherits its wrong end rate) the cubic path is the track:
+ * its pose and rates at any time inside, and its acceleration (6, −4, 0)
+ * m/s² and 8 rad/s². The uneven times weigh the two chords unequally. */
+static void quadratic_track(double t, mr_pose *p, double v[3], double om[3]) {
+  const double axis[3] = { 0.0, 0.6, 0.8 };
+  *p = mr_pose_identity();
+  p->position[0] = 3.0 * t * t;
+  p->position[1] = -2.0 * t * t;
+  p->orientation[0] = cos(2.0 * t * t);
+  for (int k = 0; k < 3; k++) {
+    p->orientation[k + 1] = axis[k] * sin(2.0 * t * t);
+    om[k] = axis[k] * 8.0 * t;
+  }
+  v[0] = 6.0 * t;
+  v[1] = -4.0 * t;
+  v[2] = 0.0;
+}
+
+static void a_quadratic_track_is_followed_exactly_at_uneven_targets(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_FRAMES;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_frame_def fd = mr_default_frame_def();
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
+  const double at[] = { 0.05, 0.08, 0.15, 0.17, 0.25, 0.3 };
+  double worst = 0.0;
+  int checked = 0;
+  for (int s = 0; s < 6; s++) {
+    mr_pose goal;
+    double gv[3], gw[3];
+    quadratic_track(at[s], &goal, gv, gw);
+    if (s >= 2) {
+      double accel, turn_accel;
+      assert_int_equal(mr_world_frame_target_accel(w, frame, &goal, at[s], &accel, &turn_accel),
+                       MR_OK);
+      assert_true(fabs(accel - sqrt(52.0)) < 1e-9 * sqrt(52.0));
+      assert_true(fabs(turn_accel - 8.0) < 1e-9 * 8.0);
+    }
+    assert_int_equal(mr_world_set_frame_target(w, frame, &goal, at[s]), MR_OK);
+    const double t0 = s > 0 ? at[s - 1] : 0.0;
+    for (int i = 1; i <= 4; i++) {
+      double t = t0 + 0.25 * i * (at[s] - t0);
+      assert_int_equal(mr_world_step_to(w, t, NULL), MR_OK);
+      if (s < 2) continue;
+      mr_pose want, got;
+      double wv[3], ww[3], v[3], om[3];
+      quadratic_track(t, &want, wv, ww);
+      assert_int_equal(mr_world_frame_pose(w, frame, &got), MR_OK);
+      assert_int_equal(mr_world_frame_rates(w, frame, v, om), MR_OK);
+      for (int k = 0; k < 3; k++) {
+        worst = fmax(worst, fabs(got.position[k] - want.position[k]));
+        worst = fmax(worst, fabs(got.orientation[k + 1] - want.orientation[k + 1]));
+        worst = fmax(worst, fabs(v[k] - wv[k]));
+        worst = fmax(worst, fabs(om[k] - ww[k]));
+      }
+      checked++;
+    }
+  }
+  print_message("quadratic track: worst difference %.3g over %d samples\n", worst, checked);
+  assert_int_equal(checked, 16);
+  assert_true(worst < 1e-10);
+  mr_world_destroy(w);
+}
+
+/* A tumbling track: a turn about z that swings to and fro after a steady
+ * roll about x, so the rates at a segment's two ends are not parallel. */
+static mr_pose tumble(double t) {
+  mr_pose p = mr_pose_identity();
+  p.position[0] = 0.3 * sin(4.0 * t);
+  p.position[1] = 1.0 + 0.2 * t * t;
+  p.position[2] = 0.1 * cos(5.0 * t);
+  const double a = 0.5 * 1.2 * sin(3.0 * t), b = 0.5 * 2.5 * t;
+  const double z[4] = { cos(a), 0.0, 0.0, sin(a) }, x[4] = { cos(b), sin(b), 0.0, 0.0 };
+  qmul(z, x, p.orientation);
+  return p;
+}
+
+/* The frame's velocity and angular velocity at the world's time t. */
+static void rates_at(mr_world *w, int frame, double t, double v[3], double om[3]) {
+  assert_int_equal(mr_world_step_to(w, t, NULL), MR_OK);
+  assert_int_equal(mr_world_frame_rates(w, frame, v, om), MR_OK);
+}
+
+/* mr_world_frame_target_accel reports the acceleration and angular
+ * acceleration of the path the target makes at its start, middle and end:
+ * they are the derivatives of the rates the frame then reports there
+ * (second-order differences over 50 µs), on a tumbling segment, whose
+ * start rate is carried by the turns the path makes after it. */
+static void target_accel_is_the_derivative_of_the_rates(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_FRAMES;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_frame_def fd = mr_default_frame_def();
+  fd.pose = tumble(0.0);
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
+  const double step = 1.0 / 30.0, d = 5e-5;
+  for (int f = 1; f <= 3; f++) {
+    mr_pose goal = tumble(f * step);
+    assert_int_equal(mr_world_set_frame_target(w, frame, &goal, f * step), MR_OK);
+    assert_int_equal(mr_world_step_to(w, f * step, NULL), MR_OK);
+  }
+  const double t0 = 3 * step, t1 = 4 * step, tm = 0.5 * (t0 + t1);
+  mr_pose goal = tumble(t1);
+  double accel, turn_accel;
+  assert_int_equal(mr_world_frame_target_accel(w, frame, &goal, t1, &accel, &turn_accel), MR_OK);
+  assert_int_equal(mr_world_set_frame_target(w, frame, &goal, t1), MR_OK);
+  /* Rates at t0, t0 + d, t0 + 2d, tm ± d, t1 − 2d, t1 − d, t1. */
+  const double at[8] = { t0, t0 + d, t0 + 2 * d, tm - d, tm + d, t1 - 2 * d, t1 - d, t1 };
+  double v[8][3], om[8][3];
+  for (int i = 0; i < 8; i++) rates_at(w, frame, at[i], v[i], om[i]);
+  double a[3][3], b[3][3], top = 0.0, top_turn = 0.0;
+  for (int k = 0; k < 3; k++) {
+    a[0][k] = (-3 * v[0][k] + 4 * v[1][k] - v[2][k]) / (2 * d);
+    a[1][k] = (v[4][k] - v[3][k]) / (2 * d);
+    a[2][k] = (3 * v[7][k] - 4 * v[6][k] + v[5][k]) / (2 * d);
+    b[0][k] = (-3 * om[0][k] + 4 * om[1][k] - om[2][k]) / (2 * d);
+    b[1][k] = (om[4][k] - om[3][k]) / (2 * d);
+    b[2][k] = (3 * om[7][k] - 4 * om[6][k] + om[5][k]) / (2 * d);
+  }
+  for (int i = 0; i < 3; i++) {
+    top = fmax(top, norm3(a[i]));
+    top_turn = fmax(top_turn, norm3(b[i]));
+  }
+  print_message("accel %.9g (differences %.9g), turn %.9g (differences %.9g)\n", accel, top,
+                turn_accel, top_turn);
+  assert_true(top > 1.0 && top_turn > 1.0);
+  assert_true(fabs(accel - top) < 1e-5 * top);
+  assert_true(fabs(turn_accel - top_turn) < 1e-5 * top_turn);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(velocity_is_continuous_where_targets_follow),
     cmocka_unit_test(rates_are_the_derivatives_of_the_pose),
     cmocka_unit_test(peak_bounds_the_path),
+    cmocka_unit_test(a_quadratic_track_is_followed_exactly_at_uneven_targets),
+    cmocka_unit_test(target_accel_is_the_derivative_of_the_rates),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
