@@ -52,7 +52,7 @@ mr_ats_decision mr_ats_next(const mr_ats_params *p, double dt_old, double error)
  * measures what each step adds to the trajectory's error, so it is steered
  * towards `low` from both sides (the usual controller of embedded
  * Runge–Kutta pairs, with its safety factor 0.9 and a step changed at most
- * fivefold down or twofold up), where the deviation's dead band would keep
+ * fivefold either way), where the deviation's dead band would keep
  * any error up to `high`: a step whose estimate is 99 times the aim would
  * be kept, and its errors piled up. The estimate is that of the embedded
  * third-order solution, O(h⁴), hence the fourth root. */
