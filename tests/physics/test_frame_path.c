@@ -1,16 +1,20 @@
 /* The control frames' path (frame.c): a cubic Hermite curve from target to
  * target whose velocity does not jump where one target follows another,
  * whose rates are the derivatives of its pose, and whose speed stays
- * within the bound a rate limiter reads (mr_world_frame_target_peak). */
+ * within the bound a rate limiter reads (mr_world_frame_target_peak); and
+ * the motion of a point the frame carries as the taut strings' rows read
+ * it (mr_frame_point_motion, through the library's internal header: no
+ * public call reports a frame point's acceleration). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include <cmocka.h>
 
-#include "mr_physics.h"
+#include "internal.h"
 
 #define FPS 60.0
 
@@ -35,14 +39,22 @@ static mr_pose track(double t) {
 
 /* A frame at the track's start with one point 0.3 m off its origin (so
  * turns move it). */
-static void make_rig(rig *r, mr_frame_path path) {
+/* A world of frames alone, with one frame on the given path at start. */
+static mr_world *frame_world(mr_frame_path path, const mr_pose *start, int *frame) {
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_FRAMES;
-  assert_int_equal(mr_world_create(&def, &r->w, NULL, 0), MR_OK);
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
   mr_frame_def fd = mr_default_frame_def();
   fd.path = path;
-  fd.pose = track(0.0);
-  assert_int_equal(mr_world_add_frame(r->w, &fd, &r->frame), MR_OK);
+  fd.pose = *start;
+  assert_int_equal(mr_world_add_frame(w, &fd, frame), MR_OK);
+  return w;
+}
+
+static void make_rig(rig *r, mr_frame_path path) {
+  const mr_pose start = track(0.0);
+  r->w = frame_world(path, &start, &r->frame);
   mr_particle_def p = mr_default_particle_def();
   p.frame = r->frame;
   p.position[0] = 0.3;
@@ -217,13 +229,9 @@ static void quadratic_track(double t, mr_pose *p, double v[3], double om[3]) {
 
 static void a_quadratic_track_is_followed_exactly_at_uneven_targets(void **state) {
   (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_FRAMES;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  mr_frame_def fd = mr_default_frame_def();
+  const mr_pose rest = mr_pose_identity();
   int frame;
-  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
+  mr_world *w = frame_world(MR_FRAME_SMOOTH, &rest, &frame);
   const double at[] = { 0.05, 0.08, 0.15, 0.17, 0.25, 0.3 };
   double worst = 0.0;
   int checked = 0;
@@ -277,6 +285,29 @@ static mr_pose tumble(double t) {
   return p;
 }
 
+/* A frame on the tumbling track, stepped through three targets 1/30 s
+ * apart, at 3/30 s; with a point carried at (0.3, −0.2, 0.1) from its
+ * origin when point is not NULL. */
+#define STEP (1.0 / 30.0)
+static mr_world *tumbling(int *frame, int *point) {
+  const mr_pose start = tumble(0.0);
+  mr_world *w = frame_world(MR_FRAME_SMOOTH, &start, frame);
+  if (point) {
+    mr_particle_def p = mr_default_particle_def();
+    p.frame = *frame;
+    p.position[0] = start.position[0] + 0.3;
+    p.position[1] = start.position[1] - 0.2;
+    p.position[2] = start.position[2] + 0.1;
+    assert_int_equal(mr_world_add_particle(w, &p, point), MR_OK);
+  }
+  for (int f = 1; f <= 3; f++) {
+    mr_pose goal = tumble(f * STEP);
+    assert_int_equal(mr_world_set_frame_target(w, *frame, &goal, f * STEP), MR_OK);
+    assert_int_equal(mr_world_step_to(w, f * STEP, NULL), MR_OK);
+  }
+  return w;
+}
+
 /* The frame's velocity and angular velocity at the world's time t. */
 static void rates_at(mr_world *w, int frame, double t, double v[3], double om[3]) {
   assert_int_equal(mr_world_step_to(w, t, NULL), MR_OK);
@@ -290,20 +321,9 @@ static void rates_at(mr_world *w, int frame, double t, double v[3], double om[3]
  * start rate is carried by the turns the path makes after it. */
 static void target_accel_is_the_derivative_of_the_rates(void **state) {
   (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_FRAMES;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  mr_frame_def fd = mr_default_frame_def();
-  fd.pose = tumble(0.0);
   int frame;
-  assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
-  const double step = 1.0 / 30.0, d = 5e-5;
-  for (int f = 1; f <= 3; f++) {
-    mr_pose goal = tumble(f * step);
-    assert_int_equal(mr_world_set_frame_target(w, frame, &goal, f * step), MR_OK);
-    assert_int_equal(mr_world_step_to(w, f * step, NULL), MR_OK);
-  }
+  mr_world *w = tumbling(&frame, NULL);
+  const double step = STEP, d = 5e-5;
   const double t0 = 3 * step, t1 = 4 * step, tm = 0.5 * (t0 + t1);
   mr_pose goal = tumble(t1);
   double accel, turn_accel;
@@ -334,6 +354,47 @@ static void target_accel_is_the_derivative_of_the_rates(void **state) {
   mr_world_destroy(w);
 }
 
+/* The point's place and velocity with the frames placed at t. */
+static void placed(mr_world *w, int i, double t, double x[3], double v[3]) {
+  mr_frames_place(w, t, w->x, w->v);
+  memcpy(x, &w->x[3 * i], 3 * sizeof *x);
+  memcpy(v, &w->v[3 * i], 3 * sizeof *v);
+}
+
+/* mr_frame_point_motion's velocity and acceleration are the derivatives of
+ * where the frame carries the point (central differences over 10 µs), at
+ * three times inside a tumbling segment, away from its ends, where the
+ * path's own terms do not vanish: the centripetal part ω × (ω × r), and
+ * the angular acceleration of turns about turning axes. */
+static void point_motion_is_the_derivative_of_its_path(void **state) {
+  (void)state;
+  int frame, point;
+  mr_world *w = tumbling(&frame, &point);
+  mr_pose goal = tumble(4 * STEP);
+  assert_int_equal(mr_world_set_frame_target(w, frame, &goal, 4 * STEP), MR_OK);
+  const double d = 1e-5, within[3] = { 0.3, 0.5, 0.8 };
+  double worst_v = 0.0, worst_a = 0.0, top_a = 0.0;
+  for (int s = 0; s < 3; s++) {
+    const double t = (3.0 + within[s]) * STEP;
+    double x0[3], v0[3], x1[3], v1[3], x[3], vm[3], v[3], a[3];
+    placed(w, point, t - d, x0, v0);
+    placed(w, point, t + d, x1, v1);
+    placed(w, point, t, x, vm);
+    mr_frame_point_motion(w, point, t, w->x, v, a);
+    for (int k = 0; k < 3; k++) {
+      worst_v = fmax(worst_v, fabs(v[k] - (x1[k] - x0[k]) / (2 * d)));
+      worst_a = fmax(worst_a, fabs(a[k] - (v1[k] - v0[k]) / (2 * d)));
+      top_a = fmax(top_a, fabs(a[k]));
+    }
+  }
+  print_message("point motion: velocity off by %.3g m/s, acceleration by %.3g of %.3g m/s²\n",
+                worst_v, worst_a, top_a);
+  assert_true(top_a > 1.0);
+  assert_true(worst_v < 1e-7);
+  assert_true(worst_a < 1e-5 * top_a);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(velocity_is_continuous_where_targets_follow),
@@ -341,6 +402,7 @@ int main(void) {
     cmocka_unit_test(peak_bounds_the_path),
     cmocka_unit_test(a_quadratic_track_is_followed_exactly_at_uneven_targets),
     cmocka_unit_test(target_accel_is_the_derivative_of_the_rates),
+    cmocka_unit_test(point_motion_is_the_derivative_of_its_path),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
