@@ -369,6 +369,115 @@ static void a_retried_step_does_not_evaluate_its_start_again(void **state) {
   mr_world_destroy(w);
 }
 
+/* A pin and a 1 m distance to a bob swinging at 3 m/s about it, with the
+ * estimate off: the deviation alone steers the step. */
+static mr_world *spinning_pendulum(mr_world_def def, int *bob) {
+  def.error_length = def.error_speed = 0.0;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int pivot = particle(w, 0, 0, 0, 1, -1);
+  *bob = particle(w, 1, 0, 0, 1, -1);
+  assert_int_equal(
+      mr_world_set_particle_state(w, *bob, (double[3]){ 1, 0, 0 }, (double[3]){ 0, 0, 3.0 }),
+      MR_OK);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = pivot;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = pivot;
+  d.b = *bob;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  return w;
+}
+
+/* A try rejected to dt_min that would then stop 5 µs short of the
+ * requested time lands on it instead: one step, not a second 5 µs sliver
+ * after it. */
+static void a_retry_a_hair_short_of_the_target_lands_on_it(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.deviation_high = 1e-9; /* the first try, 10 ms long, is over it */
+  def.deviation_low = 1e-11;
+  int bob;
+  mr_world *w = spinning_pendulum(def, &bob);
+  const double target = def.dt_min * (1.0 + 5e-4);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, target, &rep), MR_OK);
+  printf("to %.9g s: %d steps, %d rejected\n", target, rep.steps, rep.rejected);
+  assert_true(rep.rejected >= 1);
+  assert_int_equal(rep.steps, 1);
+  assert_true(mr_world_time(w) == target);
+  mr_world_destroy(w);
+}
+
+/* Fixed steps of 20 ms landing on multiples of 20 ms: each is the step the
+ * rule chose, to rounding, not one cut to land, so none is reported as a
+ * landing. */
+static void a_landing_as_long_as_the_plan_is_no_landing(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = 0.02;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  particle(w, 0, 0, 0, 1, -1);
+  for (int k = 1; k <= 20; k++) assert_int_equal(mr_world_step_to(w, k * 0.02, NULL), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("%llu steps: dt min %.17g s (rule), %.4g s (landing)\n", (unsigned long long)st.steps,
+         st.min_dt, st.min_dt_landing);
+  assert_int_equal((int)st.steps, 20);
+  assert_true(fabs(st.min_dt - 0.02) < 1e-12);
+  assert_true(isinf(st.min_dt_landing));
+  mr_world_destroy(w);
+}
+
+/* A step cut short to land on the requested time says nothing about the
+ * step the motion needs: the plan made before it stands for the next. */
+static void a_step_cut_to_land_keeps_the_plan(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = 0;
+  int bob;
+  mr_world *w = hanging(def, 0.5, 0.0, 50.0, 0.0, (double[3]){ 0.3, 2.0, 0 }, &bob);
+  assert_int_equal(
+      mr_world_set_particle_state(w, bob, (double[3]){ 0.3, 2.0, 0 }, (double[3]){ 0, 0, 2.0 }),
+      MR_OK);
+  for (int i = 0; i < 20; i++) assert_int_equal(mr_world_step(w, NULL), MR_OK);
+  const double plan = mr_world_next_dt(w);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, mr_world_time(w) + 0.05 * plan, &rep), MR_OK);
+  printf("plan %.4g s, after a landing of %.4g s: %.4g s\n", plan, 0.05 * plan,
+         mr_world_next_dt(w));
+  assert_int_equal(rep.steps, 1);
+  assert_int_equal(rep.rejected, 0);
+  assert_true(mr_world_next_dt(w) == plan);
+  mr_world_destroy(w);
+}
+
+/* A step stretched by a hair to land on the requested time is judged as
+ * the step the rule planned: at the lower bound, with a deviation over the
+ * threshold, it is accepted (and corrected) at once, not rejected for
+ * being a hair longer than dt_min and then taken all the same. */
+static void a_step_stretched_to_land_is_judged_as_planned(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.dt_initial = def.dt_min;
+  def.deviation_high = 1e-9; /* a step of dt_min is over it */
+  def.deviation_low = 1e-11;
+  int bob;
+  mr_world *w = spinning_pendulum(def, &bob);
+  const double target = def.dt_min * (1.0 + 5e-4);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, target, &rep), MR_OK);
+  printf("stretched to %.9g s: %d steps, %d rejected, %d corrected\n", target, rep.steps,
+         rep.rejected, rep.corrections);
+  assert_int_equal(rep.steps, 1);
+  assert_int_equal(rep.rejected, 0);
+  assert_int_equal(rep.corrections, 1);
+  assert_true(mr_world_time(w) == target);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(weight_on_a_string_stays_under_it_at_any_upper_bound),
@@ -383,6 +492,10 @@ int main(void) {
     cmocka_unit_test(reset_at_a_landing_leaves_no_sliver),
     cmocka_unit_test(end_evaluation_is_the_next_steps_first_unless_the_state_changed),
     cmocka_unit_test(a_retried_step_does_not_evaluate_its_start_again),
+    cmocka_unit_test(a_retry_a_hair_short_of_the_target_lands_on_it),
+    cmocka_unit_test(a_landing_as_long_as_the_plan_is_no_landing),
+    cmocka_unit_test(a_step_cut_to_land_keeps_the_plan),
+    cmocka_unit_test(a_step_stretched_to_land_is_judged_as_planned),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
