@@ -77,6 +77,8 @@ static void weight_on_a_string_stays_under_it_at_any_upper_bound(void **state) {
   assert_true(fabs(x[1] - (2.0 - 0.9 - 9.81 / 500.0)) < 1e-3);
   assert_true(v < 1e-2);
   assert_true(st.max_dt <= st.stable_dt);
+  /* and so does the step it says it will try next */
+  assert_true(mr_world_next_dt(w) <= st.stable_dt);
   mr_world_destroy(w);
 }
 
@@ -478,6 +480,197 @@ static void a_step_stretched_to_land_is_judged_as_planned(void **state) {
   mr_world_destroy(w);
 }
 
+/* A step shorter than dt_min (here one landing 4 ms ahead) that passes the
+ * divergence bound is retried down to the floor, as one of dt_min would
+ * be, and the run goes on; it is no divergence while a shorter step stays
+ * within the bound (0.1 ms here). */
+static void a_short_landing_past_the_bound_is_retried_at_the_floor(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.divergence_bound = 1e-10; /* a 4 ms step of this swing passes it */
+  def.deviation_high = 1e-11;
+  def.deviation_low = 1e-13;
+  int bob;
+  mr_world *w = spinning_pendulum(def, &bob);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 0.004, &rep), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("to 4 ms: %d steps, %d rejected, dt min %.3g s\n", rep.steps, rep.rejected, st.min_dt);
+  assert_int_equal(rep.divergences, 0);
+  assert_true(rep.rejected >= 1);
+  assert_true(st.min_dt == 0.01 * def.dt_min); /* the default floor, dt_min/100 */
+  assert_true(mr_world_time(w) == 0.004);
+  mr_world_destroy(w);
+}
+
+/* A mode whose local error at dt_min is over the threshold (an oscillator
+ * held to 10 µm a step) takes steps below dt_min, down to the floor, until
+ * the estimate is within it; the deviation's lower bound does not hold it. */
+static void the_estimate_takes_the_step_below_dt_min(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = 0;
+  def.error_length = 1e-5;
+  def.error_speed = 1e-4;
+  int bob;
+  mr_world *w = hanging(def, 0.5, 0.0, 50.0, 0.0, (double[3]){ 0.3, 2.0, 0 }, &bob);
+  assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("dt min %.4g s, largest estimate %.4g, %llu steps\n", st.min_dt, st.max_integration_error,
+         (unsigned long long)st.steps);
+  assert_true(st.min_dt < 0.5 * def.dt_min);
+  assert_true(st.max_integration_error <= def.deviation_high * (1.0 + 1e-6));
+  assert_int_equal((int)st.divergences, 0);
+  mr_world_destroy(w);
+}
+
+/* A rod spinning at 400 rad/s turns 4 rad in a step of dt_min, which
+ * leaves it far off its length; the local error estimate says so too, and
+ * the step is retried at the floor rather than declared divergence. */
+static void a_rod_spinning_too_fast_for_dt_min_is_no_divergence(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_CONSTRAINTS;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int a = particle(w, -0.1, 0, 0, 1, -1), b = particle(w, 0.1, 0, 0, 1, -1);
+  assert_int_equal(
+      mr_world_set_particle_state(w, a, (double[3]){ -0.1, 0, 0 }, (double[3]){ 0, -40.0, 0 }),
+      MR_OK);
+  assert_int_equal(
+      mr_world_set_particle_state(w, b, (double[3]){ 0.1, 0, 0 }, (double[3]){ 0, 40.0, 0 }),
+      MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_step_report rep;
+  mr_status s = mr_world_step_to(w, 0.1, &rep);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("%s: %d steps, dt min %.3g s, deviation %.3g\n", mr_world_last_error(w), rep.steps,
+         st.min_dt, mr_world_deviation(w));
+  assert_int_equal(s, MR_OK);
+  assert_int_equal(rep.divergences, 0);
+  assert_true(st.min_dt < def.dt_min);
+  assert_true(mr_world_deviation(w) < def.deviation_high);
+  mr_world_destroy(w);
+}
+
+/* Divergence is a dynamic particle too fast: a frame's own particles go
+ * where the hand takes them, at any speed, and do not count. */
+static void a_fast_frame_is_no_divergence(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects |= MR_EFFECT_FRAMES;
+  def.max_speed = 5.0;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_frame_def f = mr_default_frame_def();
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &f, &frame), MR_OK);
+  particle(w, 0, 0, 0, 1, frame);
+  int bob = particle(w, 0, 1, 0, 1, -1);
+  mr_pose to = f.pose;
+  to.position[0] = 3.0; /* 3 m in 0.2 s: faster than max_speed */
+  assert_int_equal(mr_world_set_frame_target(w, frame, &to, 0.2), MR_OK);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 0.2, &rep), MR_OK);
+  double x[3];
+  double v = speed_of(w, bob, x);
+  printf("frame moved 3 m in 0.2 s: %d divergences, the free particle at %.3g m/s\n",
+         rep.divergences, v);
+  assert_int_equal(rep.divergences, 0);
+  assert_true(fabs(v - 9.81 * 0.2) < 1e-6);
+  mr_world_destroy(w);
+}
+
+/* After a divergence the world starts again from its start configuration,
+ * and so does the step: at dt_initial, not at whatever the steps before
+ * the divergence had grown to. */
+static void after_a_reset_the_step_starts_again_at_dt_initial(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.dt_initial = 0.03;
+  def.max_speed = 1.0; /* passed in free fall after 0.1 s */
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  particle(w, 0, 0, 0, 1, -1);
+  mr_status s = MR_OK;
+  double before = 0.0;
+  for (int i = 0; i < 100 && s == MR_OK; i++) {
+    before = mr_world_next_dt(w);
+    s = mr_world_step(w, NULL);
+  }
+  printf("diverged at t=%.3f s: next dt %.4g s before, %.4g s after\n", mr_world_time(w), before,
+         mr_world_next_dt(w));
+  assert_int_equal(s, MR_DIVERGED);
+  assert_true(before != def.dt_initial);
+  assert_true(mr_world_next_dt(w) == def.dt_initial);
+  mr_world_destroy(w);
+}
+
+static void nan_for_a_moment(void *user, double t, double pos[3], double vel[3], double acc[3]) {
+  (void)user;
+  for (int k = 0; k < 3; k++) pos[k] = vel[k] = acc[k] = t > 0.03 && t < 0.035 ? NAN : 0.0;
+}
+
+/* The stability limit holds after a reset too: beside a stiff string (a
+ * limit of under 5 ms) a curve goes NaN for a moment, the world is reset,
+ * and the step after it starts at dt_initial only as far as that limit
+ * allows. The estimate is off and the swing small, so a step past the
+ * limit would pass unseen. */
+static void after_a_reset_the_step_stays_under_the_stability_limit(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_CONSTRAINTS;
+  def.error_length = def.error_speed = 0.0;
+  int bob;
+  mr_world *w = hanging(def, 0.01, 0.5, 3000.0, 0.0, (double[3]){ 0, 1.4999, 0 }, &bob);
+  int p = particle(w, 0, 0, 0, 1, -1);
+  mr_curve_def c = mr_default_curve_def();
+  c.particle = p;
+  c.fn = nan_for_a_moment;
+  assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 0.1, &rep), MR_DIVERGED);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("stiff string: %d resets, stable dt %.4g s, dt max %.4g s\n", rep.divergences,
+         st.stable_dt, st.max_dt);
+  assert_true(st.stable_dt < def.dt_initial);
+  assert_true(rep.divergences >= 1);
+  assert_true(mr_world_time(w) == 0.1);
+  assert_true(st.max_dt <= st.stable_dt);
+  mr_world_destroy(w);
+}
+
+/* A deviation past the divergence bound at the lower bound is divergence
+ * (§7), named as such: fixed 50 ms steps of a 3 m/s swing leave the
+ * length 6e-5 off, over a bound set to 1e-5. */
+static void a_deviation_past_the_bound_is_divergence_and_is_named(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = 0.05;
+  def.divergence_bound = 1e-5;
+  def.deviation_high = 1e-6;
+  def.deviation_low = 1e-8;
+  int bob;
+  mr_world *w = spinning_pendulum(def, &bob);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step(w, &rep), MR_DIVERGED);
+  printf("%s\n", mr_world_last_error(w));
+  assert_int_equal(rep.divergences, 1);
+  assert_int_equal(rep.steps, 0);
+  assert_non_null(strstr(mr_world_last_error(w), "divergence bound"));
+  double x[3];
+  speed_of(w, bob, x);
+  assert_true(x[0] == 1.0 && x[1] == 0.0 && x[2] == 0.0); /* back at the start */
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(weight_on_a_string_stays_under_it_at_any_upper_bound),
@@ -496,6 +689,13 @@ int main(void) {
     cmocka_unit_test(a_landing_as_long_as_the_plan_is_no_landing),
     cmocka_unit_test(a_step_cut_to_land_keeps_the_plan),
     cmocka_unit_test(a_step_stretched_to_land_is_judged_as_planned),
+    cmocka_unit_test(a_short_landing_past_the_bound_is_retried_at_the_floor),
+    cmocka_unit_test(the_estimate_takes_the_step_below_dt_min),
+    cmocka_unit_test(a_rod_spinning_too_fast_for_dt_min_is_no_divergence),
+    cmocka_unit_test(a_fast_frame_is_no_divergence),
+    cmocka_unit_test(after_a_reset_the_step_starts_again_at_dt_initial),
+    cmocka_unit_test(after_a_reset_the_step_stays_under_the_stability_limit),
+    cmocka_unit_test(a_deviation_past_the_bound_is_divergence_and_is_named),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
