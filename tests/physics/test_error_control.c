@@ -671,6 +671,28 @@ static void a_deviation_past_the_bound_is_divergence_and_is_named(void **state) 
   mr_world_destroy(w);
 }
 
+/* Either scale alone switches the estimate on: an oscillator held to
+ * 0.1 mm/s a step in speed, with no length scale, has each step's estimate
+ * measured and kept to the threshold, as with both. */
+static void the_speed_scale_alone_steers_the_step(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = 0;
+  def.error_length = 0.0;
+  def.error_speed = 1e-4;
+  int bob;
+  mr_world *w = hanging(def, 0.5, 0.0, 50.0, 0.0, (double[3]){ 0.3, 2.0, 0 }, &bob);
+  assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("speed scale alone: largest estimate %.4g, dt min %.4g s, %llu steps\n",
+         st.max_integration_error, st.min_dt, (unsigned long long)st.steps);
+  assert_true(st.max_integration_error > def.deviation_low);
+  assert_true(st.max_integration_error <= def.deviation_high * (1.0 + 1e-6));
+  assert_true(st.min_dt < def.dt_min);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(weight_on_a_string_stays_under_it_at_any_upper_bound),
@@ -696,6 +718,7 @@ int main(void) {
     cmocka_unit_test(after_a_reset_the_step_starts_again_at_dt_initial),
     cmocka_unit_test(after_a_reset_the_step_stays_under_the_stability_limit),
     cmocka_unit_test(a_deviation_past_the_bound_is_divergence_and_is_named),
+    cmocka_unit_test(the_speed_scale_alone_steers_the_step),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
