@@ -268,6 +268,59 @@ static void a_contact_is_located_with_few_integrations(void **state) {
   assert_true(trials <= 1.3 * (double)located);
 }
 
+/* After a contact cuts a step short, Δt doubles each step while the rule
+ * would at least hold it (§4.5). A ball thrown at the floor has its first
+ * step cut to 2 ms; beside it a pendulum's deviation lies inside a dead
+ * band made wide, where the rule alone keeps any Δt: it must not keep the
+ * sliver the cut left. */
+static void after_a_contact_the_step_doubles_while_the_rule_holds_it(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_PLANES | MR_EFFECT_CONSTRAINTS | MR_EFFECT_GRAVITY;
+  def.drag = 0.0;
+  def.contact_slop = SLOP;
+  def.dt_initial = def.dt_max;
+  def.error_length = def.error_speed = 0.0; /* the deviation alone steers Δt */
+  def.deviation_low = 1e-300;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_plane_def pl = mr_default_plane_def();
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.radius = 0.01;
+  p.position[1] = 0.03;
+  p.velocity[1] = -10.0; /* at the floor after 2 ms */
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_OK);
+  p.velocity[1] = 0.0;
+  p.position[0] = 5.0;
+  p.position[1] = 2.0;
+  int a, b;
+  assert_int_equal(mr_world_add_particle(w, &p, &a), MR_OK);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = a;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  p.position[0] = 5.5;
+  assert_int_equal(mr_world_add_particle(w, &p, &b), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_step_report rep;
+  mr_status s = mr_world_step_to(w, 0.5, &rep);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf(
+      "ball at the floor beside a pendulum: %d steps in 0.5 s, %llu located, dt %.3g to %.3g s\n",
+      rep.steps, (unsigned long long)st.located, st.min_dt, st.max_dt);
+  assert_true(s == MR_OK || s == MR_DEPENDENT);
+  assert_true(st.located >= 1);
+  assert_true(st.min_dt < 0.003); /* the cut */
+  /* 2, 4, 8, 16 then 32 ms, held there: about 20 steps, not 125 of 4 ms. */
+  assert_true(st.max_dt > 0.6 * def.dt_max);
+  assert_true(rep.steps <= 30);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_ball_thrown_at_up_to_40_m_s_never_passes_through_a_thin_sphere),
@@ -275,6 +328,7 @@ int main(void) {
     cmocka_unit_test(the_contact_time_found_is_the_analytic_one),
     cmocka_unit_test(a_fast_puppet_far_from_anything_is_not_slowed),
     cmocka_unit_test(a_contact_is_located_with_few_integrations),
+    cmocka_unit_test(after_a_contact_the_step_doubles_while_the_rule_holds_it),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
