@@ -488,6 +488,52 @@ static void non_adjacent_parts_of_one_puppet_collide(void **state) {
   mr_world_destroy(w);
 }
 
+/* The depth reading is the deepest overlap in the current state, in m:
+ * balls 5 mm and 3 mm into the floor read 5 mm; the deeper one lifted out,
+ * 3 mm; both, 0. */
+static void penetration_reads_the_deepest_overlap(void **state) {
+  (void)state;
+  mr_world *w = make_world(MR_EFFECT_PLANES, NULL);
+  floor_plane(w, 0.5, 0.3);
+  int deep = add(w, (double[3]){ 0, 0.015, 0 }, NULL, 0.02, 0);
+  int shallow = add(w, (double[3]){ 1, 0.027, 0 }, NULL, 0.03, 1);
+  const double still[3] = { 0, 0, 0 };
+  assert_true(fabs(mr_world_penetration(w) - 0.005) < 1e-12);
+  assert_int_equal(mr_world_set_particle_state(w, deep, (double[3]){ 0, 0.5, 0 }, still), MR_OK);
+  assert_true(fabs(mr_world_penetration(w) - 0.003) < 1e-12);
+  assert_int_equal(mr_world_set_particle_state(w, shallow, (double[3]){ 1, 0.5, 0 }, still), MR_OK);
+  assert_true(mr_world_penetration(w) == 0.0);
+  mr_world_destroy(w);
+}
+
+/* A frame's particle is the hand's: the floor does not push it, so one
+ * held 10 cm under the floor makes no contact and no depth, and the puppet
+ * particle resting on the floor beside it is the only contact. */
+static void a_frame_particle_under_the_floor_makes_no_contact(void **state) {
+  (void)state;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_FRAMES, NULL);
+  floor_plane(w, 0.5, 0.3);
+  mr_frame_def f = mr_default_frame_def();
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &f, &frame), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.position[1] = -0.1;
+  p.radius = 0.02;
+  p.frame = frame;
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_OK);
+  add(w, (double[3]){ 1, 0.02, 0 }, NULL, 0.02, 0);
+  assert_true(mr_world_penetration(w) == 0.0);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 0.2, &rep), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("frame particle under the floor: %d collisions, %d resting contacts\n", rep.collisions,
+         st.resting_contacts);
+  assert_int_equal(rep.collisions, 0);
+  assert_int_equal(st.resting_contacts, 1);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(ball_bounces_to_restitution_height),
@@ -500,6 +546,8 @@ int main(void) {
     cmocka_unit_test(wall_plane_reflects_particle),
     cmocka_unit_test(sphere_tree_puppets_do_not_interpenetrate),
     cmocka_unit_test(non_adjacent_parts_of_one_puppet_collide),
+    cmocka_unit_test(penetration_reads_the_deepest_overlap),
+    cmocka_unit_test(a_frame_particle_under_the_floor_makes_no_contact),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
