@@ -379,6 +379,91 @@ static void a_stretched_spring_string_is_no_contact(void **state) {
   assert_true(steps[1] == steps[0]);
 }
 
+/* A step that lands on the requested time but crosses a contact first is
+ * cut there like any other (§4.5), and the call goes on to its target
+ * after the impact: a ball reaching the floor at 46.5 ms, stepped to
+ * 48 ms at once, is there bouncing up; the cut step is the rule's, not a
+ * landing. */
+static void a_landing_step_cut_at_a_contact_goes_on_to_the_target(void **state) {
+  (void)state;
+  mr_world *w = world(MR_EFFECT_PLANES);
+  mr_plane_def pl = mr_default_plane_def();
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  const double r = 0.01, v = 17.0;
+  p.position[1] = 0.8;
+  p.velocity[1] = -v;
+  p.radius = r;
+  int id;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  const double exact = (0.8 - r) / v, target = 0.048;
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, target, &rep), MR_OK);
+  double x[3], u[3];
+  mr_world_particle_state(w, id, x, u);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf(
+      "contact at %.4f s inside a landing on %.3f s: %d steps, %d impacts, y %.4g m, v_y %.3g m/s, "
+      "dt min %.4g s (rule), %.4g s (landing)\n",
+      exact, target, rep.steps, rep.collisions, x[1], u[1], st.min_dt, st.min_dt_landing);
+  assert_true(mr_world_time(w) == target);
+  assert_int_equal(rep.steps, 2);
+  assert_int_equal(rep.collisions, 1);
+  assert_true(u[1] > 0.4 * v); /* restitution 0.5, bounced */
+  assert_true(fabs(x[1] - (r + u[1] * (target - exact))) < 1e-3);
+  assert_true(st.min_dt >= exact - 1e-12 && st.min_dt - exact <= SLOP / v + 1e-12);
+  assert_true(st.min_dt_landing < target - exact + 1e-9);
+  mr_world_destroy(w);
+}
+
+/* A step whose end is far off a taut string's length only because the
+ * string's force was not in it is cut to the snap and kept (§7 and §4.5):
+ * a bob thrown at 20 m/s from 4 cm to the end of a 5 cm string goes 20 cm
+ * past its length in a step of dt_min, four times the rest length and
+ * past the divergence bound, yet at the snap it is within it. The string
+ * is an over-length, not a depth: nothing reads as penetration. */
+static void a_string_snapping_taut_within_a_step_is_no_divergence(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_FRAMES | MR_EFFECT_STRINGS;
+  def.contact_slop = SLOP;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_frame_def f = mr_default_frame_def();
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &f, &frame), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.frame = frame;
+  int bar, bob;
+  assert_int_equal(mr_world_add_particle(w, &p, &bar), MR_OK);
+  p = mr_default_particle_def();
+  p.position[0] = 0.04;
+  p.velocity[0] = 20.0;
+  assert_int_equal(mr_world_add_particle(w, &p, &bob), MR_OK);
+  mr_string_def sd = mr_default_string_def();
+  sd.frame_particle = bar;
+  sd.puppet_particle = bob;
+  sd.rest_length = 0.05;
+  assert_int_equal(mr_world_add_string(w, &sd, NULL), MR_OK);
+  mr_step_report rep;
+  mr_status s = mr_world_step_to(w, 0.05, &rep);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  double x[3];
+  mr_world_particle_state(w, bob, x, NULL);
+  printf("bob snapping its string: %s, %d steps, %d resets, %llu located, at %.4g m, depth %.3g\n",
+         s == MR_OK ? "ok" : mr_world_last_error(w), rep.steps, rep.divergences,
+         (unsigned long long)st.located, sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]),
+         st.max_penetration);
+  assert_int_equal(s, MR_OK);
+  assert_int_equal(rep.divergences, 0);
+  assert_true(st.located >= 1);
+  assert_true(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) <= 0.05 * (1.0 + def.deviation_high));
+  assert_true(st.max_penetration == 0.0);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_ball_thrown_at_up_to_40_m_s_never_passes_through_a_thin_sphere),
@@ -388,6 +473,8 @@ int main(void) {
     cmocka_unit_test(a_contact_is_located_with_few_integrations),
     cmocka_unit_test(after_a_contact_the_step_doubles_while_the_rule_holds_it),
     cmocka_unit_test(a_stretched_spring_string_is_no_contact),
+    cmocka_unit_test(a_landing_step_cut_at_a_contact_goes_on_to_the_target),
+    cmocka_unit_test(a_string_snapping_taut_within_a_step_is_no_divergence),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
