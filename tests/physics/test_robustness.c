@@ -337,6 +337,54 @@ static void step_limit_stops_runaway_calls(void **state) {
   mr_world_destroy(w);
 }
 
+/* The guard counts steps exactly: a call allowed 5 fixed steps of 10 ms
+ * takes 5 and stops at 50 ms, not a sixth. */
+static void step_limit_allows_exactly_its_steps(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.max_steps_per_call = 5;
+  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = 0.01;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  add(w, 0, 0, 0);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 1.0, &rep), MR_ERR_LIMIT);
+  assert_int_equal(rep.steps, 5);
+  assert_true(fabs(mr_world_time(w) - 0.05) < 1e-12);
+  mr_world_destroy(w);
+}
+
+/* A call that diverged says so, even when its solves also met dependent
+ * rows: the reset is what the caller must know of. A rigid tetrahedron
+ * with a redundant distance and a pin (dependent rows) under a max_speed
+ * every step passes. */
+static void divergence_outranks_dependent_rows(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.max_speed = 1e-3;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int ids[4] = { add(w, 0, 0, 0), add(w, 0.4, 0, 0), add(w, 0.2, 0, 0.35), add(w, 0.2, 0.3, 0.1) };
+  mr_rigid_group_def g = mr_default_rigid_group_def();
+  g.particles = ids;
+  g.count = 4;
+  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = ids[0];
+  d.b = ids[1];
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = ids[3];
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_step_report rep;
+  assert_int_equal(mr_world_step_to(w, 0.1, &rep), MR_DIVERGED);
+  printf("diverged with %d dependent rows: %s\n", rep.dependent, mr_world_last_error(w));
+  assert_true(rep.dependent > 0);
+  assert_true(rep.divergences > 0);
+  assert_non_null(strstr(mr_world_last_error(w), "max_speed"));
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(nan_world_resets_to_start_counts_and_keeps_stepping),
@@ -345,6 +393,8 @@ int main(void) {
     cmocka_unit_test(divergence_is_retried_at_the_lower_bound_before_a_reset),
     cmocka_unit_test(bad_input_is_refused_with_a_message),
     cmocka_unit_test(step_limit_stops_runaway_calls),
+    cmocka_unit_test(step_limit_allows_exactly_its_steps),
+    cmocka_unit_test(divergence_outranks_dependent_rows),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
