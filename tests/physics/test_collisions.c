@@ -534,6 +534,80 @@ static void a_frame_particle_under_the_floor_makes_no_contact(void **state) {
   mr_world_destroy(w);
 }
 
+/* A taut string past its length is an over-length, not a depth: a bob
+ * 10 cm beyond its 0.5 m string, far above the floor, reads no depth. */
+static void a_string_past_its_length_is_no_depth(void **state) {
+  (void)state;
+  mr_world *w = make_world(MR_EFFECT_PLANES | MR_EFFECT_FRAMES | MR_EFFECT_STRINGS, NULL);
+  floor_plane(w, 0.5, 0.3);
+  mr_frame_def f = mr_default_frame_def();
+  f.pose.position[1] = 2.0;
+  int frame;
+  assert_int_equal(mr_world_add_frame(w, &f, &frame), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.frame = frame;
+  p.position[1] = 2.0;
+  int bar;
+  assert_int_equal(mr_world_add_particle(w, &p, &bar), MR_OK);
+  int bob = add(w, (double[3]){ 0, 1.4, 0 }, NULL, 0.02, 0);
+  mr_string_def sd = mr_default_string_def();
+  sd.frame_particle = bar;
+  sd.puppet_particle = bob;
+  sd.rest_length = 0.5;
+  assert_int_equal(mr_world_add_string(w, &sd, NULL), MR_OK);
+  assert_true(mr_world_string_stretch(w) > 0.19); /* it is 20 % over */
+  assert_true(mr_world_penetration(w) == 0.0);
+  mr_world_destroy(w);
+}
+
+/* Friction between two free spheres is a pair of opposite forces: a ball
+ * slid across the top of another, on a floor without friction, leaves the
+ * pair's momentum along the slide as it was, while it slows the one and
+ * drags the other. */
+static void friction_between_two_free_spheres_keeps_their_momentum(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.drag = 0.0;
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_PUPPET_COLLISION, &def);
+  floor_plane(w, 0.0, 0.0);
+  const double r = 0.05;
+  int low = add(w, (double[3]){ 0, r, 0 }, NULL, r, 0);
+  int top = add(w, (double[3]){ 0, 3 * r, 0 }, (double[3]){ 0.5, 0, 0 }, r, 1);
+  const int ids[2] = { low, top };
+  for (int i = 0; i < 2; i++) {
+    mr_part_def d = mr_default_part_def();
+    d.particles = &ids[i];
+    d.count = 1;
+    d.radius = r;
+    d.restitution = 0.0;
+    d.friction = 0.5;
+    assert_int_equal(mr_world_add_part(w, &d, NULL), MR_OK);
+  }
+  assert_int_equal(mr_world_step_to(w, 0.05, NULL), MR_OK);
+  double vl[3], vt[3];
+  mr_world_particle_state(w, low, NULL, vl);
+  mr_world_particle_state(w, top, NULL, vt);
+  printf("after 50 ms: top %.4g m/s, bottom %.4g m/s, momentum %.6g of 0.5\n", vt[0], vl[0],
+         vt[0] + vl[0]);
+  assert_true(vt[0] < 0.45); /* slowed */
+  assert_true(vl[0] > 0.05); /* dragged along */
+  assert_true(fabs(vt[0] + vl[0] - 0.5) < 1e-6);
+  mr_world_destroy(w);
+}
+
+/* Restitution is a fraction of the closing speed: above 1 a plane would
+ * make energy, and is refused. */
+static void a_plane_with_restitution_over_1_is_refused(void **state) {
+  (void)state;
+  mr_world *w = make_world(MR_EFFECT_PLANES, NULL);
+  mr_plane_def pl = mr_default_plane_def();
+  pl.restitution = 1.5;
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_ERR_ARG);
+  pl.restitution = 1.0;
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(ball_bounces_to_restitution_height),
@@ -548,6 +622,9 @@ int main(void) {
     cmocka_unit_test(non_adjacent_parts_of_one_puppet_collide),
     cmocka_unit_test(penetration_reads_the_deepest_overlap),
     cmocka_unit_test(a_frame_particle_under_the_floor_makes_no_contact),
+    cmocka_unit_test(a_string_past_its_length_is_no_depth),
+    cmocka_unit_test(friction_between_two_free_spheres_keeps_their_momentum),
+    cmocka_unit_test(a_plane_with_restitution_over_1_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
