@@ -318,6 +318,12 @@ static void after_a_contact_the_step_doubles_while_the_rule_holds_it(void **stat
   /* 2, 4, 8, 16 then 32 ms, held there: about 20 steps, not 125 of 4 ms. */
   assert_true(st.max_dt > 0.6 * def.dt_max);
   assert_true(rep.steps <= 30);
+  /* The doubling is over once the step reached the bound: a step then cut
+   * short to land keeps the plan, as it does with no contact before. */
+  const double plan = mr_world_next_dt(w);
+  assert_int_equal(mr_world_step_to(w, mr_world_time(w) + 0.1 * plan, &rep), MR_OK);
+  assert_int_equal(rep.rejected, 0);
+  assert_true(mr_world_next_dt(w) == plan);
   mr_world_destroy(w);
 }
 
