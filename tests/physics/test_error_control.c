@@ -794,6 +794,34 @@ static void a_retry_with_friction_evaluates_its_start_for_its_own_step(void **st
   mr_world_destroy(w);
 }
 
+/* The first- and second-order integrators estimate their local error by
+ * the trapezoid rule, δx = h/2 (v1 − v0): for a fall under gravity from
+ * rest that is g h²/2, exactly what one explicit Euler step (x1 = x0 + h
+ * v0) falls short by. */
+static void euler_estimate_is_its_own_error_in_free_fall(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_GRAVITY;
+  def.integrator = MR_INTEGRATOR_EULER;
+  def.drag = 0.0;
+  const double h = 0.01;
+  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = h;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  int p = particle(w, 0, 1, 0, 1, -1);
+  assert_int_equal(mr_world_step(w, NULL), MR_OK);
+  double x[3];
+  speed_of(w, p, x);
+  const double fall = 0.5 * 9.81 * h * h, short_by = x[1] - (1.0 - fall);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  printf("Euler in free fall: estimate %.6g m, short by %.6g m, g h^2/2 = %.6g m\n",
+         st.max_integration_error, short_by, fall);
+  assert_true(fabs(short_by - fall) < 1e-12);
+  assert_true(fabs(st.max_integration_error - fall) < 1e-12);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(weight_on_a_string_stays_under_it_at_any_upper_bound),
@@ -823,6 +851,7 @@ int main(void) {
     cmocka_unit_test(the_speed_scale_alone_keeps_an_oscillator_in_phase),
     cmocka_unit_test(a_corrected_step_reports_the_corrected_deviation),
     cmocka_unit_test(a_retry_with_friction_evaluates_its_start_for_its_own_step),
+    cmocka_unit_test(euler_estimate_is_its_own_error_in_free_fall),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
