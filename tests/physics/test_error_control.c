@@ -1,7 +1,9 @@
 /* Error control beyond the paper's constraint measure: the embedded local
- * error estimate, the correction of a step the rule had to accept over its
- * threshold, the stability limit of stiff springs, divergence that names
- * its cause, and steps cut to land reported apart from the rule's. */
+ * error estimate, which either scale switches on and which may take the
+ * step below dt_min, the correction of a step the rule had to accept over
+ * its threshold, the stability limit of stiff springs, and the memo of
+ * evaluations a step's tries share. Steps cut to land are in
+ * test_landing.c, divergence and resets in test_divergence.c. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,49 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "mr_physics.h"
-
-static int particle(mr_world *w, double x, double y, double z, double mass, int frame) {
-  mr_particle_def p = mr_default_particle_def();
-  p.position[0] = x;
-  p.position[1] = y;
-  p.position[2] = z;
-  p.mass = mass;
-  p.frame = frame;
-  int id = -1;
-  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
-  return id;
-}
-
-/* A control frame at (0, 2, 0) with one point, and a particle hanging from
- * it on a string of rest length `rest` (k, c given). */
-static mr_world *hanging(mr_world_def def, double mass, double rest, double k, double c,
-                         double start[3], int *bob) {
-  def.effects |= MR_EFFECT_FRAMES | MR_EFFECT_STRINGS;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  mr_frame_def f = mr_default_frame_def();
-  f.pose.position[1] = 2.0;
-  int frame;
-  assert_int_equal(mr_world_add_frame(w, &f, &frame), MR_OK);
-  int bar = particle(w, 0, 2, 0, 1, frame);
-  *bob = particle(w, start[0], start[1], start[2], mass, -1);
-  mr_string_def s = mr_default_string_def();
-  s.frame_particle = bar;
-  s.puppet_particle = *bob;
-  s.rest_length = rest;
-  s.mode = MR_STRING_SPRING;
-  s.stiffness = k;
-  s.damping = c;
-  assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
-  return w;
-}
-
-static double speed_of(const mr_world *w, int id, double x[3]) {
-  double v[3];
-  assert_int_equal(mr_world_particle_state(w, id, x, v), MR_OK);
-  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
+#include "rigs.h"
 
 /* A weight on a string and nothing else: no constraint, so the paper's
  * measure reads 0 and would take Δt to the upper bound of 100 s. */
@@ -198,83 +158,6 @@ static void light_particle_on_a_string_is_stable(void **state) {
   mr_world_destroy(w);
 }
 
-/* A particle in free fall past max_speed is divergence, and the message
- * says so, naming the particle, not "deviation 0". */
-static void speed_bound_is_divergence_and_is_named(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.max_speed = 5.0;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  int fast = particle(w, 1, 0, 0, 1, -1);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step_to(w, 1.0, &rep), MR_DIVERGED);
-  printf("%s\n", mr_world_last_error(w));
-  assert_true(rep.divergences >= 1);
-  assert_non_null(strstr(mr_world_last_error(w), "max_speed"));
-  char who[32];
-  snprintf(who, sizeof who, "particle %d", fast);
-  assert_non_null(strstr(mr_world_last_error(w), who));
-  assert_null(strstr(mr_world_last_error(w), "deviation"));
-  mr_world_destroy(w);
-}
-
-static void nan_curve(void *user, double t, double pos[3], double vel[3], double acc[3]) {
-  (void)user;
-  for (int k = 0; k < 3; k++) pos[k] = vel[k] = acc[k] = t > 0.1 ? NAN : 0.0;
-}
-
-static void nan_is_named_as_nan(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  int p = particle(w, 0, 0, 0, 1, -1);
-  mr_curve_def c = mr_default_curve_def();
-  c.particle = p;
-  c.fn = nan_curve;
-  assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
-  assert_int_equal(mr_world_step_to(w, 0.5, NULL), MR_DIVERGED);
-  printf("%s\n", mr_world_last_error(w));
-  assert_non_null(strstr(mr_world_last_error(w), "NaN or Inf"));
-  mr_world_destroy(w);
-}
-
-/* Steps cut to land on a requested time are not the rule's choice: they
- * are reported apart, and the rule's smallest step stays within its bounds. */
-static void landing_steps_are_reported_apart(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  particle(w, 0, 0, 0, 1, -1);
-  for (int k = 1; k <= 20; k++) assert_int_equal(mr_world_step_to(w, k * 0.13, NULL), MR_OK);
-  mr_stats st;
-  mr_world_stats(w, &st);
-  printf("dt min %.4g s (rule), %.4g s (landing)\n", st.min_dt, st.min_dt_landing);
-  assert_true(st.min_dt >= def.dt_min);
-  assert_true(st.min_dt_landing < def.dt_min);
-  mr_world_destroy(w);
-}
-
-/* A reset in a step that lands on the target leaves no sliver behind: the
- * world is at the target afterwards, exactly. */
-static void reset_at_a_landing_leaves_no_sliver(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.max_speed = 1e-3; /* every step diverges */
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  particle(w, 0, 0, 0, 1, -1);
-  for (int k = 1; k <= 30; k++) {
-    double target = k * 0.1 / 3.0;
-    mr_step_report rep;
-    assert_int_equal(mr_world_step_to(w, target, &rep), MR_DIVERGED);
-    assert_true(mr_world_time(w) == target);
-  }
-  mr_world_destroy(w);
-}
-
 /* A weight on a zero-length string (no gravity) is a linear oscillator,
  * x(t) = x₀ cos ωt + (v₀/ω) sin ωt about the bar, ω = √(k/m). Started at
  * the upper bound, its first step's estimate lies inside the §4.5 dead
@@ -303,6 +186,19 @@ static void oscillator_keeps_its_phase(void **state) {
          (unsigned long long)st.steps, st.max_integration_error);
   assert_true(off < 5e-4);
   mr_world_destroy(w);
+}
+
+/* Particle a of w and particle b of once are in the same state, bit for
+ * bit: a step taken after rejected tries ends as one of its accepted
+ * length taken at once. */
+static void expect_same_bits(const mr_world *w, int a, const mr_world *once, int b) {
+  double x[3], v[3], x1[3], v1[3];
+  assert_int_equal(mr_world_particle_state(w, a, x, v), MR_OK);
+  assert_int_equal(mr_world_particle_state(once, b, x1, v1), MR_OK);
+  print_message("after a retried step: v (%.17g, %.17g, %.17g), at once (%.17g, %.17g, %.17g)\n",
+                v[0], v[1], v[2], v1[0], v1[1], v1[2]);
+  assert_memory_equal(x, x1, sizeof x);
+  assert_memory_equal(v, v1, sizeof v);
 }
 
 /* The end evaluation of a step, which the local error estimate needs
@@ -362,145 +258,8 @@ static void a_retried_step_does_not_evaluate_its_start_again(void **state) {
   mr_world_stats(once, &st1);
   assert_int_equal(st1.rejected, 0);
   assert_int_equal(mr_world_pass_calls(once, MR_PASS_GRAVITY), 5);
-  double x[3], v[3], x1[3], v1[3];
-  assert_int_equal(mr_world_particle_state(w, bob, x, v), MR_OK);
-  assert_int_equal(mr_world_particle_state(once, bob1, x1, v1), MR_OK);
-  assert_memory_equal(x, x1, sizeof x);
-  assert_memory_equal(v, v1, sizeof v);
+  expect_same_bits(w, bob, once, bob1);
   mr_world_destroy(once);
-  mr_world_destroy(w);
-}
-
-/* A pin and a 1 m distance to a bob swinging at 3 m/s about it, with the
- * estimate off: the deviation alone steers the step. */
-static mr_world *spinning_pendulum(mr_world_def def, int *bob) {
-  def.error_length = def.error_speed = 0.0;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  int pivot = particle(w, 0, 0, 0, 1, -1);
-  *bob = particle(w, 1, 0, 0, 1, -1);
-  assert_int_equal(
-      mr_world_set_particle_state(w, *bob, (double[3]){ 1, 0, 0 }, (double[3]){ 0, 0, 3.0 }),
-      MR_OK);
-  mr_pin_def pin = mr_default_pin_def();
-  pin.particle = pivot;
-  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
-  mr_distance_def d = mr_default_distance_def();
-  d.a = pivot;
-  d.b = *bob;
-  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
-  return w;
-}
-
-/* A try rejected to dt_min that would then stop 5 µs short of the
- * requested time lands on it instead: one step, not a second 5 µs sliver
- * after it. */
-static void a_retry_a_hair_short_of_the_target_lands_on_it(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.deviation_high = 1e-9; /* the first try, 10 ms long, is over it */
-  def.deviation_low = 1e-11;
-  int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
-  const double target = def.dt_min * (1.0 + 5e-4);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step_to(w, target, &rep), MR_OK);
-  printf("to %.9g s: %d steps, %d rejected\n", target, rep.steps, rep.rejected);
-  assert_true(rep.rejected >= 1);
-  assert_int_equal(rep.steps, 1);
-  assert_true(mr_world_time(w) == target);
-  mr_world_destroy(w);
-}
-
-/* Fixed steps of 20 ms landing on multiples of 20 ms: each is the step the
- * rule chose, to rounding, not one cut to land, so none is reported as a
- * landing. */
-static void a_landing_as_long_as_the_plan_is_no_landing(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = 0.02;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  particle(w, 0, 0, 0, 1, -1);
-  for (int k = 1; k <= 20; k++) assert_int_equal(mr_world_step_to(w, k * 0.02, NULL), MR_OK);
-  mr_stats st;
-  mr_world_stats(w, &st);
-  printf("%llu steps: dt min %.17g s (rule), %.4g s (landing)\n", (unsigned long long)st.steps,
-         st.min_dt, st.min_dt_landing);
-  assert_int_equal((int)st.steps, 20);
-  assert_true(fabs(st.min_dt - 0.02) < 1e-12);
-  assert_true(isinf(st.min_dt_landing));
-  mr_world_destroy(w);
-}
-
-/* A step cut short to land on the requested time says nothing about the
- * step the motion needs: the plan made before it stands for the next. */
-static void a_step_cut_to_land_keeps_the_plan(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = 0;
-  int bob;
-  mr_world *w = hanging(def, 0.5, 0.0, 50.0, 0.0, (double[3]){ 0.3, 2.0, 0 }, &bob);
-  assert_int_equal(
-      mr_world_set_particle_state(w, bob, (double[3]){ 0.3, 2.0, 0 }, (double[3]){ 0, 0, 2.0 }),
-      MR_OK);
-  for (int i = 0; i < 20; i++) assert_int_equal(mr_world_step(w, NULL), MR_OK);
-  const double plan = mr_world_next_dt(w);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step_to(w, mr_world_time(w) + 0.05 * plan, &rep), MR_OK);
-  printf("plan %.4g s, after a landing of %.4g s: %.4g s\n", plan, 0.05 * plan,
-         mr_world_next_dt(w));
-  assert_int_equal(rep.steps, 1);
-  assert_int_equal(rep.rejected, 0);
-  assert_true(mr_world_next_dt(w) == plan);
-  mr_world_destroy(w);
-}
-
-/* A step stretched by a hair to land on the requested time is judged as
- * the step the rule planned: at the lower bound, with a deviation over the
- * threshold, it is accepted (and corrected) at once, not rejected for
- * being a hair longer than dt_min and then taken all the same. */
-static void a_step_stretched_to_land_is_judged_as_planned(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.dt_initial = def.dt_min;
-  def.deviation_high = 1e-9; /* a step of dt_min is over it */
-  def.deviation_low = 1e-11;
-  int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
-  const double target = def.dt_min * (1.0 + 5e-4);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step_to(w, target, &rep), MR_OK);
-  printf("stretched to %.9g s: %d steps, %d rejected, %d corrected\n", target, rep.steps,
-         rep.rejected, rep.corrections);
-  assert_int_equal(rep.steps, 1);
-  assert_int_equal(rep.rejected, 0);
-  assert_int_equal(rep.corrections, 1);
-  assert_true(mr_world_time(w) == target);
-  mr_world_destroy(w);
-}
-
-/* A step shorter than dt_min (here one landing 4 ms ahead) that passes the
- * divergence bound is retried down to the floor, as one of dt_min would
- * be, and the run goes on; it is no divergence while a shorter step stays
- * within the bound (0.1 ms here). */
-static void a_short_landing_past_the_bound_is_retried_at_the_floor(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.divergence_bound = 1e-10; /* a 4 ms step of this swing passes it */
-  def.deviation_high = 1e-11;
-  def.deviation_low = 1e-13;
-  int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step_to(w, 0.004, &rep), MR_OK);
-  mr_stats st;
-  mr_world_stats(w, &st);
-  printf("to 4 ms: %d steps, %d rejected, dt min %.3g s\n", rep.steps, rep.rejected, st.min_dt);
-  assert_int_equal(rep.divergences, 0);
-  assert_true(rep.rejected >= 1);
-  assert_true(st.min_dt == 0.01 * def.dt_min); /* the default floor, dt_min/100 */
-  assert_true(mr_world_time(w) == 0.004);
   mr_world_destroy(w);
 }
 
@@ -523,151 +282,6 @@ static void the_estimate_takes_the_step_below_dt_min(void **state) {
   assert_true(st.min_dt < 0.5 * def.dt_min);
   assert_true(st.max_integration_error <= def.deviation_high * (1.0 + 1e-6));
   assert_int_equal((int)st.divergences, 0);
-  mr_world_destroy(w);
-}
-
-/* A rod spinning at 400 rad/s turns 4 rad in a step of dt_min, which
- * leaves it far off its length; the local error estimate says so too, and
- * the step is retried at the floor rather than declared divergence. */
-static void a_rod_spinning_too_fast_for_dt_min_is_no_divergence(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_CONSTRAINTS;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  int a = particle(w, -0.1, 0, 0, 1, -1), b = particle(w, 0.1, 0, 0, 1, -1);
-  assert_int_equal(
-      mr_world_set_particle_state(w, a, (double[3]){ -0.1, 0, 0 }, (double[3]){ 0, -40.0, 0 }),
-      MR_OK);
-  assert_int_equal(
-      mr_world_set_particle_state(w, b, (double[3]){ 0.1, 0, 0 }, (double[3]){ 0, 40.0, 0 }),
-      MR_OK);
-  mr_distance_def d = mr_default_distance_def();
-  d.a = a;
-  d.b = b;
-  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
-  mr_step_report rep;
-  mr_status s = mr_world_step_to(w, 0.1, &rep);
-  mr_stats st;
-  mr_world_stats(w, &st);
-  printf("%s: %d steps, dt min %.3g s, deviation %.3g\n", mr_world_last_error(w), rep.steps,
-         st.min_dt, mr_world_deviation(w));
-  assert_int_equal(s, MR_OK);
-  assert_int_equal(rep.divergences, 0);
-  assert_true(st.min_dt < def.dt_min);
-  assert_true(mr_world_deviation(w) < def.deviation_high);
-  mr_world_destroy(w);
-}
-
-/* Divergence is a dynamic particle too fast: a frame's own particles go
- * where the hand takes them, at any speed, and do not count. */
-static void a_fast_frame_is_no_divergence(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects |= MR_EFFECT_FRAMES;
-  def.max_speed = 5.0;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  mr_frame_def f = mr_default_frame_def();
-  int frame;
-  assert_int_equal(mr_world_add_frame(w, &f, &frame), MR_OK);
-  particle(w, 0, 0, 0, 1, frame);
-  int bob = particle(w, 0, 1, 0, 1, -1);
-  mr_pose to = f.pose;
-  to.position[0] = 3.0; /* 3 m in 0.2 s: faster than max_speed */
-  assert_int_equal(mr_world_set_frame_target(w, frame, &to, 0.2), MR_OK);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step_to(w, 0.2, &rep), MR_OK);
-  double x[3];
-  double v = speed_of(w, bob, x);
-  printf("frame moved 3 m in 0.2 s: %d divergences, the free particle at %.3g m/s\n",
-         rep.divergences, v);
-  assert_int_equal(rep.divergences, 0);
-  assert_true(fabs(v - 9.81 * 0.2) < 1e-6);
-  mr_world_destroy(w);
-}
-
-/* After a divergence the world starts again from its start configuration,
- * and so does the step: at dt_initial, not at whatever the steps before
- * the divergence had grown to. */
-static void after_a_reset_the_step_starts_again_at_dt_initial(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.dt_initial = 0.03;
-  def.max_speed = 1.0; /* passed in free fall after 0.1 s */
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  particle(w, 0, 0, 0, 1, -1);
-  mr_status s = MR_OK;
-  double before = 0.0;
-  for (int i = 0; i < 100 && s == MR_OK; i++) {
-    before = mr_world_next_dt(w);
-    s = mr_world_step(w, NULL);
-  }
-  printf("diverged at t=%.3f s: next dt %.4g s before, %.4g s after\n", mr_world_time(w), before,
-         mr_world_next_dt(w));
-  assert_int_equal(s, MR_DIVERGED);
-  assert_true(before != def.dt_initial);
-  assert_true(mr_world_next_dt(w) == def.dt_initial);
-  mr_world_destroy(w);
-}
-
-static void nan_for_a_moment(void *user, double t, double pos[3], double vel[3], double acc[3]) {
-  (void)user;
-  for (int k = 0; k < 3; k++) pos[k] = vel[k] = acc[k] = t > 0.03 && t < 0.035 ? NAN : 0.0;
-}
-
-/* The stability limit holds after a reset too: beside a stiff string (a
- * limit of under 5 ms) a curve goes NaN for a moment, the world is reset,
- * and the step after it starts at dt_initial only as far as that limit
- * allows. The estimate is off and the swing small, so a step past the
- * limit would pass unseen. */
-static void after_a_reset_the_step_stays_under_the_stability_limit(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_CONSTRAINTS;
-  def.error_length = def.error_speed = 0.0;
-  int bob;
-  mr_world *w = hanging(def, 0.01, 0.5, 3000.0, 0.0, (double[3]){ 0, 1.4999, 0 }, &bob);
-  int p = particle(w, 0, 0, 0, 1, -1);
-  mr_curve_def c = mr_default_curve_def();
-  c.particle = p;
-  c.fn = nan_for_a_moment;
-  assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step_to(w, 0.1, &rep), MR_DIVERGED);
-  mr_stats st;
-  mr_world_stats(w, &st);
-  printf("stiff string: %d resets, stable dt %.4g s, dt max %.4g s\n", rep.divergences,
-         st.stable_dt, st.max_dt);
-  assert_true(st.stable_dt < def.dt_initial);
-  assert_true(rep.divergences >= 1);
-  assert_true(mr_world_time(w) == 0.1);
-  assert_true(st.max_dt <= st.stable_dt);
-  mr_world_destroy(w);
-}
-
-/* A deviation past the divergence bound at the lower bound is divergence
- * (§7), named as such: fixed 50 ms steps of a 3 m/s swing leave the
- * length 6e-5 off, over a bound set to 1e-5. */
-static void a_deviation_past_the_bound_is_divergence_and_is_named(void **state) {
-  (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.dt_floor = def.dt_min = def.dt_max = def.dt_initial = 0.05;
-  def.divergence_bound = 1e-5;
-  def.deviation_high = 1e-6;
-  def.deviation_low = 1e-8;
-  int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
-  mr_step_report rep;
-  assert_int_equal(mr_world_step(w, &rep), MR_DIVERGED);
-  printf("%s\n", mr_world_last_error(w));
-  assert_int_equal(rep.divergences, 1);
-  assert_int_equal(rep.steps, 0);
-  assert_non_null(strstr(mr_world_last_error(w), "divergence bound"));
-  double x[3];
-  speed_of(w, bob, x);
-  assert_true(x[0] == 1.0 && x[1] == 0.0 && x[2] == 0.0); /* back at the start */
   mr_world_destroy(w);
 }
 
@@ -784,12 +398,7 @@ static void a_retry_with_friction_evaluates_its_start_for_its_own_step(void **st
   mr_stats st1;
   mr_world_stats(once, &st1);
   assert_int_equal(st1.rejected, 0);
-  double x[3], v[3], x1[3], v1[3];
-  assert_int_equal(mr_world_particle_state(w, block, x, v), MR_OK);
-  assert_int_equal(mr_world_particle_state(once, block1, x1, v1), MR_OK);
-  printf("block after a retried step: v %.17g, at once: %.17g\n", v[0], v1[0]);
-  assert_memory_equal(x, x1, sizeof x);
-  assert_memory_equal(v, v1, sizeof v);
+  expect_same_bits(w, block, once, block1);
   mr_world_destroy(once);
   mr_world_destroy(w);
 }
@@ -829,24 +438,10 @@ int main(void) {
     cmocka_unit_test(rk4_estimate_is_fourth_order),
     cmocka_unit_test(over_threshold_at_lower_bound_is_corrected),
     cmocka_unit_test(light_particle_on_a_string_is_stable),
-    cmocka_unit_test(speed_bound_is_divergence_and_is_named),
-    cmocka_unit_test(nan_is_named_as_nan),
-    cmocka_unit_test(landing_steps_are_reported_apart),
     cmocka_unit_test(oscillator_keeps_its_phase),
-    cmocka_unit_test(reset_at_a_landing_leaves_no_sliver),
     cmocka_unit_test(end_evaluation_is_the_next_steps_first_unless_the_state_changed),
     cmocka_unit_test(a_retried_step_does_not_evaluate_its_start_again),
-    cmocka_unit_test(a_retry_a_hair_short_of_the_target_lands_on_it),
-    cmocka_unit_test(a_landing_as_long_as_the_plan_is_no_landing),
-    cmocka_unit_test(a_step_cut_to_land_keeps_the_plan),
-    cmocka_unit_test(a_step_stretched_to_land_is_judged_as_planned),
-    cmocka_unit_test(a_short_landing_past_the_bound_is_retried_at_the_floor),
     cmocka_unit_test(the_estimate_takes_the_step_below_dt_min),
-    cmocka_unit_test(a_rod_spinning_too_fast_for_dt_min_is_no_divergence),
-    cmocka_unit_test(a_fast_frame_is_no_divergence),
-    cmocka_unit_test(after_a_reset_the_step_starts_again_at_dt_initial),
-    cmocka_unit_test(after_a_reset_the_step_stays_under_the_stability_limit),
-    cmocka_unit_test(a_deviation_past_the_bound_is_divergence_and_is_named),
     cmocka_unit_test(the_speed_scale_alone_steers_the_step),
     cmocka_unit_test(the_speed_scale_alone_keeps_an_oscillator_in_phase),
     cmocka_unit_test(a_corrected_step_reports_the_corrected_deviation),
