@@ -103,6 +103,25 @@ static void nan_world_resets_to_start_counts_and_keeps_stepping(void **state) {
   mr_world_destroy(w);
 }
 
+/* A rigid tetrahedron (six rows) with one of its edges held again by a
+ * distance of its own, a dependent row, and a corner pinned. */
+static void redundant_tetrahedron(mr_world *w, int ids[4]) {
+  const double at[4][3] = { { 0, 0, 0 }, { 0.4, 0, 0 }, { 0.2, 0, 0.35 }, { 0.2, 0.3, 0.1 } };
+  for (int k = 0; k < 4; k++) ids[k] = add(w, at[k][0], at[k][1], at[k][2]);
+  mr_rigid_group_def g = mr_default_rigid_group_def();
+  g.particles = ids;
+  g.count = 4;
+  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+  assert_int_equal(mr_world_constraint_rows(w), 6);
+  mr_distance_def d = mr_default_distance_def();
+  d.a = ids[0];
+  d.b = ids[1];
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = ids[3];
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+}
+
 /* A rigid tetrahedron (6 links, §5.1) hung from a pin, plus a duplicate of
  * one link: J has a dependent row. Every solver reports it (LDLᵀ and Eigen
  * by their pivots, Gauss–Seidel and CG by their screen for parallel pairs)
@@ -114,20 +133,8 @@ static void dependent_rows_reported_and_forces_bounded(void **state) {
                                       MR_SOLVE_CG };
   for (int m = 0; m < 4; m++) {
     mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS | MR_EFFECT_DRAG, methods[m]);
-    int ids[4] = { add(w, 0, 0, 0), add(w, 0.4, 0, 0), add(w, 0.2, 0, 0.35),
-                   add(w, 0.2, 0.3, 0.1) };
-    mr_rigid_group_def g = mr_default_rigid_group_def();
-    g.particles = ids;
-    g.count = 4;
-    assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
-    assert_int_equal(mr_world_constraint_rows(w), 6);
-    mr_distance_def d = mr_default_distance_def();
-    d.a = ids[0];
-    d.b = ids[1];
-    assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
-    mr_pin_def pin = mr_default_pin_def();
-    pin.particle = ids[3];
-    assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+    int ids[4];
+    redundant_tetrahedron(w, ids);
     double worst = 0;
     int reported = 0;
     for (int f = 1; f <= 120; f++) {
@@ -364,18 +371,8 @@ static void divergence_outranks_dependent_rows(void **state) {
   def.max_speed = 1e-3;
   mr_world *w = NULL;
   assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  int ids[4] = { add(w, 0, 0, 0), add(w, 0.4, 0, 0), add(w, 0.2, 0, 0.35), add(w, 0.2, 0.3, 0.1) };
-  mr_rigid_group_def g = mr_default_rigid_group_def();
-  g.particles = ids;
-  g.count = 4;
-  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
-  mr_distance_def d = mr_default_distance_def();
-  d.a = ids[0];
-  d.b = ids[1];
-  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
-  mr_pin_def pin = mr_default_pin_def();
-  pin.particle = ids[3];
-  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  int ids[4];
+  redundant_tetrahedron(w, ids);
   mr_step_report rep;
   assert_int_equal(mr_world_step_to(w, 0.1, &rep), MR_DIVERGED);
   printf("diverged with %d dependent rows: %s\n", rep.dependent, mr_world_last_error(w));
@@ -385,8 +382,32 @@ static void divergence_outranks_dependent_rows(void **state) {
   mr_world_destroy(w);
 }
 
+/* mr_rigid_group_shape names the points of a fault, and no point where
+ * there is none: −1 for a sound group, a group of none or no positions
+ * (a scene loader reads the indices it is given back to name them). */
+static void group_shape_names_its_points_or_none(void **state) {
+  (void)state;
+  int i = 7, j = 7;
+  assert_int_equal(mr_rigid_group_shape(NULL, 3, &i, &j), MR_SHAPE_OK);
+  assert_true(i == -1 && j == -1);
+  const double tetra[12] = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  i = j = 7;
+  assert_int_equal(mr_rigid_group_shape(tetra, 0, &i, &j), MR_SHAPE_OK);
+  assert_true(i == -1 && j == -1);
+  i = j = 7;
+  assert_int_equal(mr_rigid_group_shape(tetra, 4, &i, &j), MR_SHAPE_OK);
+  assert_true(i == -1 && j == -1);
+  const double twice[9] = { 0, 0, 0, 1, 0, 0, 1, 0, 0 };
+  assert_int_equal(mr_rigid_group_shape(twice, 3, &i, &j), MR_SHAPE_COINCIDENT);
+  assert_true(i == 2 && j == 1);
+  const double line[9] = { 0, 0, 0, 1, 0, 0, 2, 0, 0 };
+  assert_int_equal(mr_rigid_group_shape(line, 3, &i, &j), MR_SHAPE_COLLINEAR);
+  assert_true(i == 2 && j == -1);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
+    cmocka_unit_test(group_shape_names_its_points_or_none),
     cmocka_unit_test(nan_world_resets_to_start_counts_and_keeps_stepping),
     cmocka_unit_test(dependent_rows_reported_and_forces_bounded),
     cmocka_unit_test(every_solver_moves_a_chain_alike),

@@ -461,7 +461,8 @@ mr_rigid_group_def mr_default_rigid_group_def(void);
  * from the point being placed for four, each at least MR_GROUP_MIN_SHAPE.
  * The world's add call and a scene loader use this one test, so what one
  * accepts the other does. On a fault, *i and *j name the points (for
- * COINCIDENT both; otherwise the point that fails, in *i). */
+ * COINCIDENT both; otherwise the point that fails, in *i); −1 where there
+ * is no point to name. */
 #define MR_GROUP_MIN_SHAPE 1e-3
 typedef enum mr_shape_fault {
   MR_SHAPE_OK = 0,
