@@ -189,7 +189,7 @@ static void a_deviation_past_the_bound_is_divergence_and_is_named(void **state) 
   def.deviation_high = 1e-6;
   def.deviation_low = 1e-8;
   int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
+  mr_world *w = pendulum(def, 3.0, &bob);
   mr_step_report rep;
   assert_int_equal(mr_world_step(w, &rep), MR_DIVERGED);
   printf("%s\n", mr_world_last_error(w));

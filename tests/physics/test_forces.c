@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "mr_physics.h"
+#include "rigs.h"
 
 static const double g = 9.81, half_pi = 1.57079632679489661923;
 
@@ -20,18 +20,6 @@ static mr_world *make(uint32_t effects, double drag) {
   mr_world *w = NULL;
   assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
   return w;
-}
-
-static int add(mr_world *w, double x, double y, double z, double mass, int frame) {
-  mr_particle_def p = mr_default_particle_def();
-  p.position[0] = x;
-  p.position[1] = y;
-  p.position[2] = z;
-  p.mass = mass;
-  p.frame = frame;
-  int id = -1;
-  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
-  return id;
 }
 
 /* Velocity gained over a short interval, divided by it: the acceleration at
@@ -51,7 +39,7 @@ static void accel(mr_world *w, int p, double dt, double a[3]) {
 static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_ANTIGRAVITY, 0.0);
-  int acted = add(w, 0, 0, 0, 2.0, -1), trig = add(w, 0, -0.5, 0, 1.0, -1);
+  int acted = particle(w, 0, 0, 0, 2.0, -1), trig = particle(w, 0, -0.5, 0, 1.0, -1);
   mr_antigravity_def ag = mr_default_antigravity_def();
   ag.acted = acted;
   ag.trigger = trig;
@@ -82,8 +70,8 @@ static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **stat
 static void triggered_force_follows_control_trigger_distance(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_TRIGGERED, 0.0);
-  int acted = add(w, 0, 0, 0, 1.0, -1), control = add(w, 0, 1, 0, 1.0, -1),
-      trig = add(w, 1, 0, 0, 1.0, -1);
+  int acted = particle(w, 0, 0, 0, 1.0, -1), control = particle(w, 0, 1, 0, 1.0, -1),
+      trig = particle(w, 1, 0, 0, 1.0, -1);
   mr_triggered_def tr = mr_default_triggered_def();
   tr.acted = acted;
   tr.control = control;
@@ -114,7 +102,7 @@ static void sine_spring_rises_as_sine_and_caps(void **state) {
   const double stretches[5] = { 0.025, 0.05, 0.15, 0.2, 0.3 };
   for (int i = 0; i < 5; i++) {
     mr_world *w = make(MR_EFFECT_SINE_SPRINGS, 0.0);
-    int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
+    int a = particle(w, 0, 0, 0, 1.0, -1), b = particle(w, 1, 0, 0, 1.0, -1);
     mr_sine_spring_def s = mr_default_sine_spring_def();
     s.a = a;
     s.b = b;
@@ -136,7 +124,7 @@ static void sine_spring_rises_as_sine_and_caps(void **state) {
   /* Its damping acts on the rate along the line, as a damper's does: at the
    * rest length, moving apart at 2 m/s with damping 3 N·s/m. */
   mr_world *w = make(MR_EFFECT_SINE_SPRINGS, 0.0);
-  int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
+  int a = particle(w, 0, 0, 0, 1.0, -1), b = particle(w, 1, 0, 0, 1.0, -1);
   mr_sine_spring_def s = mr_default_sine_spring_def();
   s.a = a;
   s.b = b;
@@ -155,7 +143,7 @@ static void sine_spring_rises_as_sine_and_caps(void **state) {
 static void drag_gives_terminal_velocity(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_DRAG, 4.0);
-  int p = add(w, 0, 100, 0, 2.0, -1);
+  int p = particle(w, 0, 100, 0, 2.0, -1);
   assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
   double v[3];
   mr_world_particle_state(w, p, NULL, v);
@@ -169,7 +157,7 @@ static void drag_gives_terminal_velocity(void **state) {
 static void damper_opposes_relative_velocity(void **state) {
   (void)state;
   mr_world *w = make(MR_EFFECT_SPRINGS, 0.0);
-  int a = add(w, 0, 0, 0, 1.0, -1), b = add(w, 1, 0, 0, 1.0, -1);
+  int a = particle(w, 0, 0, 0, 1.0, -1), b = particle(w, 1, 0, 0, 1.0, -1);
   mr_spring_def s = mr_default_spring_def();
   s.a = a;
   s.b = b;
@@ -195,8 +183,8 @@ static mr_world *hanging_string(uint32_t extra, double stiffness, int *bob) {
   mr_frame_def fd = mr_default_frame_def();
   int frame;
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
-  int top = add(w, 0, 2, 0, 1.0, frame);
-  *bob = add(w, 0, 1, 0, 1.0, -1);
+  int top = particle(w, 0, 2, 0, 1.0, frame);
+  *bob = particle(w, 0, 1, 0, 1.0, -1);
   mr_string_def s = mr_default_string_def();
   s.frame_particle = top;
   s.puppet_particle = *bob;
@@ -273,8 +261,8 @@ static void string_correction_keeps_rigid_groups_whole(void **state) {
   const double top[3][3] = { { -0.2, 2, 0 }, { 0.2, 2, 0 }, { 0, 2, 0.3 } };
   const double body[4][3] = { { -0.2, 1, 0 }, { 0.2, 1, 0 }, { 0, 1, 0.3 }, { 0, 0.7, 0.1 } };
   int f[3], b[4];
-  for (int i = 0; i < 3; i++) f[i] = add(w, top[i][0], top[i][1], top[i][2], 1.0, frame);
-  for (int i = 0; i < 4; i++) b[i] = add(w, body[i][0], body[i][1], body[i][2], 1.0, -1);
+  for (int i = 0; i < 3; i++) f[i] = particle(w, top[i][0], top[i][1], top[i][2], 1.0, frame);
+  for (int i = 0; i < 4; i++) b[i] = particle(w, body[i][0], body[i][1], body[i][2], 1.0, -1);
   mr_rigid_group_def grp = mr_default_rigid_group_def();
   grp.particles = b;
   grp.count = 4;
@@ -339,11 +327,11 @@ static void string_correction_keeps_articulated_limbs_whole(void **state) {
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
   int bar[4], p[6];
   const double bx[4] = { -0.15, 0.15, -0.3, 0.3 };
-  for (int i = 0; i < 4; i++) bar[i] = add(w, bx[i], 2, 0, 1.0, frame);
+  for (int i = 0; i < 4; i++) bar[i] = particle(w, bx[i], 2, 0, 1.0, frame);
   /* shoulders 0, 1; elbows 2, 3; hands 4, 5 */
   const double px[6][2] = { { -0.15, 1.5 }, { 0.15, 1.5 }, { -0.3, 1.3 },
                             { 0.3, 1.3 },   { -0.3, 1.1 }, { 0.3, 1.1 } };
-  for (int i = 0; i < 6; i++) p[i] = add(w, px[i][0], px[i][1], 0, 0.1 + 0.05 * (i < 2), -1);
+  for (int i = 0; i < 6; i++) p[i] = particle(w, px[i][0], px[i][1], 0, 0.1 + 0.05 * (i < 2), -1);
   const int links[5][2] = { { 0, 1 }, { 0, 2 }, { 2, 4 }, { 1, 3 }, { 3, 5 } };
   for (int i = 0; i < 5; i++) {
     mr_distance_def d = mr_default_distance_def();
@@ -399,7 +387,7 @@ static void frame_particles_follow_target_pose(void **state) {
   fd.path = MR_FRAME_LINEAR;
   int frame;
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
-  int p = add(w, 1, 0, 0, 1.0, frame);
+  int p = particle(w, 1, 0, 0, 1.0, frame);
   mr_pose pose = mr_pose_identity();
   pose.position[1] = 0.5;
   pose.orientation[0] = cos(half_pi / 2);
@@ -432,7 +420,7 @@ static void frame_particle_drags_puppet_through_distance_constraint(void **state
   mr_frame_def fd = mr_default_frame_def();
   int frame;
   assert_int_equal(mr_world_add_frame(w, &fd, &frame), MR_OK);
-  int top = add(w, 0, 2, 0, 1.0, frame), bob = add(w, 0, 1.5, 0, 1.0, -1);
+  int top = particle(w, 0, 2, 0, 1.0, frame), bob = particle(w, 0, 1.5, 0, 1.0, -1);
   mr_distance_def d = mr_default_distance_def();
   d.a = top;
   d.b = bob;
@@ -471,7 +459,7 @@ static void particle_follows_time_dependent_curve(void **state) {
   (void)state;
   for (int interp = 0; interp < 2; interp++) {
     mr_world *w = make(MR_EFFECT_GRAVITY | MR_EFFECT_CONSTRAINTS, 0.1);
-    int p = add(w, 0, 1, 0, 1.0, -1), q = add(w, 0, 0.5, 0, 1.0, -1);
+    int p = particle(w, 0, 1, 0, 1.0, -1), q = particle(w, 0, 0.5, 0, 1.0, -1);
     const double times[4] = { 0, 1, 2, 3 };
     const double pts[12] = { 0, 1, 0, 0.5, 1.2, 0, 1.0, 1, 0.3, 1.2, 0.8, 0 };
     mr_curve_def c = mr_default_curve_def();
@@ -525,7 +513,7 @@ static void rigid_group_of_seven_stays_rigid(void **state) {
                              { 0.1, 0.1, 0.4 }, { 0.5, 0.5, 0.2 }, { -0.2, 0.3, 0.3 },
                              { 0.3, -0.2, 0.1 } };
   int ids[7];
-  for (int i = 0; i < 7; i++) ids[i] = add(w, pts[i][0], pts[i][1], pts[i][2], 1.0, -1);
+  for (int i = 0; i < 7; i++) ids[i] = particle(w, pts[i][0], pts[i][1], pts[i][2], 1.0, -1);
   mr_rigid_group_def gd = mr_default_rigid_group_def();
   gd.particles = ids;
   gd.count = 7;

@@ -59,7 +59,7 @@ static void a_retry_a_hair_short_of_the_target_lands_on_it(void **state) {
   def.deviation_high = 1e-9; /* the first try, 10 ms long, is over it */
   def.deviation_low = 1e-11;
   int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
+  mr_world *w = pendulum(def, 3.0, &bob);
   const double target = def.dt_min * (1.0 + 5e-4);
   mr_step_report rep;
   assert_int_equal(mr_world_step_to(w, target, &rep), MR_OK);
@@ -125,7 +125,7 @@ static void a_step_stretched_to_land_is_judged_as_planned(void **state) {
   def.deviation_high = 1e-9; /* a step of dt_min is over it */
   def.deviation_low = 1e-11;
   int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
+  mr_world *w = pendulum(def, 3.0, &bob);
   const double target = def.dt_min * (1.0 + 5e-4);
   mr_step_report rep;
   assert_int_equal(mr_world_step_to(w, target, &rep), MR_OK);
@@ -149,7 +149,7 @@ static void a_short_landing_past_the_bound_is_retried_at_the_floor(void **state)
   def.deviation_high = 1e-11;
   def.deviation_low = 1e-13;
   int bob;
-  mr_world *w = spinning_pendulum(def, &bob);
+  mr_world *w = pendulum(def, 3.0, &bob);
   mr_step_report rep;
   assert_int_equal(mr_world_step_to(w, 0.004, &rep), MR_OK);
   mr_stats st;
