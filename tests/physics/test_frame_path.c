@@ -362,7 +362,8 @@ static void placed(mr_world *w, int i, double t, double x[3], double v[3]) {
 }
 
 /* mr_frame_point_motion's velocity and acceleration are the derivatives of
- * where the frame carries the point (central differences over 10 µs), at
+ * where the frame carries the point (central differences over 10 µs), and
+ * mr_frame_point_velocity's velocity is its velocity, at
  * three times inside a tumbling segment, away from its ends, where the
  * path's own terms do not vanish: the centripetal part ω × (ω × r), and
  * the angular acceleration of turns about turning axes. */
@@ -381,6 +382,9 @@ static void point_motion_is_the_derivative_of_its_path(void **state) {
     placed(w, point, t + d, x1, v1);
     placed(w, point, t, x, vm);
     mr_frame_point_motion(w, point, t, w->x, v, a);
+    double vo[3]; /* the velocity alone, which rates read: the same bits */
+    mr_frame_point_velocity(w, point, t, w->x, vo);
+    assert_memory_equal(vo, v, sizeof vo);
     for (int k = 0; k < 3; k++) {
       worst_v = fmax(worst_v, fabs(v[k] - (x1[k] - x0[k]) / (2 * d)));
       worst_a = fmax(worst_a, fabs(a[k] - (v1[k] - v0[k]) / (2 * d)));

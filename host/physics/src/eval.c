@@ -132,8 +132,14 @@ static int rows_build(mr_world *w, double t, const double *x, const double *v,
   for (int i = 0; i < r; i++) w->row_contact[i] = -1;
   for (int c = 0; c < w->contacts.n; c++) {
     if (!w->contact_active[c]) continue;
+    const mr_contact *ct = &w->contacts.c[c];
     double chi, chidot, jdqd;
-    if (mr_contact_row(w, &w->contacts.c[c], x, v, &chi, &chidot, &jdqd) != 0) return -1;
+    /* With a_free this is eq. 8's solve, after select_resting_contacts()
+     * at this x, v and time: a string's motion is the one it found. */
+    int st = a_free && ct->kind == MR_CONTACT_STRING
+                 ? mr_taut_row_seen(w, ct->a, v, &chi, &chidot, &jdqd)
+                 : mr_contact_row(w, ct, x, v, &chi, &chidot, &jdqd);
+    if (st != 0) return -1;
     w->row_c[r] = chi;
     w->row_cdot[r] = chidot;
     w->row_bias[r] = jdqd;
@@ -289,8 +295,11 @@ static void select_resting_contacts(mr_world *w, const double *x, const double *
   const double separating = 0.1 * w->def.rest_speed;
   for (int c = 0; c < w->contacts.n; c++) {
     const mr_contact *ct = &w->contacts.c[c];
-    w->contact_active[c] =
-        !(mr_contact_gap(w, ct, x) >= 0.0 && mr_contact_rate(w, ct, x, v) > separating);
+    if (ct->kind == MR_CONTACT_STRING)
+      w->contact_active[c] = !mr_taut_separating(w, ct->a, x, v, separating);
+    else
+      w->contact_active[c] =
+          !(mr_contact_gap(w, ct, x) >= 0.0 && mr_contact_rate(w, ct, x, v) > separating);
   }
 }
 

@@ -405,8 +405,12 @@ mr_status mr_world_add_string(mr_world *w, const mr_string_def *def, int *out_id
   int taut = def->mode == MR_STRING_TAUT;
   if (taut && !(rest > 0))
     return mr_fail(w, MR_ERR_DEGENERATE, "%s: a taut string needs a rest length above 0", what);
-  mr_string e = { def->frame_particle, def->puppet_particle, rest,
-                  def->stiffness,      def->damping,         taut };
+  mr_string e = { .frame_particle = def->frame_particle,
+                  .puppet_particle = def->puppet_particle,
+                  .rest = rest,
+                  .ks = def->stiffness,
+                  .kd = def->damping,
+                  .taut = taut };
   s = mr_add_push(w, MR_FORCES(w, STRINGS), &e, sizeof e, out_id, what);
   if (s == MR_OK && taut) {
     w->n_taut++;

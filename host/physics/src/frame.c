@@ -241,23 +241,38 @@ void mr_frame_place_one(mr_world *w, int i) {
 /* The acceleration of frame particle i, at the time of w->frame_state
  * (computed there when it is at another): ṗ̇ + ω̇ × r + ω × (ω × r), with
  * its velocity v_f + ω × r. */
-void mr_frame_point_motion(const mr_world *w, int i, double t, const double *x, double v[3],
-                           double a[3]) {
-  double own[MR_FRAME_STATE];
+/* The point motion of frame particle i at t: its frame's state (the one
+ * kept for w->frame_state_t, else worked out into own), the arm r from
+ * the frame's origin and ω × r. Returns the state. */
+static const double *point_arm(const mr_world *w, int i, double t, const double *x, double *own,
+                               double r[3], double wr[3]) {
   const double *st = &w->frame_state[MR_FRAME_STATE * w->frame[i]];
   if (!(t == w->frame_state_t)) {
     mr_frame_motion(&MR_AT(w->frames, mr_frame, w->frame[i]), t, own);
     st = own;
   }
-  double r[3] = { x[3 * i] - st[0], x[3 * i + 1] - st[1], x[3 * i + 2] - st[2] };
-  double wr[3], wwr[3], ar[3];
+  for (int k = 0; k < 3; k++) r[k] = x[3 * i + k] - st[k];
   cross(st + 10, r, wr);
+  return st;
+}
+
+void mr_frame_point_motion(const mr_world *w, int i, double t, const double *x, double v[3],
+                           double a[3]) {
+  double own[MR_FRAME_STATE], r[3], wr[3], wwr[3], ar[3];
+  const double *st = point_arm(w, i, t, x, own, r, wr);
   cross(st + 10, wr, wwr);
   cross(st + 16, r, ar);
   for (int k = 0; k < 3; k++) {
     v[k] = st[7 + k] + wr[k];
     a[k] = st[13 + k] + ar[k] + wwr[k];
   }
+}
+
+/* The velocity alone: a rate needs no acceleration (same bits as above). */
+void mr_frame_point_velocity(const mr_world *w, int i, double t, const double *x, double v[3]) {
+  double own[MR_FRAME_STATE], r[3], wr[3];
+  const double *st = point_arm(w, i, t, x, own, r, wr);
+  for (int k = 0; k < 3; k++) v[k] = st[7 + k] + wr[k];
 }
 
 mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id) {

@@ -25,11 +25,20 @@ typedef struct mr_frame {
 /* Per frame in frame_state: p, q, ṗ, ω, p̈, ω̇. */
 #define MR_FRAME_STATE 19
 
+/* A taut string at one state: d = x_p − x_f, L = |d|, and its frame
+ * end's velocity and acceleration on the frame's path. */
+typedef struct mr_taut_motion {
+  double d[3], len, vf[3], af[3];
+} mr_taut_motion;
+
 /* A string's element: forces.c pulls with it, string_correction.c shortens it. */
 typedef struct mr_string {
   int frame_particle, puppet_particle;
   double rest, ks, kd;
   int taut; /* MR_STRING_TAUT: a contact row (taut_string.c), no force */
+  /* What eval.c's choice of resting contacts found, which the rows of
+   * the solve that follows, at the same state, read again. */
+  mr_taut_motion seen;
 } mr_string;
 
 typedef struct mr_distance {
@@ -315,6 +324,7 @@ void mr_frame_eval(const mr_frame *fr, double t, mr_pose *pose, double vel[3], d
 /* The velocity and acceleration at t of frame particle i at x (3n). */
 void mr_frame_point_motion(const mr_world *w, int i, double t, const double *x, double v[3],
                            double a[3]);
+void mr_frame_point_velocity(const mr_world *w, int i, double t, const double *x, double v[3]);
 void mr_frames_place(mr_world *w, double t, double *x, double *v);
 /* Particle i of a frame alone, at the world's time. */
 void mr_frame_place_one(mr_world *w, int i);
@@ -444,6 +454,17 @@ double mr_taut_gap(const mr_world *w, int string, const double *x);
 double mr_taut_rate(const mr_world *w, int string, const double *x, const double *v);
 int mr_taut_row(mr_world *w, int string, const double *x, const double *v, double *chi,
                 double *chidot, double *jdqd);
+/* eval.c's force solve, which reads each string's geometry and frame-end
+ * motion twice at one state (choosing the resting contacts, then building
+ * their rows), finds them once: mr_taut_separating() keeps them with the
+ * string and says whether it is apart and separating faster than
+ * `separating` (the gap and rate bits of mr_taut_gap and mr_taut_rate);
+ * mr_taut_row_seen() then builds mr_taut_row's row from them, for the
+ * same x, v and time. */
+int mr_taut_separating(mr_world *w, int string, const double *x, const double *v,
+                       double separating);
+int mr_taut_row_seen(mr_world *w, int string, const double *v, double *chi, double *chidot,
+                     double *jdqd);
 /* The time the frame ends of taut strings move at: rates are taken from
  * the frame segment under way at it, ends included (mr_frame_rates). */
 void mr_taut_set_time(mr_world *w, double t);

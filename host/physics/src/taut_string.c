@@ -37,10 +37,14 @@ void mr_taut_set_time(mr_world *w, double t) {
   w->taut_t = t;
 }
 
-/* The velocity and acceleration of frame particle i on its frame's path
- * at w->taut_t. */
-static void frame_end_motion(const mr_world *w, int i, const double *x, double v[3], double a[3]) {
-  mr_frame_point_motion(w, i, w->taut_t, x, v, a);
+static mr_string *string_mut(mr_world *w, int i) {
+  return &MR_AT(*MR_FORCES(w, STRINGS), mr_string, i);
+}
+
+/* The string's geometry and its frame end's motion at w->taut_t. */
+static void motion(const mr_world *w, const mr_string *s, const double *x, mr_taut_motion *m) {
+  m->len = geometry(s, x, m->d);
+  mr_frame_point_motion(w, s->frame_particle, w->taut_t, x, m->vf, m->af);
 }
 
 int mr_taut_detect(mr_world *w, const double *x, double gap, mr_contact_list *out) {
@@ -61,27 +65,40 @@ double mr_taut_gap(const mr_world *w, int string, const double *x) {
   return s->rest - geometry(s, x, d);
 }
 
-double mr_taut_rate(const mr_world *w, int string, const double *x, const double *v) {
-  const mr_string *s = string_at(w, string);
-  double d[3], len = geometry(s, x, d), vf[3], af[3];
+/* χ̇ = −d·(v_p − v_f)/L, 0 for a string of no length. */
+static double rate_of(const double d[3], double len, const double *vp, const double vf[3]) {
   if (!(len > 1e-12)) return 0.0;
-  const double *vp = &v[3 * s->puppet_particle];
-  frame_end_motion(w, s->frame_particle, x, vf, af);
   return -(d[0] * (vp[0] - vf[0]) + d[1] * (vp[1] - vf[1]) + d[2] * (vp[2] - vf[2])) / len;
 }
 
-int mr_taut_row(mr_world *w, int string, const double *x, const double *v, double *chi,
-                double *chidot, double *jdqd) {
+double mr_taut_rate(const mr_world *w, int string, const double *x, const double *v) {
   const mr_string *s = string_at(w, string);
-  double d[3], len = geometry(s, x, d), u[3] = { 0, 0, 0 }, g[3];
+  double d[3], len = geometry(s, x, d), vf[3];
+  if (!(len > 1e-12)) return 0.0;
+  mr_frame_point_velocity(w, s->frame_particle, w->taut_t, x, vf);
+  return rate_of(d, len, &v[3 * s->puppet_particle], vf);
+}
+
+int mr_taut_separating(mr_world *w, int string, const double *x, const double *v,
+                       double separating) {
+  mr_string *s = string_mut(w, string);
+  motion(w, s, x, &s->seen);
+  const mr_taut_motion *m = &s->seen;
+  return s->rest - m->len >= 0.0 &&
+         rate_of(m->d, m->len, &v[3 * s->puppet_particle], m->vf) > separating;
+}
+
+/* The row of mr_taut_row from the string's motion m. */
+static int row_of(mr_world *w, const mr_string *s, const mr_taut_motion *m, const double *v,
+                  double *chi, double *chidot, double *jdqd) {
+  const double len = m->len, *af = m->af;
+  double u[3] = { 0, 0, 0 }, g[3];
   if (len > 1e-12)
-    for (int k = 0; k < 3; k++) u[k] = d[k] / len;
+    for (int k = 0; k < 3; k++) u[k] = m->d[k] / len;
   for (int k = 0; k < 3; k++) g[k] = -u[k];
   if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, s->puppet_particle, g) != 0) return -1;
   const double *vp = &v[3 * s->puppet_particle];
-  double vf[3], af[3];
-  frame_end_motion(w, s->frame_particle, x, vf, af);
-  double dv[3] = { vp[0] - vf[0], vp[1] - vf[1], vp[2] - vf[2] };
+  double dv[3] = { vp[0] - m->vf[0], vp[1] - m->vf[1], vp[2] - m->vf[2] };
   double rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
   *chi = s->rest - len;
   *chidot = -rate;
@@ -89,6 +106,20 @@ int mr_taut_row(mr_world *w, int string, const double *x, const double *v, doubl
       (len > 1e-12 ? -(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) / len : 0.0) +
       u[0] * af[0] + u[1] * af[1] + u[2] * af[2];
   return 0;
+}
+
+int mr_taut_row(mr_world *w, int string, const double *x, const double *v, double *chi,
+                double *chidot, double *jdqd) {
+  const mr_string *s = string_at(w, string);
+  mr_taut_motion m;
+  motion(w, s, x, &m);
+  return row_of(w, s, &m, v, chi, chidot, jdqd);
+}
+
+int mr_taut_row_seen(mr_world *w, int string, const double *v, double *chi, double *chidot,
+                     double *jdqd) {
+  const mr_string *s = string_at(w, string);
+  return row_of(w, s, &s->seen, v, chi, chidot, jdqd);
 }
 
 double mr_taut_overlength(const mr_world *w, const double *x) {
