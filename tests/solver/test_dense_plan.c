@@ -93,17 +93,14 @@ static ref_out ref_solve(const mr_csr *A, const int *perm, const mr_solve_def *o
   return out;
 }
 
-/* Entries of the plan that A leaves empty and the factor fills in. */
-static int plan_fill(const mr_dense *dn) {
+/* Entries of the plan that A leaves empty and the factor fills in: they
+ * read the +0 after A's nnz numbers. */
+static int plan_fill(const mr_dense *dn, int nnz) {
   const int *p = dn->plan.p;
   int fill = 0;
   for (int k = 0; k < dn->n; k++) {
-    const int entries = p[0];
-    p += 2;
-    for (int e = 0; e < entries; e++) {
-      fill += p[1] < 0;
-      p += 3 + 2 * p[2];
-    }
+    const int *row_end = p + p[0];
+    for (p += 2; p < row_end; p += p[3]) fill += p[2] == nnz;
   }
   return fill;
 }
@@ -133,7 +130,7 @@ static int check_bits(mr_solver *s, const mr_csr *A, const double *b, double piv
   assert_memory_equal(x, ref, (size_t)n * sizeof *x);
   free(x);
   free(ref);
-  return dn->n_plan >= 0 ? plan_fill(dn) : -1;
+  return dn->n_plan >= 0 ? plan_fill(dn, A->row_ptr[n]) : -1;
 }
 
 typedef struct one_system {

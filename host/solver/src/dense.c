@@ -34,7 +34,7 @@
 #define LD(n) ((size_t)(n) + 1u)
 
 void mr_dense_free(mr_dense *d) {
-  mr_buf *const bufs[] = { &d->l,  &d->first,   &d->t,     &d->dinv, &d->diag, &d->plan, &d->mark,
+  mr_buf *const bufs[] = { &d->l,  &d->first,   &d->t,     &d->dinv, &d->plan, &d->mark,
                            &d->aq, &d->dropped, &d->place, &d->zero, &d->y,    &d->aval };
   mr_bufs_free(bufs, sizeof bufs / sizeof bufs[0]);
   d->valid = 0;
@@ -55,11 +55,10 @@ int mr_dense_reserve(mr_dense *d, int rows) {
   const size_t n = (size_t)rows, sd = sizeof(double), si = sizeof(int);
   if (mr_buf_reserve(&d->l, n * (n + 1), sd) || mr_buf_reserve(&d->first, n, si) ||
       mr_buf_reserve(&d->t, n + 1, sd) || mr_buf_reserve(&d->dinv, n, sd) ||
-      mr_buf_reserve(&d->diag, n, sd) || mr_buf_reserve(&d->dropped, n, 1) ||
-      mr_buf_reserve(&d->plan, plan_room(n), si) || mr_buf_reserve(&d->mark, n * n, 1) ||
-      mr_buf_reserve(&d->aq, 3 * n, si) || mr_buf_reserve(&d->place, n * (n + 1), si) ||
-      mr_buf_reserve(&d->zero, n * (n + 1) / 2, si) || mr_buf_reserve(&d->y, n, sd) ||
-      mr_buf_reserve(&d->aval, n * n, sd))
+      mr_buf_reserve(&d->dropped, n, 1) || mr_buf_reserve(&d->plan, plan_room(n), si) ||
+      mr_buf_reserve(&d->mark, n * n, 1) || mr_buf_reserve(&d->aq, 3 * n, si) ||
+      mr_buf_reserve(&d->place, n * (n + 1), si) || mr_buf_reserve(&d->zero, n * (n + 1) / 2, si) ||
+      mr_buf_reserve(&d->y, n, sd) || mr_buf_reserve(&d->aval, n * n + 1, sd))
     return MR_SOLVE_ERR_NOMEM;
   d->room = rows;
   return 0;
@@ -95,9 +94,10 @@ static int interleave(const int *ev, int ne, const int *od, int no, int n, int *
  * lo = max(f_k, f_j) (even offsets, the last unpaired one among them, in
  * the first chain, odd ones in the second) and interleaved. Returns the
  * ints written, 0 when L_kj is no entry (no such m and none in A: t_j is
- * exactly 0). tmp: 2n ints. */
+ * exactly 0). q: A_kj's index, or the +0 slot's (nnz) for a fill entry.
+ * tmp: 2n ints. */
 static int plan_entry(const unsigned char *ink, const unsigned char *inj, int n, int j, int lo,
-                      int q, int *out, int *tmp) {
+                      int q, int nnz, int *out, int *tmp) {
   int ne = 0, no = 0, *od = tmp + n;
   for (int m = lo; m < j; m++) {
     if (!(ink[m] & inj[m])) continue;
@@ -106,42 +106,47 @@ static int plan_entry(const unsigned char *ink, const unsigned char *inj, int n,
     else
       tmp[ne++] = m;
   }
-  if (ne + no == 0 && q < 0) return 0;
+  if (ne + no == 0 && q == nnz) return 0;
   out[0] = j;
-  out[1] = q;
-  out[2] = interleave(tmp, ne, od, no, n, out + 3);
-  return 3 + 2 * out[2];
+  out[1] = j * (int)LD(n);
+  out[2] = q;
+  out[3] = 4 + 2 * interleave(tmp, ne, od, no, n, out + 4);
+  return out[3];
 }
 
 /* The factor's plan, made with the pattern: L's symbolic pattern in the
  * dense order (L_kj is an entry when A_kj is or when rows k and j share an
  * entry left of j), and for each entry the products its sum makes, in
- * minus_dot()'s order. Each row: its entries' count and A_kk's index in A
- * (−1: none stored); each entry: j, A_kj's index (−1: fill), the count of
- * pairs, the pairs. Returns 0, or −1 when the plan needs more than its
- * room. iperm: from find_firsts(). */
+ * minus_dot()'s order. Indices into A are into the factor's copy of it,
+ * where index nnz holds +0: a number A does not store is read as one it
+ * does, with no branch. Each row: its length in ints and A_kk's index;
+ * each entry: j, row j's place in l, A_kj's index, its length in ints, the
+ * pairs. Lengths, not counts: each loop's end is found with one add.
+ * Returns 0, or −1 when the plan needs more than its room. iperm: from
+ * find_firsts(). */
 static int plan_pattern(mr_dense *dn, const mr_csr *A, const int *iperm) {
   const int n = A->n, *perm = dn->perm, *first = DBUF(dn, first, const int);
-  const int room = (int)plan_room((size_t)n);
+  const int room = (int)plan_room((size_t)n), nnz = A->row_ptr[n];
   int *plan = DBUF(dn, plan, int), *aq = DBUF(dn, aq, int), *tmp = aq + n;
   unsigned char *mark = DBUF(dn, mark, unsigned char);
   int np = 0;
   for (int k = 0; k < n; k++) {
     const int fk = first[k];
     unsigned char *ink = mark + (size_t)k * (size_t)n;
-    for (int j = fk; j <= k; j++) aq[j] = -1;
+    for (int j = fk; j <= k; j++) aq[j] = nnz;
     for (int q = A->row_ptr[perm[k]]; q < A->row_ptr[perm[k] + 1]; q++)
       if (iperm[A->col[q]] <= k) aq[iperm[A->col[q]]] = q;
     if (np + 2 > room) return -1;
     const int head = np;
-    plan[np++] = 0;
+    plan[np++] = 2;
     plan[np++] = aq[k];
     for (int j = fk; j < k; j++) {
       const int lo = fk > first[j] ? fk : first[j];
-      if (np + 4 + (j - lo) > room) return -1;
-      const int w = plan_entry(ink, mark + (size_t)j * (size_t)n, n, j, lo, aq[j], plan + np, tmp);
+      if (np + 5 + (j - lo) > room) return -1;
+      const int w =
+          plan_entry(ink, mark + (size_t)j * (size_t)n, n, j, lo, aq[j], nnz, plan + np, tmp);
       ink[j] = w > 0;
-      plan[head] += w > 0;
+      plan[head] += w;
       np += w;
     }
   }
@@ -213,24 +218,39 @@ static inline double minus_dot(double s, const double *a, const double *b, int l
   return s + odd;
 }
 
+/* The pivot test's tolerances, what it writes and what it counts. The
+ * arrays are taken out of dn once a factor: a byte stored to dropped[]
+ * may alias anything, and arrays read through dn were read again at every
+ * row. */
+typedef struct pivots {
+  unsigned char *dropped;
+  double *dinv, pivot_tol, reg_tol;
+  int dependent, regularised;
+} pivots;
+
+static pivots pivots_for(mr_dense *dn, double pivot_tol, double reg_tol) {
+  return (pivots){ .dropped = DBUF(dn, dropped, unsigned char),
+                   .dinv = DBUF(dn, dinv, double),
+                   .pivot_tol = pivot_tol,
+                   .reg_tol = reg_tol };
+}
+
 /* The pivot test of ldlt.c's factor(), on d_k. */
-static inline void judge(mr_dense *dn, int k, double akk, double d, double pivot_tol,
-                         double reg_tol, int *dependent, int *regularised) {
-  double *diag = DBUF(dn, diag, double), *dinv = DBUF(dn, dinv, double);
-  unsigned char *dropped = DBUF(dn, dropped, unsigned char);
-  if (!(akk > DBL_MIN) || !(d > pivot_tol * akk)) {
-    dropped[k] = 1;
-    diag[k] = 0.0;
-    (*dependent)++;
-  } else if (d < reg_tol * akk) {
-    dropped[k] = 2;
-    diag[k] = reg_tol * akk;
-    (*regularised)++;
-  } else {
-    dropped[k] = 0;
-    diag[k] = d;
+static inline void judge(pivots *pv, int k, double akk, double d) {
+  if (!(akk > DBL_MIN) || !(d > pv->pivot_tol * akk)) {
+    pv->dropped[k] = 1;
+    pv->dinv[k] = 0.0;
+    pv->dependent++;
+    return;
   }
-  dinv[k] = dropped[k] == 1 ? 0.0 : 1.0 / diag[k];
+  unsigned char drop = 0;
+  if (d < pv->reg_tol * akk) {
+    drop = 2;
+    d = pv->reg_tol * akk;
+    pv->regularised++;
+  }
+  pv->dropped[k] = drop;
+  pv->dinv[k] = 1.0 / d;
 }
 
 /* Factors the loaded PAPᵀ in place in dn->l. Returns the dropped rows'
@@ -239,7 +259,7 @@ static int factor(mr_dense *dn, double pivot_tol, double reg_tol, int *regularis
   const int n = dn->n, *first = DBUF(dn, first, int);
   double *l = DBUF(dn, l, double), *t = DBUF(dn, t, double);
   const double *dinv = DBUF(dn, dinv, double);
-  int dependent = 0;
+  pivots pv = pivots_for(dn, pivot_tol, reg_tol);
   for (int k = 0; k < n; k++) {
     double *lk = l + (size_t)k * LD(n);
     const int fk = first[k];
@@ -252,36 +272,37 @@ static int factor(mr_dense *dn, double pivot_tol, double reg_tol, int *regularis
       lk[j] = ljk;
       d -= ljk * s;
     }
-    judge(dn, k, lk[k], d, pivot_tol, reg_tol, &dependent, regularised);
+    judge(&pv, k, lk[k], d);
   }
-  return dependent;
+  *regularised = pv.regularised;
+  return pv.dependent;
 }
 
 /* factor() over the plan: only L's entries, and in each sum only the
  * products of two entries, in minus_dot()'s order. A product it leaves
  * out has a structural zero (+0: L_kj = t_j d_j⁻¹ with t_j an untouched
  * +0), so it is ±0, and the sums, which start at A's numbers or +0 and
- * never reach −0, gain nothing from it: the same bits. A is read in
- * place, not loaded. */
-static int factor_plan(mr_dense *dn, const double *val, double pivot_tol, double reg_tol,
+ * never reach −0, gain nothing from it: the same bits. A is read from
+ * a, the copy of A's numbers with +0 after them (plan_pattern), not
+ * loaded into L. */
+static int factor_plan(mr_dense *dn, const double *a, double pivot_tol, double reg_tol,
                        int *regularised) {
   const int n = dn->n, *p = DBUF(dn, plan, const int);
   double *l = DBUF(dn, l, double), *t = DBUF(dn, t, double);
   const double *dinv = DBUF(dn, dinv, double);
-  int dependent = 0;
+  pivots pv = pivots_for(dn, pivot_tol, reg_tol);
   t[n] = 0.0;
   for (int k = 0; k < n; k++) {
     double *lk = l + (size_t)k * LD(n);
-    const int entries = p[0];
-    const double akk = p[1] >= 0 ? val[p[1]] : 0.0;
+    const int *const row_end = p + p[0];
+    const double akk = a[p[1]];
     double d = akk;
     lk[k] = akk; /* as load() leaves it: bound_suffices() reads it */
-    p += 2;
-    for (int e = 0; e < entries; e++) {
-      const int j = p[0], *m = p + 3, *end = m + 2 * p[2];
-      const double *lj = l + (size_t)j * LD(n);
-      double s = p[1] >= 0 ? val[p[1]] : 0.0, odd = 0.0;
-      for (; m < end; m += 2) {
+    for (p += 2; p < row_end;) {
+      const int j = p[0], *const next = p + p[3];
+      const double *lj = l + p[1];
+      double s = a[p[2]], odd = 0.0;
+      for (const int *m = p + 4; m < next; m += 2) {
         s -= t[m[0]] * lj[m[0]];
         odd -= t[m[1]] * lj[m[1]];
       }
@@ -290,11 +311,12 @@ static int factor_plan(mr_dense *dn, const double *val, double pivot_tol, double
       t[j] = s;
       lk[j] = ljk;
       d -= ljk * s;
-      p = end;
+      p = next;
     }
-    judge(dn, k, akk, d, pivot_tol, reg_tol, &dependent, regularised);
+    judge(&pv, k, akk, d);
   }
-  return dependent;
+  *regularised = pv.regularised;
+  return pv.dependent;
 }
 
 /* Both sweeps take L's row k two entries at a time. A row of odd length
@@ -394,13 +416,16 @@ static void factor_unless_kept(mr_dense *dn, const mr_solve_def *o, const mr_csr
     return;
   }
   r->regularised = 0;
+  /* Before the factor: the plan's factor reads A here, and the +0 after
+   * it for the numbers A does not store (plan_pattern). */
+  memcpy(kept, A->val, nnz * sizeof *kept);
+  kept[nnz] = 0.0;
   if (dn->n_plan >= 0) {
-    r->dependent = factor_plan(dn, A->val, o->pivot_tol, o->reg_tol, &r->regularised);
+    r->dependent = factor_plan(dn, kept, o->pivot_tol, o->reg_tol, &r->regularised);
   } else {
     load(dn, A);
     r->dependent = factor(dn, o->pivot_tol, o->reg_tol, &r->regularised);
   }
-  memcpy(kept, A->val, nnz * sizeof *kept);
   dn->factors++;
   dn->kept_nnz = nnz;
   dn->kept_pivot = o->pivot_tol;
