@@ -96,7 +96,7 @@ static ref_out ref_solve(const mr_csr *A, const int *perm, const mr_solve_def *o
 /* Entries of the plan that A leaves empty and the factor fills in: they
  * read the +0 after A's nnz numbers. */
 static int plan_fill(const mr_dense *dn, int nnz) {
-  const int *p = dn->plan.p;
+  const int *p = (const int *)dn->plan.p + 1; /* plan[0]: where the sweeps' lists start */
   int fill = 0;
   for (int k = 0; k < dn->n; k++) {
     const int *row_end = p + p[0];

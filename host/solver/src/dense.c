@@ -58,7 +58,7 @@ int mr_dense_reserve(mr_dense *d, int rows) {
       mr_buf_reserve(&d->dropped, n, 1) || mr_buf_reserve(&d->plan, plan_room(n), si) ||
       mr_buf_reserve(&d->mark, n * n, 1) || mr_buf_reserve(&d->aq, 3 * n, si) ||
       mr_buf_reserve(&d->place, n * (n + 1), si) || mr_buf_reserve(&d->zero, n * (n + 1) / 2, si) ||
-      mr_buf_reserve(&d->y, n, sd) || mr_buf_reserve(&d->aval, n * n + 1, sd))
+      mr_buf_reserve(&d->y, n + 1, sd) || mr_buf_reserve(&d->aval, n * n + 1, sd))
     return MR_SOLVE_ERR_NOMEM;
   d->room = rows;
   return 0;
@@ -114,6 +114,39 @@ static int plan_entry(const unsigned char *ink, const unsigned char *inj, int n,
   return out[3];
 }
 
+/* The triangular sweeps' lists, after the factor's plan: for each row k,
+ * the columns j of L's pattern (mark, n × n bytes) split as the envelope
+ * walk splits its sums, by the parity of j − f_k, and interleaved in
+ * pairs padded with n; the pair count before and after them, so that the
+ * backward sweep finds each row's start from its end. A place of the
+ * envelope outside the pattern holds +0, and the walk's sums, which start
+ * at b's numbers or +0 and are never −0 but where b_k is (which s + odd
+ * then makes +0), are the same bits without its product. Returns the
+ * plan's ints, or −1 past its room. tmp: 2n ints. */
+static int plan_sweeps(const mr_dense *dn, const unsigned char *mark, int *plan, int np, int room,
+                       int *tmp) {
+  const int n = dn->n, *first = DBUF(dn, first, const int);
+  int *od = tmp + n;
+  for (int k = 0; k < n; k++) {
+    const unsigned char *ink = mark + (size_t)k * (size_t)n;
+    int ne = 0, no = 0;
+    for (int j = first[k]; j < k; j++) {
+      if (!ink[j]) continue;
+      if ((j - first[k]) & 1)
+        od[no++] = j;
+      else
+        tmp[ne++] = j;
+    }
+    const int pairs = ne > no ? ne : no;
+    if (np + 2 * pairs + 2 > room) return -1;
+    plan[np] = pairs;
+    interleave(tmp, ne, od, no, n, plan + np + 1);
+    np += 2 * pairs + 1;
+    plan[np++] = pairs;
+  }
+  return np;
+}
+
 /* The factor's plan, made with the pattern: L's symbolic pattern in the
  * dense order (L_kj is an entry when A_kj is or when rows k and j share an
  * entry left of j), and for each entry the products its sum makes, in
@@ -129,7 +162,7 @@ static int plan_pattern(mr_dense *dn, const mr_csr *A, const int *iperm) {
   const int room = (int)plan_room((size_t)n), nnz = A->row_ptr[n];
   int *plan = DBUF(dn, plan, int), *aq = DBUF(dn, aq, int), *tmp = aq + n;
   unsigned char *mark = DBUF(dn, mark, unsigned char);
-  int np = 0;
+  int np = 1;
   for (int k = 0; k < n; k++) {
     const int fk = first[k];
     unsigned char *ink = mark + (size_t)k * (size_t)n;
@@ -150,22 +183,19 @@ static int plan_pattern(mr_dense *dn, const mr_csr *A, const int *iperm) {
       np += w;
     }
   }
+  plan[0] = np;
+  np = plan_sweeps(dn, mark, plan, np, room, tmp);
+  if (np < 0) return -1;
   dn->n_plan = np;
   return 0;
 }
 
-/* Each row's envelope in L set to 0 for the plan's factor: the places
- * it leaves alone then hold +0, as the envelope walk would leave them
- * (the triangular solves walk the envelope), and column n is the padding
- * products' 0. The factor writes every place of L's pattern. */
-static void clear_envelope(mr_dense *dn) {
-  const int n = dn->n, *first = DBUF(dn, first, const int);
+/* Column n of L, the padding products' 0 (the plan's factor writes every
+ * place of L's pattern, and its sweeps read no other). */
+static void clear_padding(mr_dense *dn) {
+  const int n = dn->n;
   double *l = DBUF(dn, l, double);
-  for (int k = 0; k < n; k++) {
-    double *lk = l + (size_t)k * LD(n);
-    memset(lk + first[k], 0, (size_t)(k - first[k]) * sizeof *lk);
-    lk[n] = 0.0;
-  }
+  for (int k = 0; k < n; k++) l[(size_t)k * LD(n) + (size_t)n] = 0.0;
 }
 
 /* The envelope walk's share: where each entry of A's lower triangle and
@@ -287,7 +317,7 @@ static int factor(mr_dense *dn, double pivot_tol, double reg_tol, int *regularis
  * loaded into L. */
 static int factor_plan(mr_dense *dn, const double *a, double pivot_tol, double reg_tol,
                        int *regularised) {
-  const int n = dn->n, *p = DBUF(dn, plan, const int);
+  const int n = dn->n, *p = DBUF(dn, plan, const int) + 1;
   double *l = DBUF(dn, l, double), *t = DBUF(dn, t, double);
   const double *dinv = DBUF(dn, dinv, double);
   pivots pv = pivots_for(dn, pivot_tol, reg_tol);
@@ -328,8 +358,7 @@ static int factor_plan(mr_dense *dn, const double *a, double pivot_tol, double r
  * pair's two loads come before either store, so that the compiler makes
  * them one vector operation: the loop has no odd tail, and costs about half
  * of one taking an entry at a time (rows are 4 entries long on average). */
-static void solve_factored(const void *factored, const double *b, double *x) {
-  const mr_dense *dn = factored;
+static void solve_envelope(const mr_dense *dn, const double *b, double *x) {
   const int n = dn->n, *perm = dn->perm, *first = DBUF(dn, first, const int);
   const double *l = DBUF(dn, l, const double), *dinv = DBUF(dn, dinv, const double);
   double *restrict y = DBUF(dn, y, double), *restrict z = DBUF(dn, t, double);
@@ -360,6 +389,51 @@ static void solve_factored(const void *factored, const double *b, double *x) {
       z[m + 1] = z1 - a1 * zk;
     }
   }
+}
+
+/* The sweeps over L's pattern alone (plan_sweeps): the envelope walk's
+ * bits. Each row waits only for the rows its entries name, not for every
+ * row of its envelope, so rows of different branches of the elimination
+ * tree overlap; the envelope walk made each row wait for the one before. */
+static void solve_pattern(const mr_dense *dn, const double *b, double *x) {
+  const int n = dn->n, *perm = dn->perm, *plan = DBUF(dn, plan, const int);
+  const int *sweep = plan + plan[0];
+  const double *l = DBUF(dn, l, const double), *dinv = DBUF(dn, dinv, const double);
+  double *restrict y = DBUF(dn, y, double), *restrict z = DBUF(dn, t, double);
+  y[n] = 0.0;
+  const int *q = sweep;
+  for (int k = 0; k < n; k++) {
+    const double *restrict lk = l + (size_t)k * LD(n);
+    const int *m = q + 1, *const end = m + 2 * q[0];
+    double s = b[perm[k]], odd = 0.0;
+    for (; m < end; m += 2) {
+      s -= lk[m[0]] * y[m[0]];
+      odd -= lk[m[1]] * y[m[1]];
+    }
+    const double yk = s + odd;
+    y[k] = yk;
+    z[k] = yk * dinv[k];
+    q = end + 1;
+  }
+  for (int k = n - 1; k >= 0; k--) {
+    const double *restrict lk = l + (size_t)k * LD(n);
+    const double zk = z[k];
+    const int *const end = q - 1, *m = end - 2 * end[0];
+    x[perm[k]] = zk;
+    for (; m < end; m += 2) {
+      z[m[0]] -= lk[m[0]] * zk;
+      z[m[1]] -= lk[m[1]] * zk;
+    }
+    q = end - 2 * end[0] - 1;
+  }
+}
+
+static void solve_factored(const void *factored, const double *b, double *x) {
+  const mr_dense *dn = factored;
+  if (dn->n_plan >= 0)
+    solve_pattern(dn, b, x);
+  else
+    solve_envelope(dn, b, x);
 }
 
 /* γ_m = m u / (1 − m u), the rounding error bound of m operations; u is
@@ -468,7 +542,7 @@ static void keep_plan(mr_ldlt *f, const mr_dense *dn) {
  * envelope walk's load lists. */
 static void pattern_work(mr_ldlt *f, mr_dense *dn, const mr_csr *A) {
   if (take_plan(f, dn)) {
-    clear_envelope(dn);
+    clear_padding(dn);
     return;
   }
   dn->plans++;
@@ -478,7 +552,7 @@ static void pattern_work(mr_ldlt *f, mr_dense *dn, const mr_csr *A) {
     place_pattern(dn, A, f->flag.p);
     return;
   }
-  clear_envelope(dn);
+  clear_padding(dn);
   keep_plan(f, dn);
 }
 

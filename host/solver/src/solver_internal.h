@@ -84,10 +84,11 @@ typedef struct mr_ldlt_kept {
 #define MR_LDLT_KEPT_MAX_N 128
 /* The room a kept slot has for the dense factor's plan, in ints, for
  * n rows (only up to the dense path's MR_SOLVE_DENSE_ROWS_MAX): the
- * stick figure's and the puppet's plans take at most 32 ints a row (28,
- * with 48n + 64, before each entry held row j's place in l); a plan that
- * needs more is made again each time its analysis comes back into use. 32 KiB a slot, 4 MiB in all, once reserved for 128 rows (the
- * arrays grow by doubling). */
+ * benchmark's puppets' plans, the triangular sweeps' lists included,
+ * take at most 44 ints a row (the humanoid's; 28 with neither row j's
+ * place in l nor the sweeps' lists); a plan that needs more is made again
+ * each time its analysis comes back into use. 32 KiB a slot, 4 MiB in
+ * all, once reserved for 128 rows (the arrays grow by doubling). */
 #define MR_DENSE_KEPT_PLAN_ROOM(n) (56 * (size_t)(n) + 64)
 
 /* The dense LDLᵀ's factor (dense.c): L row-major, n × n, row k used from
@@ -102,9 +103,10 @@ typedef struct mr_dense {
   unsigned long clock; /* the mr_ldlt clock the pattern work was done at */
   const int *perm;     /* the order factored, new → old (the analysis' dperm) */
   mr_buf l, first, t, dinv, dropped;
-  /* plan: the factor's program (dense.c, plan_pattern), n_plan ints, or
-   * n_plan < 0 when it needs more than its room and the factor walks the
-   * envelope instead; mark: L's pattern as n × n bytes and aq: 3n ints,
+  /* plan: the factor's program (dense.c, plan_pattern) from plan[1] on,
+   * then the triangular sweeps' lists from plan[plan[0]] on, n_plan ints
+   * in all, or n_plan < 0 when it needs more than its room and the factor
+   * and the sweeps walk the envelope instead; mark: L's pattern as n × n bytes and aq: 3n ints,
    * scratch of the plan. l's rows are n + 1 long and t n + 1: the plan
    * pads its pairs with index n, where both are 0. */
   mr_buf plan, mark, aq;
