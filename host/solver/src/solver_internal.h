@@ -129,6 +129,12 @@ typedef struct mr_dense {
   unsigned long plans;   /* plans made (not taken from a kept slot): for tests */
 } mr_dense;
 
+/* dense.c and dense_plan.c: a buffer of mr_dense as its array, and L's
+ * row stride (column n is always 0, so that the plan's padding products,
+ * index n with t_n = y_n = 0, add nothing). */
+#define MR_DENSE_BUF(d, name, type) ((type *)(d)->name.p)
+#define MR_DENSE_LD(n)              ((size_t)(n) + 1u)
+
 /* The C LDLᵀ's state. The ordering and the symbolic factorisation depend
  * only on A's pattern, so they are kept with a copy of the pattern they
  * were computed for: the one in use below, and up to MR_LDLT_KEPT recent
@@ -213,6 +219,13 @@ int mr_dense_solve(mr_ldlt *f, const mr_solve_def *o, const mr_csr *A, const dou
                    double b_norm, double *x, mr_solve_result *r);
 int mr_dense_reserve(mr_dense *d, int rows);
 void mr_dense_free(mr_dense *d);
+/* dense_plan.c: the plan's room in ints for n rows; the pattern's share of
+ * the work for the analysis in use (its kept plan, or a plan made and kept,
+ * or the envelope walk's load lists when a plan outgrows its room); and
+ * that walk's load of PAPᵀ's lower triangle into L. */
+size_t mr_dense_plan_room(size_t n);
+void mr_dense_pattern_work(mr_ldlt *f, mr_dense *dn, const mr_csr *A);
+void mr_dense_load(mr_dense *dn, const mr_csr *A);
 /* The fill-reducing ordering the LDLᵀ uses, into f->perm (new → old) and
  * f->iperm, and the nonzeros of L below the diagonal it gives; and the
  * order with the least dense-factor work into f->dperm. Uses only f's
