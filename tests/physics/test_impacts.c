@@ -237,6 +237,97 @@ static void only_impacts_faster_than_the_rest_speed_bounce_and_rub(void **state)
   }
 }
 
+/* Where a ball leaves the rod point it struck: velocity of the ball less
+ * the point's, (1 − s) v_a + s v_b at s = 1/4, and the normal n from the
+ * point's sphere to the ball. */
+static void off_the_point(const mr_world *w, int ball_id, const int rod[2], double rel[3],
+                          double n[3]) {
+  double xb[3], vb[3], xa[3], va[3], xc[3], vc[3];
+  mr_world_particle_state(w, ball_id, xb, vb);
+  mr_world_particle_state(w, rod[0], xa, va);
+  mr_world_particle_state(w, rod[1], xc, vc);
+  double len = 0.0;
+  for (int k = 0; k < 3; k++) {
+    rel[k] = vb[k] - (0.75 * va[k] + 0.25 * vc[k]);
+    n[k] = xb[k] - (0.75 * xa[k] + 0.25 * xc[k]);
+    len += n[k] * n[k];
+  }
+  for (int k = 0; k < 3; k++) n[k] /= sqrt(len);
+}
+
+/* A ball falls at 2 m/s onto a rod's sphere a quarter of the way along it,
+ * sliding across it at 1 m/s, while the rod's lighter end (1 kg; the other
+ * 3 kg) rises at 1 m/s: no gravity, restitution 0.5 and friction 1 on both
+ * parts. The point struck moves as (1 − s) v_a + s v_b with s = 1/4, so
+ * the ball must leave that point along the normal at half the speed it
+ * met it with, and friction enough to stop the slide leaves no slip
+ * across the rod there: the impulse had to take the point's velocity with each end's
+ * share, and each end's inverse mass with the square of it. Momentum is
+ * kept. */
+static void a_ball_striking_a_rod_off_its_middle_leaves_the_point_it_strikes(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_PUPPET_COLLISION | MR_EFFECT_CONSTRAINTS;
+  def.drag = 0.0;
+  def.contact_slop = SLOP;
+  /* Short steps: the velocities are read a step after the impulse. */
+  def.dt_initial = def.dt_min = def.dt_max = 1e-3;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  int rod[2], b = ball(w, -0.1, 0.1, -0.02, 0, -2.0, 1.0, 0.02, 0);
+  for (int i = 0; i < 2; i++) {
+    p.position[0] = i ? 0.2 : -0.2;
+    p.velocity[1] = i ? 0.0 : 1.0;
+    p.mass = i ? 3.0 : 1.0;
+    p.puppet = 1;
+    assert_int_equal(mr_world_add_particle(w, &p, &rod[i]), MR_OK);
+  }
+  mr_distance_def d = mr_default_distance_def();
+  d.a = rod[0];
+  d.b = rod[1];
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+  mr_part_def pd = mr_default_part_def();
+  pd.particles = rod;
+  pd.count = 2;
+  pd.radius = 0.02;
+  pd.segment_spheres = 3; /* at s = 1/4, 1/2, 3/4 */
+  pd.friction = 1.0;
+  assert_int_equal(mr_world_add_part(w, &pd, NULL), MR_OK);
+  pd.particles = &b;
+  pd.count = 1;
+  pd.segment_spheres = 0;
+  assert_int_equal(mr_world_add_part(w, &pd, NULL), MR_OK);
+  mr_step_report rep;
+  double before[3], after[3], n[3], unused[3];
+  int hits = 0;
+  while (hits == 0 && mr_world_time(w) < 0.2) {
+    off_the_point(w, b, rod, before, n); /* the step before the impulse ends at the contact */
+    assert_int_equal(mr_world_step(w, &rep), MR_OK);
+    hits += rep.collisions;
+  }
+  assert_int_equal(hits, 1);
+  off_the_point(w, b, rod, after, unused);
+  const double in = before[0] * n[0] + before[1] * n[1] + before[2] * n[2];
+  const double out = after[0] * n[0] + after[1] * n[1] + after[2] * n[2];
+  /* Across the rod (z): along it, the rod's own constraint takes part of
+   * friction's impulse, which friction's mass, that of free particles,
+   * does not see. */
+  const double slip = after[2] - out * n[2];
+  printf("ball off a rod: met the point at %.6f m/s, left it at %.6f, slip %.2g m/s\n", in, out,
+         slip);
+  assert_true(in < -2.5); /* the rod's end rising: faster than the ball's 2 m/s */
+  assert_true(fabs(out + 0.5 * in) < 1e-3);
+  assert_true(fabs(slip) < 1e-3);
+  double vb[3], va[3], vc[3];
+  mr_world_particle_state(w, b, NULL, vb);
+  mr_world_particle_state(w, rod[0], NULL, va);
+  mr_world_particle_state(w, rod[1], NULL, vc);
+  assert_true(fabs(vb[1] + va[1] + 3.0 * vc[1] + 1.0) < 1e-9);
+  assert_true(fabs(vb[2] + va[2] + 3.0 * vc[2] - 1.0) < 1e-9);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(spheres_of_two_puppets_head_on_at_10_m_s),
@@ -247,6 +338,7 @@ int main(void) {
     cmocka_unit_test(particle_hits_floor_glancing_at_10_m_s),
     cmocka_unit_test(puppets_thrown_together_at_5_m_s),
     cmocka_unit_test(only_impacts_faster_than_the_rest_speed_bounce_and_rub),
+    cmocka_unit_test(a_ball_striking_a_rod_off_its_middle_leaves_the_point_it_strikes),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
