@@ -238,9 +238,6 @@ void mr_frame_place_one(mr_world *w, int i) {
   memcpy(&w->v[3 * i], xv + 3, 3 * sizeof *xv);
 }
 
-/* The acceleration of frame particle i, at the time of w->frame_state
- * (computed there when it is at another): ṗ̇ + ω̇ × r + ω × (ω × r), with
- * its velocity v_f + ω × r. */
 /* The point motion of frame particle i at t: its frame's state (the one
  * kept for w->frame_state_t, else worked out into own), the arm r from
  * the frame's origin and ω × r. Returns the state. */
@@ -256,6 +253,9 @@ static const double *point_arm(const mr_world *w, int i, double t, const double 
   return st;
 }
 
+/* The acceleration of frame particle i, at the time of w->frame_state
+ * (computed there when it is at another): p̈ + ω̇ × r + ω × (ω × r), with
+ * its velocity v_f + ω × r. */
 void mr_frame_point_motion(const mr_world *w, int i, double t, const double *x, double v[3],
                            double a[3]) {
   double own[MR_FRAME_STATE], r[3], wr[3], wwr[3], ar[3];

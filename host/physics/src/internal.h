@@ -454,9 +454,9 @@ double mr_taut_gap(const mr_world *w, int string, const double *x);
 double mr_taut_rate(const mr_world *w, int string, const double *x, const double *v);
 int mr_taut_row(mr_world *w, int string, const double *x, const double *v, double *chi,
                 double *chidot, double *jdqd);
-/* eval.c's force solve, which reads each string's geometry and frame-end
- * motion twice at one state (choosing the resting contacts, then building
- * their rows), finds them once: mr_taut_separating() keeps them with the
+/* eval.c's force solve, which read each string's geometry and frame-end
+ * motion three times at one state (the gap and the rate that choose the
+ * resting contacts, then the row), finds them once: mr_taut_separating() keeps them with the
  * string and says whether it is apart and separating faster than
  * `separating` (the gap and rate bits of mr_taut_gap and mr_taut_rate);
  * mr_taut_row_seen() then builds mr_taut_row's row from them, for the

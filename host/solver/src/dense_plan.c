@@ -45,28 +45,38 @@ static int interleave(const int *ev, int ne, const int *od, int no, int n, int *
   return pairs;
 }
 
-/* One entry (k, j) of the plan at out: the m < j where rows k and j of L
- * both have an entry, split as minus_dot() splits its sum from
- * lo = max(f_k, f_j) (even offsets, the last unpaired one among them, in
- * the first chain, odd ones in the second) and interleaved. Returns the
- * ints written, 0 when L_kj is no entry (no such m and none in A: t_j is
- * exactly 0). q: A_kj's index, or the +0 slot's (nnz) for a fill entry.
- * tmp: 2n ints. */
-static int plan_entry(const unsigned char *ink, const unsigned char *inj, int n, int j, int lo,
-                      int q, int nnz, int *out, int *tmp) {
+/* The m in [lo, hi) where both a[m] and b[m] are set, split into the two
+ * chains a sum from lo makes (even offsets from lo in the first, odd ones
+ * in the second) and interleaved into out, padded with n. Returns the
+ * pairs written, and *count (when given) the m found. tmp: 2n ints. */
+static int split(const unsigned char *a, const unsigned char *b, int lo, int hi, int n, int *out,
+                 int *tmp, int *count) {
   int ne = 0, no = 0, *od = tmp + n;
-  for (int m = lo; m < j; m++) {
-    if (!(ink[m] & inj[m])) continue;
+  for (int m = lo; m < hi; m++) {
+    if (!(a[m] & b[m])) continue;
     if ((m - lo) & 1)
       od[no++] = m;
     else
       tmp[ne++] = m;
   }
-  if (ne + no == 0 && q == nnz) return 0;
+  if (count) *count = ne + no;
+  return interleave(tmp, ne, od, no, n, out);
+}
+
+/* One entry (k, j) of the plan at out: the m < j where rows k and j of L
+ * both have an entry, split as minus_dot() splits its sum from
+ * lo = max(f_k, f_j). Returns the ints written, 0 when L_kj is no entry
+ * (no such m and none in A: t_j is exactly 0). q: A_kj's index, or the +0
+ * slot's (nnz) for a fill entry. tmp: 2n ints. */
+static int plan_entry(const unsigned char *ink, const unsigned char *inj, int n, int j, int lo,
+                      int q, int nnz, int *out, int *tmp) {
+  int found;
+  const int pairs = split(ink, inj, lo, j, n, out + 4, tmp, &found);
+  if (found == 0 && q == nnz) return 0;
   out[0] = j;
   out[1] = j * (int)LD(n);
   out[2] = q;
-  out[3] = 4 + 2 * interleave(tmp, ne, od, no, n, out + 4);
+  out[3] = 4 + 2 * pairs;
   return out[3];
 }
 
@@ -82,21 +92,11 @@ static int plan_entry(const unsigned char *ink, const unsigned char *inj, int n,
 static int plan_sweeps(const mr_dense *dn, const unsigned char *mark, int *plan, int np, int room,
                        int *tmp) {
   const int n = dn->n, *first = DBUF(dn, first, const int);
-  int *od = tmp + n;
   for (int k = 0; k < n; k++) {
     const unsigned char *ink = mark + (size_t)k * (size_t)n;
-    int ne = 0, no = 0;
-    for (int j = first[k]; j < k; j++) {
-      if (!ink[j]) continue;
-      if ((j - first[k]) & 1)
-        od[no++] = j;
-      else
-        tmp[ne++] = j;
-    }
-    const int pairs = ne > no ? ne : no;
-    if (np + 2 * pairs + 2 > room) return -1;
+    if (np + (k - first[k]) + 3 > room) return -1; /* the most this row can take */
+    const int pairs = split(ink, ink, first[k], k, n, plan + np + 1, tmp, NULL);
     plan[np] = pairs;
-    interleave(tmp, ne, od, no, n, plan + np + 1);
     np += 2 * pairs + 1;
     plan[np++] = pairs;
   }

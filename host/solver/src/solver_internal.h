@@ -103,12 +103,13 @@ typedef struct mr_dense {
   unsigned long clock; /* the mr_ldlt clock the pattern work was done at */
   const int *perm;     /* the order factored, new → old (the analysis' dperm) */
   mr_buf l, first, t, dinv, dropped;
-  /* plan: the factor's program (dense.c, plan_pattern) from plan[1] on,
-   * then the triangular sweeps' lists from plan[plan[0]] on, n_plan ints
-   * in all, or n_plan < 0 when it needs more than its room and the factor
-   * and the sweeps walk the envelope instead; mark: L's pattern as n × n bytes and aq: 3n ints,
-   * scratch of the plan. l's rows are n + 1 long and t n + 1: the plan
-   * pads its pairs with index n, where both are 0. */
+  /* plan: the factor's program (dense_plan.c, plan_pattern) from plan[1]
+   * on, then the triangular sweeps' lists from plan[plan[0]] on, n_plan
+   * ints in all, or n_plan < 0 when it needs more than its room and the
+   * factor and the sweeps walk the envelope instead; mark: L's pattern as
+   * n × n bytes and aq: 3n ints, scratch of the plan. l's rows are n + 1
+   * long, and t and y n + 1: the plan pads its pairs with index n, where
+   * all three are 0. */
   mr_buf plan, mark, aq;
   int n_plan;
   /* The envelope walk's load: place: per entry of A on or below the
