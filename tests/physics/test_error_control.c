@@ -287,6 +287,18 @@ static void the_estimate_takes_the_step_below_dt_min(void **state) {
   mr_world_destroy(w);
 }
 
+/* A 0.5 kg bob on a 50 N/m string (damping c) from 0.3 m aside, its
+ * estimate on the speed scale alone (error_speed, no length scale); the
+ * world's definition into *def. */
+static mr_world *speed_held_oscillator(double error_speed, double c, mr_world_def *def) {
+  *def = mr_default_world_def();
+  def->effects = 0;
+  def->error_length = 0.0;
+  def->error_speed = error_speed;
+  int bob;
+  return hanging(*def, 0.5, 0.0, 50.0, c, (double[3]){ 0.3, 2.0, 0 }, &bob);
+}
+
 /* A step the estimate cut below dt_min climbs back as a step at dt_min is
  * held (step.c, climb()). A damped oscillator held to 1 mm/s a step starts
  * with an estimate over the threshold at dt_min and decays out of it: 18
@@ -295,12 +307,8 @@ static void the_estimate_takes_the_step_below_dt_min(void **state) {
  * and the estimate aimed at `low`. */
 static void a_step_below_dt_min_climbs_back_to_it(void **state) {
   (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = 0;
-  def.error_length = 0.0;
-  def.error_speed = 1e-3;
-  int bob;
-  mr_world *w = hanging(def, 0.5, 0.0, 50.0, 2.0, (double[3]){ 0.3, 2.0, 0 }, &bob);
+  mr_world_def def;
+  mr_world *w = speed_held_oscillator(1e-3, 2.0, &def);
   int below = 0, steps = 0;
   for (; mr_world_time(w) < 3.0; steps++) {
     assert_int_equal(mr_world_step(w, NULL), MR_OK);
@@ -324,12 +332,8 @@ static void a_step_below_dt_min_climbs_back_to_it(void **state) {
  * measured and kept to the threshold, as with both. */
 static void the_speed_scale_alone_steers_the_step(void **state) {
   (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = 0;
-  def.error_length = 0.0;
-  def.error_speed = 1e-4;
-  int bob;
-  mr_world *w = hanging(def, 0.5, 0.0, 50.0, 0.0, (double[3]){ 0.3, 2.0, 0 }, &bob);
+  mr_world_def def;
+  mr_world *w = speed_held_oscillator(1e-4, 0.0, &def);
   assert_int_equal(mr_world_step_to(w, 1.0, NULL), MR_OK);
   mr_stats st;
   mr_world_stats(w, &st);
