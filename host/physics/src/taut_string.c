@@ -74,7 +74,6 @@ static double rate_of(const double d[3], double len, const double *vp, const dou
 double mr_taut_rate(const mr_world *w, int string, const double *x, const double *v) {
   const mr_string *s = string_at(w, string);
   double d[3], len = geometry(s, x, d), vf[3];
-  if (!(len > 1e-12)) return 0.0;
   mr_frame_point_velocity(w, s->frame_particle, w->taut_t, x, vf);
   return rate_of(d, len, &v[3 * s->puppet_particle], vf);
 }
