@@ -46,16 +46,24 @@ void mr_eval_memo_free(mr_eval_memo *m) {
  * between steps, a projection, an impulse, the string correction, a
  * reset, a frame placed at once, shows in these, and the memo is then not
  * used. */
-static int point_matches(const mr_world *w, const mr_eval_point *m, double t, double h,
-                         const double *x, const double *v) {
+static int same_state(const mr_world *w, const mr_eval_point *m, double t, double h,
+                      const double *x, const double *v) {
   const size_t bytes = (size_t)(3 * w->n) * sizeof(double);
   return m->valid && m->t == t && (!m->used_h || m->h == h) && m->n_frames == w->frames.n &&
          m->n_contacts == w->contacts.n && memcmp(m->x, x, bytes) == 0 &&
          memcmp(m->v, v, bytes) == 0 &&
-         (m->n_frames == 0 || w->n_taut == 0 ||
-          memcmp(m->frames, w->frames.data, (size_t)m->n_frames * sizeof(mr_frame)) == 0) &&
          (m->n_contacts == 0 ||
           memcmp(m->contacts, w->contacts.c, (size_t)m->n_contacts * sizeof(mr_contact)) == 0);
+}
+
+static int same_paths(const mr_world *w, const mr_eval_point *m) {
+  return m->n_frames == 0 || w->n_taut == 0 ||
+         memcmp(m->frames, w->frames.data, (size_t)m->n_frames * sizeof(mr_frame)) == 0;
+}
+
+static int point_matches(const mr_world *w, const mr_eval_point *m, double t, double h,
+                         const double *x, const double *v) {
+  return same_state(w, m, t, h, x, v) && same_paths(w, m);
 }
 
 /* Keeps the evaluation a = f(t, x, v) just made in m. Its arrays grow to
@@ -88,6 +96,7 @@ static void point_keep(mr_world *w, mr_eval_point *m, double t, double h, const 
   m->t = t;
   m->h = h;
   m->used_h = w->eval_used_h;
+  m->system = w->system;
   m->valid = 1;
 }
 
@@ -114,7 +123,13 @@ static int eval_memo(mr_world *w, double t, double h, double *x, double *v, doub
       return 0;
     }
   }
-  if (mr_eval(w, t, h, x, v, a) != 0) return -1;
+  /* The last step's end, its frames on new paths: its system serves
+   * (eval.c). */
+  int again =
+      first && m->last.valid && m->last.system == w->system && same_state(w, &m->last, t, h, x, v)
+          ? mr_eval_new_path(w, t, h, x, v, a)
+          : 0;
+  if (again < 0 || (again == 0 && mr_eval(w, t, h, x, v, a) != 0)) return -1;
   point_keep(w, first ? &m->start : &m->last, t, h, x, v, a);
   return 0;
 }

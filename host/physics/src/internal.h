@@ -141,7 +141,8 @@ enum {
 typedef struct mr_eval_point {
   int valid, used_h, n_frames, n_contacts;
   int cap_n, cap_frames, cap_contacts;
-  double t, h; /* h only matters when used_h (friction's time scale) */
+  double t, h;     /* h only matters when used_h (friction's time scale) */
+  uint64_t system; /* the world's system count just after it was made */
   double *x, *v, *a;
   mr_frame *frames;
   mr_contact *contacts;
@@ -287,6 +288,11 @@ struct mr_world {
 
   mr_eval_memo memo;
   int eval_used_h; /* the last evaluation depended on h (friction rounds ran) */
+  /* system counts the builds of J and the solves; kept_system is its
+   * value when an evaluation left J, b, A and A's factor as its first
+   * round made them (no contact released, no friction round), else 0
+   * (eval.c, mr_eval_new_path). */
+  uint64_t system, kept_system;
 
   mr_stats stats;
   int last_dependent;
@@ -404,6 +410,11 @@ int mr_detect_puppets(mr_world *w, const double *x, const mr_sweep *sw, double g
 /* eval.c: accelerations for a state, eq. 1 and eq. 8, during a step of
  * length h (static friction aims to stop sliding within h/2). */
 int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a);
+/* mr_eval where the last evaluation was made, at the same t, x, v and
+ * contacts, with only a frame's path new: 1 done, 0 when the last
+ * evaluation's system cannot serve (then nothing is changed but the
+ * frames' placing: call mr_eval), −1 on failure. */
+int mr_eval_new_path(mr_world *w, double t, double h, double *x, double *v, double *a);
 int mr_rows_reserve(mr_world *w, int rows);
 /* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda,
  * block by block where the rows fall into blocks (islands.c). */
@@ -465,6 +476,10 @@ int mr_taut_separating(mr_world *w, int string, const double *x, const double *v
                        double separating);
 int mr_taut_row_seen(mr_world *w, int string, const double *v, double *chi, double *chidot,
                      double *jdqd);
+/* mr_taut_row_seen's numbers for a row J already holds
+ * (mr_eval_new_path). */
+void mr_taut_row_again(const mr_world *w, int string, const double *v, double *chi, double *chidot,
+                       double *jdqd);
 /* The time the frame ends of taut strings move at: rates are taken from
  * the frame segment under way at it, ends included (mr_frame_rates). */
 void mr_taut_set_time(mr_world *w, double t);

@@ -87,15 +87,16 @@ int mr_taut_separating(mr_world *w, int string, const double *x, const double *v
          rate_of(m->d, m->len, &v[3 * s->puppet_particle], m->vf) > separating;
 }
 
-/* The row of mr_taut_row from the string's motion m. */
-static int row_of(mr_world *w, const mr_string *s, const mr_taut_motion *m, const double *v,
-                  double *chi, double *chidot, double *jdqd) {
+/* The row's numbers from the string's motion m, J's entry −u into g
+ * when asked. */
+static void numbers_of(const mr_string *s, const mr_taut_motion *m, const double *v, double *g,
+                       double *chi, double *chidot, double *jdqd) {
   const double len = m->len, *af = m->af;
-  double u[3] = { 0, 0, 0 }, g[3];
+  double u[3] = { 0, 0, 0 };
   if (len > 1e-12)
     for (int k = 0; k < 3; k++) u[k] = m->d[k] / len;
-  for (int k = 0; k < 3; k++) g[k] = -u[k];
-  if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, s->puppet_particle, g) != 0) return -1;
+  if (g)
+    for (int k = 0; k < 3; k++) g[k] = -u[k];
   const double *vp = &v[3 * s->puppet_particle];
   double dv[3] = { vp[0] - m->vf[0], vp[1] - m->vf[1], vp[2] - m->vf[2] };
   double rate = u[0] * dv[0] + u[1] * dv[1] + u[2] * dv[2];
@@ -104,6 +105,14 @@ static int row_of(mr_world *w, const mr_string *s, const mr_taut_motion *m, cons
   *jdqd =
       (len > 1e-12 ? -(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2] - rate * rate) / len : 0.0) +
       u[0] * af[0] + u[1] * af[1] + u[2] * af[2];
+}
+
+/* The row of mr_taut_row from the string's motion m. */
+static int row_of(mr_world *w, const mr_string *s, const mr_taut_motion *m, const double *v,
+                  double *chi, double *chidot, double *jdqd) {
+  double g[3];
+  numbers_of(s, m, v, g, chi, chidot, jdqd);
+  if (mr_jac_begin_row(&w->J) < 0 || mr_jac_add(&w->J, s->puppet_particle, g) != 0) return -1;
   return 0;
 }
 
@@ -119,6 +128,12 @@ int mr_taut_row_seen(mr_world *w, int string, const double *v, double *chi, doub
                      double *jdqd) {
   const mr_string *s = string_at(w, string);
   return row_of(w, s, &s->seen, v, chi, chidot, jdqd);
+}
+
+void mr_taut_row_again(const mr_world *w, int string, const double *v, double *chi, double *chidot,
+                       double *jdqd) {
+  const mr_string *s = string_at(w, string);
+  numbers_of(s, &s->seen, v, NULL, chi, chidot, jdqd);
 }
 
 double mr_taut_overlength(const mr_world *w, const double *x) {
