@@ -494,8 +494,10 @@ double mr_taut_overlength(const mr_world *w, const double *x);
 double mr_locate_contact(mr_world *w, double t, double h, int *err);
 
 /* string_correction.c */
-/* 0, or -1 when its work arrays cannot grow (out of memory). */
-int mr_strings_correct(mr_world *w);
+/* 0, or -1 when its work arrays cannot grow (out of memory). deviation:
+ * a bound on the state's constraint deviation the caller has measured
+ * (the step's end error), which spares measuring it again, or NaN. */
+int mr_strings_correct(mr_world *w, double deviation);
 
 /* rigid_group.c */
 mr_status mr_rigid_group_build(mr_world *w, const int *ids, int count, int *first, int *n);

@@ -459,7 +459,10 @@ static mr_status step_once(mr_world *w, mr_step_ctx *c) {
   if (colliders && (st = penetration(w, c)) != MR_OK) return st;
   if ((st = correct(w, c)) != MR_OK) return st;
   accept(w, c);
-  if ((w->has_string_correction || w->n_taut > 0) && mr_strings_correct(w) != 0)
+  /* The rule has measured the deviation of this state already (end_error:
+   * at least the constraints'), unless a landing moved its time. */
+  const double known = w->t == c->t + c->h ? c->error : NAN;
+  if ((w->has_string_correction || w->n_taut > 0) && mr_strings_correct(w, known) != 0)
     return mr_fail(w, MR_ERR_NOMEM, "mr_world_step_to: out of memory (string-length correction)");
   next_dt(w, c);
   return MR_OK;

@@ -67,14 +67,15 @@ static int string_rows(mr_world *w, double limit, int velocities, int r) {
 
 /* Positions with nothing to do: no string over its length, and the
  * constraints within the ATS's lower threshold. Told before any row is
- * built, which most steps need not (Fig. 10: 1 368 of 2 022 rounds). */
-static int positions_hold(mr_world *w, double limit) {
+ * built, which most steps need not (Fig. 10: 1 368 of 2 022 rounds).
+ * `known`: a bound on the constraints' deviation of this state, or NaN. */
+static int positions_hold(mr_world *w, double limit, double known) {
   const int strings = MR_FORCES(w, STRINGS)->n;
   for (int i = 0; i < strings; i++) {
     double u[3], rhs;
     if (string_row(w, i, limit, 0, u, &rhs)) return 0;
   }
-  return mr_constraint_row_count(w) == 0 ||
+  return mr_constraint_row_count(w) == 0 || known <= w->def.deviation_low ||
          !(mr_constraints_deviation(w, w->t, w->x) > w->def.deviation_low);
 }
 
@@ -89,10 +90,10 @@ static int positions_hold(mr_world *w, double limit) {
  * A string pulls and never pushes: a row whose multiplier would lengthen
  * its string is released and the rest solved again, as a contact that
  * would pull is (eq. 9), so the strings act as the inequalities they are. */
-static int project(mr_world *w, double limit, int velocities) {
+static int project(mr_world *w, double limit, int velocities, double known) {
   int strings = MR_FORCES(w, STRINGS)->n;
   memset(w->string_released, 0, (size_t)strings);
-  if (!velocities && positions_hold(w, limit)) return 0;
+  if (!velocities && positions_hold(w, limit, known)) return 0;
   for (int round = 0; round <= strings; round++) {
     int nc = mr_project_rows(w, w->t, w->x, w->v, strings);
     if (nc < 0) return -1;
@@ -117,7 +118,7 @@ static int project(mr_world *w, double limit, int velocities) {
   return 0;
 }
 
-int mr_strings_correct(mr_world *w) {
+int mr_strings_correct(mr_world *w, double deviation) {
   /* The pass counter is the string-correction effect's: it counts only when
    * that effect is declared. A world of taut strings without it comes here
    * too, to hold its taut strings at rest length, but that hold is the
@@ -135,9 +136,9 @@ int mr_strings_correct(mr_world *w) {
   const double limit = 1.0 + w->def.string_max_stretch;
   int moved = 0;
   for (int it = 0; it < w->def.string_correction_iterations; it++) {
-    if (project(w, limit, 0) <= 0) break;
+    if (project(w, limit, 0, moved ? NAN : deviation) <= 0) break;
     moved = 1;
   }
-  if (moved) project(w, limit, 1);
+  if (moved) project(w, limit, 1, NAN);
   return 0;
 }
