@@ -305,10 +305,6 @@ static void select_resting_contacts(mr_world *w, const double *x, const double *
   }
 }
 
-/* Stages 3 and 4: rows and the solve of eq. 8. Resting contacts push and
- * never pull (§5.4, eq. 13b): a contact whose multiplier comes out negative
- * is released and the system solved again. Returns the number of rows (0:
- * nothing to solve), or −1. */
 /* Releases the contacts whose multiplier came out negative: whether any
  * was. */
 static int release_pulling(mr_world *w, int rows) {
@@ -323,8 +319,11 @@ static int release_pulling(mr_world *w, int rows) {
   return released;
 }
 
-/* The rounds of the solve from `round` on; *first: round 0 released
- * nothing. */
+/* Stages 3 and 4: rows and the solve of eq. 8. Resting contacts push and
+ * never pull (§5.4, eq. 13b): a contact whose multiplier comes out negative
+ * is released and the system solved again. The rounds from `round` on;
+ * *first is cleared when one releases a contact. Returns the number of
+ * rows (0: nothing to solve), or −1. */
 static int solve_eq8(mr_world *w, double t, const double *x, const double *v, const double *a,
                      int round, int *first) {
   int rows = 0;
