@@ -321,11 +321,10 @@ static int release_pulling(mr_world *w, int rows) {
 
 /* Stages 3 and 4: rows and the solve of eq. 8. Resting contacts push and
  * never pull (§5.4, eq. 13b): a contact whose multiplier comes out negative
- * is released and the system solved again. The rounds from `round` on;
- * *first is cleared when one releases a contact. Returns the number of
- * rows (0: nothing to solve), or −1. */
+ * is released and the system solved again. The rounds from `round` on.
+ * Returns the number of rows (0: nothing to solve), or −1. */
 static int solve_eq8(mr_world *w, double t, const double *x, const double *v, const double *a,
-                     int round, int *first) {
+                     int round) {
   int rows = 0;
   for (; round <= w->contacts.n; round++) {
     rows = rows_build(w, t, x, v, a);
@@ -333,7 +332,6 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
     rhs_eq8(w, w->distances.n, rows, a);
     if (mr_solve_rows(w, 1) != 0) return -1;
     if (!release_pulling(w, rows)) break;
-    *first = 0;
   }
   return rows;
 }
@@ -393,15 +391,14 @@ static void add_constraint_forces(mr_world *w, int rows, double *a) {
   }
 }
 
-/* After the solve's rounds: friction, then the constraint forces; the
- * system is kept for mr_eval_new_path when its first round stands. */
-static int finish(mr_world *w, double h, int rows, int first, const double *x, const double *v,
-                  double *a) {
+/* After the solve's rounds: friction, then the constraint forces. The
+ * system is kept for mr_eval_new_path unless friction rounds changed b. */
+static int finish(mr_world *w, double h, int rows, const double *x, const double *v, double *a) {
   /* Static friction aims at stopping within h/2: only then does the
    * answer depend on h (integrate.c's memo). */
   w->eval_used_h = has_friction(w, rows);
   if (w->eval_used_h && friction_rounds(w, h, rows, x, v, a) != 0) return -1;
-  if (first && !w->eval_used_h) w->kept_system = w->system;
+  if (!w->eval_used_h) w->kept_system = w->system;
   add_constraint_forces(w, rows, a);
   return 0;
 }
@@ -414,13 +411,15 @@ int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a) {
   applied_forces(w, t, x, v, a); /* 2 */
   if (!w->has_solve) return 0;
   select_resting_contacts(w, x, v);
-  int first = 1, rows = solve_eq8(w, t, x, v, a, 0, &first); /* 3, 4 */
+  int rows = solve_eq8(w, t, x, v, a, 0); /* 3, 4 */
   if (rows <= 0) return rows;
-  return finish(w, h, rows, first, x, v, a);
+  return finish(w, h, rows, x, v, a);
 }
 
 /* Whether the kept rows stand for the constraints and then the contacts
- * now selected, in order. */
+ * now selected, in order: not when the last evaluation released one (its
+ * rows are those of its last round), nor should the selection read the
+ * new path's rates differently to the last bit. */
 static int rows_selected(const mr_world *w, int rows) {
   int r = first_contact_row(w, rows);
   for (int c = 0; c < w->contacts.n; c++)
@@ -453,11 +452,8 @@ int mr_eval_new_path(mr_world *w, double t, double h, double *x, double *v, doub
   }
   rhs_eq8(w, w->distances.n, rows, a);
   if (mr_solve_rows(w, 0) != 0) return -1;
-  int first = 1, done = rows;
-  if (release_pulling(w, rows)) {
-    first = 0;
-    done = solve_eq8(w, t, x, v, a, 1, &first);
-    if (done <= 0) return done < 0 ? -1 : 1;
-  }
-  return finish(w, h, done, first, x, v, a) != 0 ? -1 : 1;
+  int done = rows;
+  if (release_pulling(w, rows) && (done = solve_eq8(w, t, x, v, a, 1)) <= 0)
+    return done < 0 ? -1 : 1;
+  return finish(w, h, done, x, v, a) != 0 ? -1 : 1;
 }

@@ -289,9 +289,9 @@ struct mr_world {
   mr_eval_memo memo;
   int eval_used_h; /* the last evaluation depended on h (friction rounds ran) */
   /* system counts the builds of J and the solves; kept_system is its
-   * value when an evaluation left J, b, A and A's factor as its first
-   * round made them (no contact released, no friction round), else 0
-   * (eval.c, mr_eval_new_path). */
+   * value when an evaluation left J, b, A and A's factor as its last
+   * round made them (no friction round after it), else 0 (eval.c,
+   * mr_eval_new_path). */
   uint64_t system, kept_system;
 
   mr_stats stats;
