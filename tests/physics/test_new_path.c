@@ -4,7 +4,9 @@
  * evaluation gives, and must refuse whenever that system is not the one
  * the point would build: after a build or a solve in between, after an
  * evaluation whose rounds released a contact, and after friction rounds.
- * These are read through the library's internal header. */
+ * And the memo of evaluations (integrate.c) it sits behind must not take
+ * a point evaluated under other contacts for this one. These are read
+ * through the library's internal header. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -174,12 +176,50 @@ static void a_system_after_friction_rounds_is_refused(void **state) {
   assert_true(friction && !released);
 }
 
+/* The memo (integrate.c) keeps an evaluation with the contacts it held:
+ * a bob swinging at its string's length over a floor at its height, one
+ * step held by the string alone, the next by the floor alone. The state
+ * where the second starts is the first's end, evaluated there, but under
+ * the other contact: it is evaluated again, and the step comes out as the
+ * same step taken with nothing kept. */
+static void a_memo_point_under_other_contacts_is_not_reused(void **state) {
+  (void)state;
+  double x1[2][3 * N], v1[2][3 * N], x2[2][3 * N], v2[2][3 * N], err;
+  for (int kept = 0; kept < 2; kept++) {
+    rig r;
+    make_rig(&r, 1.0, 0, 0.0);
+    mr_world *w = r.w;
+    mr_plane_def floor = mr_default_plane_def();
+    floor.offset = 1.0; /* under the bob, as it hangs */
+    floor.friction = 0.0;
+    assert_int_equal(mr_world_add_plane(w, &floor, NULL), MR_OK);
+    assert_int_equal(
+        mr_world_set_particle_state(w, 1, (double[3]){ 0, 1, 0 }, (double[3]){ 0.8, 0, 0 }), MR_OK);
+    assert_int_equal(mr_world_ensure_ready(w), 0);
+    const double h = 0.01;
+    w->contacts.n = 0;
+    assert_int_equal(mr_contact_push(&w->contacts, MR_CONTACT_STRING, 0, -1, 0.0, 0.0), 0);
+    assert_int_equal(mr_world_contact_capacity(w, w->contacts.n), 0);
+    at_state(&r);
+    assert_int_equal(mr_integrate(w, 0.0, h, r.x, r.v, x1[kept], v1[kept], &err), 0);
+    w->contacts.n = 0;
+    assert_int_equal(mr_contact_push(&w->contacts, MR_CONTACT_PLANE, 1, 1, 0.0, 0.0), 0);
+    if (!kept) w->memo.valid = 0;
+    assert_int_equal(mr_integrate(w, h, h, x1[kept], v1[kept], x2[kept], v2[kept], &err), 0);
+    mr_world_destroy(w);
+  }
+  assert_memory_equal(x1[0], x1[1], sizeof x1[0]);
+  assert_memory_equal(x2[0], x2[1], sizeof x2[0]);
+  assert_memory_equal(v2[0], v2[1], sizeof v2[0]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(on_a_new_path_the_kept_system_gives_the_fresh_bits),
     cmocka_unit_test(a_build_or_a_solve_in_between_is_refused),
     cmocka_unit_test(a_system_after_a_released_contact_is_refused),
     cmocka_unit_test(a_system_after_friction_rounds_is_refused),
+    cmocka_unit_test(a_memo_point_under_other_contacts_is_not_reused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
