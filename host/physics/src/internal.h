@@ -412,8 +412,9 @@ int mr_detect_puppets(mr_world *w, const double *x, const mr_sweep *sw, double g
 int mr_eval(mr_world *w, double t, double h, double *x, double *v, double *a);
 /* mr_eval where the last evaluation was made, at the same t, x, v and
  * contacts, with only a frame's path new: 1 done, 0 when the last
- * evaluation's system cannot serve (then nothing is changed but the
- * frames' placing: call mr_eval), −1 on failure. */
+ * evaluation's system cannot serve (a, the frames' placing and the
+ * contacts' selection may then be written: call mr_eval, which writes
+ * them all again), −1 on failure. */
 int mr_eval_new_path(mr_world *w, double t, double h, double *x, double *v, double *a);
 int mr_rows_reserve(mr_world *w, int rows);
 /* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda,

@@ -255,9 +255,11 @@ static int estimating(const mr_world *w) {
 }
 
 /* Below dt_min, where only an estimate over `high` can have put it, a
- * step the rule would hold there climbs back as a step at dt_min is held:
- * the bound keeps any estimate up to `high` at dt_min, and the aim at
- * `low` never binds there. Held to `low` below it, with the deviation's
+ * step the rule accepts climbs back as a step at dt_min is held: the
+ * bound keeps any estimate up to `high` at dt_min, and the aim at `low`
+ * never binds there. (A step accepted over `high` is at the floor, where
+ * the aim below clamps to it; after a located contact next_dt doubles
+ * instead.) Held to `low` below it, with the deviation's
  * dead band keeping Δt, the step crept back by fourth roots: 6 093 of
  * Fig. 10's 8 670 steps ran under dt_min, one stretch of 20 at 8.7 ms with
  * estimates under 10⁻³. So the estimate may lengthen the step towards a
@@ -288,7 +290,7 @@ static enum verdict ats_decision(mr_world *w, mr_step_ctx *c) {
     if (estimating(w)) {
       mr_ats_params aim = ats_params(w);
       c->dec.dt_next = fmin(c->dec.dt_next, mr_ats_aim(&aim, c->asked, c->int_error));
-      if (c->asked < aim.dt_min && !(c->int_error > ats.high) && !w->recovering && !c->located)
+      if (c->asked < aim.dt_min && !w->recovering)
         c->dec.dt_next = fmax(c->dec.dt_next, climb(&ats, c));
     }
     return TRY_ACCEPT;
