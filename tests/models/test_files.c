@@ -26,7 +26,7 @@ static mr_model_def file_def(const char *path) {
   mr_model_def d;
   memset(&d, 0, sizeof d);
   d.shape = MR_SHAPE_FILE;
-  snprintf(d.path, sizeof d.path, "%s", path);
+  assert_true(snprintf(d.path, sizeof d.path, "%s", path) < (int)sizeof d.path);
   d.scale[0] = d.scale[1] = d.scale[2] = 1;
   d.place = mr_pose_identity();
   return d;

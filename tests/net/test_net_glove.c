@@ -272,7 +272,8 @@ static void make_ca(const char *dir, const char *name) {
  * *said. */
 static int read_tls(const char *dir, const tb_broker *b, const char *query, char **said) {
   char url[700];
-  snprintf(url, sizeof url, "mqtts://127.0.0.1:%d/glove/4%s", b->port, query);
+  assert_true(snprintf(url, sizeof url, "mqtts://127.0.0.1:%d/glove/4%s", b->port, query) <
+              (int)sizeof url);
   pid_t p = start_reader(dir, url, "0.3", "tls");
   int st = tt_wait(p, 30);
   *said = read_in(dir, "tls.err");
