@@ -98,10 +98,52 @@ static void only_a_string_slack_at_the_start_is_located(void **state) {
   assert_true(cut < 0.01 && trials >= 1);
 }
 
+/* The end state handed to the search says the string went through, but
+ * the bob, slack at the start and flying up (no gravity here), never
+ * reaches its length: every trial comes back short of it, and the
+ * bracket's two values stay far apart as it narrows, so no trial lands
+ * within the tolerance. The search then stops at the last moment short of
+ * the contact: a cut inside the step, with the state there the one a
+ * step of that length reaches, not the end state it was handed. */
+static void a_search_that_misses_its_tolerance_stops_short(void **state) {
+  (void)state;
+  mr_world *w = bob_on_string(1.0, 1.0);
+  const int bob = 1, n3 = 6;
+  memcpy(w->scratch.x0, w->x, n3 * sizeof(double));
+  memset(w->scratch.v0, 0, n3 * sizeof(double));
+  memcpy(w->x1, w->x, n3 * sizeof(double));
+  memset(w->v1, 0, n3 * sizeof(double));
+  w->scratch.x0[3 * bob + 1] = -0.999;
+  w->scratch.v0[3 * bob + 1] = 0.2;
+  w->x1[3 * bob + 1] = -1.0003;
+  w->v1[3 * bob + 1] = -0.2;
+  w->probe.n = 0;
+  assert_int_equal(mr_contact_push(&w->probe, MR_CONTACT_STRING, 0, -1, 0.0, 0.0), 0);
+  assert_int_equal(mr_world_contact_capacity(w, w->probe.n), 0);
+  int err = 0;
+  const double h = mr_locate_contact(w, 0.0, 0.01, &err);
+  assert_int_equal(err, 0);
+  print_message("cut at %.6f s after %llu trials\n", h,
+                (unsigned long long)w->stats.location_integrations);
+  assert_true(h > 0.0 && h < 0.01);
+  assert_true(w->stats.location_integrations >= 2);
+  double x[6], v[6], x0[6], v0[6];
+  memcpy(x, w->x1, sizeof x);
+  memcpy(v, w->v1, sizeof v);
+  memcpy(x0, w->scratch.x0, sizeof x0);
+  memcpy(v0, w->scratch.v0, sizeof v0);
+  assert_int_equal(mr_integrate(w, 0.0, h, x0, v0, w->x1, w->v1, NULL), 0);
+  assert_memory_equal(x, w->x1, sizeof x);
+  assert_memory_equal(v, w->v1, sizeof v);
+  assert_true(x[3 * bob + 1] > -0.999); /* still short of the length */
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(over_length_is_relative_to_the_rest_length),
     cmocka_unit_test(only_a_string_slack_at_the_start_is_located),
+    cmocka_unit_test(a_search_that_misses_its_tolerance_stops_short),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
