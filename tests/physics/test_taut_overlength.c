@@ -58,9 +58,9 @@ static void over_length_is_relative_to_the_rest_length(void **state) {
 }
 
 /* A step of 10 ms from (y0, v0) to (y1, v1) of the bob, its string probed
- * at the end (step.c): where mr_locate_contact cuts it, and how many
- * trial integrations that took. */
-static double located_at(double y0, double v0, double y1, double v1, uint64_t *trials) {
+ * at the end (step.c): where mr_locate_contact cuts it (*h), the world
+ * left as the search leaves it. */
+static mr_world *searched(double y0, double v0, double y1, double v1, double *h) {
   mr_world *w = bob_on_string(1.0, 1.0);
   const int bob = 1;
   memcpy(w->scratch.x0, w->x, 6 * sizeof(double));
@@ -75,8 +75,16 @@ static double located_at(double y0, double v0, double y1, double v1, uint64_t *t
   assert_int_equal(mr_contact_push(&w->probe, MR_CONTACT_STRING, 0, -1, 0.0, 0.0), 0);
   assert_int_equal(mr_world_contact_capacity(w, w->probe.n), 0);
   int err = 0;
-  const double h = mr_locate_contact(w, 0.0, 0.01, &err);
+  *h = mr_locate_contact(w, 0.0, 0.01, &err);
   assert_int_equal(err, 0);
+  return w;
+}
+
+/* Where the search cuts that step, and how many trial integrations that
+ * took. */
+static double located_at(double y0, double v0, double y1, double v1, uint64_t *trials) {
+  double h;
+  mr_world *w = searched(y0, v0, y1, v1, &h);
   *trials = w->stats.location_integrations;
   mr_world_destroy(w);
   return h;
@@ -107,22 +115,9 @@ static void only_a_string_slack_at_the_start_is_located(void **state) {
  * step of that length reaches, not the end state it was handed. */
 static void a_search_that_misses_its_tolerance_stops_short(void **state) {
   (void)state;
-  mr_world *w = bob_on_string(1.0, 1.0);
-  const int bob = 1, n3 = 6;
-  memcpy(w->scratch.x0, w->x, n3 * sizeof(double));
-  memset(w->scratch.v0, 0, n3 * sizeof(double));
-  memcpy(w->x1, w->x, n3 * sizeof(double));
-  memset(w->v1, 0, n3 * sizeof(double));
-  w->scratch.x0[3 * bob + 1] = -0.999;
-  w->scratch.v0[3 * bob + 1] = 0.2;
-  w->x1[3 * bob + 1] = -1.0003;
-  w->v1[3 * bob + 1] = -0.2;
-  w->probe.n = 0;
-  assert_int_equal(mr_contact_push(&w->probe, MR_CONTACT_STRING, 0, -1, 0.0, 0.0), 0);
-  assert_int_equal(mr_world_contact_capacity(w, w->probe.n), 0);
-  int err = 0;
-  const double h = mr_locate_contact(w, 0.0, 0.01, &err);
-  assert_int_equal(err, 0);
+  double h;
+  mr_world *w = searched(-0.999, 0.2, -1.0003, -0.2, &h);
+  const int bob = 1;
   print_message("cut at %.6f s after %llu trials\n", h,
                 (unsigned long long)w->stats.location_integrations);
   assert_true(h > 0.0 && h < 0.01);
