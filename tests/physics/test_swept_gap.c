@@ -51,15 +51,21 @@ static void random_step(uint64_t *seed, double x0[3], double v0[3], double x1[3]
   }
 }
 
+/* An empty world with the planes' effect. */
+static mr_world *planes_world(void) {
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_PLANES;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  return w;
+}
+
 /* A particle of radius r against a tilted plane: the swept gap is the least
  * gap on the particle's path, and without the bulge the lesser gap at the
  * step's ends (its straight path's least). */
 static void plane_swept_gap_is_the_least_on_the_path(void **state) {
   (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_PLANES;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_world *w = planes_world();
   mr_plane_def pl = mr_default_plane_def();
   pl.normal[0] = 0.3;
   pl.normal[1] = 1.0;
@@ -114,6 +120,39 @@ static void plane_swept_gap_is_the_least_on_the_path(void **state) {
   print_message("symmetric dip: swept gap %.17g, path %.17g\n",
                 mr_contact_swept_gap(w, &on_floor, &sym, 1), want);
   assert_true(fabs(mr_contact_swept_gap(w, &on_floor, &sym, 1) - want) < 1e-15);
+  mr_world_destroy(w);
+}
+
+/* A particle whose position or speed is NaN at a step's end is listed
+ * against the floor, not read as clear of it. */
+static void a_nan_particle_is_listed_against_the_floor(void **state) {
+  (void)state;
+  mr_world *w = planes_world();
+  mr_plane_def pl = mr_default_plane_def();
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.position[1] = 1.0;
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_OK);
+  assert_int_equal(mr_world_ensure_ready(w), 0);
+  double x0[3] = { 0, 1, 0 }, v0[3] = { 0, 0, 0 }, x1[3] = { 0, NAN, 0 }, v1[3] = { 0, 0, 0 };
+  mr_contact_list l = { 0 };
+  assert_int_equal(mr_contacts_detect(w, x0, w->def.contact_slop, &l), 0);
+  assert_int_equal(l.n, 0);
+  assert_int_equal(mr_contacts_detect(w, x1, w->def.contact_slop, &l), 0);
+  assert_int_equal(l.n, 1);
+  const mr_sweep sw = { x0, v0, x1, v1, 0.01 };
+  assert_int_equal(mr_contacts_sweep(w, &sw, -w->def.contact_slop, &l), 0);
+  assert_int_equal(l.n, 1);
+  assert_int_equal(l.c[0].kind, MR_CONTACT_PLANE);
+  const mr_contact c = { MR_CONTACT_PLANE, 0, 0, 0.5, 0.3 };
+  assert_true(isnan(mr_contact_swept_gap(w, &c, &sw, 0)));
+  /* Ends in place, and a NaN speed at one of them: the path between is
+   * unknown. */
+  x1[1] = 1.0;
+  v1[1] = NAN;
+  assert_int_equal(mr_contacts_sweep(w, &sw, -w->def.contact_slop, &l), 0);
+  assert_int_equal(l.n, 1);
+  mr_contact_list_free(&l);
   mr_world_destroy(w);
 }
 
@@ -194,6 +233,13 @@ static void sphere_swept_gap_bounds_the_path_within_the_bulge(void **state) {
   const double xa[6] = { 0, 0, 0, 0.03, 0, 0 }, va[6] = { 5, 0, 0, -5, 1, 0 };
   const mr_sweep still = { xa, va, xa, va, 0.0 };
   assert_true(mr_sphere_pair_swept_gap(w, 0, 1, &still) == 0.03 - rr);
+  /* A NaN end, in place or in speed, makes the gap NaN, never clear. */
+  const double xn[6] = { 0, 0, 0, NAN, 0, 0 }, vn[6] = { 5, 0, 0, -5, NAN, 0 };
+  const mr_sweep to_nan = { xa, va, xn, va, 0.01 }, nan_speed = { xa, va, xa, vn, 0.01 };
+  assert_true(isnan(mr_sphere_pair_swept_gap(w, 0, 1, &to_nan)));
+  assert_true(isnan(mr_sphere_pair_swept_gap(w, 0, 1, &nan_speed)));
+  const mr_contact pair = { MR_CONTACT_SPHERES, 0, 1, 0.0, 0.0 };
+  assert_true(isnan(mr_contact_swept_gap(w, &pair, &to_nan, 0)));
   mr_world_destroy(w);
 }
 
@@ -201,6 +247,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(plane_swept_gap_is_the_least_on_the_path),
     cmocka_unit_test(sphere_swept_gap_bounds_the_path_within_the_bulge),
+    cmocka_unit_test(a_nan_particle_is_listed_against_the_floor),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -59,6 +59,12 @@ static double plane_gap(const mr_world *w, int p, const mr_plane *pl, const doub
   return pl->n[0] * q[0] + pl->n[1] * q[1] + pl->n[2] * q[2] - pl->offset - w->radius[p];
 }
 
+/* The smaller of two gaps, NaN when either is: fmin() would pass over a
+ * NaN end of a step and call it clear. */
+static double least(double a, double b) {
+  return a != a || b != b ? NAN : fmin(a, b);
+}
+
 /* ------------------------------------------------- swept tests (§4.4)
  *
  * Contacts are looked for at a step's ends, yet a body fast enough crosses
@@ -89,7 +95,7 @@ static double bulge_of(const double d0[3], const double d1[3], const double u0[3
     a += da * da;
     b += db * db;
   }
-  return 0.25 * h * sqrt(fmax(a, b));
+  return 0.25 * h * sqrt(a != a || b != b ? NAN : fmax(a, b));
 }
 
 static void leaf_velocity(const mr_leaf *l, const double *v, double out[3]);
@@ -107,6 +113,7 @@ double mr_leaf_bulge(const mr_world *w, const mr_leaf *l, const mr_sweep *sw) {
  * the Hermite cubic with ends f0, f0 + Δ and end slopes A + ..., B (h times
  * the rates less the chord's). */
 static double cubic_min(double f0, double delta, double A, double B) {
+  if (A != A || B != B) return NAN;
   double c1 = delta + A, c2 = -(2.0 * A + B), c3 = A + B;
   double best = fmin(f0, f0 + delta), s[2];
   int n = 0;
@@ -127,7 +134,7 @@ static double cubic_min(double f0, double delta, double A, double B) {
 static double plane_swept_gap(const mr_world *w, int p, const mr_plane *pl, const mr_sweep *sw,
                               int bulge) {
   double g0 = plane_gap(w, p, pl, sw->x0), g1 = plane_gap(w, p, pl, sw->x1);
-  if (!bulge || !(sw->h > 0)) return fmin(g0, g1);
+  if (!bulge || !(sw->h > 0)) return least(g0, g1);
   const double *n = pl->n, *u0 = &sw->v0[3 * p], *u1 = &sw->v1[3 * p];
   double delta = g1 - g0;
   double A = sw->h * (n[0] * u0[0] + n[1] * u0[1] + n[2] * u0[2]) - delta;
@@ -170,7 +177,7 @@ static double spheres_swept_gap(const mr_world *w, const mr_contact *c, const mr
  * step cut to it. What the straight paths leave out, at most that bulge of
  * over-length within a step, is projected back after it (§6.2). */
 static double string_swept_gap(const mr_world *w, int i, const mr_sweep *sw) {
-  return fmin(mr_taut_gap(w, i, sw->x0), mr_taut_gap(w, i, sw->x1));
+  return least(mr_taut_gap(w, i, sw->x0), mr_taut_gap(w, i, sw->x1));
 }
 
 double mr_contact_swept_gap(const mr_world *w, const mr_contact *c, const mr_sweep *sw, int bulge) {
