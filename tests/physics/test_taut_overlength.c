@@ -57,6 +57,27 @@ static void over_length_is_relative_to_the_rest_length(void **state) {
   mr_world_destroy(w);
 }
 
+/* A NaN in a string's end is never read as a string within its length:
+ * its over-length is NaN, which the step rule rejects, and it is listed
+ * as a contact. */
+static void a_nan_string_is_over_and_touching(void **state) {
+  (void)state;
+  mr_world *w = bob_on_string(1.0, 0.5);
+  double x0[6], v0[6] = { 0 };
+  memcpy(x0, w->x, sizeof x0);
+  w->x[3 * 1 + 1] = NAN;
+  assert_true(isnan(mr_taut_overlength(w, w->x)));
+  const mr_sweep sw = { x0, v0, w->x, v0, 0.01 };
+  const mr_contact string = { MR_CONTACT_STRING, 0, -1, 0.0, 0.0 };
+  assert_true(isnan(mr_contact_swept_gap(w, &string, &sw, 1)));
+  mr_contact_list l = { 0 };
+  assert_int_equal(mr_taut_detect(w, w->x, w->def.contact_slop, &l), 0);
+  assert_int_equal(l.n, 1);
+  assert_int_equal(l.c[0].kind, MR_CONTACT_STRING);
+  mr_contact_list_free(&l);
+  mr_world_destroy(w);
+}
+
 /* A step of 10 ms from (y0, v0) to (y1, v1) of the bob, its string probed
  * at the end (step.c): where mr_locate_contact cuts it (*h), the world
  * left as the search leaves it. */
@@ -137,6 +158,7 @@ static void a_search_that_misses_its_tolerance_stops_short(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(over_length_is_relative_to_the_rest_length),
+    cmocka_unit_test(a_nan_string_is_over_and_touching),
     cmocka_unit_test(only_a_string_slack_at_the_start_is_located),
     cmocka_unit_test(a_search_that_misses_its_tolerance_stops_short),
   };

@@ -85,6 +85,8 @@ static void taut_is_the_default_and_bad_modes_are_refused(void **state) {
   assert_int_equal(mr_string_mode_parse("spring", &m), 0);
   assert_int_equal(m, MR_STRING_SPRING);
   assert_string_equal(mr_string_mode_name(MR_STRING_SPRING), "spring");
+  assert_string_equal(mr_string_mode_name(MR_STRING_TAUT), "taut");
+  assert_string_equal(mr_string_mode_name((mr_string_mode)2), "unknown");
   assert_int_equal(mr_string_mode_parse("rope", &m), -1);
   rig r;
   const double at[3] = { 0, -1, 0 };
@@ -98,6 +100,23 @@ static void taut_is_the_default_and_bad_modes_are_refused(void **state) {
   s.rest_length = 0.0;
   assert_int_equal(mr_world_add_string(r.w, &s, NULL), MR_ERR_DEGENERATE);
   mr_world_destroy(r.w);
+  /* A spring of no rest length stretches by no ratio: the stretch reads
+   * 0 while no string has a rest length. */
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_STRINGS | MR_EFFECT_FRAMES;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_frame_def fd = mr_default_frame_def();
+  mr_particle_def p = mr_default_particle_def();
+  assert_int_equal(mr_world_add_frame(w, &fd, &p.frame), MR_OK);
+  assert_int_equal(mr_world_add_particle(w, &p, &s.frame_particle), MR_OK);
+  p = mr_default_particle_def();
+  p.position[1] = -0.5;
+  assert_int_equal(mr_world_add_particle(w, &p, &s.puppet_particle), MR_OK);
+  s.mode = MR_STRING_SPRING;
+  assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
+  assert_true(mr_world_string_stretch(w) == 0.0);
+  mr_world_destroy(w);
 }
 
 /* A bob held 0.5 m from the anchor on a 1 m string falls freely (the
