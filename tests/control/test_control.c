@@ -387,7 +387,59 @@ static void bad_definitions_and_time_are_refused(void **state) {
   assert_int_equal(mr_dof_parse("move_y", &dof), 0);
   assert_int_equal(dof, MR_DOF_MOVE_Y);
   assert_int_equal(mr_dof_parse("fly", &dof), -1);
+  for (int k = 0; k < MR_DOF_COUNT; k++) {
+    assert_int_equal(mr_dof_parse(mr_dof_name((mr_dof)k), &dof), 0);
+    assert_int_equal(dof, k);
+  }
+  assert_string_equal(mr_dof_name(MR_DOF_MOVE_Z), "move_z");
+  assert_string_equal(mr_dof_name((mr_dof)MR_DOF_COUNT), "unknown");
   mr_control_destroy(c);
+  c = NULL;
+  d.stuck_after = 0.0; /* a channel would be broken the moment it reached an end */
+  assert_int_equal(mr_control_create(&d, 1, &c, msg, sizeof msg), MR_CONTROL_ERR_ARG);
+  assert_string_equal(msg, "mapping 'default': expected stuck_after > 0 s, got 0");
+  mr_mapping_def many[MR_CONTROL_MAX_MAPPINGS + 1];
+  for (int i = 0; i <= MR_CONTROL_MAX_MAPPINGS; i++) many[i] = mr_default_mapping_def();
+  assert_int_equal(mr_control_create(many, MR_CONTROL_MAX_MAPPINGS + 1, &c, NULL, 0),
+                   MR_CONTROL_ERR_ARG);
+  assert_null(c);
+  c = make(many, MR_CONTROL_MAX_MAPPINGS);
+  assert_int_equal(mr_control_select(c, MR_CONTROL_MAX_MAPPINGS - 1), MR_CONTROL_OK);
+  assert_int_equal(mr_control_selected(c), MR_CONTROL_MAX_MAPPINGS - 1);
+  assert_int_equal(mr_control_selected(NULL), -1);
+  mr_control_destroy(c);
+}
+
+/* The defaults host/scenes/FORMAT.md promises, and the values before the
+ * first reading: every channel at the middle of its range. */
+static void the_defaults_are_the_documented_ones(void **state) {
+  (void)state;
+  const mr_mapping_def d = mr_default_mapping_def();
+  assert_true(d.min_cutoff == 1.0 && d.beta == 0.7 && d.d_cutoff == 1.0);
+  assert_true(d.stuck_after == 2.0);
+  mr_control *c = make(&d, 1);
+  double v[MR_CONTROL_CHANNELS];
+  mr_control_values(c, v);
+  for (int k = 0; k < MR_CONTROL_CHANNELS; k++) assert_true(v[k] == 0.5);
+  mr_control_destroy(c);
+}
+
+/* Two readings worked by hand, with the derivative's cutoff apart from
+ * the signal's: 0 at t = 0, then 1 at t = 0.1 s. With α(f, T) =
+ * 1/(1 + 1/(2π f T)), the speed is α(d_cutoff, T)·10 per second, and the
+ * output α(min_cutoff + β·speed, T). */
+static void one_euro_takes_the_speed_at_its_own_cutoff(void **state) {
+  (void)state;
+  const double T = 0.1, min_cutoff = 1.0, beta = 0.3, d_cutoff = 5.0;
+  mr_one_euro f;
+  mr_one_euro_init(&f, min_cutoff, beta, d_cutoff);
+  assert_true(mr_one_euro_filter(&f, 0.0, 0.0) == 0.0);
+  const double a_d = 1.0 / (1.0 + 1.0 / (2.0 * PI * d_cutoff * T));
+  const double speed = a_d * 1.0 / T;
+  const double a = 1.0 / (1.0 + 1.0 / (2.0 * PI * (min_cutoff + beta * speed) * T));
+  const double y = mr_one_euro_filter(&f, 1.0, T);
+  print_message("one euro: %.12f, by hand %.12f\n", y, a);
+  assert_true(fabs(y - a) < 1e-12);
 }
 
 int main(void) {
@@ -397,6 +449,8 @@ int main(void) {
     cmocka_unit_test(broken_channels_are_flagged_and_held_at_neutral),
     cmocka_unit_test(one_euro_is_steady_when_still_and_quick_on_a_step),
     cmocka_unit_test(bad_definitions_and_time_are_refused),
+    cmocka_unit_test(the_defaults_are_the_documented_ones),
+    cmocka_unit_test(one_euro_takes_the_speed_at_its_own_cutoff),
     cmocka_unit_test(leaving_an_end_starts_the_stuck_timer_afresh),
     cmocka_unit_test(a_broken_channel_is_held_at_its_axis_neutral),
     cmocka_unit_test(the_dead_zone_centres_on_a_neutral_other_than_the_middle),
