@@ -350,7 +350,88 @@ static void bad_definitions_are_refused(void **state) {
   assert_int_equal(mr_policy_parse("slow", &p), 0);
   assert_int_equal(p, MR_POLICY_SLOW);
   assert_int_equal(mr_policy_parse("fast", &p), -1);
+  assert_int_equal(mr_policy_parse("skip", NULL), -1);
   assert_string_equal(mr_policy_name(MR_POLICY_SKIP), "skip");
+  assert_string_equal(mr_policy_name(MR_POLICY_SLOW), "slow");
+  assert_string_equal(mr_policy_name((mr_policy)7), "unknown");
+  /* The bounds themselves are allowed, a hair past them is not. */
+  const double fps[4] = { 1.0, 10000.0, 0.999, 10000.5 };
+  for (int i = 0; i < 4; i++) {
+    d = mr_default_scheduler_def();
+    d.fps = fps[i];
+    assert_int_equal(mr_scheduler_create(&d, &c, &h, &sch, NULL, 0),
+                     i < 2 ? MR_THEATER_OK : MR_THEATER_ERR_ARG);
+    mr_scheduler_destroy(sch);
+    sch = NULL;
+  }
+  for (int cap = 0; cap <= 1; cap++) {
+    d = mr_default_scheduler_def();
+    d.max_catch_up = cap;
+    assert_int_equal(mr_scheduler_create(&d, &c, &h, &sch, NULL, 0),
+                     cap ? MR_THEATER_OK : MR_THEATER_ERR_ARG);
+    mr_scheduler_destroy(sch);
+    sch = NULL;
+  }
+}
+
+/* Twenty frames: eleven whose sample was noted after the latency clock
+ * shows them (a clock behind; counted as no latency, in the first bin),
+ * eight at 5.05 ms, and one 5 s late, past the histogram's 2 s and so in
+ * its last bin. The median is the first bin's edge, 0.1 ms; the 99th
+ * percentile is the late frame, 2 s, where the 90th would still be
+ * 5.1 ms. */
+static void latency_ends_of_the_histogram_and_its_tail(void **state) {
+  (void)state;
+  show s;
+  memset(&s, 0, sizeof s);
+  s.vc.t = s.origin = 1.0;
+  mr_scheduler_def d = mr_default_scheduler_def();
+  d.fps = 50;
+  mr_scheduler *sch = start_def(&s, &d);
+  for (uint64_t k = 0; k < 21; k++) {
+    const double shown = s.origin + (double)(k + 1) / d.fps;
+    if (k < 20) mr_scheduler_note_input(sch, shown - (k < 11 ? -1e-3 : k < 19 ? 5.05e-3 : 5.0));
+    assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  }
+  mr_scheduler_stats st;
+  mr_scheduler_get_stats(sch, &st);
+  print_message("p50 %.6f s, p99 %.6f s\n", st.latency_p50, st.latency_p99);
+  assert_int_equal(st.frames_presented, 20);
+  assert_true(fabs(st.latency_p50 - 0.1e-3) < 1e-12);
+  assert_true(fabs(st.latency_p99 - 2.0) < 1e-12);
+  mr_scheduler_destroy(sch);
+}
+
+/* What the advance hook reports is summed over the frames; before the
+ * first tick the show has taken no time and runs at 1x. */
+static int busy_advance(void *user, double t, mr_frame_work *w) {
+  (void)t;
+  (void)user;
+  w->steps = 3;
+  w->rejected = 1;
+  w->resets = 2;
+  return 0;
+}
+
+static void frame_work_is_summed_over_the_frames(void **state) {
+  (void)state;
+  show s;
+  memset(&s, 0, sizeof s);
+  mr_scheduler_def d = mr_default_scheduler_def();
+  mr_clock c = mr_clock_virtual(&s.vc);
+  mr_scheduler_hooks h = { busy_advance, present, &s };
+  mr_scheduler *sch = NULL;
+  assert_int_equal(mr_scheduler_create(&d, &c, &h, &sch, NULL, 0), MR_THEATER_OK);
+  mr_scheduler_stats st;
+  mr_scheduler_get_stats(sch, &st);
+  assert_true(st.wall_time == 0.0 && st.real_time_factor == 1.0);
+  for (int k = 0; k < 7; k++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
+  mr_scheduler_get_stats(sch, &st);
+  assert_int_equal(st.frames_simulated, 7);
+  assert_int_equal(st.steps, 21);
+  assert_int_equal(st.rejected, 7);
+  assert_int_equal(st.resets, 14);
+  mr_scheduler_destroy(sch);
 }
 
 int main(void) {
@@ -365,6 +446,8 @@ int main(void) {
     cmocka_unit_test(slow_policy_after_one_slow_frame_keeps_the_pace),
     cmocka_unit_test(latency_counts_from_the_first_sample_of_a_frame),
     cmocka_unit_test(latency_quantiles_are_the_upper_edge_of_the_samples_bin),
+    cmocka_unit_test(latency_ends_of_the_histogram_and_its_tail),
+    cmocka_unit_test(frame_work_is_summed_over_the_frames),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
