@@ -101,7 +101,6 @@ mr_theater_status mr_scheduler_create(const mr_scheduler_def *def, const mr_cloc
   s->hooks = *hooks;
   s->period = 1.0 / def->fps;
   s->input_first = NAN;
-  s->st.real_time_factor = 1.0;
   *out = s;
   return MR_THEATER_OK;
 }
