@@ -115,11 +115,77 @@ static void a_paused_wait_idles_until_a_command_lets_it_go(void **state) {
   assert_true(c.now(c.self) == 0.25);
 }
 
+/* The pace (show time plus the base seconds slow motion held back) runs
+ * on without a jump across changes of rate, and stands still while
+ * paused; a rate that is not a finite positive number is refused. */
+static void the_pace_holds_across_rates_and_stands_while_paused(void **state) {
+  (void)state;
+  mr_virtual_clock vc = { 2.0 };
+  mr_clock base = mr_clock_virtual(&vc);
+  mr_scaled_clock sc;
+  mr_scaled_clock_init(&sc, &base);
+  mr_scaled_clock_set_rate(&sc, 0.25);
+  mr_virtual_clock_spend(&vc, 4.0);
+  assert_true(fabs(mr_scaled_clock_now(&sc) - 1.0) < 1e-12);
+  assert_true(fabs(mr_scaled_clock_pace_now(&sc) - 4.0) < 1e-12); /* the base's 4 s */
+  mr_scaled_clock_set_rate(&sc, 0.5);
+  mr_scaled_clock_set_rate(&sc, INFINITY); /* refused */
+  assert_true(sc.rate == 0.5);
+  assert_true(fabs(mr_scaled_clock_pace_now(&sc) - 4.0) < 1e-12);
+  mr_virtual_clock_spend(&vc, 2.0);
+  assert_true(fabs(mr_scaled_clock_pace_now(&sc) - 6.0) < 1e-12);
+  mr_scaled_clock_pause(&sc, true);
+  mr_virtual_clock_spend(&vc, 3.0);
+  assert_true(fabs(mr_scaled_clock_pace_now(&sc) - 6.0) < 1e-12);
+  mr_virtual_clock_spend(&vc, -1.0); /* a virtual clock never goes back */
+  assert_true(vc.t == 11.0);
+}
+
+/* A step is spent only on a time past the paused show's: waiting for an
+ * earlier one returns at once, and show time never goes back. */
+static void a_step_is_not_spent_on_a_time_already_shown(void **state) {
+  (void)state;
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock base = mr_clock_virtual(&vc);
+  mr_scaled_clock sc;
+  mr_scaled_clock_init(&sc, &base);
+  mr_clock c = mr_clock_scaled(&sc);
+  c.wait_until(c.self, 0.5);
+  mr_scaled_clock_step(&sc);
+  c.wait_until(c.self, 0.4);
+  assert_true(c.now(c.self) == 0.5);
+  assert_int_equal(sc.steps, 1);
+  c.wait_until(c.self, 0.6);
+  assert_true(c.now(c.self) == 0.6);
+  assert_int_equal(sc.steps, 0);
+}
+
+/* The wall clock waits until the time it is given, to the nanosecond's
+ * order, never returning early; a clock is the wall only with both of the
+ * wall's functions. */
+static void the_wall_clock_waits_until_its_time(void **state) {
+  (void)state;
+  mr_clock w = mr_clock_wall();
+  const double target = w.now(w.self) + 0.0123;
+  w.wait_until(w.self, target);
+  const double woke = w.now(w.self);
+  print_message("woke %.3g ms after the target\n", 1e3 * (woke - target));
+  assert_true(woke >= target);
+  assert_true(mr_clock_is_wall(&w));
+  mr_virtual_clock vc = { 0.0 };
+  mr_clock mixed = mr_clock_virtual(&vc);
+  mixed.now = w.now;
+  assert_false(mr_clock_is_wall(&mixed));
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(slow_motion_stretches_show_time_without_a_jump),
     cmocka_unit_test(paused_time_stands_still_and_steps_move_it_a_frame),
     cmocka_unit_test(a_paused_wait_idles_until_a_command_lets_it_go),
+    cmocka_unit_test(the_pace_holds_across_rates_and_stands_while_paused),
+    cmocka_unit_test(a_step_is_not_spent_on_a_time_already_shown),
+    cmocka_unit_test(the_wall_clock_waits_until_its_time),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
