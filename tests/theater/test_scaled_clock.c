@@ -10,16 +10,21 @@
 
 #include "mr_theater.h"
 
+/* sc, the scaled clock on the virtual clock vc; returns it as a clock. */
+static mr_clock scaled_on(mr_virtual_clock *vc, mr_scaled_clock *sc) {
+  mr_clock base = mr_clock_virtual(vc);
+  mr_scaled_clock_init(sc, &base);
+  return mr_clock_scaled(sc);
+}
+
 /* At rate 1 over a base that starts at 0 (a replay's virtual clock) show
  * time is the base's, bit for bit; at a quarter, a second of show takes
  * four. */
 static void slow_motion_stretches_show_time_without_a_jump(void **state) {
   (void)state;
   mr_virtual_clock vc = { 0.0 };
-  mr_clock base = mr_clock_virtual(&vc);
   mr_scaled_clock sc;
-  mr_scaled_clock_init(&sc, &base);
-  mr_clock c = mr_clock_scaled(&sc);
+  mr_clock c = scaled_on(&vc, &sc);
   assert_true(c.now(c.self) == 0.0);
   for (int j = 1; j <= 60; j++) {
     c.wait_until(c.self, j / 60.0);
@@ -47,10 +52,8 @@ static void slow_motion_stretches_show_time_without_a_jump(void **state) {
 static void paused_time_stands_still_and_steps_move_it_a_frame(void **state) {
   (void)state;
   mr_virtual_clock vc = { 0.0 };
-  mr_clock base = mr_clock_virtual(&vc);
   mr_scaled_clock sc;
-  mr_scaled_clock_init(&sc, &base);
-  mr_clock c = mr_clock_scaled(&sc);
+  mr_clock c = scaled_on(&vc, &sc);
   c.wait_until(c.self, 0.5);
   mr_scaled_clock_pause(&sc, true);
   mr_virtual_clock_spend(&vc, 100.0);
@@ -100,9 +103,8 @@ static int idle(void *user, double deadline) {
 static void a_paused_wait_idles_until_a_command_lets_it_go(void **state) {
   (void)state;
   mr_virtual_clock vc = { 0.0 };
-  mr_clock base = mr_clock_virtual(&vc);
   mr_scaled_clock sc;
-  mr_scaled_clock_init(&sc, &base);
+  scaled_on(&vc, &sc);
   script s = { &sc, &vc, 0, { 0 } };
   sc.idle = idle;
   sc.user = &s;
@@ -121,9 +123,8 @@ static void a_paused_wait_idles_until_a_command_lets_it_go(void **state) {
 static void the_pace_holds_across_rates_and_stands_while_paused(void **state) {
   (void)state;
   mr_virtual_clock vc = { 2.0 };
-  mr_clock base = mr_clock_virtual(&vc);
   mr_scaled_clock sc;
-  mr_scaled_clock_init(&sc, &base);
+  scaled_on(&vc, &sc);
   mr_scaled_clock_set_rate(&sc, 0.25);
   mr_virtual_clock_spend(&vc, 4.0);
   assert_true(fabs(mr_scaled_clock_now(&sc) - 1.0) < 1e-12);
@@ -146,10 +147,8 @@ static void the_pace_holds_across_rates_and_stands_while_paused(void **state) {
 static void a_step_is_not_spent_on_a_time_already_shown(void **state) {
   (void)state;
   mr_virtual_clock vc = { 0.0 };
-  mr_clock base = mr_clock_virtual(&vc);
   mr_scaled_clock sc;
-  mr_scaled_clock_init(&sc, &base);
-  mr_clock c = mr_clock_scaled(&sc);
+  mr_clock c = scaled_on(&vc, &sc);
   c.wait_until(c.self, 0.5);
   mr_scaled_clock_step(&sc);
   c.wait_until(c.self, 0.4);
