@@ -50,6 +50,14 @@ static void present(void *user, double t) {
   mr_virtual_clock_spend(&s->vc, s->render_cost);
 }
 
+/* A show whose clock starts at origin, simulated time 0 there. */
+static show at_origin(double origin) {
+  show s;
+  memset(&s, 0, sizeof s);
+  s.vc.t = s.origin = origin;
+  return s;
+}
+
 static mr_scheduler *start_def(show *s, const mr_scheduler_def *def) {
   mr_scheduler_def d = *def;
   s->period = 1.0 / d.fps;
@@ -71,9 +79,7 @@ static mr_scheduler *start(show *s, mr_policy policy) {
  * shown exactly one period after that time: the one frame of delay. */
 static void light_load_lands_every_frame_on_time(void **state) {
   (void)state;
-  show s;
-  memset(&s, 0, sizeof s);
-  s.vc.t = s.origin = 100.0;
+  show s = at_origin(100.0);
   s.render_cost = 0.2 / 60;
   s.advance_cost = 0.3 / 60;
   mr_scheduler *sch = start(&s, MR_POLICY_SKIP);
@@ -208,9 +214,7 @@ static void a_sample_is_shown_within_two_frame_periods(void **state) {
  * after its time (from the moved origin); nothing more is given up. */
 static void a_stall_past_the_cap_gives_its_lag_up_for_good(void **state) {
   (void)state;
-  show s;
-  memset(&s, 0, sizeof s);
-  s.vc.t = s.origin = 50.0;
+  show s = at_origin(50.0);
   mr_scheduler_def d = mr_default_scheduler_def();
   d.max_catch_up = 3;
   mr_scheduler *sch = start_def(&s, &d);
@@ -243,9 +247,7 @@ static void a_stall_past_the_cap_gives_its_lag_up_for_good(void **state) {
  * come one period apart, not in a burst to catch up. */
 static void slow_policy_after_one_slow_frame_keeps_the_pace(void **state) {
   (void)state;
-  show s;
-  memset(&s, 0, sizeof s);
-  s.vc.t = s.origin = 7.0;
+  show s = at_origin(7.0);
   mr_scheduler *sch = start(&s, MR_POLICY_SLOW);
   mr_scheduler_stats st;
   for (int i = 0; i < 100; i++) assert_int_equal(mr_scheduler_tick(sch), MR_THEATER_OK);
@@ -308,9 +310,7 @@ static void latency_counts_from_the_first_sample_of_a_frame(void **state) {
  * 99th percentile the third's, 40.1 ms. */
 static void latency_quantiles_are_the_upper_edge_of_the_samples_bin(void **state) {
   (void)state;
-  show s;
-  memset(&s, 0, sizeof s);
-  s.vc.t = s.origin = 3.0;
+  show s = at_origin(3.0);
   mr_scheduler_def d = mr_default_scheduler_def();
   d.fps = 50;
   mr_scheduler *sch = start_def(&s, &d);
@@ -382,9 +382,7 @@ static void bad_definitions_are_refused(void **state) {
  * 5.1 ms. */
 static void latency_ends_of_the_histogram_and_its_tail(void **state) {
   (void)state;
-  show s;
-  memset(&s, 0, sizeof s);
-  s.vc.t = s.origin = 1.0;
+  show s = at_origin(1.0);
   mr_scheduler_def d = mr_default_scheduler_def();
   d.fps = 50;
   mr_scheduler *sch = start_def(&s, &d);
