@@ -346,6 +346,78 @@ static void bad_sources_are_refused_by_name(void **state) {
   mr_glove_destroy(g);
 }
 
+/* The definition's documented defaults, and its bounds, each side. */
+static void a_glove_definition_is_checked_at_its_bounds(void **state) {
+  (void)state;
+  mr_glove_def d = mr_default_glove_def();
+  assert_true(d.lost_after == 0.5 && d.retry_every == 0.5 && d.reconnect == 0.0);
+  assert_true(d.cmd_timeout == 0.25 && d.cmd_tries == 5);
+  assert_string_equal(d.source, "serial:auto");
+  static const struct {
+    double lost_after, retry_every, reconnect, cmd_timeout;
+    int cmd_tries;
+    mr_glove_status want;
+  } cases[] = {
+    { 0.5, 1.0, 0.0, 60.0, 100, MR_GLOVE_OK },
+    { 0.0, 0.5, 0.0, 0.25, 5, MR_GLOVE_ERR_ARG },
+    { 0.5, 1.01, 0.0, 0.25, 5, MR_GLOVE_ERR_ARG },
+    { 0.5, 0.5, INFINITY, 0.25, 5, MR_GLOVE_ERR_ARG },
+    { 0.5, 0.5, 0.0, 60.5, 5, MR_GLOVE_ERR_ARG },
+    { 0.5, 0.5, 0.0, 0.25, 101, MR_GLOVE_ERR_ARG },
+    { 0.5, 0.5, 0.0, 0.25, 0, MR_GLOVE_ERR_ARG },
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    d = mr_default_glove_def();
+    snprintf(d.source, sizeof d.source, "pty:/nonexistent/glove");
+    d.lost_after = cases[i].lost_after;
+    d.retry_every = cases[i].retry_every;
+    d.reconnect = cases[i].reconnect;
+    d.cmd_timeout = cases[i].cmd_timeout;
+    d.cmd_tries = cases[i].cmd_tries;
+    mr_glove *g = NULL;
+    assert_int_equal(mr_glove_create(&d, &g, NULL, 0), cases[i].want);
+    mr_glove_destroy(g);
+  }
+  static const char *const names[] = { "connecting", "live", "lost", "spec mismatch" };
+  const mr_glove_state states[] = { MR_GLOVE_CONNECTING, MR_GLOVE_LIVE, MR_GLOVE_LOST,
+                                    MR_GLOVE_MISMATCH };
+  for (int i = 0; i < 4; i++) assert_string_equal(mr_glove_state_name(states[i]), names[i]);
+  assert_string_equal(mr_glove_state_name((mr_glove_state)9), "unknown");
+}
+
+/* A glove unplugged at t = 10 s with reconnect 1 s is retried until
+ * 11 s and ends there, saying why; with reconnect < 0 it ends at the
+ * hang-up itself. */
+static void reconnect_bounds_how_long_an_unplugged_glove_is_retried(void **state) {
+  (void)state;
+  for (int give_up = 0; give_up <= 1; give_up++) {
+    port p;
+    make_port(&p);
+    plug(&p);
+    mr_glove_def d = mr_default_glove_def();
+    snprintf(d.source, sizeof d.source, "pty:%s", p.link);
+    d.reconnect = give_up ? 1.0 : -1.0;
+    mr_glove *g = NULL;
+    assert_int_equal(mr_glove_create(&d, &g, NULL, 0), MR_GLOVE_OK);
+    mr_glove_poll(g, 10.0, 0);
+    unplug(&p);
+    for (int i = 0; i < 50 && mr_glove_get_state(g) != MR_GLOVE_LOST; i++)
+      mr_glove_poll(g, 10.0, 10);
+    assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LOST);
+    if (give_up) {
+      assert_false(mr_glove_ended(g));
+      mr_glove_poll(g, 10.5, 0);
+      mr_glove_poll(g, 10.75, 0);
+      assert_false(mr_glove_ended(g));
+      mr_glove_poll(g, 11.0, 0);
+      assert_string_equal(mr_glove_last_error(g, NULL), "not back within 1 s");
+    }
+    assert_true(mr_glove_ended(g));
+    mr_glove_destroy(g);
+    rmdir(p.dir);
+  }
+}
+
 /* An INFO whose numbers would make the calibration divide by zero or by
  * a negative span, or shift by 40 bits: the glove falls back to the ADC's
  * full scale, and every value stays a finite number. */
@@ -391,6 +463,8 @@ int main(void) {
     cmocka_unit_test(a_live_glove_is_read_calibrated_lost_and_found_again),
     cmocka_unit_test(a_foreign_glove_is_a_spec_mismatch),
     cmocka_unit_test(bad_sources_are_refused_by_name),
+    cmocka_unit_test(a_glove_definition_is_checked_at_its_bounds),
+    cmocka_unit_test(reconnect_bounds_how_long_an_unplugged_glove_is_retried),
     cmocka_unit_test(the_lateness_is_measured_afresh_after_a_replug),
     cmocka_unit_test(a_restart_or_a_new_uid_starts_the_device_clock_afresh),
   };
