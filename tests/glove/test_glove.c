@@ -361,6 +361,8 @@ static void a_glove_definition_is_checked_at_its_bounds(void **state) {
     { 0.5, 1.0, 0.0, 60.0, 100, MR_GLOVE_OK },
     { 0.0, 0.5, 0.0, 0.25, 5, MR_GLOVE_ERR_ARG },
     { 0.5, 1.01, 0.0, 0.25, 5, MR_GLOVE_ERR_ARG },
+    { 0.5, 0.0, 0.0, 0.25, 5, MR_GLOVE_ERR_ARG },
+    { 0.5, 0.5, 0.0, 0.0, 5, MR_GLOVE_ERR_ARG },
     { 0.5, 0.5, INFINITY, 0.25, 5, MR_GLOVE_ERR_ARG },
     { 0.5, 0.5, 0.0, 60.5, 5, MR_GLOVE_ERR_ARG },
     { 0.5, 0.5, 0.0, 0.25, 101, MR_GLOVE_ERR_ARG },

@@ -45,9 +45,10 @@ typedef struct rig {
   int frame, anchor, bob;
 } rig;
 
-/* A frame at the origin with one point, and a 1 kg bob at `at` on a taut
- * string of length `rest` from it. */
-static void make_rig(rig *r, const double at[3], double rest, uint32_t extra) {
+/* A frame at the origin with one point, and a 1 kg bob at `at` on a
+ * string of `mode` and length `rest` from it, under gravity. */
+static void string_rig(rig *r, const double at[3], double rest, mr_string_mode mode,
+                       uint32_t extra) {
   mr_world_def def = mr_default_world_def();
   def.effects = MR_EFFECT_GRAVITY | MR_EFFECT_STRINGS | MR_EFFECT_FRAMES | extra;
   char msg[200];
@@ -64,8 +65,13 @@ static void make_rig(rig *r, const double at[3], double rest, uint32_t extra) {
   s.frame_particle = r->anchor;
   s.puppet_particle = r->bob;
   s.rest_length = rest;
-  s.mode = MR_STRING_TAUT;
+  s.mode = mode;
   assert_int_equal(mr_world_add_string(r->w, &s, NULL), MR_OK);
+}
+
+/* A bob at `at` on a taut string of length `rest`. */
+static void make_rig(rig *r, const double at[3], double rest, uint32_t extra) {
+  string_rig(r, at, rest, MR_STRING_TAUT, extra);
 }
 
 static double length(const rig *r) {
@@ -100,23 +106,21 @@ static void taut_is_the_default_and_bad_modes_are_refused(void **state) {
   s.rest_length = 0.0;
   assert_int_equal(mr_world_add_string(r.w, &s, NULL), MR_ERR_DEGENERATE);
   mr_world_destroy(r.w);
-  /* A spring of no rest length stretches by no ratio: the stretch reads
-   * 0 while no string has a rest length. */
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_STRINGS | MR_EFFECT_FRAMES;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
-  mr_frame_def fd = mr_default_frame_def();
-  mr_particle_def p = mr_default_particle_def();
-  assert_int_equal(mr_world_add_frame(w, &fd, &p.frame), MR_OK);
-  assert_int_equal(mr_world_add_particle(w, &p, &s.frame_particle), MR_OK);
-  p = mr_default_particle_def();
-  p.position[1] = -0.5;
-  assert_int_equal(mr_world_add_particle(w, &p, &s.puppet_particle), MR_OK);
-  s.mode = MR_STRING_SPRING;
-  assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
-  assert_true(mr_world_string_stretch(w) == 0.0);
-  mr_world_destroy(w);
+}
+
+/* A spring of no rest length stretches by no ratio: the stretch reads 0
+ * while no string has a rest length, and a stretched one's ratio less 1
+ * once one does. */
+static void the_stretch_reads_only_strings_with_a_length(void **state) {
+  (void)state;
+  rig r;
+  const double at[3] = { 0, -0.5, 0 };
+  string_rig(&r, at, 0.0, MR_STRING_SPRING, 0);
+  assert_true(mr_world_string_stretch(r.w) == 0.0);
+  mr_world_destroy(r.w);
+  string_rig(&r, at, 0.4, MR_STRING_SPRING, 0);
+  assert_true(fabs(mr_world_string_stretch(r.w) - 0.25) < 1e-12);
+  mr_world_destroy(r.w);
 }
 
 /* A bob held 0.5 m from the anchor on a 1 m string falls freely (the
@@ -343,6 +347,7 @@ static void a_new_frame_path_keeps_the_last_system(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(taut_is_the_default_and_bad_modes_are_refused),
+    cmocka_unit_test(the_stretch_reads_only_strings_with_a_length),
     cmocka_unit_test(slack_string_falls_free_then_snaps_taut),
     cmocka_unit_test(taut_string_never_pushes),
     cmocka_unit_test(shaken_taut_string_holds_its_length),

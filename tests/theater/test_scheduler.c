@@ -413,8 +413,7 @@ static int busy_advance(void *user, double t, mr_frame_work *w) {
 
 static void frame_work_is_summed_over_the_frames(void **state) {
   (void)state;
-  show s;
-  memset(&s, 0, sizeof s);
+  show s = at_origin(0.0);
   mr_scheduler_def d = mr_default_scheduler_def();
   mr_clock c = mr_clock_virtual(&s.vc);
   mr_scheduler_hooks h = { busy_advance, present, &s };
