@@ -365,7 +365,7 @@ static int carriers(const mr_world *w, const mr_contact *c, int p[4], double wt[
   return n;
 }
 
-static void contact_normal(const mr_world *w, const mr_contact *c, const double *x, double n[3]) {
+void mr_contact_normal(const mr_world *w, const mr_contact *c, const double *x, double n[3]) {
   if (c->kind == MR_CONTACT_PLANE) {
     for (int k = 0; k < 3; k++) n[k] = MR_AT(w->planes, mr_plane, c->b).n[k];
     return;
@@ -386,20 +386,20 @@ double mr_contact_slip(const mr_world *w, const mr_contact *c, const double *x, 
     for (int k = 0; k < 3; k++) rel[k] += wt[i] * q[3 * p[i] + k];
     inv += wt[i] * wt[i] * w->inv_mass[p[i]];
   }
-  contact_normal(w, c, x, n);
+  mr_contact_normal(w, c, x, n);
   double rn = rel[0] * n[0] + rel[1] * n[1] + rel[2] * n[2];
   for (int k = 0; k < 3; k++) out[k] = rel[k] - rn * n[k];
   return inv;
 }
 
 void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3], double s,
-                       int by_mass, double *out) {
+                       double *out) {
   int p[4];
   double wt[4];
   if (c->kind == MR_CONTACT_STRING) return;
   int np = carriers(w, c, p, wt);
   for (int i = 0; i < np; i++) {
-    double k = s * wt[i] * (by_mass ? w->inv_mass[p[i]] : 1.0);
+    double k = s * wt[i];
     for (int j = 0; j < 3; j++) out[3 * p[i] + j] += k * f[j];
   }
 }

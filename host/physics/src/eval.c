@@ -5,7 +5,7 @@
  *   3. constraint rows: C, J, Ċ and J̇q̇ of the constraints and of the
  *      touching contacts;
  *   4. the solve of eq. 8 for λ (contacts that would pull are released and
- *      the system solved again; friction rounds at resting contacts), and
+ *      the system solved again; friction at resting contacts), and
  *      q̈ += M⁻¹ Jᵀ λ. */
 #include "internal.h"
 
@@ -176,108 +176,9 @@ static int first_contact_row(const mr_world *w, int rows) {
   return w->contacts.n > 0 ? mr_constraint_row_count(w) : rows;
 }
 
-/* Friction reaches only the particles carrying the resting contacts of
- * the solve: marks them (w->reached), and lists in w->row_reached the rows
- * naming one of them. Returns the number of rows listed. */
-static int friction_reach(mr_world *w, int rows) {
-  const int *rp = w->J.row_ptr, *part = w->J.particle, *row_contact = w->row_contact;
-  unsigned char *reached = w->reached;
-  memset(reached, 0, (size_t)w->n);
-  for (int r = first_contact_row(w, rows); r < rows; r++) {
-    if (row_contact[r] < 0) continue;
-    const mr_contact *ct = &w->contacts.c[row_contact[r]];
-    if (ct->friction <= 0) continue;
-    int p[4];
-    for (int k = mr_contact_carriers(w, ct, p) - 1; k >= 0; k--) reached[p[k]] = 1;
-  }
-  int m = 0;
-  for (int i = 0; i < rows; i++) {
-    int any = 0;
-    for (int e = rp[i]; e < rp[i + 1]; e++) any |= reached[part[e]];
-    if (any) w->row_reached[m++] = i;
-  }
-  return m;
-}
-
-/* After a friction round, a = M⁻¹ f again and eq. 8's b with it. A round
- * changes f only where friction reaches, so elsewhere a, and b of a row
- * naming none of those particles, would come out as the same numbers, bit
- * for bit: they are kept. */
-static void refresh_rhs(mr_world *w, int listed, const double *f, double *a) {
-  const int n = w->n, *list = w->row_reached;
-  const double *inv_mass = w->inv_mass;
-  const unsigned char *reached = w->reached;
+void mr_rhs_rows(mr_world *w, const int *list, int count, const double *a) {
   double *rhs = w->rhs;
-  for (int i = 0; i < n; i++) {
-    if (!reached[i]) continue;
-    const double im = inv_mass[i];
-    a[3 * i] = f[3 * i] * im;
-    a[3 * i + 1] = f[3 * i + 1] * im;
-    a[3 * i + 2] = f[3 * i + 2] * im;
-  }
-  for (int k = 0; k < listed; k++) rhs[list[k]] = rhs_row(w, list[k], a);
-}
-
-/* Coulomb friction at resting contacts (§4.4), with N the contact's
- * multiplier, on the relative motion of its two sides (a particle against a
- * plane, or two spheres of the sphere trees). The friction that would stop
- * the sliding within half a step against everything else pushing along the
- * contact is
- *   f_stop = f_now − m_eff (a_t + v_t / (h/2)),
- * with v_t, a_t the relative tangential velocity and acceleration under all
- * forces so far (applied, constraint, and every contact's friction f_now of
- * the previous round) and m_eff the effective mass of that relative motion.
- * If |f_stop| ≤ μN the contact sticks and f_stop is the friction: static
- * friction, so a body on a slope its friction can hold stays put instead of
- * creeping at about g sinθ h/2. Otherwise it slides, and friction is μN
- * against the sliding velocity. Returns 0, or −1 when nothing can move
- * along the contact (it is then left alone). */
-static int contact_friction(const mr_world *w, const mr_contact *ct, double nforce, double tau,
-                            const double *x, const double slip[4], const double *acc,
-                            const double fc[3], double next[3]) {
-  next[0] = next[1] = next[2] = 0.0;
-  if (!(nforce > 0)) return 0;
-  const double *vt = slip, inv = slip[3];
-  double at[3];
-  mr_contact_slip(w, ct, x, acc, at);
-  if (!(inv > 0)) return -1;
-  for (int k = 0; k < 3; k++) next[k] = fc[k] - (at[k] + vt[k] / tau) / inv;
-  double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-  double need = sqrt(next[0] * next[0] + next[1] * next[1] + next[2] * next[2]);
-  double limit = ct->friction * nforce;
-  if (need > limit)
-    for (int k = 0; k < 3; k++)
-      next[k] = speed > 0 ? -limit * vt[k] / speed : limit * next[k] / need;
-  return 0;
-}
-
-/* One round of friction over the resting contacts of the solve. fr holds
- * each contact's friction (3 per contact); each change is added to f, and
- * to acc so that the next contact on the same particle sees it. The slip
- * velocity and effective mass of a contact (w->slip) read only x and v,
- * the same in every round: the first round works them out, the others
- * take them. Returns the largest change, N. */
-static double friction(mr_world *w, double h, int rows, int first, const double *x, const double *v,
-                       double *acc, double *fr, double *f) {
-  const double tau = 0.5 * h;
-  double change = 0.0;
-  for (int r = 0; r < rows; r++) {
-    int c = w->row_contact[r];
-    if (c < 0) continue;
-    const mr_contact *ct = &w->contacts.c[c];
-    if (ct->friction <= 0) continue;
-    double *fc = &fr[3 * c], *slip = &w->slip[4 * c], next[3], d[3];
-    if (first) slip[3] = mr_contact_slip(w, ct, x, v, slip);
-    if (contact_friction(w, ct, w->lambda[r], tau, x, slip, acc, fc, next) != 0) continue;
-    for (int k = 0; k < 3; k++) {
-      d[k] = next[k] - fc[k];
-      change = fmax(change, fabs(d[k]));
-      fc[k] = next[k];
-    }
-    mr_contact_spread(w, ct, d, 1.0, 0, f);
-    mr_contact_spread(w, ct, d, 1.0, 1, acc);
-  }
-  return change;
+  for (int k = 0; k < count; k++) rhs[list[k]] = rhs_row(w, list[k], a);
 }
 
 /* Stage 2: F = F_a from the world's force passes, a = M⁻¹ F. */
@@ -336,42 +237,6 @@ static int solve_eq8(mr_world *w, double t, const double *x, const double *v, co
   return rows;
 }
 
-static int has_friction(const mr_world *w, int rows) {
-  for (int r = first_contact_row(w, rows); r < rows; r++)
-    if (w->row_contact[r] >= 0 && w->contacts.c[w->row_contact[r]].friction > 0 && w->lambda[r] > 0)
-      return 1;
-  return 0;
-}
-
-/* Friction is an applied force the constraints must carry too: add it and
- * solve again with the same J M⁻¹ Jᵀ. The constraints then share it out
- * differently, which changes what each contact must hold, so repeat a few
- * rounds (a rigid body on a slope sticks only when its contacts agree). */
-static int friction_rounds(mr_world *w, double h, int rows, const double *x, const double *v,
-                           double *a) {
-  const int n = w->n;
-  const double *inv_mass = w->inv_mass;
-  double *acc = w->scratch.acc_try;
-  memset(w->fric, 0, (size_t)w->contacts.n * 3 * sizeof *w->fric);
-  double scale = 0;
-  for (int r = 0; r < rows; r++) scale = fmax(scale, fabs(w->lambda[r]));
-  const int listed = friction_reach(w, rows);
-  for (int round = 0; round < 32; round++) {
-    mr_jac_tmul(&w->J, w->lambda, acc);
-    for (int i = 0; i < n; i++) { /* per particle: no division, one load of its mass */
-      const double im = inv_mass[i];
-      acc[3 * i] = a[3 * i] + acc[3 * i] * im;
-      acc[3 * i + 1] = a[3 * i + 1] + acc[3 * i + 1] * im;
-      acc[3 * i + 2] = a[3 * i + 2] + acc[3 * i + 2] * im;
-    }
-    double change = friction(w, h, rows, round == 0, x, v, acc, w->fric, w->scratch.force);
-    if (round > 0 && !(change > 1e-9 * scale)) break;
-    refresh_rhs(w, listed, w->scratch.force, a);
-    if (mr_solve_rows(w, 0) != 0) return -1;
-  }
-  return 0;
-}
-
 /* §5.2, eq. 5: F_c = Jᵀ λ, and a += M⁻¹ F_c. */
 static void add_constraint_forces(mr_world *w, int rows, double *a) {
   const double *fc = w->scratch.constraint_force, *lambda = w->lambda, *inv_mass = w->inv_mass;
@@ -392,12 +257,13 @@ static void add_constraint_forces(mr_world *w, int rows, double *a) {
 }
 
 /* After the solve's rounds: friction, then the constraint forces. The
- * system is kept for mr_eval_new_path unless friction rounds changed b. */
+ * system is kept for mr_eval_new_path unless friction changed b. */
 static int finish(mr_world *w, double h, int rows, const double *x, const double *v, double *a) {
   /* Static friction aims at stopping within h/2: only then does the
    * answer depend on h (integrate.c's memo). */
-  w->eval_used_h = has_friction(w, rows);
-  if (w->eval_used_h && friction_rounds(w, h, rows, x, v, a) != 0) return -1;
+  const int first = first_contact_row(w, rows);
+  w->eval_used_h = mr_friction_present(w, rows, first);
+  if (w->eval_used_h && mr_friction_solve(w, h, rows, first, x, v, a) != 0) return -1;
   if (!w->eval_used_h) w->kept_system = w->system;
   add_constraint_forces(w, rows, a);
   return 0;

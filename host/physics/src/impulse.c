@@ -50,7 +50,7 @@ static void impact_friction(mr_world *w, const double *x, const double *v) {
     if (!(speed > 0) || !(inv > 0)) continue;
     double pn = (1.0 + ct->restitution) * -pre / inv;
     double mag = fmin(ct->friction * pn, speed / inv);
-    mr_contact_spread(w, ct, vt, -mag / speed, 0, la);
+    mr_contact_spread(w, ct, vt, -mag / speed, la);
   }
   for (int i = 0; i < n3; i++) dv[i] = la[i] * w->inv_mass[i / 3];
 }

@@ -225,14 +225,15 @@ struct mr_world {
   /* contacts: found before a step and held during it (resting set), and a
    * probe list for the end-of-step penetration test */
   mr_contact_list contacts, probe;
-  mr_contact_list measured;      /* mr_world_penetration's own, kept between calls */
-  int cap_contact;               /* what the five per-contact arrays hold */
-  unsigned char *contact_active; /* in the system being solved (eq. 9 or 8) */
-  double *contact_pre;           /* χ̇⁻ before an impulse */
-  double *fric;                  /* 3 per contact: resting-contact friction */
-  double *slip;                  /* 4 per contact, within an evaluation's friction
-                                    rounds: v_t and the effective inverse mass */
-  unsigned char *probe_valid;    /* per probe contact: being located in time */
+  mr_contact_list measured;          /* mr_world_penetration's own, kept between calls */
+  int cap_contact;                   /* what the three per-contact arrays hold */
+  unsigned char *contact_active;     /* in the system being solved (eq. 9 or 8) */
+  double *contact_pre;               /* χ̇⁻ before an impulse */
+  struct mr_fric_point *fric_points; /* friction.c: the contacts with friction */
+  int cap_fric_points;
+  double *fric_work; /* friction.c: b kept, probes, W and N */
+  int cap_fric_work;
+  unsigned char *probe_valid; /* per probe contact: being located in time */
 
   /* solve workspace: rows of eq. 8 / eq. 9 */
   mr_jac J;
@@ -242,7 +243,7 @@ struct mr_world {
   int cap_rows;
   double *rhs, *lambda, *row_c, *row_cdot, *row_bias, *row_jv;
   int *row_contact; /* −1 constraint row, else contact index */
-  int *row_reached; /* within friction rounds: the rows naming a particle
+  int *row_reached; /* within friction: the rows naming a particle
                        friction reaches */
   int rows_pattern; /* constraint elements J's first rows are laid out for */
 
@@ -265,7 +266,7 @@ struct mr_world {
   /* Per-step scratch, 3n each unless said (mr_world_ensure_ready sizes
    * them). Each buffer has one meaning throughout a step. */
   int cap_scratch;        /* particles the scratch holds */
-  unsigned char *reached; /* per particle, within friction rounds: friction
+  unsigned char *reached; /* per particle, within friction: friction
                              reaches it (a carrier of a resting contact) */
   struct {
     double *x0, *v0;          /* the state at the start of the step */
@@ -274,7 +275,7 @@ struct mr_world {
     double *k;                /* stage derivatives, 8 × 3n (RK4) */
     double *force;            /* F of the evaluation under way */
     double *constraint_force; /* Jᵀ λ of the evaluation under way */
-    double *acc_try;          /* a + M⁻¹ Jᵀ λ within friction rounds */
+    double *acc_try;          /* a + M⁻¹ Jᵀ λ before friction */
     double *impact_momentum;  /* L_a, friction at an impact (eq. 9) */
     double *impact_dv;        /* M⁻¹ L_a */
     double *v_try;            /* q̇⁺ of a trial impulse */
@@ -287,10 +288,10 @@ struct mr_world {
   int recovering;       /* after a collision Δt doubles (§4.5) */
 
   mr_eval_memo memo;
-  int eval_used_h; /* the last evaluation depended on h (friction rounds ran) */
+  int eval_used_h; /* the last evaluation depended on h (friction ran) */
   /* system counts the builds of J and the solves; kept_system is its
    * value when an evaluation left J, b, A and A's factor as its last
-   * round made them (no friction round after it), else 0 (eval.c,
+   * round made them (no friction after it), else 0 (eval.c,
    * mr_eval_new_path). */
   uint64_t system, kept_system;
 
@@ -385,14 +386,29 @@ void mr_contact_list_free(mr_contact_list *l);
  * acceleration, 3n) into out; returns 1/m_eff = Σ w² / m over the particles
  * carrying the contact (w: their leaf weights), 0 if nothing can move.
  * mr_contact_spread: adds s·f to side b's particles (s·w·f) and −s·w·f to
- * side a's, into out (3n); with by_mass, each term divided by its mass.
+ * side a's, into out (3n).
  * mr_contact_carriers: the particles those two reach, into p; returns their
  * number (at most 4; 0 for a string, which has no friction). */
 double mr_contact_slip(const mr_world *w, const mr_contact *c, const double *x, const double *q,
                        double out[3]);
 void mr_contact_spread(const mr_world *w, const mr_contact *c, const double f[3], double s,
-                       int by_mass, double *out);
+                       double *out);
 int mr_contact_carriers(const mr_world *w, const mr_contact *c, int p[4]);
+/* The unit normal of a contact's plane of friction, from side a towards
+ * side b (0 for two coincident spheres). */
+void mr_contact_normal(const mr_world *w, const mr_contact *c, const double *x, double n[3]);
+
+/* friction.c: Coulomb friction at the resting contacts of eq. 8's solve,
+ * whose rows from `first` on are the contacts'. mr_friction_present:
+ * whether one of them has friction and pushes. mr_friction_solve: given a
+ * = M⁻¹ F_a and λ solved, adds the friction to F (w->scratch.force) and
+ * to a where it reaches, and solves again for λ; 0 or −1. */
+#define MR_FRICTION_ROUNDS 64
+/* Room for a solve of `rows` rows with `points` frictional contacts. */
+int mr_friction_reserve(mr_world *w, int rows, int points);
+int mr_friction_present(const mr_world *w, int rows, int first);
+int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *x, const double *v,
+                      double *a);
 
 /* sphere_tree.c */
 int mr_trees_build(mr_world *w);
@@ -420,6 +436,8 @@ int mr_rows_reserve(mr_world *w, int rows);
 /* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda,
  * block by block where the rows fall into blocks (islands.c). */
 int mr_solve_rows(mr_world *w, int assemble);
+/* eq. 8's b again for the listed rows, with the free accelerations a. */
+void mr_rhs_rows(mr_world *w, const int *list, int count, const double *a);
 /* The compliance of contact rows: A's rows from `first` on whose
  * row_contact is a contact. */
 void mr_soften_contacts(mr_csr *A, int first, const int *row_contact);

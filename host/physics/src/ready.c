@@ -50,10 +50,6 @@ int mr_world_contact_capacity(mr_world *w, int need) {
   if (mr_grow((void **)&w->probe_valid, &cap, need, 1) != 0) return -1;
   cap = w->cap_contact;
   if (mr_grow((void **)&w->contact_pre, &cap, need, sizeof(double)) != 0) return -1;
-  cap = w->cap_contact;
-  if (mr_grow((void **)&w->fric, &cap, need, 3 * sizeof(double)) != 0) return -1;
-  cap = w->cap_contact;
-  if (mr_grow((void **)&w->slip, &cap, need, 4 * sizeof(double)) != 0) return -1;
   w->cap_contact = cap;
   return 0;
 }
@@ -66,6 +62,7 @@ int mr_world_contact_capacity(mr_world *w, int need) {
  * its factor): up to this many rows, about 3 MB, it is made; a larger
  * system grows the solver's arrays when it first meets a bigger size. */
 #define MR_SOLVE_RESERVE_MAX_ROWS 512
+#define MR_FRICTION_RESERVE       64
 
 static int reserve_contacts(mr_world *w) {
   long dynamic = 0;
@@ -88,6 +85,11 @@ static int reserve_contacts(mr_world *w) {
   long entries =
       2L * w->distances.n + 3L * (w->pins.n + w->curves.n) + plane_rows + 4L * (cap - plane_rows);
   if (mr_rows_reserve(w, rows) != 0) return -1;
+  /* Friction's W grows with the square of its contacts: room for a few
+   * tens, and more when a scene meets them. */
+  if (cap > 0 &&
+      mr_friction_reserve(w, rows, cap < MR_FRICTION_RESERVE ? cap : MR_FRICTION_RESERVE))
+    return -1;
   if (rows == 0 || rows > MR_SOLVE_RESERVE_MAX_ROWS) return 0;
   if (mr_jac_reserve(&w->J, rows, (int)entries) != MR_SOLVE_OK ||
       mr_jac_reserve(&w->island_J, rows, (int)entries) != MR_SOLVE_OK ||

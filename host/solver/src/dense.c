@@ -294,9 +294,9 @@ static int bound_suffices(mr_dense *dn, const mr_csr *A, const mr_solve_def *o, 
 }
 
 /* Factors A, unless the factor in L is of the same numbers already. The
- * physics solves one A for several right-hand sides (friction's rounds
- * add a force and solve again: on puppet.yaml 19 124 solves for 3 818
- * assemblies); the same pattern, numbers (compared bit for bit) and
+ * physics solves one A for several right-hand sides (friction probes
+ * the contacts' response and solves again with the friction found); the
+ * same pattern, numbers (compared bit for bit) and
  * tolerances give the same factor, so it is kept. */
 static void factor_unless_kept(mr_dense *dn, const mr_solve_def *o, const mr_csr *A,
                                mr_solve_result *r) {
