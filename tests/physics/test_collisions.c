@@ -247,6 +247,62 @@ static void friction_holds_a_body_of_uneven_masses(void **state) {
   }
 }
 
+/* A bob lying on a 20° slope, tethered by a link in the slope's plane,
+ * 30° below its level line, to a pinned anchor (r = 1 cm, clear of the
+ * slope): it can move only across the link, about the anchor, so its
+ * friction works along one direction of the plane, which neither of the
+ * contact's tangents is; along the link no friction could move it. With
+ * μ = 0.5 it stays; with μ = 0.1 it starts across the link as a block
+ * slides on a slope of sinθ cos 30°, s = ½ g (sinθ cos 30° − μ cosθ) t²
+ * (within 1 % over 0.1 s: the link turns 0.02 rad). */
+static double tethered_run(double mu, double t_end) {
+  const double th = 20.0 * 3.14159265358979323846 / 180.0,
+               phi = 30.0 * 3.14159265358979323846 / 180.0;
+  const double r = 0.02, len = 0.5;
+  const double n[3] = { 0, cos(th), sin(th) }, down[3] = { 0, -sin(th), cos(th) };
+  double along[3], across[3], a0[3], b0[3];
+  for (int k = 0; k < 3; k++) {
+    along[k] = cos(phi) * (k == 0) + sin(phi) * down[k];
+    across[k] = -sin(phi) * (k == 0) + cos(phi) * down[k];
+    a0[k] = r * n[k];
+    b0[k] = a0[k] + len * along[k];
+  }
+  mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_CONSTRAINTS, NULL);
+  mr_plane_def pl = mr_default_plane_def();
+  memcpy(pl.normal, n, sizeof n);
+  pl.restitution = 0.0;
+  pl.friction = mu;
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  const int anchor = add(w, a0, NULL, 0.01, 0), bob = add(w, b0, NULL, r, 0);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = anchor;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  mr_distance_def link = mr_default_distance_def();
+  link.a = anchor;
+  link.b = bob;
+  assert_int_equal(mr_world_add_distance(w, &link, NULL), MR_OK);
+  double x[3];
+  for (int f = 1; f <= (int)(t_end * 60.0 + 0.5); f++)
+    assert_int_equal(mr_world_step_to(w, f / 60.0, NULL), MR_OK);
+  mr_world_particle_state(w, bob, x, NULL);
+  mr_world_destroy(w);
+  double s = 0;
+  for (int k = 0; k < 3; k++) s += (x[k] - b0[k]) * across[k];
+  return s;
+}
+
+static void friction_works_along_the_one_direction_a_link_leaves_free(void **state) {
+  (void)state;
+  const double th = 20.0 * 3.14159265358979323846 / 180.0, g = 9.81, t = 0.1;
+  const double held = tethered_run(0.5, 10.0), slid = tethered_run(0.1, t);
+  const double expect =
+      0.5 * g * (sin(th) * cos(30.0 * 3.14159265358979323846 / 180.0) - 0.1 * cos(th)) * t * t;
+  printf("tethered bob: mu 0.5 moved %.3g m in 10 s; mu 0.1 slid %.6f m in %.2f s (block %.6f)\n",
+         held, slid, t, expect);
+  assert_true(fabs(held) < 1e-4);
+  assert_true(fabs(slid - expect) < 0.01 * expect);
+}
+
 /* Coulomb friction between sphere-tree spheres (§4.4): a ball (r = 5 cm,
  * puppet 1) lies at rest on a pinned sphere of radius 100 m (puppet 0),
  * 20° off its top, which is locally a 20° slope. With μ = 0.5 it stays; with
@@ -646,6 +702,7 @@ int main(void) {
     cmocka_unit_test(friction_stops_slide_at_mu_g_distance),
     cmocka_unit_test(friction_holds_on_a_slope_and_slides_below_tan_theta),
     cmocka_unit_test(friction_holds_a_body_of_uneven_masses),
+    cmocka_unit_test(friction_works_along_the_one_direction_a_link_leaves_free),
     cmocka_unit_test(friction_between_sphere_tree_spheres),
     cmocka_unit_test(ball_orbits_a_sphere_on_a_resting_contact),
     cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),

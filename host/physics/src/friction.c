@@ -44,27 +44,25 @@ struct mr_fric_point {
   double inv;     /* Σ w²/m of the carriers alone: the most W_ii can be */
 };
 
-/* Friction reaches only the particles carrying the resting contacts of
- * the solve: marks them (w->reached), and lists in w->row_reached the rows
- * naming one of them. Returns the number of rows listed. */
-static int friction_reach(mr_world *w, int rows, int first) {
-  const int *rp = w->J.row_ptr, *part = w->J.particle, *row_contact = w->row_contact;
+/* Friction reaches only the particles carrying the m contacts gathered:
+ * marks them (w->reached), and lists in w->row_reached the rows naming one
+ * of them. Returns the number of rows listed. */
+static int friction_reach(mr_world *w, int rows, int m) {
+  const int *rp = w->J.row_ptr, *part = w->J.particle;
   unsigned char *reached = w->reached;
   memset(reached, 0, (size_t)w->n);
-  for (int r = first; r < rows; r++) {
-    if (row_contact[r] < 0) continue;
-    const mr_contact *ct = &w->contacts.c[row_contact[r]];
-    if (ct->friction <= 0) continue;
+  for (int i = 0; i < m; i++) {
     int p[4];
+    const mr_contact *ct = &w->contacts.c[w->fric_points[i].contact];
     for (int k = mr_contact_carriers(w, ct, p) - 1; k >= 0; k--) reached[p[k]] = 1;
   }
-  int m = 0;
+  int listed = 0;
   for (int i = 0; i < rows; i++) {
     int any = 0;
     for (int e = rp[i]; e < rp[i + 1]; e++) any |= reached[part[e]];
-    if (any) w->row_reached[m++] = i;
+    if (any) w->row_reached[listed++] = i;
   }
-  return m;
+  return listed;
 }
 
 int mr_friction_present(const mr_world *w, int rows, int first) {
@@ -129,7 +127,7 @@ static int gather(mr_world *w, int rows, int first, const double *x, const doubl
     p->f[0] = p->f[1] = 0.0;
     p->n = w->lambda[r];
     p->mu = ct->friction;
-    if (p->inv > 0) m++; /* else nothing can move along it */
+    m++;
   }
   return m;
 }
@@ -275,7 +273,7 @@ int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *
   }
   const int m = gather(w, rows, first, x, v, acc);
   if (m <= 0) return m;
-  const int listed = friction_reach(w, rows, first);
+  const int listed = friction_reach(w, rows, m);
   if (mr_friction_reserve(w, rows, m) != 0) return -1;
   const size_t mm = (size_t)(2 * m);
   double *rhs0 = w->fric_work, *da = rhs0 + rows, *pacc = da + 3 * n;
