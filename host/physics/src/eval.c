@@ -73,8 +73,12 @@ int mr_solve_rows(mr_world *w, int assemble) {
   w->pass_calls[MR_PASS_SOLVE]++;
   w->stats.solves++;
   w->system++;
-  /* Blocks are assembled on their own each time: A holds the last one. */
-  const int groups = w->n_islands > 1 ? mr_islands_group(w) : 1;
+  /* Blocks are assembled on their own each time: A holds the last one.
+   * Their grouping reads J alone, which a solve of the kept A has not
+   * changed: it is kept too. */
+  if (assemble || w->island_groups < 1)
+    w->island_groups = w->n_islands > 1 ? mr_islands_group(w) : 1;
+  const int groups = w->island_groups;
   int st = groups > 1 ? mr_islands_solve(w, groups, &r) : solve_whole(w, assemble, &r);
   w->stats.blocks = groups;
   w->stats.solver_iterations += (uint64_t)(r.iterations > 0 ? r.iterations : 0);

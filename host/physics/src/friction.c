@@ -133,36 +133,57 @@ static int gather(mr_world *w, int rows, int first, const double *x, const doubl
 }
 
 /* The probe of unit friction along tangent k of point j: column 2j+k of
- * W (2m × 2m, row-major) and of N (m × 2m). da and acc are 3n each. */
+ * W (2m × 2m, row-major) and of N (m × 2m). da and acc are 3n each; da
+ * is zero on entry and left so. Only the rows naming a particle friction
+ * reaches (listed) see the push, and only those particles' accelerations
+ * are read: Jᵀ Δλ is summed there alone, row by row as mr_jac_tmul sums
+ * it. */
 static int probe(mr_world *w, const double *x, int m, int j, int k, int listed, double *da,
                  double *acc, double *W, double *N) {
   const struct mr_fric_point *pt = w->fric_points;
-  const int n = w->n, rows = w->J.rows, col = 2 * j + k;
+  const int rows = w->J.rows, col = 2 * j + k, *list = w->row_reached;
+  const int *rp = w->J.row_ptr, *part = w->J.particle;
+  const double(*jd)[3] = (const double(*)[3])w->J.d;
   const double *inv_mass = w->inv_mass;
   const unsigned char *reached = w->reached;
-  memset(da, 0, (size_t)(3 * n) * sizeof *da);
-  mr_contact_spread(w, &w->contacts.c[pt[j].contact], pt[j].t[k], 1.0, da);
-  for (int i = 0; i < n; i++)
-    for (int e = 0; e < 3; e++) da[3 * i + e] *= inv_mass[i];
-  memset(w->rhs, 0, (size_t)rows * sizeof *w->rhs);
-  for (int l = 0; l < listed; l++) {
-    const int r = w->row_reached[l];
-    w->rhs[r] = -mr_jac_row_mul(&w->J, r, da);
+  const mr_contact *ct = &w->contacts.c[pt[j].contact];
+  int cp[4];
+  const int nc = mr_contact_carriers(w, ct, cp);
+  mr_contact_spread(w, ct, pt[j].t[k], 1.0, da);
+  for (int c = 0; c < nc; c++) {
+    int seen = 0;
+    for (int b = 0; b < c; b++) seen |= cp[b] == cp[c];
+    for (int e = 0; e < 3 && !seen; e++) da[3 * cp[c] + e] *= inv_mass[cp[c]];
   }
+  memset(w->rhs, 0, (size_t)rows * sizeof *w->rhs);
+  for (int l = 0; l < listed; l++) w->rhs[list[l]] = -mr_jac_row_mul(&w->J, list[l], da);
   if (mr_solve_rows(w, 0) != 0) return -1;
-  mr_jac_tmul(&w->J, w->lambda, acc);
-  for (int i = 0; i < n; i++) {
+  for (int l = 0; l < listed; l++)
+    for (int e = rp[list[l]]; e < rp[list[l] + 1]; e++)
+      if (reached[part[e]]) memset(acc + 3 * part[e], 0, 3 * sizeof *acc);
+  for (int l = 0; l < listed; l++) {
+    const double z = w->lambda[list[l]];
+    for (int e = rp[list[l]]; e < rp[list[l] + 1]; e++) {
+      if (!reached[part[e]]) continue;
+      double *o = acc + 3 * part[e];
+      o[0] += jd[e][0] * z;
+      o[1] += jd[e][1] * z;
+      o[2] += jd[e][2] * z;
+    }
+  }
+  for (int i = 0; i < w->n; i++) {
     if (!reached[i]) continue;
     for (int e = 0; e < 3; e++) acc[3 * i + e] = da[3 * i + e] + acc[3 * i + e] * inv_mass[i];
   }
   for (int i = 0; i < m; i++) {
-    double q[3], s[2];
+    double q[3], sl[2];
     mr_contact_slip(w, &w->contacts.c[pt[i].contact], x, acc, q);
-    project2(pt[i].t, q, s);
-    W[(size_t)(2 * i) * (size_t)(2 * m) + (size_t)col] = s[0];
-    W[(size_t)(2 * i + 1) * (size_t)(2 * m) + (size_t)col] = s[1];
+    project2(pt[i].t, q, sl);
+    W[(size_t)(2 * i) * (size_t)(2 * m) + (size_t)col] = sl[0];
+    W[(size_t)(2 * i + 1) * (size_t)(2 * m) + (size_t)col] = sl[1];
     N[(size_t)i * (size_t)(2 * m) + (size_t)col] = w->lambda[pt[i].row];
   }
+  for (int c = 0; c < nc; c++) memset(da + 3 * cp[c], 0, 3 * sizeof *da);
   return 0;
 }
 
@@ -290,6 +311,7 @@ int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *
   }
   if (!(ask > 1e-9 * scale) && ask == ask) return 0;
   memcpy(rhs0, w->rhs, (size_t)rows * sizeof *rhs0);
+  memset(da, 0, (size_t)(3 * n) * sizeof *da);
   for (int j = 0; j < m; j++)
     for (int k = 0; k < 2; k++)
       if (probe(w, x, m, j, k, listed, da, pacc, W, N) != 0) return -1;

@@ -249,6 +249,7 @@ struct mr_world {
 
   /* islands.c: the blocks of J M⁻¹ Jᵀ, solved one by one */
   int n_islands, cap_islands;
+  int island_groups;           /* what the last grouping of J's rows found (0: none yet) */
   int *island_of;              /* per particle: its constraint block, −1 kinematic */
   int *island_parent;          /* per block: union–find of the blocks a solve joins */
   int *island_local;           /* per particle: its number in the block being solved, −1 */

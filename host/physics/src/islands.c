@@ -171,9 +171,22 @@ static int island_system(mr_world *w, int g) {
   return m;
 }
 
+/* Whether group g's b is zero, every row: its λ is then zero (A is
+ * positive definite, or its dropped rows' λ are set to zero), as the
+ * caller left it. Friction's probes push one contact, so every block but
+ * its own is one (friction.c). */
+static int rhs_zero(const mr_world *w, int g) {
+  const int *rows = w->island_rows + w->island_start[g];
+  const int m = w->island_start[g + 1] - w->island_start[g];
+  for (int i = 0; i < m; i++)
+    if (w->rhs[rows[i]] != 0.0) return 0;
+  return 1;
+}
+
 mr_solve_status mr_islands_solve(mr_world *w, int groups, mr_solve_result *sum) {
   memset(sum, 0, sizeof *sum);
   for (int g = 0; g < groups; g++) {
+    if (rhs_zero(w, g)) continue;
     const int m = island_system(w, g);
     if (m < 0) return MR_SOLVE_ERR_NOMEM;
     mr_solve_status a = mr_csr_assemble(&w->A, &w->island_J, w->island_mass);
