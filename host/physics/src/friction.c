@@ -221,38 +221,58 @@ static void stop_along(const double *b, int ld, const double r[2], double eps, d
   d[1] = -u1 * ur;
 }
 
+/* The friction point p takes: f_stop through its block wii of W, or, if
+ * that is more than μN allows, μN along the way it slides. N counts the
+ * contact's own friction: with nii = ∂N/∂f of its own, N = N_o + nii·f,
+ * N_o what the others leave. Friction that lifts its own contact (nii·g
+ * < 0 along the sliding direction g) slides at μN_o/(1 − μ nii·g), where
+ * the two agree; friction that presses its own contact harder is not let
+ * raise its own limit (the rounds cycled, two bodies wedged, μN growing
+ * with f). */
+static void take(const struct mr_fric_point *p, const double *wii, int ld, const double nii[2],
+                 double tau, double next[2]) {
+  const double r[2] = { p->at[0] + p->vt[0] / tau, p->at[1] + p->vt[1] / tau };
+  double d[2];
+  stop_along(wii, ld, r, 1e-9 * p->inv, d);
+  next[0] = p->f[0] + d[0];
+  next[1] = p->f[1] + d[1];
+  const double others = p->n - (nii[0] * p->f[0] + nii[1] * p->f[1]);
+  const double need = sqrt(next[0] * next[0] + next[1] * next[1]);
+  if (need <= p->mu * (others + nii[0] * next[0] + nii[1] * next[1])) return;
+  /* Sliding: against the sliding velocity, unless that is too slow to
+   * count in what stopping asks (rounding, or a contact only now starting
+   * to slide), when against the way it is driven. */
+  const double speed = sqrt(p->vt[0] * p->vt[0] + p->vt[1] * p->vt[1]);
+  double g[2] = { next[0] / need, next[1] / need };
+  if (speed > 1e-3 * tau * p->drive) {
+    g[0] = -p->vt[0] / speed;
+    g[1] = -p->vt[1] / speed;
+  } else if (p->drive > 0) {
+    g[0] = -p->at0[0] / p->drive;
+    g[1] = -p->at0[1] / p->drive;
+  }
+  const double s =
+      others > 0 ? p->mu * others / fmax(1.0 - p->mu * (nii[0] * g[0] + nii[1] * g[1]), 0.25) : 0.0;
+  next[0] = s * g[0];
+  next[1] = s * g[1];
+}
+
 /* Projected Gauss–Seidel over the points until no friction changes by
  * more than tol (N). */
 static void rounds(mr_world *w, int m, double tau, const double *W, const double *N, double tol) {
   struct mr_fric_point *pt = w->fric_points;
   const size_t ld = (size_t)(2 * m);
   for (int round = 0; round < MR_FRICTION_ROUNDS; round++) {
-    /* Friction can move the normal forces more than itself (two bodies
-     * wedged together), and the rounds then cycle between sticking and
-     * letting go. Past half the rounds the limits μN are held where they
-     * are: on fixed limits the rounds converge. */
+    /* Past half the rounds the normals are held where they are: on fixed
+     * limits the rounds converge. */
     const int held = round >= MR_FRICTION_ROUNDS / 2;
     double change = 0.0;
     for (int i = 0; i < m; i++) {
       struct mr_fric_point *p = &pt[i];
-      const double r[2] = { p->at[0] + p->vt[0] / tau, p->at[1] + p->vt[1] / tau };
-      double d[2], next[2];
-      stop_along(W + (size_t)(2 * i) * ld + (size_t)(2 * i), (int)ld, r, 1e-9 * p->inv, d);
-      next[0] = p->f[0] + d[0];
-      next[1] = p->f[1] + d[1];
-      const double limit = p->n > 0 ? p->mu * p->n : 0.0;
-      const double need = sqrt(next[0] * next[0] + next[1] * next[1]);
-      if (need > limit) {
-        /* Sliding: against the sliding velocity, unless that is too slow to
-         * count in what stopping asks (rounding, or a contact only now
-         * starting to slide), when against the way it is driven. */
-        const double speed = sqrt(p->vt[0] * p->vt[0] + p->vt[1] * p->vt[1]);
-        const int moving = speed > 1e-3 * tau * p->drive;
-        const double s = moving ? -limit / speed : p->drive > 0 ? -limit / p->drive : limit / need;
-        const double *dir = moving ? p->vt : p->drive > 0 ? p->at0 : next;
-        next[0] = s * dir[0];
-        next[1] = s * dir[1];
-      }
+      const double *nii = N + (size_t)i * ld + (size_t)(2 * i);
+      const double none[2] = { 0.0, 0.0 };
+      double next[2], d[2];
+      take(p, W + (size_t)(2 * i) * ld + (size_t)(2 * i), (int)ld, held ? none : nii, tau, next);
       d[0] = next[0] - p->f[0];
       d[1] = next[1] - p->f[1];
       p->f[0] = next[0];
