@@ -243,13 +243,16 @@ static void take(const struct mr_fric_point *p, const double *wii, int ld, const
    * count in what stopping asks (rounding, or a contact only now starting
    * to slide), when against the way it is driven. */
   const double speed = sqrt(p->vt[0] * p->vt[0] + p->vt[1] * p->vt[1]);
-  double g[2] = { next[0] / need, next[1] / need };
+  double g[2] = { 0.0, 0.0 };
   if (speed > 1e-3 * tau * p->drive) {
     g[0] = -p->vt[0] / speed;
     g[1] = -p->vt[1] / speed;
   } else if (p->drive > 0) {
     g[0] = -p->at0[0] / p->drive;
     g[1] = -p->at0[1] / p->drive;
+  } else if (need > 0) {
+    g[0] = next[0] / need;
+    g[1] = next[1] / need;
   }
   const double s =
       others > 0 ? p->mu * others / fmax(1.0 - p->mu * (nii[0] * g[0] + nii[1] * g[1]), 0.25) : 0.0;
