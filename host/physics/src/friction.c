@@ -260,6 +260,89 @@ static void take(const struct mr_fric_point *p, const double *wii, int ld, const
   next[1] = s * g[1];
 }
 
+/* The slip the friction can change is W's range: where contacts share a
+ * body (a puppet lying on a floor on many spheres), W is singular (30
+ * tangents, rank 12 on hard case 06b), and the stopping targets
+ * a_t + v_t/(h/2) are not all in its range: the contacts' velocities
+ * differ by what the constraints' drift leaves, 24 % of the targets' size
+ * there. No friction moves the rest, and the rounds, each contact
+ * stopping its own, traded internal forces for it without end (169 of
+ * 181 evaluations of 06b at the cap). So the targets are projected onto
+ * the range first, and what is left out stays as slip no friction can
+ * stop. The range is spanned by the columns of L in W = Pᵀ L Lᵀ P, a
+ * Cholesky factor with diagonal pivoting that stops at the rank; the
+ * projection is L (LᵀL)⁻¹ Lᵀ. c holds 8m² + 6m. */
+static void reachable(struct mr_fric_point *pt, int m, double tau, const double *W, double *c) {
+  const int n = 2 * m;
+  double *l = c, *g = l + (size_t)n * (size_t)n, *r = g + (size_t)n * (size_t)n, *y = r + n;
+  int *perm = (int *)(y + n);
+  memcpy(l, W, (size_t)n * (size_t)n * sizeof *l);
+  double big = 0.0;
+  for (int i = 0; i < n; i++) {
+    perm[i] = i;
+    big = fmax(big, l[(size_t)i * (size_t)n + (size_t)i]);
+    r[i] = i % 2 == 0 ? pt[i / 2].at[0] + pt[i / 2].vt[0] / tau
+                      : pt[i / 2].at[1] + pt[i / 2].vt[1] / tau;
+  }
+#define L_(i, j) l[(size_t)perm[i] * (size_t)n + (size_t)perm[j]]
+  int k = 0;
+  for (; k < n; k++) {
+    int best = k;
+    for (int i = k + 1; i < n; i++)
+      if (L_(i, i) > L_(best, best)) best = i;
+    if (!(L_(best, best) > 1e-9 * big)) break;
+    const int t = perm[k];
+    perm[k] = perm[best];
+    perm[best] = t;
+    const double d = sqrt(L_(k, k));
+    L_(k, k) = d;
+    for (int i = k + 1; i < n; i++) L_(i, k) /= d;
+    /* Both triangles: a later pivot's swap reads either. */
+    for (int j = k + 1; j < n; j++)
+      for (int i = k + 1; i < n; i++) L_(i, j) -= L_(i, k) * L_(j, k);
+  }
+  if (k == n || k == 0) return; /* W invertible, or nothing moves: nothing to take out */
+  /* g = LᵀL (k × k, in its own lower triangle), y = Lᵀ r. */
+  for (int a = 0; a < k; a++) {
+    double s = 0.0;
+    for (int i = a; i < n; i++) s += L_(i, a) * r[perm[i]];
+    y[a] = s;
+    for (int b = 0; b <= a; b++) {
+      double t = 0.0;
+      for (int i = a; i < n; i++) t += L_(i, a) * L_(i, b);
+      g[(size_t)a * (size_t)k + (size_t)b] = t;
+    }
+  }
+  /* Cholesky of g, and y = g⁻¹ y. */
+  for (int a = 0; a < k; a++) {
+    double *ga = g + (size_t)a * (size_t)k;
+    for (int b = 0; b <= a; b++) {
+      double s = ga[b];
+      const double *gb = g + (size_t)b * (size_t)k;
+      for (int e = 0; e < b; e++) s -= ga[e] * gb[e];
+      ga[b] = b < a ? s / gb[b] : sqrt(s);
+    }
+  }
+  for (int a = 0; a < k; a++) {
+    double s = y[a];
+    for (int e = 0; e < a; e++) s -= g[(size_t)a * (size_t)k + (size_t)e] * y[e];
+    y[a] = s / g[(size_t)a * (size_t)k + (size_t)a];
+  }
+  for (int a = k - 1; a >= 0; a--) {
+    double s = y[a];
+    for (int e = a + 1; e < k; e++) s -= g[(size_t)e * (size_t)k + (size_t)a] * y[e];
+    y[a] = s / g[(size_t)a * (size_t)k + (size_t)a];
+  }
+  /* The part of each target out of the range is taken off its slip. */
+  for (int i = 0; i < n; i++) {
+    double s = 0.0;
+    for (int a = 0; a < k && a <= i; a++) s += L_(i, a) * y[a];
+    const int q = perm[i];
+    pt[q / 2].at[q % 2] -= r[q] - s;
+  }
+#undef L_
+}
+
 /* Projected Gauss–Seidel over the points until no friction changes by
  * more than tol (N). */
 static void rounds(mr_world *w, int m, double tau, const double *W, const double *N, double tol) {
@@ -295,9 +378,11 @@ static void rounds(mr_world *w, int m, double tau, const double *W, const double
   }
 }
 
-/* b kept, two probe vectors of 3n, W (2m × 2m) and N (m × 2m). */
+/* b kept, two probe vectors of 3n, W (2m × 2m), N (m × 2m), and
+ * reachable()'s factor, its normal matrix and three vectors of 2m. */
 int mr_friction_reserve(mr_world *w, int rows, int points) {
-  const size_t need = (size_t)rows + 6 * (size_t)w->n + 6 * (size_t)points * (size_t)points;
+  const size_t need =
+      (size_t)rows + 6 * (size_t)w->n + 14 * (size_t)points * (size_t)points + 6 * (size_t)points;
   if (need > (size_t)INT32_MAX / sizeof(double) ||
       mr_grow((void **)&w->fric_work, &w->cap_fric_work, (int)need, sizeof(double)) != 0 ||
       mr_grow((void **)&w->fric_points, &w->cap_fric_points, points, sizeof *w->fric_points) != 0)
@@ -321,7 +406,7 @@ int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *
   if (mr_friction_reserve(w, rows, m) != 0) return -1;
   const size_t mm = (size_t)(2 * m);
   double *rhs0 = w->fric_work, *da = rhs0 + rows, *pacc = da + 3 * n;
-  double *W = pacc + 3 * n, *N = W + mm * mm;
+  double *W = pacc + 3 * n, *N = W + mm * mm, *scratch = N + mm * (size_t)m;
   double scale = 0;
   for (int r = 0; r < rows; r++) scale = fmax(scale, fabs(w->lambda[r]));
   /* Nothing slides or is pushed along any contact (a body lying still on
@@ -338,6 +423,7 @@ int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *
   for (int j = 0; j < m; j++)
     for (int k = 0; k < 2; k++)
       if (probe(w, x, m, j, k, listed, da, pacc, W, N) != 0) return -1;
+  reachable(w->fric_points, m, 0.5 * h, W, scratch);
   rounds(w, m, 0.5 * h, W, N, 1e-9 * scale);
   /* The friction as an applied force, and eq. 8 solved once more. */
   for (int i = 0; i < m; i++) {
