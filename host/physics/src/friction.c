@@ -95,6 +95,13 @@ static void tangent_basis(const double n[3], double t[2][3]) {
     for (int i = 0; i < 3; i++) t[1][i] = (i == (k + 1) % 3) ? 1.0 : 0.0;
 }
 
+/* What stopping point p within tau asks of its slip: a_t + v_t/tau, the
+ * residual the rounds drive to zero where the contact sticks. */
+static void target(const struct mr_fric_point *p, double tau, double r[2]) {
+  r[0] = p->at[0] + p->vt[0] / tau;
+  r[1] = p->at[1] + p->vt[1] / tau;
+}
+
 static void project2(const double t[2][3], const double q[3], double out[2]) {
   out[0] = t[0][0] * q[0] + t[0][1] * q[1] + t[0][2] * q[2];
   out[1] = t[1][0] * q[0] + t[1][1] * q[1] + t[1][2] * q[2];
@@ -231,8 +238,8 @@ static void stop_along(const double *b, int ld, const double r[2], double eps, d
  * with f). */
 static void take(const struct mr_fric_point *p, const double *wii, int ld, const double nii[2],
                  double tau, double next[2]) {
-  const double r[2] = { p->at[0] + p->vt[0] / tau, p->at[1] + p->vt[1] / tau };
-  double d[2];
+  double r[2], d[2];
+  target(p, tau, r);
   stop_along(wii, ld, r, 1e-9 * p->inv, d);
   next[0] = p->f[0] + d[0];
   next[1] = p->f[1] + d[1];
@@ -281,8 +288,7 @@ static void reachable(struct mr_fric_point *pt, int m, double tau, const double 
   for (int i = 0; i < n; i++) {
     perm[i] = i;
     big = fmax(big, l[(size_t)i * (size_t)n + (size_t)i]);
-    r[i] = i % 2 == 0 ? pt[i / 2].at[0] + pt[i / 2].vt[0] / tau
-                      : pt[i / 2].at[1] + pt[i / 2].vt[1] / tau;
+    if (i % 2 == 0) target(&pt[i / 2], tau, r + i);
   }
 #define L_(i, j) l[(size_t)perm[i] * (size_t)n + (size_t)perm[j]]
   int k = 0;
@@ -414,8 +420,9 @@ int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *
   double ask = 0.0;
   for (int i = 0; i < m; i++) {
     const struct mr_fric_point *p = &w->fric_points[i];
-    const double r0 = p->at[0] + p->vt[0] / (0.5 * h), r1 = p->at[1] + p->vt[1] / (0.5 * h);
-    ask = fmax(ask, sqrt(r0 * r0 + r1 * r1) / p->inv);
+    double r[2];
+    target(p, 0.5 * h, r);
+    ask = fmax(ask, sqrt(r[0] * r[0] + r[1] * r[1]) / p->inv);
   }
   if (!(ask > 1e-9 * scale) && ask == ask) return 0;
   memcpy(rhs0, w->rhs, (size_t)rows * sizeof *rhs0);
