@@ -231,7 +231,7 @@ struct mr_world {
   double *contact_pre;               /* χ̇⁻ before an impulse */
   struct mr_fric_point *fric_points; /* friction.c: the contacts with friction */
   int cap_fric_points;
-  double *fric_work; /* friction.c: b kept, probes, W and N */
+  double *fric_work; /* friction.c: b kept, probes, W, N, the projection's */
   int cap_fric_work;
   unsigned char *probe_valid; /* per probe contact: being located in time */
 
