@@ -36,7 +36,7 @@ static void a_wedge_is_cut_back_to_the_normals_it_leaves(void **state) {
   double N[2][4], f[4] = { 2.0, 0.0, 0.0, 2.0 }, n[2] = { 1.0, 1.0 };
   const double mu[2] = { 0.5, 0.5 };
   two(N, -0.2, -0.2);
-  mr_friction_cone(2, f, n, mu, &N[0][0], 1e-12);
+  mr_friction_hold_cone(2, f, n, mu, &N[0][0], 1e-12);
   assert_near(f[0], 0.5);
   assert_true(f[1] == 0.0 && f[2] == 0.0);
   assert_near(f[3], 0.65);
@@ -53,7 +53,7 @@ static void friction_within_the_cone_is_kept(void **state) {
   const double mu[2] = { 0.5, 0.25 };
   two(N, 0.7, -0.9);
   const double f_in[4] = { 0.3, -0.4, 0.1, 0.0 };
-  mr_friction_cone(2, f, n, mu, &N[0][0], 1e-12);
+  mr_friction_hold_cone(2, f, n, mu, &N[0][0], 1e-12);
   assert_memory_equal(f, f_in, sizeof f);
   assert_true(n[0] == 1.0 && n[1] == 0.5);
 }
@@ -65,10 +65,15 @@ static void a_lifted_contact_keeps_no_friction(void **state) {
   double N[2][4], f[4] = { 0.3, 0.4, 0.0, 1.0 }, n[2] = { -0.1, 4.0 };
   const double mu[2] = { 0.8, 0.1 };
   two(N, 0.0, 0.0);
-  mr_friction_cone(2, f, n, mu, &N[0][0], 1e-12);
+  mr_friction_hold_cone(2, f, n, mu, &N[0][0], 1e-12);
   assert_true(f[0] == 0.0 && f[1] == 0.0);
   assert_near(f[2], 0.0);
   assert_near(f[3], 0.4);
+  /* No friction on a lifted contact, with no tolerance: nothing to cut,
+   * and no 0/0. */
+  double g[2] = { 0.0, 0.0 }, m[1] = { -1.0 };
+  mr_friction_hold_cone(1, g, m, mu, &N[0][0], 0.0);
+  assert_true(g[0] == 0.0 && g[1] == 0.0);
 }
 
 /* Cutting a later contact presses an earlier one less, which then passes
@@ -79,7 +84,7 @@ static void a_cut_that_unloads_an_earlier_contact_is_followed(void **state) {
   double N[2][4], f[4] = { 0.5, 0.0, 0.0, 2.0 }, n[2] = { 1.1, 1.0 };
   const double mu[2] = { 0.5, 0.5 };
   two(N, 0.5, 0.0);
-  mr_friction_cone(2, f, n, mu, &N[0][0], 1e-12);
+  mr_friction_hold_cone(2, f, n, mu, &N[0][0], 1e-12);
   assert_near(f[3], 0.5);
   assert_near(n[0], 0.35);
   assert_near(f[0], 0.175);
@@ -92,12 +97,12 @@ static void friction_over_by_less_than_the_tolerance_stands(void **state) {
   (void)state;
   double N[1][2] = { { 0.0, 0.0 } }, f[2] = { 0.0, 0.5005 }, n[1] = { 1.0 };
   const double mu[1] = { 0.5 };
-  mr_friction_cone(1, f, n, mu, &N[0][0], 1e-3);
+  mr_friction_hold_cone(1, f, n, mu, &N[0][0], 1e-3);
   assert_true(f[1] == 0.5005);
-  mr_friction_cone(1, f, n, mu, &N[0][0], 1e-4);
+  mr_friction_hold_cone(1, f, n, mu, &N[0][0], 1e-4);
   assert_near(f[1], 0.5);
   f[1] = 0.5015; /* over by more than it */
-  mr_friction_cone(1, f, n, mu, &N[0][0], 1e-3);
+  mr_friction_hold_cone(1, f, n, mu, &N[0][0], 1e-3);
   assert_near(f[1], 0.5);
 }
 

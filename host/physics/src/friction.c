@@ -391,10 +391,13 @@ static void rounds(mr_world *w, int m, double tau, const double *W, const double
  * up to a third of the largest multiplier. N is linear, so those normals
  * are n = n0 + N f, with no solve; a contact over μ max(n, 0) is cut back
  * to it along its own direction, and the others' normals follow. Friction
- * only ever shrinks here, so the sweeps end: once nothing is over by more
- * than tol, or after MR_FRICTION_ROUNDS of them. f: 2m; n: m, the normals
- * f leaves, kept up to date; N: m × 2m, row-major. */
-void mr_friction_cone(int m, double *f, double *n, const double *mu, const double *N, double tol) {
+ * only ever shrinks here, and each cut takes more than tol off it, so the
+ * sweeps end once nothing is over by more than tol; two contacts that
+ * unload each other almost as fast as they are cut could take longer than
+ * MR_FRICTION_ROUNDS sweeps, which is where they stop. f: 2m; n: m, the
+ * normals f leaves, kept up to date; N: m × 2m, row-major. */
+void mr_friction_hold_cone(int m, double *f, double *n, const double *mu, const double *N,
+                           double tol) {
   const size_t ld = (size_t)(2 * m);
   for (int sweep = 0; sweep < MR_FRICTION_ROUNDS; sweep++) {
     int cut = 0;
@@ -414,9 +417,11 @@ void mr_friction_cone(int m, double *f, double *n, const double *mu, const doubl
   }
 }
 
-/* The normals the friction found leaves, and the cone held on them: the
- * points' f from mr_friction_cone. c holds 4m. */
-static void hold_cone(struct mr_fric_point *pt, int m, const double *N, double tol, double *c) {
+/* The normals the rounds' friction leaves, from the ones before it, and
+ * that friction held inside its cone on them (mr_friction_hold_cone).
+ * c holds 4m: the share reachable() is done with. */
+static void cone_on_normals(struct mr_fric_point *pt, int m, const double *N, double tol,
+                            double *c) {
   double *f = c, *n = f + 2 * m, *mu = n + m;
   const size_t ld = (size_t)(2 * m);
   for (int i = 0; i < m; i++) {
@@ -429,7 +434,7 @@ static void hold_cone(struct mr_fric_point *pt, int m, const double *N, double t
     for (int j = 0; j < 2 * m; j++) s += N[(size_t)i * ld + (size_t)j] * f[j];
     n[i] = s;
   }
-  mr_friction_cone(m, f, n, mu, N, tol);
+  mr_friction_hold_cone(m, f, n, mu, N, tol);
   for (int i = 0; i < m; i++) {
     pt[i].f[0] = f[2 * i];
     pt[i].f[1] = f[2 * i + 1];
@@ -437,7 +442,8 @@ static void hold_cone(struct mr_fric_point *pt, int m, const double *N, double t
 }
 
 /* b kept, two probe vectors of 3n, W (2m × 2m), N (m × 2m), and
- * reachable()'s factor, its normal matrix and three vectors of 2m. */
+ * reachable()'s factor, its normal matrix and three vectors of 2m (then
+ * cone_on_normals()'s 4m). */
 int mr_friction_reserve(mr_world *w, int rows, int points) {
   const size_t need =
       (size_t)rows + 6 * (size_t)w->n + 14 * (size_t)points * (size_t)points + 6 * (size_t)points;
@@ -484,7 +490,7 @@ int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *
       if (probe(w, x, m, j, k, listed, da, pacc, W, N) != 0) return -1;
   reachable(w->fric_points, m, 0.5 * h, W, scratch);
   rounds(w, m, 0.5 * h, W, N, 1e-9 * scale);
-  hold_cone(w->fric_points, m, N, 1e-9 * scale, scratch);
+  cone_on_normals(w->fric_points, m, N, 1e-9 * scale, scratch);
   /* The friction as an applied force, and eq. 8 solved once more. */
   for (int i = 0; i < m; i++) {
     const struct mr_fric_point *p = &w->fric_points[i];

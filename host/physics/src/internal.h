@@ -413,8 +413,10 @@ int mr_friction_solve(mr_world *w, double h, int rows, int first, const double *
 /* The cone |f_i| ≤ μ_i max(n_i, 0) held on m contacts' friction f (2m),
  * whose normals n (m) move by N (m × 2m, row-major) per unit of it: each
  * contact over is cut back along its own direction and n follows, until
- * none is over by more than tol. Friction only shrinks. */
-void mr_friction_cone(int m, double *f, double *n, const double *mu, const double *N, double tol);
+ * none is over by more than tol or MR_FRICTION_ROUNDS sweeps are done.
+ * Friction only shrinks. */
+void mr_friction_hold_cone(int m, double *f, double *n, const double *mu, const double *N,
+                           double tol);
 
 /* sphere_tree.c */
 int mr_trees_build(mr_world *w);
