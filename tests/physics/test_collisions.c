@@ -695,6 +695,66 @@ static void a_plane_with_restitution_over_1_is_refused(void **state) {
   mr_world_destroy(w);
 }
 
+/* Two rigid tetrahedra of uneven masses sliding on a floor with μ = 0.5,
+ * 5 m apart, and a ball lying still: their rows are blocks of eq. 8 of
+ * their own, and what one body's
+ * friction comes to must not hear the other. Body A slides the same way
+ * in both runs, body B slides in one and lies still in the other; with
+ * fixed steps, A's state after 0.5 s must be the same to the bit. Worked
+ * over both bodies at once, B's sliding set the rounds' tolerance, their
+ * count and the skip of the probes for A as well (and a crowd of puppets
+ * lying on a floor cost the cube of its contacts). */
+static void friction_on_one_body_does_not_hear_another(void **state) {
+  (void)state;
+  double got[2][4][6];
+  for (int run = 0; run < 2; run++) {
+    mr_world_def def = mr_default_world_def();
+    def.dt_initial = def.dt_min = def.dt_max = def.dt_floor = 0.005;
+    mr_world *w = make_world(MR_EFFECT_GRAVITY | MR_EFFECT_PLANES | MR_EFFECT_CONSTRAINTS, &def);
+    floor_plane(w, 0.0, 0.5);
+    const double r = 0.02, mass[4] = { 0.3, 0.5, 0.7, 2.0 };
+    const double pts[4][3] = {
+      { 0, r, 0 }, { 0.3, r, 0 }, { 0.15, r, 0.25 }, { 0.15, 0.25, 0.08 }
+    };
+    const double vel[2][3] = { { 0.0, 0.0, 0.6 }, { run == 0 ? 0.8 : 0.0, 0.0, 0.0 } };
+    int ids[2][4];
+    for (int b = 0; b < 2; b++) {
+      for (int i = 0; i < 4; i++) {
+        mr_particle_def p = mr_default_particle_def();
+        for (int k = 0; k < 3; k++) {
+          p.position[k] = pts[i][k] + (k == 0 ? 5.0 * b : 0.0);
+          p.velocity[k] = vel[b][k];
+        }
+        p.radius = r;
+        p.mass = mass[i];
+        assert_int_equal(mr_world_add_particle(w, &p, &ids[b][i]), MR_OK);
+      }
+      mr_rigid_group_def g = mr_default_rigid_group_def();
+      g.particles = ids[b];
+      g.count = 4;
+      assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_OK);
+    }
+    /* Last, a ball lying still 5 m the other way: a block with nothing to
+     * stop, which asks for no friction, after two that do. */
+    const int ball = add(w, (double[3]){ -5.0, r, 0.0 }, NULL, r, 0);
+    for (int f = 1; f <= 50; f++) assert_int_equal(mr_world_step_to(w, f / 100.0, NULL), MR_OK);
+    for (int i = 0; i < 4; i++) mr_world_particle_state(w, ids[0][i], got[run][i], got[run][i] + 3);
+    double xc[3];
+    mr_world_particle_state(w, ball, xc, NULL);
+    assert_true(xc[0] == -5.0 && xc[2] == 0.0);
+    double xb[3];
+    mr_world_particle_state(w, ids[1][0], xb, NULL);
+    /* B slid in the first run (0.8²/(2 μ g) = 6.5 cm) and lay still in the
+     * second; A slid 0.6²/(2 μ g) = 3.7 cm along z in both. */
+    printf("island friction, run %d: A slid %.5f m along z, B %.5f m along x\n", run,
+           got[run][0][2], xb[0] - 5.0);
+    assert_true(run == 0 ? fabs(xb[0] - 5.0 - 0.8 * 0.8 / 9.81) < 5e-4 : fabs(xb[0] - 5.0) < 1e-6);
+    assert_true(fabs(got[run][0][2] - 0.6 * 0.6 / 9.81) < 5e-4);
+    mr_world_destroy(w);
+  }
+  assert_memory_equal(got[0], got[1], sizeof got[0]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(ball_bounces_to_restitution_height),
@@ -703,6 +763,7 @@ int main(void) {
     cmocka_unit_test(friction_holds_on_a_slope_and_slides_below_tan_theta),
     cmocka_unit_test(friction_holds_a_body_of_uneven_masses),
     cmocka_unit_test(friction_works_along_the_one_direction_a_link_leaves_free),
+    cmocka_unit_test(friction_on_one_body_does_not_hear_another),
     cmocka_unit_test(friction_between_sphere_tree_spheres),
     cmocka_unit_test(ball_orbits_a_sphere_on_a_resting_contact),
     cmocka_unit_test(rigid_body_settles_on_floor_without_chatter),

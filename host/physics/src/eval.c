@@ -65,6 +65,34 @@ static mr_solve_status solve_whole(mr_world *w, int assemble, mr_solve_result *r
   return mr_solver_solve(w->solver, &w->opts, &w->A, w->rhs, w->lambda, r);
 }
 
+/* What a solve of `rows` rows (λ of them in `lambda`) came to, for the
+ * world's counters: 0, or −1 with w->fail set. NaN or Inf in the system (a
+ * callback curve, an exploded state) reaches the state, where the step sees
+ * it and resets the world (§7). */
+static int solved(mr_world *w, mr_solve_status st, const mr_solve_result *r, const int *rows,
+                  int k) {
+  w->stats.solver_iterations += (uint64_t)(r->iterations > 0 ? r->iterations : 0);
+  if (st == MR_SOLVE_ERR_NONFINITE) {
+    for (int i = 0; i < k; i++) w->lambda[rows ? rows[i] : i] = NAN;
+    w->stats.solver_failures++;
+    return 0;
+  }
+  if (st < 0) {
+    w->stats.solver_failures++;
+    w->fail =
+        mr_fail(w, MR_ERR_SOLVER, "solver %s: %s (%d rows)", mr_solve_method_name(w->opts.method),
+                st == MR_SOLVE_ERR_NOMEM         ? "out of memory"
+                : st == MR_SOLVE_ERR_UNAVAILABLE ? "not built into this library"
+                                                 : mr_solve_status_name(st),
+                k);
+    return -1;
+  }
+  if (st == MR_SOLVE_NOT_CONVERGED) w->stats.solver_failures++;
+  if (r->dependent > w->last_dependent) w->last_dependent = r->dependent;
+  w->stats.dependent_rows = r->dependent;
+  return 0;
+}
+
 int mr_solve_rows(mr_world *w, int assemble) {
   int k = w->J.rows;
   memset(w->lambda, 0, (size_t)k * sizeof *w->lambda);
@@ -81,28 +109,19 @@ int mr_solve_rows(mr_world *w, int assemble) {
   const int groups = w->island_groups;
   int st = groups > 1 ? mr_islands_solve(w, groups, &r) : solve_whole(w, assemble, &r);
   w->stats.blocks = groups;
-  w->stats.solver_iterations += (uint64_t)(r.iterations > 0 ? r.iterations : 0);
-  if (st == MR_SOLVE_ERR_NONFINITE) {
-    /* NaN or Inf in the system (a callback curve, an exploded state): let it
-     * reach the state, where the step sees it and resets the world (§7). */
-    for (int i = 0; i < k; i++) w->lambda[i] = NAN;
-    w->stats.solver_failures++;
-    return 0;
-  }
-  if (st < 0) {
-    w->stats.solver_failures++;
-    w->fail =
-        mr_fail(w, MR_ERR_SOLVER, "solver %s: %s (%d rows)", mr_solve_method_name(w->opts.method),
-                st == MR_SOLVE_ERR_NOMEM         ? "out of memory"
-                : st == MR_SOLVE_ERR_UNAVAILABLE ? "not built into this library"
-                                                 : mr_solve_status_name(st),
-                k);
-    return -1;
-  }
-  if (st == MR_SOLVE_NOT_CONVERGED) w->stats.solver_failures++;
-  if (r.dependent > w->last_dependent) w->last_dependent = r.dependent;
-  w->stats.dependent_rows = r.dependent;
-  return 0;
+  return solved(w, st, &r, NULL, k);
+}
+
+int mr_solve_block(mr_world *w, int g) {
+  const int *rows = w->island_rows + w->island_start[g];
+  const int k = w->island_start[g + 1] - w->island_start[g];
+  for (int i = 0; i < k; i++) w->lambda[rows[i]] = 0.0;
+  mr_solve_result r;
+  memset(&r, 0, sizeof r);
+  w->pass_calls[MR_PASS_SOLVE]++;
+  w->stats.solves++;
+  w->system++;
+  return solved(w, mr_islands_solve_one(w, g, &r), &r, rows, k);
 }
 
 /* a = M⁻¹ f for every particle (0 on frame particles). The loops of this

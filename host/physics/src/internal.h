@@ -444,6 +444,9 @@ int mr_rows_reserve(mr_world *w, int rows);
 /* Assembles A = J M⁻¹ Jᵀ from w->J and solves A λ = w->rhs into w->lambda,
  * block by block where the rows fall into blocks (islands.c). */
 int mr_solve_rows(mr_world *w, int assemble);
+/* mr_solve_rows(w, 0) for group g of the grouping in use alone
+ * (mr_islands_solve_one): only its rows' λ are written. */
+int mr_solve_block(mr_world *w, int g);
 /* eq. 8's b again for the listed rows, with the free accelerations a. */
 void mr_rhs_rows(mr_world *w, const int *list, int count, const double *a);
 /* The compliance of contact rows: A's rows from `first` on whose
@@ -454,6 +457,10 @@ void mr_soften_contacts(mr_csr *A, int first, const int *row_contact);
 int mr_islands_build(mr_world *w); /* the constraints' blocks, when the world is made ready */
 int mr_islands_group(mr_world *w); /* groups J's rows: how many groups (1: solve whole) */
 mr_solve_status mr_islands_solve(mr_world *w, int groups, mr_solve_result *sum);
+/* Group g of the grouping in use alone (its λ; the other rows' are left
+ * as they were): for friction's probes, whose b is zero in every other
+ * block, so that a probe costs its own block and not the whole crowd. */
+mr_solve_status mr_islands_solve_one(mr_world *w, int g, mr_solve_result *sum);
 
 /* impulse.c: eq. 9 at contacts */
 int mr_impulses_apply(mr_world *w, double t, int *collided);

@@ -183,28 +183,47 @@ static int rhs_zero(const mr_world *w, int g) {
   return 1;
 }
 
+/* Group g's system assembled and solved, its λ written out and its
+ * iterations and dependent rows added to *sum; a failure, or NaN in this
+ * block, is the caller's to handle for all. */
+static mr_solve_status solve_block(mr_world *w, int g, mr_solve_result *sum) {
+  const int m = island_system(w, g);
+  if (m < 0) return MR_SOLVE_ERR_NOMEM;
+  mr_solve_status a = mr_csr_assemble(&w->A, &w->island_J, w->island_mass);
+  if (a != MR_SOLVE_OK) return a;
+  mr_soften_contacts(&w->A, 0, w->island_contact);
+  memset(w->island_x, 0, (size_t)m * sizeof *w->island_x);
+  mr_solve_result r;
+  mr_solve_status s = mr_solver_solve(w->solver, &w->opts, &w->A, w->island_b, w->island_x, &r);
+  if (s < 0) {
+    sum->status = s;
+    return s;
+  }
+  const int *rows = w->island_rows + w->island_start[g];
+  for (int i = 0; i < m; i++) w->lambda[rows[i]] = w->island_x[i];
+  sum->iterations += r.iterations > 0 ? r.iterations : 0; /* what mr_solve_rows reads */
+  sum->dependent += r.dependent;
+  return MR_SOLVE_OK;
+}
+
 mr_solve_status mr_islands_solve(mr_world *w, int groups, mr_solve_result *sum) {
   memset(sum, 0, sizeof *sum);
   for (int g = 0; g < groups; g++) {
     if (rhs_zero(w, g)) continue;
-    const int m = island_system(w, g);
-    if (m < 0) return MR_SOLVE_ERR_NOMEM;
-    mr_solve_status a = mr_csr_assemble(&w->A, &w->island_J, w->island_mass);
-    if (a != MR_SOLVE_OK) return a;
-    mr_soften_contacts(&w->A, 0, w->island_contact);
-    memset(w->island_x, 0, (size_t)m * sizeof *w->island_x);
-    mr_solve_result r;
-    mr_solve_status s = mr_solver_solve(w->solver, &w->opts, &w->A, w->island_b, w->island_x, &r);
-    if (s < 0) { /* a failure, or NaN in this block: the caller's to handle for all */
-      sum->status = s;
-      return s;
-    }
-    const int *rows = w->island_rows + w->island_start[g];
-    for (int i = 0; i < m; i++) w->lambda[rows[i]] = w->island_x[i];
-    sum->iterations += r.iterations > 0 ? r.iterations : 0; /* what mr_solve_rows reads */
-    sum->dependent += r.dependent;
+    const mr_solve_status s = solve_block(w, g, sum);
+    if (s < 0) return s;
   }
   /* LDLᵀ always finishes: what is left to say is whether rows dropped. */
+  sum->status = sum->dependent > 0 ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
+  return sum->status;
+}
+
+mr_solve_status mr_islands_solve_one(mr_world *w, int g, mr_solve_result *sum) {
+  memset(sum, 0, sizeof *sum);
+  if (!rhs_zero(w, g)) {
+    const mr_solve_status s = solve_block(w, g, sum);
+    if (s < 0) return s;
+  }
   sum->status = sum->dependent > 0 ? MR_SOLVE_DEPENDENT : MR_SOLVE_OK;
   return sum->status;
 }
