@@ -405,6 +405,29 @@ void mr_contact_normal(const mr_world *w, const mr_contact *c, const double *x, 
  * = M⁻¹ F_a and λ solved, adds the friction to F (w->scratch.force) and
  * to a where it reaches, and solves again for λ; 0 or −1. */
 #define MR_FRICTION_ROUNDS 64
+/* One frictional contact of a solve: gathered, probed and sent round by
+ * friction.c, its friction found by friction_rounds.c. */
+struct mr_fric_point {
+  int row, contact;
+  int island;     /* its block of eq. 8 (islands.c), 0 when solved whole */
+  double scale;   /* the largest |λ| of that block, before any probe */
+  double t[2][3]; /* the tangent plane's basis */
+  double vt[2];   /* sliding velocity, in that basis */
+  double at[2];   /* slip acceleration under the friction so far */
+  double at0[2];  /* and before any friction */
+  double drive;   /* |at0| */
+  double f[2];    /* the friction so far */
+  double n, mu;   /* normal multiplier, friction coefficient */
+  double n0;      /* the normal multiplier before any friction */
+  double inv;     /* Σ w²/m of the carriers alone: the most W_ii can be */
+};
+/* friction_rounds.c, on m points with W (2m × 2m) and N (m × 2m) measured:
+ * whether any asks for friction stopping it within tau beyond tol (×
+ * what its carriers alone weigh), and their friction f found, tol the
+ * rounds' and the cone's tolerance. scratch holds 8m² + 6m. */
+int mr_friction_asks(const struct mr_fric_point *pt, int m, double tau, double tol);
+void mr_friction_rounds(struct mr_fric_point *pt, int m, double tau, const double *W,
+                        const double *N, double tol, double *scratch);
 /* Room for a solve of `rows` rows with `points` frictional contacts. */
 int mr_friction_reserve(mr_world *w, int rows, int points);
 int mr_friction_present(const mr_world *w, int rows, int first);
