@@ -151,6 +151,21 @@ static void quick_run_writes_every_output_with_the_machine(void **state) {
   char *cap = tt_read_file(tt_path(dir, "capacity.csv"), NULL);
   assert_non_null(cap);
   assert_non_null(strstr(cap, "\n100,"));
+  /* The crowd lying on a floor: a row for each count the quick run takes,
+   * each a cost (the figures are the benchmark's to judge, not a test's). */
+  assert_non_null(strstr(o.out, "lying on a floor with friction"));
+  char *fl = tt_read_file(tt_path(dir, "capacity_floor.csv"), NULL);
+  assert_non_null(fl);
+  for (int k = 0; k < 3; k++) {
+    char key[8];
+    snprintf(key, sizeof key, "\n%d,", k == 0 ? 1 : k == 1 ? 4 : 16);
+    const char *row = strstr(fl, key);
+    double sim = 0, cost = 0;
+    assert_non_null(row);
+    assert_int_equal(sscanf(strchr(row + 1, ',') + 1, "%lf,%lf", &sim, &cost), 2);
+    assert_true(sim > 0 && isfinite(cost) && cost > 0);
+  }
+  free(fl);
   char *summary = tt_read_file(tt_path(dir, "summary.txt"), NULL);
   assert_non_null(summary);
   assert_non_null(strstr(summary, "machine: "));

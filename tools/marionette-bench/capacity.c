@@ -1,6 +1,7 @@
 /* Item 3, capacity: how many stick puppets, each on its own control frame,
  * one core keeps at 60 fps, physics only and with a headless render, and
- * how the cost grows with the count. */
+ * how the cost grows with the count; then puppets lying on a floor with
+ * friction, whose cost grows with their contacts. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdlib.h>
@@ -129,6 +130,59 @@ int bench_crowd_load(int n, mr_scene *sc) {
   return crowd_load(n, 0, sc);
 }
 
+/* Hard case 06b's puppet as a unit of a `puppets:` list, lying face up
+ * 5 cm above a floor with friction, at (x, 0, z), with no strings. */
+static const char lying_puppet[] =
+    "  - name: p%d\n    offset: [%.2f, 0, %.2f]\n    particles:\n"
+    "      - {name: neck, position: [0.00, 0.08, 0.62], mass: 0.08, radius: 0.03}\n"
+    "      - {name: head_top, position: [0.00, 0.08, 0.80], mass: 0.10, radius: 0.03}\n"
+    "      - {name: nose, position: [0.00, 0.15, 0.71], mass: 0.06, radius: 0.03}\n"
+    "      - {name: ear_l, position: [-0.06, 0.08, 0.71], mass: 0.06, radius: 0.03}\n"
+    "      - {name: shoulder_l, position: [-0.12, 0.08, 0.56], mass: 0.15, radius: 0.03}\n"
+    "      - {name: shoulder_r, position: [0.12, 0.08, 0.56], mass: 0.15, radius: 0.03}\n"
+    "      - {name: chest, position: [0.00, 0.14, 0.46], mass: 0.15, radius: 0.03}\n"
+    "      - {name: hip_l, position: [-0.08, 0.08, 0.32], mass: 0.12, radius: 0.03}\n"
+    "      - {name: hip_r, position: [0.08, 0.08, 0.32], mass: 0.12, radius: 0.03}\n"
+    "      - {name: elbow_l, position: [-0.15, 0.08, 0.42], mass: 0.06, radius: 0.03}\n"
+    "      - {name: hand_l, position: [-0.16, 0.10, 0.28], mass: 0.08, radius: 0.03}\n"
+    "      - {name: elbow_r, position: [0.15, 0.08, 0.42], mass: 0.06, radius: 0.03}\n"
+    "      - {name: hand_r, position: [0.16, 0.10, 0.28], mass: 0.08, radius: 0.03}\n"
+    "      - {name: knee_l, position: [-0.08, 0.09, 0.18], mass: 0.08, radius: 0.03}\n"
+    "      - {name: foot_l, position: [-0.08, 0.08, 0.04], mass: 0.08, radius: 0.03}\n"
+    "      - {name: knee_r, position: [0.08, 0.09, 0.18], mass: 0.08, radius: 0.03}\n"
+    "      - {name: foot_r, position: [0.08, 0.08, 0.04], mass: 0.08, radius: 0.03}\n"
+    "    groups:\n"
+    "      - {name: head, particles: [neck, head_top, nose, ear_l]}\n"
+    "      - {name: torso, particles: [shoulder_l, shoulder_r, chest, hip_l, hip_r]}\n"
+    "    constraints:\n"
+    "      - {between: [neck, shoulder_l]}\n      - {between: [neck, shoulder_r]}\n"
+    "      - {between: [shoulder_l, elbow_l]}\n      - {between: [elbow_l, hand_l]}\n"
+    "      - {between: [shoulder_r, elbow_r]}\n      - {between: [elbow_r, hand_r]}\n"
+    "      - {between: [hip_l, knee_l]}\n      - {between: [knee_l, foot_l]}\n"
+    "      - {between: [hip_r, knee_r]}\n      - {between: [knee_r, foot_r]}\n";
+
+/* n of those puppets dropped side by side onto a floor with friction 0.8,
+ * 0.6 m apart across and 1 m deep (hard case 28 is sixteen of them). */
+static int floor_crowd_load(int n, mr_scene *sc) {
+  size_t cap = (size_t)n * (sizeof lying_puppet + 64) + 512, used = 0;
+  char *t = malloc(cap);
+  if (t != NULL) {
+    used += (size_t)snprintf(t, cap,
+                             "format: 1\nname: floor crowd\nphysics:\n"
+                             "  effects: [gravity, drag, constraints, floor]\n  drag: 0.05\n"
+                             "  floor: {height: 0, restitution: 0.0, friction: 0.8}\n"
+                             "  puppets:\n");
+    for (int i = 0; i < n; i++)
+      used += (size_t)snprintf(t + used, cap - used, lying_puppet, i, 0.6 * (i % 8), 1.0 * (i / 8));
+  }
+  mr_scene_error err;
+  int ok = t != NULL && mr_scene_load_text("floor crowd", t, used, sc, &err) == MR_SCENE_OK;
+  if (!ok)
+    fprintf(stderr, "marionette-bench: floor crowd of %d: %s\n", n, t ? err.text : "no memory");
+  free(t);
+  return ok ? 0 : -1;
+}
+
 /* A crowd's run, frame by frame on the CPU clock (the process's, so the
  * threads llvmpipe draws on are counted too): the world is built before
  * the first frame, so the build (a load cost) and the stepping (the cost
@@ -219,6 +273,41 @@ static int physics_table(bench *b, FILE *csv, double *ms_per_frame) {
          "and after: the frames after the first; real-time puppets: n / (CPU s per sim s); linear "
          "cost shows as growth 10x per row; steps/s, rejected/s: the one adaptive step the "
          "whole crowd shares\n");
+  return 0;
+}
+
+/* Puppets lying on a floor with friction, physics only: each rests on
+ * about seventeen contacts, and friction is found through the solve
+ * (host/physics/README.md), so a crowd's cost shows whether it is worked
+ * puppet by puppet (growth 4x per row) or all at once (it was the cube). */
+static int floor_table(bench *b, FILE *csv) {
+  static const int counts[] = { 1, 4, 16, 64 };
+  bench_say(b, "\nlying on a floor with friction 0.8 (hard case 06b's puppet, dropped 5 cm), "
+               "physics only, one core:\n");
+  bench_say(b, "%8s %11s %15s %7s %8s %10s\n", "puppets", "CPU s/sim s", "ms per puppet-s",
+            "growth", "steps/s", "real-time");
+  double last = 0;
+  for (int i = 0; i < (b->quick ? 3 : 4); i++) {
+    const int n = counts[i];
+    const double seconds = b->quick ? 1.0 : 3.0;
+    bench_progress("capacity", "%d puppets lying on a floor for %g s", n, seconds);
+    mr_scene sc;
+    crowd_clock c = { 0 };
+    mr_sim_result r;
+    if (floor_crowd_load(n, &sc) != 0) return -1;
+    int rc = crowd_run(&sc, seconds, &c, &r);
+    mr_scene_free(&sc);
+    if (rc != 0) return -1;
+    const double sim = (c.frames - 1) / 60.0, cost = c.physics / sim;
+    char growth[32] = "-";
+    if (last > 0) snprintf(growth, sizeof growth, "%.2fx", cost / last);
+    bench_say(b, "%8d %11.4f %15.4f %7s %8.1f %10.0f\n", n, cost, 1000.0 * cost / n, growth,
+              (double)r.steps / r.sim_time, n / cost);
+    fprintf(csv, "%d,%g,%.6g,%.6g,%.0f,%.6g\n", n, sim, cost, 1000.0 * cost / n, n / cost,
+            (double)r.steps / r.sim_time);
+    last = cost;
+  }
+  bench_say(b, "linear cost shows as growth 4x per row\n");
   return 0;
 }
 
@@ -323,6 +412,17 @@ int bench_capacity(bench *b) {
     rc = physics_table(b, csv, physics_ms);
   }
   if (rc == 0) render_table(b, rcsv, physics_ms);
+  FILE *fcsv = rc == 0 ? bench_open(b, "capacity_floor.csv") : NULL;
+  if (fcsv) {
+    fprintf(fcsv,
+            "# %s\npuppets,sim_s,cpu_s_per_sim_s,cpu_ms_per_puppet_s,realtime_puppets,"
+            "steps_per_sim_s\n",
+            b->machine);
+    rc = floor_table(b, fcsv);
+    fclose(fcsv);
+  } else if (rc == 0) {
+    rc = -1;
+  }
   if (csv) fclose(csv);
   if (rcsv) fclose(rcsv);
   return rc;
