@@ -11,6 +11,20 @@
 #include "mr_render.h"
 #include "mr_scene_world.h"
 
+/* The rigid head and torso and the limbs' links of the puppet of Fig. 10
+ * (hard cases 01 and 06b), for either pose below: a unit's `groups` and
+ * `constraints`. */
+#define PUPPET_JOINTS                                                                 \
+  "    groups:\n"                                                                     \
+  "      - {name: head, particles: [neck, head_top, nose, ear_l]}\n"                  \
+  "      - {name: torso, particles: [shoulder_l, shoulder_r, chest, hip_l, hip_r]}\n" \
+  "    constraints:\n"                                                                \
+  "      - {between: [neck, shoulder_l]}\n      - {between: [neck, shoulder_r]}\n"    \
+  "      - {between: [shoulder_l, elbow_l]}\n      - {between: [elbow_l, hand_l]}\n"  \
+  "      - {between: [shoulder_r, elbow_r]}\n      - {between: [elbow_r, hand_r]}\n"  \
+  "      - {between: [hip_l, knee_l]}\n      - {between: [knee_l, foot_l]}\n"         \
+  "      - {between: [hip_r, knee_r]}\n      - {between: [knee_r, foot_r]}\n"
+
 /* One stick puppet of Fig. 10 (hard case 01) as a unit of a `puppets:`
  * list, at (x, 0, z), with its own control frame swaying at 0.5 Hz. */
 static const char stick_puppet[] =
@@ -31,16 +45,7 @@ static const char stick_puppet[] =
     "      - {name: knee_l, position: [-0.08, 0.18, 0.01], mass: 0.08}\n"
     "      - {name: foot_l, position: [-0.08, 0.04, 0.00], mass: 0.08}\n"
     "      - {name: knee_r, position: [0.08, 0.18, 0.01], mass: 0.08}\n"
-    "      - {name: foot_r, position: [0.08, 0.04, 0.00], mass: 0.08}\n"
-    "    groups:\n"
-    "      - {name: head, particles: [neck, head_top, nose, ear_l]}\n"
-    "      - {name: torso, particles: [shoulder_l, shoulder_r, chest, hip_l, hip_r]}\n"
-    "    constraints:\n"
-    "      - {between: [neck, shoulder_l]}\n      - {between: [neck, shoulder_r]}\n"
-    "      - {between: [shoulder_l, elbow_l]}\n      - {between: [elbow_l, hand_l]}\n"
-    "      - {between: [shoulder_r, elbow_r]}\n      - {between: [elbow_r, hand_r]}\n"
-    "      - {between: [hip_l, knee_l]}\n      - {between: [knee_l, foot_l]}\n"
-    "      - {between: [hip_r, knee_r]}\n      - {between: [knee_r, foot_r]}\n"
+    "      - {name: foot_r, position: [0.08, 0.04, 0.00], mass: 0.08}\n" PUPPET_JOINTS
     "    control:\n      pose: {position: [0, 1.25, 0]}\n      points:\n"
     "        - {name: bar_head, offset: [0.00, 0, 0.00]}\n"
     "        - {name: bar_shoulder_l, offset: [-0.12, 0, 0.00]}\n"
@@ -150,16 +155,8 @@ static const char lying_puppet[] =
     "      - {name: knee_l, position: [-0.08, 0.09, 0.18], mass: 0.08, radius: 0.03}\n"
     "      - {name: foot_l, position: [-0.08, 0.08, 0.04], mass: 0.08, radius: 0.03}\n"
     "      - {name: knee_r, position: [0.08, 0.09, 0.18], mass: 0.08, radius: 0.03}\n"
-    "      - {name: foot_r, position: [0.08, 0.08, 0.04], mass: 0.08, radius: 0.03}\n"
-    "    groups:\n"
-    "      - {name: head, particles: [neck, head_top, nose, ear_l]}\n"
-    "      - {name: torso, particles: [shoulder_l, shoulder_r, chest, hip_l, hip_r]}\n"
-    "    constraints:\n"
-    "      - {between: [neck, shoulder_l]}\n      - {between: [neck, shoulder_r]}\n"
-    "      - {between: [shoulder_l, elbow_l]}\n      - {between: [elbow_l, hand_l]}\n"
-    "      - {between: [shoulder_r, elbow_r]}\n      - {between: [elbow_r, hand_r]}\n"
-    "      - {between: [hip_l, knee_l]}\n      - {between: [knee_l, foot_l]}\n"
-    "      - {between: [hip_r, knee_r]}\n      - {between: [knee_r, foot_r]}\n";
+    "      - {name: foot_r, position: [0.08, 0.08, 0.04], mass: 0.08, radius: "
+    "0.03}\n" PUPPET_JOINTS;
 
 /* n of those puppets dropped side by side onto a floor with friction 0.8,
  * 0.6 m apart across and 1 m deep (hard case 28 is sixteen of them). */
