@@ -1,8 +1,9 @@
 /* Divergence and resets (step.c): a dynamic particle past max_speed, NaN
  * or a deviation past the divergence bound is divergence and is named;
  * what only looks like it (a frame's own fast particles, a part spinning
- * too fast for dt_min) is not; and after a reset the step starts again at
- * dt_initial, under the stability limit. */
+ * too fast for dt_min) is not; after a reset the step starts again at
+ * dt_initial, under the stability limit, and a puppet hanging from a frame
+ * starts again under the frame, where the frame is then. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -202,6 +203,185 @@ static void a_deviation_past_the_bound_is_divergence_and_is_named(void **state) 
   mr_world_destroy(w);
 }
 
+/* A world for the resets below. Frame 0 starts at (0, 2, 0) and is sent
+ * to `to`, due at `due`; frame 1 stays at (0, 3, 0). The puppets:
+ *  0. a 0.2 m link hanging 0.5 m below frame 0 on two taut strings,
+ *     thrown at 0.2 m/s along x (with a floor, its particles' radius is
+ *     0.05 m);
+ *  1. a particle at the origin on a curve that goes NaN from t = 0.9 s to
+ *     0.95 s (a broken input device): the reset's cause;
+ *  2. a particle on a spring string from frame 0, and pinned;
+ *  3. a particle on spring strings from both frames;
+ *  4. a particle held to frame 0's particle by a distance constraint. */
+typedef struct reset_rig {
+  mr_world *w;
+  int link[2], held, pinned, between, linked;
+} reset_rig;
+
+static void nan_late(void *user, double t, double pos[3], double vel[3], double acc[3]) {
+  (void)user;
+  for (int k = 0; k < 3; k++) pos[k] = vel[k] = acc[k] = t >= 0.9 && t < 0.95 ? NAN : 0.0;
+}
+
+static int puppet_particle(mr_world *w, int puppet, double x, double y, double z, double radius) {
+  mr_particle_def p = mr_default_particle_def();
+  p.position[0] = x;
+  p.position[1] = y;
+  p.position[2] = z;
+  p.mass = 0.1;
+  p.radius = radius;
+  p.puppet = puppet;
+  int id;
+  assert_int_equal(mr_world_add_particle(w, &p, &id), MR_OK);
+  return id;
+}
+
+static void string_to(mr_world *w, int from, int to, mr_string_mode mode) {
+  double a[3], b[3];
+  assert_int_equal(mr_world_particle_state(w, from, a, NULL), MR_OK);
+  assert_int_equal(mr_world_particle_state(w, to, b, NULL), MR_OK);
+  mr_string_def s = mr_default_string_def();
+  s.frame_particle = from;
+  s.puppet_particle = to;
+  s.rest_length = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                       (a[2] - b[2]) * (a[2] - b[2]));
+  s.mode = mode;
+  s.stiffness = 5.0;
+  assert_int_equal(mr_world_add_string(w, &s, NULL), MR_OK);
+}
+
+static void link(mr_world *w, int a, int b) {
+  mr_distance_def d = mr_default_distance_def();
+  d.a = a;
+  d.b = b;
+  assert_int_equal(mr_world_add_distance(w, &d, NULL), MR_OK);
+}
+
+static reset_rig reset_rig_make(const mr_pose *to, double due, int floor) {
+  mr_world_def def = mr_default_world_def();
+  def.effects |= MR_EFFECT_FRAMES | MR_EFFECT_STRINGS | MR_EFFECT_CONSTRAINTS;
+  if (floor) def.effects |= MR_EFFECT_PLANES;
+  reset_rig r;
+  assert_int_equal(mr_world_create(&def, &r.w, NULL, 0), MR_OK);
+  mr_world *w = r.w;
+  int frame[2];
+  for (int i = 0; i < 2; i++) {
+    mr_frame_def f = mr_default_frame_def();
+    f.pose.position[1] = 2.0 + i;
+    assert_int_equal(mr_world_add_frame(w, &f, &frame[i]), MR_OK);
+  }
+  const int top_a = particle(w, -0.1, 2, 0, 1, frame[0]),
+            top_b = particle(w, 0.1, 2, 0, 1, frame[0]);
+  const int high = particle(w, -0.5, 3, 0, 1, frame[1]);
+  for (int i = 0; i < 2; i++) {
+    r.link[i] = puppet_particle(w, 0, i ? 0.1 : -0.1, 1.5, 0, floor ? 0.05 : 0.0);
+    assert_int_equal(mr_world_set_particle_state(w, r.link[i],
+                                                 (double[3]){ i ? 0.1 : -0.1, 1.5, 0 },
+                                                 (double[3]){ 0.2, 0, 0 }),
+                     MR_OK);
+    string_to(w, i ? top_b : top_a, r.link[i], MR_STRING_TAUT);
+  }
+  link(w, r.link[0], r.link[1]);
+  r.held = puppet_particle(w, 1, 0, 0, 0, 0.0);
+  mr_curve_def c = mr_default_curve_def();
+  c.particle = r.held;
+  c.fn = nan_late;
+  assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
+  r.pinned = puppet_particle(w, 2, 0.5, 1.5, 0, 0.0);
+  string_to(w, top_a, r.pinned, MR_STRING_SPRING);
+  mr_pin_def pin = mr_default_pin_def();
+  pin.particle = r.pinned;
+  assert_int_equal(mr_world_add_pin(w, &pin, NULL), MR_OK);
+  r.between = puppet_particle(w, 3, -0.5, 1.6, 0, 0.0);
+  string_to(w, top_a, r.between, MR_STRING_SPRING);
+  string_to(w, high, r.between, MR_STRING_SPRING);
+  r.linked = puppet_particle(w, 4, 0.1, 1.7, 0.3, 0.0);
+  link(w, top_b, r.linked);
+  if (floor) {
+    mr_plane_def pl = mr_default_plane_def();
+    assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  }
+  assert_int_equal(mr_world_set_frame_target(w, frame[0], to, due), MR_OK);
+  return r;
+}
+
+static void at_start(const reset_rig *r, int id, double x, double y, double z) {
+  double p[3];
+  assert_int_equal(mr_world_particle_state(r->w, id, p, NULL), MR_OK);
+  assert_true(p[0] == x && p[1] == y && p[2] == z);
+}
+
+/* Steps until the first reset; the world's time then. */
+static double step_to_first_reset(mr_world *w) {
+  for (int i = 0; i < 100000; i++)
+    if (mr_world_step(w, NULL) == MR_DIVERGED) return mr_world_time(w);
+  fail_msg("no reset");
+  return NAN;
+}
+
+/* §7 resets to the start configuration. The frame is taking the link 2 m
+ * aside and turning it a quarter round about y, due at 1.5 s: put back at
+ * its start, the link would hang far from the bar on strings several
+ * times their length, past the divergence bound before any step (a reset
+ * at every step after, for ever). It starts again as the frame carries
+ * its start configuration, moving with the frame (ṗ + ω × r); the
+ * particle held to the world by its curve starts again where it started. */
+static void a_reset_puts_the_puppet_under_its_frame(void **state) {
+  (void)state;
+  const mr_pose to = mr_pose_from_euler_deg((double[3]){ 2, 2, 0 }, (double[3]){ 0, 90, 0 });
+  reset_rig r = reset_rig_make(&to, 1.5, 0);
+  mr_world *w = r.w;
+  const double t = step_to_first_reset(w);
+  mr_pose now;
+  double vel[3], om[3];
+  assert_int_equal(mr_world_frame_pose(w, 0, &now), MR_OK);
+  assert_int_equal(mr_world_frame_rates(w, 0, vel, om), MR_OK);
+  printf("reset at t=%.4f s, the frame at x=%.3f moving %.3f m/s, turning %.3f rad/s\n", t,
+         now.position[0], vel[0], om[1]);
+  assert_true(t >= 0.9 && now.position[0] > 0.5 && vel[0] > 0.5 && om[1] > 0.5);
+  /* From the frame's start: the link's particles and the linked one, and
+   * the link's start velocity. */
+  const double start[3][3] = { { -0.1, -0.5, 0 }, { 0.1, -0.5, 0 }, { 0.1, -0.3, 0.3 } };
+  const int ids[3] = { r.link[0], r.link[1], r.linked };
+  double v0[3];
+  mr_pose_rotate(now.orientation, (double[3]){ 0.2, 0, 0 }, v0);
+  for (int i = 0; i < 3; i++) {
+    double arm[3], x[3], v[3];
+    mr_pose_rotate(now.orientation, start[i], arm);
+    const double spin[3] = { om[1] * arm[2] - om[2] * arm[1], om[2] * arm[0] - om[0] * arm[2],
+                             om[0] * arm[1] - om[1] * arm[0] };
+    assert_int_equal(mr_world_particle_state(w, ids[i], x, v), MR_OK);
+    printf("particle %d at (%.6f, %.6f, %.6f), moving (%.4f, %.4f, %.4f) m/s\n", ids[i], x[0], x[1],
+           x[2], v[0], v[1], v[2]);
+    for (int k = 0; k < 3; k++) {
+      assert_true(fabs(x[k] - (now.position[k] + arm[k])) < 1e-12);
+      assert_true(fabs(v[k] - (vel[k] + spin[k] + (i < 2 ? v0[k] : 0.0))) < 1e-12);
+    }
+  }
+  /* Held to the world, or hanging from two frames: where they started. */
+  at_start(&r, r.held, 0, 0, 0);
+  at_start(&r, r.pinned, 0.5, 1.5, 0);
+  at_start(&r, r.between, -0.5, 1.6, 0);
+  mr_world_destroy(w);
+}
+
+/* The frame lowered to 0.3 m since: carried, the link would be 0.2 m
+ * under the floor, so it is lifted out, its strings slack, its particles
+ * resting on the floor where the frame carried them across. */
+static void a_puppet_carried_into_the_floor_is_lifted_out(void **state) {
+  (void)state;
+  const mr_pose to = mr_pose_from_euler_deg((double[3]){ 0.5, 0.3, 0 }, (double[3]){ 0, 0, 0 });
+  reset_rig r = reset_rig_make(&to, 0.8, 1);
+  step_to_first_reset(r.w);
+  double xa[3], xb[3];
+  assert_int_equal(mr_world_particle_state(r.w, r.link[0], xa, NULL), MR_OK);
+  assert_int_equal(mr_world_particle_state(r.w, r.link[1], xb, NULL), MR_OK);
+  printf("after the reset: (%.6f, %.6f) and (%.6f, %.6f)\n", xa[0], xa[1], xb[0], xb[1]);
+  assert_true(fabs(xa[1] - 0.05) < 1e-12 && fabs(xb[1] - 0.05) < 1e-12);
+  assert_true(fabs(xa[0] - 0.4) < 1e-12 && fabs(xb[0] - 0.6) < 1e-12);
+  mr_world_destroy(r.w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(speed_bound_is_divergence_and_is_named),
@@ -211,6 +391,8 @@ int main(void) {
     cmocka_unit_test(after_a_reset_the_step_starts_again_at_dt_initial),
     cmocka_unit_test(after_a_reset_the_step_stays_under_the_stability_limit),
     cmocka_unit_test(a_deviation_past_the_bound_is_divergence_and_is_named),
+    cmocka_unit_test(a_reset_puts_the_puppet_under_its_frame),
+    cmocka_unit_test(a_puppet_carried_into_the_floor_is_lifted_out),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -289,7 +289,7 @@ mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id) 
   if (def->path != MR_FRAME_SMOOTH && def->path != MR_FRAME_LINEAR)
     return mr_fail(w, MR_ERR_ARG, "%s: path %d is neither smooth nor linear", what, (int)def->path);
   fr.linear = def->path == MR_FRAME_LINEAR;
-  fr.to = fr.from;
+  fr.home = fr.to = fr.from;
   fr.t0 = fr.t1 = w->t;
   w->frame_state_t = NAN; /* the new frame has no state yet */
   return mr_add_push(w, &w->frames, &fr, sizeof fr, out_id, what);
@@ -351,6 +351,7 @@ static void plan_segment(const mr_world *w, const mr_frame *fr, const mr_pose *g
                          mr_frame *o) {
   double st[MR_FRAME_STATE], axis[3];
   memset(o, 0, sizeof *o);
+  o->home = fr->home;
   o->linear = fr->linear;
   o->to = *goal;
   o->t0 = o->t1 = w->t;

@@ -16,6 +16,8 @@
  * v1 and at A(t1) w1 (w1 before the whole turn A(t1)); `turn` is the short
  * turn from `from` to `to` (axis × angle, world axes). */
 typedef struct mr_frame {
+  mr_pose home; /* the pose it was made at, which the start configuration
+                   hangs from (restart.c) */
   mr_pose from, to;
   double t0, t1;
   double v0[3], v1[3], w0[3], w1[3], turn[3];
@@ -198,6 +200,8 @@ struct mr_world {
   int *string_of_row;
   int cap_string_work;
   double *puppet_mass;
+  int *carrier; /* per puppet: the frame a reset carries it by, or −1 (restart.c) */
+  int cap_carrier;
   unsigned char *part_adjacent; /* nparts × nparts */
   /* Leaf pairs that overlap in the pose the trees were built in, sorted
    * by (a, b), a < b (sphere_tree.c says why they are left out). */
@@ -320,6 +324,10 @@ mr_status mr_add_push(mr_world *w, mr_list *list, const void *elem, size_t size,
                       const char *what);
 mr_status mr_fail(mr_world *w, mr_status s, const char *fmt, ...);
 int mr_world_ensure_ready(mr_world *w);
+/* restart.c: each puppet's carrier, when the world is made ready; the
+ * start configuration placed for a reset (§7). */
+int mr_restart_carriers(mr_world *w);
+void mr_restart_place(mr_world *w);
 /* ready.c: the per-contact arrays hold at least need contacts. */
 int mr_world_contact_capacity(mr_world *w, int need);
 int mr_check_particle(mr_world *w, int id, const char *what);
@@ -446,7 +454,8 @@ int mr_trees_build(mr_world *w);
 /* The pairs of two puppets that overlapped as built and are apart in x
  * are tested from now on (called on each accepted state). */
 void mr_trees_note_apart(mr_world *w, const double *x);
-/* After a reset to the start: every pair left out as built is again. */
+/* After a reset to the start: the pairs overlapping in the state it
+ * restarts from are left out as those overlapping as built were. */
 void mr_trees_restore_overlaps(mr_world *w);
 void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3]);
 int mr_detect_self(mr_world *w, const double *x, const mr_sweep *sw, double gap,

@@ -104,7 +104,9 @@ static int reserve_contacts(mr_world *w) {
 int mr_world_ensure_ready(mr_world *w) {
   if (!w->dirty && w->cap_scratch >= w->n) return 0;
   w->memo.valid = 0; /* elements added: the equations changed */
-  if (size_scratch(w) != 0 || puppet_masses(w) != 0 || mr_islands_build(w) != 0) return -1;
+  if (size_scratch(w) != 0 || puppet_masses(w) != 0 || mr_restart_carriers(w) != 0 ||
+      mr_islands_build(w) != 0)
+    return -1;
   if (w->def.effects & (MR_EFFECT_SELF_COLLISION | MR_EFFECT_PUPPET_COLLISION))
     if (mr_trees_build(w) != 0) return -1;
   if (reserve_contacts(w) != 0) return -1;

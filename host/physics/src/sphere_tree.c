@@ -347,8 +347,24 @@ void mr_trees_note_apart(mr_world *w, const double *x) {
   }
 }
 
+/* A reset carries a puppet hanging from a frame to where its frame is now
+ * (restart.c), which may be inside another puppet: its pairs are found
+ * again in the state the world restarts from. The same puppet's pairs are
+ * those as built (it moves as a whole). Out of memory, the pairs as built
+ * are left out again, as they were before any step. */
 void mr_trees_restore_overlaps(mr_world *w) {
-  for (int i = 0; i < w->n_built_overlaps; i++) w->built_overlaps[i].out = 1;
+  mr_built_overlap *kept = w->built_overlaps;
+  const int n_kept = w->n_built_overlaps;
+  w->built_overlaps = NULL;
+  w->n_built_overlaps = 0;
+  if (w->ntrees > 0 && find_built_overlaps(w) == 0) {
+    free(kept);
+    return;
+  }
+  free(w->built_overlaps);
+  w->built_overlaps = kept;
+  w->n_built_overlaps = n_kept;
+  for (int i = 0; i < n_kept; i++) w->built_overlaps[i].out = 1;
 }
 
 /* Two leaves within the gap: a contact, unless their parts are adjacent.

@@ -50,14 +50,11 @@ typedef struct mr_step_ctx {
 
 /* ------------------------------------------------------------- helpers */
 
-/* §7: back to the start configuration, and carry on. The message names
- * what was seen: a NaN, a particle past max_speed, or the deviation. */
+/* §7: back to the start configuration (a puppet hanging from a frame
+ * under that frame, restart.c), and carry on. The message names what was
+ * seen: a NaN, a particle past max_speed, or the deviation. */
 static void reset_to_start(mr_world *w, const mr_step_ctx *c) {
-  for (int i = 0; i < w->n; i++) {
-    if (w->frame[i] >= 0) continue;
-    memcpy(&w->x[3 * i], &w->x_start[3 * i], 3 * sizeof(double));
-    memcpy(&w->v[3 * i], &w->v_start[3 * i], 3 * sizeof(double));
-  }
+  mr_restart_place(w);
   mr_frames_place(w, w->t, w->x, w->v);
   w->dt_next = fmin(fmax(w->def.dt_initial, w->def.dt_min), w->def.dt_max);
   w->recovering = 0;

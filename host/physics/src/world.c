@@ -347,6 +347,7 @@ void mr_world_destroy(mr_world *w) {
                      w->frame_state,
                      w->kin_placed,
                      w->puppet_mass,
+                     w->carrier,
                      w->part_adjacent,
                      w->built_overlaps,
                      w->tree_stack,
