@@ -205,7 +205,12 @@ static int sound(const mr_world *w, mr_step_ctx *c) {
  * bound. A step that crossed a contact there (a slack string snapping
  * taut, two parts meeting) can end far off its constraints only because
  * that contact's force was not in it: it is cut to the contact time (6b)
- * and kept if sound there. Otherwise, when the local error estimate too
+ * and kept if sound there, unless that time is no time at all (under a
+ * millionth of the floor step): an end state flung to 1e41 m puts the
+ * root of a contact already touching at the start at τ ≈ 1e-37 s, and
+ * keeping it stopped the clock, every step cut there again (puppets
+ * wedged at the control limits: 1 100 steps of 1e-24 s a second, for
+ * ever). Otherwise, when the local error estimate too
  * says the step is too long (a part spinning at 400 rad/s turns 4 rad in
  * a step of dt_min), it is retried once more at the floor that estimate
  * may use (ats_decision), and diverged only if it happens there too. *st:
@@ -221,7 +226,7 @@ static enum verdict divergence_check(mr_world *w, mr_step_ctx *c, mr_status *st)
   }
   if (mr_colliders(w)) {
     if ((*st = penetration(w, c)) != MR_OK) return TRY_DIVERGED;
-    if (c->located && sound(w, c)) return TRY_ACCEPT;
+    if (c->located && c->h > 1e-6 * floor_dt(w) && sound(w, c)) return TRY_ACCEPT;
   }
   if (c->int_error > w->def.deviation_high && c->asked > floor_dt(w)) {
     c->located = 0;
