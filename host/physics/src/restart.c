@@ -90,8 +90,8 @@ static void carried(mr_world *w, int i, const mr_frame *fr, const mr_pose *now, 
 }
 
 /* Carried puppet p, where a particle of it is inside a plane: moved out
- * along that plane's normal by the deepest depth; again for the next plane it is in, a
- * few times at most (a corner). */
+ * along that plane's normal by the deepest depth; again for the next
+ * plane it is in, a few times at most (a corner). */
 static void lift_out(mr_world *w, int p) {
   if (!(w->def.effects & MR_EFFECT_PLANES)) return;
   for (int round = 0; round < 4; round++) {
