@@ -204,7 +204,9 @@ static void a_deviation_past_the_bound_is_divergence_and_is_named(void **state) 
 }
 
 /* A world for the resets below. Frame 0 starts at (0, 2, 0) and is sent
- * to `to`, due at `due`; frame 1 stays at (0, 3, 0). The puppets:
+ * to `to`, due at `due`; frame 1 starts at (0, 3, 0) and is sent 1 m
+ * along −x, so that a puppet carried by either frame would show it. The
+ * puppets:
  *  0. a 0.2 m link hanging 0.5 m below frame 0 on two taut strings,
  *     thrown at 0.2 m/s along x (with a floor, its particles' radius is
  *     0.05 m);
@@ -302,6 +304,8 @@ static reset_rig reset_rig_make(const mr_pose *to, double due, int floor) {
     assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
   }
   assert_int_equal(mr_world_set_frame_target(w, frame[0], to, due), MR_OK);
+  const mr_pose away = mr_pose_from_euler_deg((double[3]){ -1, 3, 0 }, (double[3]){ 0, 0, 0 });
+  assert_int_equal(mr_world_set_frame_target(w, frame[1], &away, due), MR_OK);
   return r;
 }
 

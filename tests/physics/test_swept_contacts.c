@@ -470,6 +470,29 @@ static void a_string_snapping_taut_within_a_step_is_no_divergence(void **state) 
   mr_world_destroy(w);
 }
 
+/* What an accepted step leaves deeper than the slop goes into the stats
+ * (mr_stats.max_penetration, which `marionette sim` reports and the hard
+ * cases bound): a ball put 2 mm into the floor at rest starts its first
+ * step that deep, and the stats say so. */
+static void a_step_that_starts_deep_counts_its_depth(void **state) {
+  (void)state;
+  mr_world *w = world(MR_EFFECT_PLANES);
+  mr_plane_def pl = mr_default_plane_def();
+  assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
+  mr_particle_def p = mr_default_particle_def();
+  p.radius = 0.02;
+  p.position[1] = p.radius - 2e-3;
+  assert_int_equal(mr_world_add_particle(w, &p, NULL), MR_OK);
+  mr_stats st;
+  mr_world_stats(w, &st);
+  assert_true(st.max_penetration == 0.0);
+  assert_int_equal(mr_world_step(w, NULL), MR_OK);
+  mr_world_stats(w, &st);
+  printf("2 mm into the floor: %.4g m recorded after one step\n", st.max_penetration);
+  assert_true(st.max_penetration >= 2e-3 - 1e-12 && st.max_penetration < 3e-3);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_ball_thrown_at_up_to_40_m_s_never_passes_through_a_thin_sphere),
@@ -481,6 +504,7 @@ int main(void) {
     cmocka_unit_test(a_stretched_spring_string_is_no_contact),
     cmocka_unit_test(a_landing_step_cut_at_a_contact_goes_on_to_the_target),
     cmocka_unit_test(a_string_snapping_taut_within_a_step_is_no_divergence),
+    cmocka_unit_test(a_step_that_starts_deep_counts_its_depth),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

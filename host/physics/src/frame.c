@@ -54,11 +54,6 @@ static mr_status pose_check(mr_world *w, const mr_pose *p, const char *what, mr_
   return mr_fail(w, MR_ERR_DEGENERATE, "%s: orientation quaternion is zero", what);
 }
 
-static void cross(const double a[3], const double b[3], double out[3]) {
-  double r[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-  memcpy(out, r, sizeof r);
-}
-
 /* The turn by the rotation vector r (angle |r| about r/|r|) as a unit
  * quaternion; below 1e-12 rad the first-order limit. */
 static void quat_exp(const double r[3], double q[4]) {
@@ -113,8 +108,8 @@ void mr_frame_motion(const mr_frame *fr, double t, double *st) {
   mr_pose_rotate(qa, fr->w1, u1);
   mr_pose_rotate(qab, fr->w0, u2);
   for (int i = 0; i < 3; i++) wj[i] = u1[i] * jd + u2[i] * kd;
-  cross(fr->turn, wj, x1);
-  cross(u1, u2, x2);
+  mr_cross3(fr->turn, wj, x1);
+  mr_cross3(u1, u2, x2);
   for (int i = 0; i < 3; i++) {
     st[10 + i] = fr->turn[i] * gd + wj[i];
     st[16 + i] = fr->turn[i] * gdd + u1[i] * jdd + u2[i] * kdd + x1[i] * gd + x2[i] * (jd * kd);
@@ -249,7 +244,7 @@ static const double *point_arm(const mr_world *w, int i, double t, const double 
     st = own;
   }
   for (int k = 0; k < 3; k++) r[k] = x[3 * i + k] - st[k];
-  cross(st + 10, r, wr);
+  mr_cross3(st + 10, r, wr);
   return st;
 }
 
@@ -260,8 +255,8 @@ void mr_frame_point_motion(const mr_world *w, int i, double t, const double *x, 
                            double a[3]) {
   double own[MR_FRAME_STATE], r[3], wr[3], wwr[3], ar[3];
   const double *st = point_arm(w, i, t, x, own, r, wr);
-  cross(st + 10, wr, wwr);
-  cross(st + 16, r, ar);
+  mr_cross3(st + 10, wr, wwr);
+  mr_cross3(st + 16, r, ar);
   for (int k = 0; k < 3; k++) {
     v[k] = st[7 + k] + wr[k];
     a[k] = st[13 + k] + ar[k] + wwr[k];

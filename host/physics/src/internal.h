@@ -324,6 +324,14 @@ mr_status mr_add_push(mr_world *w, mr_list *list, const void *elem, size_t size,
                       const char *what);
 mr_status mr_fail(mr_world *w, mr_status s, const char *fmt, ...);
 int mr_world_ensure_ready(mr_world *w);
+/* a × b into out (which may be a or b). */
+static inline void mr_cross3(const double a[3], const double b[3], double out[3]) {
+  const double r[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                        a[0] * b[1] - a[1] * b[0] };
+  out[0] = r[0];
+  out[1] = r[1];
+  out[2] = r[2];
+}
 /* restart.c: each puppet's carrier, when the world is made ready; the
  * start configuration placed for a reset (§7). */
 int mr_restart_carriers(mr_world *w);

@@ -64,12 +64,6 @@ int mr_restart_carriers(mr_world *w) {
   return 0;
 }
 
-static void cross(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* Particle i's start state carried by frame fr, whose pose, velocity and
  * angular velocity at the world's time are now, vel, om. */
 static void carried(mr_world *w, int i, const mr_frame *fr, const mr_pose *now, const double vel[3],
@@ -80,7 +74,7 @@ static void carried(mr_world *w, int i, const mr_frame *fr, const mr_pose *now, 
   double local[3], r[3], spin[3], vl[3], vs[3];
   mr_pose_unrotate(hq, d, local);
   mr_pose_rotate(now->orientation, local, r);
-  cross(om, r, spin);
+  mr_cross3(om, r, spin);
   mr_pose_unrotate(hq, &w->v_start[3 * i], vl);
   mr_pose_rotate(now->orientation, vl, vs);
   for (int k = 0; k < 3; k++) {

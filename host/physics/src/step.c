@@ -335,9 +335,13 @@ static mr_status probe(mr_world *w, const mr_step_ctx *c) {
  * start, which are not located): the deepest along the paths between its
  * ends. Every other contact stayed within the slop along the whole step.
  * Strings are over-lengths, not depths. *sunk: how far the deepest of
- * them went past both `limit` and its own depth at the start. */
-static double step_depth(mr_world *w, const mr_step_ctx *c, double limit, double *sunk) {
+ * them went past both the slop and half a millimetre (MR_SINK_MAX)
+ * and its own depth at the start. */
+#define MR_SINK_MAX 5e-4
+
+static double step_depth(mr_world *w, const mr_step_ctx *c, double *sunk) {
   const mr_sweep sw = { w->scratch.x0, w->scratch.v0, w->x1, w->v1, c->h };
+  const double limit = w->def.contact_slop + MR_SINK_MAX;
   double deepest = 0.0;
   *sunk = 0.0;
   for (int i = 0; i < w->probe.n; i++)
@@ -359,23 +363,19 @@ static double step_depth(mr_world *w, const mr_step_ctx *c, double limit, double
  * deeper than it was, is retried at half its length, down to the floor
  * step: the depth stays within the slop plus 1 mm. (Held to half a
  * millimetre past its own start depth instead, a contact sank a little
- * further at each step: 1.56 mm in five.) */
-#define MR_SINK_MAX 5e-4
-
+ * further at each step: 1.56 mm in five.) Otherwise the step's depth goes
+ * into the stats. */
 static int sinks_too_far(mr_world *w, mr_step_ctx *c) {
-  double sunk;
-  step_depth(w, c, w->def.contact_slop + MR_SINK_MAX, &sunk);
-  if (!(sunk > 0) || !(c->h > floor_dt(w))) return 0;
-  c->located = 0;
-  c->sank = 1;
-  retry_with(c, fmax(0.5 * c->h, floor_dt(w)));
-  count_rejection(w, c);
-  return 1;
-}
-
-static void record_depth(mr_world *w, const mr_step_ctx *c) {
-  double sunk, d = step_depth(w, c, 0.0, &sunk);
-  if (d > w->stats.max_penetration) w->stats.max_penetration = d;
+  double sunk, deepest = step_depth(w, c, &sunk);
+  if (sunk > 0 && c->h > floor_dt(w)) {
+    c->located = 0;
+    c->sank = 1;
+    retry_with(c, fmax(0.5 * c->h, floor_dt(w)));
+    count_rejection(w, c);
+    return 1;
+  }
+  if (deepest > w->stats.max_penetration) w->stats.max_penetration = deepest;
+  return 0;
 }
 
 /* 6b: a contact gone through during the step, at its end or on the way:
@@ -494,15 +494,12 @@ static mr_status step_once(mr_world *w, mr_step_ctx *c) {
   if (v == TRY_DIVERGED) {
     /* The failed step's time passes and the world starts again at its
      * end (frames where the hand is then), so a cause tied to a moment
-     * (a curve gone NaN) is left behind. The puppet returns to its start
-     * configuration itself, not carried along by the frame: measured on
-     * the no-friction extreme case, carrying it under a frame swinging at
-     * 11 m/s diverged again more often (21 resets against 13). */
+     * (a curve gone NaN) is left behind. A puppet hanging from a frame
+     * starts again under it there (restart.c). */
     w->t = c->landing ? c->t_target : c->t + c->h;
     reset_to_start(w, c);
     return MR_OK;
   }
-  if (colliders) record_depth(w, c);
   if ((st = correct(w, c)) != MR_OK) return st;
   accept(w, c);
   /* The rule has measured the deviation of this state already (end_error:
