@@ -59,7 +59,7 @@ static mr_solve_status solve_whole(mr_world *w, int assemble, mr_solve_result *r
   if (assemble) {
     mr_solve_status a = mr_csr_assemble(&w->A, &w->J, w->inv_mass);
     if (a != MR_SOLVE_OK) return a;
-    if (w->contacts.n > 0) /* contacts come after the constraints */
+    if (w->contacts.n > 0 || w->held.n > 0) /* contacts come after the constraints */
       mr_soften_contacts(&w->A, mr_constraint_row_count(w), w->row_contact);
   }
   return mr_solver_solve(w->solver, &w->opts, &w->A, w->rhs, w->lambda, r);

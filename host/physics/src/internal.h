@@ -199,6 +199,9 @@ struct mr_world {
   unsigned char *string_released;
   int *string_of_row;
   int cap_string_work;
+  /* ... and the contacts it holds from going deeper, and what a
+   * detection after it found. */
+  mr_contact_list held, held_found;
   double *puppet_mass;
   int *carrier; /* per puppet: the frame a reset carries it by, or −1 (restart.c) */
   int cap_carrier;

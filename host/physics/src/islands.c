@@ -141,7 +141,7 @@ static int island_system(mr_world *w, int g) {
   const double(*d)[3] = (const double(*)[3])w->J.d;
   const int *rows = w->island_rows + w->island_start[g];
   const int m = w->island_start[g + 1] - w->island_start[g];
-  const int ncons = mr_constraint_row_count(w), contacts = w->contacts.n > 0;
+  const int ncons = mr_constraint_row_count(w), contacts = w->contacts.n > 0 || w->held.n > 0;
   mr_jac *S = &w->island_J;
   if (mr_jac_reserve(S, w->J.rows, rp[w->J.rows]) != MR_SOLVE_OK) return -1;
   int *local = w->island_local, *srp = S->row_ptr, *spart = S->particle, np = 0, at = 0;

@@ -75,11 +75,13 @@ static int reserve_contacts(mr_world *w) {
       (mr_grow((void **)&w->contacts.c, &w->contacts.cap, cap, sizeof(mr_contact)) != 0 ||
        mr_grow((void **)&w->probe.c, &w->probe.cap, cap, sizeof(mr_contact)) != 0 ||
        mr_grow((void **)&w->measured.c, &w->measured.cap, cap, sizeof(mr_contact)) != 0 ||
+       mr_grow((void **)&w->held.c, &w->held.cap, cap, sizeof(mr_contact)) != 0 ||
+       mr_grow((void **)&w->held_found.c, &w->held_found.cap, cap, sizeof(mr_contact)) != 0 ||
        mr_world_contact_capacity(w, cap) != 0))
     return -1;
   /* Rows and J entries: a distance has two particles, a pin or curve row
    * one, a plane contact one, a sphere contact up to four; the string
-   * correction adds one per string. */
+   * correction adds one per string, and the contacts it holds. */
   int rows = mr_constraint_row_count(w) + cap + MR_FORCES(w, STRINGS)->n;
   long plane_rows = plane_pairs < cap ? plane_pairs : cap;
   long entries =

@@ -79,6 +79,71 @@ static int positions_hold(mr_world *w, double limit, double known) {
          !(mr_constraints_deviation(w, w->t, w->x) > w->def.deviation_low);
 }
 
+/* The contacts the projection holds (positions only), from row r on: each
+ * may go as deep as the slop, or stay as deep as it already is, and no
+ * deeper. How many rows. */
+static int held_rows(mr_world *w, int r) {
+  const double slop = w->def.contact_slop;
+  int added = 0;
+  for (int k = 0; k < w->held.n; k++) {
+    double chi, chidot, jdqd;
+    if (mr_contact_row(w, &w->held.c[k], w->x, w->v, &chi, &chidot, &jdqd) != 0) return -1;
+    w->rhs[r + added] = fmin(0.0, -slop - chi); /* to min(χ, −slop) */
+    w->row_contact[r + added++] = k;
+  }
+  return added;
+}
+
+static int is_held(const mr_world *w, const mr_contact *c) {
+  for (int k = 0; k < w->held.n; k++)
+    if (w->held.c[k].kind == c->kind && w->held.c[k].a == c->a && w->held.c[k].b == c->b) return 1;
+  return 0;
+}
+
+/* The most contacts one projection holds: a pile of puppets touches in a
+ * few tens of places. Past it the projection is taken as it comes. */
+#define HELD_MAX 256
+/* Deeper than that by a rounding is not deeper, m. */
+#define DEEPER 1e-9
+
+/* The string rows pull a puppet towards its frames and the links follow,
+ * and none of them knows the contacts: a puppet pressed against another or
+ * a floor was pushed into it (1.3 mm past the slop, two puppets whose
+ * frames jumped at the control limits). The contacts the projection just
+ * took past the slop and deeper than they were (at `before`) are added to
+ * the held set, to be projected again with them (a taut string over by as
+ * much, which the projection has just shortened, would be held from
+ * lengthening). How many, or −1. */
+static int newly_deep(mr_world *w, const double *before) {
+  const double slop = w->def.contact_slop;
+  if (mr_contacts_detect(w, w->x, -slop, &w->held_found) != 0) return -1;
+  int added = 0;
+  for (int i = 0; i < w->held_found.n && w->held.n < HELD_MAX; i++) {
+    const mr_contact *c = &w->held_found.c[i];
+    if (is_held(w, c)) continue;
+    const double now = mr_contact_gap(w, c, w->x), was = mr_contact_gap(w, c, before);
+    if (!(now < was - DEEPER)) continue; /* past −slop: detected so */
+    if (mr_contact_push(&w->held, c->kind, c->a, c->b, 0.0, 0.0) != 0) return -1;
+    added++;
+  }
+  return added;
+}
+
+/* Applies the solved projection; positions are taken back, and 0
+ * returned, when it pushed a contact too deep (newly_deep). 1, 0 or −1. */
+static int apply(mr_world *w, int velocities) {
+  if (velocities || !mr_colliders(w)) {
+    mr_project_apply(w, velocities ? w->v : w->x);
+    return 1;
+  }
+  double *before = w->scratch.xs;
+  memcpy(before, w->x, (size_t)(3 * w->n) * sizeof *before);
+  mr_project_apply(w, w->x);
+  int deep = newly_deep(w, before);
+  if (deep != 0) memcpy(w->x, before, (size_t)(3 * w->n) * sizeof *before);
+  return deep < 0 ? -1 : deep == 0;
+}
+
 /* One projection of the constraints and the rows string_rows adds: 1, or
  * 0 when there is nothing to do, or −1. Positions: nothing to do once no
  * string is over and the constraints hold within the ATS's lower
@@ -89,19 +154,26 @@ static int positions_hold(mr_world *w, double limit, double known) {
  *
  * A string pulls and never pushes: a row whose multiplier would lengthen
  * its string is released and the rest solved again, as a contact that
- * would pull is (eq. 9), so the strings act as the inequalities they are. */
+ * would pull is (eq. 9), so the strings act as the inequalities they are.
+ * A contact the projection would push too deep is held at its bound
+ * instead (newly_deep), for the rest of this projection: an equality
+ * there, which at worst keeps two sides at the slop that the projection
+ * would have parted a hair, for the next step's contacts to part. Each
+ * round releases a string or holds a new contact, so the rounds end. */
 static int project(mr_world *w, double limit, int velocities, double known) {
   int strings = MR_FORCES(w, STRINGS)->n;
   memset(w->string_released, 0, (size_t)strings);
+  w->held.n = 0;
   if (!velocities && positions_hold(w, limit, known)) return 0;
-  for (int round = 0; round <= strings; round++) {
-    int nc = mr_project_rows(w, w->t, w->x, w->v, strings);
+  for (int round = 0; round <= strings + w->held.n; round++) {
+    int nc = mr_project_rows(w, w->t, w->x, w->v, strings + w->held.n);
     if (nc < 0) return -1;
     for (int i = 0; i < nc; i++) w->rhs[i] = velocities ? -w->row_cdot[i] : -w->row_c[i];
     int ns = string_rows(w, limit, velocities, nc);
-    if (ns < 0) return -1;
-    if (nc + ns == 0 || (ns == 0 && !velocities &&
-                         !(mr_constraints_deviation(w, w->t, w->x) > w->def.deviation_low)))
+    int nh = ns < 0 ? 0 : held_rows(w, nc + ns); /* none in velocities */
+    if (ns < 0 || nh < 0) return -1;
+    if (nc + ns + nh == 0 || (ns + nh == 0 && !velocities &&
+                              !(mr_constraints_deviation(w, w->t, w->x) > w->def.deviation_low)))
       return 0;
     if (mr_solve_rows(w, 1) != 0) return -1;
     int pushed = 0;
@@ -110,10 +182,9 @@ static int project(mr_world *w, double limit, int velocities, double known) {
         w->string_released[w->string_of_row[k]] = 1;
         pushed = 1;
       }
-    if (!pushed) {
-      mr_project_apply(w, velocities ? w->v : w->x);
-      return 1;
-    }
+    if (pushed) continue;
+    int done = apply(w, velocities);
+    if (done != 0) return done;
   }
   return 0;
 }

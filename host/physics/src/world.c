@@ -393,6 +393,8 @@ void mr_world_destroy(mr_world *w) {
   mr_contact_list_free(&w->contacts);
   mr_contact_list_free(&w->probe);
   mr_contact_list_free(&w->measured);
+  mr_contact_list_free(&w->held);
+  mr_contact_list_free(&w->held_found);
   mr_eval_memo_free(&w->memo);
   free(w->string_released);
   free(w->string_of_row);
