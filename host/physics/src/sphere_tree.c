@@ -16,11 +16,6 @@ mr_part_def mr_default_part_def(void) {
   return (mr_part_def){ .cookie = MR_DEF_COOKIE, .restitution = 0.5, .friction = 0.3 };
 }
 
-void mr_leaf_center(const mr_world *w, const mr_leaf *l, const double *x, double c[3]) {
-  (void)w;
-  for (int k = 0; k < 3; k++) c[k] = (1.0 - l->s) * x[3 * l->p0 + k] + l->s * x[3 * l->p1 + k];
-}
-
 static int push_leaf(mr_world *w, int p0, int p1, double s, double r, int part, int puppet) {
   mr_leaf l = { p0, p1, s, r, part, puppet };
   return mr_add_push(w, &w->leaves, &l, sizeof l, NULL, "mr_world_add_part") == MR_OK ? 0 : -1;
