@@ -201,7 +201,8 @@ typedef struct mr_world_def {
    * deviation; the worse of the two sets Δt. 0 switches the estimate off. */
   double error_length; /* m; default 1 */
   double error_speed;  /* m/s; default 1 */
-  /* A particle faster than this is divergence (§7), as NaN is; default 200. */
+  /* A particle faster than this is divergence (§7), as NaN is; default
+   * 1000 (world.c says why). */
   double max_speed;
 
   /* The constraint solve (§4.3, §5.2). */
