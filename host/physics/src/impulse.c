@@ -158,9 +158,9 @@ static int gains_energy(mr_world *w, int rows, const double *v, double before, d
     allowed -= w->lambda[r] * k;
     if (w->row_contact[r] < 0) allowed += w->lambda[r] * seen;
   }
-  const double gain = kinetic_energy(w, w->scratch.v_try) - before;
   *bound = before + allowed + 1e-6 * (before + fabs(allowed));
-  return gain > allowed + 1e-6 * (before + fabs(allowed)) || gain != gain;
+  const double after = kinetic_energy(w, w->scratch.v_try);
+  return !(after <= *bound);
 }
 
 /* The resting impulse's q̇⁺ (scratch.v_try) moved towards the bouncing
