@@ -239,6 +239,69 @@ static void the_least_recently_used_plan_goes(void **state) {
   free(v);
 }
 
+/* Every plan an assembly builds names its pattern with an id no other
+ * plan had, and keeps it while that plan is reused: a solver that has met
+ * an id takes it for the pattern without comparing. Plans evicted and
+ * built again into the same slot get new ids, and one solver fed them all
+ * in turn answers each as a fresh one does. */
+static void a_pattern_id_names_one_plan_only(void **state) {
+  (void)state;
+  variants *v = malloc(sizeof *v);
+  assert_non_null(v);
+  variants_make(v);
+  mr_csr A = { 0 };
+  mr_solver *s = mr_solver_create();
+  assert_non_null(s);
+  mr_solve_def def = mr_default_solve_def();
+  def.method = MR_SOLVE_LDLT;
+  uint64_t ids[2 * PLANS];
+  for (int round = 0; round < 2; round++) {
+    for (int p = 0; p < PLANS; p++) {
+      assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
+      const uint64_t id = A.pattern_id;
+      assert_true(id != 0);
+      for (int q = 0; q < round * PLANS + p; q++) assert_true(ids[q] != id);
+      ids[round * PLANS + p] = id;
+      assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
+      assert_true(A.pattern_id == id);
+      double x[K + BITS] = { 0 };
+      mr_solve_status st = mr_solver_solve(s, &def, &A, v->b[p], x, NULL);
+      assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT);
+      assert_memory_equal(x, v->ref[p], (size_t)A.n * sizeof *x);
+    }
+  }
+  mr_solver_destroy(s);
+  mr_csr_free(&A);
+  variants_free(v);
+  free(v);
+}
+
+/* A filled by hand has no id (0): its pattern is compared, so two such
+ * matrices of different patterns through one solver are told apart. */
+static void patterns_filled_by_hand_are_compared(void **state) {
+  (void)state;
+  variants *v = malloc(sizeof *v);
+  assert_non_null(v);
+  variants_make(v);
+  mr_solver *s = mr_solver_create();
+  assert_non_null(s);
+  mr_solve_def def = mr_default_solve_def();
+  def.method = MR_SOLVE_LDLT;
+  for (int round = 0; round < 4; round++) {
+    const int p = 1 + round % 2;
+    const mr_csr *a = &v->A[p];
+    mr_csr hand = { .n = a->n, .nnz = a->nnz, .row_ptr = a->row_ptr, .col = a->col, .val = a->val };
+    double x[K + BITS] = { 0 };
+    mr_solve_status st = mr_solver_solve(s, &def, &hand, v->b[p], x, NULL);
+    assert_true(st == MR_SOLVE_OK || st == MR_SOLVE_DEPENDENT);
+    assert_memory_equal(x, v->ref[p], (size_t)a->n * sizeof *x);
+  }
+  assert_int_equal(s->ldlt.analyses, 2);
+  mr_solver_destroy(s);
+  variants_free(v);
+  free(v);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(alternating_patterns_are_analysed_once_each),
@@ -246,6 +309,8 @@ int main(void) {
     cmocka_unit_test(a_big_pattern_is_analysed_again_only_when_it_changes),
     cmocka_unit_test(alternating_jacobians_are_planned_once_each),
     cmocka_unit_test(the_least_recently_used_plan_goes),
+    cmocka_unit_test(a_pattern_id_names_one_plan_only),
+    cmocka_unit_test(patterns_filled_by_hand_are_compared),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -94,6 +94,11 @@ typedef struct mr_csr {
   int n, nnz;
   int *row_ptr, *col;
   double *val;
+  /* Nonzero: a name for row_ptr and col that no other pattern of this
+   * process ever gets (mr_csr_assemble sets it), so that a solver that has
+   * seen it knows the pattern without comparing it. 0 when A is filled by
+   * hand; set it to 0 after changing row_ptr or col by hand. */
+  uint64_t pattern_id;
   struct mr_csr_plan *plan; /* private: arrays and the cached pattern, see assemble.c */
 } mr_csr;
 /* A_ij = Σ_p inv_mass[p] (dC_i/dx_p · dC_j/dx_p), inv_mass per particle

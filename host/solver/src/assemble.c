@@ -41,6 +41,7 @@ typedef struct csr_kept {
    * which particles were pinned. */
   int valid, rows, np, ne, nnz;
   uint64_t hash; /* source_hash of the J it was built for */
+  uint64_t id;   /* A->pattern_id while this plan is in use */
   mr_buf jrp, jpart, pinned;
   mr_buf masses; /* inv_mass as last seen: the same bits, the same pinned set */
   /* Particle → entries of J that name it (movable particles only): the
@@ -314,6 +315,7 @@ static int replan(struct mr_csr_plan *pl, const mr_jac *J, const double *inv_mas
   particle_lists(kp, J, inv_mass, ne);
   if (build_pattern(pl, kp, J) != 0) return MR_SOLVE_ERR_NOMEM;
   build_terms(kp, J, INTS(pl->mark), INTS(pl->cursor));
+  kp->id = mr_pattern_new_id();
   kp->valid = 1;
   pl->builds++;
   pl->cur = s;
@@ -437,6 +439,7 @@ mr_solve_status mr_csr_assemble(mr_csr *A, const mr_jac *J, const double *inv_ma
   A->row_ptr = kp->rp.p;
   A->col = kp->col.p;
   A->val = pl->val.p;
+  A->pattern_id = kp->id;
   A->row_ptr[0] = 0;
   if (kp->nterms >= 0) {
     numeric_terms(A, kp, J, inv_mass);

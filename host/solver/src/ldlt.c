@@ -221,7 +221,7 @@ static int analyse(mr_ldlt *f, const mr_csr *A) {
  * through by the pattern's hash, then compared whole. A kept analysis is
  * the one analyse() would compute again, so the answers are the same
  * bits. */
-static int find_kept(const mr_ldlt *f, const mr_csr *A, uint64_t hash) {
+static int find_kept(mr_ldlt *f, const mr_csr *A, uint64_t hash) {
   for (int s = 0; s < MR_LDLT_KEPT; s++)
     if (f->kept[s].hash == hash && mr_pattern_same(&f->kept[s].pattern, A)) return s;
   return -1;

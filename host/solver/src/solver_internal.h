@@ -37,9 +37,14 @@ void mr_bufs_free(mr_buf *const *bufs, size_t count);
  * holds for a new matrix. */
 typedef struct mr_pattern {
   int valid, n, nnz;
+  uint64_t id; /* the A->pattern_id it was last found equal to, or 0 */
   mr_buf rp, col;
 } mr_pattern;
-int mr_pattern_same(const mr_pattern *pat, const mr_csr *A);
+/* Whether A's pattern is pat's: by its id when pat has met it, else
+ * compared, and on a match the id is remembered. */
+int mr_pattern_same(mr_pattern *pat, const mr_csr *A);
+/* A pattern id no other call of this process returns, never 0. */
+uint64_t mr_pattern_new_id(void);
 uint64_t mr_pattern_hash(const mr_csr *A);
 /* FNV-1a over n ints, from h: the key a kept pattern is looked up by. */
 uint64_t mr_hash_ints(uint64_t h, const int *v, size_t n);
