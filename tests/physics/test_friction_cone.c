@@ -106,6 +106,45 @@ static void friction_over_by_less_than_the_tolerance_stands(void **state) {
   assert_near(f[1], 0.5);
 }
 
+/* The rounds themselves (mr_friction_rounds), on two spheres wedged
+ * between puppets, sliding at 38 and 43 m/s (the numbers of a step that
+ * reset a world): each one's friction presses both contacts harder, by
+ * about 2 per unit of friction, so with μ = 0.3 sliding at μN raised N at
+ * every round, to 1.8e32 from 1.6e5. No contact's limit may rise past four
+ * times the largest multiplier before friction. */
+static void friction_pressing_contacts_harder_does_not_run_away(void **state) {
+  (void)state;
+  struct mr_fric_point pt[2];
+  memset(pt, 0, sizeof pt);
+  const double n0[2] = { 1.6e5, 1.46e5 }, inv[2] = { 18.2, 14.0 };
+  const double vt[2][2] = { { 13.5, -35.3 }, { -41.1, -13.3 } };
+  const double at[2][2] = { { -1.27e4, -1.99e5 }, { -1.9e5, -1.67e5 } };
+  for (int i = 0; i < 2; i++) {
+    pt[i].row = pt[i].contact = i;
+    pt[i].scale = n0[0];
+    pt[i].n = pt[i].n0 = n0[i];
+    pt[i].mu = 0.3;
+    pt[i].inv = inv[i];
+    for (int k = 0; k < 2; k++) {
+      pt[i].vt[k] = vt[i][k];
+      pt[i].at[k] = pt[i].at0[k] = at[i][k];
+    }
+    pt[i].drive = hypot(at[i][0], at[i][1]);
+  }
+  const double W[4][4] = {
+    { 0.237, 0.612, 0, 0 }, { 0.612, 5.28, 0, 0 }, { 0, 0, 5.89, 1.78 }, { 0, 0, 1.78, 0.593 }
+  };
+  const double N[2][4] = { { -1.19, 2.08, 2.66, 0.194 }, { -1.55, 2.09, 2.46, 0.525 } };
+  double scratch[128];
+  mr_friction_rounds(pt, 2, 1.28e-5, &W[0][0], &N[0][0], 1e-9 * n0[0], scratch);
+  for (int i = 0; i < 2; i++) {
+    const double f = hypot(pt[i].f[0], pt[i].f[1]);
+    assert_true(isfinite(f));
+    assert_true(f <= 0.3 * 4.0 * n0[0] * (1 + 1e-12));
+    assert_true(f > 0.3 * n0[i]); /* it still slides at least at μ N0 */
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_wedge_is_cut_back_to_the_normals_it_leaves),
@@ -113,6 +152,7 @@ int main(void) {
     cmocka_unit_test(a_lifted_contact_keeps_no_friction),
     cmocka_unit_test(a_cut_that_unloads_an_earlier_contact_is_followed),
     cmocka_unit_test(friction_over_by_less_than_the_tolerance_stands),
+    cmocka_unit_test(friction_pressing_contacts_harder_does_not_run_away),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
