@@ -369,8 +369,8 @@ static double step_depth(mr_world *w, const mr_step_ctx *c, double *sunk) {
  * before the world resets, and at the floor step such a contact went
  * 5.6 mm deep in the last 3 ms (hard case 30, once friction no longer
  * reset it earlier). A contact creeping deeper by less stays with the
- * floor step: retried below it, one pile of five puppets took 16 000
- * tries more and ten times the CPU. Otherwise the step's depth goes into
+ * floor step: retried below it, one pile of five puppets took 15 000
+ * more tries and nine times the CPU. Otherwise the step's depth goes into
  * the stats. */
 static int sinks_too_far(mr_world *w, mr_step_ctx *c) {
   double sunk, deepest = step_depth(w, c, &sunk);
