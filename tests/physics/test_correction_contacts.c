@@ -3,8 +3,10 @@
  * and the strings, not the contacts. Where that projection would take a
  * contact past the slop, and deeper than it was, the contact is held in
  * it: the part may go as deep as the slop, or stay as deep as it already
- * is, and the string is still brought back to its length. The correction
- * is called here as the step calls it, through the internal header. */
+ * is, and the string is still brought back to its length. A contact the
+ * step itself left deeper than the slop and half a millimetre is taken
+ * back out to that depth. The correction is called here as the step calls
+ * it, through the internal header. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -109,6 +111,25 @@ static void a_ball_already_deep_stays_as_deep(void **state) {
   mr_world_destroy(w);
 }
 
+/* A ball 1.5 mm into the floor after a step that went that deep (a
+ * contact creeping deeper at every floor step, inside a pile) is taken back
+ * out to the slop and half a millimetre, its string at its length; after a
+ * step that stayed shallower, nothing is looked for and it stays. */
+static void a_ball_left_too_deep_is_taken_back_out(void **state) {
+  (void)state;
+  const double depth = 1.5e-3;
+  for (int deep_step = 0; deep_step < 2; deep_step++) {
+    mr_world *w = ball_on_floor(-depth, -depth);
+    w->step_deepest = deep_step ? depth : 4e-4;
+    assert_int_equal(mr_strings_correct(w, NAN), 0);
+    print_message("step %s: gap %.9g m\n", deep_step ? "that deep" : "shallower", floor_gap(w));
+    const double want = deep_step ? -(w->def.contact_slop + MR_SINK_MAX) : -depth;
+    assert_true(fabs(floor_gap(w) - want) < 1e-8);
+    assert_true(fabs(string_length(w) - REST) < 1e-6 * REST);
+    mr_world_destroy(w);
+  }
+}
+
 /* The frame point above the ball: the string lifts it off the floor, no
  * contact goes deeper and the correction is the plain projection, the
  * ball on the string's line at its length. */
@@ -184,6 +205,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_string_pulling_into_the_floor_leaves_the_ball_on_it),
     cmocka_unit_test(a_ball_already_deep_stays_as_deep),
+    cmocka_unit_test(a_ball_left_too_deep_is_taken_back_out),
     cmocka_unit_test(a_string_lifting_the_ball_is_not_held_back),
     cmocka_unit_test(a_sink_within_the_slop_is_left_alone),
     cmocka_unit_test(a_contact_held_once_is_not_held_again),

@@ -200,8 +200,14 @@ struct mr_world {
   int *string_of_row;
   int cap_string_work;
   /* ... and the contacts it holds from going deeper, and what a
-   * detection after it found. */
+   * detection after it found; the first held_deep of them were deeper
+   * than the slop and MR_SINK_MAX when it began, and are taken back to
+   * that depth. */
   mr_contact_list held, held_found;
+  int held_deep;
+  /* The deepest any contact went along the last step taken (step.c),
+   * m past touching. */
+  double step_deepest;
   double *puppet_mass;
   int *carrier; /* per puppet: the frame a reset carries it by, or −1 (restart.c) */
   int cap_carrier;
@@ -379,6 +385,10 @@ int mr_distance_add_internal(mr_world *w, int a, int b, double length, int *out_
 /* collide.c */
 int mr_collide_build_passes(mr_world *w);
 int mr_colliders(const mr_world *w);
+/* How deep past touching a contact may go before a step is retried
+ * (step.c) or the correction after it takes the contact back out
+ * (string_correction.c), besides the slop: half a millimetre. */
+#define MR_SINK_MAX 5e-4
 int mr_contacts_detect(mr_world *w, const double *x, double gap, mr_contact_list *out);
 /* The contacts whose swept gap may reach `gap` during the step sw. */
 int mr_contacts_sweep(mr_world *w, const mr_sweep *sw, double gap, mr_contact_list *out);

@@ -337,7 +337,6 @@ static mr_status probe(mr_world *w, const mr_step_ctx *c) {
  * Strings are over-lengths, not depths. *sunk: how far the deepest of
  * them went past both the slop and half a millimetre (MR_SINK_MAX)
  * and its own depth at the start. */
-#define MR_SINK_MAX 5e-4
 
 static double step_depth(mr_world *w, const mr_step_ctx *c, double *sunk) {
   const mr_sweep sw = { w->scratch.x0, w->scratch.v0, w->x1, w->v1, c->h };
@@ -382,6 +381,7 @@ static int sinks_too_far(mr_world *w, mr_step_ctx *c) {
     count_rejection(w, c);
     return 1;
   }
+  w->step_deepest = deepest;
   if (deepest > w->stats.max_penetration) w->stats.max_penetration = deepest;
   return 0;
 }
