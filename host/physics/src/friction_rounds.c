@@ -52,7 +52,8 @@ static void stop_along(const double *b, int ld, const double r[2], double eps, d
 }
 
 /* How far friction may raise the normal a contact's limit is taken on:
- * to this many times the largest multiplier of its block before friction
+ * its own friction, its own limit this many times; all of it, to this
+ * many times the largest multiplier of its block before friction
  * (mr_fric_point.scale). */
 #define RAISED_MAX 4.0
 
@@ -67,8 +68,8 @@ static double at_most(double x, double cap) {
  * N_o what the others leave. Friction that lifts its own contact (nii·g
  * < 0 along the sliding direction g) slides at μN_o/(1 − μ nii·g), where
  * the two agree; friction that presses its own contact harder raises its
- * own limit at most fourfold (the rounds cycled, two bodies wedged, μN
- * growing with f).
+ * own limit at most RAISED_MAX-fold (the rounds cycled, two bodies
+ * wedged, μN growing with f).
  *
  * Nor may the contacts raise each other's limits without bound: two
  * spheres wedged between puppets and sliding at 40 m/s, each one's
@@ -76,8 +77,8 @@ static double at_most(double x, double cap) {
  * 0.3), took N up at every round, from 1.6e5 to 1.8e32, and the world
  * reset. Rigid contacts with Coulomb friction can have no answer there
  * (Painlevé's paradox). The limit is taken on N held to RAISED_MAX times
- * the block's largest multiplier before friction, which the rounds'
- * answer is nowhere near elsewhere: no pinned run's numbers move. */
+ * the block's largest multiplier before friction. Of the pinned runs only
+ * hard case 30's wedge reaches it. */
 static void take(const struct mr_fric_point *p, const double *wii, int ld, const double nii[2],
                  double tau, double next[2]) {
   double r[2], d[2];
@@ -106,7 +107,8 @@ static void take(const struct mr_fric_point *p, const double *wii, int ld, const
   }
   const double s =
       others > 0
-          ? at_most(p->mu * others / fmax(1.0 - p->mu * (nii[0] * g[0] + nii[1] * g[1]), 0.25),
+          ? at_most(p->mu * others /
+                        fmax(1.0 - p->mu * (nii[0] * g[0] + nii[1] * g[1]), 1.0 / RAISED_MAX),
                     p->mu * cap)
           : 0.0;
   next[0] = s * g[0];

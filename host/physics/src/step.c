@@ -337,7 +337,6 @@ static mr_status probe(mr_world *w, const mr_step_ctx *c) {
  * Strings are over-lengths, not depths. *sunk: how far the deepest of
  * them went past both the slop and half a millimetre (MR_SINK_MAX)
  * and its own depth at the start. */
-
 static double step_depth(mr_world *w, const mr_step_ctx *c, double *sunk) {
   const mr_sweep sw = { w->scratch.x0, w->scratch.v0, w->x1, w->v1, c->h };
   const double limit = w->def.contact_slop + MR_SINK_MAX;
@@ -368,9 +367,11 @@ static double step_depth(mr_world *w, const mr_step_ctx *c, double *sunk) {
  * before the world resets, and at the floor step such a contact went
  * 5.6 mm deep in the last 3 ms (hard case 30, once friction no longer
  * reset it earlier). A contact creeping deeper by less stays with the
- * floor step: retried below it, one pile of five puppets took 15 000
- * more tries and nine times the CPU. Otherwise the step's depth goes into
- * the stats. */
+ * floor step (retried below it, one pile of five puppets took 15 000
+ * more tries and nine times the CPU), and the correction after the step
+ * takes it back out to that depth (string_correction.c, deep_contacts,
+ * which reads the step's depth kept here). Otherwise the step's depth
+ * goes into the stats. */
 static int sinks_too_far(mr_world *w, mr_step_ctx *c) {
   double sunk, deepest = step_depth(w, c, &sunk);
   const double floor = floor_dt(w), least = sunk > MR_SINK_MAX ? 1e-3 * floor : floor;
