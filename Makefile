@@ -4,7 +4,7 @@
 # build/firmware/.
 .PHONY: all deps build build-asan build-clang build-tsan firmware test test-native test-asan \
         test-clang test-tsan fuzz \
-        demo gallery bench bench-count install flash format clean
+        demo gallery bench bench-count variants install flash format clean
 
 JOBS      ?= $(shell nproc)
 BUILD     := build
@@ -161,6 +161,15 @@ bench: build
 # `marionette sim`, and every setting of the sweep.
 bench-count: build
 	@tools/marionette-bench/count.sh $(BUILD)
+
+# Random scenes of the kinds hard cases 25 and 26 are (frames jumping at
+# their limits, parts thrown at 40 m/s), each run with its case's checks
+# (tools/hard-variants): VARIANTS of each family, from seed SEED on.
+VARIANTS ?= 500
+SEED     ?= 1
+variants: build
+	@tools/hard-variants/hard-variants --marionette $(BUILD)/host/app/marionette \
+	  --count $(VARIANTS) --seed $(SEED)
 
 # The programs, their man pages and the udev rule, under $(DESTDIR)$(PREFIX)
 # (the udev rule under $(DESTDIR)$(UDEV_RULES_DIR)): `make`, then
