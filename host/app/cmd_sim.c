@@ -288,7 +288,8 @@ int mr_cmd_sim(int argc, char **argv) {
   if (rc >= 0) return rc;
   mr_scene scene;
   mr_scene_error err;
-  if (mr_scene_load(a.path, &scene, &err) != MR_SCENE_OK) {
+  /* sim never draws: the stage's framing is left out (mr_scene.h). */
+  if (mr_scene_load_unframed(a.path, &scene, &err) != MR_SCENE_OK) {
     if (a.check && (rc = check_load_error(a.path, &err, a.quiet)) >= 0) return rc;
     fprintf(stderr, "marionette: %s\n", err.text);
     return MR_EXIT_FAIL;

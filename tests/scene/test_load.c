@@ -53,6 +53,45 @@ static void good_scene_loads_with_paper_defaults(void **state) {
   mr_scene_free(&s);
 }
 
+/* mr_scene_load_unframed reads the same file into the same physics and
+ * leaves the stage's framing (the set's size, the audience's camera) as
+ * the file gives it; mr_scene_load frames the rest from the track. A bad
+ * file is refused the same way by both. */
+static void unframed_load_leaves_only_the_framing_out(void **state) {
+  (void)state;
+  static const char text[] = BASE "  constraints:\n    - {between: [a, b]}\n"
+                                  "stage: {proscenium: {width: 7}}\n";
+  const char *path = tt_tmp_file("load_unframed.yaml", text, sizeof text - 1);
+  mr_scene framed, bare;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load(path, &framed, &e), MR_SCENE_OK);
+  assert_int_equal(mr_scene_load_unframed(path, &bare, &e), MR_SCENE_OK);
+  assert_int_equal(bare.n_particles, framed.n_particles);
+  for (size_t i = 0; i < bare.n_particles; i++)
+    assert_memory_equal(&bare.particles[i].def, &framed.particles[i].def,
+                        sizeof bare.particles[i].def);
+  assert_int_equal(bare.n_distances, 1);
+  assert_true(bare.distances[0].def.length == framed.distances[0].def.length);
+  assert_memory_equal(&bare.world, &framed.world, sizeof bare.world);
+  assert_true(bare.stage.set_width == 7.0 && framed.stage.set_width == 7.0);
+  assert_true(framed.stage.set_height > 0 && framed.stage.orbit_distance > 0);
+  /* Unframed, the camera stays the stage's default, where framing moved it. */
+  assert_true(bare.stage.set_height == 0);
+  assert_true(bare.stage.orbit_distance != framed.stage.orbit_distance);
+  mr_scene_free(&framed);
+  mr_scene_free(&bare);
+
+  static const char bad[] = BASE "  constraints:\n    - {between: [a, c]}\n";
+  const char *bad_path = tt_tmp_file("load_unframed_bad.yaml", bad, sizeof bad - 1);
+  mr_scene_error e2;
+  assert_int_not_equal(mr_scene_load(bad_path, &framed, &e), MR_SCENE_OK);
+  assert_int_not_equal(mr_scene_load_unframed(bad_path, &bare, &e2), MR_SCENE_OK);
+  assert_string_equal(e.text, e2.text);
+  assert_int_equal(e.line, e2.line);
+  mr_scene_free(&framed);
+  mr_scene_free(&bare);
+}
+
 static void settings_and_anchors_are_read(void **state) {
   (void)state;
   const char *text = "name: anchors\n"
@@ -610,6 +649,7 @@ static void format_md_example_loads(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(good_scene_loads_with_paper_defaults),
+    cmocka_unit_test(unframed_load_leaves_only_the_framing_out),
     cmocka_unit_test(settings_and_anchors_are_read),
     cmocka_unit_test(keyframes_ease_and_hold),
     cmocka_unit_test(oscillation_follows_the_sine),

@@ -142,11 +142,11 @@ static int read_root(mr_reader *r, const mr_ynode *root) {
   return mr_scene_read_stage(r, root);
 }
 
-mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t len, mr_scene *scene,
-                                   mr_scene_error *err) {
+static mr_scene_status load_text(const char *name, const char *text, size_t len, mr_scene *scene,
+                                 mr_scene_error *err, int unframed) {
   defaults(scene);
   memset(err, 0, sizeof *err);
-  mr_reader r = { .file = name, .err = err, .scene = scene };
+  mr_reader r = { .file = name, .err = err, .scene = scene, .unframed = unframed };
   scene->path = malloc(strlen(name) + 1);
   if (scene->path == NULL) {
     mr_scene_read_fail_at(&r, 0, 0, MR_SCENE_ERR_NOMEM, "out of memory");
@@ -172,7 +172,12 @@ mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t le
   return MR_SCENE_OK;
 }
 
-mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error *err) {
+mr_scene_status mr_scene_load_text(const char *name, const char *text, size_t len, mr_scene *scene,
+                                   mr_scene_error *err) {
+  return load_text(name, text, len, scene, err, 0);
+}
+
+static mr_scene_status load(const char *path, mr_scene *scene, mr_scene_error *err, int unframed) {
   defaults(scene);
   memset(err, 0, sizeof *err);
   mr_reader r = { .file = path, .err = err, .scene = scene };
@@ -215,9 +220,17 @@ mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error 
                           strerror(io_error));
     return err->status;
   }
-  mr_scene_status st = mr_scene_load_text(path, buf, len, scene, err);
+  mr_scene_status st = load_text(path, buf, len, scene, err, unframed);
   free(buf);
   return st;
+}
+
+mr_scene_status mr_scene_load(const char *path, mr_scene *scene, mr_scene_error *err) {
+  return load(path, scene, err, 0);
+}
+
+mr_scene_status mr_scene_load_unframed(const char *path, mr_scene *scene, mr_scene_error *err) {
+  return load(path, scene, err, 1);
 }
 
 void mr_scene_free(mr_scene *s) {

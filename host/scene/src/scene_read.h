@@ -25,6 +25,8 @@ typedef struct mr_reader {
   struct mr_scene_index *index;
   /* Room in scene->stage.models, which grows by more than one at a time. */
   size_t models_cap;
+  /* 1: the set is not sized nor the audience framed (mr_scene_load_unframed). */
+  int unframed;
 } mr_reader;
 
 #if defined(__GNUC__)

@@ -184,6 +184,7 @@ int mr_scene_stage_rigging(mr_reader *r, const mr_ynode *root) {
     for (size_t k = 0; k < s->n_frames; k++)
       if (frame_bars(r, k) != 0) return -1;
   if (collision_spheres(r) != 0) return -1;
+  if (r->unframed) return 0;
   /* The show's reach, estimated once: the set is sized from it, and the
    * audience's camera (without camera.orbit) frames it. */
   size_t n = 0;
