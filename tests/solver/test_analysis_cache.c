@@ -85,33 +85,42 @@ static void solve_expecting(mr_solver *s, const mr_csr *A, const double *b, cons
   assert_memory_equal(x, ref, (size_t)A->n * sizeof *x);
 }
 
+/* Each test's own variants, made before it and freed after it. */
+static int variants_setup(void **state) {
+  variants *v = malloc(sizeof *v);
+  if (v == NULL) return -1;
+  variants_make(v);
+  *state = v;
+  return 0;
+}
+
+static int variants_teardown(void **state) {
+  variants_free(*state);
+  free(*state);
+  return 0;
+}
+
+#define WITH_VARIANTS(test) cmocka_unit_test_setup_teardown(test, variants_setup, variants_teardown)
+
 static void solve_and_compare(mr_solver *s, variants *v, int p) {
   solve_expecting(s, &v->A[p], v->b[p], v->ref[p]);
 }
 
 static void alternating_patterns_are_analysed_once_each(void **state) {
-  (void)state;
-  variants *v = malloc(sizeof *v);
-  assert_non_null(v);
-  variants_make(v);
+  variants *v = *state;
   mr_solver *s = mr_solver_create();
   assert_non_null(s);
   for (int round = 0; round < 10; round++)
     for (int p = 0; p < 3; p++) solve_and_compare(s, v, round % 2 ? 2 - p : p);
   assert_int_equal(s->ldlt.analyses, 3);
   mr_solver_destroy(s);
-  variants_free(v);
-  free(v);
 }
 
 /* One pattern more than are kept, in turn: each is the least recently
  * used when it comes back, so every solve analyses; the kept ones then
  * still answer without one. */
 static void the_least_recently_used_analysis_goes(void **state) {
-  (void)state;
-  variants *v = malloc(sizeof *v);
-  assert_non_null(v);
-  variants_make(v);
+  variants *v = *state;
   mr_solver *s = mr_solver_create();
   assert_non_null(s);
   for (int round = 0; round < 2; round++)
@@ -126,8 +135,6 @@ static void the_least_recently_used_analysis_goes(void **state) {
   solve_and_compare(s, v, PATTERNS - 1);
   assert_int_equal(s->ldlt.analyses, 2 * PATTERNS + 2);
   mr_solver_destroy(s);
-  variants_free(v);
-  free(v);
 }
 
 /* A pattern above the rows kept (a few hundred contact rows) keeps its
@@ -137,7 +144,6 @@ static void the_least_recently_used_analysis_goes(void **state) {
 enum { BIG = MR_LDLT_KEPT_MAX_N + 20 };
 
 static void a_big_pattern_is_analysed_again_only_when_it_changes(void **state) {
-  (void)state;
   static const double up[3] = { 0, 0, 1 };
   test_system sys[3];
   mr_csr A[3];
@@ -160,9 +166,7 @@ static void a_big_pattern_is_analysed_again_only_when_it_changes(void **state) {
   assert_non_null(s);
   mr_solve_def def = mr_default_solve_def();
   def.method = MR_SOLVE_LDLT;
-  variants *v = malloc(sizeof *v);
-  assert_non_null(v);
-  variants_make(v);
+  variants *v = *state;
   solve_and_compare(s, v, 1); /* a small pattern, kept */
   const int order[] = { 0, 0, 0, 1, 1, 0, 2, 2, 0 }, analysed[] = { 2, 2, 2, 3, 3, 4, 5, 5, 6 };
   for (int i = 0; i < 9; i++) {
@@ -177,8 +181,6 @@ static void a_big_pattern_is_analysed_again_only_when_it_changes(void **state) {
   }
   solve_and_compare(s, v, 1); /* still kept */
   assert_int_equal(s->ldlt.analyses, 6);
-  variants_free(v);
-  free(v);
   mr_solver_destroy(s);
   for (int p = 0; p < 3; p++) {
     free(b[p]);
@@ -202,10 +204,7 @@ static void assert_same_as_fresh(const mr_csr *A, const test_system *s) {
 }
 
 static void alternating_jacobians_are_planned_once_each(void **state) {
-  (void)state;
-  variants *v = malloc(sizeof *v);
-  assert_non_null(v);
-  variants_make(v);
+  variants *v = *state;
   mr_csr A = { 0 };
   for (int round = 0; round < 10; round++) {
     for (int q = 0; q < 3; q++) {
@@ -216,17 +215,12 @@ static void alternating_jacobians_are_planned_once_each(void **state) {
   }
   assert_int_equal(mr_csr_pattern_builds(&A), 3);
   mr_csr_free(&A);
-  variants_free(v);
-  free(v);
 }
 
 /* One Jacobian more than there are plans, in turn: each is the least
  * recently used when it comes back, so every assembly plans again. */
 static void the_least_recently_used_plan_goes(void **state) {
-  (void)state;
-  variants *v = malloc(sizeof *v);
-  assert_non_null(v);
-  variants_make(v);
+  variants *v = *state;
   mr_csr A = { 0 };
   for (int round = 0; round < 2; round++) {
     for (int p = 0; p < PLANS; p++) {
@@ -239,8 +233,6 @@ static void the_least_recently_used_plan_goes(void **state) {
     assert_int_equal(mr_csr_assemble(&A, &v->sys[p].J, v->sys[p].inv_mass), MR_SOLVE_OK);
   assert_int_equal(mr_csr_pattern_builds(&A), 2 * PLANS);
   mr_csr_free(&A);
-  variants_free(v);
-  free(v);
 }
 
 /* Every plan an assembly builds names its pattern with an id no other
@@ -249,10 +241,7 @@ static void the_least_recently_used_plan_goes(void **state) {
  * built again into the same slot get new ids, and one solver fed them all
  * in turn answers each as a fresh one does. */
 static void a_pattern_id_names_one_plan_only(void **state) {
-  (void)state;
-  variants *v = malloc(sizeof *v);
-  assert_non_null(v);
-  variants_make(v);
+  variants *v = *state;
   mr_csr A = { 0 };
   mr_solver *s = mr_solver_create();
   assert_non_null(s);
@@ -271,17 +260,12 @@ static void a_pattern_id_names_one_plan_only(void **state) {
   }
   mr_solver_destroy(s);
   mr_csr_free(&A);
-  variants_free(v);
-  free(v);
 }
 
 /* A filled by hand has no id (0): its pattern is compared, so two such
  * matrices of different patterns through one solver are told apart. */
 static void patterns_filled_by_hand_are_compared(void **state) {
-  (void)state;
-  variants *v = malloc(sizeof *v);
-  assert_non_null(v);
-  variants_make(v);
+  variants *v = *state;
   mr_solver *s = mr_solver_create();
   assert_non_null(s);
   for (int round = 0; round < 4; round++) {
@@ -292,19 +276,17 @@ static void patterns_filled_by_hand_are_compared(void **state) {
   }
   assert_int_equal(s->ldlt.analyses, 2);
   mr_solver_destroy(s);
-  variants_free(v);
-  free(v);
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(alternating_patterns_are_analysed_once_each),
-    cmocka_unit_test(the_least_recently_used_analysis_goes),
-    cmocka_unit_test(a_big_pattern_is_analysed_again_only_when_it_changes),
-    cmocka_unit_test(alternating_jacobians_are_planned_once_each),
-    cmocka_unit_test(the_least_recently_used_plan_goes),
-    cmocka_unit_test(a_pattern_id_names_one_plan_only),
-    cmocka_unit_test(patterns_filled_by_hand_are_compared),
+    WITH_VARIANTS(alternating_patterns_are_analysed_once_each),
+    WITH_VARIANTS(the_least_recently_used_analysis_goes),
+    WITH_VARIANTS(a_big_pattern_is_analysed_again_only_when_it_changes),
+    WITH_VARIANTS(alternating_jacobians_are_planned_once_each),
+    WITH_VARIANTS(the_least_recently_used_plan_goes),
+    WITH_VARIANTS(a_pattern_id_names_one_plan_only),
+    WITH_VARIANTS(patterns_filled_by_hand_are_compared),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
