@@ -442,6 +442,71 @@ static void one_euro_takes_the_speed_at_its_own_cutoff(void **state) {
   assert_true(fabs(y - a) < 1e-12);
 }
 
+/* Each degree of freedom in turn, driven alone by the middle finger with
+ * its neutral at 0.3 (the range puts the neutral pose there): a NaN on that
+ * string holds the frame at the neutral pose, whichever axis the string
+ * drives, the first one too. A string that drives no axis (the thumb here)
+ * reads the middle, 0.5, once broken, whatever it read before. */
+static void a_broken_channel_is_held_at_the_neutral_of_whichever_axis_it_drives(void **state) {
+  (void)state;
+  const double zero[3] = { 0, 0, 0 };
+  for (int a = 0; a < MR_DOF_COUNT; a++) {
+    mr_mapping_def d = mr_default_mapping_def();
+    for (int b = 0; b < MR_DOF_COUNT; b++) d.axes[b].channel = -1;
+    const double unit = a < MR_DOF_MOVE_X ? 10.0 : 0.1; /* degrees or metres */
+    d.axes[a] = (mr_axis_def){ 2, -3 * unit, 7 * unit, false, 0.3, 0 };
+    mr_control *c = make(&d, 1);
+    double v[5] = { 0.9, 0.5, 0.3, 0.5, 0.5 }, t = 0, u[5];
+    mr_channel_state st[5];
+    hold(c, v, &t, 1, st);
+    mr_control_values(c, u);
+    if (!(fabs(u[0] - 0.9) < 1e-3))
+      fail_msg("%s: the thumb reads %.6f, expected 0.9", mr_dof_name(a), u[0]);
+    v[0] = v[2] = NAN;
+    mr_pose p = hold(c, v, &t, 2, st);
+    assert_int_equal(st[0], MR_CHANNEL_NOT_FINITE);
+    assert_int_equal(st[2], MR_CHANNEL_NOT_FINITE);
+    assert_pose(&p, zero, zero, 1e-9);
+    mr_control_values(c, u);
+    if (!(fabs(u[0] - 0.5) < 1e-3))
+      fail_msg("%s: the broken thumb reads %.6f, expected 0.5", mr_dof_name(a), u[0]);
+    if (!(fabs(u[2] - 0.3) < 1e-12))
+      fail_msg("%s: the broken middle finger reads %.6f, expected 0.3", mr_dof_name(a), u[2]);
+    mr_control_destroy(c);
+  }
+}
+
+/* A mapping is found by its own name only: not by a name no mapping has,
+ * the empty one included (the controller's unused room holds empty names),
+ * nor by NULL. */
+static void a_mapping_is_found_by_its_own_name_only(void **state) {
+  (void)state;
+  mr_mapping_def two[2] = { mr_default_mapping_def(), mr_default_mapping_def() };
+  snprintf(two[0].name, sizeof two[0].name, "walk");
+  snprintf(two[1].name, sizeof two[1].name, "fly");
+  mr_control *c = make(two, 2);
+  assert_int_equal(mr_control_find(c, "walk"), 0);
+  assert_int_equal(mr_control_find(c, "fly"), 1);
+  assert_int_equal(mr_control_find(c, ""), -1);
+  assert_int_equal(mr_control_find(c, "swim"), -1);
+  assert_int_equal(mr_control_find(c, NULL), -1);
+  assert_int_equal(mr_control_find(NULL, "walk"), -1);
+  mr_control_destroy(c);
+}
+
+/* A filter just made has seen nothing: its state reads zero, whatever the
+ * memory held before, and its first sample comes out as it went in. */
+static void a_new_filter_has_seen_nothing(void **state) {
+  (void)state;
+  mr_one_euro f;
+  memset(&f, 0xff, sizeof f);
+  mr_one_euro_init(&f, 2.0, 0.5, 3.0);
+  assert_true(f.min_cutoff == 2.0 && f.beta == 0.5 && f.d_cutoff == 3.0);
+  assert_true(f.x == 0.0 && f.dx == 0.0 && f.t == 0.0);
+  assert_false(f.started);
+  assert_true(mr_one_euro_filter(&f, 0.75, 4.0) == 0.75);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(each_finger_drives_its_own_degree_of_freedom),
@@ -453,6 +518,9 @@ int main(void) {
     cmocka_unit_test(one_euro_takes_the_speed_at_its_own_cutoff),
     cmocka_unit_test(leaving_an_end_starts_the_stuck_timer_afresh),
     cmocka_unit_test(a_broken_channel_is_held_at_its_axis_neutral),
+    cmocka_unit_test(a_broken_channel_is_held_at_the_neutral_of_whichever_axis_it_drives),
+    cmocka_unit_test(a_mapping_is_found_by_its_own_name_only),
+    cmocka_unit_test(a_new_filter_has_seen_nothing),
     cmocka_unit_test(the_dead_zone_centres_on_a_neutral_other_than_the_middle),
     cmocka_unit_test(two_updates_at_one_time_keep_the_pose_finite),
     cmocka_unit_test(switching_mappings_switches_the_filter_settings),
