@@ -4,7 +4,8 @@
  * when the glove restarts, the clock offset the smallest seen since then,
  * a loss counted once however long it lasts, the port tried again after
  * retry_every and not sooner, and a frame cut by a hang-up one error whose
- * bytes are only the glove's. */
+ * bytes are only the glove's; a take sent down the port is a glove's
+ * bytes, not a take. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -13,9 +14,12 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "glove_wire.h"
+#include "mr_io.h"
+#include "proc.h"
 
 static mr_glove_reading latest(const mr_glove *g) {
   mr_glove_reading r;
@@ -317,6 +321,47 @@ static void a_frame_cut_by_a_hang_up_is_one_error_and_its_delimiter_is_not_count
   gw_port_remove(&p);
 }
 
+/* Only a file, a FIFO or stdin may carry a take. A take's bytes sent down
+ * a glove's port are the glove's bytes, every one of them, the take's
+ * own header too: the SAMPLE frames inside its chunks are read as they
+ * come, and the port stays a glove, which takes commands. */
+static void a_take_sent_down_a_port_is_read_as_a_glove(void **state) {
+  (void)state;
+  const char *take = tt_tmp_file("down_a_port.mrec", "", 0);
+  assert_non_null(take);
+  mr_rec_writer w;
+  mr_io_error err;
+  assert_int_equal(mr_rec_writer_open(&w, take, GP_SPEC_HASH, 0, &err), 0);
+  for (int i = 0; i < 5; i++) {
+    uint8_t wire[GP_MAX_WIRE];
+    gp_msg m = gw_sample((uint16_t)(i + 1), 1000u * (uint32_t)i, 0, 2000);
+    size_t n = gw_encode(&m, wire);
+    assert_int_equal(mr_rec_writer_add(&w, 1000000ull * (uint64_t)i, wire, n, &err), 0);
+  }
+  assert_int_equal(mr_rec_writer_close(&w, &err), 0);
+  size_t len = 0;
+  char *bytes = tt_read_file(take, &len);
+  assert_non_null(bytes);
+  gw_port p;
+  gw_port_make(&p);
+  mr_glove *g = gw_glove(p.source, 0.5, 0.5);
+  double now = 1.0;
+  mr_glove_poll(g, now, 0);
+  assert_int_equal(gw_write(p.master.fd, bytes, len), 0);
+  free(bytes);
+  for (int i = 0; i < 100 && counters(g).decoder.frames < 5; i++) mr_glove_poll(g, now, 10);
+  mr_glove_counters n = counters(g);
+  assert_int_equal(n.decoder.frames, 5);
+  assert_int_equal(n.decoder.bytes, len);
+  assert_int_equal(latest(g).seq, 5);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LIVE);
+  mr_glove_cmd c = { .type = GP_PING };
+  char msg[300];
+  if (mr_glove_command(g, &c, now, msg, sizeof msg) < 0) fail_msg("PING refused: %s", msg);
+  mr_glove_destroy(g);
+  gw_port_remove(&p);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(the_calibrated_range_is_used_only_when_the_glove_says_it_is_valid),
@@ -326,6 +371,7 @@ int main(void) {
     cmocka_unit_test(a_silent_glove_is_lost_after_lost_after_and_counted_once),
     cmocka_unit_test(a_lost_port_is_tried_again_after_retry_every_and_not_sooner),
     cmocka_unit_test(a_frame_cut_by_a_hang_up_is_one_error_and_its_delimiter_is_not_counted),
+    cmocka_unit_test(a_take_sent_down_a_port_is_read_as_a_glove),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
