@@ -247,6 +247,17 @@ static void a_take_carries_no_commands(void **state) {
   assert_string_equal(msg, want);
   c.type = GP_SAMPLE;
   assert_int_equal(mr_glove_command(g, &c, 0.0, msg, sizeof msg), -1);
+  /* With no message buffer, or one of no room, the refusal is the same and
+   * nothing is written: not past a size given without a buffer, not into
+   * a buffer given without room. */
+  char one = 'x';
+  const uint8_t frame[1] = { 0 };
+  c.type = GP_PING;
+  assert_int_equal(mr_glove_command(g, &c, 0.0, NULL, sizeof msg), -1);
+  assert_int_equal(mr_glove_command(g, &c, 0.0, &one, 0), -1);
+  assert_int_equal(mr_glove_send_raw(g, frame, sizeof frame, NULL, sizeof msg), -1);
+  assert_int_equal(mr_glove_send_raw(g, frame, sizeof frame, &one, 0), -1);
+  assert_true(one == 'x');
   mr_glove_destroy(g);
 }
 
