@@ -1,6 +1,7 @@
 /* A take found on a stream by its magic, and a port listened to for a
  * glove, over real descriptors: a take written into a FIFO is played at
- * the times it was recorded at and then ends; a probe hears a glove announce itself however
+ * the times it was recorded at and then ends; a damaged one ends the glove
+ * with its reader's message; a probe hears a glove announce itself however
  * late in its wait, tells a glove of another protocol definition, reports
  * silence, and refuses what is no port. */
 #define _DEFAULT_SOURCE /* mkfifo, nanosleep */
@@ -117,6 +118,34 @@ static void a_take_down_a_fifo_is_found_by_its_magic_and_played_at_its_times(voi
   free(dir);
 }
 
+/* A take's magic and then no header: the take's reader says what is wrong,
+ * the glove ends there with that message, and nothing is played. */
+static void a_damaged_take_down_a_fifo_ends_the_glove_with_its_readers_message(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  char fifo[300];
+  snprintf(fifo, sizeof fifo, "%s", tt_path(dir, "glove.fifo"));
+  assert_int_equal(mkfifo(fifo, 0600), 0);
+  size_t len = 0;
+  char *bytes = take_bytes(1, &len);
+  mr_glove *g = fifo_glove(fifo);
+  pid_t writer = write_fifo(fifo, bytes, 12); /* the magic and 4 bytes of header */
+  int taken = 0;
+  for (int i = 0; i < 100 && !mr_glove_take_done(g); i++) taken += mr_glove_poll(g, 0.1, 10);
+  reap(writer);
+  assert_true(mr_glove_take_done(g));
+  assert_int_equal(taken, 0);
+  const char *why = mr_glove_last_error(g, NULL);
+  if (strstr(why, fifo) == NULL) fail_msg("the message does not name the FIFO: %s", why);
+  mr_glove_poll(g, 1.0, 0);
+  assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LOST);
+  assert_string_equal(mr_glove_last_error(g, NULL), why);
+  mr_glove_destroy(g);
+  free(bytes);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* A child that writes one INFO (of the spec hash given) into the port
  * after `delay` s. */
 static pid_t announce_later(gw_port *p, uint32_t spec_hash, uint32_t uid, double delay) {
@@ -179,6 +208,7 @@ int main(void) {
   signal(SIGPIPE, SIG_IGN);
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_take_down_a_fifo_is_found_by_its_magic_and_played_at_its_times),
+    cmocka_unit_test(a_damaged_take_down_a_fifo_ends_the_glove_with_its_readers_message),
     cmocka_unit_test(a_probe_hears_a_glove_announce_itself_late_in_its_wait),
     cmocka_unit_test(a_probe_refuses_what_is_no_port),
   };

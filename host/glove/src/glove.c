@@ -370,9 +370,11 @@ static void follow_baud(mr_glove *g, double now) {
   try_open(g, now);
 }
 
-/* A stream's first bytes: a take's magic makes it a take (1); a part of
- * the magic waits for more (−1); anything else is a glove's bytes, the
- * ones held back first (0, with them fed). */
+/* A stream's first bytes: a take's magic makes it a take (1), whether its
+ * reader then opens or fails (a damaged take is reported as a take, with
+ * its reader's message, never read on as a glove's bytes); a part of the
+ * magic waits for more (−1); anything else is a glove's bytes, the ones
+ * held back first (0, with them fed). */
 static int sniff(mr_glove *g, const uint8_t *buf, size_t got, double now) {
   size_t k = got < sizeof g->sniff - g->sniffed ? got : sizeof g->sniff - g->sniffed;
   memcpy(g->sniff + g->sniffed, buf, k);
@@ -386,7 +388,8 @@ static int sniff(mr_glove *g, const uint8_t *buf, size_t got, double now) {
     uint8_t head[4096 + 8];
     memcpy(head, g->sniff, g->sniffed);
     memcpy(head + g->sniffed, buf + k, got - k);
-    return mr_glove_take_from_stream(g, head, g->sniffed + got - k, now) == 0 ? 1 : -1;
+    (void)mr_glove_take_from_stream(g, head, g->sniffed + got - k, now);
+    return 1;
   }
   size_t held = g->sniffed - k;
   if (held > 0) {
