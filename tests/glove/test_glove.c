@@ -333,6 +333,21 @@ static void bad_sources_are_refused_by_name(void **state) {
   assert_string_equal(rep.note, "");
   assert_int_equal(mr_glove_source_check("mqtt://bob@stage.example/glove/bob", &rep), MR_IO_OK);
   assert_non_null(strstr(rep.note, "sends the password in the clear"));
+  /* Any user name, one letter long too, beyond this machine; none without
+   * a user or on the loopback. */
+  static const struct {
+    const char *url;
+    bool warned;
+  } clear[] = { { "mqtt://b@stage.example/glove/b", true },
+                { "mqtt://stage.example/glove/anyone", false },
+                { "mqtt://bob@127.0.0.1/glove/bob", false },
+                { "mqtt://bob@localhost/glove/bob", false },
+                { "mqtt://bob@[::1]/glove/bob", false } };
+  for (size_t i = 0; i < sizeof clear / sizeof clear[0]; i++) {
+    assert_int_equal(mr_glove_source_check(clear[i].url, &rep), MR_IO_OK);
+    if ((strstr(rep.note, "sends the password in the clear") != NULL) != clear[i].warned)
+      fail_msg("%s: note '%s'", clear[i].url, rep.note);
+  }
   d = mr_default_glove_def();
   d.retry_every = 5;
   assert_int_equal(mr_glove_create(&d, &g, msg, sizeof msg), MR_GLOVE_ERR_ARG);
