@@ -63,14 +63,32 @@ static void reap(pid_t pid) {
   assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
-static mr_glove *fifo_glove(const char *fifo) {
+/* A FIFO in a fresh folder, a take of `samples` SAMPLEs, and a glove on
+ * the FIFO, lost after 0.5 s of its caller's time. */
+typedef struct fifo_rig {
+  char *dir, path[300], *bytes;
+  size_t len;
+  mr_glove *g;
+} fifo_rig;
+
+static void fifo_rig_make(fifo_rig *f, int samples) {
+  f->dir = tt_tmpdir();
+  snprintf(f->path, sizeof f->path, "%s", tt_path(f->dir, "glove.fifo"));
+  assert_int_equal(mkfifo(f->path, 0600), 0);
+  f->bytes = take_bytes(samples, &f->len);
   mr_glove_def d = mr_default_glove_def();
-  snprintf(d.source, sizeof d.source, "file:%.240s", fifo);
+  snprintf(d.source, sizeof d.source, "file:%.240s", f->path);
   d.lost_after = 0.5;
-  mr_glove *g = NULL;
   char msg[300];
-  if (mr_glove_create(&d, &g, msg, sizeof msg) != MR_GLOVE_OK) fail_msg("%s", msg);
-  return g;
+  f->g = NULL;
+  if (mr_glove_create(&d, &f->g, msg, sizeof msg) != MR_GLOVE_OK) fail_msg("%s", msg);
+}
+
+static void fifo_rig_free(fifo_rig *f) {
+  mr_glove_destroy(f->g);
+  free(f->bytes);
+  tt_rmdir(f->dir);
+  free(f->dir);
 }
 
 /* Polls at `now` (real waits of 10 ms, a second at most) until `want`
@@ -82,14 +100,10 @@ static int poll_until(mr_glove *g, double now, int have, int want) {
 
 static void a_take_down_a_fifo_is_found_by_its_magic_and_played_at_its_times(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  char fifo[300];
-  snprintf(fifo, sizeof fifo, "%s", tt_path(dir, "glove.fifo"));
-  assert_int_equal(mkfifo(fifo, 0600), 0);
-  size_t len = 0;
-  char *bytes = take_bytes(5, &len);
-  mr_glove *g = fifo_glove(fifo);
-  pid_t writer = write_fifo(fifo, bytes, len);
+  fifo_rig f;
+  fifo_rig_make(&f, 5);
+  mr_glove *g = f.g;
+  pid_t writer = write_fifo(f.path, f.bytes, f.len);
   /* Chunks recorded at 0, 0.1, ... 0.4 s: at 0.05 s the first alone is
    * due, at 0.25 s three, at 0.45 s all five. */
   int taken = poll_until(g, 0.05, 0, 1);
@@ -112,38 +126,29 @@ static void a_take_down_a_fifo_is_found_by_its_magic_and_played_at_its_times(voi
   mr_glove_poll(g, 1.5, 0);
   assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LOST);
   assert_string_equal(mr_glove_last_error(g, NULL), "the take ended");
-  mr_glove_destroy(g);
-  free(bytes);
-  tt_rmdir(dir);
-  free(dir);
+  fifo_rig_free(&f);
 }
 
 /* A take's magic and then no header: the take's reader says what is wrong,
  * the glove ends there with that message, and nothing is played. */
 static void a_damaged_take_down_a_fifo_ends_the_glove_with_its_readers_message(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  char fifo[300];
-  snprintf(fifo, sizeof fifo, "%s", tt_path(dir, "glove.fifo"));
-  assert_int_equal(mkfifo(fifo, 0600), 0);
-  size_t len = 0;
-  char *bytes = take_bytes(1, &len);
-  mr_glove *g = fifo_glove(fifo);
-  pid_t writer = write_fifo(fifo, bytes, 12); /* the magic and 4 bytes of header */
+  fifo_rig f;
+  fifo_rig_make(&f, 1);
+  mr_glove *g = f.g;
+  pid_t writer = write_fifo(f.path, f.bytes, 12); /* the magic and 4 bytes of header */
   int taken = 0;
   for (int i = 0; i < 100 && !mr_glove_take_done(g); i++) taken += mr_glove_poll(g, 0.1, 10);
   reap(writer);
   assert_true(mr_glove_take_done(g));
   assert_int_equal(taken, 0);
-  const char *why = mr_glove_last_error(g, NULL);
-  if (strstr(why, fifo) == NULL) fail_msg("the message does not name the FIFO: %s", why);
+  char why[300];
+  snprintf(why, sizeof why, "%s", mr_glove_last_error(g, NULL));
+  if (strstr(why, f.path) == NULL) fail_msg("the message does not name the FIFO: %s", why);
   mr_glove_poll(g, 1.0, 0);
   assert_int_equal(mr_glove_get_state(g), MR_GLOVE_LOST);
   assert_string_equal(mr_glove_last_error(g, NULL), why);
-  mr_glove_destroy(g);
-  free(bytes);
-  tt_rmdir(dir);
-  free(dir);
+  fifo_rig_free(&f);
 }
 
 /* A child that writes one INFO (of the spec hash given) into the port
