@@ -7,6 +7,7 @@
 #include <cmocka.h>
 
 #include <errno.h>
+#include <math.h>
 #include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +15,8 @@
 #include <unistd.h>
 
 #include "glove_wire.h"
+#include "mr_io.h"
+#include "proc.h"
 
 gp_msg gw_sample(uint16_t seq, uint32_t t_us, uint16_t flags, uint16_t raw) {
   gp_msg m;
@@ -135,6 +138,24 @@ int gw_poll_for_samples(mr_glove *g, double now) {
     if (n > 0) return n;
   }
   return 0;
+}
+
+char *gw_take(int count, double spacing, size_t *len) {
+  const char *path = tt_tmp_file("glove_wire.mrec", "", 0);
+  assert_non_null(path);
+  mr_rec_writer w;
+  mr_io_error err;
+  assert_int_equal(mr_rec_writer_open(&w, path, GP_SPEC_HASH, 0, &err), 0);
+  for (int i = 0; i < count; i++) {
+    uint8_t wire[GP_MAX_WIRE];
+    gp_msg m = gw_sample((uint16_t)(i + 1), (uint32_t)llround(i * spacing * 1e6), 0, 2000);
+    size_t n = gw_encode(&m, wire);
+    assert_int_equal(mr_rec_writer_add(&w, (uint64_t)llround(i * spacing * 1e9), wire, n, &err), 0);
+  }
+  assert_int_equal(mr_rec_writer_close(&w, &err), 0);
+  char *bytes = tt_read_file(path, len);
+  assert_non_null(bytes);
+  return bytes;
 }
 
 double gw_lateness(const mr_glove *g) {

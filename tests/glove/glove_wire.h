@@ -45,6 +45,11 @@ mr_glove *gw_glove(const char *source, double lost_after, double retry_every);
  * of real time passed: how many were taken. */
 int gw_poll_for_samples(mr_glove *g, double now);
 
+/* A take of `count` SAMPLEs (seq 1, 2, ..., raw 2000), one chunk each,
+ * `spacing` s apart from t = 0 on both clocks, written to a scratch file:
+ * the file's bytes (free them) and their count. */
+char *gw_take(int count, double spacing, size_t *len);
+
 /* "ms late" as the theater shows it, s. */
 double gw_lateness(const mr_glove *g);
 

@@ -18,8 +18,6 @@
 #include <string.h>
 
 #include "glove_wire.h"
-#include "mr_io.h"
-#include "proc.h"
 
 static mr_glove_reading latest(const mr_glove *g) {
   mr_glove_reading r;
@@ -327,21 +325,8 @@ static void a_frame_cut_by_a_hang_up_is_one_error_and_its_delimiter_is_not_count
  * come, and the port stays a glove, which takes commands. */
 static void a_take_sent_down_a_port_is_read_as_a_glove(void **state) {
   (void)state;
-  const char *take = tt_tmp_file("down_a_port.mrec", "", 0);
-  assert_non_null(take);
-  mr_rec_writer w;
-  mr_io_error err;
-  assert_int_equal(mr_rec_writer_open(&w, take, GP_SPEC_HASH, 0, &err), 0);
-  for (int i = 0; i < 5; i++) {
-    uint8_t wire[GP_MAX_WIRE];
-    gp_msg m = gw_sample((uint16_t)(i + 1), 1000u * (uint32_t)i, 0, 2000);
-    size_t n = gw_encode(&m, wire);
-    assert_int_equal(mr_rec_writer_add(&w, 1000000ull * (uint64_t)i, wire, n, &err), 0);
-  }
-  assert_int_equal(mr_rec_writer_close(&w, &err), 0);
   size_t len = 0;
-  char *bytes = tt_read_file(take, &len);
-  assert_non_null(bytes);
+  char *bytes = gw_take(5, 0.001, &len);
   gw_port p;
   gw_port_make(&p);
   mr_glove *g = gw_glove(p.source, 0.5, 0.5);

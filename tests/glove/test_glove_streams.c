@@ -25,26 +25,6 @@
 #include "mr_io.h"
 #include "proc.h"
 
-/* A take of `count` SAMPLEs (seq 1, 2, ...), one chunk each, 0.1 s apart
- * from t = 0; its bytes (free them) and their count. */
-static char *take_bytes(int count, size_t *len) {
-  const char *path = tt_tmp_file("stream.mrec", "", 0);
-  assert_non_null(path);
-  mr_rec_writer w;
-  mr_io_error err;
-  assert_int_equal(mr_rec_writer_open(&w, path, GP_SPEC_HASH, 0, &err), 0);
-  for (int i = 0; i < count; i++) {
-    uint8_t wire[GP_MAX_WIRE];
-    gp_msg m = gw_sample((uint16_t)(i + 1), 100000u * (uint32_t)i, 0, 2000);
-    size_t n = gw_encode(&m, wire);
-    assert_int_equal(mr_rec_writer_add(&w, 100000000ull * (uint64_t)i, wire, n, &err), 0);
-  }
-  assert_int_equal(mr_rec_writer_close(&w, &err), 0);
-  char *bytes = tt_read_file(path, len);
-  assert_non_null(bytes);
-  return bytes;
-}
-
 /* A child that opens the FIFO for writing, writes len bytes and closes. */
 static pid_t write_fifo(const char *fifo, const char *bytes, size_t len) {
   pid_t pid = fork();
@@ -63,8 +43,8 @@ static void reap(pid_t pid) {
   assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
-/* A FIFO in a fresh folder, a take of `samples` SAMPLEs, and a glove on
- * the FIFO, lost after 0.5 s of its caller's time. */
+/* A FIFO in a fresh folder, a take of `samples` SAMPLEs 0.1 s apart, and
+ * a glove on the FIFO, lost after 0.5 s of its caller's time. */
 typedef struct fifo_rig {
   char *dir, path[300], *bytes;
   size_t len;
@@ -75,13 +55,10 @@ static void fifo_rig_make(fifo_rig *f, int samples) {
   f->dir = tt_tmpdir();
   snprintf(f->path, sizeof f->path, "%s", tt_path(f->dir, "glove.fifo"));
   assert_int_equal(mkfifo(f->path, 0600), 0);
-  f->bytes = take_bytes(samples, &f->len);
-  mr_glove_def d = mr_default_glove_def();
-  snprintf(d.source, sizeof d.source, "file:%.240s", f->path);
-  d.lost_after = 0.5;
-  char msg[300];
-  f->g = NULL;
-  if (mr_glove_create(&d, &f->g, msg, sizeof msg) != MR_GLOVE_OK) fail_msg("%s", msg);
+  f->bytes = gw_take(samples, 0.1, &f->len);
+  char source[300];
+  snprintf(source, sizeof source, "file:%.240s", f->path);
+  f->g = gw_glove(source, 0.5, 0.5);
 }
 
 static void fifo_rig_free(fifo_rig *f) {

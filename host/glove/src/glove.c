@@ -388,7 +388,7 @@ static int sniff(mr_glove *g, const uint8_t *buf, size_t got, double now) {
     uint8_t head[4096 + 8];
     memcpy(head, g->sniff, g->sniffed);
     memcpy(head + g->sniffed, buf + k, got - k);
-    (void)mr_glove_take_from_stream(g, head, g->sniffed + got - k, now);
+    mr_glove_take_from_stream(g, head, g->sniffed + got - k, now);
     return 1;
   }
   size_t held = g->sniffed - k;

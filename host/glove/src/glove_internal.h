@@ -104,7 +104,9 @@ int mr_glove_feed(mr_glove *g, const uint8_t *buf, size_t n, double now);
 int mr_glove_take_play(mr_glove *g, double now);
 /* Sleeps up to timeout_ms while the take's next chunk is not due. */
 void mr_glove_take_wait(const mr_glove *g, double now, int timeout_ms);
-int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, double now);
+/* A take whose reader fails to open is done at once, the reader's message
+ * the glove's last error. */
+void mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, double now);
 
 /* glove_cmd.c: sends what is due and retires what timed out (each poll);
  * takes an ACK, NACK or STATUS that arrived. */

@@ -36,7 +36,7 @@ static int open_named(mr_glove *g, double now) {
   return 0;
 }
 
-int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, double now) {
+void mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, double now) {
   mr_io_error err;
   /* The reader takes these bytes before the descriptor's: they must live
    * as long as it reads. */
@@ -45,7 +45,7 @@ int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, do
   if (g->take_prefix == NULL) {
     snprintf(g->last_error, sizeof g->last_error, "out of memory");
     g->take_done = g->is_take = true;
-    return -1;
+    return;
   }
   memcpy(g->take_prefix, prefix, len);
   g->is_take = true;
@@ -54,10 +54,9 @@ int mr_glove_take_from_stream(mr_glove *g, const uint8_t *prefix, size_t len, do
       0) {
     take_failed(g, &err);
     g->take_done = true;
-    return -1;
+    return;
   }
   g->take_open = true;
-  return 0;
 }
 
 /* In whole ns, rounded as a recorder rounds `now`, so a chunk read at a
