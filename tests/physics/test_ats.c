@@ -64,6 +64,12 @@ static void ats_follows_fourth_root_rule_on_scripted_errors(void **state) {
   assert_int_equal(d.accept, 1);
   near(d.dt_next, 0.01);
 
+  /* Under it (a sliver cut to land on a frame): accepted, and the next
+   * step goes back to the bound, not on at the sliver. */
+  d = mr_ats_next(&paper, 0.004, 0.9);
+  assert_int_equal(d.accept, 1);
+  near(d.dt_next, 0.01);
+
   d = mr_ats_next(&paper, 0.03, NAN); /* NaN never passes as small */
   assert_int_equal(d.accept, 0);
   near(d.dt_next, 0.01);
