@@ -14,31 +14,7 @@
 
 #include "mr_physics.h"
 
-/* ------------------------------------------- a realloc that can fail */
-
-/* The world's arrays grow through realloc (mr_grow). This binary's realloc
- * fails on demand: once `reallocs_left` more calls have succeeded, the next
- * returns NULL and `realloc_failed` is set. glibc's own entry point does
- * the work; AddressSanitizer owns realloc in that build, so the failing
- * test runs in the plain one. */
-#if !defined(__SANITIZE_ADDRESS__)
-void *__libc_realloc(void *p, size_t size);
-static long reallocs_left = -1; /* -1: never fail */
-static int realloc_failed;
-
-void *realloc(void *p, size_t size) {
-  if (reallocs_left == 0) {
-    reallocs_left = -1;
-    realloc_failed = 1;
-    return NULL;
-  }
-  if (reallocs_left > 0) reallocs_left--;
-  return __libc_realloc(p, size);
-}
-#define FAILING_REALLOC 1
-#else
-#define FAILING_REALLOC 0
-#endif
+#include "failing_realloc.h"
 
 typedef struct rig {
   mr_world *w;
@@ -252,35 +228,22 @@ static void bob_towed_by_an_accelerating_frame_keeps_its_distance(void **state) 
   mr_world_destroy(r.w);
 }
 
+static mr_world *hanging_bob(void *user) {
+  (void)user;
+  rig r;
+  const double at[3] = { 0, -1, 0 };
+  make_rig(&r, at, 1.0, 0);
+  return r.w;
+}
+
 /* Whichever of the step's reallocations fails (the taut string's work
  * arrays among them, grown at its first hold), the step says so: never
  * MR_OK after memory ran out, and a message naming memory. */
 static void out_of_memory_in_a_step_reaches_the_caller(void **state) {
   (void)state;
-#if !FAILING_REALLOC
-  skip();
-#else
-  int fired = 0;
-  for (long n = 0; n < 200; n++) {
-    rig r;
-    const double at[3] = { 0, -1, 0 };
-    make_rig(&r, at, 1.0, 0);
-    realloc_failed = 0;
-    reallocs_left = n;
-    mr_status st = mr_world_step_to(r.w, 0.1, NULL);
-    reallocs_left = -1;
-    if (realloc_failed) {
-      fired++;
-      assert_int_equal(st, MR_ERR_NOMEM);
-      assert_non_null(strstr(mr_world_last_error(r.w), "out of memory"));
-    } else {
-      assert_int_equal(st, MR_OK);
-    }
-    mr_world_destroy(r.w);
-    if (!realloc_failed) break; /* n is past the step's last reallocation */
-  }
+  if (!failing_realloc_works()) skip();
+  const int fired = failing_realloc_each(hanging_bob, NULL, 0.1);
   assert_true(fired >= 2); /* the taut string's two work arrays at least */
-#endif
 }
 
 /* A bob swinging taut from (0.6, -0.8) m: the rule lets a step end up to
