@@ -159,6 +159,31 @@ static void unknown_effect_bits_are_refused(void **state) {
   mr_world_destroy(w);
 }
 
+/* A curve's keys out of order are refused with the key and the two times
+ * named, whichever key it is (the last one too); in order, they are
+ * taken. */
+static void curve_keys_out_of_order_are_named(void **state) {
+  (void)state;
+  const double points[9] = { 0, 0, 0, 1, 0, 0, 2, 0, 0 };
+  const double orders[2][3] = { { 0.0, 2.0, 1.5 }, { 0.5, 0.25, 1.0 } };
+  const char *names[2] = { "key 2: times must increase (1.5 after 2)",
+                           "key 1: times must increase (0.25 after 0.5)" };
+  for (int o = 0; o < 2; o++) {
+    mr_world *w = full_world();
+    mr_curve_def c = mr_default_curve_def();
+    c.particle = 0;
+    c.key_count = 3;
+    c.times = orders[o];
+    c.points = points;
+    assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_ERR_ARG);
+    assert_non_null(strstr(mr_world_last_error(w), names[o]));
+    const double in_order[3] = { 0.0, 1.0, 2.0 };
+    c.times = in_order;
+    assert_int_equal(mr_world_add_curve(w, &c, NULL), MR_OK);
+    mr_world_destroy(w);
+  }
+}
+
 #define T(kind) cmocka_unit_test(zeroed_##kind##_def_is_refused_and_the_maker_s_is_accepted)
 
 int main(void) {
@@ -181,6 +206,7 @@ int main(void) {
     cmocka_unit_test(every_pass_and_integrator_name_parses_back),
     cmocka_unit_test(each_force_kind_has_an_effect_and_a_pass_of_one_name),
     cmocka_unit_test(unknown_effect_bits_are_refused),
+    cmocka_unit_test(curve_keys_out_of_order_are_named),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
