@@ -270,6 +270,58 @@ static void a_contact_joins_two_blocks(void **state) {
   mr_world_destroy(w);
 }
 
+/* One contact row may name three blocks: a rod's sphere midway between
+ * two free particles (blocks 2 and 0: a block is numbered by its lowest
+ * particle) pressed by a dead ball (block 1). While they touch, the row
+ * joins all three, and the link hung on particle 0 with them: one system,
+ * never the link solved apart from the contact that pushes its end.
+ * Joining in the row's order, 2 into 0 and then 2 again into 1, must not
+ * leave block 0 out. */
+static void a_contact_naming_three_blocks_joins_them_all(void **state) {
+  (void)state;
+  mr_world_def def = mr_default_world_def();
+  def.effects = MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  const double at[4][2] = { { -0.2, 0 }, { 0, 0.101 }, { 0.2, 0 }, { -0.2, -0.2 } };
+  const int puppet[4] = { 0, 1, 0, 0 };
+  int ids[4];
+  for (int k = 0; k < 4; k++) {
+    mr_particle_def p = mr_default_particle_def();
+    p.position[0] = at[k][0];
+    p.position[1] = at[k][1];
+    p.velocity[1] = k == 1 ? -1.0 : 0.0;
+    p.puppet = puppet[k];
+    assert_int_equal(mr_world_add_particle(w, &p, &ids[k]), MR_OK);
+  }
+  link(w, ids[0], ids[3]);
+  const int rod[2] = { ids[2], ids[0] }, ball_of[1] = { ids[1] };
+  const int *parts[2] = { rod, ball_of };
+  for (int k = 0; k < 2; k++) {
+    mr_part_def part = mr_default_part_def();
+    part.particles = parts[k];
+    part.count = 2 - k;
+    part.radius = 0.05;
+    part.segment_spheres = 1 - k; /* the rod's: one, midway */
+    part.restitution = 0.0;
+    part.friction = 0.0;
+    assert_int_equal(mr_world_add_part(w, &part, NULL), MR_OK);
+  }
+  int touching = 0;
+  while (mr_world_time(w) < 0.1) {
+    mr_status st = mr_world_step(w, NULL);
+    assert_true(st == MR_OK || st == MR_DEPENDENT);
+    mr_stats s;
+    assert_int_equal(mr_world_stats(w, &s), MR_OK);
+    if (s.resting_contacts == 0) continue;
+    touching++;
+    assert_int_equal(s.blocks, 1);
+  }
+  assert_true(touching >= 5);
+  assert_true(mr_world_deviation(w) < 1e-4);
+  mr_world_destroy(w);
+}
+
 /* A world grown after it stepped: its blocks are found again, over room
  * for every particle (31 particles first, past the size where the block
  * arrays' room first doubles, then 41). */
@@ -301,6 +353,7 @@ int main(void) {
     cmocka_unit_test(a_dependent_row_in_one_block_is_reported_for_the_solve),
     cmocka_unit_test(nan_in_one_block_resets_the_world),
     cmocka_unit_test(a_contact_joins_two_blocks),
+    cmocka_unit_test(a_contact_naming_three_blocks_joins_them_all),
     cmocka_unit_test(a_world_grown_after_stepping_finds_its_blocks_again),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
