@@ -212,6 +212,15 @@ static void nan_in_one_block_resets_the_world(void **state) {
   mr_world_destroy(w);
 }
 
+/* A world of links and parts of puppets that collide, made from *def. */
+static mr_world *colliding_world(mr_world_def *def) {
+  *def = mr_default_world_def();
+  def->effects = MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION;
+  mr_world *w = NULL;
+  assert_int_equal(mr_world_create(def, &w, NULL, 0), MR_OK);
+  return w;
+}
+
 /* Two dumbbells of different puppets fly into each other: apart they are
  * two blocks, and the contact rows between their spheres join them into
  * one. Their spheres are dead (no restitution), so they go on together,
@@ -220,10 +229,8 @@ static void nan_in_one_block_resets_the_world(void **state) {
  * would push the other's particles past its link). */
 static void a_contact_joins_two_blocks(void **state) {
   (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_world_def def;
+  mr_world *w = colliding_world(&def);
   int ids[4];
   const double mass[4] = { 0.3, 0.3, 0.5, 0.5 };
   for (int k = 0; k < 4; k++) {
@@ -279,10 +286,8 @@ static void a_contact_joins_two_blocks(void **state) {
  * leave block 0 out. */
 static void a_contact_naming_three_blocks_joins_them_all(void **state) {
   (void)state;
-  mr_world_def def = mr_default_world_def();
-  def.effects = MR_EFFECT_CONSTRAINTS | MR_EFFECT_PUPPET_COLLISION;
-  mr_world *w = NULL;
-  assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+  mr_world_def def;
+  mr_world *w = colliding_world(&def);
   const double at[4][2] = { { -0.2, 0 }, { 0, 0.101 }, { 0.2, 0 }, { -0.2, -0.2 } };
   const int puppet[4] = { 0, 1, 0, 0 };
   int ids[4];
