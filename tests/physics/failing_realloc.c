@@ -51,7 +51,8 @@ int failing_realloc_each(mr_world *(*make)(void *user), void *user, double t) {
   const uint64_t whole = mr_world_state_hash(w);
   mr_world_destroy(w);
   int count = 0;
-  for (long n = 0; n < 100000; n++) {
+  for (long n = 0;; n++) {
+    assert_true(n < 100000); /* a step of that many reallocations is a leak */
     w = make(user);
     failing_realloc_after(n);
     const mr_status st = mr_world_step_to(w, t, NULL);

@@ -6,6 +6,8 @@
 #ifndef MR_TEST_FAILING_REALLOC_H
 #define MR_TEST_FAILING_REALLOC_H
 
+#include "mr_physics.h"
+
 /* Whether this build fails on demand (not under AddressSanitizer). */
 int failing_realloc_works(void);
 /* The next call after n more fails; −1: none fails. Clears the record of
@@ -13,8 +15,6 @@ int failing_realloc_works(void);
 void failing_realloc_after(long n);
 /* Whether a call failed since the last failing_realloc_after. */
 int failing_realloc_fired(void);
-
-#include "mr_physics.h"
 
 /* Whichever of a step's reallocations fails, the step says so, or it
  * did without: for each n, a world from make(user) is stepped to t with

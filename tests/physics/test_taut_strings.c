@@ -237,8 +237,8 @@ static mr_world *hanging_bob(void *user) {
 }
 
 /* Whichever of the step's reallocations fails (the taut string's work
- * arrays among them, grown at its first hold), the step says so: never
- * MR_OK after memory ran out, and a message naming memory. */
+ * arrays among them, grown at its first hold), the step says so with a
+ * message naming memory, or did without a memo at no cost to its answer. */
 static void out_of_memory_in_a_step_reaches_the_caller(void **state) {
   (void)state;
   if (!failing_realloc_works()) skip();
