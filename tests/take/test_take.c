@@ -671,6 +671,18 @@ static void different_scenes_unknown_names_and_absurd_numbers_are_refused(void *
   assert_int_equal(err.status, MR_TAKE_ERR_SCENE);
   says(&err, "5ce9e5ce9e000001");
   says(&err, "00000000beefcafe");
+  /* Nor is a take of two gloves recorded against different scenes, or
+   * one whose file is missing, added to the list. */
+  char pa[MR_TAKE_PATH_MAX], pb[MR_TAKE_PATH_MAX];
+  snprintf(pa, sizeof pa, "%s", tt_path(dir, "a.mrec"));
+  snprintf(pb, sizeof pb, "%s", tt_path(dir, "b.mrec"));
+  const char *both[] = { pa, pb }, *gone[] = { pa, tt_path(dir, "gone.mrec") };
+  assert_int_equal(mr_take_book_add(&b, "ab", both, 2, false, NULL, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_SCENE);
+  says(&err, "b.mrec: recorded against scene 00000000beefcafe");
+  says(&err, "5ce9e5ce9e000001");
+  assert_int_equal(mr_take_book_add(&b, "gone", gone, 2, false, NULL, &err), -1);
+  says(&err, "gone.mrec");
   d.over = "nope";
   assert_int_equal(mr_take_book_punch(&b, &d, NULL, &err), -1);
   assert_int_equal(err.status, MR_TAKE_ERR_NAME);
