@@ -727,6 +727,60 @@ static void different_scenes_unknown_names_and_absurd_numbers_are_refused(void *
   free(dir);
 }
 
+/* A take may have one file per glove, up to MR_TAKE_MAX_GLOVES: the most
+ * is added, named and listed whole, and read back so from the list; one
+ * more, or none, is refused. */
+static void a_take_of_the_most_gloves_is_added_and_one_more_is_refused(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  make_a();
+  gen_write(&A, tt_path(dir, "a.mrec"));
+  char pa[MR_TAKE_PATH_MAX];
+  snprintf(pa, sizeof pa, "%s", tt_path(dir, "a.mrec"));
+  const char *paths[MR_TAKE_MAX_GLOVES + 1];
+  for (int g = 0; g <= MR_TAKE_MAX_GLOVES; g++) paths[g] = pa;
+  mr_take_book b;
+  mr_take_error err;
+  char book[MR_TAKE_PATH_MAX];
+  snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
+  if (mr_take_book_open(book, true, &b, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(mr_take_book_add(&b, "nine", paths, MR_TAKE_MAX_GLOVES + 1, false, NULL, &err),
+                   -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "got 9");
+  assert_int_equal(mr_take_book_add(&b, "none", paths, 0, false, NULL, &err), -1);
+  if (mr_take_book_add(&b, "eight", paths, MR_TAKE_MAX_GLOVES, false, NULL, &err) != 0)
+    fail_msg("%s", err.msg);
+  assert_int_equal(b.n, 1);
+  mr_take_book_close(&b);
+  if (mr_take_book_open(book, false, &b, &err) != 0) fail_msg("%s", err.msg);
+  const mr_take_entry *e = mr_take_book_find(&b, "eight");
+  assert_non_null(e);
+  assert_int_equal(e->how, MR_TAKE_RECORDED);
+  assert_int_equal(e->source_id, 0);
+  char got[MR_TAKE_MAX_GLOVES][MR_TAKE_PATH_MAX];
+  size_t n;
+  if (mr_take_book_paths(&b, "eight", got, MR_TAKE_MAX_GLOVES, &n, &err) != 0)
+    fail_msg("%s", err.msg);
+  assert_int_equal(n, MR_TAKE_MAX_GLOVES);
+  size_t len_a, len;
+  char *want = file_bytes(pa, &len_a);
+  for (int g = 0; g < MR_TAKE_MAX_GLOVES; g++) {
+    char name[32];
+    snprintf(name, sizeof name, "-g%d.mrec", g);
+    if (strstr(got[g], name) == NULL) fail_msg("glove %d's file is %s", g, got[g]);
+    char *bytes = file_bytes(got[g], &len);
+    assert_int_equal(len, len_a);
+    assert_memory_equal(bytes, want, len);
+    free(bytes);
+  }
+  free(want);
+  mr_take_book_close(&b);
+  tt_rmdir(book);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(
@@ -741,6 +795,7 @@ int main(void) {
     cmocka_unit_test(a_malformed_list_or_a_missing_take_file_is_named),
     cmocka_unit_test(a_cut_off_take_is_used_up_to_its_last_whole_chunk_and_says_so),
     cmocka_unit_test(different_scenes_unknown_names_and_absurd_numbers_are_refused),
+    cmocka_unit_test(a_take_of_the_most_gloves_is_added_and_one_more_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
