@@ -451,6 +451,41 @@ static void tools_io_tcp_listen_serves_one_peer_and_refuses_the_rest_cleanly(voi
   mr_io_close(&srv);
 }
 
+/* A peer that leaves with bytes still unread, while the next one is
+ * already waiting to connect (a glove reconnecting at once): every byte of
+ * the first comes through, then its hang-up, and the next is served on the
+ * same port, not refused as a second peer of the first. */
+static void
+tools_io_tcp_listen_serves_the_next_peer_after_the_last_bytes_of_one_gone(void **state) {
+  mr_io srv;
+  mr_io_error err;
+  struct sockaddr_in sa;
+  uint8_t sent[BURST], got[2 * BURST];
+  size_t total = 0;
+  (void)state;
+  fill(sent, BURST, 3);
+  tt_assert_io_ok(mr_io_open(&srv, "tcp-listen:0", MR_IO_READ, &err), err);
+  memset(&sa, 0, sizeof sa);
+  sa.sin_family = AF_INET;
+  sa.sin_port = htons((uint16_t)srv.port);
+  sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  int first = socket(AF_INET, SOCK_STREAM, 0), next = socket(AF_INET, SOCK_STREAM, 0);
+  assert_int_equal(connect(first, (struct sockaddr *)&sa, sizeof sa), 0);
+  assert_int_equal(write(first, sent, BURST), BURST);
+  close(first);
+  assert_int_equal(connect(next, (struct sockaddr *)&sa, sizeof sa), 0);
+  assert_int_equal(write(next, "next", 4), 4);
+  assert_int_equal(read_until_not_ok(&srv, got, sizeof got, &total, 2000), MR_IO_HANGUP);
+  assert_int_equal(total, BURST);
+  assert_memory_equal(got, sent, BURST);
+  assert_int_equal(mr_io_rearm(&srv), 0);
+  total = 0;
+  assert_int_equal(read_until_not_ok(&srv, got, 4, &total, 2000), MR_IO_OK);
+  assert_memory_equal(got, "next", 4);
+  close(next);
+  mr_io_close(&srv);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(tools_io_pty_master_gone_is_hangup_and_keeps_what_was_read),
@@ -462,6 +497,7 @@ int main(void) {
     cmocka_unit_test(tools_io_bad_specs_are_errors_that_name_them),
     cmocka_unit_test(tools_io_tcp_listen_binds_the_loopback_unless_told),
     cmocka_unit_test(tools_io_tcp_listen_serves_one_peer_and_refuses_the_rest_cleanly),
+    cmocka_unit_test(tools_io_tcp_listen_serves_the_next_peer_after_the_last_bytes_of_one_gone),
     cmocka_unit_test(tools_io_a_missing_device_fails_with_one_message_for_every_spec),
     cmocka_unit_test(tools_io_status_names_are_distinct_and_only_errors_fail),
     cmocka_unit_test(tools_io_pty_slave_detection),

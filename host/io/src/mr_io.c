@@ -288,10 +288,14 @@ mr_io_status mr_io_read(mr_io *io, void *buf, size_t cap, int timeout_ms, size_t
     ssize_t n;
     int r = poll(ps, nfds, mr_io_ms_left(start, timeout_ms));
     p = ps[0];
-    if (r > 0 && nfds == 2 && (ps[1].revents & POLLIN)) {
+    /* Refused only while the peer served has nothing left to read: one
+     * that has gone with bytes unread is read to its end first, and the
+     * peer waiting meanwhile (the same glove back at once) is the next
+     * one served, not a second one of the first. */
+    if (r > 0 && nfds == 2 && (ps[1].revents & POLLIN) && p.revents == 0) {
       /* None taken (out of descriptors?): stop watching, never spin. */
       if (mr_io_tcp_refuse_extra(io) == 0) nfds = 1;
-      if (p.revents == 0) continue;
+      continue;
     }
     if (r < 0) {
       /* A signal ends the wait early, so that the caller can look at it. */
