@@ -578,8 +578,9 @@ static void says(const mr_take_error *err, const char *what) {
   if (strstr(err->msg, what) == NULL) fail_msg("'%s' does not say '%s'", err->msg, what);
 }
 
-/* A malformed takes.json (not JSON; a take without files) and a take
- * whose file is gone give errors naming the file and what is wrong. */
+/* A malformed takes.json (not JSON; a take without files; an id that is
+ * no number) and a take whose file is gone give errors naming the file
+ * and what is wrong. */
 static void a_malformed_list_or_a_missing_take_file_is_named(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -598,6 +599,13 @@ static void a_malformed_list_or_a_missing_take_file_is_named(void **state) {
              "\"made\": {\"how\": \"recorded\"}}]}");
   assert_int_equal(mr_take_book_open(book, false, &b, &err), -1);
   says(&err, "takes.json: takes[0].files: expected a list");
+  write_text(tt_path(book, "takes.json"),
+             "{\"format\": 1, \"next_id\": 2, \"takes\": [{\"name\": \"x\", \"id\": \"one\", "
+             "\"files\": [\"t0001-g0.mrec\"], \"duration\": 1, \"scene_hash\": \"0\", "
+             "\"created_unix\": 0, \"deleted\": false, \"made\": {\"how\": \"recorded\"}}]}");
+  assert_int_equal(mr_take_book_open(book, false, &b, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_FORMAT);
+  says(&err, "takes.json: takes[0].id: expected a number");
   write_text(tt_path(book, "takes.json"),
              "{\"format\": 1, \"next_id\": 2, \"takes\": [{\"name\": \"x\", \"id\": 1, "
              "\"files\": [\"t0001-g0.mrec\"], \"duration\": 1, \"scene_hash\": \"0\", "
