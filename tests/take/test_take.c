@@ -735,6 +735,28 @@ static void different_scenes_unknown_names_and_absurd_numbers_are_refused(void *
   free(dir);
 }
 
+/* Without a valid range, a take reads raw counts by its glove's ADC full
+ * scale, as the host does (host/glove): 2^bits - 1 for 1..16 bits, the
+ * 12-bit scale for any other number and before any INFO. */
+static void a_take_reads_counts_by_the_adc_full_scale_its_info_gives(void **state) {
+  (void)state;
+  static const struct {
+    int bits;
+    double full;
+  } cases[] = { { 1, 1 }, { 10, 1023 }, { 12, 4095 }, { 16, 65535 }, { 0, 4095 }, { 17, 4095 } };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    gp_info info;
+    memset(&info, 0, sizeof info);
+    info.adc_bits = (uint8_t)cases[i].bits;
+    mr_take_cal c = mr_take_cal_of(&info);
+    if (c.full != cases[i].full || mr_take_cal_value(&c, 2, 1) != 1.0 / cases[i].full)
+      fail_msg("%d bits: full scale %g, expected %g", cases[i].bits, c.full, cases[i].full);
+    assert_int_equal(mr_take_cal_raw(&c, 2, 1.0 / cases[i].full), 1);
+  }
+  mr_take_cal none = mr_take_cal_of(NULL);
+  assert_true(none.full == 4095.0);
+}
+
 /* A take may have one file per glove, up to MR_TAKE_MAX_GLOVES: the most
  * is added, named and listed whole, and read back so from the list; one
  * more, or none, is refused. */
@@ -804,6 +826,7 @@ int main(void) {
     cmocka_unit_test(a_cut_off_take_is_used_up_to_its_last_whole_chunk_and_says_so),
     cmocka_unit_test(different_scenes_unknown_names_and_absurd_numbers_are_refused),
     cmocka_unit_test(a_take_of_the_most_gloves_is_added_and_one_more_is_refused),
+    cmocka_unit_test(a_take_reads_counts_by_the_adc_full_scale_its_info_gives),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
