@@ -437,7 +437,8 @@ static void reconnect_bounds_how_long_an_unplugged_glove_is_retried(void **state
 
 /* An INFO whose numbers would make the calibration divide by zero or by
  * a negative span, or shift by 40 bits: the glove falls back to the ADC's
- * full scale, and every value stays a finite number. */
+ * full scale, and every value stays a finite number. An ADC of 11 or 16
+ * bits without a range gives its own full scale. */
 static void an_info_that_would_make_nan_is_not_believed(void **state) {
   (void)state;
   port p;
@@ -468,6 +469,26 @@ static void an_info_that_would_make_nan_is_not_believed(void **state) {
       assert_true(isfinite(r.values[k]));
       assert_true(fabs(r.values[k] - (2000.0 + 100 * k) / 4095.0) < 1e-12);
     }
+  }
+  /* An ADC of 1..16 bits is believed, to its ends: its own full scale. */
+  static const uint8_t good[] = { 11, 16 };
+  for (int c = 0; c < 2; c++) {
+    gp_msg m;
+    memset(&m, 0, sizeof m);
+    m.type = GP_INFO;
+    m.u.info.proto_major = 1;
+    m.u.info.spec_hash = GP_SPEC_HASH;
+    m.u.info.n_channels = 5;
+    m.u.info.adc_bits = good[c];
+    send(&p, &m, GP_SPEC_HASH);
+    send_sample(&p, (uint16_t)(c + 3), 1000u * (uint32_t)(c + 3), 2000);
+    assert_true(poll_for_samples(g, 3.0 + c) > 0);
+    mr_glove_reading r;
+    mr_glove_latest(g, &r);
+    const double full = (double)((1u << good[c]) - 1u);
+    for (int k = 0; k < 5; k++)
+      if (fabs(r.values[k] - (2000.0 + 100 * k) / full) > 1e-12)
+        fail_msg("%d bits, finger %d: %.17g", good[c], k, r.values[k]);
   }
   mr_glove_destroy(g);
   unplug(&p);
