@@ -435,6 +435,18 @@ static void reconnect_bounds_how_long_an_unplugged_glove_is_retried(void **state
   }
 }
 
+/* An INFO of this build's spec with five channels and adc_bits bits. */
+static gp_msg info_of(uint8_t adc_bits) {
+  gp_msg m;
+  memset(&m, 0, sizeof m);
+  m.type = GP_INFO;
+  m.u.info.proto_major = 1;
+  m.u.info.spec_hash = GP_SPEC_HASH;
+  m.u.info.n_channels = 5;
+  m.u.info.adc_bits = adc_bits;
+  return m;
+}
+
 /* An INFO whose numbers would make the calibration divide by zero or by
  * a negative span, or shift by 40 bits: the glove falls back to the ADC's
  * full scale, and every value stays a finite number. An ADC of 11 or 16
@@ -448,13 +460,7 @@ static void an_info_that_would_make_nan_is_not_believed(void **state) {
   static const uint16_t spans[][2] = { { 2000, 2000 }, { 3000, 1000 } };
   static const uint8_t bits[] = { 0, 40 };
   for (int c = 0; c < 2; c++) {
-    gp_msg m;
-    memset(&m, 0, sizeof m);
-    m.type = GP_INFO;
-    m.u.info.proto_major = 1;
-    m.u.info.spec_hash = GP_SPEC_HASH;
-    m.u.info.n_channels = 5;
-    m.u.info.adc_bits = bits[c];
+    gp_msg m = info_of(bits[c]);
     m.u.info.cal_state = GP_CAL_VALID;
     for (int k = 0; k < 5; k++) {
       m.u.info.cal_min[k] = spans[c][0];
@@ -473,13 +479,7 @@ static void an_info_that_would_make_nan_is_not_believed(void **state) {
   /* An ADC of 1..16 bits is believed, to its ends: its own full scale. */
   static const uint8_t good[] = { 11, 16 };
   for (int c = 0; c < 2; c++) {
-    gp_msg m;
-    memset(&m, 0, sizeof m);
-    m.type = GP_INFO;
-    m.u.info.proto_major = 1;
-    m.u.info.spec_hash = GP_SPEC_HASH;
-    m.u.info.n_channels = 5;
-    m.u.info.adc_bits = good[c];
+    gp_msg m = info_of(good[c]);
     send(&p, &m, GP_SPEC_HASH);
     send_sample(&p, (uint16_t)(c + 3), 1000u * (uint32_t)(c + 3), 2000);
     assert_true(poll_for_samples(g, 3.0 + c) > 0);
