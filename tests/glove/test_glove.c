@@ -449,8 +449,8 @@ static gp_msg info_of(uint8_t adc_bits) {
 
 /* An INFO whose numbers would make the calibration divide by zero or by
  * a negative span, or shift by 40 bits: the glove falls back to the ADC's
- * full scale, and every value stays a finite number. An ADC of 11 or 16
- * bits without a range gives its own full scale. */
+ * full scale, and every value stays a finite number. An ADC of 1, 11 or
+ * 16 bits without a range gives its own full scale. */
 static void an_info_that_would_make_nan_is_not_believed(void **state) {
   (void)state;
   port p;
@@ -477,8 +477,8 @@ static void an_info_that_would_make_nan_is_not_believed(void **state) {
     }
   }
   /* An ADC of 1..16 bits is believed, to its ends: its own full scale. */
-  static const uint8_t good[] = { 11, 16 };
-  for (int c = 0; c < 2; c++) {
+  static const uint8_t good[] = { 1, 11, 16 };
+  for (int c = 0; c < (int)(sizeof good / sizeof good[0]); c++) {
     gp_msg m = info_of(good[c]);
     send(&p, &m, GP_SPEC_HASH);
     send_sample(&p, (uint16_t)(c + 3), 1000u * (uint32_t)(c + 3), 2000);
