@@ -33,6 +33,8 @@ static char g_scene[600], g_take[600], g_glb[600], g_pc2[600], g_csv[600];
 /* The show as the test sees it: every frame's time and positions. */
 static double *g_t, *g_xyz;
 static size_t g_frames, g_cap, g_points, g_particles;
+/* What the export of the take with every output printed. */
+static char *g_summary;
 
 /* Every display mode on one chain (host/scenes/modes/freeform.yaml's,
  * bound to a glove): a bead (particle), a cone on a constraint and a
@@ -170,6 +172,7 @@ static int setup(void **state) {
                    NULL };
   tt_output o;
   if (tt_capture(argv, &o) != 0 || o.status != 0) fail_msg("export failed: %s", o.err);
+  g_summary = strdup(o.out);
   tt_output_free(&o);
   return 0;
 }
@@ -180,6 +183,7 @@ static int teardown(void **state) {
   free(g_dir);
   free(g_t);
   free(g_xyz);
+  free(g_summary);
   return 0;
 }
 
@@ -530,6 +534,41 @@ static void the_csv_has_a_row_per_particle_per_frame_at_the_shows_positions(void
   free(text);
 }
 
+/* The summary's field `key`, as it should read. */
+static void expect_field(const char *key, const char *want) {
+  char got[800];
+  if (tt_field(g_summary, key, got, sizeof got) != 0) fail_msg("no '%s:' in '%s'", key, g_summary);
+  if (strcmp(got, want) != 0) fail_msg("%s: '%s', not '%s'", key, got, want);
+}
+
+/* The summary counts what was written: the frames and the time of the
+ * last, the glTF's nodes and channels, the cache's points and the CSV's
+ * rows, each as the files themselves hold them. */
+static void the_summary_counts_what_each_file_holds(void **state) {
+  (void)state;
+  char want[800];
+  snprintf(want, sizeof want, "%zu at 30 fps (%.3f s)", g_frames, g_t[g_frames - 1]);
+  expect_field("frames", want);
+  glb_file g = read_glb();
+  const cJSON *anim = cJSON_GetArrayItem(item(g.json, "animations"), 0);
+  snprintf(want, sizeof want, "%s (%d nodes, %d channels of %zu keys)", g_glb,
+           cJSON_GetArraySize(item(g.json, "nodes")), cJSON_GetArraySize(item(anim, "channels")),
+           g_frames);
+  expect_field("gltf", want);
+  cJSON_Delete(g.json);
+  free(g.bytes);
+  size_t len;
+  char *pc = tt_read_file(g_pc2, &len);
+  assert_non_null(pc);
+  assert_true(len >= 32);
+  snprintf(want, sizeof want, "%s (%u points, %zu samples)", g_pc2, (unsigned)u32(pc + 16),
+           g_frames);
+  expect_field("points", want);
+  free(pc);
+  snprintf(want, sizeof want, "%s (%zu rows)", g_csv, g_frames * g_particles);
+  expect_field("csv", want);
+}
+
 /* One line on stderr holding every one of the strings. */
 static void expect_one_line(const tt_output *o, int status, ...) {
   if (o->status != status) fail_msg("exit %d, not %d; stderr: %s", o->status, status, o->err);
@@ -611,6 +650,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(the_gltf_has_its_required_fields_bounds_rising_times_and_unit_quaternions),
     cmocka_unit_test(the_point_cache_has_its_header_a_sample_per_frame_and_starts_at_rest),
     cmocka_unit_test(the_csv_has_a_row_per_particle_per_frame_at_the_shows_positions),
+    cmocka_unit_test(the_summary_counts_what_each_file_holds),
     cmocka_unit_test(a_take_recorded_on_another_scene_is_refused_naming_both),
     cmocka_unit_test(a_scene_whose_model_file_is_missing_is_refused_naming_it),
     cmocka_unit_test(a_cut_take_exports_to_its_last_whole_frame_and_a_broken_one_is_refused),
