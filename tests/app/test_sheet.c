@@ -1,8 +1,9 @@
 /* The contact sheet's choice of frames (host/app/sheet.c): whatever the
  * number of frames and however unevenly show time falls on them (renders
  * skipped under load), the cells begin with the first frame offered, end
- * with the last, and step through show time evenly in between; and the
- * sheet written is a PNG of those cells. */
+ * with the last, and step through show time evenly in between; the
+ * sheet written is a PNG of those cells; and each cell's label reads on
+ * any picture. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -108,11 +109,45 @@ static void the_sheet_is_written_as_a_png(void **state) {
   mr_sheet_destroy(sh);
 }
 
+/* A cell's label: a box a third as bright as the picture under it, a
+ * pixel wider on each side than its characters, and the characters in
+ * white over it; nothing outside the box changes. */
+static void a_label_darkens_its_box_to_a_third_and_writes_white_over_it(void **state) {
+  (void)state;
+  enum { LW = 120, LH = 40, X = 10, Y = 8 };
+  static uint8_t rgb[LW * LH * 3];
+  const uint8_t under[3] = { 90, 120, 150 };
+  for (int i = 0; i < LW * LH; i++) memcpy(&rgb[3 * i], under, 3);
+  mr_sheet_text(rgb, LW, LH, X, Y, 14, "1.25 s");
+  /* The box's top row holds no glyph: it shows where the box ends. */
+  int end = X;
+  while (end < LW && rgb[(Y * LW + end) * 3 + 2] != under[2]) end++;
+  assert_true(end > X + 6 * 4); /* six characters, each a few pixels wide */
+  for (int x = X; x < end; x++) {
+    const uint8_t *p = &rgb[(Y * LW + x) * 3];
+    if (p[0] != 30 || p[1] != 40 || p[2] != 50)
+      fail_msg("box pixel (%d, %d): %d %d %d, not 30 40 50", x, Y, p[0], p[1], p[2]);
+  }
+  const int outside[][2] = { { X - 1, Y }, { end, Y }, { X, Y - 1 }, { X, Y + 18 } };
+  for (size_t k = 0; k < sizeof outside / sizeof outside[0]; k++) {
+    const uint8_t *p = &rgb[(outside[k][1] * LW + outside[k][0]) * 3];
+    if (memcmp(p, under, 3) != 0)
+      fail_msg("pixel (%d, %d) outside the box changed: %d %d %d", outside[k][0], outside[k][1],
+               p[0], p[1], p[2]);
+  }
+  int brightest = 0;
+  for (int y = Y; y < Y + 18; y++)
+    for (int x = X; x < end; x++)
+      if (rgb[(y * LW + x) * 3] > brightest) brightest = rgb[(y * LW + x) * 3];
+  assert_true(brightest > 200);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(the_sheet_shows_the_first_and_the_last_frame_of_any_show),
     cmocka_unit_test(the_sheet_steps_evenly_through_show_time_when_renders_were_skipped),
     cmocka_unit_test(the_sheet_is_written_as_a_png),
+    cmocka_unit_test(a_label_darkens_its_box_to_a_third_and_writes_white_over_it),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
