@@ -367,11 +367,11 @@ static int close_outputs(status *st) {
 }
 
 /* The stage for this run: in a window (a display, live time), headless
- * (--headless, -o or --keys), or none (the status line only). 0, or the
- * exit status after one line. */
+ * (--headless, files to write or --keys), or none (the status line only).
+ * 0, or the exit status after one line. */
 static int open_stage(args *a, const mr_scene *scene, bool virtual_time, mr_live *lv, status *st) {
   bool window = window_wanted(a) && !virtual_time;
-  if (!window && !a->headless && a->so.out == NULL && a->keys == NULL) return 0;
+  if (!window && !a->headless && !mr_stage_opts_writes(&a->so) && a->keys == NULL) return 0;
   mr_live_def d = { window,
                     a->fullscreen,
                     a->def.n_gloves == 0,

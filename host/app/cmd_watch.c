@@ -37,7 +37,8 @@ void mr_cmd_watch_usage(void) {
          "behind (--delay), between the two frames around the picture's time; on a\n"
          "loss the last pose holds. With a display it is drawn in a window; with\n"
          "--headless (or no display) into PNG frames under -o DIR as marionette\n"
-         "render writes them, and without -o only decoded. A status line a second\n"
+         "render writes them (or only the --mp4 or --sheet file named), and without\n"
+         "a file to write only decoded. A status line a second\n"
          "gives the frames, the losses and the lag; a summary ends it. Ctrl-C, q\n"
          "or Esc ends it.\n"
          "\n"
@@ -410,11 +411,11 @@ static void summary(watcher *w) {
 }
 
 /* The stage, when there is one to draw on: a window (a display, no
- * --headless), or -o DIR. 0, or the exit status after one line. */
+ * --headless), or files to write. 0, or the exit status after one line. */
 static int open_stage(watcher *w) {
   const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
   bool window = !w->a->headless && ((x != NULL && x[0]) || (wl != NULL && wl[0]));
-  if (!window && w->a->so.out == NULL) return 0;
+  if (!window && !mr_stage_opts_writes(&w->a->so)) return 0;
   int usage = 0;
   if (mr_watch_stage_open(&w->ws, &w->scene, &w->a->so, window, w->fps, w->msg, sizeof w->msg,
                           &usage) != 0) {

@@ -15,8 +15,10 @@ const char mr_stage_opts_help[] =
     "                      sheet (DIR/sheet.png)\n"
     "  --every N           a PNG every N frames (default 1; the MP4 and the\n"
     "                      sheet still see every frame)\n"
-    "  --mp4 FILE          the MP4 here instead; --no-mp4: none\n"
-    "  --sheet FILE        the contact sheet here instead; --no-sheet: none\n"
+    "  --mp4 FILE          the MP4 here instead (without -o: the MP4 alone);\n"
+    "                      --no-mp4: none\n"
+    "  --sheet FILE        the contact sheet here instead (without -o: the\n"
+    "                      sheet alone); --no-sheet: none\n"
     "  --size WxH          the picture's size in pixels (default: the scene's\n"
     "                      stage.size, else 1280x720)\n"
     "  --samples N         multisampling: samples a pixel, 1 (none) to 16\n"
@@ -128,6 +130,10 @@ int mr_stage_opts_take(mr_stage_opts *o, const char *cmd, int argc, char **argv,
     return take_value(o, cmd, opt, argv[*i], allow_window);
   }
   return 0;
+}
+
+bool mr_stage_opts_writes(const mr_stage_opts *o) {
+  return o->out != NULL || (o->mp4 != NULL && !o->no_mp4) || (o->sheet != NULL && !o->no_sheet);
 }
 
 mr_frames_out_def mr_stage_opts_outputs(mr_stage_opts *o, double fps, int width, int height,

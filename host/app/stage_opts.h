@@ -32,8 +32,13 @@ void mr_stage_opts_init(mr_stage_opts *o);
 int mr_stage_opts_take(mr_stage_opts *o, const char *cmd, int argc, char **argv, int *i,
                        bool allow_window);
 
+/* Whether the options ask for files: -o DIR, or --mp4 or --sheet FILE
+ * alone (that file only), not turned off by --no-mp4 or --no-sheet. */
+bool mr_stage_opts_writes(const mr_stage_opts *o);
+
 /* The outputs under -o DIR: frames, DIR/show.mp4 when ffmpeg is on PATH
- * (else a note in note, empty otherwise), DIR/sheet.png. */
+ * (else a note in note, empty otherwise), DIR/sheet.png; without -o, only
+ * the --mp4 and --sheet files named. */
 mr_frames_out_def mr_stage_opts_outputs(mr_stage_opts *o, double fps, int width, int height,
                                         char *note, size_t note_size);
 

@@ -26,7 +26,7 @@ int mr_watch_stage_open(mr_watch_stage *ws, const mr_scene *scene, mr_stage_opts
     msg[0] = '\0';
     return *usage = 1, -1;
   }
-  if (so->out == NULL) return 0;
+  if (!mr_stage_opts_writes(so)) return 0;
   char note[200] = "";
   mr_frames_out_def od =
       mr_stage_opts_outputs(so, fps, ws->sv.width, ws->sv.height, note, sizeof note);

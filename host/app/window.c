@@ -370,7 +370,7 @@ static int open_outputs(mr_live *lv, const mr_live_def *def, mr_stage_opts *so, 
     snprintf(msg, msg_size, "cannot make the folder %s", so->out);
     return -1;
   }
-  if (lv->window || so->out == NULL) return 0;
+  if (lv->window || !mr_stage_opts_writes(so)) return 0;
   char note[200];
   mr_frames_out_def od =
       mr_stage_opts_outputs(so, def->fps, lv->sv.width, lv->sv.height, note, sizeof note);
@@ -441,7 +441,7 @@ int mr_live_close(mr_live *lv, bool quiet) {
            b == MR_RENDER_WINDOW ? "SDL" : mr_render_backend_name(b), lv->sv.width, lv->sv.height,
            (unsigned long long)lv->drawn, mr_render_gl_version(lv->sv.render));
     if (s.frames > 0 || s.pngs > 0) {
-      printf("png frames: %llu in %s\n", (unsigned long long)s.pngs, lv->out);
+      if (lv->out != NULL) printf("png frames: %llu in %s\n", (unsigned long long)s.pngs, lv->out);
       if (s.sheet_cells > 0) printf("sheet: %d thumbnails\n", s.sheet_cells);
       if (s.encoded > 0) printf("mp4: %llu frames\n", (unsigned long long)s.encoded);
     }

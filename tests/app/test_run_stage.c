@@ -281,6 +281,54 @@ static void the_headless_video_lasts_as_long_as_the_show(void **state) {
   free(dir);
 }
 
+/* --mp4 and --sheet without -o: those two files and nothing else, the
+ * video as long as the show and as many frames as the summary says. */
+static void without_o_the_mp4_and_the_sheet_named_are_written_alone(void **state) {
+  (void)state;
+  char ffprobe[512], ffmpeg[512];
+  if (at_which("ffprobe", ffprobe, sizeof ffprobe) != 0 ||
+      at_which("ffmpeg", ffmpeg, sizeof ffmpeg) != 0)
+    skip();
+  char *dir = tt_tmpdir(), mp4[700], sheet[700];
+  snprintf(mp4, sizeof mp4, "%s", tt_path(dir, "v.mp4"));
+  snprintf(sheet, sizeof sheet, "%s", tt_path(dir, "s.png"));
+  char *argv[] = { marionette, "run",        "--backend", MR_APP_TEST_BACKEND,
+                   STICK,      "--keys",     "0.3:r",     "--time",
+                   "1.5",      "--mp4",      mp4,         "--sheet",
+                   sheet,      "--size",     "160x96",    "--samples",
+                   "1",        "--headless", "-q",        NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_null(strstr(o.out, "png frames"));
+  const double encoded = summary_number(o.out, "mp4");
+  tt_output_free(&o);
+  char *probe[] = { ffprobe,
+                    "-v",
+                    "error",
+                    "-count_frames",
+                    "-select_streams",
+                    "v:0",
+                    "-show_entries",
+                    "stream=nb_read_frames",
+                    "-of",
+                    "csv=p=0",
+                    mp4,
+                    NULL };
+  assert_int_equal(tt_capture(probe, &o), 0);
+  assert_int_equal(o.status, 0);
+  assert_true(encoded >= 1.5 * 60 - 1);
+  assert_int_equal(strtol(o.out, NULL, 10), (long)encoded);
+  tt_output_free(&o);
+  int w = 0, h = 0;
+  assert_int_equal(at_png_size(sheet, &w, &h), 0);
+  assert_true(w > 160 && h >= 96);
+  assert_int_equal(at_count_files(dir, "frame_"), 0);
+  assert_int_equal(at_count_files(dir, ""), 4); /* ., .., the video and the sheet */
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* A headless show of 2 s draws the frame it ends on: the status line of
  * its second 2 is printed when that frame is shown, and the scheduler
  * alone (a frame shown a tick after it is made) would never show it. At a
@@ -516,6 +564,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_recorded_take_renders_the_same_frames_twice),
     cmocka_unit_test(the_headless_video_lasts_as_long_as_the_show),
     cmocka_unit_test(a_headless_show_draws_the_frame_it_ends_on),
+    cmocka_unit_test(without_o_the_mp4_and_the_sheet_named_are_written_alone),
     cmocka_unit_test(the_window_opens_draws_and_takes_a_screenshot_under_xvfb),
     cmocka_unit_test(the_m_key_changes_what_the_puppet_wears),
     cmocka_unit_test(the_c_key_shows_the_collision_spheres),
