@@ -150,6 +150,30 @@ static void run_punch_stores_the_raw_take_and_the_merge_of_its_armed_channels(vo
   free(dir);
 }
 
+/* run --over A with a channel armed but no punch: no take stored, and
+ * the input recorded on the way into the book's folder is gone with it,
+ * the book as it was (A's file and the list). */
+static void a_pass_over_a_take_that_never_punches_in_leaves_the_book_as_it_was(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), book[600], perf[600];
+  snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
+  record_a(dir, book);
+  const int before = at_count_files(book, "");
+  snprintf(perf, sizeof perf, "%s", tt_path(dir, "perf-b.mrec"));
+  performer(perf, 2.0, 1.5);
+  char *argv[] = { marionette, "run", STICK,   "--replay", perf, "--takes", book,
+                   "--over",   "A",   "--arm", "0:thumb",  "-t", "1",       NULL };
+  tt_output o;
+  run(argv, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.err, "nothing punched in over 'A': no take stored"));
+  tt_output_free(&o);
+  assert_int_equal(at_count_files(book, ".recording-"), 0);
+  assert_int_equal(at_count_files(book, ""), before);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* Bad input, each one line on stderr and exit status 2. */
 static void bad_take_options_exit_2_with_one_line(void **state) {
   (void)state;
@@ -437,6 +461,7 @@ int main(int argc, char **argv) {
   marionette = argv[1];
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(run_punch_stores_the_raw_take_and_the_merge_of_its_armed_channels),
+    cmocka_unit_test(a_pass_over_a_take_that_never_punches_in_leaves_the_book_as_it_was),
     cmocka_unit_test(bad_take_options_exit_2_with_one_line),
     cmocka_unit_test(in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book),
     cmocka_unit_test(in_the_window_f7_then_f2_arms_the_second_gloves_thumb),
