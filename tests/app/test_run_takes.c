@@ -109,18 +109,24 @@ static void book_holds_the_merge(const char *book, const char *base, const char 
   mr_take_book_close(&b);
 }
 
-/* Take A into the book, recorded from a replayed performer. */
-static void record_a(const char *dir, const char *book) {
-  char perf[600];
-  snprintf(perf, sizeof perf, "%s", tt_path(dir, "perf-a.mrec"));
+/* Take `name` into the book, recorded from a replayed performer. */
+static void record_take(const char *dir, const char *book, const char *name) {
+  char perf[600], file[64], stored[128];
+  snprintf(file, sizeof file, "perf-%s.mrec", name);
+  snprintf(perf, sizeof perf, "%s", tt_path(dir, file));
   performer(perf, 6.0, 0.0);
-  char *argv[] = { marionette,   "run",    STICK, "--replay", perf, "--takes",
-                   (char *)book, "--name", "A",   "-t",       "5",  NULL };
+  char *argv[] = { marionette,   "run",    STICK,        "--replay", perf, "--takes",
+                   (char *)book, "--name", (char *)name, "-t",       "5",  NULL };
   tt_output o;
   run(argv, &o);
   if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
-  assert_non_null(strstr(o.err, "take 'A' (the raw input) stored in"));
+  snprintf(stored, sizeof stored, "take '%s' (the raw input) stored in", name);
+  assert_non_null(strstr(o.err, stored));
   tt_output_free(&o);
+}
+
+static void record_a(const char *dir, const char *book) {
+  record_take(dir, book, "A");
 }
 
 /* run --over A --arm 0:thumb,0:index --punch 2:4 --name B: the book holds
@@ -170,6 +176,32 @@ static void a_pass_over_a_take_that_never_punches_in_leaves_the_book_as_it_was(v
   tt_output_free(&o);
   assert_int_equal(at_count_files(book, ".recording-"), 0);
   assert_int_equal(at_count_files(book, ""), before);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* Two takes of one book replayed side by side, BOOK:A and BOOK:B: each
+ * glove plays its own take's file. */
+static void two_takes_of_a_book_replay_side_by_side(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), book[600], ref_a[640], ref_b[640];
+  snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
+  record_take(dir, book, "A");
+  record_take(dir, book, "B");
+  snprintf(ref_a, sizeof ref_a, "%s:A", book);
+  snprintf(ref_b, sizeof ref_b, "%s:B", book);
+  char *argv[] = {
+    marionette, "run", STICK, "--replay", ref_a, "--replay", ref_b, "-t", "0.5", NULL
+  };
+  tt_output o;
+  run(argv, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  for (int k = 1; k <= 2; k++) {
+    char live[700];
+    snprintf(live, sizeof live, "glove on take:%s/t%04d-g0.mrec: live", book, k);
+    if (strstr(o.err, live) == NULL) fail_msg("no '%s' in:\n%s", live, o.err);
+  }
+  tt_output_free(&o);
   tt_rmdir(dir);
   free(dir);
 }
@@ -462,6 +494,7 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(run_punch_stores_the_raw_take_and_the_merge_of_its_armed_channels),
     cmocka_unit_test(a_pass_over_a_take_that_never_punches_in_leaves_the_book_as_it_was),
+    cmocka_unit_test(two_takes_of_a_book_replay_side_by_side),
     cmocka_unit_test(bad_take_options_exit_2_with_one_line),
     cmocka_unit_test(in_the_window_keys_arm_two_channels_and_punch_a_take_into_the_book),
     cmocka_unit_test(in_the_window_f7_then_f2_arms_the_second_gloves_thumb),
