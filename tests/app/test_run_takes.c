@@ -246,6 +246,26 @@ static void bad_take_options_exit_2_with_one_line(void **state) {
     assert_non_null(strstr(o.err, cases[i].said));
     tt_output_free(&o);
   }
+  /* A take of the book that is not there, in each command that plays
+   * takes: refused, not played without it. */
+  char ref[640], out[640], said[1400];
+  snprintf(ref, sizeof ref, "%s:NOPE", book);
+  snprintf(out, sizeof out, "%s", tt_path(dir, "out"));
+  snprintf(said, sizeof said, "take %s: %s: no take named 'NOPE'", ref, book);
+  char *runs[][12] = {
+    { marionette, "run", STICK, "--replay", ref, "-t", "0.5", NULL },
+    { marionette, "render", STICK, "--take", ref, "-o", out, "--time", "0.2", NULL },
+    { marionette, "export", ref, "--scene", STICK, "-o", out, NULL },
+  };
+  for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+    tt_output o;
+    run(runs[i], &o);
+    print_message("%s %s: %s", runs[i][1], ref, o.err);
+    assert_int_equal(o.status, 2);
+    assert_int_equal(at_lines(o.err), 1);
+    assert_non_null(strstr(o.err, said));
+    tt_output_free(&o);
+  }
   tt_rmdir(dir);
   free(dir);
 }
