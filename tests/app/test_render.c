@@ -219,16 +219,22 @@ static void without_ffmpeg_there_is_a_note_and_no_video(void **state) {
   free(dir);
 }
 
-static void expect_usage(const char *a, const char *b) {
+/* render SCENE with options a b: status 2 and one line, holding said. */
+static void expect_usage_of(const char *scene, const char *a, const char *b, const char *said) {
   /* The test's backend first: a bad --backend after it is the one read. */
-  char *argv[] = { marionette,          "render",  PUPPET,    "--backend",
-                   MR_APP_TEST_BACKEND, (char *)a, (char *)b, NULL };
+  char *argv[] = { marionette,          "render",  (char *)scene, "--backend",
+                   MR_APP_TEST_BACKEND, (char *)a, (char *)b,     NULL };
   tt_output o;
   assert_int_equal(tt_capture(argv, &o), 0);
   assert_int_equal(o.status, 2);
   assert_int_equal(at_lines(o.err), 1);
   assert_non_null(strstr(o.err, "marionette render: "));
+  if (strstr(o.err, said) == NULL) fail_msg("'%s' does not say '%s'", o.err, said);
   tt_output_free(&o);
+}
+
+static void expect_usage(const char *a, const char *b) {
+  expect_usage_of(PUPPET, a, b, "");
 }
 
 static void bad_usage_is_one_line_and_status_2(void **state) {
@@ -238,6 +244,10 @@ static void bad_usage_is_one_line_and_status_2(void **state) {
   expect_usage("--fps", "0");
   expect_usage("--backend", "window"); /* render is headless */
   expect_usage("--camera", "nowhere");
+  expect_usage_of(PUPPET, "--size", "640", "got '640'");
+  /* A scene's cameras are named, each once, when --camera names none. */
+  expect_usage_of(MR_SOURCE_DIR "/host/scenes/bird.yaml", "--camera", "nowhere",
+                  "expected --camera one of the scene's cameras (front, above), got 'nowhere'");
   /* A path too long for the names made under it is refused whole, never
    * cut short and written somewhere else. */
   char longpath[460];
