@@ -713,6 +713,19 @@ static void different_scenes_unknown_names_and_absurd_numbers_are_refused(void *
   memset(&sraw, 0, sizeof sraw);
   assert_int_equal(mr_take_book_smooth(&b, "a", &sraw, NULL, NULL, &err), -1);
   says(&err, "mr_default_take_smooth_def");
+  /* Channels of a glove the take has not, as the punch's armed ones. */
+  mr_take_smooth_def sd = mr_default_take_smooth_def();
+  sd.channels[0] = (mr_take_arm){ 1, 2 };
+  sd.n_channels = 1;
+  assert_int_equal(mr_take_book_smooth(&b, "a", &sd, NULL, NULL, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "channel 1:2: take 'a' has gloves 0..0");
+  double off[MR_TAKE_MAX_GLOVES][MR_TAKE_CHANNELS] = { { 0 } };
+  off[0][1] = 0.5;
+  off[3][4] = -0.25;
+  assert_int_equal(mr_take_book_offset(&b, "a", off, NULL, NULL, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "channel 3:4: take 'a' has gloves 0..0");
   assert_int_equal(mr_take_book_scale(&b, "a", -0.5, NULL, NULL, &err), -1);
   says(&err, "-0.5");
   assert_int_equal(mr_take_book_scale(&b, "a", NAN, NULL, NULL, &err), -1);
