@@ -99,6 +99,32 @@ static void the_take_command_adds_punches_lists_and_refuses_bad_input_with_one_l
   expect(&o, 0, "(deleted)");
   take(&o, "show", book, "take-4", NULL);
   expect(&o, 0, "split of take-2 at 3 s, second part");
+  /* Each way of making a take from the command line, with values of its
+   * own: what show says of it is what the command line asked. */
+  take(&o, "offset", book, "take-1", "--channel", "0:index=0.25", "--channel", "0:thumb=-0.1",
+       "--name", "shifted", NULL);
+  expect(&o, 0, "made shifted");
+  take(&o, "show", book, "shifted", NULL);
+  expect(&o, 0, "offset of take-1: 0:thumb=-0.1,0:index=0.25");
+  take(&o, "scale", book, "take-1", "--factor", "2", "--name", "slow", NULL);
+  expect(&o, 0, "made slow");
+  take(&o, "show", book, "slow", NULL);
+  expect(&o, 0, "scale of take-1 by 2");
+  take(&o, "smooth", book, "take-1", "--channels", "0:ring", "--min-cutoff", "2", "--beta", "0.1",
+       "--d-cutoff", "3", "--name", "calm", NULL);
+  expect(&o, 0, "made calm");
+  take(&o, "show", book, "calm", NULL);
+  expect(&o, 0, "smooth of take-1, min-cutoff 2 Hz, beta 0.1, d-cutoff 3 Hz, on 0:ring");
+  take(&o, "trim", book, "take-1", "--from", "0.5", "--to", "1.5", "--name", "short", NULL);
+  expect(&o, 0, "made short");
+  take(&o, "rename", book, "short", "shorter", NULL);
+  expect(&o, 0, NULL);
+  take(&o, "delete", book, "shorter", NULL);
+  expect(&o, 0, NULL);
+  take(&o, "restore", book, "shorter", NULL);
+  expect(&o, 0, NULL);
+  take(&o, "show", book, "shorter", NULL);
+  expect(&o, 0, "trim of take-1 to [0.5, 1.5) s");
   /* Bad input: one line each, 2 for usage, 1 for what the book refuses. */
   take(&o, "punch", book, "take-1", "over", "--arm", "0:index", "--in", "4", "--out", "2", NULL);
   expect(&o, 1, "punch-in < punch-out");
@@ -110,6 +136,12 @@ static void the_take_command_adds_punches_lists_and_refuses_bad_input_with_one_l
   expect(&o, 2, "--factor expects a number");
   take(&o, "split", book, "take-1", NULL);
   expect(&o, 2, "expects --at");
+  take(&o, "offset", book, "take-1", "--channel", "1:thumb=0.1", NULL);
+  expect(&o, 1, "channel 1:0: take 'take-1' has gloves 0..0");
+  take(&o, "offset", book, "take-1", "shifted", "--channel", "0:thumb=0.1", NULL);
+  expect(&o, 2, "usage: marionette take offset");
+  take(&o, "offset", book, "take-1", "--channel", "0:thumb=soon", NULL);
+  expect(&o, 2, "--channel expects a number");
   take(&o, "trim", book, "take-1", "--at", "1", NULL);
   expect(&o, 2, "does not take the option '--at'");
   take(&o, "juggle", book, NULL);
