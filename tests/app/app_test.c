@@ -8,6 +8,8 @@
 
 #include <stb_image.h>
 
+#include "proc.h"
+
 int at_png_size(const char *path, int *width, int *height) {
   unsigned char h[24];
   FILE *f = fopen(path, "rb");
@@ -36,6 +38,20 @@ int at_which(const char *program, char *out, size_t size) {
     if (*path == ':') path++;
   }
   return -1;
+}
+
+int at_video_stream(const char *ffprobe, const char *path, const char *entries, char *out,
+                    size_t size) {
+  char show[200];
+  snprintf(show, sizeof show, "stream=%s", entries);
+  char *argv[] = { (char *)ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0",
+                   "-show_entries", show, "-of",   "csv=p=0",       (char *)path,      NULL };
+  tt_output o;
+  if (tt_capture(argv, &o) != 0) return -1;
+  int rc = o.status == 0 ? 0 : -1;
+  snprintf(out, size, "%s", o.out);
+  tt_output_free(&o);
+  return rc;
 }
 
 int at_count_files(const char *dir, const char *prefix) {

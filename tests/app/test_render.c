@@ -53,23 +53,11 @@ static void frames_of_the_size_asked_a_sheet_and_a_video_are_written(void **stat
   assert_non_null(strstr(o.out, "frames: 11 at 10 fps"));
   char ffprobe[512];
   if (at_which("ffprobe", ffprobe, sizeof ffprobe) == 0) {
-    char *argv[] = { ffprobe,
-                     "-v",
-                     "error",
-                     "-count_frames",
-                     "-select_streams",
-                     "v:0",
-                     "-show_entries",
-                     "stream=nb_read_frames,width,height",
-                     "-of",
-                     "csv=p=0",
-                     (char *)tt_path(dir, "show.mp4"),
-                     NULL };
-    tt_output p;
-    assert_int_equal(tt_capture(argv, &p), 0);
-    assert_int_equal(p.status, 0);
-    assert_string_equal(p.out, "160,96,11\n");
-    tt_output_free(&p);
+    char got[200];
+    assert_int_equal(at_video_stream(ffprobe, tt_path(dir, "show.mp4"),
+                                     "width,height,nb_read_frames", got, sizeof got),
+                     0);
+    assert_string_equal(got, "160,96,11\n");
   } else {
     print_message("ffprobe is not installed: the MP4's frames are not counted\n");
   }
