@@ -141,7 +141,8 @@ static int walk(calib *c, double step_time) {
         show_ranges(c);
         next_show = now_s(c) + 0.2;
       }
-      if (mr_glove_get_state(c->g) == MR_GLOVE_LOST) return fail(c, "the glove went away");
+      if (mr_glove_get_state(c->g) == MR_GLOVE_LOST || mr_glove_ended(c->g))
+        return fail(c, "the glove went away");
     }
     if (c->tty) printf("\n");
     show_ranges(c);
@@ -224,7 +225,10 @@ int mr_cmd_calibrate(int argc, char **argv) {
   c.t0 = (double)mr_io_monotonic_ns() * 1e-9;
   c.tty = isatty(STDOUT_FILENO) != 0;
   for (int k = 0; k < MR_GLOVE_CHANNELS; k++) c.lo[k] = INFINITY, c.hi[k] = -INFINITY;
-  while (mr_glove_get_state(c.g) != MR_GLOVE_LIVE && now_s(&c) < 5 && !stop_asked) {
+  /* A source that has ended (a file read to its end) will never stream:
+   * its reads return at once, and waiting out the 5 s spun a core. */
+  while (mr_glove_get_state(c.g) != MR_GLOVE_LIVE && now_s(&c) < 5 && !stop_asked &&
+         !mr_glove_ended(c.g)) {
     poll_glove(&c);
     if (mr_glove_get_state(c.g) == MR_GLOVE_MISMATCH) break;
   }

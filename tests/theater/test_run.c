@@ -210,7 +210,8 @@ static void a_silent_source_is_named_and_the_show_goes_on(void **state) {
 
 /* `marionette calibrate` walks through the seven steps on a glove-gen
  * glove, saves the capture on it, and prints the range it stored; a glove
- * that never answers ends it with one line, status 1. */
+ * that never answers, or a source that ends before any glove streams,
+ * ends it with one line, status 1. */
 static void calibrate_saves_the_range_on_the_glove(void **state) {
   (void)state;
   char *dir = tt_tmpdir(), source[300];
@@ -237,6 +238,16 @@ static void calibrate_saves_the_range_on_the_glove(void **state) {
   tt_output_free(&o);
   kill(gen, SIGTERM);
   tt_wait(gen, 30);
+  /* A source that ends before any glove streams: one line saying so. */
+  char *none[] = { (char *)marionette, "calibrate", "--glove", "file:/dev/null", NULL };
+  assert_int_equal(tt_capture(none, &o), 0);
+  assert_int_equal(o.status, 1);
+  if (strstr(o.err,
+             "marionette calibrate: no glove is streaming there (glove on file:/dev/null: ") ==
+          NULL ||
+      strstr(o.err, "the stream ended") == NULL || strchr(o.err, '\n')[1] != '\0')
+    fail_msg("got: %s", o.err);
+  tt_output_free(&o);
   char *bad[] = { (char *)marionette, "calibrate", "--step-time", "-1", NULL };
   assert_int_equal(tt_capture(bad, &o), 0);
   assert_int_equal(o.status, 2);
