@@ -62,6 +62,32 @@ static void the_glove_program_alone_points_at_marionette(void **state) {
   tt_output_free(&o);
 }
 
+/* list-ports takes --wait and --no-probe, refuses a wait past a minute
+ * and an option it does not know, each in one line naming it. */
+static void list_ports_takes_its_options_and_names_a_bad_one(void **state) {
+  (void)state;
+  char *good[] = { marionette, "list-ports", "--no-probe", "--wait", "0.5", NULL };
+  tt_output o;
+  run(good, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_string_equal(o.err, "");
+  tt_output_free(&o);
+  static const struct {
+    const char *a, *b, *said;
+  } bad[] = {
+    { "--wait", "99", "expected --wait between 0 and 60 s, got '99'" },
+    { "--bogus", "2", "unknown option '--bogus'" },
+  };
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    char *argv[] = { marionette, "list-ports", (char *)bad[i].a, (char *)bad[i].b, NULL };
+    run(argv, &o);
+    assert_int_equal(o.status, 2);
+    assert_int_equal(strchr(o.err, '\n') - o.err + 1, (long)strlen(o.err)); /* one line */
+    if (strstr(o.err, bad[i].said) == NULL) fail_msg("'%s' does not say '%s'", o.err, bad[i].said);
+    tt_output_free(&o);
+  }
+}
+
 /* Without a glove and without a display, a scene that is not there is
  * named (exit 1), not the missing glove; a scene that is there still
  * hears that it needs a glove (bad usage, 2). */
@@ -176,6 +202,7 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(every_program_prints_the_projects_version),
     cmocka_unit_test(the_glove_program_alone_points_at_marionette),
+    cmocka_unit_test(list_ports_takes_its_options_and_names_a_bad_one),
     cmocka_unit_test(a_missing_scene_is_the_first_error),
     cmocka_unit_test(the_keyboards_glove_records_a_take_that_replays),
     cmocka_unit_test(a_show_without_a_stage_says_it_drew_nothing),
