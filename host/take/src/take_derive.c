@@ -83,18 +83,14 @@ static mr_take_entry *start(mr_take_book *b, const char *source, const char *nam
   return e;
 }
 
-/* Whether glove g, finger k is a channel of the take named source (0), as
- * the punch asks of its armed channels: a channel past the take's gloves
- * would be written into the new take's lineage and change nothing. A
- * source not in the book is start()'s to report. */
-static int channel_of(const mr_take_book *b, const char *source, int g, int k, mr_take_error *err) {
-  mr_take_error missing;
-  const mr_take_entry *src = mr_take_book_get(b, source, &missing);
-  if (src == NULL || (g >= 0 && (size_t)g < src->n_files && k >= 0 && k < MR_TAKE_CHANNELS))
-    return 0;
+/* 0 when glove g, finger k is a channel of take t, else the error naming
+ * what (an armed channel, a channel): a channel past the take's gloves
+ * would be written into the new take's lineage and change nothing. */
+static int channel_of(const mr_take_entry *t, const char *what, int g, int k, mr_take_error *err) {
+  if (g >= 0 && (size_t)g < t->n_files && k >= 0 && k < MR_TAKE_CHANNELS) return 0;
   return mr_take_fail(err, MR_TAKE_ERR_ARG,
-                      "channel %d:%d: take '%s' has gloves 0..%zu and fingers 0..4", g, k,
-                      src->name, src->n_files - 1);
+                      "%s %d:%d: take '%s' has gloves 0..%zu and fingers 0..4", what, g, k, t->name,
+                      t->n_files - 1);
 }
 
 /* Saves the list with the new entries; on failure drops n of them. */
@@ -152,12 +148,7 @@ static int check_punch(const mr_take_book *b, const mr_take_punch_def *d, const 
     return mr_take_fail(err, MR_TAKE_ERR_ARG, "expected 1..%d armed channels, got %zu",
                         MR_TAKE_MAX_ARMS, d->n_arms);
   for (size_t i = 0; i < d->n_arms; i++)
-    if (d->arms[i].glove < 0 || (size_t)d->arms[i].glove >= base->n_files ||
-        d->arms[i].finger < 0 || d->arms[i].finger >= MR_TAKE_CHANNELS)
-      return mr_take_fail(err, MR_TAKE_ERR_ARG,
-                          "armed channel %d:%d: take '%s' has gloves 0..%zu "
-                          "and fingers 0..4",
-                          d->arms[i].glove, d->arms[i].finger, base->name, base->n_files - 1);
+    if (channel_of(base, "armed channel", d->arms[i].glove, d->arms[i].finger, err) != 0) return -1;
   if (base->scene_hash != 0 && over->scene_hash != 0 && base->scene_hash != over->scene_hash)
     return mr_take_fail(err, MR_TAKE_ERR_SCENE,
                         "%s: take '%s' was recorded against scene "
@@ -281,9 +272,11 @@ int mr_take_book_smooth(mr_take_book *b, const char *source, const mr_take_smoot
                         "smoothing needs min-cutoff > 0, beta >= 0 and "
                         "d-cutoff > 0, got %g, %g and %g",
                         d->min_cutoff, d->beta, d->d_cutoff);
-  for (size_t i = 0; i < d->n_channels; i++)
-    if (channel_of(b, source, d->channels[i].glove, d->channels[i].finger, err) != 0) return -1;
-  const mr_take_entry *src;
+  /* A source not in the book is start()'s to report. */
+  const mr_take_entry *src = mr_take_book_get(b, source, err);
+  for (size_t i = 0; src != NULL && i < d->n_channels; i++)
+    if (channel_of(src, "channel", d->channels[i].glove, d->channels[i].finger, err) != 0)
+      return -1;
   mr_take_entry *e = start(b, source, name, MR_TAKE_SMOOTHED, &src, err);
   if (e == NULL) return -1;
   e->min_cutoff = d->min_cutoff;
@@ -317,10 +310,10 @@ int mr_take_book_offset(mr_take_book *b, const char *source,
                             "an offset must be -3600..3600 s, got %g for "
                             "%d:%d",
                             offset[g][k], g, k);
-  for (int g = 0; g < MR_TAKE_MAX_GLOVES; g++)
+  const mr_take_entry *src = mr_take_book_get(b, source, err); /* if NULL: start() says so */
+  for (int g = 0; src != NULL && g < MR_TAKE_MAX_GLOVES; g++)
     for (int k = 0; k < MR_TAKE_CHANNELS; k++)
-      if (offset[g][k] != 0.0 && channel_of(b, source, g, k, err) != 0) return -1;
-  const mr_take_entry *src;
+      if (offset[g][k] != 0.0 && channel_of(src, "channel", g, k, err) != 0) return -1;
   mr_take_entry *e = start(b, source, name, MR_TAKE_OFFSET, &src, err);
   if (e == NULL) return -1;
   for (int g = 0; g < MR_TAKE_MAX_GLOVES; g++)
