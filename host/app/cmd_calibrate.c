@@ -141,8 +141,7 @@ static int walk(calib *c, double step_time) {
         show_ranges(c);
         next_show = now_s(c) + 0.2;
       }
-      if (mr_glove_get_state(c->g) == MR_GLOVE_LOST || mr_glove_ended(c->g))
-        return fail(c, "the glove went away");
+      if (mr_glove_get_state(c->g) == MR_GLOVE_LOST) return fail(c, "the glove went away");
     }
     if (c->tty) printf("\n");
     show_ranges(c);
