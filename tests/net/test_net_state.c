@@ -250,7 +250,8 @@ a_watcher_sees_the_shows_particles_within_a_step_and_exactly_the_induced_losses(
 }
 
 /* A watcher started while the show runs gets the retained scene, builds
- * it and watches: the show's scene by name, frames received, none lost. */
+ * it and watches: the show's scene by name, frames received, none lost;
+ * asked for a contact sheet alone (no -o), it draws and writes just that. */
 static void a_watcher_that_joins_late_gets_the_retained_scene(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -267,16 +268,26 @@ static void a_watcher_that_joins_late_gets_the_retained_scene(void **state) {
   };
   pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
   tt_sleep_s(1.5);
+  /* Its sheet alone, without -o: that file is written, and no frame. */
+  char sheet[600];
+  snprintf(sheet, sizeof sheet, "%s", tt_path(dir, "late-sheet.png"));
   const char *watch_argv[] = { marionette,   "watch",  url_of(&b, "show/late"),
                                "--headless", "--time", "1.5",
-                               "--wait",     "3",      "-q",
-                               NULL };
+                               "--wait",     "3",      "--sheet",
+                               sheet,        "--size", "160x90",
+                               "-q",         NULL };
   assert_int_equal(tt_run(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"), 30), 0);
   char *out = tt_read_file(tt_path(dir, "watch.out"), NULL);
   assert_non_null(strstr(out, "scene: humanoid ("));
   assert_true(num(out, "frames received") > 30);
   expect_kv(out, "frames lost", 0);
   free(out);
+  size_t png_len = 0;
+  char *png = tt_read_file(sheet, &png_len);
+  assert_non_null(png);
+  assert_true(png_len > 8 && memcmp(png, "\x89PNG", 4) == 0);
+  free(png);
+  assert_int_not_equal(access(tt_path(dir, "frame_000000.png"), F_OK), 0);
   assert_int_equal(tt_wait(show, 30), 0);
   tb_broker_stop(&b, 0);
   tt_rmdir(dir);
