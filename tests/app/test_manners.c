@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "proc.h"
 
@@ -164,7 +165,7 @@ static void the_keyboards_glove_records_a_take_that_replays(void **state) {
 
 /* With no stage (no display, no --headless, no -o, no --keys) the summary
  * says nothing was drawn, beside the frames the scheduler showed; with a
- * stage it says no such thing. */
+ * stage it says no such thing, and a --sheet alone is one. */
 static void a_show_without_a_stage_says_it_drew_nothing(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -182,6 +183,19 @@ static void a_show_without_a_stage_says_it_drew_nothing(void **state) {
   assert_string_equal(drawn, "0 (headless without -o: nothing drawn)");
   assert_int_equal(tt_field(o.out, "frames shown", shown, sizeof shown), 0);
   assert_true(atoi(shown) > 100);
+  tt_output_free(&o);
+  /* A file to write is a stage, -o or not: the sheet alone is drawn. */
+  char sheet[700];
+  snprintf(sheet, sizeof sheet, "%s", tt_path(dir, "sheet.png"));
+  char *drawing[] = { marionette, "run", STICK,     "--replay", (char *)tt_path(dir, "keys.mrec"),
+                      "--time",   "1",   "--sheet", sheet,      "--size",
+                      "160x96",   "-q",  NULL };
+  run(drawing, &o);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.out, "frames drawn"));
+  assert_null(strstr(o.out, "nothing drawn"));
+  assert_non_null(strstr(o.out, "sheet: "));
+  assert_int_equal(access(sheet, F_OK), 0);
   tt_output_free(&o);
   tt_rmdir(dir);
   free(dir);
