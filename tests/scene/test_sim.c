@@ -345,6 +345,25 @@ static void check_fails_with_a_clear_line(void **state) {
   tt_output_free(&p);
 }
 
+/* A world with nothing stiff in it (no spring, drag, string or
+ * constraint) has no step limit, and the summary says none rather than a
+ * limit of 0 s. */
+static void a_world_without_a_step_limit_reports_none(void **state) {
+  (void)state;
+  const char text[] = "physics:\n"
+                      "  effects: [gravity]\n"
+                      "  particles:\n"
+                      "    - {name: a, position: [0, 2, 0], mass: 1}\n";
+  const char *path = tt_tmp_file("sim_no_limit.yaml", text, sizeof text - 1);
+  tt_output p;
+  run(&p, "sim", "--time", "0.5", path, NULL);
+  assert_int_equal(p.status, 0);
+  assert_true(field_u64(p.out, "steps") > 0);
+  char v[32];
+  assert_int_not_equal(tt_field(p.out, "stable dt", v, sizeof v), 0);
+  tt_output_free(&p);
+}
+
 /* A string that never leaves its rest length cannot meet a stretch
  * expectation, and the summary reports the stretch it did reach. */
 static void string_stretch_is_measured_and_checked(void **state) {
@@ -369,6 +388,11 @@ static void string_stretch_is_measured_and_checked(void **state) {
   double stretch = strtod(v, NULL);
   /* 1 kg on 1000 N/m sags 9.8 mm below its 0.5 m rest: about 1.02 x. */
   assert_true(stretch > 1.0 && stretch < 1.1);
+  /* The spring limits the step (forces.c): RK4's reach over ω = √1000,
+   * about 0.08 s, reported. */
+  assert_int_equal(tt_field(p.out, "stable dt", v, sizeof v), 0);
+  const double stable = strtod(v, NULL);
+  assert_true(stable > 0.05 && stable < 0.1);
   assert_non_null(strstr(p.err, "check failed: expected a string stretched to >= 3 x its rest "
                                 "length, got "));
   tt_output_free(&p);
@@ -452,6 +476,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(csv_resets_add_up_to_the_summary),
     cmocka_unit_test(run_past_the_step_guard_stops_clearly),
     cmocka_unit_test(check_fails_with_a_clear_line),
+    cmocka_unit_test(a_world_without_a_step_limit_reports_none),
     cmocka_unit_test(string_stretch_is_measured_and_checked),
     cmocka_unit_test(pinned_state_hash_is_checked),
     cmocka_unit_test(example_puppet_runs_cleanly),
