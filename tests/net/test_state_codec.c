@@ -188,21 +188,28 @@ static void scene_files_round_trip_and_unsafe_names_are_refused(void **state) {
   memset(&b, 0, sizeof b);
   assert_int_equal(mr_state_bundle_add(&b, "show.yaml", "a: 1\n", 5), 0);
   assert_int_equal(mr_state_bundle_add(&b, "models/x..y.obj", "v 0 0 0\n", 8), 0);
+  assert_int_equal(mr_state_bundle_add(&b, "one", "!", 1), 0); /* one byte is data too */
   const char *bad[] = { "", "/etc/passwd", "../up", "models/../../up", "a/..", "a\\b" };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
     assert_int_equal(mr_state_bundle_add(&b, bad[i], "x", 1), -1);
-  assert_int_equal(b.n_files, 2);
+  assert_int_equal(b.n_files, 3);
   size_t off = 0;
   mr_state_file f;
   assert_int_equal(mr_state_bundle_next(b.data, b.size, &off, &f), 1);
   assert_string_equal(f.name, "show.yaml");
   assert_int_equal(f.len, 5);
+  assert_memory_equal(f.data, "a: 1\n", 5);
   assert_int_equal(mr_state_bundle_next(b.data, b.size, &off, &f), 1);
   assert_string_equal(f.name, "models/x..y.obj");
   assert_memory_equal(f.data, "v 0 0 0\n", 8);
+  assert_int_equal(mr_state_bundle_next(b.data, b.size, &off, &f), 1);
+  assert_string_equal(f.name, "one");
+  assert_int_equal(f.len, 1);
+  assert_int_equal(f.data[0], '!');
   assert_int_equal(mr_state_bundle_next(b.data, b.size, &off, &f), 0);
-  /* The second record cut short: refused. */
+  /* The last record cut short: refused. */
   off = 0;
+  assert_int_equal(mr_state_bundle_next(b.data, b.size - 1, &off, &f), 1);
   assert_int_equal(mr_state_bundle_next(b.data, b.size - 1, &off, &f), 1);
   assert_int_equal(mr_state_bundle_next(b.data, b.size - 1, &off, &f), -1);
   /* A record renamed on the wire to climb out: refused when read. */
