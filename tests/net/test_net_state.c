@@ -475,6 +475,64 @@ static void a_publisher_the_network_cannot_keep_up_with_drops_and_counts(void **
   free(dir);
 }
 
+/* The libraries alone, publisher to reader through a broker: each frame
+ * comes back with every control pose as the show gave it (as floats) and
+ * every particle within a millimetre (the 16-bit grid over this frame is
+ * far finer), frame after frame. */
+static void a_reader_gets_each_frames_poses_and_particles(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  tb_broker b;
+  assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
+  mr_state_bundle files;
+  memset(&files, 0, sizeof files);
+  assert_int_equal(mr_state_bundle_add(&files, "s.yaml", "name: s\n", 8), 0);
+  mr_state_out_def d = mr_default_state_out_def();
+  d.url = url_of(&b, "show/lib");
+  d.scene = &files;
+  d.fps = 30;
+  d.n_frames = 2;
+  d.n_points = 3;
+  mr_state_in_def id = mr_default_state_in_def();
+  id.url = d.url;
+  mr_state_in *in = NULL;
+  mr_state_out *o = NULL;
+  mr_io_error err;
+  assert_int_equal(mr_state_in_open(&id, &in, &err), 0);
+  assert_int_equal(mr_state_out_open(&d, &o, &err), 0);
+  int got = 0;
+  for (int i = 0; i < 300 && got < 3; i++) {
+    /* Two frames, neither at the origin nor upright, moving each frame. */
+    const double k = 0.01 * i;
+    const double pose[14] = { -0.75 + k, 1.25, 0.5,  0.5, 0.5, -0.5, 0.5,
+                              0.3,       1.1,  -0.2, 0.6, 0.0, 0.8,  0.0 };
+    const double xyz[9] = { 0.1 + k, 0.9, -0.3, -0.2, 1.4, 0.05, 0.0, 0.2, 0.7 };
+    assert_true(mr_state_out_frame(o, i / 30.0, pose, xyz, &err) >= 0);
+    mr_state_event ev;
+    assert_int_equal(mr_state_in_read(in, 20, &ev, &err), MR_IO_OK);
+    if (ev.kind != MR_STATE_GOT_FRAME) continue;
+    const int seq = (int)lround(ev.t * 30.0);
+    const double kk = 0.01 * seq;
+    const double want[14] = { -0.75 + kk, 1.25, 0.5,  0.5, 0.5, -0.5, 0.5,
+                              0.3,        1.1,  -0.2, 0.6, 0.0, 0.8,  0.0 };
+    const double wxyz[9] = { 0.1 + kk, 0.9, -0.3, -0.2, 1.4, 0.05, 0.0, 0.2, 0.7 };
+    for (int j = 0; j < 14; j++)
+      if (ev.poses[j] != (double)(float)want[j])
+        fail_msg("frame %d: pose value %d is %.9g, published %.9g", seq, j, ev.poses[j], want[j]);
+    for (int j = 0; j < 9; j++)
+      if (fabs(ev.xyz[j] - wxyz[j]) > 1e-3)
+        fail_msg("frame %d: particle value %d is %.6g, published %.6g", seq, j, ev.xyz[j], wxyz[j]);
+    got++;
+  }
+  assert_int_equal(got, 3);
+  mr_state_in_close(in);
+  mr_state_out_close(o);
+  mr_state_bundle_free(&files);
+  tb_broker_stop(&b, 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(int argc, char **argv) {
   if (argc < 5) {
     fprintf(stderr, "usage: %s GLOVE-GEN GLOVE-DUMP MARIONETTE MOSQUITTO\n", argv[0]);
@@ -499,6 +557,7 @@ int main(int argc, char **argv) {
                               tb_broker_stop_all),
     cmocka_unit_test_teardown(a_publisher_the_network_cannot_keep_up_with_drops_and_counts,
                               tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_reader_gets_each_frames_poses_and_particles, tb_broker_stop_all),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
