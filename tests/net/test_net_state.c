@@ -499,6 +499,10 @@ static void a_reader_gets_each_frames_poses_and_particles(void **state) {
   mr_state_out *o = NULL;
   mr_io_error err;
   assert_int_equal(mr_state_in_open(&id, &in, &err), 0);
+  d.max_unsent = 0; /* no frame may wait: refused */
+  assert_int_equal(mr_state_out_open(&d, &o, &err), -1);
+  assert_null(o);
+  d.max_unsent = 1; /* one may: the fewest that can publish */
   assert_int_equal(mr_state_out_open(&d, &o, &err), 0);
   int got = 0;
   for (int i = 0; i < 300 && got < 3; i++) {
