@@ -303,6 +303,13 @@ static void mappings_switch_during_the_show(void **state) {
   assert_int_equal(o.status, 1);
   assert_non_null(strstr(o.err, "no mapping 'dance' in the scene; it has: walk, head-only"));
   tt_output_free(&o);
+  /* A scene of no mappings of its own has the paper's alone. */
+  bad[2] = PUPPET;
+  assert_int_equal(tt_capture(bad, &o), 0);
+  assert_int_equal(o.status, 1);
+  if (strstr(o.err, "no mapping 'dance' in the scene; it has: only the default\n") == NULL)
+    fail_msg("%s", o.err);
+  tt_output_free(&o);
   tt_rmdir(dir);
   free(dir);
 }
