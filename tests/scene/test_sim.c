@@ -172,6 +172,36 @@ static void a_sim_def_not_from_its_maker_is_refused(void **state) {
   mr_scene_free(&s);
 }
 
+/* The result keeps the last step call's status: a link written twice is
+ * a dependent row at every step (reported, not a failure), one link
+ * alone is none. */
+static void the_last_step_status_is_kept(void **state) {
+  (void)state;
+  const char once[] = "physics:\n"
+                      "  effects: [gravity, constraints]\n"
+                      "  particles:\n"
+                      "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
+                      "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
+                      "  constraints:\n"
+                      "    - {between: [a, b]}\n";
+  const char twice[] = "    - {between: [b, a]}\n";
+  char text[sizeof once + sizeof twice];
+  for (int dup = 0; dup < 2; dup++) {
+    snprintf(text, sizeof text, "%s%s", once, dup ? twice : "");
+    const char *path = tt_tmp_file("sim_status.yaml", text, strlen(text));
+    mr_scene s;
+    mr_scene_error e;
+    assert_int_equal(mr_scene_load(path, &s, &e), MR_SCENE_OK);
+    mr_sim_def opts = mr_default_sim_def();
+    opts.duration = 0.5;
+    mr_sim_result r;
+    assert_int_equal(mr_sim_run(&s, &opts, &r, &e), MR_SCENE_OK);
+    assert_true(r.steps > 0);
+    assert_int_equal(r.last_status, dup ? MR_DEPENDENT : MR_OK);
+    mr_scene_free(&s);
+  }
+}
+
 /* "Simulate only the effects a scene calls for": passes of effects the
  * scene does not declare never run. */
 static void undeclared_effects_have_zero_pass_calls(void **state) {
@@ -471,6 +501,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(bad_usage_exits_2),
     cmocka_unit_test(same_scene_same_state_hash),
     cmocka_unit_test(a_sim_def_not_from_its_maker_is_refused),
+    cmocka_unit_test(the_last_step_status_is_kept),
     cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
     cmocka_unit_test(csv_has_one_row_per_step_call),
     cmocka_unit_test(csv_resets_add_up_to_the_summary),
