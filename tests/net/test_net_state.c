@@ -344,6 +344,14 @@ garbage_and_oversized_state_messages_are_counted_and_the_watcher_watches_on(void
   free(dir);
 }
 
+/* A scene of one small file, for the libraries' own tests. */
+static mr_state_bundle one_file_scene(void) {
+  mr_state_bundle files;
+  memset(&files, 0, sizeof files);
+  assert_int_equal(mr_state_bundle_add(&files, "s.yaml", "name: s\n", 8), 0);
+  return files;
+}
+
 /* A scene published from another definition of the state messages is
  * refused with a line naming both hashes, and exit status 3. */
 static void a_scene_of_another_spec_hash_is_refused_clearly(void **state) {
@@ -351,9 +359,7 @@ static void a_scene_of_another_spec_hash_is_refused_clearly(void **state) {
   char *dir = tt_tmpdir();
   tb_broker b;
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
-  mr_state_bundle files;
-  memset(&files, 0, sizeof files);
-  assert_int_equal(mr_state_bundle_add(&files, "s.yaml", "name: s\n", 8), 0);
+  mr_state_bundle files = one_file_scene();
   mr_state_scene s = { .fps = 60, .n_files = 1, .size = (uint32_t)files.size, .files = files.data };
   s.scene_hash = mr_state_bundle_hash(files.data, files.size);
   uint8_t wire[256];
@@ -434,9 +440,7 @@ static void a_publisher_the_network_cannot_keep_up_with_drops_and_counts(void **
   char *dir = tt_tmpdir();
   tb_broker b;
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
-  mr_state_bundle files;
-  memset(&files, 0, sizeof files);
-  assert_int_equal(mr_state_bundle_add(&files, "s.yaml", "name: s\n", 8), 0);
+  mr_state_bundle files = one_file_scene();
   enum { POINTS = 30000, FRAMES = 400 };
   double *xyz = calloc(3 * POINTS, sizeof *xyz), pose[7] = { 0, 0, 0, 1, 0, 0, 0 };
   for (size_t i = 0; i < 3 * POINTS; i++) xyz[i] = 0.001 * (double)i;
@@ -484,9 +488,7 @@ static void a_reader_gets_each_frames_poses_and_particles(void **state) {
   char *dir = tt_tmpdir();
   tb_broker b;
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
-  mr_state_bundle files;
-  memset(&files, 0, sizeof files);
-  assert_int_equal(mr_state_bundle_add(&files, "s.yaml", "name: s\n", 8), 0);
+  mr_state_bundle files = one_file_scene();
   mr_state_out_def d = mr_default_state_out_def();
   d.url = url_of(&b, "show/lib");
   d.scene = &files;

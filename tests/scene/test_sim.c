@@ -172,22 +172,25 @@ static void a_sim_def_not_from_its_maker_is_refused(void **state) {
   mr_scene_free(&s);
 }
 
+/* A pinned particle and a free one on a link: gravity and constraints
+ * alone. */
+static const char ONE_LINK[] = "physics:\n"
+                               "  effects: [gravity, constraints]\n"
+                               "  particles:\n"
+                               "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
+                               "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
+                               "  constraints:\n"
+                               "    - {between: [a, b]}\n";
+
 /* The result keeps the last step call's status: a link written twice is
  * a dependent row at every step (reported, not a failure), one link
  * alone is none. */
 static void the_last_step_status_is_kept(void **state) {
   (void)state;
-  const char once[] = "physics:\n"
-                      "  effects: [gravity, constraints]\n"
-                      "  particles:\n"
-                      "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
-                      "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
-                      "  constraints:\n"
-                      "    - {between: [a, b]}\n";
   const char twice[] = "    - {between: [b, a]}\n";
-  char text[sizeof once + sizeof twice];
+  char text[sizeof ONE_LINK + sizeof twice];
   for (int dup = 0; dup < 2; dup++) {
-    snprintf(text, sizeof text, "%s%s", once, dup ? twice : "");
+    snprintf(text, sizeof text, "%s%s", ONE_LINK, dup ? twice : "");
     const char *path = tt_tmp_file("sim_status.yaml", text, strlen(text));
     mr_scene s;
     mr_scene_error e;
@@ -206,14 +209,7 @@ static void the_last_step_status_is_kept(void **state) {
  * scene does not declare never run. */
 static void undeclared_effects_have_zero_pass_calls(void **state) {
   (void)state;
-  const char text[] = "physics:\n"
-                      "  effects: [gravity, constraints]\n"
-                      "  particles:\n"
-                      "    - {name: a, position: [0, 2, 0], mass: 1, pinned: true}\n"
-                      "    - {name: b, position: [0.5, 2, 0], mass: 1}\n"
-                      "  constraints:\n"
-                      "    - {between: [a, b]}\n";
-  const char *path = tt_tmp_file("sim_effects.yaml", text, sizeof text - 1);
+  const char *path = tt_tmp_file("sim_effects.yaml", ONE_LINK, sizeof ONE_LINK - 1);
   tt_output p;
   run(&p, "sim", "--time", "2", path, NULL);
   assert_int_equal(p.status, 0);
