@@ -319,12 +319,57 @@ static void two_gloves_drive_two_puppets_each_its_own(void **state) {
   free(dir);
 }
 
+/* Two puppets bound to the same hand take two gloves of that hand, one
+ * each (a glove no other frame took is preferred), not both the first:
+ * the duet with both puppets bound to the right hand, two right-hand
+ * gloves recorded to files. */
+static void two_puppets_of_one_hand_take_a_glove_each(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), scene[300], src[2][320];
+  char *text = tt_read_file(DUET, NULL);
+  assert_non_null(text);
+  const char *left = strstr(text, "glove: {hand: left}");
+  assert_non_null(left);
+  snprintf(scene, sizeof scene, "%s", tt_path(dir, "duet_right.yaml"));
+  FILE *f = fopen(scene, "w");
+  assert_non_null(f);
+  fprintf(f, "%.*sglove: {hand: right}%s", (int)(left - text), text,
+          left + strlen("glove: {hand: left}"));
+  assert_int_equal(fclose(f), 0);
+  free(text);
+  for (int g = 0; g < 2; g++) {
+    char name[16], seed[8];
+    snprintf(name, sizeof name, "right%d.bin", g);
+    snprintf(seed, sizeof seed, "%d", g + 1);
+    const char *file = tt_path(dir, name);
+    snprintf(src[g], sizeof src[g], "file:%s", file);
+    char *gen[] = { (char *)glove_gen, "-o",    (char *)file, "--fast", "-d", "2",
+                    "--hand",          "right", "--seed",     seed,     NULL };
+    tt_output o;
+    assert_int_equal(tt_capture(gen, &o), 0);
+    if (o.status != 0) fail_msg("glove-gen: %s", o.err);
+    tt_output_free(&o);
+  }
+  char *run[] = { (char *)marionette, "run", scene, "--glove", src[0], "--glove", src[1],
+                  "--time",           "1",   "-q",  NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(run, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  if (strstr(o.out, "control frame of alice: glove 1\n") == NULL ||
+      strstr(o.out, "control frame of bob: glove 2\n") == NULL)
+    fail_msg("expected alice on glove 1 and bob on glove 2:\n%s", o.out);
+  tt_output_free(&o);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(int argc, char **argv) {
   signal(SIGPIPE, SIG_IGN);
   glove_gen = argc > 1 ? argv[1] : "glove-gen";
   marionette = argc > 2 ? argv[2] : "marionette";
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(two_gloves_drive_two_puppets_each_its_own),
+    cmocka_unit_test(two_puppets_of_one_hand_take_a_glove_each),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
