@@ -87,6 +87,7 @@ typedef struct seen {
   int n;
   double t[MAX_TICKS];
   mr_pose pose[MAX_TICKS], target[MAX_TICKS];
+  double first_particle[MAX_TICKS][3]; /* as the frame shows it */
   int glove_of;
   int resets;
 } seen;
@@ -97,6 +98,7 @@ static void frame_done(void *user, const mr_show_frame *f) {
   s->t[s->n] = f->t;
   s->pose[s->n] = f->pose[0];
   s->target[s->n] = f->target[0];
+  if (f->n_particles > 0) memcpy(s->first_particle[s->n], f->xyz, sizeof s->first_particle[0]);
   s->glove_of = f->glove_of[0];
   s->n++;
 }
@@ -199,6 +201,13 @@ static void a_reset_puts_the_gloves_goal_back_at_the_start_pose(void **state) {
     if (!(fabs(s.target[i].position[1] - 1.0) < 1e-12 && fabs(s.pose[i].position[1] - 1.0) < 1e-9))
       fail_msg("at %.3f s after the reset: goal %.6f m, frame %.6f m; expected both at 1 m", s.t[i],
                s.target[i].position[1], s.pose[i].position[1]);
+    /* w, on no string and under no force, is put back at its start at
+     * rest, and stays there. */
+    const double *w = s.first_particle[i];
+    if (!(w[0] == 0.0 && w[1] == 0.0 && w[2] == 0.0))
+      fail_msg(
+          "at %.3f s after the reset: the particle at (%g, %g, %g), not at rest where it began",
+          s.t[i], w[0], w[1], w[2]);
   }
   assert_true(after > 80);
   finish(show);
