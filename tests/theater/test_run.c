@@ -260,9 +260,9 @@ static void calibrate_saves_the_range_on_the_glove(void **state) {
   free(dir);
 }
 
-/* A scene with two mappings starts on the one asked for, moves to the
- * next on SIGUSR1 during the show and says so; a name the scene lacks is
- * refused with the names it has. */
+/* A scene with two mappings starts on the one asked for (the second, and
+ * the first), moves to the next on SIGUSR1 during the show and says so; a
+ * name the scene lacks is refused with the names it has. */
 static void mappings_switch_during_the_show(void **state) {
   (void)state;
   char *dir = tt_tmpdir(), source[300], scene[300], out[300], err[300];
@@ -302,6 +302,13 @@ static void mappings_switch_during_the_show(void **state) {
   assert_int_equal(tt_capture(bad, &o), 0);
   assert_int_equal(o.status, 1);
   assert_non_null(strstr(o.err, "no mapping 'dance' in the scene; it has: walk, head-only"));
+  tt_output_free(&o);
+  /* The first of the scene's mappings, asked for by name, is taken. */
+  char *first[] = { (char *)marionette, "run", scene, "--glove", "/dev/null", "--mapping", "walk",
+                    "--time",           "0.2", "-q",  NULL };
+  assert_int_equal(tt_capture(first, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.out, "mapping: walk\n"));
   tt_output_free(&o);
   /* A scene of no mappings of its own has the paper's alone. */
   bad[2] = PUPPET;
