@@ -403,6 +403,33 @@ static void a_killed_show_leaves_a_playable_take(void **state) {
   free(dir);
 }
 
+/* Frames interpolated between the steps: the physics runs ahead of the
+ * frame by up to a step, and the summary says how far, on average and at
+ * most (a step is at most the scene's dt_max, 50 ms); landing says
+ * nothing of it. */
+static void interpolated_frames_say_how_far_the_physics_ran_ahead(void **state) {
+  (void)state;
+  char *argv[] = { (char *)marionette, "run",         PUPPET, "--glove", "/dev/null", "--time", "1",
+                   "--present",        "interpolate", "-q",   NULL };
+  tt_output o;
+  assert_int_equal(tt_capture(argv, &o), 0);
+  if (o.status != 0) fail_msg("status %d: %s", o.status, o.err);
+  assert_non_null(strstr(o.out, "present: interpolate\n"));
+  const char *at = strstr(o.out, "physics ahead of frames: mean ");
+  if (at == NULL) fail_msg("%s", o.out);
+  double mean = -1, max = -1;
+  assert_int_equal(sscanf(at, "physics ahead of frames: mean %lf ms, max %lf ms", &mean, &max), 2);
+  if (!(mean > 0 && mean <= max && max <= 50.0))
+    fail_msg("ahead by %g ms on average, %g ms at most", mean, max);
+  tt_output_free(&o);
+  argv[8] = "land";
+  assert_int_equal(tt_capture(argv, &o), 0);
+  assert_int_equal(o.status, 0);
+  assert_non_null(strstr(o.out, "present: land\n"));
+  assert_null(strstr(o.out, "physics ahead"));
+  tt_output_free(&o);
+}
+
 /* The ports are listed whatever this machine has (none is a fine answer),
  * and a glove looked for on every USB port when there is none is a state
  * the show runs through, saying why. */
@@ -469,6 +496,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_silent_source_is_named_and_the_show_goes_on),
     cmocka_unit_test(calibrate_saves_the_range_on_the_glove),
     cmocka_unit_test(mappings_switch_during_the_show),
+    cmocka_unit_test(interpolated_frames_say_how_far_the_physics_ran_ahead),
     cmocka_unit_test(a_take_replays_to_identical_frames_on_one_thread_or_two),
     cmocka_unit_test(a_killed_show_leaves_a_playable_take),
     cmocka_unit_test(ports_are_listed_and_auto_finds_no_glove_clearly),
