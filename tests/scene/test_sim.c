@@ -205,6 +205,38 @@ static void the_last_step_status_is_kept(void **state) {
   }
 }
 
+/* The rest checks measure: the free end of ONE_LINK swings from its
+ * start (a pendulum from horizontal), so after `settle` it travels about
+ * a metre and reaches about 3 m/s, and a bound under either fails the
+ * check with a line naming what was expected and what came. */
+static void rest_checks_measure_creep_and_jitter(void **state) {
+  (void)state;
+  const struct {
+    const char *bounds, *said;
+  } cases[] = {
+    { "creep: 0.01, jitter: 100", "check failed: expected creep <= 0.01 m after 0.2 s, got 0.9" },
+    { "creep: 100, jitter: 0.5",
+      "check failed: expected speeds <= 0.5 m/s after 0.2 s (no jitter), got 3.1" },
+    { "creep: 100, jitter: 100", NULL },
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char text[sizeof ONE_LINK + 200];
+    snprintf(text, sizeof text, "%sexpect: {rest: {particles: [b], settle: 0.2, %s}}\n", ONE_LINK,
+             cases[i].bounds);
+    const char *path = tt_tmp_file("sim_rest.yaml", text, strlen(text));
+    tt_output p;
+    run(&p, "sim", "--check", "-q", "--time", "1", path, NULL);
+    if (cases[i].said == NULL) {
+      assert_int_equal(p.status, 0);
+    } else {
+      assert_int_equal(p.status, 1);
+      if (strstr(p.err, cases[i].said) == NULL)
+        fail_msg("expected '%s' in: %s", cases[i].said, p.err);
+    }
+    tt_output_free(&p);
+  }
+}
+
 /* "Simulate only the effects a scene calls for": passes of effects the
  * scene does not declare never run. */
 static void undeclared_effects_have_zero_pass_calls(void **state) {
@@ -498,6 +530,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(same_scene_same_state_hash),
     cmocka_unit_test(a_sim_def_not_from_its_maker_is_refused),
     cmocka_unit_test(the_last_step_status_is_kept),
+    cmocka_unit_test(rest_checks_measure_creep_and_jitter),
     cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
     cmocka_unit_test(csv_has_one_row_per_step_call),
     cmocka_unit_test(csv_resets_add_up_to_the_summary),
