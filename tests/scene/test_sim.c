@@ -237,6 +237,23 @@ static void rest_checks_measure_creep_and_jitter(void **state) {
   }
 }
 
+/* --fps paces the run in frames at any rate, 1 Hz too (the start and one
+ * a second); without it the run steps straight to its end and counts no
+ * frames. */
+static void fps_paces_the_run_even_at_one_hertz(void **state) {
+  (void)state;
+  const char *path = tt_tmp_file("sim_fps.yaml", ONE_LINK, sizeof ONE_LINK - 1);
+  tt_output p;
+  run(&p, "sim", "--fps", "1", "--time", "3", path, NULL);
+  assert_int_equal(p.status, 0);
+  if (strstr(p.out, "\nframes: 4 at 1 fps\n") == NULL) fail_msg("%s", p.out);
+  tt_output_free(&p);
+  run(&p, "sim", "--time", "3", path, NULL);
+  assert_int_equal(p.status, 0);
+  assert_null(strstr(p.out, "\nframes: "));
+  tt_output_free(&p);
+}
+
 /* "Simulate only the effects a scene calls for": passes of effects the
  * scene does not declare never run. */
 static void undeclared_effects_have_zero_pass_calls(void **state) {
@@ -531,6 +548,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(a_sim_def_not_from_its_maker_is_refused),
     cmocka_unit_test(the_last_step_status_is_kept),
     cmocka_unit_test(rest_checks_measure_creep_and_jitter),
+    cmocka_unit_test(fps_paces_the_run_even_at_one_hertz),
     cmocka_unit_test(undeclared_effects_have_zero_pass_calls),
     cmocka_unit_test(csv_has_one_row_per_step_call),
     cmocka_unit_test(csv_resets_add_up_to_the_summary),
