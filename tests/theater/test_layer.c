@@ -212,15 +212,15 @@ static void expected(stream *out, const stream *under, const stream *over, unsig
  * (a take is read on show time, so this runs the same every time), thumb
  * and index armed; at `arm_at` (< 0: never) every channel is armed, asked
  * between two ticks. */
-static void layered(const mr_scene *sc, const char *under_path, const char *over_path,
-                    double arm_at, seen *s) {
+static void layered_armed(const mr_scene *sc, const char *under_path, const char *over_path,
+                          unsigned armed, double arm_at, seen *s) {
   char source[400];
   snprintf(source, sizeof source, "take:%s", over_path);
   mr_show_def d = show_def(1.5);
   d.gloves[0] = source;
   d.n_gloves = 1;
   d.beneath[0] = under_path;
-  d.armed[0] = 0x3;
+  d.armed[0] = armed;
   mr_virtual_clock vc = { 0.0 };
   mr_clock c = mr_clock_virtual(&vc);
   mr_show_hooks h = { NULL, NULL, frame_done, NULL, s };
@@ -239,6 +239,52 @@ static void layered(const mr_scene *sc, const char *under_path, const char *over
   mr_show_result res;
   if (mr_show_destroy(show, &res, &err) != MR_SHOW_OK) fail_msg("%s", err.text);
   mr_show_result_free(&res);
+}
+
+static void layered(const mr_scene *sc, const char *under_path, const char *over_path,
+                    double arm_at, seen *s) {
+  layered_armed(sc, under_path, over_path, 0x3, arm_at, s);
+}
+
+/* Whether the frame's goal moved between frames i - 1 and i. */
+static bool goal_moved(const seen *s, int i) {
+  const mr_pose *a = &s->target[i - 1], *b = &s->target[i];
+  for (int k = 0; k < 3; k++)
+    if (a->position[k] != b->position[k]) return true;
+  for (int k = 0; k < 4; k++)
+    if (a->orientation[k] != b->orientation[k]) return true;
+  return false;
+}
+
+/* The take beneath ends (0.8 s) while the performer plays on, the thumb
+ * alone armed: the live glove still drives the thumb, so the frame's goal
+ * keeps moving to the end of the show. */
+static void an_armed_thumb_plays_on_after_the_take_beneath_ends(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir(), under_path[600], over_path[600];
+  static stream under, over;
+  two_takes(&under, &over);
+  under.n = 81; /* its hello and 0.8 s of samples */
+  snprintf(under_path, sizeof under_path, "%s", tt_path(dir, "under.mrec"));
+  snprintf(over_path, sizeof over_path, "%s", tt_path(dir, "over.mrec"));
+  write_take(&under, under_path, 1, 1);
+  write_take(&over, over_path, 1, 1);
+  mr_scene sc;
+  load(&sc);
+  static seen got;
+  memset(&got, 0, sizeof got);
+  layered_armed(&sc, under_path, over_path, 0x1, -1.0, &got);
+  int late = 0, moved = 0;
+  for (int i = 1; i < got.n; i++)
+    if (got.t[i] >= 1.2) {
+      late++;
+      moved += goal_moved(&got, i);
+    }
+  assert_true(late > 15);
+  if (moved < late - 1) fail_msg("the goal moved in %d of the last %d frames", moved, late);
+  mr_scene_free(&sc);
+  tt_rmdir(dir);
+  free(dir);
 }
 
 /* Thumb and index armed over a take: the frames are those of a take whose
@@ -497,6 +543,7 @@ static void at_a_quarter_speed_the_result_tells_a_lost_glove_on_its_own_time(voi
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(armed_channels_follow_the_live_glove_and_the_rest_the_take_beneath),
+    cmocka_unit_test(an_armed_thumb_plays_on_after_the_take_beneath_ends),
     cmocka_unit_test(a_take_performed_at_a_quarter_speed_replays_as_its_input_scaled),
     cmocka_unit_test(at_a_quarter_speed_a_silent_glove_is_lost_on_its_own_time),
     cmocka_unit_test(at_a_quarter_speed_the_result_tells_a_lost_glove_on_its_own_time),
