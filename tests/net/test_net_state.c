@@ -479,10 +479,22 @@ static void a_publisher_the_network_cannot_keep_up_with_drops_and_counts(void **
   free(dir);
 }
 
-/* The libraries alone, publisher to reader through a broker: each frame
- * comes back with every control pose as the show gave it (as floats) and
- * every particle within a millimetre (the 16-bit grid over this frame is
- * far finer), frame after frame. */
+/* Frame i of the test show: two control frames, neither at the origin nor
+ * upright, and three particles, moving from frame to frame. */
+static void frame_values(int i, double pose[14], double xyz[9]) {
+  const double k = 0.01 * i;
+  const double p[14] = { -0.75 + k, 1.25, 0.5,  0.5, 0.5, -0.5, 0.5,
+                         0.3,       1.1,  -0.2, 0.6, 0.0, 0.8,  0.0 };
+  const double x[9] = { 0.1 + k, 0.9, -0.3, -0.2, 1.4, 0.05, 0.0, 0.2, 0.7 };
+  memcpy(pose, p, sizeof p);
+  memcpy(xyz, x, sizeof x);
+}
+
+/* The libraries alone, publisher to reader through a broker: a publisher
+ * that may keep no frame waiting is refused, one that may keep one
+ * publishes, and each frame comes back with every control pose as the
+ * show gave it (as floats) and every particle within a millimetre (the
+ * 16-bit grid over this frame is far finer), frame after frame. */
 static void a_reader_gets_each_frames_poses_and_particles(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -508,20 +520,15 @@ static void a_reader_gets_each_frames_poses_and_particles(void **state) {
   assert_int_equal(mr_state_out_open(&d, &o, &err), 0);
   int got = 0;
   for (int i = 0; i < 300 && got < 3; i++) {
-    /* Two frames, neither at the origin nor upright, moving each frame. */
-    const double k = 0.01 * i;
-    const double pose[14] = { -0.75 + k, 1.25, 0.5,  0.5, 0.5, -0.5, 0.5,
-                              0.3,       1.1,  -0.2, 0.6, 0.0, 0.8,  0.0 };
-    const double xyz[9] = { 0.1 + k, 0.9, -0.3, -0.2, 1.4, 0.05, 0.0, 0.2, 0.7 };
+    double pose[14], xyz[9];
+    frame_values(i, pose, xyz);
     assert_true(mr_state_out_frame(o, i / 30.0, pose, xyz, &err) >= 0);
     mr_state_event ev;
     assert_int_equal(mr_state_in_read(in, 20, &ev, &err), MR_IO_OK);
     if (ev.kind != MR_STATE_GOT_FRAME) continue;
     const int seq = (int)lround(ev.t * 30.0);
-    const double kk = 0.01 * seq;
-    const double want[14] = { -0.75 + kk, 1.25, 0.5,  0.5, 0.5, -0.5, 0.5,
-                              0.3,        1.1,  -0.2, 0.6, 0.0, 0.8,  0.0 };
-    const double wxyz[9] = { 0.1 + kk, 0.9, -0.3, -0.2, 1.4, 0.05, 0.0, 0.2, 0.7 };
+    double want[14], wxyz[9];
+    frame_values(seq, want, wxyz);
     for (int j = 0; j < 14; j++)
       if (ev.poses[j] != (double)(float)want[j])
         fail_msg("frame %d: pose value %d is %.9g, published %.9g", seq, j, ev.poses[j], want[j]);
