@@ -2,7 +2,8 @@
  * what a glove's samples do to the control frames, sample by sample. A
  * take replays its bytes at their recorded show times, so every run is
  * the same. The reset hook, a frame's turn allowance (max_turn_rate), a
- * glove bound by its whole 24-digit uid, and the corrupt frames told. */
+ * glove bound by its whole 24-digit uid, the corrupt frames told, and a
+ * silence told of a glove that never opened, never of a live one. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -105,6 +106,8 @@ typedef struct seen {
   double first_particle[MAX_TICKS][3]; /* as the frame shows it */
   int glove_of;
   int resets;
+  int silent;                 /* notes that nothing a glove sends has come in */
+  double silent_at;           /* the last frame simulated before the first of them */
   unsigned long long corrupt; /* corrupt frames, summed over the notes telling them */
   int corrupt_notes;
 } seen;
@@ -123,6 +126,8 @@ static void frame_done(void *user, const mr_show_frame *f) {
 static void note(void *user, const char *line) {
   seen *s = user;
   if (strncmp(line, "reset:", 6) == 0) s->resets++;
+  if (strstr(line, "nothing a glove sends has come in") != NULL && s->silent++ == 0)
+    s->silent_at = s->n > 0 ? s->t[s->n - 1] : 0.0;
   const char *corrupt = strstr(line, " corrupt frames in ");
   if (corrupt != NULL) {
     const char *count = corrupt;
@@ -424,6 +429,36 @@ static void corrupt_frames_are_told_foreign_ones_included(void **state) {
   free(dir);
 }
 
+/* A glove whose port never opens is told, once, that nothing it sends has
+ * come in, at 2 s and not before. */
+static void a_glove_that_never_opens_is_told_silent_once_after_2_s(void **state) {
+  (void)state;
+  static seen s;
+  show_through("pty:/nonexistent/marionette-test", 3.5, &s);
+  assert_int_equal(s.silent, 1);
+  if (s.silent_at < 2.0 - 1.0 / 60 - 1e-9)
+    fail_msg("told silent after the frame at %.3f s, before 2 s", s.silent_at);
+}
+
+/* A glove streaming good frames past 2 s is live: it is never told that
+ * nothing it sends has come in. */
+static void a_live_glove_is_never_told_silent(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  const char *path = tt_path(dir, "live.mrec");
+  take tk;
+  take_open(&tk, path, 1);
+  const double rest[5] = { 0.5, 0.5, 0.5, 0.5, 0.5 };
+  take_hold(&tk, 0.01, 3.5, rest);
+  take_close(&tk);
+  static seen s;
+  show_take(path, 3.0, &s);
+  assert_int_equal(s.glove_of, 0);
+  assert_int_equal(s.silent, 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_reset_puts_the_gloves_goal_back_at_the_start_pose),
@@ -431,6 +466,8 @@ int main(void) {
     cmocka_unit_test(a_glove_frame_changes_its_speed_no_faster_than_its_max_accel),
     cmocka_unit_test(a_glove_is_bound_by_its_whole_uid),
     cmocka_unit_test(corrupt_frames_are_told_foreign_ones_included),
+    cmocka_unit_test(a_glove_that_never_opens_is_told_silent_once_after_2_s),
+    cmocka_unit_test(a_live_glove_is_never_told_silent),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
