@@ -2,8 +2,9 @@
  * what a glove's samples do to the control frames, sample by sample. A
  * take replays its bytes at their recorded show times, so every run is
  * the same. The reset hook, a frame's turn allowance (max_turn_rate), a
- * glove bound by its whole 24-digit uid, the corrupt frames told, and a
- * silence told of a glove that never opened, never of a live one. */
+ * glove bound by its whole 24-digit uid, the corrupt frames told, a
+ * silence told of a glove that never opened, never of a live one, and
+ * arming and a punch in a show of eight gloves. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -110,6 +111,9 @@ typedef struct seen {
   double silent_at;           /* the last frame simulated before the first of them */
   unsigned long long corrupt; /* corrupt frames, summed over the notes telling them */
   int corrupt_notes;
+  double punch_in; /* as the last frame told it */
+  int armed_notes;
+  char armed[240]; /* the last of them */
 } seen;
 
 static void frame_done(void *user, const mr_show_frame *f) {
@@ -120,6 +124,7 @@ static void frame_done(void *user, const mr_show_frame *f) {
   s->target[s->n] = f->target[0];
   if (f->n_particles > 0) memcpy(s->first_particle[s->n], f->xyz, sizeof s->first_particle[0]);
   s->glove_of = f->glove_of[0];
+  s->punch_in = f->punch_in;
   s->n++;
 }
 
@@ -128,6 +133,10 @@ static void note(void *user, const char *line) {
   if (strncmp(line, "reset:", 6) == 0) s->resets++;
   if (strstr(line, "nothing a glove sends has come in") != NULL && s->silent++ == 0)
     s->silent_at = s->n > 0 ? s->t[s->n - 1] : 0.0;
+  if (strstr(line, ": armed:") != NULL) {
+    s->armed_notes++;
+    snprintf(s->armed, sizeof s->armed, "%s", line);
+  }
   const char *corrupt = strstr(line, " corrupt frames in ");
   if (corrupt != NULL) {
     const char *count = corrupt;
@@ -429,6 +438,18 @@ static void corrupt_frames_are_told_foreign_ones_included(void **state) {
   free(dir);
 }
 
+/* A take at dir/name of a glove holding every finger at mid-range for
+ * secs s; its path. */
+static const char *take_at_rest(const char *dir, const char *name, double secs) {
+  const char *path = tt_path(dir, name);
+  take tk;
+  take_open(&tk, path, 1);
+  const double rest[5] = { 0.5, 0.5, 0.5, 0.5, 0.5 };
+  take_hold(&tk, 0.01, secs, rest);
+  take_close(&tk);
+  return path;
+}
+
 /* A glove whose port never opens is told, once, that nothing it sends has
  * come in, at 2 s and not before. */
 static void a_glove_that_never_opens_is_told_silent_once_after_2_s(void **state) {
@@ -445,16 +466,43 @@ static void a_glove_that_never_opens_is_told_silent_once_after_2_s(void **state)
 static void a_live_glove_is_never_told_silent(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
-  const char *path = tt_path(dir, "live.mrec");
-  take tk;
-  take_open(&tk, path, 1);
-  const double rest[5] = { 0.5, 0.5, 0.5, 0.5, 0.5 };
-  take_hold(&tk, 0.01, 3.5, rest);
-  take_close(&tk);
+  const char *path = take_at_rest(dir, "live.mrec", 3.5);
   static seen s;
   show_take(path, 3.0, &s);
   assert_int_equal(s.glove_of, 0);
   assert_int_equal(s.silent, 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* A show of as many gloves as it takes: glove 8 armed and a punch asked
+ * between two ticks are both done at the next frame, and the arming is
+ * told of glove 8 alone. Eight is the edge: reading the arming asked of
+ * one glove past the show's reads into the punches asked. */
+static void a_show_of_eight_gloves_arms_the_last_and_punches_in(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  const char *path = take_at_rest(dir, "rest.mrec", 1.0);
+  const char *takes[MR_SHOW_MAX_GLOVES];
+  for (int g = 0; g < MR_SHOW_MAX_GLOVES; g++) takes[g] = path;
+  mr_scene sc;
+  load(SCENE_HEAD, &sc);
+  mr_virtual_clock vc = { 0.0 };
+  static seen s;
+  memset(&s, 0, sizeof s);
+  mr_show *show = start(&sc, takes, MR_SHOW_MAX_GLOVES, 1.0, &vc, &s);
+  run_to(show, &s, 0.5);
+  double asked_after = s.t[s.n - 1];
+  mr_show_arm(show, MR_SHOW_MAX_GLOVES - 1, 0x3);
+  mr_show_punch(show);
+  run_to(show, &s, 1.0);
+  print_message("punch-in at %.4f s, asked after %.4f s; %d arming told, the last '%s'\n",
+                s.punch_in, asked_after, s.armed_notes, s.armed);
+  assert_true(fabs(s.punch_in - (asked_after + 1.0 / 60)) < 1e-9);
+  assert_int_equal(s.armed_notes, 1);
+  assert_string_equal(s.armed, "glove 8: armed: thumb index");
+  finish(show);
+  mr_scene_free(&sc);
   tt_rmdir(dir);
   free(dir);
 }
@@ -468,6 +516,7 @@ int main(void) {
     cmocka_unit_test(corrupt_frames_are_told_foreign_ones_included),
     cmocka_unit_test(a_glove_that_never_opens_is_told_silent_once_after_2_s),
     cmocka_unit_test(a_live_glove_is_never_told_silent),
+    cmocka_unit_test(a_show_of_eight_gloves_arms_the_last_and_punches_in),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
