@@ -372,7 +372,7 @@ static void run_past_the_step_guard_stops_clearly(void **state) {
                               "  ats: {dt_max: 1}\n"
                               "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n"
                               "  control: {points: [{name: bar, offset: [0, 2, 0]}]}\n"
-                              "  strings: [{from: bar, to: a, stiffness: 1000000}]\n";
+                              "  strings: [{from: bar, to: a, mode: spring, stiffness: 1000000}]\n";
   char path[4200];
   snprintf(path, sizeof path, "%s", tt_tmp_file("guard.yaml", scene, sizeof scene - 1));
   tt_output p;
