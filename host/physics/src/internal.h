@@ -578,6 +578,10 @@ void mr_taut_row_again(const mr_world *w, int string, const double *v, double *c
 /* The time the frame ends of taut strings move at: rates are taken from
  * the frame segment under way at it, ends included (mr_frame_rates). */
 void mr_taut_set_time(mr_world *w, double t);
+/* How far past its rest length a taut string is left (m): neither
+ * brought back (string_correction.c) nor stopped by an impulse
+ * (impulse.c) within it. */
+double mr_taut_hold(const mr_world *w, int string);
 /* The largest relative over-length (L − rest)/rest of the taut strings in
  * x, 0 when none is over: held to the ATS thresholds with the deviation. */
 double mr_taut_overlength(const mr_world *w, const double *x);

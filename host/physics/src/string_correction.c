@@ -35,16 +35,17 @@ static int string_row(const mr_world *w, int i, double limit, int velocities, do
   const double *xf = &w->x[3 * s->frame_particle], *vf = &w->v[3 * s->frame_particle];
   double d[3] = { xp[0] - xf[0], xp[1] - xf[1], xp[2] - xf[2] };
   double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  double max = s->rest * (s->taut ? 1.0 : limit);
-  /* A taut string is held at its rest length, positions only: its
-   * lengthening speed is stopped by the next step's impulse (eq. 9). */
+  /* A taut string past its hold is brought back to its rest length,
+   * positions only: its lengthening speed is stopped by the next step's
+   * impulse (eq. 9) or its resting row. */
+  const double max = s->taut ? s->rest + mr_taut_hold(w, i) : s->rest * limit;
   int held = s->taut ? !velocities : w->has_string_correction;
   if (!held || w->string_released[i] || !(len > 0) || w->inv_mass[s->puppet_particle] == 0.0)
     return 0;
   for (int k = 0; k < 3; k++) u[k] = d[k] / len;
   double rate = u[0] * (vp[0] - vf[0]) + u[1] * (vp[1] - vf[1]) + u[2] * (vp[2] - vf[2]);
   if (velocities ? !(len >= max * (1.0 - 1e-6) && rate > 0) : !(len > max * (1.0 + OVER))) return 0;
-  *rhs = velocities ? -rate : -(len - max);
+  *rhs = velocities ? -rate : -(len - (s->taut ? s->rest : max));
   return 1;
 }
 
