@@ -44,7 +44,9 @@ static int parse_host(mr_net_url *u, const char *url, const char *s, size_t n, m
     if (close == NULL) return mr_net_err(err, MR_IO_ERR_SPEC, "%s: expected [ADDRESS]", url);
     if (copy_n(u->host, sizeof u->host, s + 1, (size_t)(close - s - 1)) != 0)
       return mr_net_err(err, MR_IO_ERR_SPEC, "%s: host name too long", url);
-    colon = close + 1 < s + n && close[1] == ':' ? close + 1 : NULL;
+    if (close + 1 < s + n && close[1] != ':')
+      return mr_net_err(err, MR_IO_ERR_SPEC, "%s: expected [ADDRESS] or [ADDRESS]:PORT", url);
+    colon = close + 1 < s + n ? close + 1 : NULL;
   } else {
     colon = memchr(s, ':', n);
     if (copy_n(u->host, sizeof u->host, s, colon ? (size_t)(colon - s) : n) != 0)
@@ -91,8 +93,9 @@ int mr_net_url_parse(const char *url, mr_net_url *u, mr_io_error *err) {
   const char *topic = slash + 1, *q = strchr(topic, '?');
   size_t tn = q ? (size_t)(q - topic) : strlen(topic);
   /* The glove's three topics are TOPIC, TOPIC/cmd and TOPIC/reply: a
-   * wildcard would read other gloves', and room is kept for "/reply". */
-  if (tn == 0 || copy_n(u->topic, sizeof u->topic - 8, topic, tn) != 0 ||
+   * wildcard would read other gloves', and room is kept for "/reply".
+   * At most 190 characters, as the message and the README say. */
+  if (tn == 0 || copy_n(u->topic, sizeof u->topic - 9, topic, tn) != 0 ||
       strpbrk(u->topic, "+#") != NULL || u->topic[tn - 1] == '/')
     return mr_net_err(err, MR_IO_ERR_SPEC,
                       "%s: the topic must be 1..190 characters without + or # and not end in /",
