@@ -94,12 +94,14 @@ int mr_net_url_parse(const char *url, mr_net_url *u, mr_io_error *err) {
   size_t tn = q ? (size_t)(q - topic) : strlen(topic);
   /* The glove's three topics are TOPIC, TOPIC/cmd and TOPIC/reply: a
    * wildcard would read other gloves', and room is kept for "/reply".
-   * At most 190 characters, as the message and the README say. */
-  if (tn == 0 || copy_n(u->topic, sizeof u->topic - 9, topic, tn) != 0 ||
+   * The bound the copy holds is the one the message says. */
+  enum { TOPIC_CHARS = 190 };
+  _Static_assert(TOPIC_CHARS + sizeof "/reply" <= sizeof u->topic, "room for /reply");
+  if (tn == 0 || copy_n(u->topic, TOPIC_CHARS + 1, topic, tn) != 0 ||
       strpbrk(u->topic, "+#") != NULL || u->topic[tn - 1] == '/')
     return mr_net_err(err, MR_IO_ERR_SPEC,
-                      "%s: the topic must be 1..190 characters without + or # and not end in /",
-                      url);
+                      "%s: the topic must be 1..%d characters without + or # and not end in /", url,
+                      TOPIC_CHARS);
   while (q != NULL) {
     const char *opt = q + 1, *amp = strchr(opt, '&');
     size_t on = amp ? (size_t)(amp - opt) : strlen(opt);

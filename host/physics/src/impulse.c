@@ -25,8 +25,9 @@
  * the state only to cost the next step its first evaluation (a string
  * under load lengthens a little at nearly every step). The bound reads
  * no step size, so that which strings take an impulse does not change as
- * the step shrinks: bound to the step, the puppet's reference run moved
- * its hand 6.8e-4 m when its step was halved, against 1.7e-4 before.
+ * the step shrinks: bound to the step, the puppet's 1 ms reference run
+ * (marionette-bench --quick) moved its hand 6.8e-4 m when its step was
+ * halved, against 2.6e-4 m before the hold and 2.7e-4 m with this bound.
  * Returns whether any contact approaches; *collided when one is faster
  * than rest_speed. */
 static int approach_rates(mr_world *w, const double *x, const double *v, int *collided) {

@@ -141,11 +141,10 @@ void mr_taut_row_again(const mr_world *w, int string, const double *v, double *c
  * so that the step's last evaluation serves the next step's first
  * (integrate.c): a projection or an impulse changes the state, and each
  * cost a whole evaluation (the walk's strings took an impulse at 439 of
- * its 445 steps, most of them lengthening slower than 0.1 mm/s). A
- * tenth, because the over-length is
- * part of the error the rule steers by (step.c, end_error): at the lower
- * threshold itself it held the step from growing (the walk took 505
- * steps instead of 445). */
+ * its 445 steps, most of them lengthening slower than 0.1 mm/s). A tenth,
+ * because the over-length is part of the error the rule steers by
+ * (step.c, end_error): at the lower threshold itself it held the step
+ * from growing (the walk took 505 steps instead of 445). */
 double mr_taut_hold(const mr_world *w, int string) {
   return 0.1 * w->def.deviation_low * string_at(w, string)->rest;
 }
