@@ -405,6 +405,28 @@ static void group_shape_names_its_points_or_none(void **state) {
   assert_true(i == 2 && j == -1);
 }
 
+/* A member far from a small group sees every three earlier members nearly
+ * edge on, so it fixes no place (the scale-free measure falls under
+ * MR_GROUP_MIN_SHAPE). It is the fifth, the first member past the starting
+ * tetrahedron, that the shape test must reach: a loader that missed it
+ * would accept a group the world's add call then refuses. */
+static void a_fifth_member_far_off_is_flat_for_the_loader_and_the_world(void **state) {
+  (void)state;
+  const double five[15] = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 100, 0 };
+  int i = 7, j = 7;
+  assert_int_equal(mr_rigid_group_shape(five, 5, &i, &j), MR_SHAPE_FLAT_MEMBER);
+  assert_true(i == 4 && j == -1);
+  mr_world *w = make(MR_EFFECT_CONSTRAINTS, MR_SOLVE_LDLT);
+  int ids[5];
+  for (int k = 0; k < 5; k++) ids[k] = add(w, five[3 * k], five[3 * k + 1], five[3 * k + 2]);
+  mr_rigid_group_def g = mr_default_rigid_group_def();
+  g.particles = ids;
+  g.count = 5;
+  assert_int_equal(mr_world_add_rigid_group(w, &g, NULL), MR_ERR_DEGENERATE);
+  assert_int_equal(mr_world_constraint_rows(w), 0);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(group_shape_names_its_points_or_none),
@@ -416,6 +438,7 @@ int main(void) {
     cmocka_unit_test(step_limit_stops_runaway_calls),
     cmocka_unit_test(step_limit_allows_exactly_its_steps),
     cmocka_unit_test(divergence_outranks_dependent_rows),
+    cmocka_unit_test(a_fifth_member_far_off_is_flat_for_the_loader_and_the_world),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
