@@ -545,6 +545,67 @@ static void rigid_group_of_seven_stays_rigid(void **state) {
   mr_world_destroy(w);
 }
 
+/* The clamp of the triggered force holds both ways: a control brought
+ * 0.5 m nearer its trigger asks for gain·M·Δd = −300 N, pushing the acted
+ * particle away from the control, and max_force caps that push at 4 N as
+ * it caps the pull; unclamped below, a hand closing on its trigger would
+ * fling the limb at 75 times the force it may have. */
+static void triggered_push_is_capped_at_max_force(void **state) {
+  (void)state;
+  mr_world *w = make(MR_EFFECT_TRIGGERED, 0.0);
+  int acted = particle(w, 0, 0, 0, 1.0, -1), control = particle(w, 0, 1, 0, 1.0, -1),
+      trig = particle(w, 1, 0, 0, 1.0, -1);
+  mr_triggered_def tr = mr_default_triggered_def();
+  tr.acted = acted;
+  tr.control = control;
+  tr.trigger = trig;
+  tr.gain = 200.0;
+  tr.max_force = 4.0;
+  assert_int_equal(mr_world_add_triggered(w, &tr, NULL), MR_OK);
+  double d0 = sqrt(2.0), s = (d0 - 0.5) / d0;
+  double xc[3] = { 1 - s, s, 0 }, zero[3] = { 0, 0, 0 };
+  assert_int_equal(mr_world_set_particle_state(w, control, xc, zero), MR_OK);
+  double a[3];
+  accel(w, acted, 1e-5, a);
+  const double len = sqrt(xc[0] * xc[0] + xc[1] * xc[1]);
+  printf("triggered push: a = (%.4f, %.4f) (expected %.4f away from the control)\n", a[0], a[1],
+         4.0);
+  assert_true(fabs(a[0] + 4.0 * xc[0] / len) < 1e-3);
+  assert_true(fabs(a[1] + 4.0 * xc[1] / len) < 1e-3);
+  mr_world_destroy(w);
+}
+
+/* Drag on a particle too light for the lower step bound is capped at the
+ * rate the floor step can follow (mr_forces_stable_dt plans the steps for
+ * the capped rate): a 1 mg bead with drag 0.1 N·s/m asks for 1e5 /s, four
+ * times what RK4 holds at the 0.1 ms floor. The cap must hold with or
+ * without gravity, whose pass the drag then runs alone: the same bead
+ * under a zero gravity and under none moves alike to the bit, and slows
+ * down rather than diverging. */
+static void drag_cap_holds_without_gravity(void **state) {
+  (void)state;
+  uint64_t hash[2];
+  for (int with_gravity = 0; with_gravity < 2; with_gravity++) {
+    mr_world_def def = mr_default_world_def();
+    def.effects = MR_EFFECT_DRAG | (with_gravity ? MR_EFFECT_GRAVITY : 0u);
+    def.gravity[1] = 0.0;
+    def.drag = 0.1;
+    mr_world *w = NULL;
+    assert_int_equal(mr_world_create(&def, &w, NULL, 0), MR_OK);
+    int bead = particle(w, 0, 0, 0, 1e-6, -1);
+    double x[3] = { 0, 0, 0 }, v[3] = { 1, 0, 0 };
+    assert_int_equal(mr_world_set_particle_state(w, bead, x, v), MR_OK);
+    mr_step_report rep;
+    assert_int_equal(mr_world_step_to(w, 0.01, &rep), MR_OK);
+    assert_int_equal(rep.divergences, 0);
+    double at[3];
+    assert_true(speed_of(w, bead, at) < 0.5);
+    hash[with_gravity] = mr_world_state_hash(w);
+    mr_world_destroy(w);
+  }
+  assert_true(hash[0] == hash[1]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(antigravity_scales_with_puppet_mass_and_trigger_distance),
@@ -560,6 +621,8 @@ int main(void) {
     cmocka_unit_test(empty_world_steps),
     cmocka_unit_test(particle_follows_time_dependent_curve),
     cmocka_unit_test(rigid_group_of_seven_stays_rigid),
+    cmocka_unit_test(triggered_push_is_capped_at_max_force),
+    cmocka_unit_test(drag_cap_holds_without_gravity),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
