@@ -399,6 +399,38 @@ static void point_motion_is_the_derivative_of_its_path(void **state) {
   mr_world_destroy(w);
 }
 
+/* The end of a segment can be where it accelerates hardest: a frame sent
+ * 0.3 m from rest in 0.1 s, then 0.5 m further in the next 0.1 s, leaves
+ * the second segment at its first's end rate (4.5 m/s) and arrives at the
+ * parabola's slope (6 m/s); its acceleration then rises linearly from
+ * 0 at the start through 15 to 30 m/s² (0.3 m / (0.1 s)²) at the end. The
+ * bound reports the end's, and the rates the frame then has just before
+ * the end agree with it. */
+static void target_accel_reads_the_end_of_the_segment(void **state) {
+  (void)state;
+  const mr_pose rest = mr_pose_identity();
+  int frame;
+  mr_world *w = frame_world(MR_FRAME_SMOOTH, &rest, &frame);
+  mr_pose goal = mr_pose_identity();
+  goal.position[0] = 0.3;
+  assert_int_equal(mr_world_set_frame_target(w, frame, &goal, 0.1), MR_OK);
+  assert_int_equal(mr_world_step_to(w, 0.1, NULL), MR_OK);
+  goal.position[0] = 0.8;
+  double accel, turn_accel;
+  assert_int_equal(mr_world_frame_target_accel(w, frame, &goal, 0.2, &accel, &turn_accel), MR_OK);
+  print_message("segment's acceleration bound %.9g m/s²\n", accel);
+  assert_true(fabs(accel - 30.0) < 1e-9 * 30.0);
+  assert_true(turn_accel == 0.0);
+  assert_int_equal(mr_world_set_frame_target(w, frame, &goal, 0.2), MR_OK);
+  const double d = 5e-5;
+  double v[3][3], om[3];
+  for (int i = 0; i < 3; i++) rates_at(w, frame, 0.2 - (2 - i) * d, v[i], om);
+  const double end = (3 * v[2][0] - 4 * v[1][0] + v[0][0]) / (2 * d);
+  print_message("acceleration at the end from the rates %.9g m/s²\n", end);
+  assert_true(fabs(end - accel) < 1e-5 * accel);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(velocity_is_continuous_where_targets_follow),
@@ -407,6 +439,7 @@ int main(void) {
     cmocka_unit_test(a_quadratic_track_is_followed_exactly_at_uneven_targets),
     cmocka_unit_test(target_accel_is_the_derivative_of_the_rates),
     cmocka_unit_test(point_motion_is_the_derivative_of_its_path),
+    cmocka_unit_test(target_accel_reads_the_end_of_the_segment),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
