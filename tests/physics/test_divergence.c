@@ -240,10 +240,11 @@ static void a_deviation_past_the_bound_is_divergence_and_is_named(void **state) 
  *     0.95 s (a broken input device): the reset's cause;
  *  2. a particle on a spring string from frame 0, and pinned;
  *  3. a particle on spring strings from both frames;
- *  4. a particle held to frame 0's particle by a distance constraint. */
+ *  4. a particle held to frame 0's particle by a distance constraint;
+ *  5. one more, its constraint naming the frame's particle second. */
 typedef struct reset_rig {
   mr_world *w;
-  int link[2], held, pinned, between, linked;
+  int link[2], held, pinned, between, linked, linked_back;
 } reset_rig;
 
 static void nan_late(void *user, double t, double pos[3], double vel[3], double acc[3]) {
@@ -325,6 +326,8 @@ static reset_rig reset_rig_make(const mr_pose *to, double due, int floor) {
   string_to(w, high, r.between, MR_STRING_SPRING);
   r.linked = puppet_particle(w, 4, 0.1, 1.7, 0.3, 0.0);
   link(w, top_b, r.linked);
+  r.linked_back = puppet_particle(w, 5, -0.1, 1.7, -0.3, 0.0);
+  link(w, r.linked_back, top_a);
   if (floor) {
     mr_plane_def pl = mr_default_plane_def();
     assert_int_equal(mr_world_add_plane(w, &pl, NULL), MR_OK);
@@ -369,13 +372,16 @@ static void a_reset_puts_the_puppet_under_its_frame(void **state) {
   printf("reset at t=%.4f s, the frame at x=%.3f moving %.3f m/s, turning %.3f rad/s\n", t,
          now.position[0], vel[0], om[1]);
   assert_true(t >= 0.9 && now.position[0] > 0.5 && vel[0] > 0.5 && om[1] > 0.5);
-  /* From the frame's start: the link's particles and the linked one, and
-   * the link's start velocity. */
-  const double start[3][3] = { { -0.1, -0.5, 0 }, { 0.1, -0.5, 0 }, { 0.1, -0.3, 0.3 } };
-  const int ids[3] = { r.link[0], r.link[1], r.linked };
+  /* From the frame's start: the link's particles and the linked ones
+   * (whichever end of its constraint the frame's particle is), and the
+   * link's start velocity. */
+  const double start[4][3] = {
+    { -0.1, -0.5, 0 }, { 0.1, -0.5, 0 }, { 0.1, -0.3, 0.3 }, { -0.1, -0.3, -0.3 }
+  };
+  const int ids[4] = { r.link[0], r.link[1], r.linked, r.linked_back };
   double v0[3];
   mr_pose_rotate(now.orientation, (double[3]){ 0.2, 0, 0 }, v0);
-  for (int i = 0; i < 3; i++) {
+  for (int i = 0; i < 4; i++) {
     double arm[3], x[3], v[3];
     mr_pose_rotate(now.orientation, start[i], arm);
     const double spin[3] = { om[1] * arm[2] - om[2] * arm[1], om[2] * arm[0] - om[0] * arm[2],
