@@ -85,10 +85,26 @@ static void rounds_that_help_are_kept_and_counted(void **state) {
   mr_world_destroy(w);
 }
 
+/* max_iter bounds the rounds: the converging case above, allowed one
+ * round, takes that one and stops, better than it started and still short
+ * of the tolerance; the step's fallback (step.c) counts on its 20. */
+static void the_rounds_stop_at_max_iter(void **state) {
+  (void)state;
+  const double a[3] = { 0, 0, 0 }, b[3] = { 1.2, 0, 0 }, p[3] = { 0.6, 0.5, 0 };
+  int id;
+  mr_world *w = two_links(a, b, p, 1.0, &id);
+  const double e0 = mr_constraints_deviation(w, w->t, w->x);
+  assert_int_equal(mr_project_positions(w, w->t, w->x, w->v, 1e-12, 1), 1);
+  const double e1 = mr_constraints_deviation(w, w->t, w->x);
+  assert_true(e1 < e0 && e1 > 1e-12);
+  mr_world_destroy(w);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_harmful_round_is_undone_and_reported),
     cmocka_unit_test(rounds_that_help_are_kept_and_counted),
+    cmocka_unit_test(the_rounds_stop_at_max_iter),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
