@@ -65,20 +65,28 @@ static void antigravity_scales_with_puppet_mass_and_trigger_distance(void **stat
   mr_world_destroy(w);
 }
 
+/* An acted particle at the origin, its control at (0, 1, 0) and the
+ * trigger at (1, 0, 0), 1 kg each, joined by a triggered action. */
+static mr_world *triggered_rig(double gain, double max_force, int *acted, int *control) {
+  mr_world *w = make(MR_EFFECT_TRIGGERED, 0.0);
+  *acted = particle(w, 0, 0, 0, 1.0, -1);
+  *control = particle(w, 0, 1, 0, 1.0, -1);
+  mr_triggered_def tr = mr_default_triggered_def();
+  tr.acted = *acted;
+  tr.control = *control;
+  tr.trigger = particle(w, 1, 0, 0, 1.0, -1);
+  tr.gain = gain;
+  tr.max_force = max_force;
+  assert_int_equal(mr_world_add_triggered(w, &tr, NULL), MR_OK);
+  return w;
+}
+
 /* Triggered action: pulling the control 0.1 m further from the trigger
  * pushes the acted particle towards the control with gain·M·Δd. */
 static void triggered_force_follows_control_trigger_distance(void **state) {
   (void)state;
-  mr_world *w = make(MR_EFFECT_TRIGGERED, 0.0);
-  int acted = particle(w, 0, 0, 0, 1.0, -1), control = particle(w, 0, 1, 0, 1.0, -1),
-      trig = particle(w, 1, 0, 0, 1.0, -1);
-  mr_triggered_def tr = mr_default_triggered_def();
-  tr.acted = acted;
-  tr.control = control;
-  tr.trigger = trig;
-  tr.gain = 2.0;
-  tr.max_force = 100.0;
-  assert_int_equal(mr_world_add_triggered(w, &tr, NULL), MR_OK);
+  int acted, control;
+  mr_world *w = triggered_rig(2.0, 100.0, &acted, &control);
   double a[3];
   accel(w, acted, 1e-4, a);
   assert_true(fabs(a[0]) + fabs(a[1]) + fabs(a[2]) < 1e-9); /* d = d0: no force */
@@ -552,16 +560,8 @@ static void rigid_group_of_seven_stays_rigid(void **state) {
  * fling the limb at 75 times the force it may have. */
 static void triggered_push_is_capped_at_max_force(void **state) {
   (void)state;
-  mr_world *w = make(MR_EFFECT_TRIGGERED, 0.0);
-  int acted = particle(w, 0, 0, 0, 1.0, -1), control = particle(w, 0, 1, 0, 1.0, -1),
-      trig = particle(w, 1, 0, 0, 1.0, -1);
-  mr_triggered_def tr = mr_default_triggered_def();
-  tr.acted = acted;
-  tr.control = control;
-  tr.trigger = trig;
-  tr.gain = 200.0;
-  tr.max_force = 4.0;
-  assert_int_equal(mr_world_add_triggered(w, &tr, NULL), MR_OK);
+  int acted, control;
+  mr_world *w = triggered_rig(200.0, 4.0, &acted, &control);
   double d0 = sqrt(2.0), s = (d0 - 0.5) / d0;
   double xc[3] = { 1 - s, s, 0 }, zero[3] = { 0, 0, 0 };
   assert_int_equal(mr_world_set_particle_state(w, control, xc, zero), MR_OK);
