@@ -294,6 +294,52 @@ static void a_watcher_that_joins_late_gets_the_retained_scene(void **state) {
   free(dir);
 }
 
+/* The watcher draws at the show's own rate, down to the slowest a scene
+ * may ask for: a show of puppet.yaml at 1 frame a second is watched for
+ * 3 s in at most 4 pictures (the first, then one a second), where the
+ * watcher's own default, 60 a second, would draw a hundred or more. */
+static void a_show_at_one_frame_a_second_is_watched_at_its_rate(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  tb_broker b;
+  assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
+  char *text = tt_read_file(MR_SOURCE_DIR "/host/scenes/puppet.yaml", NULL);
+  assert_non_null(text);
+  char *sim = strstr(text, "\nsim:\n");
+  assert_non_null(sim);
+  char scene[600];
+  snprintf(scene, sizeof scene, "%s", tt_path(dir, "slow.yaml"));
+  FILE *f = fopen(scene, "w");
+  assert_non_null(f);
+  fprintf(f, "%.*s\nsim:\n  fps: 1\n%s", (int)(sim - text), text, sim + strlen("\nsim:\n"));
+  fclose(f);
+  free(text);
+  const char *take = tt_path(dir, "glove.bin");
+  char take_src[600];
+  snprintf(take_src, sizeof take_src, "file:%s", take);
+  const char *gen_argv[] = { glove_gen, "-o", take, "--fast", "-d", "8", NULL };
+  assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
+  const char *run_argv[] = {
+    marionette,   "run",    scene, "--glove", take_src, "--publish", url_of(&b, "show/slow"),
+    "--headless", "--time", "6",   "-q",      NULL
+  };
+  pid_t show = tt_spawn(run_argv, tt_path(dir, "run.out"), tt_path(dir, "run.err"));
+  const char *watch_argv[] = {
+    marionette, "watch",   url_of(&b, "show/slow"),   "--headless", "--time", "3",  "--wait",
+    "5",        "--sheet", tt_path(dir, "sheet.png"), "--size",     "160x90", "-q", NULL
+  };
+  assert_int_equal(tt_run(watch_argv, tt_path(dir, "watch.out"), tt_path(dir, "watch.err"), 30), 0);
+  char *out = tt_read_file(tt_path(dir, "watch.out"), NULL);
+  assert_non_null(strstr(out, "scene: simple marionette ("));
+  const long long pictures = num(out, "pictures");
+  if (pictures < 1 || pictures > 4) fail_msg("expected 1 to 4 pictures in 3 s at 1 fps:\n%s", out);
+  free(out);
+  assert_int_equal(tt_wait(show, 30), 0);
+  tb_broker_stop(&b, 0);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* Garbage, frames cut short, an empty message and one over the
  * watcher's limit, all on the show's topic while it plays: each counted
  * where it belongs, the watcher unhurt and the show's frames all read. */
@@ -560,6 +606,8 @@ int main(int argc, char **argv) {
     cmocka_unit_test_teardown(
         a_watcher_sees_the_shows_particles_within_a_step_and_exactly_the_induced_losses,
         tb_broker_stop_all),
+    cmocka_unit_test_teardown(a_show_at_one_frame_a_second_is_watched_at_its_rate,
+                              tb_broker_stop_all),
     cmocka_unit_test_teardown(a_watcher_that_joins_late_gets_the_retained_scene,
                               tb_broker_stop_all),
     cmocka_unit_test_teardown(
