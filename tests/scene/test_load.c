@@ -613,6 +613,34 @@ static void absurd_values_empty_values_and_tags(void **state) {
   mr_scene_free(&s);
 }
 
+/* The name field holds MR_SCENE_NAME_MAX bytes with its NUL: the longest
+ * name that fits loads whole, one character more is refused rather than
+ * written past the end. */
+static void names_at_the_length_bound(void **state) {
+  (void)state;
+  char name[MR_SCENE_NAME_MAX + 1];
+  memset(name, 'n', sizeof name - 1);
+  name[MR_SCENE_NAME_MAX - 1] = '\0';
+  char text[512];
+  snprintf(text, sizeof text,
+           "physics:\n  effects: [gravity]\n"
+           "  particles: [{name: %s, position: [0, 1, 0], mass: 1}]\n",
+           name);
+  mr_scene s;
+  mr_scene_error e;
+  assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
+  assert_string_equal(s.particles[0].name, name);
+  mr_scene_free(&s);
+  name[MR_SCENE_NAME_MAX - 1] = 'n';
+  name[MR_SCENE_NAME_MAX] = '\0';
+  snprintf(text, sizeof text,
+           "physics:\n  effects: [gravity]\n"
+           "  particles: [{name: %s, position: [0, 1, 0], mass: 1}]\n",
+           name);
+  expect_error(text, MR_SCENE_ERR_VALUE,
+               "t.yaml:3:22: expected a name of at most 47 characters for particle name");
+}
+
 /* FORMAT.md's table of ranges is the loader's, row for row. */
 static void format_md_lists_every_range(void **state) {
   (void)state;
@@ -680,6 +708,7 @@ int main(void) {
     cmocka_unit_test(absurd_values_empty_values_and_tags),
     cmocka_unit_test(format_md_lists_every_range),
     cmocka_unit_test(glove_mappings_are_read),
+    cmocka_unit_test(names_at_the_length_bound),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
