@@ -641,6 +641,16 @@ static void names_at_the_length_bound(void **state) {
                "t.yaml:3:22: expected a name of at most 47 characters for particle name");
 }
 
+/* A fourth coordinate is a typo to show, not a number to drop. */
+static void a_point_of_four_numbers_is_refused(void **state) {
+  (void)state;
+  expect_error("physics:\n  effects: [gravity]\n"
+               "  particles: [{name: a, position: [0, 1, 0, 5], mass: 1}]\n",
+               MR_SCENE_ERR_SCHEMA,
+               "t.yaml:3:35: expected [x, y, z] (three numbers) for position, got a sequence of "
+               "4 items");
+}
+
 /* FORMAT.md's table of ranges is the loader's, row for row. */
 static void format_md_lists_every_range(void **state) {
   (void)state;
@@ -709,6 +719,7 @@ int main(void) {
     cmocka_unit_test(format_md_lists_every_range),
     cmocka_unit_test(glove_mappings_are_read),
     cmocka_unit_test(names_at_the_length_bound),
+    cmocka_unit_test(a_point_of_four_numbers_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
