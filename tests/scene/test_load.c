@@ -651,6 +651,24 @@ static void a_point_of_four_numbers_is_refused(void **state) {
                "4 items");
 }
 
+/* Two keyframes at one time would ask the frame to jump between poses in
+ * no time. */
+static void keyframes_at_the_same_time_are_refused(void **state) {
+  (void)state;
+  expect_error("physics:\n"
+               "  effects: [control]\n"
+               "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
+               "  control:\n"
+               "    points: [{name: bar, offset: [1, 0, 0]}]\n"
+               "    pose: {position: [0, 2, 0]}\n"
+               "    track:\n"
+               "      keyframes:\n"
+               "        - {t: 1, position: [0, 2, 0]}\n"
+               "        - {t: 1, position: [2, 2, 0]}\n",
+               MR_SCENE_ERR_VALUE,
+               "t.yaml:10:15: expected keyframe times in increasing order, got 1 after 1");
+}
+
 /* FORMAT.md's table of ranges is the loader's, row for row. */
 static void format_md_lists_every_range(void **state) {
   (void)state;
@@ -720,6 +738,7 @@ int main(void) {
     cmocka_unit_test(glove_mappings_are_read),
     cmocka_unit_test(names_at_the_length_bound),
     cmocka_unit_test(a_point_of_four_numbers_is_refused),
+    cmocka_unit_test(keyframes_at_the_same_time_are_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
