@@ -669,6 +669,18 @@ static void keyframes_at_the_same_time_are_refused(void **state) {
                "t.yaml:10:15: expected keyframe times in increasing order, got 1 after 1");
 }
 
+/* A count of resets below zero can never be met, and one too large for a
+ * long is not a number the check could compare. */
+static void resets_out_of_range_are_refused(void **state) {
+  (void)state;
+  expect_error(BASE "expect: {resets: {min: -1}}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:24: expected min >= 0");
+  expect_error(BASE "expect: {resets: {max: -1}}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:24: expected max >= 0");
+  expect_error(BASE "expect: {resets: 99999999999999999999}\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:6:18: expected an integer for resets, got '99999999999999999999'");
+}
+
 /* FORMAT.md's table of ranges is the loader's, row for row. */
 static void format_md_lists_every_range(void **state) {
   (void)state;
@@ -739,6 +751,7 @@ int main(void) {
     cmocka_unit_test(names_at_the_length_bound),
     cmocka_unit_test(a_point_of_four_numbers_is_refused),
     cmocka_unit_test(keyframes_at_the_same_time_are_refused),
+    cmocka_unit_test(resets_out_of_range_are_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
