@@ -681,6 +681,15 @@ static void resets_out_of_range_are_refused(void **state) {
                "t.yaml:6:18: expected an integer for resets, got '99999999999999999999'");
 }
 
+/* An empty value has no place of its own and is shown where its key
+ * ends; a quoted key ends after its closing quote. */
+static void an_empty_value_after_a_quoted_key_is_placed_at_its_colon(void **state) {
+  (void)state;
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n"
+               "    - {name: a, position: [0, 1, 0], \"mass\": }\n",
+               MR_SCENE_ERR_SCHEMA, "t.yaml:4:44: expected a number for mass, got nothing");
+}
+
 /* FORMAT.md's table of ranges is the loader's, row for row. */
 static void format_md_lists_every_range(void **state) {
   (void)state;
@@ -752,6 +761,7 @@ int main(void) {
     cmocka_unit_test(a_point_of_four_numbers_is_refused),
     cmocka_unit_test(keyframes_at_the_same_time_are_refused),
     cmocka_unit_test(resets_out_of_range_are_refused),
+    cmocka_unit_test(an_empty_value_after_a_quoted_key_is_placed_at_its_colon),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
