@@ -161,12 +161,32 @@ static void a_24_digit_glove_uid_is_read_whole(void **state) {
                "list-ports prints it), got '00c0ffee12345678abcdef0'");
 }
 
+/* A scene may bind up to 64 gloves by order: the 64th is read (0-based
+ * 63) and a 65th is refused at its place. */
+static void glove_order_64_is_read_and_65_is_refused(void **state) {
+  (void)state;
+  char text[1024];
+  const char *glove = "    glove: {order: %s}\n";
+  char fmt[512];
+  snprintf(fmt, sizeof fmt, "%s%s", FRAME, glove);
+  mr_scene s;
+  snprintf(text, sizeof text, fmt, "64");
+  load(text, &s);
+  assert_int_equal(s.frames[0].glove.by, MR_SCENE_BIND_ORDER);
+  assert_int_equal(s.frames[0].glove.order, 63);
+  mr_scene_free(&s);
+  snprintf(text, sizeof text, fmt, "65");
+  expect_error(text, MR_SCENE_ERR_VALUE,
+               "t.yaml:7:20: expected order between 1 and 64 (the first glove is 1), got 65");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_dead_zone_above_half_is_refused_at_load),
     cmocka_unit_test(exactly_the_most_mappings_are_read_and_one_more_is_refused),
     cmocka_unit_test(puppets_beside_the_scenes_own_particles_are_numbered_after_them),
     cmocka_unit_test(a_24_digit_glove_uid_is_read_whole),
+    cmocka_unit_test(glove_order_64_is_read_and_65_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
