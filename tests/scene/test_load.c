@@ -340,6 +340,38 @@ static void degenerate_groups_are_refused(void **state) {
                "in general position (§5.1)");
 }
 
+/* A rigid group holds at most 64 members (the loader's shape check has
+ * room for that many): 64 along a helix, no four coplanar, load as one
+ * group, and a 65th is refused at the member list. */
+static void a_group_of_64_loads_and_65_is_refused(void **state) {
+  (void)state;
+  char text[8192];
+  for (int members = 64; members <= 65; members++) {
+    size_t n = (size_t)snprintf(text, sizeof text,
+                                "physics:\n  effects: [gravity, constraints]\n  particles:\n");
+    for (int i = 0; i < members; i++)
+      n += (size_t)snprintf(text + n, sizeof text - n,
+                            "    - {name: p%d, position: [%.6f, %.6f, %.2f], mass: 1}\n", i,
+                            cos(2.0 * i), sin(2.0 * i), 0.25 * i);
+    n += (size_t)snprintf(text + n, sizeof text - n, "  groups:\n    - {name: g, particles: [");
+    for (int i = 0; i < members; i++)
+      n += (size_t)snprintf(text + n, sizeof text - n, "%sp%d", i ? ", " : "", i);
+    n += (size_t)snprintf(text + n, sizeof text - n, "]}\n");
+    assert_true(n < sizeof text);
+    if (members == 64) {
+      mr_scene s;
+      mr_scene_error e;
+      if (mr_scene_load_text("t.yaml", text, n, &s, &e) != MR_SCENE_OK) fail_msg("%s", e.text);
+      assert_int_equal(s.n_groups, 1);
+      assert_int_equal(s.groups[0].def.count, 64);
+      mr_scene_free(&s);
+    } else {
+      expect_error(text, MR_SCENE_ERR_VALUE,
+                   "t.yaml:70:28: expected 2 to 64 particles in group 'g', got 65");
+    }
+  }
+}
+
 /* A part's restitution and friction (Coulomb μ against other parts) are
  * read; a negative friction names its place. */
 /* Four bytes that hang libfyaml ('%x', a lone 0xC3, a newline) never reach
@@ -744,6 +776,7 @@ int main(void) {
     cmocka_unit_test(every_physics_force_kind_has_a_scene_section),
     cmocka_unit_test(integrator_and_method_come_from_the_libraries_tables),
     cmocka_unit_test(degenerate_groups_are_refused),
+    cmocka_unit_test(a_group_of_64_loads_and_65_is_refused),
     cmocka_unit_test(part_friction_is_read_and_checked),
     cmocka_unit_test(malformed_utf8_is_refused_before_the_parser),
     cmocka_unit_test(deep_nesting_is_refused),
