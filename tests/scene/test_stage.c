@@ -323,6 +323,22 @@ static void the_audience_camera_sits_where_the_puppets_face_and_may_follow(void 
   mr_scene_free(&s);
 }
 
+/* stage.size takes 16 to 16384 pixels each way, both ends included: a
+ * window of exactly the bounds opens, one pixel beyond is refused at that
+ * number. */
+static void stage_size_at_its_bounds(void **state) {
+  (void)state;
+  mr_scene s;
+  load("t.yaml", SMALL "stage: {size: [16, 16384]}\n", &s);
+  assert_int_equal(s.stage.width, 16);
+  assert_int_equal(s.stage.height, 16384);
+  mr_scene_free(&s);
+  expect_error(SMALL "stage: {size: [16, 16385]}\n",
+               "t.yaml:7:20: expected stage.size between 16 and 16384 pixels, got 16385");
+  expect_error(SMALL "stage: {size: [15, 16384]}\n",
+               "t.yaml:7:16: expected stage.size between 16 and 16384 pixels, got 15");
+}
+
 static void mistakes_are_refused_at_their_place(void **state) {
   (void)state;
   static const struct {
@@ -486,6 +502,7 @@ int main(void) {
     cmocka_unit_test(a_freeform_puppet_binds_every_particle_of_it),
     cmocka_unit_test(the_audience_camera_sits_where_the_puppets_face_and_may_follow),
     cmocka_unit_test(mistakes_are_refused_at_their_place),
+    cmocka_unit_test(stage_size_at_its_bounds),
     cmocka_unit_test(format_md_stage_example_loads),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
