@@ -372,6 +372,23 @@ static void a_group_of_64_loads_and_65_is_refused(void **state) {
   }
 }
 
+/* Where two step settings may meet: dt_floor may equal dt_min (the
+ * floor is the step's last resort below it), but the divergence bound
+ * must lie strictly above threshold_max, or a step the controller would
+ * keep counts as diverged. */
+static void step_settings_where_they_meet(void **state) {
+  (void)state;
+  const char *ok = BASE "  ats: {dt_min: 0.001, dt_floor: 0.001, threshold_max: 0.1, "
+                        "divergence: 0.2}\n";
+  mr_scene s;
+  mr_scene_error e;
+  if (mr_scene_load_text("t.yaml", ok, strlen(ok), &s, &e) != MR_SCENE_OK) fail_msg("%s", e.text);
+  assert_true(s.world.dt_floor == 0.001 && s.world.dt_min == 0.001);
+  mr_scene_free(&s);
+  expect_error(BASE "  ats: {threshold_max: 0.1, divergence: 0.1}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:41: expected divergence above threshold_max (0.1), got 0.1");
+}
+
 /* A part's restitution and friction (Coulomb μ against other parts) are
  * read; a negative friction names its place. */
 /* Four bytes that hang libfyaml ('%x', a lone 0xC3, a newline) never reach
@@ -777,6 +794,7 @@ int main(void) {
     cmocka_unit_test(integrator_and_method_come_from_the_libraries_tables),
     cmocka_unit_test(degenerate_groups_are_refused),
     cmocka_unit_test(a_group_of_64_loads_and_65_is_refused),
+    cmocka_unit_test(step_settings_where_they_meet),
     cmocka_unit_test(part_friction_is_read_and_checked),
     cmocka_unit_test(malformed_utf8_is_refused_before_the_parser),
     cmocka_unit_test(deep_nesting_is_refused),
