@@ -389,6 +389,19 @@ static void step_settings_where_they_meet(void **state) {
                "t.yaml:6:41: expected divergence above threshold_max (0.1), got 0.1");
 }
 
+/* sim.max_steps counts steps a run may take; none is no run at all. */
+static void max_steps_of_zero_is_refused(void **state) {
+  (void)state;
+  expect_error(BASE "sim: {max_steps: 0}\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:6:18: expected max_steps between 1 and 1000000000, got 0");
+  const char *ok = BASE "sim: {max_steps: 1}\n";
+  mr_scene s;
+  mr_scene_error e;
+  if (mr_scene_load_text("t.yaml", ok, strlen(ok), &s, &e) != MR_SCENE_OK) fail_msg("%s", e.text);
+  assert_int_equal(s.max_steps, 1);
+  mr_scene_free(&s);
+}
+
 /* A part's restitution and friction (Coulomb μ against other parts) are
  * read; a negative friction names its place. */
 /* Four bytes that hang libfyaml ('%x', a lone 0xC3, a newline) never reach
@@ -795,6 +808,7 @@ int main(void) {
     cmocka_unit_test(degenerate_groups_are_refused),
     cmocka_unit_test(a_group_of_64_loads_and_65_is_refused),
     cmocka_unit_test(step_settings_where_they_meet),
+    cmocka_unit_test(max_steps_of_zero_is_refused),
     cmocka_unit_test(part_friction_is_read_and_checked),
     cmocka_unit_test(malformed_utf8_is_refused_before_the_parser),
     cmocka_unit_test(deep_nesting_is_refused),
