@@ -402,6 +402,31 @@ static void max_steps_of_zero_is_refused(void **state) {
   mr_scene_free(&s);
 }
 
+/* A puppet standing on the floor is the common start: a particle whose
+ * bottom (y - radius) is at the floor's height loads, as does one a hair
+ * (under MR_SCENE_COINCIDENT_M) below it from rounding; one a millimetre
+ * below is refused at the particle. */
+static void a_particle_resting_on_the_floor_loads(void **state) {
+  (void)state;
+  static const char *const fmt = "physics:\n  effects: [gravity, floor]\n  particles:\n"
+                                 "    - {name: a, position: [0, %s, 0], mass: 1, radius: 0.1}\n"
+                                 "  floor: {height: 0.5}\n";
+  static const char *const fine[] = { "0.6", "0.5999995" };
+  char text[256];
+  for (size_t i = 0; i < sizeof fine / sizeof fine[0]; i++) {
+    snprintf(text, sizeof text, fmt, fine[i]);
+    mr_scene s;
+    mr_scene_error e;
+    if (mr_scene_load_text("t.yaml", text, strlen(text), &s, &e) != MR_SCENE_OK)
+      fail_msg("%s: %s", fine[i], e.text);
+    mr_scene_free(&s);
+  }
+  snprintf(text, sizeof text, fmt, "0.599");
+  expect_error(text, MR_SCENE_ERR_VALUE,
+               "t.yaml:4:7: particle 'a' starts below the floor (y - radius = 0.499 < 0.5); "
+               "expected it on or above the floor");
+}
+
 /* A part's restitution and friction (Coulomb μ against other parts) are
  * read; a negative friction names its place. */
 /* Four bytes that hang libfyaml ('%x', a lone 0xC3, a newline) never reach
@@ -809,6 +834,7 @@ int main(void) {
     cmocka_unit_test(a_group_of_64_loads_and_65_is_refused),
     cmocka_unit_test(step_settings_where_they_meet),
     cmocka_unit_test(max_steps_of_zero_is_refused),
+    cmocka_unit_test(a_particle_resting_on_the_floor_loads),
     cmocka_unit_test(part_friction_is_read_and_checked),
     cmocka_unit_test(malformed_utf8_is_refused_before_the_parser),
     cmocka_unit_test(deep_nesting_is_refused),
