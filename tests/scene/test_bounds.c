@@ -180,6 +180,17 @@ static void glove_order_64_is_read_and_65_is_refused(void **state) {
                "t.yaml:7:20: expected order between 1 and 64 (the first glove is 1), got 65");
 }
 
+/* A glove is told which mapping to use by name, so a name may be given
+ * once: the second of two mappings that share one is refused at its
+ * name, whether or not another mapping lies between them. */
+static void a_mapping_name_given_twice_is_refused(void **state) {
+  (void)state;
+  expect_error(FRAME "mapping: [{name: m}, {name: m}]\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:7:29: expected a unique mapping name, 'm' is already declared");
+  expect_error(FRAME "mapping: [{name: m}, {name: n}, {name: m}]\n", MR_SCENE_ERR_VALUE,
+               "t.yaml:7:40: expected a unique mapping name, 'm' is already declared");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_dead_zone_above_half_is_refused_at_load),
@@ -187,6 +198,7 @@ int main(void) {
     cmocka_unit_test(puppets_beside_the_scenes_own_particles_are_numbered_after_them),
     cmocka_unit_test(a_24_digit_glove_uid_is_read_whole),
     cmocka_unit_test(glove_order_64_is_read_and_65_is_refused),
+    cmocka_unit_test(a_mapping_name_given_twice_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
