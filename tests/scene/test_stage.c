@@ -339,6 +339,28 @@ static void stage_size_at_its_bounds(void **state) {
                "t.yaml:7:16: expected stage.size between 16 and 16384 pixels, got 15");
 }
 
+/* A model takes up to MR_STAGE_MAX_MATERIALS materials, the last one
+ * included; one more is refused at the list. */
+static void a_model_takes_its_most_materials(void **state) {
+  (void)state;
+  char list[256] = "", text[1024];
+  size_t n = 0;
+  for (int i = 0; i < MR_STAGE_MAX_MATERIALS; i++)
+    n += (size_t)snprintf(list + n, sizeof list - n, "%s{}", i ? ", " : "");
+  snprintf(text, sizeof text,
+           SMALL "models: [{name: m, shape: box, particle: a, materials: [%s]}]\n", list);
+  mr_scene s;
+  load("t.yaml", text, &s);
+  assert_int_equal(s.stage.models[0].n_materials, MR_STAGE_MAX_MATERIALS);
+  mr_scene_free(&s);
+  snprintf(text, sizeof text,
+           SMALL "models: [{name: m, shape: box, particle: a, materials: [%s, {}]}]\n", list);
+  char want[128];
+  snprintf(want, sizeof want, "t.yaml:7:56: expected 1 to %d materials for model 'm', got %d",
+           MR_STAGE_MAX_MATERIALS, MR_STAGE_MAX_MATERIALS + 1);
+  expect_error(text, want);
+}
+
 static void mistakes_are_refused_at_their_place(void **state) {
   (void)state;
   static const struct {
@@ -503,6 +525,7 @@ int main(void) {
     cmocka_unit_test(the_audience_camera_sits_where_the_puppets_face_and_may_follow),
     cmocka_unit_test(mistakes_are_refused_at_their_place),
     cmocka_unit_test(stage_size_at_its_bounds),
+    cmocka_unit_test(a_model_takes_its_most_materials),
     cmocka_unit_test(format_md_stage_example_loads),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
