@@ -462,6 +462,17 @@ static void control_bytes_in_errors_are_escaped(void **state) {
                "string_correction, puppets");
 }
 
+/* DEL (0x7f) is a control byte too: a terminal may act on it, so an
+ * error shows it as \x7f. */
+static void delete_in_errors_is_escaped(void **state) {
+  (void)state;
+  expect_error("physics:\n  effects: [gravity]\n  \"a\\x7fb\": 1\n", MR_SCENE_ERR_SCHEMA,
+               "t.yaml:3:3: unknown key 'a\\x7fb' in physics; expected one of: effects, "
+               "gravity, drag, ats, solver, contact, particles, control, constraints, groups, "
+               "springs, strings, sine_springs, antigravity, triggered, floor, parts, "
+               "string_correction, puppets");
+}
+
 static void part_friction_is_read_and_checked(void **state) {
   (void)state;
   const char *fx = "physics:\n"
@@ -839,6 +850,7 @@ int main(void) {
     cmocka_unit_test(malformed_utf8_is_refused_before_the_parser),
     cmocka_unit_test(deep_nesting_is_refused),
     cmocka_unit_test(control_bytes_in_errors_are_escaped),
+    cmocka_unit_test(delete_in_errors_is_escaped),
     cmocka_unit_test(syntax_errors_name_the_place),
     cmocka_unit_test(not_yaml_is_refused),
     cmocka_unit_test(missing_file_is_an_io_error),
