@@ -473,6 +473,18 @@ static void delete_in_errors_is_escaped(void **state) {
                "string_correction, puppets");
 }
 
+/* A long value is quoted in an error by its first 39 characters and
+ * "...", so the message stays one readable line. */
+static void a_long_value_is_shown_cut(void **state) {
+  (void)state;
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n"
+               "    - {name: a, position: [0, 1, 0], "
+               "mass: abcdefghijklmnopqrstuvwxyz0123456789ABCDEFGHIJ}\n",
+               MR_SCENE_ERR_SCHEMA,
+               "t.yaml:4:44: expected a number for mass, got "
+               "'abcdefghijklmnopqrstuvwxyz0123456789ABC...'");
+}
+
 static void part_friction_is_read_and_checked(void **state) {
   (void)state;
   const char *fx = "physics:\n"
@@ -851,6 +863,7 @@ int main(void) {
     cmocka_unit_test(deep_nesting_is_refused),
     cmocka_unit_test(control_bytes_in_errors_are_escaped),
     cmocka_unit_test(delete_in_errors_is_escaped),
+    cmocka_unit_test(a_long_value_is_shown_cut),
     cmocka_unit_test(syntax_errors_name_the_place),
     cmocka_unit_test(not_yaml_is_refused),
     cmocka_unit_test(missing_file_is_an_io_error),
