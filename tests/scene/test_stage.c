@@ -361,6 +361,38 @@ static void a_model_takes_its_most_materials(void **state) {
   expect_error(text, want);
 }
 
+/* The scene's own sky holds at most 100000 stars in all constellations:
+ * exactly that many load, one more is refused at the list that passes
+ * the bound. */
+static void the_sky_holds_its_most_stars(void **state) {
+  (void)state;
+  enum { MOST = 100000 };
+  static const char star[] = "[0, 45, 1], ";
+  const size_t head = strlen(SMALL "stage: {constellations: [{name: a, stars: ["),
+               size = head + (MOST + 1) * (sizeof star - 1) + 64;
+  char *text = malloc(size);
+  assert_non_null(text);
+  for (int extra = 0; extra <= 1; extra++) {
+    size_t n = (size_t)snprintf(text, size, SMALL "stage: {constellations: [{name: a, stars: [");
+    for (int i = 0; i < MOST - 1 + extra; i++, n += sizeof star - 1)
+      memcpy(text + n, star, sizeof star - 1);
+    n += (size_t)snprintf(text + n, size - n, "]}, {name: b, stars: [[0, 45, 1]]}]}\n");
+    if (!extra) {
+      mr_scene s;
+      load("t.yaml", text, &s);
+      assert_int_equal(s.stage.n_stars, MOST);
+      mr_scene_free(&s);
+    } else {
+      const char *line = strstr(text, "stage:"), *list = strstr(text, "{name: b, stars: [");
+      char want[96];
+      snprintf(want, sizeof want, "t.yaml:7:%d: expected at most %d stars in all",
+               (int)(list + strlen("{name: b, stars: ") - line) + 1, MOST);
+      expect_error(text, want);
+    }
+  }
+  free(text);
+}
+
 static void mistakes_are_refused_at_their_place(void **state) {
   (void)state;
   static const struct {
@@ -526,6 +558,7 @@ int main(void) {
     cmocka_unit_test(mistakes_are_refused_at_their_place),
     cmocka_unit_test(stage_size_at_its_bounds),
     cmocka_unit_test(a_model_takes_its_most_materials),
+    cmocka_unit_test(the_sky_holds_its_most_stars),
     cmocka_unit_test(format_md_stage_example_loads),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
