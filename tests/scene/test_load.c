@@ -474,12 +474,26 @@ static void delete_in_errors_is_escaped(void **state) {
 }
 
 /* A long value is quoted in an error by its first 39 characters and
- * "...", so the message stays one readable line. */
+ * "...", so the message stays one readable line; "..." says that some
+ * was left out, so a value of 39 characters is shown whole without it,
+ * and one of 40 loses its last. */
 static void a_long_value_is_shown_cut(void **state) {
   (void)state;
   expect_error("physics:\n  effects: [gravity]\n  particles:\n"
                "    - {name: a, position: [0, 1, 0], "
                "mass: abcdefghijklmnopqrstuvwxyz0123456789ABCDEFGHIJ}\n",
+               MR_SCENE_ERR_SCHEMA,
+               "t.yaml:4:44: expected a number for mass, got "
+               "'abcdefghijklmnopqrstuvwxyz0123456789ABC...'");
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n"
+               "    - {name: a, position: [0, 1, 0], "
+               "mass: abcdefghijklmnopqrstuvwxyz0123456789ABC}\n",
+               MR_SCENE_ERR_SCHEMA,
+               "t.yaml:4:44: expected a number for mass, got "
+               "'abcdefghijklmnopqrstuvwxyz0123456789ABC'");
+  expect_error("physics:\n  effects: [gravity]\n  particles:\n"
+               "    - {name: a, position: [0, 1, 0], "
+               "mass: abcdefghijklmnopqrstuvwxyz0123456789ABCD}\n",
                MR_SCENE_ERR_SCHEMA,
                "t.yaml:4:44: expected a number for mass, got "
                "'abcdefghijklmnopqrstuvwxyz0123456789ABC...'");

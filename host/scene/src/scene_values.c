@@ -87,7 +87,7 @@ static const char *shown(const mr_ynode *n, char *buf, size_t size) {
   for (const char *s = n->text; *s && k + 1 < sizeof tmp; s++)
     tmp[k++] = (*s == '\n' || *s == '\t') ? ' ' : *s;
   tmp[k] = '\0';
-  snprintf(buf, size, "'%s%s'", tmp, strlen(n->text) >= sizeof tmp - 1 ? "..." : "");
+  snprintf(buf, size, "'%s%s'", tmp, n->text[k] != '\0' ? "..." : "");
   return buf;
 }
 
