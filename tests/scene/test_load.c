@@ -133,18 +133,22 @@ static void settings_and_anchors_are_read(void **state) {
   mr_scene_free(&s);
 }
 
+/* A particle and a bar point on a frame that follows keyframes, given
+ * after this. */
+#define KEYFRAMED                                            \
+  "physics:\n"                                               \
+  "  effects: [control]\n"                                   \
+  "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n" \
+  "  control:\n"                                             \
+  "    points: [{name: bar, offset: [1, 0, 0]}]\n"           \
+  "    pose: {position: [0, 2, 0]}\n"                        \
+  "    track:\n"                                             \
+  "      keyframes:\n"
+
 static void keyframes_ease_and_hold(void **state) {
   (void)state;
-  const char *text = "physics:\n"
-                     "  effects: [control]\n"
-                     "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
-                     "  control:\n"
-                     "    points: [{name: bar, offset: [1, 0, 0]}]\n"
-                     "    pose: {position: [0, 2, 0]}\n"
-                     "    track:\n"
-                     "      keyframes:\n"
-                     "        - {t: 1, position: [0, 2, 0]}\n"
-                     "        - {t: 3, position: [2, 2, 0], rotation: [0, 0, 90]}\n";
+  const char *text = KEYFRAMED "        - {t: 1, position: [0, 2, 0]}\n"
+                               "        - {t: 3, position: [2, 2, 0], rotation: [0, 0, 90]}\n";
   mr_scene s;
   mr_scene_error e;
   assert_int_equal(mr_scene_load_text("t.yaml", text, strlen(text), &s, &e), MR_SCENE_OK);
@@ -779,16 +783,8 @@ static void a_point_of_four_numbers_is_refused(void **state) {
  * no time. */
 static void keyframes_at_the_same_time_are_refused(void **state) {
   (void)state;
-  expect_error("physics:\n"
-               "  effects: [control]\n"
-               "  particles: [{name: a, position: [0, 0, 0], mass: 1}]\n"
-               "  control:\n"
-               "    points: [{name: bar, offset: [1, 0, 0]}]\n"
-               "    pose: {position: [0, 2, 0]}\n"
-               "    track:\n"
-               "      keyframes:\n"
-               "        - {t: 1, position: [0, 2, 0]}\n"
-               "        - {t: 1, position: [2, 2, 0]}\n",
+  expect_error(KEYFRAMED "        - {t: 1, position: [0, 2, 0]}\n"
+                         "        - {t: 1, position: [2, 2, 0]}\n",
                MR_SCENE_ERR_VALUE,
                "t.yaml:10:15: expected keyframe times in increasing order, got 1 after 1");
 }
