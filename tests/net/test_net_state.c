@@ -166,6 +166,14 @@ static size_t check_within_step(const char *show_path, const char *dump_path) {
 }
 
 /* The number of a "key: N ..." line of a summary, or -1. */
+/* A glove take of secs seconds, made by glove-gen in dir: its source
+ * ("file:PATH") into src. */
+static void glove_take(const char *dir, const char *secs, char *src, size_t size) {
+  assert_true((size_t)snprintf(src, size, "file:%s", tt_path(dir, "glove.bin")) < size);
+  const char *gen_argv[] = { glove_gen, "-o", src + strlen("file:"), "--fast", "-d", secs, NULL };
+  assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
+}
+
 static long long num(const char *text, const char *key) {
   char v[200];
   return tt_field(text, key, v, sizeof v) == 0 ? atoll(v) : -1;
@@ -257,11 +265,8 @@ static void a_watcher_that_joins_late_gets_the_retained_scene(void **state) {
   char *dir = tt_tmpdir();
   tb_broker b;
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
-  const char *take = tt_path(dir, "glove.bin");
   char take_src[600];
-  snprintf(take_src, sizeof take_src, "file:%s", take);
-  const char *gen_argv[] = { glove_gen, "-o", take, "--fast", "-d", "6", NULL };
-  assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
+  glove_take(dir, "6", take_src, sizeof take_src);
   const char *run_argv[] = {
     marionette, "run", HUMANOID, "--glove", take_src, "--publish", url_of(&b, "show/late"),
     "--time",   "4",   "-q",     NULL
@@ -314,11 +319,8 @@ static void a_show_at_one_frame_a_second_is_watched_at_its_rate(void **state) {
   fprintf(f, "%.*s\nsim:\n  fps: 1\n%s", (int)(sim - text), text, sim + strlen("\nsim:\n"));
   fclose(f);
   free(text);
-  const char *take = tt_path(dir, "glove.bin");
   char take_src[600];
-  snprintf(take_src, sizeof take_src, "file:%s", take);
-  const char *gen_argv[] = { glove_gen, "-o", take, "--fast", "-d", "8", NULL };
-  assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
+  glove_take(dir, "8", take_src, sizeof take_src);
   const char *run_argv[] = {
     marionette,   "run",    scene, "--glove", take_src, "--publish", url_of(&b, "show/slow"),
     "--headless", "--time", "6",   "-q",      NULL
@@ -349,11 +351,8 @@ garbage_and_oversized_state_messages_are_counted_and_the_watcher_watches_on(void
   char *dir = tt_tmpdir();
   tb_broker b;
   assert_int_equal(tb_broker_start(&b, mosquitto, dir, "broker", 0, NULL), 0);
-  const char *take = tt_path(dir, "glove.bin");
   char take_src[600];
-  snprintf(take_src, sizeof take_src, "file:%s", take);
-  const char *gen_argv[] = { glove_gen, "-o", take, "--fast", "-d", "6", NULL };
-  assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
+  glove_take(dir, "6", take_src, sizeof take_src);
   const char *watch_argv[] = { marionette,   "watch",  url_of(&b, "show/g"),
                                "--headless", "--time", "5",
                                "-q",         NULL };
@@ -448,11 +447,8 @@ static void a_watcher_on_an_edge_bridged_to_the_origin_sees_every_frame(void **s
            sample, origin.port, at + strlen("ORIGIN:1883"));
   free(sample);
   assert_int_equal(tb_broker_start(&edge, mosquitto, dir, "edge", 0, conf), 0);
-  const char *take = tt_path(dir, "glove.bin");
   char take_src[600];
-  snprintf(take_src, sizeof take_src, "file:%s", take);
-  const char *gen_argv[] = { glove_gen, "-o", take, "--fast", "-d", "6", NULL };
-  assert_int_equal(tt_run(gen_argv, NULL, NULL, 30), 0);
+  glove_take(dir, "6", take_src, sizeof take_src);
   const char *watch_argv[] = { marionette,   "watch",  url_of(&edge, "show/e"),
                                "--headless", "--time", "5",
                                "-q",         NULL };
