@@ -22,13 +22,15 @@ mr_show_def mr_default_show_def(void) {
   return d;
 }
 
+static void tell(mr_show_error *e, const mr_scene *scene, mr_show_status st, const char *msg) {
+  e->status = st;
+  snprintf(e->message, sizeof e->message, "%.390s", msg);
+  snprintf(e->text, sizeof e->text, "%s: %s", scene ? scene->path : "show", e->message);
+}
+
 /* The first error is the one told: what follows from it is not news. */
 static mr_show_status fail(show *s, mr_show_status st, const char *msg) {
-  if (s->err.status != MR_SHOW_OK) return st;
-  s->err.status = st;
-  snprintf(s->err.message, sizeof s->err.message, "%.390s", msg);
-  snprintf(s->err.text, sizeof s->err.text, "%s: %s", s->scene ? s->scene->path : "show",
-           s->err.message);
+  if (s->err.status == MR_SHOW_OK) tell(&s->err, s->scene, st, msg);
   return st;
 }
 
@@ -299,9 +301,10 @@ static int make_controls(show *s, const char *mapping) {
       return fail(s, MR_SHOW_ERR_MAPPING, msg), -1;
     }
   }
-  s->n_frames = s->scene->n_frames;
-  s->frames = calloc(s->n_frames ? s->n_frames : 1, sizeof *s->frames);
+  /* n_frames counts the frames held, which close_parts destroys. */
+  s->frames = calloc(s->scene->n_frames ? s->scene->n_frames : 1, sizeof *s->frames);
   if (s->frames == NULL) return fail(s, MR_SHOW_ERR_NOMEM, "out of memory"), -1;
+  s->n_frames = s->scene->n_frames;
   for (size_t k = 0; k < s->n_frames; k++) {
     mr_mapping_def defs[MR_CONTROL_MAX_MAPPINGS];
     int n = 0;
@@ -460,7 +463,7 @@ mr_show_status mr_show_create(const mr_scene *scene, const mr_show_def *def, con
   if (out != NULL) *out = NULL;
   show *s = calloc(1, sizeof *s);
   if (s == NULL) {
-    if (err != NULL) err->status = MR_SHOW_ERR_NOMEM;
+    if (err != NULL) tell(err, scene, MR_SHOW_ERR_NOMEM, "out of memory");
     return MR_SHOW_ERR_NOMEM;
   }
   s->scene = scene;
