@@ -1,10 +1,9 @@
 /* Once warm, assembling J M⁻¹ Jᵀ and solving it allocates nothing, under
  * every method: the physics does both several times per step.
  *
- * The allocation functions are counted through the linker's --wrap
- * (tests/solver/CMakeLists.txt): every call to malloc, calloc, realloc,
- * aligned allocation or operator new from the library, the Eigen code
- * compiled into it, and this test goes through a counter first. */
+ * The allocation functions are counted by tests/common/alloc.h: every call
+ * to malloc, calloc, realloc, aligned allocation or operator new from the
+ * library, the Eigen code compiled into it, and this test. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,25 +13,8 @@
 #include <math.h>
 #include <cmocka.h>
 
+#include "alloc.h"
 #include "mr_solver.h"
-
-static int counting;
-static long allocations;
-
-#define COUNTED(ret, name, params, args) \
-  ret __real_##name params;              \
-  ret __wrap_##name params;              \
-  ret __wrap_##name params {             \
-    allocations += counting;             \
-    return __real_##name args;           \
-  }
-COUNTED(void *, malloc, (size_t n), (n))
-COUNTED(void *, calloc, (size_t n, size_t size), (n, size))
-COUNTED(void *, realloc, (void *p, size_t n), (p, n))
-COUNTED(void *, aligned_alloc, (size_t align, size_t n), (align, n))
-COUNTED(int, posix_memalign, (void **p, size_t align, size_t n), (p, align, n))
-COUNTED(void *, _Znwm, (size_t n), (n)) /* operator new */
-COUNTED(void *, _Znam, (size_t n), (n)) /* operator new[] */
 
 /* A chain of n particles hanging from a fixed first one, as the physics
  * builds it each evaluation: one distance row per link, pins along x on
@@ -123,11 +105,10 @@ static long allocations_when_warm(mr_solve_method method, int contact_every) {
   def.method = method;
   def.max_iter = 50; /* the count matters here, not the convergence */
   evaluate(&r, &def, 0.0, 1);
-  allocations = 0;
-  counting = 1;
+  tt_alloc_count(0);
   for (int it = 1; it <= 200; it++)
     evaluate(&r, &def, 0.01 * it, contact_every ? (it / contact_every) % 2 : 1);
-  counting = 0;
+  const long allocations = tt_alloc_stop();
   rig_free(&r);
   return allocations;
 }
@@ -168,10 +149,9 @@ static void reserving_room_makes_even_the_first_evaluation_allocation_free(void 
     mr_solve_def def = mr_default_solve_def();
     def.method = (mr_solve_method)m;
     def.max_iter = 50;
-    allocations = 0;
-    counting = 1;
+    tt_alloc_count(0);
     for (int it = 0; it < 100; it++) evaluate(&r, &def, 0.01 * it, (it / 10) % 2);
-    counting = 0;
+    const long allocations = tt_alloc_stop();
     rig_free(&r);
     if (allocations != 0)
       fail_msg("%s: %ld allocations after reserving", mr_solve_method_name(m), allocations);
@@ -194,13 +174,12 @@ static void reserving_refuses_negative_sizes(void **state) {
 static void a_cold_start_is_counted(void **state) {
   (void)state;
   rig r;
-  allocations = 0;
-  counting = 1;
+  tt_alloc_count(0);
   rig_init(&r);
   mr_solve_def def = mr_default_solve_def();
   def.method = MR_SOLVE_EIGEN;
   evaluate(&r, &def, 0.0, 1);
-  counting = 0;
+  const long allocations = tt_alloc_stop();
   rig_free(&r);
   assert_true(allocations > 3);
 }

@@ -4,10 +4,8 @@
  * And when an allocation at the start fails, the show says so and leaves
  * nothing behind (the sanitizers' leak check runs over this test).
  *
- * Allocations are counted, and one of them made to fail, through the
- * linker's --wrap (tests/theater/CMakeLists.txt): every call to malloc,
- * calloc, realloc, aligned allocation or operator new from the libraries
- * linked into this test goes through the counter first. */
+ * Allocations are counted, and one of them made to fail, by
+ * tests/common/alloc.h. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,7 +13,6 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,48 +22,8 @@
 #include "mr_scene.h"
 #include "mr_show.h"
 #include "mr_show_runner.h"
+#include "alloc.h"
 #include "proc.h"
-
-static int counting;
-static long allocations;
-static long fail_at; /* the allocation, counted from 1, that fails; 0: none */
-
-static int refused(void) {
-  if (!counting) return 0;
-  return ++allocations == fail_at;
-}
-
-#define COUNTED(ret, name, params, args) \
-  ret __real_##name params;              \
-  ret __wrap_##name params;              \
-  ret __wrap_##name params {             \
-    if (refused()) return NULL;          \
-    return __real_##name args;           \
-  }
-COUNTED(void *, malloc, (size_t n), (n))
-COUNTED(void *, calloc, (size_t n, size_t size), (n, size))
-COUNTED(void *, realloc, (void *p, size_t n), (p, n))
-COUNTED(void *, aligned_alloc, (size_t align, size_t n), (align, n))
-COUNTED(void *, _Znwm, (size_t n), (n)) /* operator new */
-COUNTED(void *, _Znam, (size_t n), (n)) /* operator new[] */
-
-int __real_posix_memalign(void **p, size_t align, size_t n);
-int __wrap_posix_memalign(void **p, size_t align, size_t n);
-int __wrap_posix_memalign(void **p, size_t align, size_t n) {
-  if (refused()) return ENOMEM;
-  return __real_posix_memalign(p, align, n);
-}
-
-static void count_from_here(long fail) {
-  allocations = 0;
-  fail_at = fail;
-  counting = 1;
-}
-
-static void stop_counting(void) {
-  counting = 0;
-  fail_at = 0;
-}
 
 /* --- a take and the puppet ------------------------------------------------ */
 
@@ -186,11 +143,11 @@ static void a_playing_show_allocates_nothing(void **state) {
   while (r.frames < 60) assert_int_equal(mr_show_tick(show), MR_SHOW_OK);
   const int before = r.frames;
   const uint64_t warm = r.last_hash;
-  count_from_here(0);
+  tt_alloc_count(0);
   mr_show_status st;
   while ((st = mr_show_tick(show)) == MR_SHOW_OK) {
   }
-  stop_counting();
+  const long allocations = tt_alloc_stop();
   assert_int_equal(st, MR_SHOW_ENDED);
   print_message("%d frames played after the first second, %ld allocations\n", r.frames - before,
                 allocations);
@@ -216,7 +173,7 @@ static mr_show_status show_play(rig *r, mr_show_error *err) {
     assert_null(show);
     return st;
   }
-  stop_counting();
+  tt_alloc_stop();
   while ((st = mr_show_tick(show)) == MR_SHOW_OK) {
   }
   assert_int_equal(st, MR_SHOW_ENDED);
@@ -239,7 +196,7 @@ static mr_show_status runner_play(rig *r, mr_show_error *err) {
     assert_null(runner);
     return st;
   }
-  stop_counting();
+  tt_alloc_stop();
   while (mr_show_runner_tick(runner) == MR_SHOW_OK) {
   }
   const mr_show_frame *latest = NULL;
@@ -266,10 +223,10 @@ static long each_allocation_failing(starter start, const char *what, long *refus
     mr_show_error err;
     memset(&err, 0, sizeof err);
     const int before = r.frames;
-    count_from_here(k);
+    tt_alloc_count(k);
     mr_show_status st = start(&r, &err);
-    stop_counting();
-    const int failed_one = allocations >= k;
+    tt_alloc_stop();
+    const int failed_one = tt_allocations() >= k;
     if (st == MR_SHOW_OK) {
       if (r.frames - before < 30)
         fail_msg("%s, allocation %ld failing: %d frames played", what, k, r.frames - before);
