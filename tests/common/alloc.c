@@ -24,7 +24,7 @@ long tt_allocations(void) {
   return allocations;
 }
 
-static int refused(void) {
+int tt_alloc_refused(void) {
   return counting && ++allocations == fail_at;
 }
 
@@ -32,19 +32,17 @@ static int refused(void) {
   ret __real_##name params;              \
   ret __wrap_##name params;              \
   ret __wrap_##name params {             \
-    if (refused()) return NULL;          \
+    if (tt_alloc_refused()) return NULL; \
     return __real_##name args;           \
   }
 COUNTED(void *, malloc, (size_t n), (n))
 COUNTED(void *, calloc, (size_t n, size_t size), (n, size))
 COUNTED(void *, realloc, (void *p, size_t n), (p, n))
 COUNTED(void *, aligned_alloc, (size_t align, size_t n), (align, n))
-COUNTED(void *, _Znwm, (size_t n), (n)) /* operator new */
-COUNTED(void *, _Znam, (size_t n), (n)) /* operator new[] */
 
 int __real_posix_memalign(void **p, size_t align, size_t n);
 int __wrap_posix_memalign(void **p, size_t align, size_t n);
 int __wrap_posix_memalign(void **p, size_t align, size_t n) {
-  if (refused()) return ENOMEM;
+  if (tt_alloc_refused()) return ENOMEM;
   return __real_posix_memalign(p, align, n);
 }
