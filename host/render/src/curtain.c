@@ -35,16 +35,17 @@ enum { COLUMNS_PER_PLEAT = 8 };
 /* One half in its own unit box: x from 0 (the outer edge) to 1 (the
  * inner), y from 0 (the floor) to 1 (the top), z the fold's offset, -1
  * to 1, towards the audience. */
-void mr_curtain_create(mr_render *r, const mr_stage_def *stage) {
+int mr_curtain_create(mr_render *r, const mr_stage_def *stage) {
   r->curtain_place = mr_curtain_place_of(stage);
-  if (!stage->curtain.show) return;
+  if (!stage->curtain.show) return 0;
   int pleats = (int)lround(r->curtain_place.width / 2 / PLEAT_M);
   if (pleats < 2) pleats = 2;
   if (pleats > 200) pleats = 200;
   size_t cols = (size_t)pleats * COLUMNS_PER_PLEAT + 1, nv = 2 * cols;
   float *pos = malloc(3 * nv * sizeof *pos), *nor = malloc(3 * nv * sizeof *nor);
   uint32_t *idx = malloc(6 * (cols - 1) * sizeof *idx);
-  if (pos && nor && idx) {
+  const int made = pos && nor && idx ? 0 : -1;
+  if (made == 0) {
     const double two_pi = 6.283185307179586;
     for (size_t c = 0; c < cols; c++) {
       double x = (double)c / (double)(cols - 1), a = two_pi * pleats * x;
@@ -65,6 +66,7 @@ void mr_curtain_create(mr_render *r, const mr_stage_def *stage) {
   free(pos);
   free(nor);
   free(idx);
+  return made;
 }
 
 void mr_curtain_matrix(const mr_render *r, float openness, int side, mat4 out) {

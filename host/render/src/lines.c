@@ -101,7 +101,7 @@ static bool line_quad(const mr_render *r, const mr_frame *f, const mr_draw_line 
 
 void mr_lines_draw(mr_render *r, const mr_draw_line *lines, size_t n, const mr_frame *f) {
   if (n == 0 || !lines) return;
-  float *v = malloc(n * LINE_VERTS * LINE_FLOATS * sizeof(float));
+  float *v = mr_render_scratch(r, MR_SCRATCH_LINES, n * LINE_VERTS * LINE_FLOATS * sizeof(float));
   if (!v) return;
   size_t drawn = 0;
   for (size_t i = 0; i < n; i++)
@@ -123,5 +123,4 @@ void mr_lines_draw(mr_render *r, const mr_draw_line *lines, size_t n, const mr_f
     gl->Disable(GL_BLEND);
     gl->UseProgram(0);
   }
-  free(v);
 }

@@ -81,17 +81,17 @@ void mr_mesh_free(mr_render *r, mr_gpu_mesh *g) {
   memset(g, 0, sizeof *g);
 }
 
-/* Each vertex's bones: `influences` nearest, padded to 4 with weight 0. */
+/* Each vertex's bones: `influences` nearest, padded to 4 with weight 0.
+ * 0, -1 when they cannot be bound, -2 when memory runs out. */
 static int skin_mesh(mr_render *r, mr_gpu_mesh *g, const mr_mesh *m, const mr_model_def *def) {
   int k = def->influences < 1 ? 1 : def->influences;
   if (k > MR_SKIN_MAX_INFLUENCES) k = MR_SKIN_MAX_INFLUENCES;
   size_t n = m->n_vertices;
   int *idx = calloc(n * (size_t)k, sizeof *idx), *idx4 = calloc(n * 4, sizeof *idx4);
   float *w = calloc(n * (size_t)k, sizeof *w), *w4 = calloc(n * 4, sizeof *w4);
-  int rc = -1;
-  if (idx && idx4 && w && w4 &&
-      mr_stage_skin_bind(m->positions, n, def->bones_rest, def->n_bones, k, idx, w) ==
-          MR_STAGE_OK) {
+  int rc = idx && idx4 && w && w4 ? -1 : -2;
+  if (rc == -1 && mr_stage_skin_bind(m->positions, n, def->bones_rest, def->n_bones, k, idx, w) ==
+                      MR_STAGE_OK) {
     for (size_t v = 0; v < n; v++) {
       for (int j = 0; j < k; j++) {
         idx4[v * 4 + (size_t)j] = idx[v * (size_t)k + (size_t)j];
@@ -150,10 +150,13 @@ static int upload_model(mr_render *r, mr_gpu_model *gm, const mr_model *model,
       upload_mesh(r, &gm->meshes[i], &model->meshes[i], NULL, NULL);
       gm->meshes[i].closed =
           def->shape != MR_SHAPE_FILE || mr_mesh_is_closed_outward(&model->meshes[i]);
-    } else if (!def->bones_rest || def->n_bones < 1 ||
-               skin_mesh(r, &gm->meshes[i], &model->meshes[i], def) != 0) {
-      snprintf(why, why_size, "cannot bind the mesh to its %d bones", def->n_bones);
-      return -1;
+    } else {
+      int rc = def->bones_rest && def->n_bones >= 1
+                   ? skin_mesh(r, &gm->meshes[i], &model->meshes[i], def)
+                   : -1;
+      if (rc == -2) snprintf(why, why_size, "out of memory");
+      if (rc == -1) snprintf(why, why_size, "cannot bind the mesh to its %d bones", def->n_bones);
+      if (rc != 0) return -1;
     }
   }
   return 0;
@@ -265,7 +268,11 @@ int mr_meshes_create(mr_render *r, const mr_stage_def *stage, const char *scene_
     *status = MR_RENDER_ERR_NOMEM;
     return -1;
   }
-  mr_curtain_create(r, stage);
+  if (mr_curtain_create(r, stage) != 0) {
+    *status = MR_RENDER_ERR_NOMEM;
+    snprintf(msg, msg_size, "the front curtain: out of memory");
+    return -1;
+  }
   r->models = calloc(stage->n_models ? stage->n_models : 1, sizeof *r->models);
   if (!r->models) {
     *status = MR_RENDER_ERR_NOMEM;
@@ -364,7 +371,7 @@ void mr_item_matrix(const mr_draw_item *item, mat4 out) {
 }
 
 void mr_bones_upload(mr_render *r, const mr_draw_skin *skin) {
-  float *data = malloc((size_t)skin->n_bones * 16 * sizeof(float));
+  float *data = mr_render_scratch(r, MR_SCRATCH_BONES, (size_t)skin->n_bones * 16 * sizeof(float));
   if (!data) return;
   for (int i = 0; i < skin->n_bones; i++) {
     mat4 m;
@@ -374,5 +381,4 @@ void mr_bones_upload(mr_render *r, const mr_draw_skin *skin) {
   r->gl.BindTexture(GL_TEXTURE_2D, r->bone_tex);
   r->gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
   r->gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 4, skin->n_bones, 0, GL_RGBA, GL_FLOAT, data);
-  free(data);
 }

@@ -116,10 +116,17 @@ mr_render_status mr_render_create(const mr_render_def *def, const mr_stage_def *
     snprintf(msg, msg_size, "out of memory");
     return MR_RENDER_ERR_NOMEM;
   }
+  r->scratch = calloc(MR_SCRATCH_COUNT, sizeof *r->scratch);
+  if (!r->scratch) {
+    free(r);
+    snprintf(msg, msg_size, "out of memory");
+    return MR_RENDER_ERR_NOMEM;
+  }
   r->stage = *stage;
   r->width = def->width > 0 ? def->width : (stage->width > 0 ? stage->width : 1280);
   r->height = def->height > 0 ? def->height : (stage->height > 0 ? stage->height : 720);
   if (backend_start(r, def, msg, msg_size) != 0) {
+    free(r->scratch);
     free(r);
     return MR_RENDER_ERR_BACKEND;
   }
@@ -148,7 +155,20 @@ void mr_render_destroy(mr_render *r) {
     mr_fbo_destroy(r);
   }
   if (r->ops) r->ops->stop(r);
+  for (int k = 0; k < MR_SCRATCH_COUNT; k++) free(r->scratch[k].p);
+  free(r->scratch);
   free(r);
+}
+
+void *mr_render_scratch(const mr_render *r, int k, size_t bytes) {
+  mr_scratch *s = &r->scratch[k];
+  if (bytes <= s->size) return s->p;
+  size_t want = bytes > 2 * s->size ? bytes : 2 * s->size;
+  void *p = realloc(s->p, want);
+  if (!p) return NULL;
+  s->p = p;
+  s->size = want;
+  return p;
 }
 
 mr_render_backend mr_render_backend_of(const mr_render *r) {

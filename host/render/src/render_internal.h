@@ -81,6 +81,22 @@ enum {
   MR_SET_PARTS
 };
 
+/* Buffers a frame's drawing works in, kept by the renderer and grown as a
+ * frame needs them, so that frames after the first allocate nothing: a
+ * show may run for hours, and memory running out in its middle would
+ * take the strings off the picture. */
+enum {
+  MR_SCRATCH_BONES,
+  MR_SCRATCH_LINES,
+  MR_SCRATCH_POINTS,
+  MR_SCRATCH_POLYGON,
+  MR_SCRATCH_COUNT
+};
+typedef struct mr_scratch {
+  void *p;
+  size_t size;
+} mr_scratch;
+
 struct mr_render {
   mr_render_backend backend;
   const mr_backend_ops *ops;
@@ -104,6 +120,7 @@ struct mr_render {
   bool still_kept;
   uint8_t *read_buf; /* the read back's staging buffer (fbo.c) */
   size_t read_size;
+  struct mr_scratch *scratch; /* MR_SCRATCH_COUNT of them (mr_render_scratch) */
   /* Programs (shaders.c). */
   GLuint prog_mesh, prog_depth, prog_line, prog_star, prog_text, prog_smooth;
   GLuint prog_mesh_skin, prog_depth_skin; /* 0 when the stage has no freeform model */
@@ -260,10 +277,11 @@ void mr_scene_draw_casters(mr_render *r, const mr_draw_list *list, const mr_fram
  * spot); nothing when the stage has none. */
 void mr_scene_draw_curtain(mr_render *r, const mr_frame *f);
 
-/* curtain.c: the curtain's half as a pleated strip, made at create; the
- * model matrix of a half (side -1 left, +1 right) at an openness; the
- * follow spot's slot and its light in the frame. */
-void mr_curtain_create(mr_render *r, const mr_stage_def *stage);
+/* curtain.c: the curtain's half as a pleated strip, made at create (0,
+ * or -1 when memory runs out); the model matrix of a half (side -1 left,
+ * +1 right) at an openness; the follow spot's slot and its light in the
+ * frame. */
+int mr_curtain_create(mr_render *r, const mr_stage_def *stage);
 void mr_curtain_matrix(const mr_render *r, float openness, int side, mat4 out);
 void mr_follow_spot_frame(const mr_render *r, const mr_draw_list *list, mr_frame *f);
 
@@ -300,5 +318,10 @@ void mr_text_draw(mr_render *r, const char *const *lines, size_t n);
  * at the window's drawable size (w, h). -1 when not a window, when size is
  * too small, or when out of memory. */
 int mr_render_read_window_rgb(mr_render *r, uint8_t *rgb, size_t size, int *w, int *h);
+
+/* Scratch k of r with room for bytes, what it held kept (render.c): NULL
+ * when memory runs out, the scratch then as it was. Not the renderer's
+ * state, which is why r may be const. */
+void *mr_render_scratch(const mr_render *r, int k, size_t bytes);
 
 #endif

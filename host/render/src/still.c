@@ -143,6 +143,7 @@ static void caster_points(const mr_render *r, const mr_draw_list *list, point_fn
  * (u, v), each as the 4 corners of a square of side 2 margin about it
  * (the shadow filter reaches that far). */
 typedef struct plane_pts {
+  const mr_render *r; /* whose scratch holds the points */
   int axis, u, v;
   float at, sun[3], margin;
   float (*p)[2];
@@ -160,7 +161,7 @@ static void shadow_point(const float p[3], void *user) {
   if (b->all) return;
   if (b->n + 4 > b->cap) {
     size_t cap = b->cap ? 2 * b->cap : 256;
-    float(*q)[2] = realloc(b->p, cap * sizeof *q);
+    float(*q)[2] = mr_render_scratch(b->r, MR_SCRATCH_POINTS, cap * sizeof *q);
     if (!q) {
       b->all = true;
       return;
@@ -284,7 +285,7 @@ static bool to_screen(const mr_render *r, const mr_frame *f, const plane_pts *b,
  * the floor) lie: their convex hull (the whole surface when b->all),
  * clipped to the surface, in bands of rows (a long shadow thrown aslant
  * by a low sun fills a fraction of its screen box). Returns how many
- * rectangles; frees b's points. */
+ * rectangles. */
 static int plane_rects(const mr_render *r, const mr_frame *f, plane_pts *b, bool floor,
                        int rects[][4]) {
   const mr_stage_def *s = &r->stage;
@@ -294,7 +295,8 @@ static int plane_rects(const mr_render *r, const mr_frame *f, plane_pts *b, bool
   float hi[2] = { h, floor ? h : (float)s->floor_height + 2 * MR_BACKDROP_HALF_HEIGHT };
   int m = 0;
   size_t room = (b->all ? 4 : b->n) + 8;
-  float(*p)[2] = malloc(2 * room * sizeof *p), (*q)[2] = p ? p + room : NULL;
+  float(*p)[2] = mr_render_scratch(r, MR_SCRATCH_POLYGON, 2 * room * sizeof *p);
+  float(*q)[2] = p ? p + room : NULL;
   if (p && (b->all || b->n > 0)) {
     size_t n = 4;
     if (b->all) {
@@ -319,8 +321,6 @@ static int plane_rects(const mr_render *r, const mr_frame *f, plane_pts *b, bool
     rects[0][0] = rects[0][1] = 0, rects[0][2] = r->width, rects[0][3] = r->height;
     m = 1;
   }
-  free(p);
-  free(b->p);
   return m;
 }
 
@@ -329,7 +329,7 @@ static int plane_rects(const mr_render *r, const mr_frame *f, plane_pts *b, bool
 static int shadow_rects(const mr_render *r, const mr_draw_list *list, const mr_frame *f, bool floor,
                         int rects[][4]) {
   const mr_stage_def *s = &r->stage;
-  plane_pts b = { .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
+  plane_pts b = { .r = r, .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
   b.at = floor ? (float)s->floor_height : (float)-s->backdrop_distance;
   memcpy(b.sun, f->sun_dir, sizeof b.sun);
   caster_points(r, list, shadow_point, &b);
@@ -344,7 +344,7 @@ static int shadow_rects(const mr_render *r, const mr_draw_list *list, const mr_f
 enum { SPOT_RAYS = 24 };
 static int spot_rects(const mr_render *r, const mr_frame *f, bool floor, int rects[][4]) {
   const mr_stage_def *s = &r->stage;
-  plane_pts b = { .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
+  plane_pts b = { .r = r, .axis = floor ? 1 : 2, .u = 0, .v = floor ? 2 : 1, .margin = 0.05f };
   b.at = floor ? (float)s->floor_height : (float)-s->backdrop_distance;
   b.sun[b.axis] = 1; /* shadow_point's move: none, t is 0 on the plane */
   const float *o = f->follow_pos, *d = f->follow_dir;

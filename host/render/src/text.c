@@ -4,6 +4,7 @@
  * in the bottom left corner over a translucent box, the box mr_osd_rect
  * gives (mr_stage.h), so that the audience's camera can frame the show
  * clear of it. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,37 +23,48 @@ typedef struct mr_text {
   float px;
 } mr_text;
 
-static unsigned char *read_file(const char *path, size_t *size) {
+/* The whole file, or NULL and why not. */
+static unsigned char *read_file(const char *path, size_t *size, const char **why) {
+  *size = 0;
   FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
+  if (!f) {
+    *why = strerror(errno);
+    return NULL;
+  }
   unsigned char *data = NULL;
   long n = -1;
+  *why = "it is empty or cannot be measured";
   if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0) {
     data = malloc((size_t)n);
+    *why = "out of memory";
     if (data && fread(data, 1, (size_t)n, f) != (size_t)n) {
       free(data);
       data = NULL;
+      *why = "it could not be read whole";
     }
   }
   fclose(f);
-  *size = data ? (size_t)n : 0;
+  if (data) *size = (size_t)n;
   return data;
 }
 
 /* Bakes the printable ASCII glyphs; returns the atlas or NULL. */
 static unsigned char *bake(mr_text *t, const char *path, char *msg, size_t msg_size) {
   size_t size = 0;
-  unsigned char *font = read_file(path, &size);
+  const char *why = NULL;
+  unsigned char *font = read_file(path, &size, &why);
   if (!font) {
-    snprintf(msg, msg_size, "the on-screen font '%s' cannot be read", path);
+    snprintf(msg, msg_size, "the on-screen font '%s' cannot be read: %s", path, why);
     return NULL;
   }
   unsigned char *atlas = calloc(ATLAS, ATLAS);
   stbtt_fontinfo info;
-  if (!atlas || stbtt_GetFontOffsetForIndex(font, 0) < 0 ||
-      !stbtt_InitFont(&info, font, stbtt_GetFontOffsetForIndex(font, 0)) ||
-      stbtt_BakeFontBitmap(font, 0, t->px, atlas, ATLAS, ATLAS, FIRST_CHAR, N_CHARS, t->chars) <=
-          0) {
+  if (!atlas) {
+    snprintf(msg, msg_size, "the on-screen font '%s': out of memory", path);
+  } else if (stbtt_GetFontOffsetForIndex(font, 0) < 0 ||
+             !stbtt_InitFont(&info, font, stbtt_GetFontOffsetForIndex(font, 0)) ||
+             stbtt_BakeFontBitmap(font, 0, t->px, atlas, ATLAS, ATLAS, FIRST_CHAR, N_CHARS,
+                                  t->chars) <= 0) {
     snprintf(msg, msg_size, "the on-screen font '%s' is not a TrueType font stb_truetype reads",
              path);
     free(atlas);
