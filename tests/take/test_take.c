@@ -824,6 +824,50 @@ static void a_take_of_the_most_gloves_is_added_and_one_more_is_refused(void **st
   free(dir);
 }
 
+/* A value goes back to the nearest count of its calibration, clamped to
+ * 0..4095 (one count past either end is that end), NaN as the low end; an
+ * INFO whose range is empty (max == min) reads by the full scale. */
+static void a_value_goes_back_to_the_nearest_count_within_the_adc_range(void **state) {
+  (void)state;
+  gp_info info = gp_default_glove_info();
+  info.cal_state = GP_CAL_VALID;
+  for (int k = 0; k < 5; k++) {
+    info.cal_min[k] = 200;
+    info.cal_max[k] = 3800;
+  }
+  info.cal_max[4] = 200;
+  mr_take_cal c = mr_take_cal_of(&info);
+  assert_true(c.ranged[1]);
+  assert_int_equal(mr_take_cal_raw(&c, 1, 0.5), 2000);
+  assert_int_equal(mr_take_cal_raw(&c, 1, NAN), 200);
+  assert_false(c.ranged[4]);
+  assert_true(mr_take_cal_value(&c, 4, 1000) == 1000.0 / 4095.0);
+  assert_int_equal(mr_take_cal_raw(&c, 4, NAN), 0);
+  assert_int_equal(mr_take_cal_raw(&c, 4, -1.0 / 4095.0), 0);
+  assert_int_equal(mr_take_cal_raw(&c, 4, 1.0), 4095);
+  assert_int_equal(mr_take_cal_raw(&c, 4, 4096.0 / 4095.0), 4095);
+}
+
+/* An INFO announcing another build's spec hash is not a frame: its range
+ * is not applied, and the SAMPLEs read by the 12-bit full scale. */
+static void an_info_of_another_spec_hash_is_not_a_frame(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  make_a();
+  A.info.spec_hash ^= 1u;
+  A.info2 = A.info;
+  gen_write(&A, tt_path(dir, "a.mrec"));
+  mr_take_rec r;
+  mr_take_error err;
+  if (mr_take_rec_load(tt_path(dir, "a.mrec"), &r, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(r.n_frames, A.n);
+  assert_int_equal(r.frames[0].msg.type, GP_SAMPLE);
+  assert_true(mr_take_rec_value(&r, 0, 1) == A.ch[0][1] / 4095.0);
+  mr_take_rec_free(&r);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(
@@ -840,6 +884,8 @@ int main(void) {
     cmocka_unit_test(different_scenes_unknown_names_and_absurd_numbers_are_refused),
     cmocka_unit_test(a_take_of_the_most_gloves_is_added_and_one_more_is_refused),
     cmocka_unit_test(a_take_reads_counts_by_the_adc_full_scale_its_info_gives),
+    cmocka_unit_test(a_value_goes_back_to_the_nearest_count_within_the_adc_range),
+    cmocka_unit_test(an_info_of_another_spec_hash_is_not_a_frame),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
