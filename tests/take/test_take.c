@@ -868,6 +868,153 @@ static void an_info_of_another_spec_hash_is_not_a_frame(void **state) {
   free(dir);
 }
 
+/* --- chunks that cut frames ------------------------------------------------- */
+
+/* Writes to path a take of A's calibration whose chunks cut its frames
+ * unevenly (times in ms): the INFO at 0; sample 0 but its delimiter at 10,
+ * the delimiter alone at 30; sample 1's first 10 bytes at 40, the rest at
+ * 50; samples 2 and 3 in one chunk at 60; sample 4 at 70. Sample s holds
+ * 1000 + 100 s + 10 k in finger k. */
+static void write_cut_take(const char *path) {
+  gen_init(&A, 200, 3800, 0);
+  mr_rec_writer w;
+  mr_io_error ie;
+  if (mr_rec_writer_open_scene(&w, path, GP_SPEC_HASH, 0, 0, &ie) != 0) fail_msg("%s", ie.msg);
+  uint8_t s[5][GP_MAX_WIRE], info[GP_MAX_WIRE], two[2 * GP_MAX_WIRE];
+  size_t n[5], ni = gp_glove_info_encode(&A.info, info, sizeof info);
+  for (int i = 0; i < 5; i++) {
+    uint16_t ch[5];
+    for (int k = 0; k < 5; k++) ch[k] = (uint16_t)(1000 + 100 * i + 10 * k);
+    gp_sample smp = gp_glove_sample((uint16_t)i, (uint32_t)(10000 * i), ch);
+    n[i] = gp_glove_sample_encode(&smp, GP_SPEC_HASH, s[i], sizeof s[i]);
+  }
+  memcpy(two, s[2], n[2]);
+  memcpy(two + n[2], s[3], n[3]);
+  const struct {
+    uint64_t ms;
+    const uint8_t *b;
+    size_t n;
+  } c[] = { { 0, info, ni },   { 10, s[0], n[0] - 1 },       { 30, s[0] + n[0] - 1, 1 },
+            { 40, s[1], 10 },  { 50, s[1] + 10, n[1] - 10 }, { 60, two, n[2] + n[3] },
+            { 70, s[4], n[4] } };
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++)
+    if (mr_rec_writer_add(&w, c[i].ms * 1000000u, c[i].b, c[i].n, &ie) != 0) fail_msg("%s", ie.msg);
+  if (mr_rec_writer_close(&w, &ie) != 0) fail_msg("%s", ie.msg);
+}
+
+/* A frame is read at the chunk holding its delimiter, even when that chunk
+ * is the delimiter alone; the newest SAMPLE at or before a time counts one
+ * read at that very time, and of two read at once the later. */
+static void a_frame_is_read_at_the_chunk_holding_its_delimiter(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  write_cut_take(tt_path(dir, "cut.mrec"));
+  mr_take_rec r;
+  mr_take_error err;
+  if (mr_take_rec_load(tt_path(dir, "cut.mrec"), &r, &err) != 0) fail_msg("%s", err.msg);
+  static const uint64_t ms[] = { 0, 30, 50, 60, 60, 70 };
+  static const size_t chunk[] = { 0, 2, 4, 5, 5, 6 };
+  assert_int_equal(r.n_frames, 6);
+  for (size_t i = 0; i < r.n_frames; i++) {
+    assert_int_equal(r.frames[i].t_ns, ms[i] * 1000000u);
+    assert_int_equal(r.frames[i].chunk, chunk[i]);
+  }
+  assert_int_equal(mr_take_rec_sample_at(&r, 29999999u), -1);
+  assert_int_equal(mr_take_rec_sample_at(&r, 30000000u), 1);
+  assert_int_equal(mr_take_rec_sample_at(&r, 60000000u), 4);
+  mr_take_rec_free(&r);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* Trimmed from 45 ms, the take starts on a frame: the chunk at 50 ms holds
+ * only the end of sample 1 and is dropped whole, so the INFO leads, then
+ * samples 2 and 3 at 15 ms and sample 4 at 25 ms. */
+static void a_trim_that_starts_inside_a_frame_drops_its_end(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  write_cut_take(tt_path(dir, "cut.mrec"));
+  mr_take_rec r, t;
+  mr_take_error err;
+  if (mr_take_rec_load(tt_path(dir, "cut.mrec"), &r, &err) != 0) fail_msg("%s", err.msg);
+  if (mr_take_trim_rec(&r, 0.045, INFINITY, &t, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(t.n_chunks, 3);
+  assert_int_equal(t.chunks[1].t_ns, 15000000u);
+  assert_int_equal(t.chunks[2].t_ns, 25000000u);
+  assert_int_equal(t.len, r.chunks[0].len + r.chunks[5].len + r.chunks[6].len);
+  assert_memory_equal(t.data + t.chunks[1].off, r.data + r.chunks[5].off, r.chunks[5].len);
+  assert_int_equal(t.n_frames, 4);
+  assert_int_equal(t.frames[1].msg.u.sample.seq, 2);
+  mr_take_rec_free(&r);
+  mr_take_rec_free(&t);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* An offset of 10 ms on the index finger: each SAMPLE takes the index
+ * value of the newest read at or before 10 ms earlier (one read exactly
+ * then counts), the first SAMPLE's when none is; the middle finger, offset
+ * 0, is untouched even where two SAMPLEs are read at once. */
+static void an_offset_takes_the_sample_read_exactly_then_and_the_first_before_any(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  write_cut_take(tt_path(dir, "cut.mrec"));
+  mr_take_rec r;
+  mr_take_error err;
+  if (mr_take_rec_load(tt_path(dir, "cut.mrec"), &r, &err) != 0) fail_msg("%s", err.msg);
+  const double off[MR_TAKE_CHANNELS] = { 0, 0.01, 0, 0, 0 };
+  if (mr_take_offset_rec(&r, off, &err) != 0) fail_msg("%s", err.msg);
+  /* Samples read at 30, 50, 60, 60, 70 ms take samples 0, 0, 1, 1, 3. */
+  static const int from[] = { 0, 0, 1, 1, 3 };
+  for (int s = 0; s < 5; s++) {
+    assert_int_equal(r.frames[s + 1].msg.u.sample.ch[1], 1000 + 100 * from[s] + 10);
+    assert_int_equal(r.frames[s + 1].msg.u.sample.ch[2], 1000 + 100 * s + 20);
+  }
+  mr_take_rec_free(&r);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* Called on a take directly, the edits refuse what the book refuses: a
+ * punch-in not before its punch-out, a min_cutoff of 0; and scaling that
+ * would stretch a silence past an hour, while one of exactly an hour is
+ * taken. */
+static void the_edits_refuse_an_empty_punch_a_zero_cutoff_and_a_silence_past_an_hour(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  write_cut_take(tt_path(dir, "cut.mrec"));
+  mr_take_rec r, over;
+  mr_take_error err;
+  if (mr_take_rec_load(tt_path(dir, "cut.mrec"), &r, &err) != 0 ||
+      mr_take_rec_copy(&over, &r, &err) != 0)
+    fail_msg("%s", err.msg);
+  assert_int_equal(mr_take_punch_rec(&r, &over, 1u, 0.04, 0.04, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "the punch-in time 0.04 s must come before the punch-out time 0.04 s");
+  assert_int_equal(mr_take_smooth_rec(&r, 1u, 0.0, 0.0, 1.0, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "got 0, 0, 1");
+  mr_take_rec_free(&r);
+  mr_take_rec_free(&over);
+  /* Two chunks 2400 s apart: by 1.5 the silence is an hour, by 1.6 more. */
+  mr_rec_writer w;
+  mr_io_error ie;
+  const uint8_t byte = 1;
+  if (mr_rec_writer_open(&w, tt_path(dir, "gap.mrec"), GP_SPEC_HASH, 0, &ie) != 0 ||
+      mr_rec_writer_add(&w, 0, &byte, 1, &ie) != 0 ||
+      mr_rec_writer_add(&w, 2400000000000u, &byte, 1, &ie) != 0 ||
+      mr_rec_writer_close(&w, &ie) != 0)
+    fail_msg("%s", ie.msg);
+  if (mr_take_rec_load(tt_path(dir, "gap.mrec"), &r, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(mr_take_scale_rec(&r, 1.6, &err), -1);
+  says(&err, "scaled by 1.6, the take would hold a silence over an hour");
+  if (mr_take_scale_rec(&r, 1.5, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(r.chunks[1].t_ns, 3600000000000u);
+  mr_take_rec_free(&r);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(
@@ -886,6 +1033,10 @@ int main(void) {
     cmocka_unit_test(a_take_reads_counts_by_the_adc_full_scale_its_info_gives),
     cmocka_unit_test(a_value_goes_back_to_the_nearest_count_within_the_adc_range),
     cmocka_unit_test(an_info_of_another_spec_hash_is_not_a_frame),
+    cmocka_unit_test(a_frame_is_read_at_the_chunk_holding_its_delimiter),
+    cmocka_unit_test(a_trim_that_starts_inside_a_frame_drops_its_end),
+    cmocka_unit_test(an_offset_takes_the_sample_read_exactly_then_and_the_first_before_any),
+    cmocka_unit_test(the_edits_refuse_an_empty_punch_a_zero_cutoff_and_a_silence_past_an_hour),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
