@@ -244,6 +244,34 @@ a_punched_channel_lands_at_the_over_takes_calibrated_value_and_nothing_else_move
   free(dir);
 }
 
+/* Over a take read at the very times of the base, each punched SAMPLE
+ * takes the over SAMPLE read at its own time, not the one before. */
+static void a_punch_takes_the_over_sample_read_at_the_same_time(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  make_a();
+  make_b();
+  B.t0 = A.t0;
+  mr_take_book b;
+  book_ab(dir, &b);
+  punch(&b, "ab", 2.0, 4.0);
+  expected_merge(&X);
+  gen_write(&X, tt_path(dir, "expected.mrec"));
+  char got_path[MR_TAKE_PATH_MAX];
+  take_path(&b, "ab", got_path);
+  size_t n_got, n_want;
+  char *got = file_bytes(got_path, &n_got),
+       *want = file_bytes(tt_path(dir, "expected.mrec"), &n_want);
+  assert_int_equal(n_got, n_want);
+  assert_memory_equal(got, want, n_want);
+  free(got);
+  free(want);
+  mr_take_book_close(&b);
+  tt_rmdir(tt_path(dir, "book"));
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* --- the list --------------------------------------------------------------- */
 
 /* Every file in the book's folder with its bytes and mtime, to compare
@@ -332,6 +360,11 @@ static void split_and_trim_keep_times_lengths_and_a_leading_info(void **state) {
   assert_int_equal(p2.len, p2.chunks[0].len + a.len - a.chunks[cut].off);
   assert_true(fabs(mr_take_book_find(&b, m.name2)->duration - (mr_take_rec_duration(&a) - 3.5)) <
               1e-9);
+  /* Both parts name the cut in their lineage. */
+  assert_true(mr_take_book_find(&b, m.name)->t0 == 3.5);
+  assert_int_equal(mr_take_book_find(&b, m.name)->part, 1);
+  assert_true(mr_take_book_find(&b, m.name2)->t0 == 3.5);
+  assert_int_equal(mr_take_book_find(&b, m.name2)->part, 2);
   if (mr_take_book_trim(&b, "a", 1.5, 2.5, "mid", NULL, &err) != 0) fail_msg("%s", err.msg);
   load_take(&b, "mid", &t);
   assert_int_equal(t.frames[0].msg.type, GP_INFO);
@@ -504,6 +537,37 @@ smoothing_changes_only_the_chosen_channels_as_an_independent_one_euro_does(void 
     }
   }
   assert_true(changed > 100);
+  mr_take_rec r;
+  load_take(&b, "sm", &r);
+  holds(&r, &X);
+  mr_take_rec_free(&r);
+  mr_take_book_close(&b);
+  tt_rmdir(tt_path(dir, "book"));
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* With no channels chosen, smoothing filters all five fingers, each by
+ * the default filter (min_cutoff 1 Hz, beta 0, d_cutoff 1 Hz). */
+static void smoothing_with_no_channels_chosen_filters_every_finger(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  make_a();
+  make_b();
+  mr_take_book b;
+  book_ab(dir, &b);
+  mr_take_smooth_def d = mr_default_take_smooth_def();
+  mr_take_error err;
+  if (mr_take_book_smooth(&b, "a", &d, "sm", NULL, &err) != 0) fail_msg("%s", err.msg);
+  X = A;
+  for (int k = 0; k < 5; k++) {
+    euro e = { 0 };
+    for (size_t i = 0; i < A.n; i++) {
+      double v =
+          euro_step(&e, gen_value(&A, k, A.ch[i][k]), (double)A.read_ns[i] / 1e9, 1.0, 0.0, 1.0);
+      X.ch[i][k] = gen_raw(&A, k, v);
+    }
+  }
   mr_take_rec r;
   load_take(&b, "sm", &r);
   holds(&r, &X);
@@ -772,7 +836,8 @@ static void a_take_reads_counts_by_the_adc_full_scale_its_info_gives(void **stat
 
 /* A take may have one file per glove, up to MR_TAKE_MAX_GLOVES: the most
  * is added, named and listed whole, and read back so from the list; one
- * more, or none, is refused. */
+ * more, or none, is refused. All 40 channels of the most gloves may be
+ * armed or smoothed at once, 41 not. */
 static void a_take_of_the_most_gloves_is_added_and_one_more_is_refused(void **state) {
   (void)state;
   char *dir = tt_tmpdir();
@@ -818,6 +883,23 @@ static void a_take_of_the_most_gloves_is_added_and_one_more_is_refused(void **st
     free(bytes);
   }
   free(want);
+  /* All 40 of its channels may be armed or smoothed at once, no more. */
+  mr_take_punch_def d = mr_default_take_punch_def();
+  d.base = d.over = "eight";
+  d.t_in = 1.0;
+  d.t_out = 2.0;
+  mr_take_smooth_def sd = mr_default_take_smooth_def();
+  for (int g = 0; g < MR_TAKE_MAX_GLOVES; g++)
+    for (int k = 0; k < MR_TAKE_CHANNELS; k++)
+      d.arms[d.n_arms++] = sd.channels[sd.n_channels++] = (mr_take_arm){ g, k };
+  if (mr_take_book_punch(&b, &d, NULL, &err) != 0) fail_msg("%s", err.msg);
+  if (mr_take_book_smooth(&b, "eight", &sd, NULL, NULL, &err) != 0) fail_msg("%s", err.msg);
+  d.n_arms = sd.n_channels = MR_TAKE_MAX_ARMS + 1;
+  assert_int_equal(mr_take_book_punch(&b, &d, NULL, &err), -1);
+  says(&err, "expected 1..40 armed channels, got 41");
+  assert_int_equal(mr_take_book_smooth(&b, "eight", &sd, NULL, NULL, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  assert_int_equal(b.n, 3);
   mr_take_book_close(&b);
   tt_rmdir(book);
   tt_rmdir(dir);
@@ -1015,15 +1097,93 @@ static void the_edits_refuse_an_empty_punch_a_zero_cutoff_and_a_silence_past_an_
   free(dir);
 }
 
+/* The edges of the book's operations: a take of no known scene is punched
+ * into one of a known scene; an armed glove the over take has not changes
+ * nothing; a punch-out past 1e6 s, an offset past an hour, a split at 0 or
+ * at the take's end and a negative start are refused, each saying what;
+ * an offset of exactly an hour is taken. */
+static void the_edges_of_punch_split_trim_and_offset(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  make_a();
+  make_b();
+  B.scene = 0;
+  mr_take_book b;
+  book_ab(dir, &b);
+  mr_take_error err;
+  punch(&b, "ab", 2.0, 4.0); /* b's scene is not known */
+  char pa[MR_TAKE_PATH_MAX];
+  snprintf(pa, sizeof pa, "%s", tt_path(dir, "a.mrec"));
+  const char *two[] = { pa, pa };
+  if (mr_take_book_add(&b, "aa", two, 2, false, NULL, &err) != 0) fail_msg("%s", err.msg);
+  mr_take_punch_def d = mr_default_take_punch_def();
+  d.base = "aa";
+  d.over = "b";
+  d.name = "aab";
+  d.arms[0] = (mr_take_arm){ 1, 1 };
+  d.n_arms = 1;
+  d.t_in = 1.0;
+  d.t_out = 2.0;
+  if (mr_take_book_punch(&b, &d, NULL, &err) != 0) fail_msg("%s", err.msg);
+  char paths[MR_TAKE_MAX_GLOVES][MR_TAKE_PATH_MAX];
+  size_t n, len_a, len;
+  if (mr_take_book_paths(&b, "aab", paths, MR_TAKE_MAX_GLOVES, &n, &err) != 0)
+    fail_msg("%s", err.msg);
+  char *want = file_bytes(pa, &len_a), *got = file_bytes(paths[1], &len);
+  assert_int_equal(len, len_a);
+  assert_memory_equal(got, want, len);
+  free(want);
+  free(got);
+  d.base = "a";
+  d.name = NULL;
+  d.arms[0] = (mr_take_arm){ 0, 1 };
+  d.t_out = 2e6;
+  assert_int_equal(mr_take_book_punch(&b, &d, NULL, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "the punch-out time must be a time 0..1e6 s, got 2e+06");
+  d.t_in = -0.5;
+  assert_int_equal(mr_take_book_punch(&b, &d, NULL, &err), -1);
+  says(&err, "expected 0 <= punch-in < punch-out, got -0.5");
+  assert_int_equal(mr_take_book_split(&b, "a", 0.0, NULL, NULL, NULL, &err), -1);
+  says(&err, "the split time must be a time > 0 s, got 0");
+  assert_int_equal(mr_take_book_split(&b, "a", 6.0, NULL, NULL, NULL, &err), -1);
+  says(&err, "take 'a' lasts 6 s: nothing after 6 s");
+  assert_int_equal(mr_take_book_trim(&b, "a", -0.5, 1.0, NULL, NULL, &err), -1);
+  says(&err, "expected 0 <= from < to, got -0.5 and 1 s");
+  double off[MR_TAKE_MAX_GLOVES][MR_TAKE_CHANNELS] = { { 0 } };
+  off[0][3] = 3600.0;
+  off[0][4] = -3600.0;
+  if (mr_take_book_offset(&b, "a", off, "hour", NULL, &err) != 0) fail_msg("%s", err.msg);
+  X = A;
+  for (size_t i = 0; i < A.n; i++) {
+    X.ch[i][3] = A.ch[0][3];
+    X.ch[i][4] = A.ch[A.n - 1][4];
+  }
+  mr_take_rec r;
+  load_take(&b, "hour", &r);
+  holds(&r, &X);
+  mr_take_rec_free(&r);
+  off[0][3] = 3600.5;
+  assert_int_equal(mr_take_book_offset(&b, "a", off, NULL, NULL, &err), -1);
+  says(&err, "an offset must be -3600..3600 s, got 3600.5 for 0:3");
+  assert_int_equal(b.n, 6);
+  mr_take_book_close(&b);
+  tt_rmdir(tt_path(dir, "book"));
+  tt_rmdir(dir);
+  free(dir);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(
         a_punch_in_of_two_channels_from_2_to_4_s_stores_the_expected_merge_byte_for_byte),
     cmocka_unit_test(
         a_punched_channel_lands_at_the_over_takes_calibrated_value_and_nothing_else_moves),
+    cmocka_unit_test(a_punch_takes_the_over_sample_read_at_the_same_time),
     cmocka_unit_test(split_and_trim_keep_times_lengths_and_a_leading_info),
     cmocka_unit_test(delete_hides_restore_returns_and_no_take_file_is_ever_rewritten),
     cmocka_unit_test(smoothing_changes_only_the_chosen_channels_as_an_independent_one_euro_does),
+    cmocka_unit_test(smoothing_with_no_channels_chosen_filters_every_finger),
     cmocka_unit_test(an_offset_shifts_one_channel_and_leaves_the_others),
     cmocka_unit_test(scaling_multiplies_every_chunk_time_and_keeps_the_bytes),
     cmocka_unit_test(a_malformed_list_or_a_missing_take_file_is_named),
@@ -1037,6 +1197,7 @@ int main(void) {
     cmocka_unit_test(a_trim_that_starts_inside_a_frame_drops_its_end),
     cmocka_unit_test(an_offset_takes_the_sample_read_exactly_then_and_the_first_before_any),
     cmocka_unit_test(the_edits_refuse_an_empty_punch_a_zero_cutoff_and_a_silence_past_an_hour),
+    cmocka_unit_test(the_edges_of_punch_split_trim_and_offset),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
