@@ -1173,6 +1173,68 @@ static void the_edges_of_punch_split_trim_and_offset(void **state) {
   free(dir);
 }
 
+/* A take's name holds at most 63 bytes and a book's directory at most 447;
+ * a take whose first glove was recorded against a scene and second
+ * against none is added, as of that scene. */
+static void names_at_their_longest_and_a_glove_of_no_scene(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  make_a();
+  make_b();
+  B.scene = 0;
+  mr_take_book b;
+  book_ab(dir, &b);
+  mr_take_error err;
+  char name[MR_TAKE_NAME_MAX + 1];
+  memset(name, 'n', MR_TAKE_NAME_MAX);
+  name[MR_TAKE_NAME_MAX] = '\0';
+  assert_int_equal(mr_take_book_check_name(&b, name, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_NAME);
+  says(&err, "at most 63 bytes");
+  name[MR_TAKE_NAME_MAX - 1] = '\0';
+  assert_int_equal(mr_take_book_check_name(&b, name, &err), 0);
+  char pa[MR_TAKE_PATH_MAX], pb[MR_TAKE_PATH_MAX];
+  snprintf(pa, sizeof pa, "%s", tt_path(dir, "a.mrec"));
+  snprintf(pb, sizeof pb, "%s", tt_path(dir, "b.mrec"));
+  const char *ab[] = { pa, pb };
+  if (mr_take_book_add(&b, name, ab, 2, false, NULL, &err) != 0) fail_msg("%s", err.msg);
+  assert_true(mr_take_book_find(&b, name)->scene_hash == 0x5ce9e5ce9e000001ull);
+  mr_take_book_close(&b);
+  char longest[MR_TAKE_PATH_MAX];
+  memset(longest, 'd', MR_TAKE_PATH_MAX - 64);
+  longest[0] = '/';
+  longest[MR_TAKE_PATH_MAX - 64] = '\0';
+  assert_int_equal(mr_take_book_open(longest, false, &b, &err), -1);
+  assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "expected a book's directory");
+  tt_rmdir(tt_path(dir, "book"));
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* A channel list: gloves 0..7, fingers 0..4 or a finger's whole name, and
+ * no more channels than there is room for. */
+static void a_channel_list_takes_gloves_0_to_7_and_fingers_by_number_or_whole_name(void **state) {
+  (void)state;
+  mr_take_arm arms[2];
+  size_t n;
+  mr_take_error err;
+  if (mr_take_arms_parse("7:little,0:4", arms, 2, &n, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(n, 2);
+  assert_int_equal(arms[0].glove, 7);
+  assert_int_equal(arms[0].finger, 4);
+  assert_int_equal(arms[1].glove, 0);
+  assert_int_equal(arms[1].finger, 4);
+  assert_int_equal(mr_take_arms_parse("8:1", arms, 2, &n, &err), -1);
+  says(&err, "glove 0..7), got '8:1'");
+  assert_int_equal(mr_take_arms_parse("0:5", arms, 2, &n, &err), -1);
+  says(&err, "got '5'");
+  assert_int_equal(mr_take_arms_parse("0:thu", arms, 2, &n, &err), -1);
+  says(&err, "got 'thu'");
+  assert_int_equal(mr_take_arms_parse("0:1,0:2,0:3", arms, 2, &n, &err), -1);
+  says(&err, "more than 2 channels");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(
@@ -1198,6 +1260,8 @@ int main(void) {
     cmocka_unit_test(an_offset_takes_the_sample_read_exactly_then_and_the_first_before_any),
     cmocka_unit_test(the_edits_refuse_an_empty_punch_a_zero_cutoff_and_a_silence_past_an_hour),
     cmocka_unit_test(the_edges_of_punch_split_trim_and_offset),
+    cmocka_unit_test(names_at_their_longest_and_a_glove_of_no_scene),
+    cmocka_unit_test(a_channel_list_takes_gloves_0_to_7_and_fingers_by_number_or_whole_name),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
