@@ -687,6 +687,91 @@ static void a_malformed_list_or_a_missing_take_file_is_named(void **state) {
   free(dir);
 }
 
+/* Each field of takes.json is checked: a list of another format or a
+ * next_id below 1, and an entry whose name is too long, whose id is not
+ * whole or not below next_id or given twice, with no files, an empty scene
+ * hash or an armed glove past 7, is refused naming the entry and field. */
+static void each_field_of_a_take_list_is_checked(void **state) {
+  (void)state;
+  static const char N64[] = "nnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnnn";
+  static const char REC[] = "{\"how\": \"recorded\"}";
+  static const char ARMS8[] =
+      "{\"how\": \"punch\", \"base\": 1, \"over\": 1, \"in\": 0, \"out\": 1, "
+      "\"arms\": [[8, 0]]}";
+  static const char TWICE[] = ", {\"name\": \"y\", \"id\": 1, \"files\": [\"t0001-g0.mrec\"], "
+                              "\"duration\": 1, \"scene_hash\": \"0\", \"created_unix\": 0, "
+                              "\"deleted\": false, \"made\": {\"how\": \"recorded\"}}";
+  static const char F1[] = "[\"t0001-g0.mrec\"]";
+  static const struct {
+    const char *format, *next_id, *name, *id, *files, *hash, *made, *more, *what;
+  } cases[] = {
+    { "2", "2", "x", "1", F1, "0", REC, "", "expected an object with format 1" },
+    { "1", "0", "x", "1", F1, "0", REC, "", "expected an object with format 1" },
+    { "1", "2", N64, "1", F1, "0", REC, "", "takes[0].name: expected a string" },
+    { "1", "2", "x", "1.5", F1, "0", REC, "", "takes[0].id: expected a whole number" },
+    { "1", "2", "x", "2", F1, "0", REC, "", "takes[0].id: not below next_id" },
+    { "1", "2", "x", "1", F1, "0", REC, TWICE, "takes[1].name: a name or id given twice" },
+    { "1", "2", "x", "1", "[]", "0", REC, "", "takes[0].files: expected a list of 1..8" },
+    { "1", "2", "x", "1", F1, "", REC, "", "takes[0].scene_hash: expected 16 hex digits" },
+    { "1", "2", "x", "1", F1, "0", ARMS8, "", "takes[0].arms: expected [glove 0..7, finger" },
+  };
+  char *dir = tt_tmpdir();
+  char book[MR_TAKE_PATH_MAX], text[1200];
+  strcpy(book, tt_path(dir, "book"));
+  assert_int_equal(mkdir(book, 0777), 0);
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    snprintf(text, sizeof text,
+             "{\"format\": %s, \"next_id\": %s, \"takes\": [{\"name\": \"%s\", \"id\": %s, "
+             "\"files\": %s, \"duration\": 1, \"scene_hash\": \"%s\", \"created_unix\": 0, "
+             "\"deleted\": false, \"made\": %s}%s]}",
+             cases[i].format, cases[i].next_id, cases[i].name, cases[i].id, cases[i].files,
+             cases[i].hash, cases[i].made, cases[i].more);
+    write_text(tt_path(book, "takes.json"), text);
+    mr_take_book b;
+    mr_take_error err;
+    if (mr_take_book_open(book, false, &b, &err) == 0) fail_msg("case %zu was read", i);
+    assert_int_equal(err.status, MR_TAKE_ERR_FORMAT);
+    says(&err, cases[i].what);
+  }
+  assert_string_equal(mr_take_how_name(MR_TAKE_SCALED), "scale");
+  assert_string_equal(mr_take_how_name((mr_take_how)(MR_TAKE_SCALED + 1)), "?");
+  tt_rmdir(book);
+  tt_rmdir(dir);
+  free(dir);
+}
+
+/* A list of many takes, its takes.json longer than twice the reader's
+ * first 4 KiB, reads back whole. */
+static void a_long_take_list_reads_back_whole(void **state) {
+  (void)state;
+  char *dir = tt_tmpdir();
+  make_a();
+  A.n = 10;
+  A.info2_at = 0;
+  gen_write(&A, tt_path(dir, "a.mrec"));
+  char pa[MR_TAKE_PATH_MAX], book[MR_TAKE_PATH_MAX];
+  snprintf(pa, sizeof pa, "%s", tt_path(dir, "a.mrec"));
+  snprintf(book, sizeof book, "%s", tt_path(dir, "book"));
+  const char *p[] = { pa };
+  mr_take_book b;
+  mr_take_error err;
+  if (mr_take_book_open(book, true, &b, &err) != 0) fail_msg("%s", err.msg);
+  for (int i = 0; i < 40; i++)
+    if (mr_take_book_add(&b, NULL, p, 1, false, NULL, &err) != 0) fail_msg("%s", err.msg);
+  mr_take_book_close(&b);
+  size_t len;
+  free(file_bytes(tt_path(book, "takes.json"), &len));
+  assert_true(len > 8192);
+  if (mr_take_book_open(book, false, &b, &err) != 0) fail_msg("%s", err.msg);
+  assert_int_equal(b.n, 40);
+  assert_int_equal(b.next_id, 41);
+  assert_int_equal(mr_take_book_find(&b, "take-40")->id, 40);
+  mr_take_book_close(&b);
+  tt_rmdir(book);
+  tt_rmdir(dir);
+  free(dir);
+}
+
 /* A take cut off mid-chunk is used up to its last whole chunk, and the
  * operation says so. */
 static void a_cut_off_take_is_used_up_to_its_last_whole_chunk_and_says_so(void **state) {
@@ -731,6 +816,11 @@ static void different_scenes_unknown_names_and_absurd_numbers_are_refused(void *
   B.scene = 0x00000000beefcafeull;
   mr_take_book b;
   book_ab(dir, &b);
+  /* The list writes each scene hash as 16 hex digits, leading zeros too. */
+  size_t len;
+  char *list = file_bytes(tt_path(tt_path(dir, "book"), "takes.json"), &len);
+  if (strstr(list, "\"00000000beefcafe\"") == NULL) fail_msg("%s", list);
+  free(list);
   mr_take_error err;
   mr_take_punch_def d = mr_default_take_punch_def();
   d.base = "a";
@@ -1249,6 +1339,8 @@ int main(void) {
     cmocka_unit_test(an_offset_shifts_one_channel_and_leaves_the_others),
     cmocka_unit_test(scaling_multiplies_every_chunk_time_and_keeps_the_bytes),
     cmocka_unit_test(a_malformed_list_or_a_missing_take_file_is_named),
+    cmocka_unit_test(a_long_take_list_reads_back_whole),
+    cmocka_unit_test(each_field_of_a_take_list_is_checked),
     cmocka_unit_test(a_cut_off_take_is_used_up_to_its_last_whole_chunk_and_says_so),
     cmocka_unit_test(different_scenes_unknown_names_and_absurd_numbers_are_refused),
     cmocka_unit_test(a_take_of_the_most_gloves_is_added_and_one_more_is_refused),
