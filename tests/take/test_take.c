@@ -446,6 +446,8 @@ static void delete_hides_restore_returns_and_no_take_file_is_ever_rewritten(void
   assert_non_null(first);
   assert_false(first->deleted);
   assert_int_equal(mr_take_book_find(&b, "t")->source_id, first->id);
+  assert_true(mr_take_book_find(&b, "t")->scene_hash == first->scene_hash);
+  assert_true(mr_take_book_find(&b, "sc")->scene_hash == 0x5ce9e5ce9e000001ull);
   assert_int_equal(mr_take_book_find(&b, "p")->over_id, mr_take_book_find(&b, "b")->id);
   assert_true(fabs(mr_take_book_find(&b, "sc")->factor - 0.25) < 1e-12);
   assert_int_equal(mr_take_book_delete(&b, "b", &err), 0);
@@ -456,11 +458,21 @@ static void delete_hides_restore_returns_and_no_take_file_is_ever_rewritten(void
   size_t n;
   snprintf(ref, sizeof ref, "%s:b", keep);
   assert_int_equal(mr_take_resolve(ref, paths, 8, &n, &err), 1);
+  /* "DIR:" names no take, nor does a folder without a list: both are files. */
+  snprintf(ref, sizeof ref, "%s:", keep);
+  assert_int_equal(mr_take_resolve(ref, paths, 8, &n, &err), 0);
+  snprintf(ref, sizeof ref, "%s:b", dir);
+  assert_int_equal(mr_take_resolve(ref, paths, 8, &n, &err), 0);
   struct stat st;
   assert_int_equal(stat(paths[0], &st), 0);
   assert_int_equal(mr_take_book_check_name(&b, "b", &err), -1); /* still taken */
+  assert_non_null(strstr(err.msg, "a take named 'b' is already there (deleted; restore it"));
+  assert_int_equal(mr_take_book_delete(&b, "b", &err), -1);
+  assert_non_null(strstr(err.msg, "take 'b' is already deleted"));
   assert_int_equal(mr_take_book_restore(&b, "b", &err), 0);
   assert_false(mr_take_book_find(&b, "b")->deleted);
+  assert_int_equal(mr_take_book_check_name(&b, "b", &err), -1);
+  assert_null(strstr(err.msg, "deleted"));
   mr_take_book_close(&b);
   tt_rmdir(keep);
   tt_rmdir(dir);
@@ -800,6 +812,11 @@ static void a_cut_off_take_is_used_up_to_its_last_whole_chunk_and_says_so(void *
   assert_false(r.truncated);
   assert_int_equal(r.frames[r.n_frames - 1].msg.u.sample.seq, A.n - 2);
   mr_take_rec_free(&r);
+  /* Of two gloves cut off, the note names the first. */
+  const char *p2[] = { p[0], p[0] };
+  if (mr_take_book_add(&b, "cut2", p2, 2, false, &m, &err) != 0) fail_msg("%s", err.msg);
+  if (mr_take_book_trim(&b, "cut2", 0.5, 9.0, NULL, &m, &err) != 0) fail_msg("%s", err.msg);
+  if (strstr(m.note, "-g0.mrec") == NULL) fail_msg("note: '%s'", m.note);
   mr_take_book_close(&b);
   tt_rmdir(tt_path(dir, "book"));
   tt_rmdir(dir);
@@ -890,6 +907,7 @@ static void different_scenes_unknown_names_and_absurd_numbers_are_refused(void *
   assert_int_equal(mr_take_book_rename(&b, "a", "", &err), -1);
   assert_int_equal(mr_take_book_rename(&b, "a", "b", &err), -1);
   assert_int_equal(mr_take_book_restore(&b, "a", &err), -1);
+  says(&err, "take 'a' is not deleted");
   size_t n;
   mr_take_arm arms[4];
   assert_int_equal(mr_take_arms_parse("0:pinky", arms, 4, &n, &err), -1);
@@ -1094,6 +1112,11 @@ static void a_frame_is_read_at_the_chunk_holding_its_delimiter(void **state) {
   assert_int_equal(mr_take_rec_sample_at(&r, 29999999u), -1);
   assert_int_equal(mr_take_rec_sample_at(&r, 30000000u), 1);
   assert_int_equal(mr_take_rec_sample_at(&r, 60000000u), 4);
+  uint16_t ch[MR_TAKE_CHANNELS] = { 0 };
+  assert_int_equal(mr_take_rec_set_sample(&r, 0, ch, &err), -1);
+  says(&err, "frame 0 is not a SAMPLE");
+  assert_int_equal(mr_take_rec_set_sample(&r, r.n_frames, ch, &err), -1);
+  says(&err, "frame 6 is not a SAMPLE");
   mr_take_rec_free(&r);
   tt_rmdir(dir);
   free(dir);
@@ -1166,6 +1189,9 @@ static void the_edits_refuse_an_empty_punch_a_zero_cutoff_and_a_silence_past_an_
   assert_int_equal(mr_take_smooth_rec(&r, 1u, 0.0, 0.0, 1.0, &err), -1);
   assert_int_equal(err.status, MR_TAKE_ERR_ARG);
   says(&err, "got 0, 0, 1");
+  mr_take_rec t;
+  assert_int_equal(mr_take_trim_rec(&r, -0.5, 1.0, &t, &err), -1);
+  says(&err, "the start time must be a time 0..1e6 s, got -0.5");
   mr_take_rec_free(&r);
   mr_take_rec_free(&over);
   /* Two chunks 2400 s apart: by 1.5 the silence is an hour, by 1.6 more. */
