@@ -233,10 +233,48 @@ static void tools_recording_truncated_last_chunk_keeps_the_rest(void **state) {
   assert_non_null(strstr(err.msg, where));
   assert_non_null(strstr(err.msg, "60 missing"));
 
-  /* Cut inside the chunk header. */
+  /* Only the last data byte missing. */
+  assert_int_equal(read_all(save(&f, at + 12 + 99), &final_rc, &err), 2);
+  assert_int_equal(err.status, MR_IO_ERR_TRUNCATED);
+  assert_non_null(strstr(err.msg, "99 of 100 bytes, 1 missing"));
+
+  /* Cut inside the chunk header: its 7 other bytes and at least one data
+   * byte missing. */
   assert_int_equal(read_all(save(&f, at + 5), &final_rc, &err), 2);
   assert_int_equal(err.status, MR_IO_ERR_TRUNCATED);
   assert_non_null(strstr(err.msg, where));
+  assert_non_null(strstr(err.msg, "5 of its 12 header bytes, at least 8 bytes missing"));
+}
+
+/* A silence of exactly an hour is a take's limit: written and read back,
+ * while one nanosecond more is refused by the writer and the reader, each
+ * naming the limit. */
+static void tools_recording_a_silence_of_exactly_an_hour_is_the_limit(void **state) {
+  const char *path = tt_path(g_dir, "hour.mrec");
+  mr_rec_writer w;
+  mr_io_error err;
+  uint8_t b[4] = { 1, 2, 3, 4 };
+  raw_file f;
+  int final_rc;
+  (void)state;
+  assert_int_equal(mr_rec_writer_open(&w, path, 1, 0, &err), 0);
+  assert_int_equal(mr_rec_writer_add(&w, 5, b, 4, &err), 0);
+  assert_int_equal(mr_rec_writer_add(&w, 5 + MR_REC_MAX_GAP_NS + 1, b, 4, &err), -1);
+  assert_non_null(strstr(err.msg, "a take holds at most 3600 s of silence"));
+  assert_int_equal(mr_rec_writer_add(&w, 5 + MR_REC_MAX_GAP_NS, b, 4, &err), 0);
+  assert_int_equal(mr_rec_writer_close(&w, &err), 0);
+  assert_int_equal(read_all(path, &final_rc, &err), 2);
+  assert_int_equal(final_rc, 0);
+
+  raw_header(&f, "MRSTREAM", 1, 32);
+  raw_chunk(&f, 5, 3, 3);
+  raw_chunk(&f, 5 + MR_REC_MAX_GAP_NS, 3, 3);
+  raw_chunk(&f, 6 + 2 * MR_REC_MAX_GAP_NS, 3, 3);
+  assert_int_equal(read_all(save(&f, f.n), &final_rc, &err), 2);
+  assert_int_equal(final_rc, -1);
+  assert_int_equal(err.status, MR_IO_ERR_FORMAT);
+  assert_non_null(strstr(err.msg, "byte 62:"));
+  assert_non_null(strstr(err.msg, "a take holds at most 3600 s of silence"));
 }
 
 /* A caller that sniffed the magic hands its bytes back as a prefix. */
@@ -274,6 +312,7 @@ int main(void) {
     cmocka_unit_test(tools_recording_longer_header_is_skipped),
     cmocka_unit_test(tools_recording_chunk_malformations_name_their_offset),
     cmocka_unit_test(tools_recording_truncated_last_chunk_keeps_the_rest),
+    cmocka_unit_test(tools_recording_a_silence_of_exactly_an_hour_is_the_limit),
     cmocka_unit_test(tools_recording_reader_takes_a_sniffed_prefix),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
