@@ -1007,6 +1007,7 @@ static void a_take_of_the_most_gloves_is_added_and_one_more_is_refused(void **st
   says(&err, "expected 1..40 armed channels, got 41");
   assert_int_equal(mr_take_book_smooth(&b, "eight", &sd, NULL, NULL, &err), -1);
   assert_int_equal(err.status, MR_TAKE_ERR_ARG);
+  says(&err, "expected at most 40 channels to smooth, got 41");
   assert_int_equal(b.n, 3);
   mr_take_book_close(&b);
   tt_rmdir(book);

@@ -267,11 +267,14 @@ int mr_take_book_smooth(mr_take_book *b, const char *source, const mr_take_smoot
   if (d == NULL || d->cookie != MR_DEF_COOKIE)
     return mr_take_fail(err, MR_TAKE_ERR_ARG, "smoothing needs mr_default_take_smooth_def()");
   if (!(isfinite(d->min_cutoff) && d->min_cutoff > 0) || !(isfinite(d->beta) && d->beta >= 0) ||
-      !(isfinite(d->d_cutoff) && d->d_cutoff > 0) || d->n_channels > MR_TAKE_MAX_ARMS)
+      !(isfinite(d->d_cutoff) && d->d_cutoff > 0))
     return mr_take_fail(err, MR_TAKE_ERR_ARG,
                         "smoothing needs min-cutoff > 0, beta >= 0 and "
                         "d-cutoff > 0, got %g, %g and %g",
                         d->min_cutoff, d->beta, d->d_cutoff);
+  if (d->n_channels > MR_TAKE_MAX_ARMS)
+    return mr_take_fail(err, MR_TAKE_ERR_ARG, "expected at most %d channels to smooth, got %zu",
+                        MR_TAKE_MAX_ARMS, d->n_channels);
   /* A source not in the book is start()'s to report. */
   const mr_take_entry *src = mr_take_book_get(b, source, err);
   for (size_t i = 0; src != NULL && i < d->n_channels; i++)
