@@ -13,37 +13,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "control_rig.h"
 #include "mr_control.h"
 
 static const double PI = 3.14159265358979323846;
-
-static mr_control *make(const mr_mapping_def *defs, int n) {
-  mr_control *c = NULL;
-  char msg[160];
-  if (mr_control_create(defs, n, &c, msg, sizeof msg) != MR_CONTROL_OK) fail_msg("%s", msg);
-  return c;
-}
-
-/* Holds the five values for `secs` at 100 Hz from t; returns the last pose. */
-static mr_pose hold(mr_control *c, const double v[5], double *t, double secs,
-                    mr_channel_state st[5]) {
-  mr_pose p = mr_pose_identity();
-  for (int i = 0; i < (int)(secs * 100 + 0.5); i++) {
-    *t += 0.01;
-    assert_int_equal(mr_control_update(c, v, *t, &p, st), MR_CONTROL_OK);
-  }
-  return p;
-}
-
-static void assert_pose(const mr_pose *p, const double pos[3], const double deg[3], double tol) {
-  mr_pose want = mr_pose_from_euler_deg(pos, deg);
-  for (int k = 0; k < 3; k++)
-    if (!(fabs(p->position[k] - want.position[k]) < tol))
-      fail_msg("position[%d] %.9f, expected %.9f", k, p->position[k], want.position[k]);
-  double axis[3];
-  double angle = mr_pose_turn(p->orientation, want.orientation, axis);
-  if (!(angle < tol)) fail_msg("orientation off by %.3g rad", angle);
-}
 
 /* The relaxed hand (every string at its neutral 0.5) holds the frame at
  * its neutral pose, exactly; each finger alone, fully pulled, gives its
@@ -181,16 +154,6 @@ static void one_euro_is_steady_when_still_and_quick_on_a_step(void **state) {
          d.min_cutoff, d.beta, sd, lag);
   assert_true(sd < 0.004);
   assert_true(lag > 0 && lag <= 0.15);
-}
-
-/* A mapping that drives only move_y, from channel 3, over the range
- * [low, high] about `neutral` with `dead_zone`: the frame's height is the
- * axis's value, so a test reads the axis straight off the pose. */
-static mr_mapping_def height_only(double low, double high, double neutral, double dead_zone) {
-  mr_mapping_def d = mr_default_mapping_def();
-  for (int a = 0; a < MR_DOF_COUNT; a++) d.axes[a].channel = -1;
-  d.axes[MR_DOF_MOVE_Y] = (mr_axis_def){ 3, low, high, false, neutral, dead_zone };
-  return d;
 }
 
 /* A string stuck at full scale for less than stuck_after (0.5 s here, not
