@@ -403,6 +403,24 @@ static void one_euro_takes_the_speed_at_its_own_cutoff(void **state) {
   const double y = mr_one_euro_filter(&f, 1.0, T);
   print_message("one euro: %.12f, by hand %.12f\n", y, a);
   assert_true(fabs(y - a) < 1e-12);
+  assert_true(fabs(f.dx - speed) < 1e-12); /* the rate it keeps, rising */
+}
+
+/* The same two readings falling, 1 then 0: the speed is as fast the other
+ * way, and the cutoff opens by its size as on the way up, so the output
+ * falls as far as it rose, 1 − α, and the rate kept is negative. */
+static void one_euro_opens_its_cutoff_on_a_fall_as_on_a_rise(void **state) {
+  (void)state;
+  const double T = 0.1, min_cutoff = 1.0, beta = 0.3, d_cutoff = 5.0;
+  mr_one_euro f;
+  mr_one_euro_init(&f, min_cutoff, beta, d_cutoff);
+  assert_true(mr_one_euro_filter(&f, 1.0, 0.0) == 1.0);
+  const double a_d = 1.0 / (1.0 + 1.0 / (2.0 * PI * d_cutoff * T));
+  const double speed = a_d * 1.0 / T;
+  const double a = 1.0 / (1.0 + 1.0 / (2.0 * PI * (min_cutoff + beta * speed) * T));
+  const double y = mr_one_euro_filter(&f, 0.0, T);
+  if (!(fabs(y - (1.0 - a)) < 1e-12)) fail_msg("one euro: %.12f, by hand %.12f", y, 1.0 - a);
+  assert_true(fabs(f.dx + speed) < 1e-12);
 }
 
 /* Each degree of freedom in turn, driven alone by the middle finger with
@@ -479,6 +497,7 @@ int main(void) {
     cmocka_unit_test(bad_definitions_and_time_are_refused),
     cmocka_unit_test(the_defaults_are_the_documented_ones),
     cmocka_unit_test(one_euro_takes_the_speed_at_its_own_cutoff),
+    cmocka_unit_test(one_euro_opens_its_cutoff_on_a_fall_as_on_a_rise),
     cmocka_unit_test(leaving_an_end_starts_the_stuck_timer_afresh),
     cmocka_unit_test(a_broken_channel_is_held_at_its_axis_neutral),
     cmocka_unit_test(a_broken_channel_is_held_at_the_neutral_of_whichever_axis_it_drives),
