@@ -143,7 +143,8 @@ static void the_pace_holds_across_rates_and_stands_while_paused(void **state) {
 }
 
 /* A step is spent only on a time past the paused show's: waiting for an
- * earlier one returns at once, and show time never goes back. */
+ * earlier one, or for the very time shown, returns at once, and show time
+ * never goes back. */
 static void a_step_is_not_spent_on_a_time_already_shown(void **state) {
   (void)state;
   mr_virtual_clock vc = { 0.0 };
@@ -152,6 +153,9 @@ static void a_step_is_not_spent_on_a_time_already_shown(void **state) {
   c.wait_until(c.self, 0.5);
   mr_scaled_clock_step(&sc);
   c.wait_until(c.self, 0.4);
+  assert_true(c.now(c.self) == 0.5);
+  assert_int_equal(sc.steps, 1);
+  c.wait_until(c.self, 0.5);
   assert_true(c.now(c.self) == 0.5);
   assert_int_equal(sc.steps, 1);
   c.wait_until(c.self, 0.6);
