@@ -44,6 +44,8 @@ static void the_reader_takes_only_the_newest_frame(void **state) {
   assert_true(mr_triple_take(&tb));
   assert_int_equal(slot[mr_triple_front(&tb)], 4);
   assert_int_not_equal(mr_triple_back(&tb), mr_triple_front(&tb));
+  assert_int_equal(tb.published, 4); /* every publish counts, overtaken or not */
+  assert_int_equal(tb.taken, 2);     /* a take that found nothing new does not */
 }
 
 enum { WORDS = 64, FRAMES = 200000 };
