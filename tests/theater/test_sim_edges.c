@@ -1,0 +1,114 @@
+/* A headless run (mr_sim_run) at its edges: a run that needs exactly
+ * sim.max_steps steps, a run that ends a hair past a frame, the rest
+ * checks anchored on a step that lands on `settle`, and an interpolated
+ * frame asked for past the step that brackets it. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <string.h>
+
+#include "mr_scene.h"
+#include "mr_sim.h"
+
+/* A particle falling from 10 m, at fixed steps of 0.01 s. */
+#define FALL                                                \
+  "physics:\n"                                              \
+  "  effects: [gravity]\n"                                  \
+  "  ats: {dt_initial: 0.01, dt_min: 0.01, dt_max: 0.01}\n" \
+  "  particles: [{name: p, position: [0, 10, 0], mass: 1}]\n"
+
+static void load(const char *text, mr_scene *s) {
+  mr_scene_error err;
+  if (mr_scene_load_text("edge.yaml", text, strlen(text), s, &err) != MR_SCENE_OK)
+    fail_msg("%s", err.text);
+}
+
+static void sim(const mr_scene *s, const mr_sim_def *o, mr_sim_result *r) {
+  mr_scene_error err;
+  if (mr_sim_run(s, o, r, &err) != MR_SCENE_OK) fail_msg("%s", err.text);
+}
+
+/* 1 s at steps of 0.01 s needs 100 steps: sim.max_steps 100 is enough,
+ * and the run is not refused; every step is at dt_max, and counted so. */
+static void a_run_that_needs_exactly_max_steps_is_taken(void **state) {
+  (void)state;
+  mr_scene s;
+  load("sim: {duration: 1, max_steps: 100}\n" FALL, &s);
+  mr_sim_result r;
+  sim(&s, NULL, &r);
+  assert_int_equal(r.steps, 100);
+  assert_int_equal(r.rejected, 0);
+  assert_true(r.at_upper_fraction == 1.0);
+  mr_scene_free(&s);
+}
+
+/* A run 0.1 ns longer than ten frames at 10 fps ends with the frame at
+ * 1 s (steps closer than 1 ns to a frame land on it): eleven frames, the
+ * start included, not a twelfth for the sliver. */
+static void a_run_a_hair_past_a_frame_ends_on_that_frame(void **state) {
+  (void)state;
+  mr_scene s;
+  load("sim: {duration: 1}\n" FALL, &s);
+  mr_sim_def o = mr_default_sim_def();
+  o.fps = 10;
+  o.duration = 1.0 + 1e-10;
+  mr_sim_result r;
+  sim(&s, &o, &r);
+  assert_int_equal(r.frames, 11);
+  assert_true(r.sim_time == 1.0);
+  mr_scene_free(&s);
+}
+
+typedef struct heights {
+  int n;
+  double t[16], y[16];
+} heights;
+
+static void keep_height(void *user, double t, const double *xyz, int n) {
+  heights *h = user;
+  (void)n;
+  if (h->n < 16) {
+    h->t[h->n] = t;
+    h->y[h->n] = xyz[1];
+    h->n++;
+  }
+}
+
+/* The rest checks measure from the state at `settle` itself when a step
+ * lands there: frames at 10 fps land on 0.5 s, so the creep of a falling
+ * particle over the run is exactly its fall from the frame at 0.5 s to the
+ * frame at 1 s. */
+static void creep_is_measured_from_the_step_that_lands_on_settle(void **state) {
+  (void)state;
+  mr_scene s;
+  load("sim: {duration: 1, fps: 10}\n" FALL
+       "expect: {rest: {particles: [p], settle: 0.5, creep: 100, jitter: 100}}\n",
+       &s);
+  heights h;
+  memset(&h, 0, sizeof h);
+  mr_sim_def o = mr_default_sim_def();
+  o.on_frame = keep_height;
+  o.user = &h;
+  mr_sim_result r;
+  sim(&s, &o, &r);
+  assert_int_equal(h.n, 11);
+  assert_true(h.t[5] == 0.5 && h.t[10] == 1.0);
+  const double fall = h.y[5] - h.y[10];
+  print_message("creep %.12f m, fall from 0.5 s to 1 s %.12f m\n", r.creep, fall);
+  assert_true(fall > 3.0);
+  assert_true(fabs(r.creep - fall) < 1e-12);
+  mr_scene_free(&s);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(a_run_that_needs_exactly_max_steps_is_taken),
+    cmocka_unit_test(a_run_a_hair_past_a_frame_ends_on_that_frame),
+    cmocka_unit_test(creep_is_measured_from_the_step_that_lands_on_settle),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
