@@ -1,7 +1,7 @@
 /* A headless run (mr_sim_run) at its edges: a run that needs exactly
  * sim.max_steps steps, a run that ends a hair past a frame, the rest
- * checks anchored on a step that lands on `settle`, and an interpolated
- * frame asked for past the step that brackets it. */
+ * checks anchored on a step that lands on `settle`, and the step guard
+ * counting rejected tries. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,6 +9,7 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "mr_scene.h"
@@ -104,11 +105,36 @@ static void creep_is_measured_from_the_step_that_lands_on_settle(void **state) {
   mr_scene_free(&s);
 }
 
+/* The step guard counts tries, rejected ones too: the paper's puppet,
+ * stepped at the ATS's own Δt, rejects some steps; with sim.max_steps at
+ * the number it accepts, the run stops on the way, naming the tries. */
+static void the_step_guard_counts_rejected_tries(void **state) {
+  (void)state;
+  mr_scene s;
+  mr_scene_error err;
+  if (mr_scene_load(MR_SOURCE_DIR "/host/scenes/puppet.yaml", &s, &err) != MR_SCENE_OK)
+    fail_msg("%s", err.text);
+  s.fps = 0;
+  mr_sim_result r;
+  sim(&s, NULL, &r);
+  print_message("puppet: %llu steps, %llu rejected\n", (unsigned long long)r.steps,
+                (unsigned long long)r.rejected);
+  assert_true(r.rejected > 0);
+  s.max_steps = (long)r.steps;
+  assert_int_equal(mr_sim_run(&s, NULL, &r, &err), MR_SCENE_ERR_BUILD);
+  char want[120];
+  snprintf(want, sizeof want, "step tries, past sim.max_steps (%ld)", s.max_steps);
+  if (strstr(err.message, "stopped after ") != err.message || strstr(err.message, want) == NULL)
+    fail_msg("%s", err.message);
+  mr_scene_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_run_that_needs_exactly_max_steps_is_taken),
     cmocka_unit_test(a_run_a_hair_past_a_frame_ends_on_that_frame),
     cmocka_unit_test(creep_is_measured_from_the_step_that_lands_on_settle),
+    cmocka_unit_test(the_step_guard_counts_rejected_tries),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
