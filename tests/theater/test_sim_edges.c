@@ -129,12 +129,47 @@ static void the_step_guard_counts_rejected_tries(void **state) {
   mr_scene_free(&s);
 }
 
+/* A string of rest length 0 has no stretch ratio: it is left out of the
+ * largest one, which stays 0 with no other string, and is 2 for a string
+ * of rest 0.5 hanging 1 m from its point beside it. */
+static void a_string_of_rest_zero_has_no_stretch(void **state) {
+  (void)state;
+  static const char *const strings[2] = {
+    "  strings: [{from: bar, to: a, mode: spring, stiffness: 100, rest: 0}]\n",
+    "  strings: [{from: bar, to: a, mode: spring, stiffness: 100, rest: 0},\n"
+    "            {from: bar, to: b, mode: spring, stiffness: 100, rest: 0.5}]\n",
+  };
+  for (int i = 0; i < 2; i++) {
+    char text[600];
+    snprintf(text, sizeof text,
+             "sim: {duration: 0.01}\n"
+             "physics:\n"
+             "  effects: [strings, control]\n"
+             "  particles: [{name: a, position: [0, 1, 0], mass: 1},\n"
+             "              {name: b, position: [1, 2, 0], mass: 1}]\n"
+             "  control: {points: [{name: bar, offset: [0, 2, 0]}]}\n"
+             "%s",
+             strings[i]);
+    mr_scene s;
+    load(text, &s);
+    mr_sim_result r;
+    sim(&s, NULL, &r);
+    print_message("largest stretch %.6f\n", r.string_stretch);
+    if (i == 0)
+      assert_true(r.string_stretch == 0.0);
+    else
+      assert_true(fabs(r.string_stretch - 2.0) < 0.01);
+    mr_scene_free(&s);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_run_that_needs_exactly_max_steps_is_taken),
     cmocka_unit_test(a_run_a_hair_past_a_frame_ends_on_that_frame),
     cmocka_unit_test(creep_is_measured_from_the_step_that_lands_on_settle),
     cmocka_unit_test(the_step_guard_counts_rejected_tries),
+    cmocka_unit_test(a_string_of_rest_zero_has_no_stretch),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
