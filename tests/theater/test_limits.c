@@ -246,12 +246,56 @@ static void marionette_sim_keeps_a_track_frame_within_its_max_turn_rate(void **s
   mr_scene_free(&sc);
 }
 
+/* Two new goals a glove gives at one frame time, 1 cm and then 0.6 m
+ * away (no time between them, so no speed can be read off them): the
+ * second is taken as a jump, not an infinite speed: the frame, limited
+ * to 4 m/s², sets off in that very frame and arrives, its pose finite all
+ * the way. */
+static void two_goals_at_one_time_are_a_jump_not_a_speed(void **state) {
+  (void)state;
+  static const char text[] = "format: 1\n"
+                             "physics:\n"
+                             "  effects: [control]\n"
+                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
+                             "  control:\n"
+                             "    max_accel: 4\n"
+                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
+                             "    pose: {position: [0, 1, 0]}\n";
+  mr_scene sc;
+  mr_scene_error err;
+  mr_scene_world sw;
+  assert_int_equal(mr_scene_load_text("twice.yaml", text, sizeof text - 1, &sc, &err), MR_SCENE_OK);
+  assert_int_equal(mr_scene_build(&sc, &sw, &err), MR_SCENE_OK);
+  const double still[3] = { 0, 0, 0 }, here[3] = { 0, 1, 0 }, near[3] = { 0.01, 1, 0 };
+  const double there[3] = { 0.6, 1, 0 };
+  const mr_pose a = mr_pose_from_euler_deg(here, still), a2 = mr_pose_from_euler_deg(near, still);
+  const mr_pose b = mr_pose_from_euler_deg(there, still);
+  mr_glove_follow follow;
+  memset(&follow, 0, sizeof follow);
+  mr_pose now;
+  for (int f = 1; f <= 180; f++) {
+    double t = f / 60.0;
+    if (f == 10) mr_theater_follow_glove(&sc, &sw, 0, &follow, a2, t); /* then b, at once */
+    mr_theater_follow_glove(&sc, &sw, 0, &follow, f < 10 ? a : b, t);
+    assert_true(mr_world_step_to(sw.world, t, NULL) >= 0);
+    assert_int_equal(mr_world_frame_pose(sw.world, sw.frames[0], &now), MR_OK);
+    if (f == 10 && !(now.position[0] > 1e-4))
+      fail_msg("the frame of the jump moved %.3g m towards the goal", now.position[0]);
+    if (!mr_pose_is_finite(&now)) fail_msg("frame %d: the pose is not finite", f);
+  }
+  print_message("end %.6f %.6f %.6f\n", now.position[0], now.position[1], now.position[2]);
+  assert_true(fabs(now.position[0] - 0.6) < 1e-3);
+  mr_scene_world_free(&sw);
+  mr_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(frame_keeps_its_speed_and_turn_limits_on_a_curved_path),
     cmocka_unit_test(glove_frame_keeps_its_acceleration_limits),
     cmocka_unit_test(glove_motion_within_the_limits_passes_unchanged),
     cmocka_unit_test(marionette_sim_keeps_a_track_frame_within_its_max_turn_rate),
+    cmocka_unit_test(two_goals_at_one_time_are_a_jump_not_a_speed),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
