@@ -1,7 +1,7 @@
 /* A headless run (mr_sim_run) at its edges: a run that needs exactly
  * sim.max_steps steps, a run that ends a hair past a frame, the rest
- * checks anchored on a step that lands on `settle`, and the step guard
- * counting rejected tries. */
+ * checks anchored on a step that lands on `settle`, the step guard
+ * counting rejected tries, and a frame interpolated outside its step. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -13,7 +13,9 @@
 #include <string.h>
 
 #include "mr_scene.h"
+#include "mr_scene_world.h"
 #include "mr_sim.h"
+#include "theater_internal.h"
 
 /* A particle falling from 10 m, at fixed steps of 0.01 s. */
 #define FALL                                                \
@@ -163,6 +165,37 @@ static void a_string_of_rest_zero_has_no_stretch(void **state) {
   }
 }
 
+/* A frame asked for outside the step marked around it is the nearer end of
+ * the step, never extrapolated along it: the falling particle's step from
+ * 0 to 0.01 s gives its middle at 0.005 s, its end at 0.02 s (and says the
+ * physics is 0.01 s behind that frame), its start at -0.01 s. */
+static void an_interpolated_frame_outside_its_step_is_the_nearer_end(void **state) {
+  (void)state;
+  mr_scene s;
+  load("sim: {duration: 1}\n" FALL, &s);
+  mr_scene_world sw;
+  mr_scene_error err;
+  if (mr_scene_build(&s, &sw, &err) != MR_SCENE_OK) fail_msg("%s", err.text);
+  mr_interp ip;
+  assert_int_equal(mr_interp_open(&ip, 1), 0);
+  double before[3], after[3];
+  mr_world_positions(sw.world, before, 1);
+  mr_interp_mark(&ip, sw.world);
+  assert_true(mr_world_step_to(sw.world, 0.01, NULL) >= 0);
+  mr_world_positions(sw.world, after, 1);
+  assert_true(before[1] - after[1] > 1e-4);
+  const double *y = mr_interp_at(&ip, sw.world, 0.005);
+  assert_true(fabs(y[1] - 0.5 * (before[1] + after[1])) < 1e-12);
+  y = mr_interp_at(&ip, sw.world, 0.02);
+  if (!(y[1] == after[1])) fail_msg("at 0.02 s: %.12f, the step's end %.12f", y[1], after[1]);
+  assert_true(fabs(ip.lead + 0.01) < 1e-12);
+  y = mr_interp_at(&ip, sw.world, -0.01);
+  assert_true(y[1] == before[1]);
+  mr_interp_close(&ip);
+  mr_scene_world_free(&sw);
+  mr_scene_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_run_that_needs_exactly_max_steps_is_taken),
@@ -170,6 +203,7 @@ int main(void) {
     cmocka_unit_test(creep_is_measured_from_the_step_that_lands_on_settle),
     cmocka_unit_test(the_step_guard_counts_rejected_tries),
     cmocka_unit_test(a_string_of_rest_zero_has_no_stretch),
+    cmocka_unit_test(an_interpolated_frame_outside_its_step_is_the_nearer_end),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
