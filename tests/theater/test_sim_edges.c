@@ -1,7 +1,8 @@
 /* A headless run (mr_sim_run) at its edges: a run that needs exactly
  * sim.max_steps steps, a run that ends a hair past a frame, the rest
  * checks anchored on a step that lands on `settle`, the step guard
- * counting rejected tries, and a frame interpolated outside its step. */
+ * counting rejected tries, a frame interpolated outside its step, and
+ * the account of the first of many resets. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -196,6 +197,26 @@ static void an_interpolated_frame_outside_its_step_is_the_nearer_end(void **stat
   mr_scene_free(&s);
 }
 
+/* A run that resets many times keeps the account of its first reset, not
+ * its latest: a speed bound no fall can meet resets every step, first at
+ * 0.01 s, last near the end at 0.5 s. */
+static void the_first_reset_is_the_one_kept(void **state) {
+  (void)state;
+  mr_scene s;
+  load("sim: {duration: 0.5, fps: 10}\n"
+       "physics:\n"
+       "  effects: [gravity]\n"
+       "  ats: {max_speed: 0.001, dt_min: 0.01, dt_max: 0.02}\n"
+       "  particles: [{name: a, position: [0, 1, 0], mass: 1}]\n",
+       &s);
+  mr_sim_result r;
+  sim(&s, NULL, &r);
+  print_message("%llu resets, the first: %s\n", (unsigned long long)r.resets, r.first_reset);
+  assert_true(r.resets >= 10);
+  if (strncmp(r.first_reset, "t=0.010000 s: ", 14) != 0) fail_msg("first reset: %s", r.first_reset);
+  mr_scene_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_run_that_needs_exactly_max_steps_is_taken),
@@ -204,6 +225,7 @@ int main(void) {
     cmocka_unit_test(the_step_guard_counts_rejected_tries),
     cmocka_unit_test(a_string_of_rest_zero_has_no_stretch),
     cmocka_unit_test(an_interpolated_frame_outside_its_step_is_the_nearer_end),
+    cmocka_unit_test(the_first_reset_is_the_one_kept),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
