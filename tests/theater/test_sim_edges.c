@@ -1,8 +1,9 @@
 /* A headless run (mr_sim_run) at its edges: a run that needs exactly
  * sim.max_steps steps, a run that ends a hair past a frame, the rest
  * checks anchored on a step that lands on `settle`, the step guard
- * counting rejected tries, a frame interpolated outside its step, and
- * the account of the first of many resets. */
+ * counting rejected tries, a frame interpolated outside its step, the
+ * account of the first of many resets, steps that add up a hair short of
+ * the end, and the checks' bounds. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -217,6 +218,51 @@ static void the_first_reset_is_the_one_kept(void **state) {
   mr_scene_free(&s);
 }
 
+/* Ten fixed steps of 0.1 s add up a hair short of 1 s (0.9999999999999999):
+ * the last one lands on the run's end all the same, so the run ends at
+ * 1 s exactly (where a pinned state hash is checked). */
+static void steps_that_add_up_short_still_land_on_the_end(void **state) {
+  (void)state;
+  mr_scene s;
+  load("sim: {duration: 1}\n"
+       "physics:\n"
+       "  effects: [gravity]\n"
+       "  ats: {dt_initial: 0.1, dt_min: 0.1, dt_max: 0.1}\n"
+       "  particles: [{name: p, position: [0, 10, 0], mass: 1}]\n",
+       &s);
+  mr_sim_result r;
+  sim(&s, NULL, &r);
+  assert_int_equal(r.steps, 10);
+  if (!(r.sim_time == 1.0)) fail_msg("the run ended at %.17g s", r.sim_time);
+  mr_scene_free(&s);
+}
+
+/* Each expectation is a bound the result may reach: the paper's puppet,
+ * run for 1 s and checked against its own figures, each set as the
+ * bound, passes. */
+static void a_result_exactly_on_each_bound_passes_the_check(void **state) {
+  (void)state;
+  mr_scene s;
+  mr_scene_error err;
+  if (mr_scene_load(MR_SOURCE_DIR "/host/scenes/puppet.yaml", &s, &err) != MR_SCENE_OK)
+    fail_msg("%s", err.text);
+  mr_sim_def o = mr_default_sim_def();
+  o.duration = 1;
+  mr_sim_result r;
+  sim(&s, &o, &r);
+  assert_true(r.max_deviation > 0 && r.max_speed > 0 && r.dt_mean > 0 && r.string_stretch > 1);
+  s.expect.max_deviation = r.max_deviation;
+  s.expect.max_speed = r.max_speed;
+  s.expect.min_mean_dt = r.dt_mean;
+  s.expect.max_penetration = r.max_penetration;
+  s.expect.min_string_stretch = r.string_stretch;
+  s.expect.max_string_stretch = r.string_stretch;
+  s.expect.resets_min = s.expect.resets_max = (long)r.resets;
+  char msg[200];
+  if (mr_sim_check(&s, &r, msg, sizeof msg) != 0) fail_msg("%s", msg);
+  mr_scene_free(&s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(a_run_that_needs_exactly_max_steps_is_taken),
@@ -226,6 +272,8 @@ int main(void) {
     cmocka_unit_test(a_string_of_rest_zero_has_no_stretch),
     cmocka_unit_test(an_interpolated_frame_outside_its_step_is_the_nearer_end),
     cmocka_unit_test(the_first_reset_is_the_one_kept),
+    cmocka_unit_test(steps_that_add_up_short_still_land_on_the_end),
+    cmocka_unit_test(a_result_exactly_on_each_bound_passes_the_check),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
