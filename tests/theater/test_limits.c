@@ -18,6 +18,17 @@
 #include "mr_sim.h"
 #include "theater_internal.h"
 
+/* A scene of one particle and one control point, 0.3 m out on a frame
+ * at (0, 1, 0); a test adds its own lines to the frame's section. */
+#define ONE_POINT                                            \
+  "format: 1\n"                                              \
+  "physics:\n"                                               \
+  "  effects: [control]\n"                                   \
+  "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n" \
+  "  control:\n"                                             \
+  "    points: [{name: p, offset: [0.3, 0, 0]}]\n"           \
+  "    pose: {position: [0, 1, 0]}\n"
+
 /* A frame limited to 2 m/s and 90°/s whose input jumps 1 m sideways and
  * turns 120° within 10 ms at t = 0.2 s, and back at t = 1 s: the frame is driven
  * at 60 targets a second as the theater does, and its speed and turn
@@ -77,15 +88,8 @@ static void frame_keeps_its_speed_and_turn_limits_on_a_curved_path(void **state)
  * track-driven frame (the test above) is not held to them. */
 static void glove_frame_keeps_its_acceleration_limits(void **state) {
   (void)state;
-  static const char text[] = "format: 1\n"
-                             "physics:\n"
-                             "  effects: [control]\n"
-                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
-                             "  control:\n"
-                             "    max_accel: 4\n"
-                             "    max_turn_accel: 180\n"
-                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
-                             "    pose: {position: [0, 1, 0]}\n";
+  static const char text[] = ONE_POINT "    max_accel: 4\n"
+                                       "    max_turn_accel: 180\n";
   const double pi = 3.14159265358979323846, sub = 1.0 / 1200.0;
   mr_scene sc;
   mr_scene_error err;
@@ -135,13 +139,7 @@ static void glove_frame_keeps_its_acceleration_limits(void **state) {
  * frame behind would be 3 mm and 0.8° off). */
 static void glove_motion_within_the_limits_passes_unchanged(void **state) {
   (void)state;
-  static const char text[] = "format: 1\n"
-                             "physics:\n"
-                             "  effects: [control]\n"
-                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
-                             "  control:\n"
-                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
-                             "    pose: {position: [0, 1, 0]}\n";
+  static const char text[] = ONE_POINT;
   const double pi = 3.14159265358979323846;
   mr_scene sc;
   mr_scene_error err;
@@ -253,14 +251,7 @@ static void marionette_sim_keeps_a_track_frame_within_its_max_turn_rate(void **s
  * the way. */
 static void two_goals_at_one_time_are_a_jump_not_a_speed(void **state) {
   (void)state;
-  static const char text[] = "format: 1\n"
-                             "physics:\n"
-                             "  effects: [control]\n"
-                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
-                             "  control:\n"
-                             "    max_accel: 4\n"
-                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
-                             "    pose: {position: [0, 1, 0]}\n";
+  static const char text[] = ONE_POINT "    max_accel: 4\n";
   mr_scene sc;
   mr_scene_error err;
   mr_scene_world sw;
@@ -294,13 +285,7 @@ static void two_goals_at_one_time_are_a_jump_not_a_speed(void **state) {
  * stall between samples) is not, and its speed is taken as unknown, 0. */
 static void a_goal_speed_is_read_only_across_a_short_gap(void **state) {
   (void)state;
-  static const char text[] = "format: 1\n"
-                             "physics:\n"
-                             "  effects: [control]\n"
-                             "  particles: [{name: w, position: [0, 0, 0], mass: 1}]\n"
-                             "  control:\n"
-                             "    points: [{name: p, offset: [0.3, 0, 0]}]\n"
-                             "    pose: {position: [0, 1, 0]}\n";
+  static const char text[] = ONE_POINT;
   static const struct { double gap, speed; } cases[] = { { 0.03, 1.0 }, { 0.045, 0.0 } };
   const double still[3] = { 0, 0, 0 };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
