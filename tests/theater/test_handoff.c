@@ -90,7 +90,8 @@ static void frames_cross_threads_whole_and_in_order(void **state) {
 }
 
 /* First in, first out; a pop never waits; a wait with nothing queued
- * ends at its deadline, and at once when a command is there. */
+ * ends at its deadline (at once for a NaN or -INFINITY one, which must not
+ * wait forever), and at once when a command is there. */
 static void commands_come_out_in_order_and_waits_end_at_their_deadline(void **state) {
   (void)state;
   mr_cmdq *q = NULL;
@@ -101,6 +102,8 @@ static void commands_come_out_in_order_and_waits_end_at_their_deadline(void **st
   double t0 = now_s();
   assert_false(mr_cmdq_wait(q, t0 + 0.05));
   assert_true(now_s() - t0 >= 0.049);
+  assert_false(mr_cmdq_wait(q, NAN));
+  assert_false(mr_cmdq_wait(q, -INFINITY));
   for (int i = 0; i < 3; i++) mr_cmdq_push(q, 10 + i);
   assert_true(mr_cmdq_wait(q, INFINITY));
   for (int i = 0; i < 3; i++) {

@@ -46,7 +46,8 @@ void mr_cmdq_destroy(mr_cmdq *q);
 void mr_cmdq_push(mr_cmdq *q, int cmd);
 bool mr_cmdq_pop(mr_cmdq *q, int *cmd);
 /* Waits until a command is queued or CLOCK_MONOTONIC reaches deadline, s
- * (INFINITY: no deadline); true when one is queued. */
+ * (INFINITY: no deadline; NaN or -INFINITY: no wait); true when one is
+ * queued. */
 bool mr_cmdq_wait(mr_cmdq *q, double deadline);
 /* Commands pushed and popped so far. */
 void mr_cmdq_counts(mr_cmdq *q, uint64_t *pushed, uint64_t *popped);

@@ -77,6 +77,9 @@ bool mr_cmdq_pop(mr_cmdq *q, int *cmd) {
 }
 
 bool mr_cmdq_wait(mr_cmdq *q, double deadline) {
+  /* Only +INFINITY means no deadline: a NaN from a broken clock must not
+   * hang the show's thread, so it (and -INFINITY) is a time long past. */
+  if (!(deadline == INFINITY) && !isfinite(deadline)) deadline = 0.0;
   struct timespec ts = { 0, 0 };
   if (isfinite(deadline)) {
     double whole = floor(deadline);
