@@ -75,12 +75,12 @@ typedef struct rig {
   mr_scene scene;
   mr_virtual_clock vc;
   int frames;
-  uint64_t first_hash, last_hash;
+  uint64_t last_hash; /* of the last frame simulated */
 } rig;
 
 static void frame_done(void *user, const mr_show_frame *f) {
   rig *r = user;
-  if (r->frames++ == 0) r->first_hash = f->hash;
+  r->frames++;
   r->last_hash = f->hash;
 }
 
