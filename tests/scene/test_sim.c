@@ -1,6 +1,7 @@
 /* `marionette sim` as a user meets it: a real process, its exit status and
  * what it prints. The program's path comes as the first argument. */
 #include <inttypes.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -439,6 +440,48 @@ static void a_world_without_a_step_limit_reports_none(void **state) {
   tt_output_free(&p);
 }
 
+/* The stretch a failed check reports, from its message. */
+static double stretch_failed(const char *max) {
+  char text[512];
+  int n =
+      snprintf(text, sizeof text,
+               "physics:\n"
+               "  effects: [gravity, strings, control]\n"
+               "  particles:\n"
+               "    - {name: w, position: [0, 1, 0], mass: 1}\n"
+               "  control:\n"
+               "    pose: {position: [0, 1.5, 0]}\n"
+               "    points: [{name: bar, offset: [0, 0, 0]}]\n"
+               "  strings:\n"
+               "    - {from: bar, to: w, mode: spring, stiffness: 1000, damping: 10, rest: 0.5}\n"
+               "expect: {max_string_stretch: %s}\n",
+               max);
+  const char *path = tt_tmp_file("sim_stretch_max.yaml", text, (size_t)n);
+  tt_output p;
+  run(&p, "sim", "--check", "--time", "2", path, NULL);
+  assert_int_equal(p.status, 1);
+  const char *got = strstr(p.err, "its rest length, got ");
+  assert_non_null(got);
+  double g = strtod(got + strlen("its rest length, got "), NULL);
+  tt_output_free(&p);
+  return g;
+}
+
+/* A check that fails by a hair says by how much: the stretch it reports
+ * is past the limit it names, also when the two agree to six digits (a
+ * string 3.5e-6 over 1.01 was reported as "got 1.01"). */
+static void a_failed_stretch_check_names_a_stretch_past_its_limit(void **state) {
+  (void)state;
+  const double stretch = stretch_failed("1.0");
+  assert_true(stretch > 1.0 && stretch < 1.1);
+  char limit[32];
+  snprintf(limit, sizeof limit, "%.5f", floor(stretch * 1e5) / 1e5); /* six digits, below it */
+  const double again = stretch_failed(limit);
+  printf("stretch %.9g; against a limit of %s the check reports %.9g\n", stretch, limit, again);
+  assert_true(again > strtod(limit, NULL));
+  assert_true(again == stretch);
+}
+
 /* A string that never leaves its rest length cannot meet a stretch
  * expectation, and the summary reports the stretch it did reach. */
 static void string_stretch_is_measured_and_checked(void **state) {
@@ -556,6 +599,7 @@ int main(int argc, char **argv) {
     cmocka_unit_test(check_fails_with_a_clear_line),
     cmocka_unit_test(a_world_without_a_step_limit_reports_none),
     cmocka_unit_test(string_stretch_is_measured_and_checked),
+    cmocka_unit_test(a_failed_stretch_check_names_a_stretch_past_its_limit),
     cmocka_unit_test(pinned_state_hash_is_checked),
     cmocka_unit_test(example_puppet_runs_cleanly),
   };

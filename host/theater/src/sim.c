@@ -448,12 +448,12 @@ int mr_sim_check(const mr_scene *s, const mr_sim_result *r, char *msg, size_t ms
     return -1;
   }
   if (!isnan(e->min_string_stretch) && !(r->string_stretch >= e->min_string_stretch)) {
-    snprintf(msg, msg_size, "expected a string stretched to >= %g x its rest length, got %g x",
+    snprintf(msg, msg_size, "expected a string stretched to >= %g x its rest length, got %.9g x",
              e->min_string_stretch, r->string_stretch);
     return -1;
   }
   if (!isnan(e->max_string_stretch) && !(r->string_stretch <= e->max_string_stretch)) {
-    snprintf(msg, msg_size, "expected every string within %g x its rest length, got %g x",
+    snprintf(msg, msg_size, "expected every string within %g x its rest length, got %.9g x",
              e->max_string_stretch, r->string_stretch);
     return -1;
   }
