@@ -205,6 +205,7 @@ struct mr_world {
    * that depth. */
   mr_contact_list held, held_found;
   int held_deep;
+  int held_from; /* scratch.x_held holds this correction's start */
   /* The deepest any contact went along the last step taken (step.c),
    * m past touching. */
   double step_deepest;
@@ -293,6 +294,8 @@ struct mr_world {
     double *impact_momentum;  /* L_a, friction at an impact (eq. 9) */
     double *impact_dv;        /* M⁻¹ L_a */
     double *v_try;            /* q̇⁺ of a trial impulse */
+    double *x_held;           /* positions the string correction started
+                                 from: how deep its held contacts may go */
   } scratch;
 
   /* ATS */

@@ -14,7 +14,8 @@ static int size_scratch(mr_world *w) {
                      &w->scratch.xs,        &w->scratch.vs,
                      &w->scratch.force,     &w->scratch.constraint_force,
                      &w->scratch.acc_try,   &w->scratch.impact_momentum,
-                     &w->scratch.impact_dv, &w->scratch.v_try };
+                     &w->scratch.impact_dv, &w->scratch.v_try,
+                     &w->scratch.x_held };
   int need = w->n > 0 ? w->n : 1, cap = w->cap_scratch;
   for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
     cap = w->cap_scratch;

@@ -84,18 +84,31 @@ static int positions_hold(mr_world *w, double limit, double known) {
          !(mr_constraints_deviation(w, w->t, w->x) > w->def.deviation_low);
 }
 
+/* How deep contact c may be when the correction is done: as deep as the
+ * slop, or as deep as it was when the correction began, and no deeper.
+ * Measured against the start, not against the round before: a round's
+ * Newton step is linear, and the puppets it turns far took a held contact
+ * 19.7 mm deep (two puppets at the control limits, spring strings held at
+ * 1 %), where "as deep as it already is" then kept it, 6.3 mm deep at the
+ * step's end. */
+static double allowed(const mr_world *w, const mr_contact *c) {
+  return fmin(-w->def.contact_slop, mr_contact_gap(w, c, w->scratch.x_held));
+}
+
 /* The contacts the projection holds (positions only), from row r on: each
- * may go as deep as the slop, or stay as deep as it already is, and no
- * deeper; the first held_deep are taken back to the slop and MR_SINK_MAX.
- * How many rows. */
+ * goes to the slop when it is shallower, stays where it is down to how
+ * deep it may be (allowed), and is taken back to that when deeper; the
+ * first held_deep are taken back to the slop and MR_SINK_MAX. How many
+ * rows. */
 static int held_rows(mr_world *w, int r) {
   const double slop = w->def.contact_slop;
   int added = 0;
   for (int k = 0; k < w->held.n; k++) {
+    const mr_contact *c = &w->held.c[k];
     double chi, chidot, jdqd;
-    if (mr_contact_row(w, &w->held.c[k], w->x, w->v, &chi, &chidot, &jdqd) != 0) return -1;
+    if (mr_contact_row(w, c, w->x, w->v, &chi, &chidot, &jdqd) != 0) return -1;
     w->rhs[r + added] = k < w->held_deep ? -(slop + MR_SINK_MAX) - chi /* to −slop − sink */
-                                         : fmin(0.0, -slop - chi);     /* to min(χ, −slop) */
+                                         : fmax(allowed(w, c) - chi, fmin(0.0, -slop - chi));
     w->row_contact[r + added++] = k;
   }
   return added;
@@ -117,19 +130,18 @@ static int is_held(const mr_world *w, const mr_contact *c) {
  * and none of them knows the contacts: a puppet pressed against another or
  * a floor was pushed into it (1.3 mm past the slop, two puppets whose
  * frames jumped at the control limits). The contacts the projection just
- * took past the slop and deeper than they were (at `before`) are added to
+ * took past the slop and deeper than they may be (allowed) are added to
  * the held set, to be projected again with them (a taut string over by as
  * much, which the projection has just shortened, would be held from
  * lengthening). How many, or −1. */
-static int newly_deep(mr_world *w, const double *before) {
+static int newly_deep(mr_world *w) {
   const double slop = w->def.contact_slop;
   if (mr_contacts_detect(w, w->x, -slop, &w->held_found) != 0) return -1;
   int added = 0;
   for (int i = 0; i < w->held_found.n && w->held.n < HELD_MAX; i++) {
     const mr_contact *c = &w->held_found.c[i];
     if (is_held(w, c)) continue;
-    const double now = mr_contact_gap(w, c, w->x), was = mr_contact_gap(w, c, before);
-    if (!(now < was - DEEPER)) continue; /* past −slop: detected so */
+    if (!(mr_contact_gap(w, c, w->x) < allowed(w, c) - DEEPER)) continue;
     if (mr_contact_push(&w->held, c->kind, c->a, c->b, 0.0, 0.0) != 0) return -1;
     added++;
   }
@@ -161,17 +173,26 @@ static int deep_contacts(mr_world *w) {
 }
 
 /* Applies the solved projection; positions are taken back, and 0
- * returned, when it pushed a contact too deep (newly_deep). 1, 0 or −1. */
+ * returned, when it pushed a contact too deep (newly_deep). A held contact
+ * the round's linear step left deeper than it may be is taken back by the
+ * next iteration's rows (held_rows); another round from here at once
+ * instead reset puppets wedged by their strings, whose contacts cannot all
+ * be met. 1, 0 or −1. */
 static int apply(mr_world *w, int velocities) {
   if (velocities || !mr_colliders(w)) {
     mr_project_apply(w, velocities ? w->v : w->x);
     return 1;
   }
+  const size_t bytes = (size_t)(3 * w->n) * sizeof(double);
+  if (!w->held_from) { /* no position has moved yet: this is the start */
+    memcpy(w->scratch.x_held, w->x, bytes);
+    w->held_from = 1;
+  }
   double *before = w->scratch.xs;
-  memcpy(before, w->x, (size_t)(3 * w->n) * sizeof *before);
+  memcpy(before, w->x, bytes);
   mr_project_apply(w, w->x);
-  int deep = newly_deep(w, before);
-  if (deep != 0) memcpy(w->x, before, (size_t)(3 * w->n) * sizeof *before);
+  int deep = newly_deep(w);
+  if (deep != 0) memcpy(w->x, before, bytes);
   return deep < 0 ? -1 : deep == 0;
 }
 
@@ -263,6 +284,7 @@ int mr_strings_correct(mr_world *w, double deviation) {
   w->cap_string_work = cap;
   const double limit = 1.0 + w->def.string_max_stretch;
   int moved = 0;
+  w->held_from = 0;
   for (int it = 0; it < w->def.string_correction_iterations; it++) {
     if (project(w, limit, 0, moved ? NAN : deviation) <= 0) break;
     moved = 1;

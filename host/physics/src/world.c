@@ -384,7 +384,8 @@ void mr_world_destroy(mr_world *w) {
                      w->scratch.acc_try,
                      w->scratch.impact_momentum,
                      w->scratch.impact_dv,
-                     w->scratch.v_try };
+                     w->scratch.v_try,
+                     w->scratch.x_held };
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
   for (int i = 0; i < w->curves.n; i++) {
     free(MR_AT(w->curves, mr_curve, i).times);
