@@ -440,8 +440,9 @@ static void a_world_without_a_step_limit_reports_none(void **state) {
   tt_output_free(&p);
 }
 
-/* The stretch a failed check reports, from its message. */
-static double stretch_failed(const char *max) {
+/* A 1 kg weight on a stiff spring string, checked by `expect` (a flow
+ * map), run for 2 s with --check into p. */
+static void hanging_spring(tt_output *p, const char *name, const char *expect) {
   char text[512];
   int n =
       snprintf(text, sizeof text,
@@ -454,11 +455,18 @@ static double stretch_failed(const char *max) {
                "    points: [{name: bar, offset: [0, 0, 0]}]\n"
                "  strings:\n"
                "    - {from: bar, to: w, mode: spring, stiffness: 1000, damping: 10, rest: 0.5}\n"
-               "expect: {max_string_stretch: %s}\n",
-               max);
-  const char *path = tt_tmp_file("sim_stretch_max.yaml", text, (size_t)n);
+               "expect: %s\n",
+               expect);
+  const char *path = tt_tmp_file(name, text, (size_t)n);
+  run(p, "sim", "--check", "--time", "2", path, NULL);
+}
+
+/* The stretch a failed check against `max` reports, from its message. */
+static double stretch_failed(const char *max) {
+  char expect[64];
+  snprintf(expect, sizeof expect, "{max_string_stretch: %s}", max);
   tt_output p;
-  run(&p, "sim", "--check", "--time", "2", path, NULL);
+  hanging_spring(&p, "sim_stretch_max.yaml", expect);
   assert_int_equal(p.status, 1);
   const char *got = strstr(p.err, "its rest length, got ");
   assert_non_null(got);
@@ -486,20 +494,8 @@ static void a_failed_stretch_check_names_a_stretch_past_its_limit(void **state) 
  * expectation, and the summary reports the stretch it did reach. */
 static void string_stretch_is_measured_and_checked(void **state) {
   (void)state;
-  const char text[] =
-      "physics:\n"
-      "  effects: [gravity, strings, control]\n"
-      "  particles:\n"
-      "    - {name: w, position: [0, 1, 0], mass: 1}\n"
-      "  control:\n"
-      "    pose: {position: [0, 1.5, 0]}\n"
-      "    points: [{name: bar, offset: [0, 0, 0]}]\n"
-      "  strings:\n"
-      "    - {from: bar, to: w, mode: spring, stiffness: 1000, damping: 10, rest: 0.5}\n"
-      "expect: {min_string_stretch: 3}\n";
-  const char *path = tt_tmp_file("sim_stretch.yaml", text, sizeof text - 1);
   tt_output p;
-  run(&p, "sim", "--check", "--time", "2", path, NULL);
+  hanging_spring(&p, "sim_stretch.yaml", "{min_string_stretch: 3}");
   assert_int_equal(p.status, 1);
   char v[64];
   assert_int_equal(tt_field(p.out, "string stretch max", v, sizeof v), 0);
