@@ -63,6 +63,21 @@ void book_ab(const char *dir, mr_take_book *b) {
   if (mr_take_book_add(b, "b", pb, 1, false, NULL, &err) != 0) fail_msg("%s", err.msg);
 }
 
+char *book_ab_tmp(mr_take_book *b) {
+  char *dir = tt_tmpdir();
+  make_a();
+  make_b();
+  book_ab(dir, b);
+  return dir;
+}
+
+void book_done(mr_take_book *b, char *dir) {
+  mr_take_book_close(b);
+  tt_rmdir(tt_path(dir, "book"));
+  tt_rmdir(dir);
+  free(dir);
+}
+
 void punch(mr_take_book *b, const char *name, double t_in, double t_out) {
   mr_take_punch_def d = mr_default_take_punch_def();
   d.base = "a";

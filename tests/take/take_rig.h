@@ -22,6 +22,11 @@ char *file_bytes(const char *path, size_t *len);
 void take_path(const mr_take_book *b, const char *name, char *out);
 /* A book in dir holding A and B as takes "a" and "b". */
 void book_ab(const char *dir, mr_take_book *b);
+/* A and B made afresh, and a book of them in a new temporary folder,
+ * returned (book_done removes it). */
+char *book_ab_tmp(mr_take_book *b);
+/* Closes b and removes the folder book_ab_tmp made, and its book. */
+void book_done(mr_take_book *b, char *dir);
 /* Fingers 1 and 2 of B punched into A over [t_in, t_out), as take name. */
 void punch(mr_take_book *b, const char *name, double t_in, double t_out);
 /* Take `name` of b, read. */

@@ -97,11 +97,8 @@ static void expected_merge(gen_take *out) {
 static void
 a_punch_in_of_two_channels_from_2_to_4_s_stores_the_expected_merge_byte_for_byte(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   punch(&b, "ab", 2.0, 4.0);
   expected_merge(&X);
   gen_write(&X, tt_path(dir, "expected.mrec"));
@@ -126,10 +123,7 @@ a_punch_in_of_two_channels_from_2_to_4_s_stores_the_expected_merge_byte_for_byte
   free(got);
   free(want);
   free(a);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* B's values land in A at the value B's calibration gave them (within one
@@ -138,11 +132,8 @@ a_punch_in_of_two_channels_from_2_to_4_s_stores_the_expected_merge_byte_for_byte
 static void
 a_punched_channel_lands_at_the_over_takes_calibrated_value_and_nothing_else_moves(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   punch(&b, "ab", 2.0, 4.0);
   char path[MR_TAKE_PATH_MAX];
   take_path(&b, "ab", path);
@@ -178,10 +169,7 @@ a_punched_channel_lands_at_the_over_takes_calibrated_value_and_nothing_else_move
   mr_take_rec_free(&got);
   mr_take_rec_free(&a);
   mr_take_rec_free(&over);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* Over a take read at the very times of the base, each punched SAMPLE
@@ -206,10 +194,7 @@ static void a_punch_takes_the_over_sample_read_at_the_same_time(void **state) {
   assert_memory_equal(got, want, n_want);
   free(got);
   free(want);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* --- the list --------------------------------------------------------------- */
@@ -310,10 +295,7 @@ static void split_and_trim_keep_times_lengths_and_a_leading_info(void **state) {
   mr_take_rec_free(&p1);
   mr_take_rec_free(&p2);
   mr_take_rec_free(&t);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* Delete hides a take (its files stay, it still resolves), restore brings
@@ -321,11 +303,8 @@ static void split_and_trim_keep_times_lengths_and_a_leading_info(void **state) {
  * offset, scale, delete, restore and rename no take's file is rewritten. */
 static void delete_hides_restore_returns_and_no_take_file_is_ever_rewritten(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   const char *bd = tt_path(dir, "book");
   char keep[MR_TAKE_PATH_MAX];
   strcpy(keep, bd);
@@ -467,11 +446,8 @@ static int smoothed_holds(const mr_take_book *b, unsigned mask, double fmin, dou
 static void
 smoothing_changes_only_the_chosen_channels_as_an_independent_one_euro_does(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   mr_take_smooth_def d = mr_default_take_smooth_def();
   d.min_cutoff = 2.5;
   d.beta = 0.3;
@@ -481,40 +457,28 @@ smoothing_changes_only_the_chosen_channels_as_an_independent_one_euro_does(void 
     fail_msg("%s", err.msg);
   if (mr_take_book_smooth(&b, "a", &d, "sm", NULL, &err) != 0) fail_msg("%s", err.msg);
   assert_true(smoothed_holds(&b, 1u << 1 | 1u << 3, 2.5, 0.3, 1.7) > 100);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* With no channels chosen, smoothing filters all five fingers, each by
  * the default filter (min_cutoff 1 Hz, beta 0, d_cutoff 1 Hz). */
 static void smoothing_with_no_channels_chosen_filters_every_finger(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   mr_take_smooth_def d = mr_default_take_smooth_def();
   mr_take_error err;
   if (mr_take_book_smooth(&b, "a", &d, "sm", NULL, &err) != 0) fail_msg("%s", err.msg);
   assert_true(smoothed_holds(&b, 0x1fu, 1.0, 0.0, 1.0) > 100);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* An offset of -0.137 s on the middle finger: at t it holds A's value at
  * t + 0.137 s (the last sample's at the end); the other fingers stay. */
 static void an_offset_shifts_one_channel_and_leaves_the_others(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   double off[MR_TAKE_MAX_GLOVES][MR_TAKE_CHANNELS] = { { 0 } };
   off[0][2] = -0.137;
   mr_take_error err;
@@ -525,20 +489,14 @@ static void an_offset_shifts_one_channel_and_leaves_the_others(void **state) {
   load_take(&b, "take-1", &r);
   holds(&r, &X);
   mr_take_rec_free(&r);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* Scaling by 0.25 multiplies every chunk time and rounds to the ns. */
 static void scaling_multiplies_every_chunk_time_and_keeps_the_bytes(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   mr_take_error err;
   if (mr_take_book_scale(&b, "a", 0.25, "q", NULL, &err) != 0) fail_msg("%s", err.msg);
   mr_take_rec a, q;
@@ -551,10 +509,7 @@ static void scaling_multiplies_every_chunk_time_and_keeps_the_bytes(void **state
   assert_true(fabs(mr_take_book_find(&b, "q")->duration - 0.25 * mr_take_rec_duration(&a)) < 1e-9);
   mr_take_rec_free(&a);
   mr_take_rec_free(&q);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 int main(void) {

@@ -242,10 +242,7 @@ static void the_edges_of_punch_split_trim_and_offset(void **state) {
   assert_int_equal(mr_take_book_offset(&b, "a", off, NULL, NULL, &err), -1);
   says(&err, "an offset must be -3600..3600 s, got 3600.5 for 0:3");
   assert_int_equal(b.n, 6);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* A take's name holds at most 63 bytes and a book's directory at most 447;

@@ -156,11 +156,8 @@ static void a_long_take_list_reads_back_whole(void **state) {
  * operation says so. */
 static void a_cut_off_take_is_used_up_to_its_last_whole_chunk_and_says_so(void **state) {
   (void)state;
-  char *dir = tt_tmpdir();
-  make_a();
-  make_b();
   mr_take_book b;
-  book_ab(dir, &b);
+  char *dir = book_ab_tmp(&b);
   size_t len;
   char *bytes = file_bytes(tt_path(dir, "a.mrec"), &len);
   FILE *f = fopen(tt_path(dir, "cut.mrec"), "wb");
@@ -185,10 +182,7 @@ static void a_cut_off_take_is_used_up_to_its_last_whole_chunk_and_says_so(void *
   if (mr_take_book_add(&b, "cut2", p2, 2, false, &m, &err) != 0) fail_msg("%s", err.msg);
   if (mr_take_book_trim(&b, "cut2", 0.5, 9.0, NULL, &m, &err) != 0) fail_msg("%s", err.msg);
   if (strstr(m.note, "-g0.mrec") == NULL) fail_msg("note: '%s'", m.note);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* Takes of different scenes, unknown names, bad names and absurd numbers
@@ -282,10 +276,7 @@ static void different_scenes_unknown_names_and_absurd_numbers_are_refused(void *
   assert_int_equal(mr_take_arms_parse("9:1", arms, 4, &n, &err), -1);
   /* Nothing refused left a take behind. */
   assert_int_equal(b.n, 2);
-  mr_take_book_close(&b);
-  tt_rmdir(tt_path(dir, "book"));
-  tt_rmdir(dir);
-  free(dir);
+  book_done(&b, dir);
 }
 
 /* Without a valid range, a take reads raw counts by its glove's ADC full
