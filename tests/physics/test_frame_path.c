@@ -272,6 +272,108 @@ static void a_quadratic_track_is_followed_exactly_at_uneven_targets(void **state
   mr_world_destroy(w);
 }
 
+/* A track cubic in time from rest, p = (2t³ − t², t³, 0), turning by
+ * 3t³ + t² rad about a fixed axis. Given the track's own rates at each
+ * target (mr_world_set_frame_target_rates), the cubic path is the track
+ * from the first segment on, at uneven targets; the parabola's slopes,
+ * which are exact only for a quadratic, are not. */
+static void cubic_track(double t, mr_pose *p, double v[3], double om[3]) {
+  const double axis[3] = { 0.0, 0.6, 0.8 }, angle = 3.0 * t * t * t + t * t;
+  *p = mr_pose_identity();
+  p->position[0] = 2.0 * t * t * t - t * t;
+  p->position[1] = t * t * t;
+  p->orientation[0] = cos(0.5 * angle);
+  for (int k = 0; k < 3; k++) {
+    p->orientation[k + 1] = axis[k] * sin(0.5 * angle);
+    om[k] = axis[k] * (9.0 * t * t + 2.0 * t);
+  }
+  v[0] = 6.0 * t * t - 2.0 * t;
+  v[1] = 3.0 * t * t;
+  v[2] = 0.0;
+}
+
+/* The worst difference from the cubic track at four times inside each of
+ * the segments to uneven targets, the targets set with the track's rates
+ * or without. */
+static double cubic_worst(int with_rates) {
+  const mr_pose rest = mr_pose_identity();
+  int frame;
+  mr_world *w = frame_world(MR_FRAME_SMOOTH, &rest, &frame);
+  const double at[] = { 0.05, 0.08, 0.15, 0.17, 0.25, 0.3 };
+  double worst = 0.0, t0 = 0.0;
+  for (int s = 0; s < 6; s++) {
+    mr_pose goal;
+    double gv[3], gw[3];
+    cubic_track(at[s], &goal, gv, gw);
+    if (with_rates)
+      assert_int_equal(mr_world_set_frame_target_rates(w, frame, &goal, gv, gw, at[s]), MR_OK);
+    else
+      assert_int_equal(mr_world_set_frame_target(w, frame, &goal, at[s]), MR_OK);
+    for (int i = 1; i <= 4; i++) {
+      double t = t0 + 0.25 * i * (at[s] - t0), wv[3], ww[3], v[3], om[3];
+      mr_pose want, got;
+      assert_int_equal(mr_world_step_to(w, t, NULL), MR_OK);
+      cubic_track(t, &want, wv, ww);
+      assert_int_equal(mr_world_frame_pose(w, frame, &got), MR_OK);
+      assert_int_equal(mr_world_frame_rates(w, frame, v, om), MR_OK);
+      for (int k = 0; k < 3; k++) {
+        worst = fmax(worst, fabs(got.position[k] - want.position[k]));
+        worst = fmax(worst, fabs(got.orientation[k + 1] - want.orientation[k + 1]));
+        worst = fmax(worst, fabs(v[k] - wv[k]));
+        worst = fmax(worst, fabs(om[k] - ww[k]));
+      }
+    }
+    t0 = at[s];
+  }
+  mr_world_destroy(w);
+  return worst;
+}
+
+static void a_cubic_track_is_followed_exactly_at_its_own_rates(void **state) {
+  (void)state;
+  const double given = cubic_worst(1), parabola = cubic_worst(0);
+  print_message("cubic track: worst difference %.3g at its own rates, %.3g at the parabola's\n",
+                given, parabola);
+  assert_true(given < 1e-10);
+  assert_true(parabola > 1e-3);
+}
+
+/* The bound on the path to a target with given end rates reads those
+ * rates: arriving at 5 m/s and 4 rad/s after a short, slow chord, the
+ * path's speed and turn rate reach them, and no sample passes the bound.
+ * Rates that are not finite are refused, and the frame keeps its path. */
+static void given_rates_are_bounded_and_checked(void **state) {
+  (void)state;
+  const mr_pose rest = mr_pose_identity();
+  int frame;
+  mr_world *w = frame_world(MR_FRAME_SMOOTH, &rest, &frame);
+  mr_pose goal = rest;
+  goal.position[0] = 0.01;
+  const double v1[3] = { 0.0, 5.0, 0.0 }, w1[3] = { 4.0, 0.0, 0.0 };
+  double speed, turn, top = 0.0, top_turn = 0.0;
+  assert_int_equal(mr_world_frame_target_rates_peak(w, frame, &goal, v1, w1, 0.1, &speed, &turn),
+                   MR_OK);
+  const double nan3[3] = { 0.0, NAN, 0.0 };
+  assert_int_equal(mr_world_set_frame_target_rates(w, frame, &goal, nan3, w1, 0.1),
+                   MR_ERR_NONFINITE);
+  assert_non_null(strstr(mr_world_last_error(w), "mr_world_set_frame_target_rates"));
+  assert_int_equal(mr_world_frame_target_rates_peak(w, frame, &goal, v1, nan3, 0.1, &speed, &turn),
+                   MR_ERR_NONFINITE);
+  assert_int_equal(mr_world_set_frame_target_rates(w, frame, &goal, NULL, w1, 0.1), MR_ERR_ARG);
+  assert_int_equal(mr_world_set_frame_target_rates(w, frame, &goal, v1, w1, 0.1), MR_OK);
+  for (int i = 1; i <= 200; i++) {
+    double v[3], om[3];
+    assert_int_equal(mr_world_step_to(w, 0.1 * i / 200.0, NULL), MR_OK);
+    mr_world_frame_rates(w, frame, v, om);
+    top = fmax(top, norm3(v));
+    top_turn = fmax(top_turn, norm3(om));
+  }
+  print_message("speed %.4g <= %.4g, turn rate %.4g <= %.4g\n", top, speed, top_turn, turn);
+  assert_true(fabs(top - 5.0) < 1e-9 && top <= speed);
+  assert_true(fabs(top_turn - 4.0) < 1e-9 && top_turn <= turn);
+  mr_world_destroy(w);
+}
+
 /* A tumbling track: a turn about z that swings to and fro after a steady
  * roll about x, so the rates at a segment's two ends are not parallel. */
 static mr_pose tumble(double t) {
@@ -437,6 +539,8 @@ int main(void) {
     cmocka_unit_test(rates_are_the_derivatives_of_the_pose),
     cmocka_unit_test(peak_bounds_the_path),
     cmocka_unit_test(a_quadratic_track_is_followed_exactly_at_uneven_targets),
+    cmocka_unit_test(a_cubic_track_is_followed_exactly_at_its_own_rates),
+    cmocka_unit_test(given_rates_are_bounded_and_checked),
     cmocka_unit_test(target_accel_is_the_derivative_of_the_rates),
     cmocka_unit_test(point_motion_is_the_derivative_of_its_path),
     cmocka_unit_test(target_accel_reads_the_end_of_the_segment),

@@ -296,12 +296,22 @@ mr_status mr_world_add_frame(mr_world *w, const mr_frame_def *def, int *out_id);
  * world time places it at once and at rest (§6.1 method 1). Call it before
  * mr_world_step_to(w, t, ...). */
 mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t);
+/* The same, arriving at the velocity vel (m/s) and angular velocity omega
+ * (rad/s, world axes) given instead of the parabola's slopes: for a track
+ * known in time, whose own rates make the path between targets that of
+ * the track to fourth order, however far apart the targets are. */
+mr_status mr_world_set_frame_target_rates(mr_world *w, int frame, const mr_pose *pose,
+                                          const double vel[3], const double omega[3], double t);
 /* Bounds on the speed (m/s) and the turn rate (rad/s) of the path that
  * mr_world_set_frame_target(w, frame, pose, t) would make now: the path
  * never moves faster than they say. A rate limiter scales the target back
  * until they are within its limits. */
 mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose *pose, double t,
                                      double *speed, double *turn_rate);
+/* The same bounds for the path mr_world_set_frame_target_rates would make. */
+mr_status mr_world_frame_target_rates_peak(const mr_world *w, int frame, const mr_pose *pose,
+                                           const double vel[3], const double omega[3], double t,
+                                           double *speed, double *turn_rate);
 /* The largest acceleration (m/s²) and angular acceleration (rad/s²) of
  * that same path, at its two ends and its middle: exact for the position
  * (a cubic's acceleration is linear in time), a sample for the turn. */

@@ -339,11 +339,21 @@ static void linear_rates(mr_frame *o, double T) {
   }
 }
 
+/* The end rates given: the velocity as it is, the angular velocity
+ * before the whole turn (ω1' = A(t1)⁻¹ ω1, as end_rates leaves it). */
+static void given_rates(mr_frame *o, const double vel[3], const double omega[3]) {
+  double qa[4];
+  memcpy(o->v1, vel, sizeof o->v1);
+  quat_exp(o->turn, qa);
+  mr_pose_unrotate(qa, omega, o->w1);
+}
+
 /* The segment a target `goal` due at t makes of frame fr at the world's
  * time: from the pose now at the velocity now; placed at once and at rest
- * when t is not later than now (§6.1 method 1). */
+ * when t is not later than now (§6.1 method 1). It arrives at the rates
+ * given (vel and omega both, or neither: the parabola's slopes). */
 static void plan_segment(const mr_world *w, const mr_frame *fr, const mr_pose *goal, double t,
-                         mr_frame *o) {
+                         const double *vel, const double *omega, mr_frame *o) {
   double st[MR_FRAME_STATE], axis[3];
   memset(o, 0, sizeof *o);
   o->home = fr->home;
@@ -362,37 +372,53 @@ static void plan_segment(const mr_world *w, const mr_frame *fr, const mr_pose *g
   memcpy(o->w0, st + 10, 3 * sizeof *st);
   double angle = mr_pose_turn(o->from.orientation, goal->orientation, axis);
   for (int k = 0; k < 3; k++) o->turn[k] = axis[k] * angle;
-  if (!o->linear)
-    end_rates(w, fr, o);
-  else
+  if (o->linear)
     linear_rates(o, t - w->t);
+  else if (vel && omega)
+    given_rates(o, vel, omega);
+  else
+    end_rates(w, fr, o);
   for (int k = 0; k < 3; k++) o->turning |= o->turn[k] != 0 || o->w0[k] != 0 || o->w1[k] != 0;
 }
 
-mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t) {
-  const char *what = "mr_world_set_frame_target";
+static mr_status set_target(mr_world *w, int frame, const mr_pose *pose, const double *vel,
+                            const double *omega, double t, const char *what) {
   if (!w || !pose) return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
   mr_status s = frame_at(w, frame, what);
   if (s != MR_OK) return s;
   if (!isfinite(t)) return mr_fail(w, MR_ERR_NONFINITE, "%s: time is NaN or Inf", what);
+  if (vel && omega && !(mr_finite3(vel) && mr_finite3(omega)))
+    return mr_fail(w, MR_ERR_NONFINITE, "%s: velocity or angular velocity is NaN or Inf", what);
   mr_pose p;
   if ((s = pose_check(w, pose, what, &p)) != MR_OK) return s;
   mr_frame *fr = &MR_AT(w->frames, mr_frame, frame), o;
-  plan_segment(w, fr, &p, t, &o);
+  plan_segment(w, fr, &p, t, vel, omega, &o);
   *fr = o;
   w->frame_state_t = NAN; /* its path changes from now on */
   if (!(t > w->t)) mr_frames_place(w, w->t, w->x, w->v);
   return MR_OK;
 }
 
-mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose *pose, double t,
-                                     double *speed, double *turn_rate) {
+mr_status mr_world_set_frame_target(mr_world *w, int frame, const mr_pose *pose, double t) {
+  return set_target(w, frame, pose, NULL, NULL, t, "mr_world_set_frame_target");
+}
+
+mr_status mr_world_set_frame_target_rates(mr_world *w, int frame, const mr_pose *pose,
+                                          const double vel[3], const double omega[3], double t) {
+  const char *what = "mr_world_set_frame_target_rates";
+  if (!vel || !omega) return mr_fail(w, MR_ERR_ARG, "%s: NULL argument", what);
+  return set_target(w, frame, pose, vel, omega, t, what);
+}
+
+static mr_status target_peak(const mr_world *w, int frame, const mr_pose *pose, const double *vel,
+                             const double *omega, double t, double *speed, double *turn_rate) {
   if (!w || !pose || !speed || !turn_rate) return MR_ERR_ARG;
   if (frame < 0 || frame >= w->frames.n) return MR_ERR_ID;
   mr_pose p = *pose;
   if (!isfinite(t) || mr_pose_normalize(&p) != 0) return MR_ERR_NONFINITE;
+  if (vel && omega && !(mr_finite3(vel) && mr_finite3(omega))) return MR_ERR_NONFINITE;
   mr_frame o;
-  plan_segment(w, &MR_AT(w->frames, mr_frame, frame), &p, t, &o);
+  plan_segment(w, &MR_AT(w->frames, mr_frame, frame), &p, t, vel, omega, &o);
   double T = o.t1 - o.t0, mid[3], wmid[3];
   *speed = *turn_rate = 0.0;
   if (!(T > 0)) return MR_OK;
@@ -406,6 +432,18 @@ mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose
   return MR_OK;
 }
 
+mr_status mr_world_frame_target_peak(const mr_world *w, int frame, const mr_pose *pose, double t,
+                                     double *speed, double *turn_rate) {
+  return target_peak(w, frame, pose, NULL, NULL, t, speed, turn_rate);
+}
+
+mr_status mr_world_frame_target_rates_peak(const mr_world *w, int frame, const mr_pose *pose,
+                                           const double vel[3], const double omega[3], double t,
+                                           double *speed, double *turn_rate) {
+  if (!vel || !omega) return MR_ERR_ARG;
+  return target_peak(w, frame, pose, vel, omega, t, speed, turn_rate);
+}
+
 mr_status mr_world_frame_target_accel(const mr_world *w, int frame, const mr_pose *pose, double t,
                                       double *accel, double *turn_accel) {
   if (!w || !pose || !accel || !turn_accel) return MR_ERR_ARG;
@@ -413,7 +451,7 @@ mr_status mr_world_frame_target_accel(const mr_world *w, int frame, const mr_pos
   mr_pose p = *pose;
   if (!isfinite(t) || mr_pose_normalize(&p) != 0) return MR_ERR_NONFINITE;
   mr_frame o;
-  plan_segment(w, &MR_AT(w->frames, mr_frame, frame), &p, t, &o);
+  plan_segment(w, &MR_AT(w->frames, mr_frame, frame), &p, t, NULL, NULL, &o);
   *accel = *turn_accel = 0.0;
   if (!(o.t1 > o.t0)) return MR_OK;
   for (int i = 0; i <= 2; i++) {
