@@ -309,6 +309,10 @@ size_t mr_scene_find_control_point(const mr_scene *scene, const char *name);
 /* Control frame k's pose at time t from its track (its start pose when it
  * has none; the identity when the scene has no frame k). */
 void mr_scene_frame_pose_at(const mr_scene *scene, size_t k, double t, mr_pose *out);
+/* How fast that pose moves at t: velocity (m/s) and angular velocity
+ * (rad/s, world axes); zero for a frame without a track. */
+void mr_scene_frame_rates_at(const mr_scene *scene, size_t k, double t, double vel[3],
+                             double omega[3]);
 
 /* World position of control point i under pose. */
 void mr_scene_control_point_world(const mr_scene *scene, size_t i, const mr_pose *pose,

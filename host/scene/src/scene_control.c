@@ -325,6 +325,25 @@ void mr_scene_frame_pose_at(const mr_scene *s, size_t k, double t, mr_pose *out)
     *out = f->pose;
 }
 
+/* Central differences over ±RATE_DT: the error is RATE_DT² times the
+ * track's third derivative, under 1e-9 of the rate for any track a frame
+ * can follow, and the rounding 1e-16 of a pose over RATE_DT. At a kink
+ * (a linear keyframe, the end of a ramp) they give the mean of the two
+ * sides. */
+#define RATE_DT 1e-6
+
+void mr_scene_frame_rates_at(const mr_scene *s, size_t k, double t, double vel[3],
+                             double omega[3]) {
+  mr_pose a, b;
+  mr_scene_frame_pose_at(s, k, t - RATE_DT, &a);
+  mr_scene_frame_pose_at(s, k, t + RATE_DT, &b);
+  double axis[3], angle = mr_pose_turn(a.orientation, b.orientation, axis);
+  for (int i = 0; i < 3; i++) {
+    vel[i] = (b.position[i] - a.position[i]) / (2 * RATE_DT);
+    omega[i] = axis[i] * angle / (2 * RATE_DT);
+  }
+}
+
 void mr_scene_control_point_world(const mr_scene *s, size_t i, const mr_pose *pose, double out[3]) {
   mr_pose_apply(pose, s->control_points[i].offset, out);
 }

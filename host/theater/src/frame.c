@@ -54,6 +54,29 @@ void mr_theater_head_frame(const mr_scene *s, mr_scene_world *sw, size_t k, mr_p
   mr_world_set_frame_target(sw->world, sw->frames[k], &goal, t);
 }
 
+static int within_rates(const mr_scene_world *sw, size_t k, const mr_scene_frame *f,
+                        const mr_pose *goal, const double vel[3], const double omega[3], double t) {
+  double speed, turn;
+  if (mr_world_frame_target_rates_peak(sw->world, sw->frames[k], goal, vel, omega, t, &speed,
+                                       &turn) != MR_OK)
+    return 0;
+  return speed <= f->max_speed && turn <= f->max_turn;
+}
+
+/* The path's bound passes the chord's rate (a mean of its velocity's
+ * control points), so a path within the limits needs no approach. */
+void mr_theater_track_frame(const mr_scene *s, mr_scene_world *sw, size_t k, double t) {
+  if (k >= sw->n_frames || k >= s->n_frames) return;
+  mr_pose goal;
+  double vel[3], omega[3];
+  mr_scene_frame_pose_at(s, k, t, &goal);
+  mr_scene_frame_rates_at(s, k, t, vel, omega);
+  if (t > mr_world_time(sw->world) && within_rates(sw, k, &s->frames[k], &goal, vel, omega, t) &&
+      mr_world_set_frame_target_rates(sw->world, sw->frames[k], &goal, vel, omega, t) == MR_OK)
+    return;
+  mr_theater_head_frame(s, sw, k, goal, t);
+}
+
 /* ------------------------------------------------------- a glove's limits */
 
 static double norm(const double v[3]) {

@@ -12,6 +12,11 @@
  * Measured from the frame's pose at the world's time, the rule holds
  * whether a step lands on t or stops short of it. */
 void mr_theater_head_frame(const mr_scene *s, mr_scene_world *sw, size_t k, mr_pose goal, double t);
+/* The same for the pose of frame k's own track at t, arriving at the
+ * track's own rates there when the path keeps the limits (a track is known
+ * in time, so the path between targets follows it however far apart the
+ * steps put them); otherwise as mr_theater_head_frame. */
+void mr_theater_track_frame(const mr_scene *s, mr_scene_world *sw, size_t k, double t);
 /* The same for a frame a glove drives, which also changes its velocity no
  * faster than control.max_accel and its turn rate no faster than
  * max_turn_accel allow. The goal's own motion, which the frame
