@@ -234,6 +234,11 @@ static enum verdict divergence_check(mr_world *w, mr_step_ctx *c, mr_status *st)
     count_rejection(w, c);
     return TRY_AGAIN;
   }
+  /* The step's own time passes, not the contact's: a cause that stays
+   * (a curve no step follows) would be cut to the same sliver at every
+   * reset, and the clock would creep by 1e-22 s a step. */
+  c->h = c->asked;
+  c->located = 0;
   c->rep.divergences++;
   c->result = MR_DIVERGED;
   return TRY_DIVERGED;
