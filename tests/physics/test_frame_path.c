@@ -205,6 +205,26 @@ static void peak_bounds_the_path(void **state) {
   mr_world_destroy(r.w);
 }
 
+typedef void (*timed_track)(double t, mr_pose *p, double v[3], double om[3]);
+
+/* The largest difference between the frame's pose and rates at the world's
+ * time t and the track's there: position, orientation's vector part,
+ * velocity, angular velocity. */
+static double off_track(mr_world *w, int frame, double t, timed_track track_at) {
+  mr_pose want, got;
+  double wv[3], ww[3], v[3], om[3], worst = 0.0;
+  track_at(t, &want, wv, ww);
+  assert_int_equal(mr_world_frame_pose(w, frame, &got), MR_OK);
+  assert_int_equal(mr_world_frame_rates(w, frame, v, om), MR_OK);
+  for (int k = 0; k < 3; k++) {
+    worst = fmax(worst, fabs(got.position[k] - want.position[k]));
+    worst = fmax(worst, fabs(got.orientation[k + 1] - want.orientation[k + 1]));
+    worst = fmax(worst, fabs(v[k] - wv[k]));
+    worst = fmax(worst, fabs(om[k] - ww[k]));
+  }
+  return worst;
+}
+
 /* A track quadratic in time, p = (3t², −2t², 0), turning by 4t² rad about
  * a fixed axis, with targets at uneven times. The parabola through the last
  * two targets and the new one is then the track itself, so each segment's
@@ -252,17 +272,7 @@ static void a_quadratic_track_is_followed_exactly_at_uneven_targets(void **state
       double t = t0 + 0.25 * i * (at[s] - t0);
       assert_int_equal(mr_world_step_to(w, t, NULL), MR_OK);
       if (s < 2) continue;
-      mr_pose want, got;
-      double wv[3], ww[3], v[3], om[3];
-      quadratic_track(t, &want, wv, ww);
-      assert_int_equal(mr_world_frame_pose(w, frame, &got), MR_OK);
-      assert_int_equal(mr_world_frame_rates(w, frame, v, om), MR_OK);
-      for (int k = 0; k < 3; k++) {
-        worst = fmax(worst, fabs(got.position[k] - want.position[k]));
-        worst = fmax(worst, fabs(got.orientation[k + 1] - want.orientation[k + 1]));
-        worst = fmax(worst, fabs(v[k] - wv[k]));
-        worst = fmax(worst, fabs(om[k] - ww[k]));
-      }
+      worst = fmax(worst, off_track(w, frame, t, quadratic_track));
       checked++;
     }
   }
@@ -310,18 +320,9 @@ static double cubic_worst(int with_rates) {
     else
       assert_int_equal(mr_world_set_frame_target(w, frame, &goal, at[s]), MR_OK);
     for (int i = 1; i <= 4; i++) {
-      double t = t0 + 0.25 * i * (at[s] - t0), wv[3], ww[3], v[3], om[3];
-      mr_pose want, got;
+      double t = t0 + 0.25 * i * (at[s] - t0);
       assert_int_equal(mr_world_step_to(w, t, NULL), MR_OK);
-      cubic_track(t, &want, wv, ww);
-      assert_int_equal(mr_world_frame_pose(w, frame, &got), MR_OK);
-      assert_int_equal(mr_world_frame_rates(w, frame, v, om), MR_OK);
-      for (int k = 0; k < 3; k++) {
-        worst = fmax(worst, fabs(got.position[k] - want.position[k]));
-        worst = fmax(worst, fabs(got.orientation[k + 1] - want.orientation[k + 1]));
-        worst = fmax(worst, fabs(v[k] - wv[k]));
-        worst = fmax(worst, fabs(om[k] - ww[k]));
-      }
+      worst = fmax(worst, off_track(w, frame, t, cubic_track));
     }
     t0 = at[s];
   }
