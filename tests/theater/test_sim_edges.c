@@ -37,6 +37,39 @@ static void sim(const mr_scene *s, const mr_sim_def *o, mr_sim_result *r) {
   if (mr_sim_run(s, o, r, &err) != MR_SCENE_OK) fail_msg("%s", err.text);
 }
 
+/* A run starts from the state it is given and leaves its end state: the
+ * particle thrown from (1, 2, 3) at (4, 5, −6) m/s falls for 1 s under
+ * g = 9.81 (RK4 is exact on a parabola), and a second run from that end
+ * state ends where one run of 2 s would. A state that is not finite is
+ * refused, naming the particle. */
+static void a_run_starts_from_a_given_state_and_leaves_its_end_state(void **state) {
+  (void)state;
+  mr_scene s;
+  load(FALL, &s);
+  const double start[6] = { 1, 2, 3, 4, 5, -6 };
+  double end[6], again[6];
+  mr_sim_def o = mr_default_sim_def();
+  o.duration = 1.0;
+  o.start_state = start;
+  o.end_state = end;
+  mr_sim_result r;
+  sim(&s, &o, &r);
+  const double want[6] = { 5, 2 + 5 - 0.5 * 9.81, -3, 4, 5 - 9.81, -6 };
+  for (int i = 0; i < 6; i++) assert_true(fabs(end[i] - want[i]) < 1e-9);
+  o.start_state = end;
+  o.end_state = again;
+  sim(&s, &o, &r);
+  print_message("after 1 s: y %.12f, vy %.12f; after 2: y %.12f\n", end[1], end[4], again[1]);
+  assert_true(fabs(again[1] - (2 + 10 - 0.5 * 9.81 * 4)) < 1e-9);
+  assert_true(fabs(again[4] - (5 - 9.81 * 2)) < 1e-9);
+  const double bad[6] = { 0, NAN, 0, 0, 0, 0 };
+  o.start_state = bad;
+  mr_scene_error err;
+  assert_int_equal(mr_sim_run(&s, &o, &r, &err), MR_SCENE_ERR_VALUE);
+  assert_non_null(strstr(err.text, "the start state of particle p"));
+  mr_scene_free(&s);
+}
+
 /* 1 s at steps of 0.01 s needs 100 steps: sim.max_steps 100 is enough,
  * and the run is not refused; every step is at dt_max, and counted so. */
 static void a_run_that_needs_exactly_max_steps_is_taken(void **state) {
@@ -265,6 +298,7 @@ static void a_result_exactly_on_each_bound_passes_the_check(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
+    cmocka_unit_test(a_run_starts_from_a_given_state_and_leaves_its_end_state),
     cmocka_unit_test(a_run_that_needs_exactly_max_steps_is_taken),
     cmocka_unit_test(a_run_a_hair_past_a_frame_ends_on_that_frame),
     cmocka_unit_test(creep_is_measured_from_the_step_that_lands_on_settle),

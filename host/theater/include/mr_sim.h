@@ -54,6 +54,15 @@ typedef struct mr_sim_def {
   void *user;               /* for the hooks */
   mr_present_mode present;  /* with sim.fps; default MR_PRESENT_SCENE */
   mr_sim_frame_fn on_frame; /* with sim.fps; may be NULL (default) */
+  /* 6 numbers per scene particle, its position then its velocity (m,
+   * m/s): the state the run starts from instead of the scene's, which
+   * still gives every length; NULL (default): the scene's own. So a run
+   * can go on from where another stopped (its end_state), with the
+   * scene's tracks moved in time to match. */
+  const double *start_state;
+  /* Where the run leaves its end state, 6 numbers per scene particle as
+   * above; NULL (default): not written. */
+  double *end_state;
 } mr_sim_def;
 mr_sim_def mr_default_sim_def(void);
 

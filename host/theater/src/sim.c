@@ -176,6 +176,15 @@ static mr_scene_status run_open(run *u, mr_scene_error *err) {
   mr_present_mode mode = u->opts ? u->opts->present : MR_PRESENT_SCENE;
   u->interpolate = u->fps > 0 &&
                    (mode == MR_PRESENT_INTERPOLATE || (mode == MR_PRESENT_SCENE && s->interpolate));
+  const double *from = u->opts ? u->opts->start_state : NULL;
+  for (size_t i = 0; from != NULL && i < u->sw.n_particles; i++)
+    if (mr_world_set_particle_state(u->sw.world, u->sw.particle_ids[i], from + 6 * i,
+                                    from + 6 * i + 3) != MR_OK) {
+      char msg[300];
+      snprintf(msg, sizeof msg, "the start state of particle %s: %s", s->particles[i].name,
+               mr_world_last_error(u->sw.world));
+      return run_fail(s, err, MR_SCENE_ERR_VALUE, msg, 0);
+    }
   u->n = mr_world_particle_count(u->sw.world);
   u->xyz = calloc((size_t)(u->n > 0 ? u->n : 1) * 3, sizeof *u->xyz);
   if (u->xyz != NULL) mr_world_positions(u->sw.world, u->xyz, u->n);
@@ -424,6 +433,9 @@ mr_scene_status mr_sim_run(const mr_scene *s, const mr_sim_def *opts, mr_sim_res
   else
     rc = step_to(&u, &u.t, u.duration, true, err);
   run_finish(&u, u.t);
+  for (size_t i = 0; opts != NULL && opts->end_state != NULL && i < u.sw.n_particles; i++)
+    mr_world_particle_state(u.sw.world, u.sw.particle_ids[i], opts->end_state + 6 * i,
+                            opts->end_state + 6 * i + 3);
   run_close(&u);
   return rc;
 }
