@@ -51,6 +51,10 @@ typedef struct bench_run {
 } bench_run;
 int bench_run_scene(const mr_scene *scene, double duration, size_t ee_index, double horizon,
                     bench_run *out);
+/* The same from a given state (mr_sim_def.start_state, NULL: the scene's),
+ * leaving the end state in end (NULL: nowhere). */
+int bench_run_scene_from(const mr_scene *scene, double duration, size_t ee_index, double horizon,
+                         const double *start, double *end, bench_run *out);
 void bench_run_free(bench_run *r);
 /* Largest and RMS distance between two runs' end-effector tracks, m. */
 void bench_ee_error(const bench_run *a, const bench_run *ref, double *max, double *rms);

@@ -92,6 +92,11 @@ static void on_frame(void *user, double t, const double *xyz, int n) {
 
 int bench_run_scene(const mr_scene *scene, double duration, size_t ee_index, double horizon,
                     bench_run *out) {
+  return bench_run_scene_from(scene, duration, ee_index, horizon, NULL, NULL, out);
+}
+
+int bench_run_scene_from(const mr_scene *scene, double duration, size_t ee_index, double horizon,
+                         const double *start, double *end, bench_run *out) {
   memset(out, 0, sizeof *out);
   out->ee_index = ee_index;
   out->horizon = horizon;
@@ -101,6 +106,8 @@ int bench_run_scene(const mr_scene *scene, double duration, size_t ee_index, dou
   o.present = MR_PRESENT_INTERPOLATE;
   o.on_frame = on_frame;
   o.user = out;
+  o.start_state = start;
+  o.end_state = end;
   mr_scene_error err;
   double t0 = bench_cpu_seconds();
   mr_scene_status st = mr_sim_run(scene, &o, &out->r, &err);
