@@ -262,6 +262,30 @@ static void a_track_frame_keeps_the_limits_where_its_track_jumps(void **state) {
   mr_scene_free(&sc);
 }
 
+/* A track frame asked to be somewhere at the world's own time is not put
+ * there at once: with no time to move it, the limits keep it where it is,
+ * as mr_theater_head_frame does. */
+static void a_track_frame_does_not_jump_at_the_worlds_own_time(void **state) {
+  (void)state;
+  static const char text[] = ONE_POINT "    track:\n"
+                                       "      keyframes:\n"
+                                       "        - {t: 0.0, position: [0, 1, 0]}\n"
+                                       "        - {t: 0.5, position: [1, 1, 0]}\n";
+  mr_scene sc;
+  mr_scene_error err;
+  mr_scene_world sw;
+  assert_int_equal(mr_scene_load_text("now.yaml", text, sizeof text - 1, &sc, &err), MR_SCENE_OK);
+  assert_int_equal(mr_scene_build(&sc, &sw, &err), MR_SCENE_OK);
+  assert_true(mr_world_step_to(sw.world, 0.5, NULL) >= 0);
+  mr_theater_track_frame(&sc, &sw, 0, 0.5);
+  mr_pose now;
+  assert_int_equal(mr_world_frame_pose(sw.world, sw.frames[0], &now), MR_OK);
+  print_message("at x = %.6f after a target at the world's time\n", now.position[0]);
+  assert_true(fabs(now.position[0]) < 1e-12);
+  mr_scene_world_free(&sw);
+  mr_scene_free(&sc);
+}
+
 /* The control point's position at every frame `marionette sim` presents. */
 typedef struct point_path {
   int id, n;
@@ -410,6 +434,7 @@ int main(void) {
     cmocka_unit_test(glove_motion_within_the_limits_passes_unchanged),
     cmocka_unit_test(a_track_frame_follows_its_track_to_fourth_order),
     cmocka_unit_test(a_track_frame_keeps_the_limits_where_its_track_jumps),
+    cmocka_unit_test(a_track_frame_does_not_jump_at_the_worlds_own_time),
     cmocka_unit_test(marionette_sim_keeps_a_track_frame_within_its_max_turn_rate),
     cmocka_unit_test(two_goals_at_one_time_are_a_jump_not_a_speed),
     cmocka_unit_test(a_goal_speed_is_read_only_across_a_short_gap),

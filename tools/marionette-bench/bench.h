@@ -56,8 +56,29 @@ int bench_run_scene(const mr_scene *scene, double duration, size_t ee_index, dou
 int bench_run_scene_from(const mr_scene *scene, double duration, size_t ee_index, double horizon,
                          const double *start, double *end, bench_run *out);
 void bench_run_free(bench_run *r);
+/* Sorts v[0..n) ascending. */
+void bench_sort(double *v, int n);
 /* Largest and RMS distance between two runs' end-effector tracks, m. */
 void bench_ee_error(const bench_run *a, const bench_run *ref, double *max, double *rms);
+
+/* windows.c: a chaotic track judged in windows along its whole length,
+ * each from the reference's own state at a turning point of the bar. */
+typedef struct bench_windows {
+  int n;
+  double *start;     /* each window's track time */
+  double **states;   /* the reference's state there, 6 per scene particle */
+  bench_run *ref;    /* the reference from each, RK4 at 0.5 ms */
+  double resolution; /* the median over the windows of what halving its step moves the hand */
+} bench_windows;
+/* The windows every `gap` s of frame 0's oscillating track; their count
+ * (0 for another track), or −1. */
+int bench_windows_open(const mr_scene *base, size_t ee, double duration, double horizon, double gap,
+                       bench_windows *w);
+/* sc (a setting's scene) through the windows: the median of its RMS in
+ * each into *ee_med, the largest distance in any into *ee_max; 0 or −1. */
+int bench_windows_error(mr_scene *sc, size_t ee, double horizon, const bench_windows *w,
+                        double *ee_max, double *ee_med);
+void bench_windows_free(bench_windows *w);
 
 /* A scene's stage drawn headless at w x h and read back (render_cost.c),
  * for the sections that time drawing. */

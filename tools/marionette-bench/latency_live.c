@@ -84,11 +84,6 @@ static void run_loop(mr_glove *g, live *l, mr_scene *sc, mr_scene_world *sw, dou
   }
 }
 
-static int by_value(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 static void report(bench *b, const live *l, double offset) {
   double *lat = malloc((size_t)(l->pending > 0 ? l->pending : 1) * sizeof *lat);
   int n = 0;
@@ -98,7 +93,7 @@ static void report(bench *b, const live *l, double offset) {
     free(lat);
     return;
   }
-  qsort(lat, (size_t)n, sizeof *lat, by_value);
+  bench_sort(lat, (int)n);
   double read_p99 = 0;
   for (int i = 0; i < n; i++) read_p99 = fmax(read_p99, l->read[i] - (l->device[i] + offset));
   bench_say(b,

@@ -117,6 +117,15 @@ int bench_run_scene_from(const mr_scene *scene, double duration, size_t ee_index
   return -1;
 }
 
+static int ascending(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+void bench_sort(double *v, int n) {
+  if (n > 1) qsort(v, (size_t)n, sizeof *v, ascending);
+}
+
 void bench_run_free(bench_run *r) {
   free(r->ee);
   r->ee = NULL;

@@ -194,11 +194,6 @@ static void *show_main(void *arg) {
   return NULL;
 }
 
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
-
 /* What the watchers saw. */
 typedef struct seen {
   double *lat;
@@ -308,7 +303,7 @@ static int net_phase(bench *b, pid_t broker, net_run *r, int n, const mr_state_b
     *cpu = (broker_cpu(broker) - cpu0) / (real_now() - wall0);
     mr_state_out_counters c;
     mr_state_out_get_counters(r->out, &c);
-    qsort(s.lat, s.n_lat, sizeof *s.lat, cmp_double);
+    bench_sort(s.lat, (int)s.n_lat);
     double p50 = s.n_lat ? s.lat[(s.n_lat - 1) / 2] : NAN;
     double p99 = s.n_lat ? s.lat[(size_t)floor(0.99 * (double)(s.n_lat - 1))] : NAN;
     double per = c.sent ? (double)c.bytes / (double)c.sent : 0;

@@ -73,11 +73,6 @@ static void draw_frame(void *user, double t, const double *xyz, int n) {
   d->cost[d->frames++] = bench_wall_seconds() - t0;
 }
 
-static int by_cost(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 /* A scene's frames drawn at w x h, with the theater's set or without it
  * (its proscenium, wings, footlights and bridge off; the boards stay):
  * the p50 and the dearest frame's seconds into cost[0] and cost[1], and
@@ -104,7 +99,7 @@ static int scene_cost(bench *b, const char *rel, int frames, int w, int h, bool 
   }
   int rc = -1;
   if (d.frames > 0 && !d.failed) {
-    qsort(d.cost, (size_t)d.frames, sizeof d.cost[0], by_cost);
+    bench_sort(d.cost, (int)d.frames);
     cost[0] = d.cost[d.frames / 2], cost[1] = d.cost[d.frames - 1];
     *backend = mr_render_backend_name(mr_render_backend_of(d.draw.render));
     rc = 0;

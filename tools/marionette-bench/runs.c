@@ -68,11 +68,6 @@ static void on_frame_clock(void *user, double t, const double *xyz, int n) {
   c->last = now;
 }
 
-static int by_value(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 /* Glove sample to the first frame that shows it, headless: the theater
  * reads the newest sample at each frame tick and the frame is shown when
  * its steps are done, so a sample waits for the next tick (arrivals spread
@@ -101,8 +96,8 @@ int bench_latency(bench *b) {
   for (int f = 0; rc == 0 && f < c.n; f++)
     for (int k = 0; k < 16; k++) lat[n++] = period * (k + 0.5) / 16.0 + c.cost[f];
   if (rc == 0 && n > 0) {
-    qsort(lat, (size_t)n, sizeof *lat, by_value);
-    qsort(c.cost, (size_t)c.n, sizeof *c.cost, by_value);
+    bench_sort(lat, (int)n);
+    bench_sort(c.cost, (int)c.n);
     double wire = (double)GP_MAX_WIRE * 10.0 / 115200.0;
     bench_say(b, "\n== latency (item 4), headless, puppet.yaml at 60 fps ==\n");
     bench_say(b, "frame compute: p50 %.3f ms, p99 %.3f ms, max %.3f ms (%d frames)\n",

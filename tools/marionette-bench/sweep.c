@@ -93,7 +93,7 @@ typedef struct puppet {
    * front ranked them by chance; over 0.5 s it moves 8e-5 m. */
   double horizon;
   int quick; /* in the --quick sweep */
-  /* s between windows along a chaotic track (0: none), below. */
+  /* s between windows along a chaotic track (0: none; windows.c). */
   double window_gap;
 } puppet;
 
@@ -313,153 +313,6 @@ static void print_rows(bench *b, const puppet *p, row *rows, int n) {
   bench_say(b, "default on the front: %s\n", rows[0].front ? "yes" : "NO");
 }
 
-/* A chaotic track's accuracy over its whole length, not only its start:
- * windows of `horizon` s, each started from the reference's own state at
- * a moment where the bar is at rest (a turning point of an oscillating
- * track, so a run can start there with its frame at rest), the track
- * moved in time to match. A setting's hand error is its median over the
- * windows: one window where a string snaps at another moment is off by
- * 1e-2 m where the others are off by 1e-4, and would decide an rms
- * alone. Over the first 0.5 s of Fig. 10 alone (its ramp), a fixed
- * 10 ms step beat the default; over 117 windows from 1 to 59 s the
- * default's median was 21 % smaller (5.1e-4 m against 6.5e-4). */
-typedef struct windows {
-  int n;
-  double *start;     /* each window's track time */
-  double **states;   /* the reference's state there, 6 per scene particle */
-  bench_run *ref;    /* the reference from each */
-  double resolution; /* median over the windows of what halving its step moves the hand */
-} windows;
-
-/* The turning points of frame 0's oscillating track every `gap` s from
- * the end of its ramp to `duration` − horizon; none for another track. */
-static int window_starts(const mr_scene *sc, double duration, double horizon, double gap,
-                         double **out) {
-  const mr_scene_track *tr = &sc->frames[0].track;
-  *out = NULL;
-  if (sc->n_frames < 1 || tr->kind != MR_SCENE_TRACK_OSCILLATE || !(tr->frequency_hz > 0)) return 0;
-  const double half = 0.5 / tr->frequency_hz, pi = 3.14159265358979323846;
-  double t = tr->start + (0.5 * pi - tr->phase_rad) / (2 * pi * tr->frequency_hz);
-  while (t < tr->start + tr->ramp) t += half;
-  const int every = (int)fmax(1.0, floor(gap / half + 0.5));
-  int n = 0, cap = (int)(duration / (every * half)) + 2;
-  double *w = malloc((size_t)cap * sizeof *w);
-  if (w == NULL) return 0;
-  for (; t + horizon <= duration && n < cap; t += every * half) w[n++] = t;
-  *out = w;
-  return n;
-}
-
-/* The scene with frame 0's track moved so that time 0 is track time t. */
-static void shift_track(mr_scene *sc, double t) {
-  sc->frames[0].track.start -= t;
-}
-
-static void ref_scene(mr_scene *sc, double h) {
-  sc->world.integrator = MR_INTEGRATOR_RK4;
-  fixed(&sc->world, h, 0);
-}
-
-static int by_value(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, by_value);
-  return n > 0 ? v[n / 2] : NAN;
-}
-
-static void windows_free(windows *w) {
-  for (int k = 0; k < w->n; k++) {
-    if (w->states) free(w->states[k]);
-    if (w->ref) bench_run_free(&w->ref[k]);
-  }
-  free(w->states);
-  free(w->ref);
-  free(w->start);
-  memset(w, 0, sizeof *w);
-}
-
-/* The reference's states at the windows' starts (one run on from the
- * last), and its run through each window with the step halved to show it
- * resolved there. Taut strings, as the scene has them. */
-static int windows_open(const mr_scene *base, size_t ee, double duration, double horizon,
-                        double gap, windows *w) {
-  memset(w, 0, sizeof *w);
-  w->n = window_starts(base, duration, horizon, gap, &w->start);
-  if (w->n == 0) return 0;
-  const size_t n6 = 6 * base->n_particles;
-  w->states = calloc((size_t)w->n, sizeof *w->states);
-  w->ref = calloc((size_t)w->n, sizeof *w->ref);
-  double *moved = malloc((size_t)w->n * sizeof *moved);
-  if (w->states == NULL || w->ref == NULL || moved == NULL) goto fail;
-  const double save = base->frames[0].track.start;
-  mr_scene sc = *base; /* shares frames with base: the shift is undone below */
-  ref_scene(&sc, 0.0005);
-  for (int k = 0; k < w->n; k++) {
-    double from = k > 0 ? w->start[k - 1] : 0.0;
-    bench_run leg;
-    if ((w->states[k] = malloc(n6 * sizeof **w->states)) == NULL) goto fail_shift;
-    shift_track(&sc, from);
-    int rc = bench_run_scene_from(&sc, w->start[k] - from, ee, 0, k > 0 ? w->states[k - 1] : NULL,
-                                  w->states[k], &leg);
-    sc.frames[0].track.start = save;
-    bench_run_free(&leg);
-    if (rc != 0) goto fail;
-  }
-  for (int k = 0; k < w->n; k++) {
-    bench_run half;
-    shift_track(&sc, w->start[k]);
-    ref_scene(&sc, 0.0005);
-    int rc = bench_run_scene_from(&sc, horizon, ee, horizon, w->states[k], NULL, &w->ref[k]);
-    ref_scene(&sc, 0.00025);
-    if (rc == 0) rc = bench_run_scene_from(&sc, horizon, ee, horizon, w->states[k], NULL, &half);
-    sc.frames[0].track.start = save;
-    if (rc != 0) goto fail;
-    double big;
-    bench_ee_error(&half, &w->ref[k], &big, &moved[k]);
-    bench_run_free(&half);
-  }
-  w->resolution = median(moved, w->n);
-  free(moved);
-  return w->n;
-fail_shift:
-  sc.frames[0].track.start = save;
-fail:
-  free(moved);
-  windows_free(w);
-  return -1;
-}
-
-/* A setting's hand error through the windows: the median of its rms in
- * each, and the largest distance in any. */
-static int windows_error(const mr_scene *base, const setting *s, size_t ee, double horizon,
-                         const windows *w, double *ee_max, double *ee_med) {
-  double *rms = malloc((size_t)w->n * sizeof *rms);
-  if (rms == NULL) return -1;
-  mr_scene sc = setting_scene(base, s);
-  const double save = base->frames[0].track.start;
-  *ee_max = 0.0;
-  int rc = 0;
-  for (int k = 0; k < w->n && rc == 0; k++) {
-    bench_run run;
-    shift_track(&sc, w->start[k]);
-    rc = bench_run_scene_from(&sc, horizon, ee, horizon, w->states[k], NULL, &run);
-    sc.frames[0].track.start = save;
-    if (rc != 0) break;
-    double big;
-    bench_ee_error(&run, &w->ref[k], &big, &rms[k]);
-    *ee_max = fmax(*ee_max, big);
-    if (!run.r.finite || run.r.resets > 0) rms[k] = INFINITY;
-    bench_run_free(&run);
-  }
-  as_written(&sc, s);
-  *ee_med = rc == 0 ? median(rms, w->n) : NAN;
-  free(rms);
-  return rc;
-}
-
 static int sweep_puppet(bench *b, const puppet *p, FILE *csv) {
   mr_scene sc;
   if (bench_load(b, p->path, &sc) != 0) return -1;
@@ -487,17 +340,18 @@ static int sweep_puppet(bench *b, const puppet *p, FILE *csv) {
     bench_progress("sweep", "%s: every setting timed again, in turn", p->name);
     time_again(&sc, rows, n, ee, duration, horizon);
   }
-  windows win = { 0 };
-  if (!b->quick && p->window_gap > 0) {
+  bench_windows win = { 0 };
+  if (p->window_gap > 0) {
     bench_progress("sweep", "%s: the reference's states every %g s along the track", p->name,
                    p->window_gap);
-    if (windows_open(&sc, ee, duration, horizon, p->window_gap, &win) < 0) win.n = 0;
+    if (bench_windows_open(&sc, ee, duration, horizon, p->window_gap, &win) < 0) win.n = 0;
     for (int i = 0; i < n && win.n > 0; i++) {
       if (!rows[i].ok || rows[i].s->spring) continue;
       bench_progress("sweep", "%s: %s through %d windows", p->name, rows[i].s->label, win.n);
-      if (windows_error(&sc, rows[i].s, ee, horizon, &win, &rows[i].ee_max, &rows[i].ee_rms) != 0 ||
-          !isfinite(rows[i].ee_rms))
-        rows[i].ok = 0;
+      mr_scene ss = setting_scene(&sc, rows[i].s);
+      int rc = bench_windows_error(&ss, ee, horizon, &win, &rows[i].ee_max, &rows[i].ee_rms);
+      as_written(&ss, rows[i].s);
+      if (rc != 0 || !isfinite(rows[i].ee_rms)) rows[i].ok = 0;
     }
   }
   mark_front(rows, n);
@@ -527,7 +381,7 @@ static int sweep_puppet(bench *b, const puppet *p, FILE *csv) {
     csv_row(csv, p, &rows[i], &s2.world);
   }
   write_plot(b, p, rows, n);
-  windows_free(&win);
+  bench_windows_free(&win);
   for (int i = 0; i < n; i++) bench_run_free(&rows[i].run);
   bench_run_free(&ref[0]);
   bench_run_free(&ref[1]);

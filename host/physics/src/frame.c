@@ -301,13 +301,22 @@ static double norm3(const double v[3]) {
   return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
+/* The segment's end rates: the velocity as it is, the angular velocity
+ * before the whole turn, ω1' = A(t1)⁻¹ ω1 (A(t1) is the whole turn). */
+static void given_rates(mr_frame *o, const double vel[3], const double omega[3]) {
+  double qa[4];
+  memcpy(o->v1, vel, sizeof o->v1);
+  quat_exp(o->turn, qa);
+  mr_pose_unrotate(qa, omega, o->w1);
+}
+
 /* The end rates of a segment from the world's time to `o->t1`: the slopes
  * at t1 of the parabola through the last target (fr's start, when the
  * world is inside or at the end of fr), the pose now and the goal. With no
  * last target (fr held, or just set), the rate now stands for the chord
  * before it. */
 static void end_rates(const mr_world *w, const mr_frame *fr, mr_frame *o) {
-  double h2 = o->t1 - o->t0, h1 = w->t - fr->t0, c1[3], r1[3], axis[3], w1[3], qa[4];
+  double h2 = o->t1 - o->t0, h1 = w->t - fr->t0, c1[3], r1[3], axis[3], v1[3], w1[3];
   if (fr->t1 > fr->t0 && h1 > 0 && w->t <= fr->t1) {
     double angle = mr_pose_turn(fr->from.orientation, o->from.orientation, axis);
     for (int k = 0; k < 3; k++) {
@@ -322,12 +331,10 @@ static void end_rates(const mr_world *w, const mr_frame *fr, mr_frame *o) {
   double r = h2 / (h1 + h2);
   for (int k = 0; k < 3; k++) {
     double c2 = (o->to.position[k] - o->from.position[k]) / h2, r2 = o->turn[k] / h2;
-    o->v1[k] = c2 + r * (c2 - c1[k]);
+    v1[k] = c2 + r * (c2 - c1[k]);
     w1[k] = r2 + r * (r2 - r1[k]);
   }
-  /* ω1' = A(t1)⁻¹ ω1: A(t1) is the whole turn. */
-  quat_exp(o->turn, qa);
-  mr_pose_unrotate(qa, w1, o->w1);
+  given_rates(o, v1, w1);
 }
 
 /* Both tangents the chord: h01 + h10 + h11 = s, a straight line at a
@@ -337,15 +344,6 @@ static void linear_rates(mr_frame *o, double T) {
     o->v0[k] = o->v1[k] = (o->to.position[k] - o->from.position[k]) / T;
     o->w0[k] = o->w1[k] = o->turn[k] / T;
   }
-}
-
-/* The end rates given: the velocity as it is, the angular velocity
- * before the whole turn (ω1' = A(t1)⁻¹ ω1, as end_rates leaves it). */
-static void given_rates(mr_frame *o, const double vel[3], const double omega[3]) {
-  double qa[4];
-  memcpy(o->v1, vel, sizeof o->v1);
-  quat_exp(o->turn, qa);
-  mr_pose_unrotate(qa, omega, o->w1);
 }
 
 /* The segment a target `goal` due at t makes of frame fr at the world's
